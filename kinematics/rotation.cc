@@ -1,0 +1,122 @@
+#include "kinematics/rotation.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+namespace mocapsolve {
+namespace {
+
+constexpr int kAxes[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+
+}  // namespace
+
+bool ParseEulerOrder(const std::string& text, EulerOrder* order) {
+  if (text.size() != 3) return false;
+  int axes[3];
+  for (int i = 0; i < 3; ++i) {
+    const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(text[i])));
+    if (c < 'X' || c > 'Z') return false;
+    axes[i] = c - 'X';
+  }
+  if (axes[0] == axes[1] || axes[1] == axes[2] || axes[0] == axes[2]) return false;
+  *order = EulerOrderFromAxes(axes[0], axes[1], axes[2]);
+  return true;
+}
+
+std::string EulerOrderName(EulerOrder order) {
+  std::string name(3, ' ');
+  for (int i = 0; i < 3; ++i) name[i] = static_cast<char>('X' + EulerAxis(order, i));
+  return name;
+}
+
+int EulerAxis(EulerOrder order, int i) { return kAxes[static_cast<int>(order)][i]; }
+
+EulerOrder EulerOrderFromAxes(int first, int second, int third) {
+  for (int k = 0; k < 6; ++k) {
+    if (kAxes[k][0] == first && kAxes[k][1] == second && kAxes[k][2] == third) {
+      return static_cast<EulerOrder>(k);
+    }
+  }
+  return EulerOrder::kXYZ;  // Unreachable for a permutation of {0, 1, 2}.
+}
+
+Eigen::Quaterniond QuaternionFromEuler(const Eigen::Vector3d& angles_rad, EulerOrder order) {
+  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+  for (int i = 0; i < 3; ++i) {
+    q = q * Eigen::Quaterniond(
+                Eigen::AngleAxisd(angles_rad[i], Eigen::Vector3d::Unit(EulerAxis(order, i))));
+  }
+  return q;
+}
+
+Eigen::Vector3d EulerFromMatrix(const Eigen::Matrix3d& m, EulerOrder order) {
+  // For R = R_i(a) R_j(b) R_k(c) with (i, j, k) a cyclic permutation (sign s = +1) or an
+  // anticyclic one (s = -1): R(i,k) = s sin b, and a, c follow from the row i / column k
+  // entries that carry cos b as a factor.
+  const int i = EulerAxis(order, 0), j = EulerAxis(order, 1), k = EulerAxis(order, 2);
+  const double s = ((j - i + 3) % 3 == 1) ? 1.0 : -1.0;
+  const double sin_b = std::clamp(s * m(i, k), -1.0, 1.0);
+  const double cos_b = std::hypot(m(i, i), m(i, j));
+  double a, b, c;
+  b = std::atan2(sin_b, cos_b);
+  if (cos_b > 1e-12) {
+    a = std::atan2(-s * m(j, k), m(k, k));
+    c = std::atan2(-s * m(i, j), m(i, i));
+  } else {
+    // Gimbal lock: only a +- c is determined; put it all in a. With c = 0,
+    // R = R_i(a) R_j(b), whose column j is R_i(a) e_j.
+    c = 0.0;
+    a = std::atan2(s * m(k, j), m(j, j));
+  }
+  return Eigen::Vector3d(a, b, c);
+}
+
+Eigen::Vector3d EulerFromQuaternion(const Eigen::Quaterniond& q, EulerOrder order) {
+  return EulerFromMatrix(q.normalized().toRotationMatrix(), order);
+}
+
+Eigen::Quaterniond ExpMap(const Eigen::Vector3d& v) {
+  const double theta_sq = v.squaredNorm();
+  double w, scale;  // q = (cos(theta/2), sin(theta/2)/theta * v)
+  if (theta_sq < 1e-12) {
+    // Taylor to the order where the next term is below double precision at theta < 1e-6.
+    w = 1.0 - theta_sq / 8.0;
+    scale = 0.5 - theta_sq / 48.0;
+  } else {
+    const double theta = std::sqrt(theta_sq);
+    w = std::cos(0.5 * theta);
+    scale = std::sin(0.5 * theta) / theta;
+  }
+  return Eigen::Quaterniond(w, scale * v.x(), scale * v.y(), scale * v.z());
+}
+
+Eigen::Vector3d LogMap(const Eigen::Quaterniond& q_in) {
+  // Take the hemisphere w >= 0 so that the angle is in [0, pi].
+  const Eigen::Quaterniond q = q_in.w() < 0.0 ? Eigen::Quaterniond(-q_in.coeffs()) : q_in;
+  const Eigen::Vector3d xyz = q.vec();
+  const double n = xyz.norm();
+  double scale;  // v = scale * xyz, scale = theta / sin(theta/2), theta = 2 atan2(n, w)
+  if (n < 1e-8) {
+    // 2 atan2(n, w) / n = (2 / w) (1 - n^2 / (3 w^2) + ...); the next term is below
+    // double precision here.
+    scale = 2.0 / q.w() * (1.0 - n * n / (3.0 * q.w() * q.w()));
+  } else {
+    scale = 2.0 * std::atan2(n, q.w()) / n;
+  }
+  return scale * xyz;
+}
+
+void MakeSignContinuous(std::vector<Eigen::Quaterniond>* series) {
+  for (size_t i = 1; i < series->size(); ++i) {
+    if ((*series)[i].dot((*series)[i - 1]) < 0.0) {
+      (*series)[i].coeffs() = -(*series)[i].coeffs();
+    }
+  }
+}
+
+double AngularDistance(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+  return LogMap(a.conjugate() * b).norm();
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,74 @@
+#include "kinematics/skeleton.h"
+
+#include <set>
+
+namespace mocapsolve {
+
+Status Skeleton::Create(std::vector<JointSpec> joints, std::vector<EndSite> end_sites,
+                        LengthUnit unit, Skeleton* skeleton) {
+  if (joints.empty()) return Status::Error("skeleton has no joints");
+  std::set<std::string> names;
+  for (int j = 0; j < static_cast<int>(joints.size()); ++j) {
+    const JointSpec& spec = joints[j];
+    const std::string where = "joint " + std::to_string(j) + " '" + spec.name + "'";
+    if (spec.name.empty()) return Status::Error(where + ": empty name");
+    if (!names.insert(spec.name).second) return Status::Error(where + ": duplicate name");
+    if (j == 0 && spec.parent != -1) return Status::Error(where + ": the root has a parent");
+    if (j > 0 && (spec.parent < 0 || spec.parent >= j)) {
+      return Status::Error(where + ": parent index " + std::to_string(spec.parent) +
+                           " is not an earlier joint (joints must be in preorder)");
+    }
+    if (!spec.offset.allFinite()) return Status::Error(where + ": offset is not finite");
+    if (!spec.rest_rotation.coeffs().allFinite() ||
+        std::abs(spec.rest_rotation.norm() - 1.0) > 1e-9) {
+      return Status::Error(where + ": rest rotation is not a unit quaternion");
+    }
+    std::set<Channel> seen;
+    for (Channel c : spec.channels) {
+      if (!seen.insert(c).second) return Status::Error(where + ": repeated channel");
+    }
+  }
+  for (const EndSite& site : end_sites) {
+    if (site.parent < 0 || site.parent >= static_cast<int>(joints.size()) ||
+        !site.offset.allFinite()) {
+      return Status::Error("end site '" + site.name + "': bad parent or offset");
+    }
+  }
+
+  Skeleton s;
+  const int n = static_cast<int>(joints.size());
+  s.subtree_end_.assign(n, 0);
+  // In preorder, j's subtree ends where the next joint whose parent precedes j begins.
+  for (int j = n - 1; j >= 0; --j) {
+    int end = j + 1;
+    while (end < n && joints[end].parent >= j) {
+      end = s.subtree_end_[end];
+    }
+    s.subtree_end_[j] = end;
+  }
+  s.has_rest_rotation_.resize(n);
+  s.has_translation_channels_.resize(n);
+  for (int j = 0; j < n; ++j) {
+    s.has_rest_rotation_[j] = !joints[j].rest_rotation.isApprox(Eigen::Quaterniond::Identity(), 0.0);
+    bool translation = false;
+    for (Channel c : joints[j].channels) {
+      translation |= c == Channel::kXposition || c == Channel::kYposition ||
+                     c == Channel::kZposition;
+    }
+    s.has_translation_channels_[j] = translation;
+  }
+  s.joints_ = std::move(joints);
+  s.end_sites_ = std::move(end_sites);
+  s.unit_ = std::move(unit);
+  *skeleton = std::move(s);
+  return Status::Ok();
+}
+
+int Skeleton::FindJoint(const std::string& name) const {
+  for (int j = 0; j < num_joints(); ++j) {
+    if (joints_[j].name == name) return j;
+  }
+  return -1;
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,3 @@
+#include "kinematics/rotation.h"
+#include <gtest/gtest.h>
+TEST(Rotation, Builds) { EXPECT_TRUE(true); }
