@@ -52,23 +52,21 @@ Eigen::Quaterniond QuaternionFromEuler(const Eigen::Vector3d& angles_rad, EulerO
 
 Eigen::Vector3d EulerFromMatrix(const Eigen::Matrix3d& m, EulerOrder order) {
   // For R = R_i(a) R_j(b) R_k(c) with (i, j, k) a cyclic permutation (sign s = +1) or an
-  // anticyclic one (s = -1): R(i,k) = s sin b, and a, c follow from the row i / column k
-  // entries that carry cos b as a factor.
+  // anticyclic one (s = -1): R(i,k) = s sin b, and the rest of row i is cos b times
+  // (cos c, -s sin c) at columns (i, j).
   const int i = EulerAxis(order, 0), j = EulerAxis(order, 1), k = EulerAxis(order, 2);
   const double s = ((j - i + 3) % 3 == 1) ? 1.0 : -1.0;
   const double sin_b = std::clamp(s * m(i, k), -1.0, 1.0);
   const double cos_b = std::hypot(m(i, i), m(i, j));
-  double a, b, c;
-  b = std::atan2(sin_b, cos_b);
-  if (cos_b > 1e-12) {
-    a = std::atan2(-s * m(j, k), m(k, k));
-    c = std::atan2(-s * m(i, j), m(i, i));
-  } else {
-    // Gimbal lock: only a +- c is determined; put it all in a. With c = 0,
-    // R = R_i(a) R_j(b), whose column j is R_i(a) e_j.
-    c = 0.0;
-    a = std::atan2(s * m(k, j), m(j, j));
-  }
+  const double b = std::atan2(sin_b, cos_b);
+  // c from row i (its entries carry cos b); at gimbal lock only a +- c is determined, so
+  // c = 0. Then a comes from R R_k(-c) = R_i(a) R_j(b), whose column j is R_i(a) e_j:
+  // well conditioned even when cos b is tiny, and consistent with the c chosen, so the
+  // triple reproduces the rotation to round-off near the lock too.
+  const double c = cos_b > 1e-12 ? std::atan2(-s * m(i, j), m(i, i)) : 0.0;
+  const Eigen::Matrix3d m_without_c =
+      m * Eigen::AngleAxisd(-c, Eigen::Vector3d::Unit(k)).toRotationMatrix();
+  const double a = std::atan2(s * m_without_c(k, j), m_without_c(j, j));
   return Eigen::Vector3d(a, b, c);
 }
 
