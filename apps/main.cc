@@ -1,1 +1,125 @@
-int main() { return 0; }
+// mocapsolve: motion-capture problems as nonlinear least squares.
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <gflags/gflags.h>
+#include <glog/logging.h>
+
+#include "apps/command.h"
+#include "apps/common_flags.h"
+#include "io/atomic_file.h"
+#include "io/motion_file.h"
+
+namespace mocapsolve {
+namespace {
+
+void PrintCommandList() {
+  std::printf(
+      "mocapsolve: motion-capture problems as nonlinear least squares.\n\n"
+      "usage: mocapsolve <command> [--flags] [arguments]\n"
+      "       mocapsolve <command> --help   (that command's flags)\n\ncommands:\n");
+  for (const Command& command : AllCommands()) {
+    std::printf("  %-10s %s\n", command.name, command.summary);
+  }
+  std::printf(
+      "\nCommon flags: --quiet (no progress on stderr), --v=1 (per-iteration detail).\n"
+      "Files: BVH, ASF/AMC (--skeleton=X.asf goes with an .amc). Lengths stay in the\n"
+      "file's units unless a command says otherwise.\n");
+}
+
+bool EndsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+void PrintCommandHelp(const Command& command) {
+  std::printf("usage: %s\n\n", command.usage);
+  std::vector<gflags::CommandLineFlagInfo> flags;
+  gflags::GetAllFlags(&flags);
+  bool header = false;
+  for (const auto& flag : flags) {
+    const bool own = EndsWith(flag.filename, command.source) ||
+                     EndsWith(command.source, flag.filename);
+    const bool common = EndsWith(flag.filename, "apps/main.cc");
+    if (!own && !common) continue;
+    if (!header) std::printf("flags:\n"), header = true;
+    std::printf("  --%s (%s) default: %s\n      %s\n", flag.name.c_str(), flag.type.c_str(),
+                flag.type == "string" ? ("\"" + flag.default_value + "\"").c_str()
+                                      : flag.default_value.c_str(),
+                flag.description.c_str());
+  }
+}
+
+}  // namespace
+}  // namespace mocapsolve
+
+DEFINE_bool(quiet, false, "No progress output on stderr.");
+DEFINE_string(skeleton, "", "Skeleton file for motions that lack one: the .asf of an .amc.");
+DEFINE_double(amc_fps, 120.0, "Frame rate of AMC files, which do not store it (CMU: 120).");
+DEFINE_string(report, "", "Write what the command measured to this JSON file.");
+
+namespace mocapsolve {
+
+Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
+  MotionFileOptions options;
+  options.skeleton_path = FLAGS_skeleton;
+  options.amc_frame_rate = FLAGS_amc_fps;
+  return ReadMotionFile(path, options, skeleton, motion);
+}
+
+Status WriteReport(const JsonObject& report) {
+  if (FLAGS_report.empty()) return Status::Ok();
+  return WriteFileAtomically(FLAGS_report, report.ToString() + "\n");
+}
+
+Status CheckNotAnInput(const std::string& output, const std::string& input) {
+  if (output == input || SameFile(output, input)) {
+    return Status::Error(output + ": output would overwrite the input " + input);
+  }
+  return Status::Ok();
+}
+
+}  // namespace mocapsolve
+
+int main(int argc, char** argv) {
+  using mocapsolve::AllCommands;
+  if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0 ||
+      std::strcmp(argv[1], "help") == 0) {
+    mocapsolve::PrintCommandList();
+    return argc < 2 ? 1 : 0;
+  }
+  const mocapsolve::Command* command = nullptr;
+  for (const auto& candidate : AllCommands()) {
+    if (candidate.name == std::string(argv[1])) command = &candidate;
+  }
+  if (command == nullptr) {
+    std::fprintf(stderr, "mocapsolve: unknown command '%s' (mocapsolve --help lists them)\n",
+                 argv[1]);
+    return 1;
+  }
+  for (int i = 2; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0 ||
+        std::strcmp(argv[i], "--helpshort") == 0) {
+      mocapsolve::PrintCommandHelp(*command);
+      return 0;
+    }
+  }
+  // Drop the command name, then let gflags take the flags (unknown ones are an error).
+  std::vector<char*> args = {argv[0]};
+  for (int i = 2; i < argc; ++i) args.push_back(argv[i]);
+  int count = static_cast<int>(args.size());
+  char** data = args.data();
+  gflags::SetUsageMessage(command->usage);
+  gflags::ParseCommandLineFlags(&count, &data, /*remove_flags=*/true);
+  FLAGS_logtostderr = true;
+  google::InitGoogleLogging(argv[0]);
+  const std::vector<std::string> positional(data + 1, data + count);
+  const mocapsolve::Status status = command->run(positional);
+  if (!status.ok()) {
+    std::fprintf(stderr, "mocapsolve %s: %s\n", command->name, status.message().c_str());
+    return 1;
+  }
+  return 0;
+}

@@ -2,6 +2,7 @@
 #ifndef MOCAPSOLVE_KINEMATICS_UNITS_H_
 #define MOCAPSOLVE_KINEMATICS_UNITS_H_
 
+#include <cstdio>
 #include <string>
 
 namespace mocapsolve {
@@ -18,7 +19,9 @@ inline LengthUnit Centimetres() { return {"cm", 0.01}; }
 inline LengthUnit Millimetres() { return {"mm", 0.001}; }
 // Acclaim ASF ":units length L": one file unit is 1/L inches (CMU FAQ: L = 0.45).
 inline LengthUnit AcclaimLength(double length_scale) {
-  return {"asf(length " + std::to_string(length_scale) + ")", 0.0254 / length_scale};
+  char name[48];
+  std::snprintf(name, sizeof name, "asf length %g (1/%g inch)", length_scale, length_scale);
+  return {name, 0.0254 / length_scale};
 }
 
 }  // namespace mocapsolve

@@ -1,0 +1,29 @@
+// The `mocapsolve <command>` front end: each sub-command lives in its own file
+// (apps/<name>_command.cc) with its gflags DEFINE_*s at the top, and registers itself
+// here. main.cc parses flags, prints help and turns a failed Status into one line on
+// stderr and exit code 1.
+#ifndef MOCAPSOLVE_APPS_COMMAND_H_
+#define MOCAPSOLVE_APPS_COMMAND_H_
+
+#include <string>
+#include <vector>
+
+#include "kinematics/status.h"
+
+namespace mocapsolve {
+
+struct Command {
+  const char* name;
+  const char* summary;  // One line for `mocapsolve --help`.
+  const char* usage;    // Usage and a paragraph of explanation for `mocapsolve NAME --help`.
+  const char* source;   // __FILE__ of the command: its flags are the ones defined there.
+  // Positional arguments after flag parsing. Returns a failed Status on bad input.
+  Status (*run)(const std::vector<std::string>& arguments);
+};
+
+// Every command, in the order `--help` lists them.
+const std::vector<Command>& AllCommands();
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_APPS_COMMAND_H_

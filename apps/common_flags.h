@@ -1,0 +1,33 @@
+// Flags shared by several commands (defined in apps/main.cc) and the helpers that read
+// them, so every command loads motions and writes reports the same way.
+#ifndef MOCAPSOLVE_APPS_COMMON_FLAGS_H_
+#define MOCAPSOLVE_APPS_COMMON_FLAGS_H_
+
+#include <string>
+
+#include <gflags/gflags.h>
+
+#include "io/json_writer.h"
+#include "kinematics/motion.h"
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+
+DECLARE_bool(quiet);
+DECLARE_string(skeleton);
+DECLARE_double(amc_fps);
+DECLARE_string(report);
+
+namespace mocapsolve {
+
+// ReadMotionFile with --skeleton and --amc_fps.
+Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion);
+
+// Writes the report to --report if set (atomically).
+Status WriteReport(const JsonObject& report);
+
+// An output path must not name one of the inputs.
+Status CheckNotAnInput(const std::string& output, const std::string& input);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_APPS_COMMON_FLAGS_H_

@@ -1,0 +1,66 @@
+// mocapsolve convert IN OUT: motion files to BVH.
+#include <cstdio>
+
+#include "apps/command.h"
+#include "apps/common_flags.h"
+#include "io/bvh_writer.h"
+#include "io/motion_file.h"
+#include "kinematics/rotation.h"
+
+DEFINE_double(scale, 1.0, "Multiply every length (offsets, translations) by this factor, e.g. "
+              "5.6444 to turn CMU ASF units into cm.");
+DEFINE_string(euler_order, "", "Write every joint's rotation channels in this order (XYZ, XZY, "
+              "YXZ, YZX, ZXY, ZYX); default: keep each joint's order from the input.");
+DEFINE_int32(precision, 6, "Significant digits of the written channel values.");
+
+namespace mocapsolve {
+namespace {
+
+Status RunConvert(const std::vector<std::string>& arguments) {
+  if (arguments.size() != 2) return Status::Error("expected IN OUT (mocapsolve convert IN OUT)");
+  const std::string& in = arguments[0];
+  const std::string& out = arguments[1];
+  if (FileExtension(out) != ".bvh") return Status::Error(out + ": only .bvh output is supported");
+  Status status = CheckNotAnInput(out, in);
+  if (status.ok() && !FLAGS_skeleton.empty()) status = CheckNotAnInput(out, FLAGS_skeleton);
+  if (!status.ok()) return status;
+  if (!(FLAGS_scale > 0.0)) return Status::Error("--scale must be positive");
+  if (FLAGS_precision < 1 || FLAGS_precision > 17) {
+    return Status::Error("--precision must be in [1, 17]");
+  }
+  BvhWriteOptions options;
+  options.scale = FLAGS_scale;
+  options.precision = FLAGS_precision;
+  if (!FLAGS_euler_order.empty()) {
+    EulerOrder order;
+    if (!ParseEulerOrder(FLAGS_euler_order, &order)) {
+      return Status::Error("--euler_order: '" + FLAGS_euler_order + "' is not one of XYZ, XZY, "
+                           "YXZ, YZX, ZXY, ZYX");
+    }
+    options.euler_order = order;
+  }
+  Skeleton skeleton;
+  Motion motion;
+  status = LoadMotion(in, &skeleton, &motion);
+  if (!status.ok()) return status;
+  status = WriteBvh(out, skeleton, motion, options);
+  if (!status.ok()) return status;
+  std::printf("wrote %s: %d joints, %d frames at %.6g fps\n", out.c_str(), skeleton.num_joints(),
+              motion.num_frames(), motion.frame_rate);
+  JsonObject report;
+  report.Add("input", in).Add("output", out).Add("joints", skeleton.num_joints())
+      .Add("frames", motion.num_frames()).Add("scale", FLAGS_scale);
+  return WriteReport(report);
+}
+
+}  // namespace
+
+extern const Command kConvertCommand = {
+    "convert", "BVH or ASF/AMC in, BVH out (rescale, change Euler order)",
+    "mocapsolve convert IN.bvh|IN.amc OUT.bvh [--skeleton=X.asf] [--scale=S] "
+    "[--euler_order=ZXY]\n\n"
+    "Reads a motion and writes it as BVH. Rest rotations of ASF skeletons are folded into\n"
+    "the BVH rotation channels. OUT is written atomically and may not be an input.",
+    __FILE__, RunConvert};
+
+}  // namespace mocapsolve

@@ -1,0 +1,44 @@
+#include "io/motion_file.h"
+
+#include <cctype>
+
+#include "io/amc_reader.h"
+#include "io/asf_reader.h"
+#include "io/bvh_reader.h"
+
+namespace mocapsolve {
+
+std::string FileExtension(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
+                      Skeleton* skeleton, Motion* motion) {
+  const std::string ext = FileExtension(path);
+  if (ext == ".bvh") {
+    if (!options.skeleton_path.empty()) {
+      return Status::Error(path + ": a BVH carries its own skeleton; drop --skeleton");
+    }
+    return ReadBvh(path, skeleton, motion);
+  }
+  if (ext == ".amc") {
+    if (options.skeleton_path.empty()) {
+      return Status::Error(path + ": an AMC needs its skeleton: add --skeleton=FILE.asf");
+    }
+    if (!(options.amc_frame_rate > 0.0)) {
+      return Status::Error("--amc_fps must be positive");
+    }
+    AsfInfo info;
+    Status status = ReadAsf(options.skeleton_path, skeleton, &info);
+    if (!status.ok()) return status;
+    return ReadAmc(path, *skeleton, info, options.amc_frame_rate, motion);
+  }
+  return Status::Error(path + ": unknown motion format '" + ext + "' (expected .bvh or .amc)");
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Shared set-up for scripts/demo.sh and scripts/test.sh: install what is missing from
+# Debian 12's packages (as root), configure a Release build in build/ and build it.
+# Idempotent: a second run installs nothing and rebuilds only what changed.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libsuitesparse-dev
+          libgoogle-glog-dev libgflags-dev libgtest-dev libgmock-dev libbenchmark-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "setup: missing packages (${missing[*]}); run as root or apt-get install them" >&2
+    exit 1
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+build_type=${MOCAPSOLVE_BUILD_TYPE:-Release}
+if [ ! -f build/CMakeCache.txt ]; then
+  cmake -S . -B build -DCMAKE_BUILD_TYPE="$build_type" ${MOCAPSOLVE_CMAKE_ARGS:-} >/dev/null
+fi
+echo "setup: building (build/, $build_type; log in build/build.log)"
+if ! cmake --build build -j2 >build/build.log 2>&1; then
+  grep -E 'error|Error' build/build.log | head -40 >&2
+  echo "setup: build failed (full log: build/build.log)" >&2
+  exit 1
+fi
+grep -i 'warning' build/build.log | head -20 || true
