@@ -1,0 +1,268 @@
+#include "solvers/dls_solver.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <Eigen/Cholesky>
+
+namespace mocapsolve {
+
+bool DlsOptions::IsValid(std::string* error) const {
+  auto fail = [error](const char* message) {
+    if (error != nullptr) *error = message;
+    return false;
+  };
+  if (max_iterations < 0) return fail("max_iterations must be >= 0");
+  if (!(lambda >= 0.0)) return fail("lambda must be >= 0");
+  if (!adaptive_damping && !(lambda > 0.0)) return fail("fixed damping needs lambda > 0");
+  if (!(lambda_increase > 1.0)) return fail("lambda_increase must be > 1");
+  if (!(lambda_decrease > 0.0 && lambda_decrease < 1.0)) return fail("lambda_decrease must be in (0, 1)");
+  if (!(min_lambda > 0.0 && max_lambda > min_lambda)) return fail("need 0 < min_lambda < max_lambda");
+  if (function_tolerance < 0 || gradient_tolerance < 0 || parameter_tolerance < 0 ||
+      absolute_cost_tolerance < 0) {
+    return fail("tolerances must be >= 0");
+  }
+  return true;
+}
+
+std::string DlsSummary::BriefReport() const {
+  static const char* kNames[] = {"FUNCTION_TOLERANCE", "GRADIENT_TOLERANCE",
+                                 "PARAMETER_TOLERANCE", "ABSOLUTE_COST", "NO_CONVERGENCE",
+                                 "FAILURE"};
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer,
+                "DLS: cost %.6e -> %.6e, %d iterations (%d accepted), lambda %.2e, %s",
+                initial_cost, final_cost, iterations, accepted_steps, final_lambda,
+                kNames[static_cast<int>(termination)]);
+  return buffer;
+}
+
+int DlsProblem::AddParameterBlock(double* values, int size, const ceres::Manifold* manifold) {
+  Parameter p;
+  p.values = values;
+  p.size = size;
+  p.manifold = manifold;
+  p.tangent_size = manifold != nullptr ? manifold->TangentSize() : size;
+  parameters_.push_back(p);
+  return static_cast<int>(parameters_.size()) - 1;
+}
+
+void DlsProblem::SetParameterBlockConstant(int block) { parameters_[block].constant = true; }
+
+void DlsProblem::AddResidualBlock(const ceres::CostFunction* cost, const ceres::LossFunction* loss,
+                                  std::vector<int> blocks) {
+  residuals_.push_back({cost, loss, std::move(blocks)});
+}
+
+void DlsProblem::Clear() {
+  parameters_.clear();
+  residuals_.clear();
+}
+
+bool DlsSolver::Evaluate(DlsProblem* problem, bool linearize, bool dense_j, double* cost) {
+  if (linearize) {
+    jtr_.setZero(num_cols_);
+    if (dense_j) {
+      jacobian_.setZero(num_rows_, num_cols_);
+      residual_.resize(num_rows_);
+    } else {
+      jtj_.setZero(num_cols_, num_cols_);
+    }
+  }
+  *cost = 0.0;
+  int row = 0;
+  std::vector<const double*> parameter_pointers;
+  std::vector<double*> jacobian_pointers;
+  for (const DlsProblem::Residual& block : problem->residuals_) {
+    const int nr = block.cost->num_residuals();
+    const int nb = static_cast<int>(block.blocks.size());
+    r_.resize(nr);
+    parameter_pointers.resize(nb);
+    jacobian_pointers.resize(nb);
+    if (static_cast<int>(ambient_.size()) < nb) {
+      ambient_.resize(nb);
+      tangent_.resize(nb);
+    }
+    for (int k = 0; k < nb; ++k) {
+      const DlsProblem::Parameter& p = problem->parameters_[block.blocks[k]];
+      parameter_pointers[k] = p.values;
+      ambient_[k].resize(nr * p.size);
+      jacobian_pointers[k] = linearize && !p.constant ? ambient_[k].data() : nullptr;
+    }
+    if (!block.cost->Evaluate(parameter_pointers.data(), r_.data(),
+                              linearize ? jacobian_pointers.data() : nullptr)) {
+      return false;
+    }
+    Eigen::Map<Eigen::VectorXd> r(r_.data(), nr);
+    if (!r.allFinite()) return false;
+    double scale = 1.0;
+    if (block.loss != nullptr) {
+      double rho[3];
+      block.loss->Evaluate(r.squaredNorm(), rho);
+      *cost += 0.5 * rho[0];
+      scale = rho[1] > 0.0 ? std::sqrt(rho[1]) : 0.0;
+    } else {
+      *cost += 0.5 * r.squaredNorm();
+    }
+    if (!linearize) continue;
+    r *= scale;
+    // Tangent Jacobians of this block, scaled like the residual.
+    for (int k = 0; k < nb; ++k) {
+      const DlsProblem::Parameter& p = problem->parameters_[block.blocks[k]];
+      if (p.constant) continue;
+      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+          ambient(ambient_[k].data(), nr, p.size);
+      if (p.manifold == nullptr) {
+        tangent_[k] = scale * ambient;
+      } else {
+        plus_.resize(p.size * p.tangent_size);
+        p.manifold->PlusJacobian(p.values, plus_.data());
+        const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+            plus(plus_.data(), p.size, p.tangent_size);
+        tangent_[k].noalias() = scale * ambient * plus;
+      }
+      jtr_.segment(p.tangent_offset, p.tangent_size).noalias() += tangent_[k].transpose() * r;
+    }
+    if (dense_j) {
+      residual_.segment(row, nr) = r;
+      for (int k = 0; k < nb; ++k) {
+        const DlsProblem::Parameter& p = problem->parameters_[block.blocks[k]];
+        if (p.constant) continue;
+        jacobian_.block(row, p.tangent_offset, nr, p.tangent_size) += tangent_[k];
+      }
+    } else {
+      // J^T J, block-sparse: only pairs of blocks this residual touches.
+      for (int a = 0; a < nb; ++a) {
+        const DlsProblem::Parameter& pa = problem->parameters_[block.blocks[a]];
+        if (pa.constant) continue;
+        for (int b = 0; b < nb; ++b) {
+          const DlsProblem::Parameter& pb = problem->parameters_[block.blocks[b]];
+          if (pb.constant) continue;
+          jtj_.block(pa.tangent_offset, pb.tangent_offset, pa.tangent_size, pb.tangent_size)
+              .noalias() += tangent_[a].transpose() * tangent_[b];
+        }
+      }
+    }
+    row += nr;
+  }
+  return true;
+}
+
+void DlsSolver::SaveParameters(const DlsProblem& problem) {
+  saved_.clear();
+  for (const auto& p : problem.parameters_) saved_.insert(saved_.end(), p.values, p.values + p.size);
+}
+
+void DlsSolver::RestoreParameters(DlsProblem* problem) const {
+  size_t i = 0;
+  for (auto& p : problem->parameters_) {
+    for (int k = 0; k < p.size; ++k) p.values[k] = saved_[i++];
+  }
+}
+
+bool DlsSolver::ApplyStep(DlsProblem* problem, const Eigen::VectorXd& delta, double* step_norm,
+                          double* x_norm) {
+  *step_norm = delta.norm();
+  double x_sq = 0.0;
+  for (auto& p : problem->parameters_) {
+    for (int k = 0; k < p.size; ++k) x_sq += p.values[k] * p.values[k];
+    if (p.constant) continue;
+    const double* d = delta.data() + p.tangent_offset;
+    if (p.manifold == nullptr) {
+      for (int k = 0; k < p.size; ++k) p.values[k] += d[k];
+    } else {
+      plus_.resize(p.size);
+      if (!p.manifold->Plus(p.values, d, plus_.data())) return false;
+      for (int k = 0; k < p.size; ++k) p.values[k] = plus_[k];
+    }
+  }
+  *x_norm = std::sqrt(x_sq);
+  return true;
+}
+
+void DlsSolver::Solve(const DlsOptions& options, DlsProblem* problem, DlsSummary* summary) {
+  *summary = DlsSummary();
+  num_cols_ = 0;
+  for (auto& p : problem->parameters_) {
+    p.tangent_offset = p.constant ? -1 : num_cols_;
+    if (!p.constant) num_cols_ += p.tangent_size;
+  }
+  num_rows_ = 0;
+  for (const auto& r : problem->residuals_) num_rows_ += r.cost->num_residuals();
+  // Eq. 4 as written (m x m system) when there are fewer residuals than unknowns.
+  const bool dense_j = num_rows_ < num_cols_;
+
+  double cost = 0.0;
+  if (!Evaluate(problem, true, dense_j, &cost)) {
+    summary->termination = DlsTermination::kFailure;
+    return;
+  }
+  summary->initial_cost = summary->final_cost = cost;
+  double lambda = options.adaptive_damping ? std::max(options.lambda, options.min_lambda) : options.lambda;
+  Eigen::VectorXd delta(num_cols_);
+  Eigen::MatrixXd system;
+  summary->termination = DlsTermination::kNoConvergence;
+  while (summary->iterations < options.max_iterations) {
+    if (cost <= options.absolute_cost_tolerance) {
+      summary->termination = DlsTermination::kAbsoluteCost;
+      break;
+    }
+    if (num_cols_ == 0 || jtr_.cwiseAbs().maxCoeff() <= options.gradient_tolerance) {
+      summary->termination = DlsTermination::kGradientTolerance;
+      break;
+    }
+    if (dense_j) {
+      system.noalias() = jacobian_ * jacobian_.transpose();
+      system.diagonal().array() += lambda;
+      Eigen::LDLT<Eigen::MatrixXd> ldlt(system);
+      delta.noalias() = jacobian_.transpose() * ldlt.solve(-residual_);
+    } else {
+      system = jtj_;
+      system.diagonal().array() += lambda;
+      Eigen::LDLT<Eigen::MatrixXd> ldlt(system);
+      delta = ldlt.solve(-jtr_);
+    }
+    ++summary->iterations;
+    if (!delta.allFinite()) {
+      summary->termination = DlsTermination::kFailure;
+      break;
+    }
+    SaveParameters(*problem);
+    double step_norm = 0.0, x_norm = 0.0, new_cost = 0.0;
+    const bool evaluated = ApplyStep(problem, delta, &step_norm, &x_norm) &&
+                           Evaluate(problem, false, dense_j, &new_cost);
+    const bool accept = evaluated && (!options.adaptive_damping || new_cost < cost);
+    if (!accept) {
+      RestoreParameters(problem);
+      if (!options.adaptive_damping) {
+        summary->termination = DlsTermination::kFailure;
+        break;
+      }
+      lambda *= options.lambda_increase;
+      if (lambda > options.max_lambda) {
+        summary->termination = DlsTermination::kFunctionTolerance;  // No step lowers the cost.
+        break;
+      }
+      continue;
+    }
+    ++summary->accepted_steps;
+    const double old_cost = cost;
+    if (options.adaptive_damping) lambda = std::max(options.min_lambda, lambda * options.lambda_decrease);
+    if (!Evaluate(problem, true, dense_j, &cost)) {
+      summary->termination = DlsTermination::kFailure;
+      break;
+    }
+    if (std::abs(old_cost - cost) <= options.function_tolerance * old_cost) {
+      summary->termination = DlsTermination::kFunctionTolerance;
+      break;
+    }
+    if (step_norm <= options.parameter_tolerance * (x_norm + options.parameter_tolerance)) {
+      summary->termination = DlsTermination::kParameterTolerance;
+      break;
+    }
+  }
+  summary->final_cost = cost;
+  summary->final_lambda = lambda;
+}
+
+}  // namespace mocapsolve
