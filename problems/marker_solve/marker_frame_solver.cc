@@ -1,0 +1,224 @@
+#include "problems/marker_solve/marker_frame_solver.h"
+
+#include <cmath>
+
+#include <ceres/problem.h>
+
+#include "kinematics/forward_kinematics.h"
+#include "problems/marker_solve/marker_residual.h"
+#include "problems/marker_solve/pose_prior_residual.h"
+#include "solvers/right_quaternion_manifold.h"
+
+namespace mocapsolve {
+
+bool MarkerSolveOptions::IsValid(std::string* error) const {
+  if (!(marker_weight > 0.0)) return *error = "marker weight must be positive", false;
+  if (!(loss_scale > 0.0)) return *error = "loss scale must be positive", false;
+  if (prior_rotation_weight < 0.0 || prior_translation_weight < 0.0) {
+    return *error = "prior weights must be >= 0", false;
+  }
+  if (solver == SolverKind::kDls && !dls.IsValid(error)) return false;
+  if (solver == SolverKind::kCeres && !ceres.IsValid(error)) return false;
+  std::unique_ptr<ceres::LossFunction> loss_function;
+  const Status status = MakeLoss(loss, loss_scale, &loss_function);
+  if (!status.ok()) return *error = status.message(), false;
+  return true;
+}
+
+ceres::Solver::Options DefaultFrameCeresOptions() {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 50;
+  options.function_tolerance = 1e-10;
+  options.gradient_tolerance = 1e-12;
+  options.parameter_tolerance = 1e-10;
+  options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
+  return options;
+}
+
+Status MakeLoss(const std::string& name, double scale, std::unique_ptr<ceres::LossFunction>* loss) {
+  if (name == "none") {
+    loss->reset();
+  } else if (name == "huber") {
+    loss->reset(new ceres::HuberLoss(scale));
+  } else if (name == "cauchy") {
+    loss->reset(new ceres::CauchyLoss(scale));
+  } else {
+    return Status::Error("--loss: unknown loss '" + name + "' (none, huber, cauchy)");
+  }
+  return Status::Ok();
+}
+
+double RmsMarkerError(const Skeleton& skeleton, const MarkerSet& markers, const Pose& pose,
+                      const std::vector<Eigen::Vector3d>& observed, int* count) {
+  FkData fk(skeleton);
+  ForwardKinematics(skeleton, pose, &fk);
+  double sum = 0.0;
+  int n = 0;
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    if (!observed[m].allFinite()) continue;
+    sum += (markers.Position(m, fk) - observed[m]).squaredNorm();
+    ++n;
+  }
+  if (count != nullptr) *count = n;
+  return n > 0 ? std::sqrt(sum / n) : 0.0;
+}
+
+class MarkerFrameSolver::Impl {
+ public:
+  Impl(const Skeleton& skeleton, const MarkerSet& markers, const MarkerSolveOptions& options)
+      : skeleton_(skeleton), markers_(markers), options_(options),
+        observed_(markers.num_markers()), rotations_(4 * skeleton.num_joints()),
+        reference_rotations_(4 * skeleton.num_joints()) {
+    (void)MakeLoss(options.loss, options.loss_scale, &loss_);
+    std::vector<bool> moves(skeleton.num_joints(), false);
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      residuals_.emplace_back(new MarkerResidual(&skeleton, &markers, m, &observed_[m],
+                                                 options.marker_weight));
+      for (int j : markers.InfluencingJoints(m)) moves[j] = true;
+    }
+    for (int j = 0; j < skeleton.num_joints(); ++j) {
+      if (moves[j]) solved_joints_.push_back(j);
+    }
+    if (options.prior_rotation_weight > 0.0) {
+      for (int j : solved_joints_) {
+        rotation_priors_.emplace_back(new RotationPriorResidual(&reference_rotations_[4 * j],
+                                                                options.prior_rotation_weight));
+      }
+    }
+    if (options.prior_translation_weight > 0.0) {
+      translation_prior_.reset(new TranslationPriorResidual(reference_translation_,
+                                                            options.prior_translation_weight));
+    }
+  }
+
+  Status Solve(const std::vector<Eigen::Vector3d>& observed, Pose* pose, FrameSolveReport* report) {
+    if (static_cast<int>(observed.size()) != markers_.num_markers()) {
+      return Status::Error("observation count differs from the marker set");
+    }
+    std::vector<bool> visible(markers_.num_markers());
+    int num_visible = 0;
+    for (int m = 0; m < markers_.num_markers(); ++m) {
+      visible[m] = observed[m].allFinite();
+      num_visible += visible[m];
+      if (visible[m]) observed_[m] = observed[m];
+    }
+    *report = FrameSolveReport();
+    report->markers_used = num_visible;
+    // Load the warm start (and the prior's reference) into the parameter blocks.
+    for (int i = 0; i < 3; ++i) translation_[i] = reference_translation_[i] = pose->translations[0][i];
+    for (int j = 0; j < skeleton_.num_joints(); ++j) {
+      for (int i = 0; i < 4; ++i) {
+        rotations_[4 * j + i] = reference_rotations_[4 * j + i] = pose->rotations[j].coeffs()[i];
+      }
+    }
+    if (num_visible == 0) return Status::Error("no marker observed");
+    if (options_.solver == SolverKind::kCeres) {
+      if (visible != ceres_visible_ || ceres_problem_ == nullptr) BuildCeresProblem(visible);
+      ceres::Solver::Summary summary;
+      ceres::Solve(options_.ceres, ceres_problem_.get(), &summary);
+      report->initial_cost = summary.initial_cost;
+      report->final_cost = summary.final_cost;
+      report->iterations = static_cast<int>(summary.iterations.size()) - 1;
+      report->usable = summary.IsSolutionUsable();
+      report->brief = summary.BriefReport();
+    } else {
+      if (visible != dls_visible_ || dls_problem_.num_parameter_blocks() == 0) BuildDlsProblem(visible);
+      DlsSummary summary;
+      dls_solver_.Solve(options_.dls, &dls_problem_, &summary);
+      report->initial_cost = summary.initial_cost;
+      report->final_cost = summary.final_cost;
+      report->iterations = summary.iterations;
+      report->usable = summary.IsSolutionUsable();
+      report->brief = summary.BriefReport();
+    }
+    if (!report->usable) return Status::Error("solver failed: " + report->brief);
+    for (int i = 0; i < 3; ++i) pose->translations[0][i] = translation_[i];
+    for (int j : solved_joints_) {
+      Eigen::Quaterniond q(rotations_[4 * j + 3], rotations_[4 * j], rotations_[4 * j + 1],
+                           rotations_[4 * j + 2]);
+      pose->rotations[j] = q.normalized();
+    }
+    report->rms_marker_error = RmsMarkerError(skeleton_, markers_, *pose, observed);
+    return Status::Ok();
+  }
+
+ private:
+  void BuildCeresProblem(const std::vector<bool>& visible) {
+    ceres::Problem::Options problem_options;
+    problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.enable_fast_removal = false;
+    ceres_problem_.reset(new ceres::Problem(problem_options));
+    ceres_problem_->AddParameterBlock(translation_, 3);
+    for (int j : solved_joints_) {
+      ceres_problem_->AddParameterBlock(&rotations_[4 * j], 4, &manifold_);
+    }
+    std::vector<double*> blocks;
+    for (int m = 0; m < markers_.num_markers(); ++m) {
+      if (!visible[m]) continue;
+      blocks.assign(1, translation_);
+      for (int j : residuals_[m]->joints()) blocks.push_back(&rotations_[4 * j]);
+      ceres_problem_->AddResidualBlock(residuals_[m].get(), loss_.get(), blocks);
+    }
+    for (size_t k = 0; k < rotation_priors_.size(); ++k) {
+      ceres_problem_->AddResidualBlock(rotation_priors_[k].get(), nullptr, &rotations_[4 * solved_joints_[k]]);
+    }
+    if (translation_prior_) ceres_problem_->AddResidualBlock(translation_prior_.get(), nullptr, translation_);
+    ceres_visible_ = visible;
+  }
+
+  void BuildDlsProblem(const std::vector<bool>& visible) {
+    dls_problem_.Clear();
+    std::vector<int> block_of_joint(skeleton_.num_joints(), -1);
+    const int translation_block = dls_problem_.AddParameterBlock(translation_, 3);
+    for (int j : solved_joints_) {
+      block_of_joint[j] = dls_problem_.AddParameterBlock(&rotations_[4 * j], 4, &manifold_);
+    }
+    for (int m = 0; m < markers_.num_markers(); ++m) {
+      if (!visible[m]) continue;
+      std::vector<int> blocks = {translation_block};
+      for (int j : residuals_[m]->joints()) blocks.push_back(block_of_joint[j]);
+      dls_problem_.AddResidualBlock(residuals_[m].get(), loss_.get(), blocks);
+    }
+    for (size_t k = 0; k < rotation_priors_.size(); ++k) {
+      dls_problem_.AddResidualBlock(rotation_priors_[k].get(), nullptr, {block_of_joint[solved_joints_[k]]});
+    }
+    if (translation_prior_) dls_problem_.AddResidualBlock(translation_prior_.get(), nullptr, {translation_block});
+    dls_visible_ = visible;
+  }
+
+  const Skeleton& skeleton_;
+  const MarkerSet& markers_;
+  MarkerSolveOptions options_;
+  std::unique_ptr<ceres::LossFunction> loss_;
+  RightQuaternionManifold manifold_;
+  std::vector<Eigen::Vector3d> observed_;
+  double translation_[3] = {0, 0, 0};
+  double reference_translation_[3] = {0, 0, 0};
+  std::vector<double> rotations_;            // 4 per joint, Eigen order.
+  std::vector<double> reference_rotations_;  // The prior's reference, 4 per joint.
+  std::vector<int> solved_joints_;
+  std::vector<std::unique_ptr<MarkerResidual>> residuals_;
+  std::vector<std::unique_ptr<RotationPriorResidual>> rotation_priors_;
+  std::unique_ptr<TranslationPriorResidual> translation_prior_;
+  std::unique_ptr<ceres::Problem> ceres_problem_;
+  std::vector<bool> ceres_visible_;
+  DlsProblem dls_problem_;
+  DlsSolver dls_solver_;
+  std::vector<bool> dls_visible_;
+};
+
+MarkerFrameSolver::MarkerFrameSolver(const Skeleton& skeleton, const MarkerSet& markers,
+                                     const MarkerSolveOptions& options)
+    : impl_(new Impl(skeleton, markers, options)) {}
+MarkerFrameSolver::~MarkerFrameSolver() = default;
+
+Status MarkerFrameSolver::Solve(const std::vector<Eigen::Vector3d>& observed, Pose* pose,
+                                FrameSolveReport* report) {
+  return impl_->Solve(observed, pose, report);
+}
+
+}  // namespace mocapsolve

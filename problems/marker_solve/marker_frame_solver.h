@@ -1,0 +1,85 @@
+// MarkerFrameSolver: joint angles of one frame from its observed markers, through Ceres
+// or through the DLS path, on the same residual blocks.
+//
+// Unknowns: the root translation (3) and the local rotation of every joint that moves
+// some marker (quaternion blocks on RightQuaternionManifold); other joints keep the
+// warm-start pose. Residuals: one MarkerResidual per observed marker (missing markers
+// are simply absent), optionally robustified (loss), plus an optional pose prior toward
+// the previous frame's solution (RotationPriorResidual per joint, TranslationPriorResidual
+// for the root).
+//
+// Units: observations in the skeleton's length units; marker residuals scaled by
+// marker_weight; the prior's rotation weight is per radian, its translation weight per
+// skeleton unit. Costs are 1/2 sum of squared (robustified) residuals, as Ceres reports.
+#ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_MARKER_FRAME_SOLVER_H_
+#define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_MARKER_FRAME_SOLVER_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ceres/loss_function.h>
+#include <ceres/solver.h>
+
+#include "kinematics/marker_set.h"
+#include "kinematics/motion.h"
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+#include "solvers/dls_solver.h"
+
+namespace mocapsolve {
+
+enum class SolverKind { kCeres, kDls };
+
+struct MarkerSolveOptions {
+  SolverKind solver = SolverKind::kCeres;
+  double marker_weight = 1.0;
+  std::string loss = "none";     // none | huber | cauchy
+  double loss_scale = 1.0;       // Skeleton units (the residual size where the loss bends).
+  double prior_rotation_weight = 0.0;     // Per radian, toward the previous solution.
+  double prior_translation_weight = 0.0;  // Per skeleton unit.
+  ceres::Solver::Options ceres;  // Used when solver == kCeres.
+  DlsOptions dls;                // Used when solver == kDls.
+
+  bool IsValid(std::string* error) const;
+};
+
+// Ceres options that suit small dense per-frame problems.
+ceres::Solver::Options DefaultFrameCeresOptions();
+
+struct FrameSolveReport {
+  double initial_cost = 0.0;
+  double final_cost = 0.0;
+  int iterations = 0;
+  bool usable = false;         // The solver returned a usable solution.
+  int markers_used = 0;
+  double rms_marker_error = 0.0;  // sqrt(mean |x_pred - x_obs|^2), skeleton units.
+  std::string brief;           // The solver's one-line report.
+};
+
+// The ceres::LossFunction for options.loss (nullptr for "none"); error on an unknown name.
+Status MakeLoss(const std::string& name, double scale, std::unique_ptr<ceres::LossFunction>* loss);
+
+class MarkerFrameSolver {
+ public:
+  MarkerFrameSolver(const Skeleton& skeleton, const MarkerSet& markers,
+                    const MarkerSolveOptions& options);
+  ~MarkerFrameSolver();
+
+  // observed[m] for marker m of the marker set, skeleton units; a non-finite entry means
+  // missing. `pose` is the warm start on input and the solution on output; with a prior,
+  // the input pose is also the prior's reference.
+  Status Solve(const std::vector<Eigen::Vector3d>& observed, Pose* pose, FrameSolveReport* report);
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// RMS over markers of |x_pred - x_obs| at a pose (skeleton units), skipping missing ones.
+double RmsMarkerError(const Skeleton& skeleton, const MarkerSet& markers, const Pose& pose,
+                      const std::vector<Eigen::Vector3d>& observed, int* count = nullptr);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_MARKER_FRAME_SOLVER_H_
