@@ -60,9 +60,4 @@ void MarkerSet::BlendTerms(int m, const FkData& fk, std::vector<BlendTerm>* term
   }
 }
 
-std::string StripSubjectPrefix(const std::string& label) {
-  const size_t colon = label.find_last_of(':');
-  return colon == std::string::npos ? label : label.substr(colon + 1);
-}
-
 }  // namespace mocapsolve

@@ -4,8 +4,8 @@
 //   x_m = sum_k w_mk * world_from_joint_{j_mk} * z_mk
 // with z_mk the marker's offset in joint j_mk's frame (skeleton length units) and weights
 // w_mk >= 0 summing to 1. A marker on one bone has a single attachment with weight 1.
-// Labels are matched against marker files without their subject prefix
-// ("TakeoMonday:LBWT" matches "LBWT").
+// Labels are matched against marker files with MarkerTrajectories::FindMarker, which
+// ignores subject prefixes ("LBWT" finds "TakeoMonday:LBWT").
 #ifndef MOCAPSOLVE_KINEMATICS_MARKER_SET_H_
 #define MOCAPSOLVE_KINEMATICS_MARKER_SET_H_
 
@@ -57,9 +57,6 @@ class MarkerSet {
   std::vector<MarkerSpec> markers_;
   std::vector<std::vector<int>> influencing_joints_;
 };
-
-// Label without a subject prefix: everything after the last ':'.
-std::string StripSubjectPrefix(const std::string& label);
 
 }  // namespace mocapsolve
 
