@@ -84,6 +84,6 @@ std::string BenchUsage() {
 static const std::string kBenchUsage = BenchUsage();
 extern const Command kBenchCommand = {"bench", "the solver comparison harness (time, iterations, "
                                       "cost, error per solver)",
-                                      kBenchUsage.c_str(), __FILE__, RunBench};
+                                      kBenchUsage.c_str(), __FILE__, RunBench, "report,quiet"};
 
 }  // namespace mocapsolve

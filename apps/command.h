@@ -19,6 +19,9 @@ struct Command {
   const char* source;   // __FILE__ of the command: its flags are the ones defined there.
   // Positional arguments after flag parsing. Returns a failed Status on bad input.
   Status (*run)(const std::vector<std::string>& arguments);
+  // The shared flags (defined in apps/main.cc) the command reads, comma-separated, for
+  // its --help; nullptr lists them all.
+  const char* shared_flags = nullptr;
 };
 
 // Every command, in the order `--help` lists them.

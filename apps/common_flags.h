@@ -16,6 +16,12 @@ DECLARE_bool(quiet);
 DECLARE_string(skeleton);
 DECLARE_double(amc_fps);
 DECLARE_string(report);
+DECLARE_string(motion);
+DECLARE_string(out);
+DECLARE_string(markers);
+DECLARE_string(markerset);
+DECLARE_string(axes);
+DECLARE_double(marker_scale);
 
 namespace mocapsolve {
 

@@ -61,6 +61,6 @@ extern const Command kConvertCommand = {
     "[--euler_order=ZXY]\n\n"
     "Reads a motion and writes it as BVH. Rest rotations of ASF skeletons are folded into\n"
     "the BVH rotation channels. OUT is written atomically and may not be an input.",
-    __FILE__, RunConvert};
+    __FILE__, RunConvert, "skeleton,amc_fps,report"};
 
 }  // namespace mocapsolve

@@ -9,8 +9,6 @@
 #include "io/motion_file.h"
 #include "kinematics/forward_kinematics.h"
 
-DEFINE_string(motion, "", "Motion file: .bvh, or .amc with --skeleton=X.asf.");
-DEFINE_string(out, "", "Output CSV (frame,joint,x,y,z), in the motion file's length units.");
 
 namespace mocapsolve {
 namespace {
@@ -60,6 +58,6 @@ extern const Command kFkCommand = {
     "mocapsolve fk --motion=FILE.bvh|FILE.amc [--skeleton=X.asf] --out=positions.csv\n\n"
     "Runs forward kinematics on every frame and writes one row per frame and joint:\n"
     "frame,joint,x,y,z (joints by name, lengths in the motion file's units).",
-    __FILE__, RunFk};
+    __FILE__, RunFk, "motion,out,skeleton,amc_fps,report,quiet"};
 
 }  // namespace mocapsolve

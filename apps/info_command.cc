@@ -59,6 +59,6 @@ extern const Command kInfoCommand = {
     "mocapsolve info FILE.bvh | FILE.amc --skeleton=FILE.asf [--report=info.json]\n\n"
     "Prints the joint and end-site counts, frame count and rate, duration, the file's\n"
     "length unit (BVH does not state one) and the bounding box of the root's path.",
-    __FILE__, RunInfo};
+    __FILE__, RunInfo, "skeleton,amc_fps,report"};
 
 }  // namespace mocapsolve

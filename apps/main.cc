@@ -42,7 +42,12 @@ void PrintCommandHelp(const Command& command) {
   for (const auto& flag : flags) {
     const bool own = EndsWith(flag.filename, command.source) ||
                      EndsWith(command.source, flag.filename);
-    const bool common = EndsWith(flag.filename, "apps/main.cc");
+    // Flags defined elsewhere (main.cc, solver_flags.cc) that the command lists.
+    const bool common =
+        command.shared_flags == nullptr
+            ? EndsWith(flag.filename, "apps/main.cc")
+            : ("," + std::string(command.shared_flags) + ",").find("," + flag.name + ",") !=
+                  std::string::npos;
     if (!own && !common) continue;
     if (!header) std::printf("flags:\n"), header = true;
     std::printf("  --%s (%s) default: %s\n      %s\n", flag.name.c_str(), flag.type.c_str(),
@@ -59,6 +64,14 @@ DEFINE_bool(quiet, false, "No progress output on stderr.");
 DEFINE_string(skeleton, "", "Skeleton file for motions that lack one: the .asf of an .amc.");
 DEFINE_double(amc_fps, 120.0, "Frame rate of AMC files, which do not store it (CMU: 120).");
 DEFINE_string(report, "", "Write what the command measured to this JSON file.");
+DEFINE_string(motion, "", "Motion file: .bvh, or .amc with --skeleton=X.asf.");
+DEFINE_string(out, "", "Output file (its extension picks the format).");
+DEFINE_string(markers, "", "Marker file: .c3d or .trc.");
+DEFINE_string(markerset, "", "Marker set file (.json): which joint each marker rides on, with offsets.");
+DEFINE_string(axes, "x,y,z", "Marker file axes to skeleton axes: 'x,z,-y' means (x, y, z)_skeleton = "
+              "(x, z, -y)_file; CMU C3D (Z-up) onto CMU ASF/AMC (Y-up) is x,z,-y.");
+DEFINE_double(marker_scale, 0.0, "Marker file units to skeleton units; 0 = from the files' "
+              "declared units (C3D POINT:UNITS, TRC Units, ASF :units).");
 
 namespace mocapsolve {
 

@@ -17,6 +17,22 @@ std::string FileExtension(const std::string& path) {
   return ext;
 }
 
+Status ReadSkeletonFile(const std::string& path, Skeleton* skeleton, AsfInfo* asf_info) {
+  const std::string ext = FileExtension(path);
+  if (ext == ".bvh") {
+    Motion ignored;
+    if (asf_info != nullptr) *asf_info = AsfInfo();
+    return ReadBvh(path, skeleton, &ignored);
+  }
+  if (ext == ".asf") {
+    AsfInfo info;
+    Status status = ReadAsf(path, skeleton, &info);
+    if (status.ok() && asf_info != nullptr) *asf_info = std::move(info);
+    return status;
+  }
+  return Status::Error(path + ": unknown skeleton format '" + ext + "' (expected .bvh or .asf)");
+}
+
 Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
                       Skeleton* skeleton, Motion* motion) {
   const std::string ext = FileExtension(path);

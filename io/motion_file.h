@@ -19,6 +19,11 @@ struct MotionFileOptions {
 Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
                       Skeleton* skeleton, Motion* motion);
 
+// The skeleton of a .bvh (its motion is ignored) or an .asf. *asf_info, if not null,
+// receives the ASF's dofs and limits (left empty for a BVH).
+struct AsfInfo;
+Status ReadSkeletonFile(const std::string& path, Skeleton* skeleton, AsfInfo* asf_info = nullptr);
+
 // Lower-case extension with the dot (".bvh"), or "".
 std::string FileExtension(const std::string& path);
 

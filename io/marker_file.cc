@@ -1,0 +1,30 @@
+#include "io/marker_file.h"
+
+#include "io/c3d_reader.h"
+#include "io/c3d_writer.h"
+#include "io/motion_file.h"
+#include "io/trc_reader.h"
+#include "io/trc_writer.h"
+
+namespace mocapsolve {
+
+bool IsMarkerFile(const std::string& path) {
+  const std::string ext = FileExtension(path);
+  return ext == ".c3d" || ext == ".trc";
+}
+
+Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories) {
+  const std::string ext = FileExtension(path);
+  if (ext == ".c3d") return ReadC3d(path, trajectories);
+  if (ext == ".trc") return ReadTrc(path, trajectories);
+  return Status::Error(path + ": unknown marker format '" + ext + "' (expected .c3d or .trc)");
+}
+
+Status WriteMarkerFile(const std::string& path, const MarkerTrajectories& trajectories) {
+  const std::string ext = FileExtension(path);
+  if (ext == ".c3d") return WriteC3d(path, trajectories);
+  if (ext == ".trc") return WriteTrc(path, trajectories);
+  return Status::Error(path + ": unknown marker format '" + ext + "' (expected .c3d or .trc)");
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,122 @@
+#include "problems/marker_solve/sequence_solver.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "kinematics/forward_kinematics.h"
+
+namespace mocapsolve {
+namespace {
+
+// The 24 rotations of the cube: every signed permutation matrix with det +1.
+std::vector<Eigen::Quaterniond> AxisAlignedRotations() {
+  std::vector<Eigen::Quaterniond> out;
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (const auto& p : perms) {
+    for (int signs = 0; signs < 8; ++signs) {
+      Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+      for (int r = 0; r < 3; ++r) m(r, p[r]) = (signs >> r) & 1 ? -1.0 : 1.0;
+      if (m.determinant() > 0.0) out.emplace_back(m);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
+                   const std::vector<Eigen::Vector3d>& observed, const MarkerSolveOptions& options,
+                   Pose* pose) {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (const auto& x : observed) {
+    if (x.allFinite()) centroid += x, ++n;
+  }
+  if (n == 0) return Status::Error("no marker observed in the first frame");
+  centroid /= n;
+  MarkerSolveOptions search = options;
+  search.prior_rotation_weight = search.prior_translation_weight = 0.0;
+  MarkerFrameSolver solver(skeleton, markers, search);
+  double best = std::numeric_limits<double>::infinity();
+  Pose best_pose;
+  for (const Eigen::Quaterniond& orientation : AxisAlignedRotations()) {
+    Pose candidate = *pose;
+    candidate.rotations[0] = orientation;
+    // Put the rest markers' centroid on the observed one.
+    FkData fk(skeleton);
+    candidate.translations[0].setZero();
+    ForwardKinematics(skeleton, candidate, &fk);
+    Eigen::Vector3d model_centroid = Eigen::Vector3d::Zero();
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      if (observed[m].allFinite()) model_centroid += markers.Position(m, fk);
+    }
+    candidate.translations[0] = centroid - model_centroid / n;
+    FrameSolveReport report;
+    if (!solver.Solve(observed, &candidate, &report).ok()) continue;
+    if (report.final_cost < best) {
+      best = report.final_cost;
+      best_pose = candidate;
+    }
+  }
+  if (!std::isfinite(best)) return Status::Error("the first frame could not be solved");
+  *pose = best_pose;
+  return Status::Ok();
+}
+
+Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
+                     const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                     const MarkerSolveOptions& options, const Pose& initial, Motion* motion,
+                     SequenceSolveReport* report,
+                     const std::function<void(int frames_done)>& progress) {
+  std::string error;
+  if (!options.IsValid(&error)) return Status::Error(error);
+  *report = SequenceSolveReport();
+  report->frames = static_cast<int>(observed.size());
+  motion->frames.assign(observed.size(), initial);
+  if (observed.empty()) return Status::Ok();
+  Pose pose = initial;
+  // Start from the first frame that has markers.
+  size_t first = 0;
+  while (first < observed.size()) {
+    bool any = false;
+    for (const auto& x : observed[first]) any |= x.allFinite();
+    if (any) break;
+    ++first;
+  }
+  if (first == observed.size()) return Status::Error("no marker observed in any frame");
+  Status status = InitialPose(skeleton, markers, observed[first], options, &pose);
+  if (!status.ok()) return status;
+
+  MarkerFrameSolver solver(skeleton, markers, options);
+  const int max_iterations = options.solver == SolverKind::kCeres ? options.ceres.max_num_iterations
+                                                                  : options.dls.max_iterations;
+  double sum_sq = 0.0;
+  long samples = 0;
+  report->frame_rms.assign(observed.size(), std::nan(""));
+  const auto start = std::chrono::steady_clock::now();
+  for (size_t f = 0; f < observed.size(); ++f) {
+    FrameSolveReport frame;
+    Pose attempt = pose;
+    if (f < first || !solver.Solve(observed[f], &attempt, &frame).ok()) {
+      ++report->unsolved_frames;
+    } else {
+      pose = attempt;
+      report->total_iterations += frame.iterations;
+      report->total_final_cost += frame.final_cost;
+      if (frame.iterations >= max_iterations) ++report->unconverged_frames;
+      report->frame_rms[f] = frame.rms_marker_error;
+      report->max_frame_rms = std::max(report->max_frame_rms, frame.rms_marker_error);
+      sum_sq += frame.rms_marker_error * frame.rms_marker_error * frame.markers_used;
+      samples += frame.markers_used;
+    }
+    motion->frames[f] = pose;
+    if (progress) progress(static_cast<int>(f) + 1);
+  }
+  report->solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report->rms_marker_error = samples > 0 ? std::sqrt(sum_sq / samples) : 0.0;
+  MakeSignContinuous(motion);
+  return Status::Ok();
+}
+
+}  // namespace mocapsolve

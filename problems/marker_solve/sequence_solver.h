@@ -1,0 +1,43 @@
+// Frame-by-frame solving of a whole take: each frame is warm-started from the previous
+// frame's solution (and, with a prior, pulled toward it). The first frame starts from a
+// coarse search: the root is placed at the markers' centroid and tried in the 24
+// axis-aligned orientations, and the best solve is kept, so a take need not start near
+// the skeleton's rest orientation.
+#ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SEQUENCE_SOLVER_H_
+#define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SEQUENCE_SOLVER_H_
+
+#include <functional>
+#include <vector>
+
+#include "problems/marker_solve/marker_frame_solver.h"
+
+namespace mocapsolve {
+
+struct SequenceSolveReport {
+  int frames = 0;
+  int unsolved_frames = 0;       // No marker observed, or the solver failed: pose kept.
+  int unconverged_frames = 0;    // Hit the iteration limit.
+  long total_iterations = 0;
+  double solve_seconds = 0.0;    // Excluding the first frame's orientation search.
+  double rms_marker_error = 0.0;  // Over every observed sample, skeleton units.
+  double max_frame_rms = 0.0;
+  double total_final_cost = 0.0;
+  std::vector<double> frame_rms;  // Per frame.
+};
+
+// observed[f][m] in model units (MarkerObservations); `initial` supplies the joints no
+// marker moves and the starting pose. motion receives one pose per frame.
+Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
+                     const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                     const MarkerSolveOptions& options, const Pose& initial, Motion* motion,
+                     SequenceSolveReport* report,
+                     const std::function<void(int frames_done)>& progress = nullptr);
+
+// The first frame's start: best of 24 root orientations, root at the marker centroid.
+Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
+                   const std::vector<Eigen::Vector3d>& observed, const MarkerSolveOptions& options,
+                   Pose* pose);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SEQUENCE_SOLVER_H_
