@@ -112,14 +112,22 @@ bool DlsSolver::Evaluate(DlsProblem* problem, bool linearize, bool dense_j, doub
       if (p.constant) continue;
       const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
           ambient(ambient_[k].data(), nr, p.size);
+      tangent_[k].resize(nr, p.tangent_size);
       if (p.manifold == nullptr) {
         tangent_[k] = scale * ambient;
       } else {
         plus_.resize(p.size * p.tangent_size);
         p.manifold->PlusJacobian(p.values, plus_.data());
-        const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
-            plus(plus_.data(), p.size, p.tangent_size);
-        tangent_[k].noalias() = scale * ambient * plus;
+        if (nr == 3 && p.size == 4 && p.tangent_size == 3) {
+          // The common case (a 3-row residual on a quaternion), fixed-size.
+          const Eigen::Map<const Eigen::Matrix<double, 3, 4, Eigen::RowMajor>> a(ambient_[k].data());
+          const Eigen::Map<const Eigen::Matrix<double, 4, 3, Eigen::RowMajor>> plus(plus_.data());
+          Eigen::Map<Eigen::Matrix3d>(tangent_[k].data()).noalias() = scale * a * plus;
+        } else {
+          const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+              plus(plus_.data(), p.size, p.tangent_size);
+          tangent_[k].noalias() = scale * ambient * plus;
+        }
       }
       jtr_.segment(p.tangent_offset, p.tangent_size).noalias() += tangent_[k].transpose() * r;
     }
@@ -131,21 +139,42 @@ bool DlsSolver::Evaluate(DlsProblem* problem, bool linearize, bool dense_j, doub
         jacobian_.block(row, p.tangent_offset, nr, p.tangent_size) += tangent_[k];
       }
     } else {
-      // J^T J, block-sparse: only pairs of blocks this residual touches.
+      // J^T J, block-sparse: only pairs of blocks this residual touches, upper triangle
+      // (mirrored in Solve), with a fixed-size path for the common 3-row, 3-column case.
       for (int a = 0; a < nb; ++a) {
         const DlsProblem::Parameter& pa = problem->parameters_[block.blocks[a]];
         if (pa.constant) continue;
         for (int b = 0; b < nb; ++b) {
           const DlsProblem::Parameter& pb = problem->parameters_[block.blocks[b]];
-          if (pb.constant) continue;
-          jtj_.block(pa.tangent_offset, pb.tangent_offset, pa.tangent_size, pb.tangent_size)
-              .noalias() += tangent_[a].transpose() * tangent_[b];
+          if (pb.constant || pb.tangent_offset < pa.tangent_offset) continue;
+          if (nr == 3 && pa.tangent_size == 3 && pb.tangent_size == 3) {
+            const Eigen::Map<const Eigen::Matrix3d> ja(tangent_[a].data()), jb(tangent_[b].data());
+            jtj_.block<3, 3>(pa.tangent_offset, pb.tangent_offset).noalias() += ja.transpose() * jb;
+          } else {
+            jtj_.block(pa.tangent_offset, pb.tangent_offset, pa.tangent_size, pb.tangent_size)
+                .noalias() += tangent_[a].transpose() * tangent_[b];
+          }
         }
       }
     }
     row += nr;
   }
   return true;
+}
+
+// Swaps, not copies: the next Evaluate rebuilds jtr_/jtj_ from zero anyway.
+void DlsSolver::SaveLinearization() {
+  jtr_.swap(saved_jtr_);
+  jtj_.swap(saved_jtj_);
+  jacobian_.swap(saved_jacobian_);
+  residual_.swap(saved_residual_);
+}
+
+void DlsSolver::RestoreLinearization() {
+  jtr_.swap(saved_jtr_);
+  jtj_.swap(saved_jtj_);
+  jacobian_.swap(saved_jacobian_);
+  residual_.swap(saved_residual_);
 }
 
 void DlsSolver::SaveParameters(const DlsProblem& problem) {
@@ -214,13 +243,13 @@ void DlsSolver::Solve(const DlsOptions& options, DlsProblem* problem, DlsSummary
     if (dense_j) {
       system.noalias() = jacobian_ * jacobian_.transpose();
       system.diagonal().array() += lambda;
-      Eigen::LDLT<Eigen::MatrixXd> ldlt(system);
-      delta.noalias() = jacobian_.transpose() * ldlt.solve(-residual_);
+      Eigen::LLT<Eigen::MatrixXd> llt(system);  // SPD: lambda > 0.
+      delta.noalias() = jacobian_.transpose() * llt.solve(-residual_);
     } else {
-      system = jtj_;
+      system = jtj_.selfadjointView<Eigen::Upper>();
       system.diagonal().array() += lambda;
-      Eigen::LDLT<Eigen::MatrixXd> ldlt(system);
-      delta = ldlt.solve(-jtr_);
+      Eigen::LLT<Eigen::MatrixXd> llt(system);  // SPD: J^T J + lambda I, lambda > 0.
+      delta = llt.solve(-jtr_);
     }
     ++summary->iterations;
     if (!delta.allFinite()) {
@@ -228,12 +257,16 @@ void DlsSolver::Solve(const DlsOptions& options, DlsProblem* problem, DlsSummary
       break;
     }
     SaveParameters(*problem);
+    SaveLinearization();
     double step_norm = 0.0, x_norm = 0.0, new_cost = 0.0;
+    // Linearize at the trial point right away: accepted steps (the common case) then need
+    // one evaluation instead of two; a rejected one restores the old linearization.
     const bool evaluated = ApplyStep(problem, delta, &step_norm, &x_norm) &&
-                           Evaluate(problem, false, dense_j, &new_cost);
+                           Evaluate(problem, true, dense_j, &new_cost);
     const bool accept = evaluated && (!options.adaptive_damping || new_cost < cost);
     if (!accept) {
       RestoreParameters(problem);
+      RestoreLinearization();
       if (!options.adaptive_damping) {
         summary->termination = DlsTermination::kFailure;
         break;
@@ -247,11 +280,8 @@ void DlsSolver::Solve(const DlsOptions& options, DlsProblem* problem, DlsSummary
     }
     ++summary->accepted_steps;
     const double old_cost = cost;
+    cost = new_cost;
     if (options.adaptive_damping) lambda = std::max(options.min_lambda, lambda * options.lambda_decrease);
-    if (!Evaluate(problem, true, dense_j, &cost)) {
-      summary->termination = DlsTermination::kFailure;
-      break;
-    }
     if (std::abs(old_cost - cost) <= options.function_tolerance * old_cost) {
       summary->termination = DlsTermination::kFunctionTolerance;
       break;

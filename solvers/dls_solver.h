@@ -118,6 +118,8 @@ class DlsSolver {
   // or the dense J. Returns false if a cost function fails.
   bool Evaluate(DlsProblem* problem, bool linearize, bool dense_j, double* cost);
   void SaveParameters(const DlsProblem& problem);
+  void SaveLinearization();
+  void RestoreLinearization();
   void RestoreParameters(DlsProblem* problem) const;
   bool ApplyStep(DlsProblem* problem, const Eigen::VectorXd& delta, double* step_norm,
                  double* x_norm);
@@ -129,6 +131,8 @@ class DlsSolver {
   Eigen::MatrixXd jacobian_;  // Dense J (m < n form only).
   Eigen::VectorXd residual_;
   std::vector<double> saved_;
+  Eigen::MatrixXd saved_jtj_, saved_jacobian_;
+  Eigen::VectorXd saved_jtr_, saved_residual_;
   // Scratch for one residual block.
   std::vector<double> r_;
   std::vector<std::vector<double>> ambient_;

@@ -27,7 +27,7 @@ bool MarkerSolveOptions::IsValid(std::string* error) const {
 
 ceres::Solver::Options DefaultFrameCeresOptions() {
   ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
+  options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   options.max_num_iterations = 50;
   options.function_tolerance = 1e-10;
   options.gradient_tolerance = 1e-12;
