@@ -1,0 +1,129 @@
+// MarkerTrajectories: labelled 3D marker positions over time, as read from C3D or TRC.
+//
+// Layout: #F frames of #M markers. Positions are one 3 x (#F * #M) matrix, frame-major:
+// the sample of marker m in frame f is column f * #M + m, so positions_of_frame(f) is a
+// contiguous 3 x #M block. Values are in `unit` (the file's unit; nothing is rescaled on
+// read) and in the file's axes (C3D data is often Z-up, TRC/OpenSim Y-up).
+//
+// Missing samples: a sample is either valid (finite position) or missing. Missing
+// samples hold NaN in `positions` *and* are flagged in the mask (valid(f, m) false); the
+// two always agree, so code may test either. Nothing here treats (0,0,0) as a position:
+// readers translate their files' gap conventions (negative C3D residual, empty TRC
+// cells, ...) into this mask.
+//
+// Residuals: per sample, the C3D residual in `unit` (0 = valid with no residual
+// information, e.g. TRC input or an interpolated C3D sample), -1 for missing samples.
+// Camera masks: the C3D camera-contribution bits (bit i = camera i+1 saw the marker);
+// 0 when unknown.
+//
+// Labels are kept exactly as the file spells them ("TakeoMonday:LBWT"); subject prefixes
+// (C3D SUBJECTS:LABEL_PREFIXES, "TakeoMonday:") are recorded in `subject_prefixes` so
+// FindMarker("LBWT") still finds the marker. Frame numbers: frame index f (0-based)
+// corresponds to the file's frame number first_frame + f (C3D field number; TRC Frame#).
+#ifndef MOCAPSOLVE_KINEMATICS_MARKER_TRAJECTORIES_H_
+#define MOCAPSOLVE_KINEMATICS_MARKER_TRAJECTORIES_H_
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinematics/status.h"
+#include "kinematics/units.h"
+
+namespace mocapsolve {
+
+class MarkerTrajectories {
+ public:
+  // Metadata (free to edit; see set_label for labels).
+  double frame_rate = 0.0;  // Frames per second.
+  LengthUnit unit;          // Of positions and residuals.
+  int first_frame = 1;      // File frame number of frame index 0.
+  std::vector<std::string> subject_prefixes;  // "TakeoMonday:", ...; may be empty.
+
+  MarkerTrajectories() = default;
+  // #F frames of the labelled markers, every sample missing.
+  MarkerTrajectories(std::vector<std::string> labels, int num_frames);
+
+  int num_frames() const { return num_frames_; }
+  int num_markers() const { return static_cast<int>(labels_.size()); }
+  Eigen::Index index(int frame, int marker) const {
+    return static_cast<Eigen::Index>(frame) * num_markers() + marker;
+  }
+
+  const std::vector<std::string>& labels() const { return labels_; }
+  const std::string& label(int marker) const { return labels_[marker]; }
+  void set_label(int marker, std::string label) { labels_[marker] = std::move(label); }
+
+  // Per-sample access; frame in [0, #F), marker in [0, #M).
+  bool valid(int frame, int marker) const { return valid_mask_[index(frame, marker)] != 0; }
+  Eigen::Vector3d position(int frame, int marker) const {
+    return positions_.col(index(frame, marker));
+  }
+  float residual(int frame, int marker) const { return residuals_[index(frame, marker)]; }
+  std::uint8_t camera_mask(int frame, int marker) const {
+    return camera_masks_[index(frame, marker)];
+  }
+
+  // A non-finite position stores the sample as missing (keeps the mask and NaNs in step).
+  // A negative residual of a valid sample is stored as 0 (unknown).
+  void SetSample(int frame, int marker, const Eigen::Vector3d& position, float residual = 0.0f,
+                 std::uint8_t camera_mask = 0);
+  void SetMissing(int frame, int marker);
+
+  // Whole-array views. positions(): 3 x (#F * #M), NaN where missing.
+  const Eigen::Matrix3Xd& positions() const { return positions_; }
+  // 3 x #M block of frame f.
+  Eigen::Matrix3Xd::ConstColsBlockXpr positions_of_frame(int f) const {
+    return positions_.middleCols(index(f, 0), num_markers());
+  }
+  const std::vector<std::uint8_t>& valid_mask() const { return valid_mask_; }  // #F * #M, 1 = valid.
+  const std::vector<float>& residuals() const { return residuals_; }          // #F * #M.
+  const std::vector<std::uint8_t>& camera_masks() const { return camera_masks_; }
+
+  int CountMissing() const;
+  int CountMissing(int marker) const;  // Over all frames.
+
+  // Index of the marker with this label, or -1. An exact match of the raw label wins;
+  // otherwise the label is compared with every marker's name without its subject prefix
+  // (SplitSubjectPrefix), and a unique match is returned (-1 when several subjects have
+  // a marker of that name: ask with the prefixed label then).
+  int FindMarker(const std::string& label) const;
+
+  // Multiplies every valid position and residual by factor (> 0); unit is left alone.
+  void ScaleLengths(double factor);
+
+ private:
+  int num_frames_ = 0;
+  std::vector<std::string> labels_;
+  Eigen::Matrix3Xd positions_;
+  std::vector<std::uint8_t> valid_mask_;
+  std::vector<float> residuals_;
+  std::vector<std::uint8_t> camera_masks_;
+};
+
+// Rescales positions and residuals into `to` and sets unit. Fails (and changes nothing)
+// when either unit is unknown.
+Status ConvertUnits(const LengthUnit& to, MarkerTrajectories* trajectories);
+
+// A label split into its subject prefix and marker name:
+// "TakeoMonday:LBWT" -> {"TakeoMonday:", "LBWT"}.
+struct SubjectLabel {
+  std::string prefix;  // Including the separator, "" when there is none.
+  std::string name;
+};
+// Strips the longest non-empty known prefix the label starts with; when none of them
+// matches (or none are known), splits after the last ':' if there is one (Vicon's
+// "Subject:Marker" convention); otherwise the whole label is the name.
+SubjectLabel SplitSubjectPrefix(const std::string& label,
+                                const std::vector<std::string>& known_prefixes = {});
+
+// The unit a C3D POINT:UNITS / TRC Units string names ("mm", "cm", "m", "in", and the
+// spelled-out forms, any case); a LengthUnit that is not known() otherwise.
+LengthUnit LengthUnitFromName(const std::string& name);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_KINEMATICS_MARKER_TRAJECTORIES_H_

@@ -1,0 +1,147 @@
+#include "kinematics/marker_trajectories.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+namespace mocapsolve {
+namespace {
+
+MarkerTrajectories ThreeMarkers() {
+  MarkerTrajectories t({"Sub:LBWT", "Sub:RBWT", "CLAV"}, 4);
+  t.subject_prefixes = {"Sub:"};
+  t.unit = Millimetres();
+  t.frame_rate = 100.0;
+  return t;
+}
+
+TEST(MarkerTrajectories, StartsAllMissing) {
+  const MarkerTrajectories t = ThreeMarkers();
+  EXPECT_EQ(t.num_frames(), 4);
+  EXPECT_EQ(t.num_markers(), 3);
+  EXPECT_EQ(t.positions().cols(), 12);
+  EXPECT_EQ(t.CountMissing(), 12);
+  for (int f = 0; f < 4; ++f) {
+    for (int m = 0; m < 3; ++m) {
+      EXPECT_FALSE(t.valid(f, m));
+      EXPECT_TRUE(t.position(f, m).array().isNaN().all());
+      EXPECT_EQ(t.residual(f, m), -1.0f);
+    }
+  }
+}
+
+TEST(MarkerTrajectories, FrameMajorLayoutAndMaskFollowsSamples) {
+  MarkerTrajectories t = ThreeMarkers();
+  t.SetSample(2, 1, Eigen::Vector3d(1, 2, 3), 0.5f, 7);
+  EXPECT_EQ(t.index(2, 1), 2 * 3 + 1);
+  EXPECT_EQ(t.positions().col(7), Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(t.positions_of_frame(2).col(1), Eigen::Vector3d(1, 2, 3));
+  EXPECT_TRUE(t.valid(2, 1));
+  EXPECT_EQ(t.valid_mask()[7], 1);
+  EXPECT_EQ(t.residual(2, 1), 0.5f);
+  EXPECT_EQ(t.camera_mask(2, 1), 7);
+  EXPECT_EQ(t.CountMissing(), 11);
+  EXPECT_EQ(t.CountMissing(1), 3);
+
+  // Zero is a position like any other here; only the readers map file gap conventions.
+  t.SetSample(0, 0, Eigen::Vector3d::Zero());
+  EXPECT_TRUE(t.valid(0, 0));
+  EXPECT_EQ(t.residual(0, 0), 0.0f);
+
+  // A non-finite position is stored as missing, keeping NaN and mask in step.
+  t.SetSample(3, 2, Eigen::Vector3d(1, NAN, 3), 2.0f);
+  EXPECT_FALSE(t.valid(3, 2));
+  EXPECT_TRUE(t.position(3, 2).array().isNaN().all());
+  EXPECT_EQ(t.residual(3, 2), -1.0f);
+
+  t.SetMissing(2, 1);
+  EXPECT_FALSE(t.valid(2, 1));
+  EXPECT_TRUE(t.position(2, 1).array().isNaN().all());
+  EXPECT_EQ(t.camera_mask(2, 1), 0);
+}
+
+TEST(MarkerTrajectories, NegativeResidualOfValidSampleMeansUnknown) {
+  MarkerTrajectories t = ThreeMarkers();
+  t.SetSample(1, 1, Eigen::Vector3d(1, 1, 1), -1.0f);
+  EXPECT_TRUE(t.valid(1, 1));
+  EXPECT_EQ(t.residual(1, 1), 0.0f);
+}
+
+TEST(MarkerTrajectories, FindMarkerWithAndWithoutSubjectPrefix) {
+  MarkerTrajectories t = ThreeMarkers();
+  EXPECT_EQ(t.FindMarker("Sub:LBWT"), 0);
+  EXPECT_EQ(t.FindMarker("LBWT"), 0);
+  EXPECT_EQ(t.FindMarker("RBWT"), 1);
+  EXPECT_EQ(t.FindMarker("CLAV"), 2);
+  EXPECT_EQ(t.FindMarker("STRN"), -1);
+  EXPECT_EQ(t.FindMarker("lbwt"), -1);  // Labels are case sensitive.
+
+  // Two subjects with the same marker name: only the prefixed label is unambiguous.
+  MarkerTrajectories two({"A:LBWT", "B:LBWT"}, 1);
+  two.subject_prefixes = {"A:", "B:"};
+  EXPECT_EQ(two.FindMarker("LBWT"), -1);
+  EXPECT_EQ(two.FindMarker("B:LBWT"), 1);
+}
+
+TEST(SplitSubjectPrefix, KnownPrefixesThenColon) {
+  SubjectLabel s = SplitSubjectPrefix("TakeoMonday:LBWT", {"TakeoMonday:"});
+  EXPECT_EQ(s.prefix, "TakeoMonday:");
+  EXPECT_EQ(s.name, "LBWT");
+  // Longest known prefix wins.
+  s = SplitSubjectPrefix("Sub:Two:LBWT", {"Sub:", "Sub:Two:"});
+  EXPECT_EQ(s.prefix, "Sub:Two:");
+  EXPECT_EQ(s.name, "LBWT");
+  // No known prefixes: Vicon's Subject:Marker convention.
+  s = SplitSubjectPrefix("Nick01:ARIEL");
+  EXPECT_EQ(s.prefix, "Nick01:");
+  EXPECT_EQ(s.name, "ARIEL");
+  // Dots are not separators (OpenSim names).
+  s = SplitSubjectPrefix("R.ASIS");
+  EXPECT_EQ(s.prefix, "");
+  EXPECT_EQ(s.name, "R.ASIS");
+  // Empty known prefixes (JA1Gait35 stores one) are ignored; a trailing colon is no split.
+  s = SplitSubjectPrefix("C7", {""});
+  EXPECT_EQ(s.name, "C7");
+  s = SplitSubjectPrefix("odd:");
+  EXPECT_EQ(s.prefix, "");
+  EXPECT_EQ(s.name, "odd:");
+}
+
+TEST(ConvertUnits, ScalesValidSamplesAndResidualsOnly) {
+  MarkerTrajectories t = ThreeMarkers();
+  t.SetSample(0, 0, Eigen::Vector3d(1000, -2000, 500), 2.0f);
+  ASSERT_TRUE(ConvertUnits(Metres(), &t).ok());
+  EXPECT_EQ(t.unit.name, "m");
+  EXPECT_TRUE(t.position(0, 0).isApprox(Eigen::Vector3d(1, -2, 0.5)));
+  EXPECT_FLOAT_EQ(t.residual(0, 0), 0.002f);
+  EXPECT_FALSE(t.valid(0, 1));
+  EXPECT_TRUE(t.position(0, 1).array().isNaN().all());
+  EXPECT_EQ(t.residual(0, 1), -1.0f);  // The missing marker stays -1, not -0.001.
+  ASSERT_TRUE(ConvertUnits(Centimetres(), &t).ok());
+  EXPECT_TRUE(t.position(0, 0).isApprox(Eigen::Vector3d(100, -200, 50)));
+}
+
+TEST(ConvertUnits, UnknownUnitIsAnErrorAndChangesNothing) {
+  MarkerTrajectories t = ThreeMarkers();
+  t.unit = LengthUnit();
+  t.SetSample(0, 0, Eigen::Vector3d(1, 2, 3));
+  const Status status = ConvertUnits(Metres(), &t);
+  EXPECT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("unknown"), std::string::npos) << status.message();
+  EXPECT_EQ(t.position(0, 0), Eigen::Vector3d(1, 2, 3));
+  t.unit = Millimetres();
+  EXPECT_FALSE(ConvertUnits(LengthUnit(), &t).ok());
+}
+
+TEST(LengthUnitFromName, CommonSpellings) {
+  EXPECT_EQ(LengthUnitFromName("mm").metres_per_unit, 0.001);
+  EXPECT_EQ(LengthUnitFromName("MM ").metres_per_unit, 0.001);
+  EXPECT_EQ(LengthUnitFromName("meters").metres_per_unit, 1.0);
+  EXPECT_EQ(LengthUnitFromName("cm").metres_per_unit, 0.01);
+  EXPECT_EQ(LengthUnitFromName("in").metres_per_unit, 0.0254);
+  EXPECT_FALSE(LengthUnitFromName("furlong").known());
+  EXPECT_FALSE(LengthUnitFromName("").known());
+}
+
+}  // namespace
+}  // namespace mocapsolve
