@@ -48,10 +48,12 @@ std::string TempPath(const std::string& name) {
   std::string dir = ::testing::TempDir() + "mocapsolve_" + std::to_string(::getpid());
   ::mkdir(dir.c_str(), 0755);
   if (info != nullptr) {
-    dir += std::string("/") + info->test_suite_name() + "." + info->name();
-    for (char& c : dir) {
-      if (c == '\\') c = '_';
+    // Parameterized names hold '/': keep the test's folder one level deep.
+    std::string test = std::string(info->test_suite_name()) + "." + info->name();
+    for (char& c : test) {
+      if (c == '\\' || c == '/') c = '_';
     }
+    dir += "/" + test;
     ::mkdir(dir.c_str(), 0755);
   }
   return dir + "/" + name;

@@ -1,0 +1,364 @@
+#include "io/bvh_writer.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+#include "io/atomic_file.h"
+
+namespace mocapsolve {
+namespace {
+
+// Angles below this are written as 0 (see the header).
+constexpr double kNoiseDegrees = 1e-9;
+
+bool IsPosition(Channel c) {
+  return c == Channel::kXposition || c == Channel::kYposition || c == Channel::kZposition;
+}
+int ChannelAxis(Channel c) { return static_cast<int>(c) % 3; }  // x, y, z = 0, 1, 2
+Channel RotationChannel(int axis) { return static_cast<Channel>(3 + axis); }
+
+const char* ChannelName(Channel c) {
+  static const char* const kNames[] = {"Xposition", "Yposition", "Zposition",
+                                       "Xrotation", "Yrotation", "Zrotation"};
+  return kNames[static_cast<int>(c)];
+}
+
+// %g-like with `precision` significant digits; -0 is written as 0.
+void AppendNumber(double value, int precision, std::string* out) {
+  char buffer[64];
+  const auto result =
+      std::to_chars(buffer, buffer + sizeof buffer, value + 0.0, std::chars_format::general,
+                    precision);
+  out->append(buffer, result.ptr);
+}
+
+// True if the translation of `joint` differs from its offset on `axis` in some frame.
+// Exact comparison: the reader copies the offset bit for bit into unanimated axes, and
+// anything else is real motion that must not be dropped.
+bool AxisAnimated(const Skeleton& skeleton, const Motion& motion, int joint, int axis) {
+  const double rest = skeleton.offset(joint)[axis];
+  for (const Pose& pose : motion.frames) {
+    if (pose.translations[joint][axis] != rest) return true;
+  }
+  return false;
+}
+
+// The channel list written for `joint` (see the header for the rules).
+std::vector<Channel> OutputChannels(const Skeleton& skeleton, const Motion& motion, int joint,
+                                    const std::optional<EulerOrder>& euler_order) {
+  std::vector<Channel> channels = skeleton.joint(joint).channels;
+  if (channels.empty()) {
+    if (joint == 0) {
+      channels = {Channel::kXposition, Channel::kYposition, Channel::kZposition};
+    }
+    channels.insert(channels.end(),
+                    {Channel::kZrotation, Channel::kXrotation, Channel::kYrotation});
+  }
+
+  // Positions: all three if some unlisted axis is animated.
+  bool listed[3] = {false, false, false};
+  for (Channel c : channels) {
+    if (IsPosition(c)) listed[ChannelAxis(c)] = true;
+  }
+  bool need_all_positions = false;
+  for (int axis = 0; axis < 3; ++axis) {
+    need_all_positions |= !listed[axis] && AxisAnimated(skeleton, motion, joint, axis);
+  }
+  if (need_all_positions) {
+    const auto first = std::find_if(channels.begin(), channels.end(), IsPosition);
+    const size_t insert_at = first == channels.end() ? 0 : first - channels.begin();
+    channels.erase(std::remove_if(channels.begin(), channels.end(), IsPosition), channels.end());
+    channels.insert(channels.begin() + insert_at,
+                    {Channel::kXposition, Channel::kYposition, Channel::kZposition});
+  }
+
+  // Rotations: complete to three, missing axes after the last listed one.
+  bool rotation_listed[3] = {false, false, false};
+  size_t insert_at = channels.size();
+  bool any_rotation = false;
+  for (size_t k = 0; k < channels.size(); ++k) {
+    if (!IsPosition(channels[k])) {
+      rotation_listed[ChannelAxis(channels[k])] = true;
+      insert_at = k + 1;
+      any_rotation = true;
+    }
+  }
+  if (!any_rotation) insert_at = channels.size();
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!rotation_listed[axis]) {
+      channels.insert(channels.begin() + insert_at, RotationChannel(axis));
+      ++insert_at;
+    }
+  }
+
+  if (euler_order.has_value()) {
+    int slot = 0;
+    for (Channel& c : channels) {
+      if (!IsPosition(c)) c = RotationChannel(EulerAxis(*euler_order, slot++));
+    }
+  }
+  return channels;
+}
+
+EulerOrder RotationOrder(const std::vector<Channel>& channels) {
+  int axes[3];
+  int count = 0;
+  for (Channel c : channels) {
+    if (!IsPosition(c)) axes[count++] = ChannelAxis(c);
+  }
+  return EulerOrderFromAxes(axes[0], axes[1], axes[2]);
+}
+
+// Of the two Euler triples of one rotation, (a, b, c) and (a + pi, pi - b, c + pi), each
+// shifted componentwise by multiples of 2 pi, the one nearest `previous`; a component
+// that would leave [-2 pi, 2 pi] is wrapped back into [-pi, pi] instead. Unbounded
+// unwrapping would let angles grow without limit near gimbal lock, where the outer
+// angles spin (CMU 16_15's feet reach 1225 degrees), and cost significant digits.
+Eigen::Vector3d NearestEquivalentEuler(const Eigen::Vector3d& angles,
+                                       const Eigen::Vector3d& previous) {
+  const Eigen::Vector3d candidates[2] = {
+      angles, Eigen::Vector3d(angles[0] + kPi, kPi - angles[1], angles[2] + kPi)};
+  Eigen::Vector3d best = angles;
+  double best_distance = INFINITY;
+  for (Eigen::Vector3d candidate : candidates) {
+    for (int k = 0; k < 3; ++k) {
+      candidate[k] += 2.0 * kPi * std::round((previous[k] - candidate[k]) / (2.0 * kPi));
+      if (std::abs(candidate[k]) > 2.0 * kPi) {
+        candidate[k] = std::remainder(candidate[k], 2.0 * kPi);
+      }
+    }
+    const double distance = (candidate - previous).squaredNorm();
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = candidate;
+    }
+  }
+  return best;
+}
+
+// Joints depth-first from the root, children in index order.
+std::vector<int> DepthFirstOrder(const Skeleton& skeleton,
+                                 const std::vector<std::vector<int>>& children) {
+  std::vector<int> order;
+  order.reserve(skeleton.num_joints());
+  std::vector<int> stack = {0};
+  while (!stack.empty()) {
+    const int j = stack.back();
+    stack.pop_back();
+    order.push_back(j);
+    for (auto it = children[j].rbegin(); it != children[j].rend(); ++it) stack.push_back(*it);
+  }
+  return order;
+}
+
+class HierarchyWriter {
+ public:
+  HierarchyWriter(const Skeleton& skeleton, const std::vector<std::vector<Channel>>& channels,
+                  const BvhWriteOptions& options, std::string* out)
+      : skeleton_(skeleton), channels_(channels), options_(options), out_(out),
+        children_(skeleton.num_joints()), end_sites_(skeleton.num_joints()) {
+    for (int j = 1; j < skeleton.num_joints(); ++j) children_[skeleton.parent(j)].push_back(j);
+    for (size_t e = 0; e < skeleton.end_sites().size(); ++e) {
+      end_sites_[skeleton.end_sites()[e].parent].push_back(static_cast<int>(e));
+    }
+  }
+
+  const std::vector<std::vector<int>>& children() const { return children_; }
+
+  // Iterative so that a deep chain cannot exhaust the stack.
+  void Write() {
+    *out_ += "HIERARCHY\n";
+    struct Frame {
+      int joint;
+      size_t next_child;
+    };
+    std::vector<Frame> stack;
+    OpenJoint(0, 0);
+    stack.push_back({0, 0});
+    while (!stack.empty()) {
+      Frame& top = stack.back();
+      const int depth = static_cast<int>(stack.size());
+      if (top.next_child < children_[top.joint].size()) {
+        const int child = children_[top.joint][top.next_child++];
+        OpenJoint(child, depth);
+        stack.push_back({child, 0});
+        continue;
+      }
+      for (int e : end_sites_[top.joint]) WriteEndSite(skeleton_.end_sites()[e], depth);
+      Indent(depth - 1);
+      *out_ += "}\n";
+      stack.pop_back();
+    }
+  }
+
+ private:
+  void Indent(int depth) { out_->append(static_cast<size_t>(depth), '\t'); }
+  void AppendVector(const Eigen::Vector3d& v) {
+    for (int i = 0; i < 3; ++i) {
+      *out_ += ' ';
+      AppendNumber(v[i] * options_.scale, options_.precision, out_);
+    }
+  }
+  void OpenJoint(int j, int depth) {
+    Indent(depth);
+    *out_ += j == 0 ? "ROOT " : "JOINT ";
+    *out_ += skeleton_.name(j);
+    *out_ += '\n';
+    Indent(depth);
+    *out_ += "{\n";
+    Indent(depth + 1);
+    *out_ += "OFFSET";
+    AppendVector(skeleton_.offset(j));
+    *out_ += '\n';
+    Indent(depth + 1);
+    *out_ += "CHANNELS ";
+    *out_ += std::to_string(channels_[j].size());
+    for (Channel c : channels_[j]) {
+      *out_ += ' ';
+      *out_ += ChannelName(c);
+    }
+    *out_ += '\n';
+  }
+  void WriteEndSite(const EndSite& site, int depth) {
+    Indent(depth);
+    *out_ += "End Site\n";
+    Indent(depth);
+    *out_ += "{\n";
+    Indent(depth + 1);
+    *out_ += "OFFSET";
+    AppendVector(site.offset);
+    *out_ += '\n';
+    Indent(depth);
+    *out_ += "}\n";
+  }
+
+  const Skeleton& skeleton_;
+  const std::vector<std::vector<Channel>>& channels_;
+  const BvhWriteOptions& options_;
+  std::string* out_;
+  std::vector<std::vector<int>> children_;
+  std::vector<std::vector<int>> end_sites_;
+};
+
+}  // namespace
+
+Status CheckBvhWritable(const Skeleton& skeleton, const Motion& motion,
+                        const BvhWriteOptions& options) {
+  if (options.precision < 1 || options.precision > 17) {
+    return Status::Error("BVH precision must be 1..17 significant digits, got " +
+                         std::to_string(options.precision));
+  }
+  if (!(options.scale > 0.0) || !std::isfinite(options.scale)) {
+    return Status::Error("BVH scale must be positive and finite, got " +
+                         std::to_string(options.scale));
+  }
+  if (skeleton.num_joints() == 0) return Status::Error("cannot write BVH: skeleton has no joints");
+  for (int j = 0; j < skeleton.num_joints(); ++j) {
+    const std::string& name = skeleton.name(j);
+    const bool control = std::any_of(name.begin(), name.end(), [](char c) {
+      return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    });
+    // The reader takes the rest of the ROOT/JOINT line, trimmed, as the name.
+    if (name.empty() || control || name.front() == ' ' || name.back() == ' ' ||
+        name.back() == '{') {
+      return Status::Error("cannot write BVH: joint " + std::to_string(j) + " name '" + name +
+                           "' does not fit on a BVH line (control characters, edge blanks or "
+                           "a trailing '{')");
+    }
+  }
+  if (Status s = ValidateMotion(skeleton, motion); !s.ok()) {
+    return Status::Error("cannot write BVH: " + s.message());
+  }
+  // Scaled lengths must stay finite, or the file would hold "inf".
+  double largest = 0.0;
+  for (int j = 0; j < skeleton.num_joints(); ++j) {
+    largest = std::max(largest, skeleton.offset(j).cwiseAbs().maxCoeff());
+  }
+  for (const EndSite& site : skeleton.end_sites()) {
+    largest = std::max(largest, site.offset.cwiseAbs().maxCoeff());
+  }
+  for (const Pose& pose : motion.frames) {
+    for (const Eigen::Vector3d& t : pose.translations) {
+      largest = std::max(largest, t.cwiseAbs().maxCoeff());
+    }
+  }
+  if (!std::isfinite(largest * options.scale)) {
+    return Status::Error("cannot write BVH: lengths times scale " + std::to_string(options.scale) +
+                         " overflow");
+  }
+  return Status::Ok();
+}
+
+std::string FormatBvh(const Skeleton& skeleton, const Motion& motion,
+                      const BvhWriteOptions& options) {
+  if (!CheckBvhWritable(skeleton, motion, options).ok()) return "";
+  const int num_joints = skeleton.num_joints();
+  std::vector<std::vector<Channel>> channels(num_joints);
+  std::vector<EulerOrder> orders(num_joints);
+  for (int j = 0; j < num_joints; ++j) {
+    channels[j] = OutputChannels(skeleton, motion, j, options.euler_order);
+    orders[j] = RotationOrder(channels[j]);
+  }
+
+  std::string out;
+  HierarchyWriter hierarchy(skeleton, channels, options, &out);
+  hierarchy.Write();
+  const std::vector<int> joint_order = DepthFirstOrder(skeleton, hierarchy.children());
+
+  out += "MOTION\nFrames: ";
+  out += std::to_string(motion.num_frames());
+  out += "\nFrame Time: ";
+  {
+    char buffer[64];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, 1.0 / motion.frame_rate);
+    out.append(buffer, result.ptr);
+  }
+  out += '\n';
+
+  size_t num_columns = 0;
+  for (const auto& list : channels) num_columns += list.size();
+  out.reserve(out.size() + motion.frames.size() * num_columns * (options.precision + 3));
+
+  std::vector<Eigen::Vector3d> previous_angles(num_joints);
+  for (int f = 0; f < motion.num_frames(); ++f) {
+    const Pose& pose = motion.frames[f];
+    bool first_value = true;
+    for (int j : joint_order) {
+      // Fold the rest rotation in: BVH has none (see the header).
+      const Eigen::Quaterniond rotation = skeleton.has_rest_rotation(j)
+                                              ? skeleton.rest_rotation(j) * pose.rotations[j]
+                                              : pose.rotations[j];
+      Eigen::Vector3d angles = EulerFromQuaternion(rotation, orders[j]);
+      if (f > 0) angles = NearestEquivalentEuler(angles, previous_angles[j]);
+      previous_angles[j] = angles;
+      int slot = 0;
+      for (Channel c : channels[j]) {
+        double value;
+        if (IsPosition(c)) {
+          value = pose.translations[j][ChannelAxis(c)] * options.scale;
+        } else {
+          value = RadToDeg(angles[slot++]);
+          // Rounding noise of the Euler extraction (1e-14 degrees), not motion.
+          if (std::abs(value) < kNoiseDegrees) value = 0.0;
+        }
+        if (!first_value) out += ' ';
+        first_value = false;
+        AppendNumber(value, options.precision, &out);
+      }
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+Status WriteBvh(const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                const BvhWriteOptions& options) {
+  if (Status s = CheckBvhWritable(skeleton, motion, options); !s.ok()) {
+    return Status::Error(path + ": " + s.message());
+  }
+  return WriteFileAtomically(path, FormatBvh(skeleton, motion, options));
+}
+
+}  // namespace mocapsolve
