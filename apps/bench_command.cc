@@ -5,6 +5,7 @@
 #include "apps/bench_problems.h"
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/solver_flags.h"
 #include "io/atomic_file.h"
 
 DEFINE_string(problem, "fk", "Problem to run (see the list in --help).");
@@ -12,6 +13,10 @@ DEFINE_string(solvers, "", "Comma-separated solvers (default: all of the problem
 DEFINE_string(json, "", "Write all records as JSON to this file.");
 DEFINE_string(bench_motion, "", "Input clip for the problem (default: the problem's own).");
 DEFINE_int32(repeats, 5, "Timed repeats; the median is reported.");
+DEFINE_string(bench_skeleton, "", "Skeleton (.asf/.bvh) of a real-marker problem.");
+DEFINE_string(bench_markers, "", "Marker file (.c3d/.trc) of a real-marker problem.");
+DEFINE_string(bench_markerset, "", "Marker set (.json) of a real-marker problem.");
+DEFINE_int32(bench_frames, 0, "Use only the first N frames (0 = all).");
 
 namespace mocapsolve {
 namespace {
@@ -42,18 +47,22 @@ Status RunBench(const std::vector<std::string>& arguments) {
   BenchSettings settings;
   settings.motion_path = FLAGS_bench_motion;
   settings.repeats = FLAGS_repeats;
+  settings.skeleton_path = FLAGS_bench_skeleton;
+  settings.markers_path = FLAGS_bench_markers;
+  settings.markerset_path = FLAGS_bench_markerset;
+  settings.max_frames = FLAGS_bench_frames;
   std::vector<JsonObject> records;
-  std::printf("%-14s %-8s %10s %12s %14s %10s %14s\n", "problem", "solver", "frames",
-              "seconds", "frames/s", "iters", "final_cost");
+  std::printf("%-14s %-8s %10s %12s %14s %10s %14s  %s\n", "problem", "solver", "frames",
+              "seconds", "frames/s", "iters", "final_cost", "error");
   for (const std::string& solver : solvers) {
     BenchRecord record;
     record.problem = problem->name;
     record.solver = solver;
     Status status = problem->run(solver, settings, &record);
     if (!status.ok()) return status;
-    std::printf("%-14s %-8s %10d %12.6f %14.1f %10d %14.6g\n", record.problem.c_str(),
+    std::printf("%-14s %-8s %10d %12.6f %14.1f %10d %14.6g  %s %.6g\n", record.problem.c_str(),
                 record.solver.c_str(), record.frames, record.seconds, record.frames_per_second(),
-                record.iterations, record.final_cost);
+                record.iterations, record.final_cost, record.error_name.c_str(), record.error);
     // One machine-readable line per record.
     std::printf("JSON %s\n", record.ToJson().ToString(false).c_str());
     records.push_back(record.ToJson());
@@ -82,8 +91,9 @@ std::string BenchUsage() {
 }  // namespace
 
 static const std::string kBenchUsage = BenchUsage();
+static const std::string kBenchFlags = std::string("report,quiet,axes,marker_scale,") + kSolverFlagNames;
 extern const Command kBenchCommand = {"bench", "the solver comparison harness (time, iterations, "
                                       "cost, error per solver)",
-                                      kBenchUsage.c_str(), __FILE__, RunBench, "report,quiet"};
+                                      kBenchUsage.c_str(), __FILE__, RunBench, kBenchFlags.c_str()};
 
 }  // namespace mocapsolve

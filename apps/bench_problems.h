@@ -23,6 +23,7 @@ struct BenchRecord {
   double final_cost = 0.0;      // 1/2 sum of squared residuals at the end, if any.
   double error = 0.0;           // The problem's accuracy figure, named by error_name.
   std::string error_name;
+  std::string notes;            // Anything a reader of the figures must know.
 
   double frames_per_second() const { return seconds > 0.0 ? frames / seconds : 0.0; }
   JsonObject ToJson() const;
@@ -31,6 +32,9 @@ struct BenchRecord {
 struct BenchSettings {
   std::string motion_path;  // Input clip ("" = the problem's default).
   int repeats = 5;
+  // Marker problems on real markers (else markers are synthesized from the motion).
+  std::string skeleton_path, markers_path, markerset_path;
+  int max_frames = 0;       // 0 = all.
 };
 
 struct BenchProblem {

@@ -8,10 +8,15 @@ extern const Command kConvertCommand;
 extern const Command kFkCommand;
 extern const Command kGenerateCommand;
 extern const Command kBenchCommand;
+extern const Command kSolveCommand;
+extern const Command kMarkersCommand;
+extern const Command kCalibrateCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
-                                                kGenerateCommand, kBenchCommand};
+                                                kGenerateCommand, kBenchCommand,
+                                                kSolveCommand,
+                                                kMarkersCommand, kCalibrateCommand};
   return commands;
 }
 

@@ -68,8 +68,8 @@ DEFINE_string(motion, "", "Motion file: .bvh, or .amc with --skeleton=X.asf.");
 DEFINE_string(out, "", "Output file (its extension picks the format).");
 DEFINE_string(markers, "", "Marker file: .c3d or .trc.");
 DEFINE_string(markerset, "", "Marker set file (.json): which joint each marker rides on, with offsets.");
-DEFINE_string(axes, "x,y,z", "Marker file axes to skeleton axes: 'x,z,-y' means (x, y, z)_skeleton = "
-              "(x, z, -y)_file; CMU C3D (Z-up) onto CMU ASF/AMC (Y-up) is x,z,-y.");
+DEFINE_string(axes, "x,y,z", "Marker file axes to skeleton axes: 'y,z,x' means (x, y, z)_skeleton = "
+              "(y, z, x)_file; CMU C3D (Z-up) onto CMU ASF/AMC (Y-up) is y,z,x.");
 DEFINE_double(marker_scale, 0.0, "Marker file units to skeleton units; 0 = from the files' "
               "declared units (C3D POINT:UNITS, TRC Units, ASF :units).");
 

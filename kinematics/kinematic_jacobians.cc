@@ -7,12 +7,6 @@
 namespace mocapsolve {
 namespace {
 
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
 void PrepareJacobian(const Skeleton& skeleton, PoseJacobian* jacobian) {
   jacobian->setZero(3, PoseTangentSize(skeleton));
 }
@@ -27,7 +21,7 @@ void AccumulateBlendedPointJacobian(const Skeleton& skeleton, const FkData& fk,
     jacobian->leftCols<3>().diagonal().array() += term.weight;
     for (int j = term.joint; j >= 0; j = skeleton.parent(j)) {
       jacobian->middleCols<3>(RotationColumn(j)) +=
-          term.weight * Skew(fk.world_positions[j] - term.point_in_world) *
+          term.weight * SkewSymmetric(fk.world_positions[j] - term.point_in_world) *
           fk.world_rotations[j].toRotationMatrix();
     }
   }
@@ -63,7 +57,7 @@ void SkinnedNormalJacobian(const Skeleton& skeleton, const SkinnedMesh& mesh, co
     const Eigen::Vector3d n_b = transforms[b].linear() * rest;
     for (int j = b; j >= 0; j = skeleton.parent(j)) {
       jacobian->middleCols<3>(RotationColumn(j)) -=
-          mesh.weight(k) * Skew(n_b) * fk.world_rotations[j].toRotationMatrix();
+          mesh.weight(k) * SkewSymmetric(n_b) * fk.world_rotations[j].toRotationMatrix();
     }
   }
 }

@@ -41,6 +41,13 @@ Eigen::Vector3d LogMap(const Eigen::Quaterniond& q);
 // so that a time series can be interpolated and differenced.
 void MakeSignContinuous(std::vector<Eigen::Quaterniond>* series);
 
+// [v]x, the cross-product matrix: SkewSymmetric(v) * w = v x w.
+inline Eigen::Matrix3d SkewSymmetric(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
 // Angle in radians, in [0, pi], of the rotation taking a to b.
 double AngularDistance(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b);
 

@@ -5,7 +5,8 @@
 //   x_model = scale * rotation * x_file + translation
 // with rotation a signed axis permutation given as text: "x,z,-y" means
 // (x_model, y_model, z_model) = (x_file, z_file, -y_file). CMU's C3D files relate to their
-// ASF/AMC skeletons this way (Z-up to Y-up) with scale = mm per ASF unit.
+// ASF/AMC skeletons by "y,z,x" (Z-up to Y-up, measured on 02_01; see calibration.h) with
+// scale = ASF units per mm.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_MARKER_OBSERVATIONS_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_MARKER_OBSERVATIONS_H_
 

@@ -5,16 +5,11 @@
 #include <Eigen/Geometry>
 #include <glog/logging.h>
 
+#include "kinematics/rotation.h"
 #include "solvers/right_quaternion_manifold.h"
 
 namespace mocapsolve {
 namespace {
-
-Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
 
 // Chains are short (<= the skeleton depth); this keeps Evaluate free of allocation.
 constexpr int kMaxChain = 64;
@@ -85,7 +80,7 @@ bool MarkerResidual::Evaluate(double const* const* parameters, double* residuals
     Eigen::Matrix3d lever = Eigen::Matrix3d::Zero();
     for (size_t k = 0; k < attachments.size(); ++k) {
       if (skeleton_->IsAncestorOrSelf(j, attachments[k].joint)) {
-        lever += attachments[k].weight * Skew(position[s] - points[k]);
+        lever += attachments[k].weight * SkewSymmetric(position[s] - points[k]);
       }
     }
     const Eigen::Matrix3d tangent = weight_ * lever * rotation[s].toRotationMatrix();

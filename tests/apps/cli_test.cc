@@ -148,6 +148,17 @@ TEST(CliBadInput, EveryBadFileGetsAOneLineError) {
                 testing::TempPath(name + ".csv");
     } else if (ext == ".asf") {
       command = "info " + dir + "/tiny_ok.amc --skeleton=" + path;
+    } else if (ext == ".json") {
+      // Marker sets, read against a generated demo clip (made once; its own output must
+      // not name the bad file, so the error has to).
+      static std::string demo;
+      if (demo.empty()) {
+        demo = testing::TempPath("markerset_demo.bvh");
+        std::string generated;
+        EXPECT_EQ(testing::RunCli("generate --demo_out=" + demo + " --frames=5 --fps=30", &generated), 0) << generated;
+      }
+      command = "markers --quiet --motion=" + demo + " --markerset=" + path + " --out=" +
+                testing::TempPath("markers_from_bad_set.c3d");
     } else {
       command = "info " + path;
     }

@@ -6,23 +6,11 @@
 
 #include "kinematics/demo_character.h"
 #include "kinematics/forward_kinematics.h"
+#include "problems/marker_solve/synthetic_marker_set.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 
 namespace mocapsolve {
 namespace {
-
-MarkerSet ThreeMarkersPerJoint(const Skeleton& skeleton, std::mt19937* rng) {
-  std::uniform_real_distribution<double> offset(-8.0, 8.0);  // cm
-  std::vector<MarkerSpec> specs;
-  for (int j = 0; j < skeleton.num_joints(); ++j) {
-    for (int k = 0; k < 3; ++k) {
-      specs.push_back({skeleton.name(j) + std::to_string(k), {{j, 1.0, Eigen::Vector3d(offset(*rng), offset(*rng), offset(*rng))}}});
-    }
-  }
-  MarkerSet markers;
-  EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &markers).ok());
-  return markers;
-}
 
 // Mean world joint position error against the truth (cm).
 double MeanJointError(const Skeleton& skeleton, const Motion& a, const Motion& b) {
@@ -40,7 +28,7 @@ class MarkerClipSolverTest : public ::testing::Test {
  protected:
   void SetUp() override {
     std::mt19937 rng(1);
-    markers_ = ThreeMarkersPerJoint(skeleton_, &rng);
+    markers_ = MakeSyntheticMarkerSet(skeleton_, 3, rng());
     truth_ = MakeDemoWalk(skeleton_, 60, 60.0);
     FkData fk(skeleton_);
     for (const Pose& pose : truth_.frames) {

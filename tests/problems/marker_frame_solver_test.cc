@@ -8,24 +8,11 @@
 
 #include "kinematics/demo_character.h"
 #include "kinematics/forward_kinematics.h"
+#include "problems/marker_solve/synthetic_marker_set.h"
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
 namespace {
-
-MarkerSet ThreeMarkersPerJoint(const Skeleton& skeleton, std::mt19937* rng) {
-  std::uniform_real_distribution<double> offset(-8.0, 8.0);  // cm
-  std::vector<MarkerSpec> specs;
-  for (int j = 0; j < skeleton.num_joints(); ++j) {
-    for (int k = 0; k < 3; ++k) {
-      specs.push_back({skeleton.name(j) + "_" + std::to_string(k),
-                       {{j, 1.0, Eigen::Vector3d(offset(*rng), offset(*rng), offset(*rng))}}});
-    }
-  }
-  MarkerSet markers;
-  EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &markers).ok());
-  return markers;
-}
 
 std::vector<Eigen::Vector3d> Observe(const Skeleton& skeleton, const MarkerSet& markers, const Pose& pose) {
   FkData fk(skeleton);
@@ -40,7 +27,7 @@ class MarkerFrameSolverTest : public ::testing::TestWithParam<SolverKind> {};
 TEST_P(MarkerFrameSolverTest, RecoversNoiseFreePosesFrameByFrame) {
   const Skeleton skeleton = MakeDemoSkeleton();
   std::mt19937 rng(1);
-  const MarkerSet markers = ThreeMarkersPerJoint(skeleton, &rng);
+  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, rng());
   const Motion truth = MakeDemoWalk(skeleton, 40, 30.0);
   MarkerSolveOptions options;
   options.solver = GetParam();
@@ -67,7 +54,7 @@ TEST_P(MarkerFrameSolverTest, RecoversNoiseFreePosesFrameByFrame) {
 TEST_P(MarkerFrameSolverTest, MissingMarkersAreSkipped) {
   const Skeleton skeleton = MakeDemoSkeleton();
   std::mt19937 rng(2);
-  const MarkerSet markers = ThreeMarkersPerJoint(skeleton, &rng);
+  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, rng());
   const Motion truth = MakeDemoWalk(skeleton, 3, 30.0);
   MarkerSolveOptions options;
   options.solver = GetParam();
@@ -76,7 +63,7 @@ TEST_P(MarkerFrameSolverTest, MissingMarkersAreSkipped) {
   Pose pose = truth.frames[0];
   std::vector<Eigen::Vector3d> observed = Observe(skeleton, markers, truth.frames[2]);
   observed[0] = Eigen::Vector3d::Constant(std::nan(""));  // One root marker missing.
-  observed[3 * skeleton.FindJoint("LeftHand") + 1] = Eigen::Vector3d::Constant(std::nan(""));
+  observed[markers.FindMarker("LeftHand_1")] = Eigen::Vector3d::Constant(std::nan(""));
   FrameSolveReport report;
   ASSERT_TRUE(solver.Solve(observed, &pose, &report).ok());
   EXPECT_EQ(report.markers_used, markers.num_markers() - 2);
@@ -90,7 +77,7 @@ INSTANTIATE_TEST_SUITE_P(BothSolvers, MarkerFrameSolverTest,
 TEST(MarkerFrameSolver, SolversAgreeOnFinalCostWithNoise) {
   const Skeleton skeleton = MakeDemoSkeleton();
   std::mt19937 rng(3);
-  const MarkerSet markers = ThreeMarkersPerJoint(skeleton, &rng);
+  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, rng());
   const Motion truth = MakeDemoWalk(skeleton, 10, 30.0);
   std::normal_distribution<double> noise(0.0, 0.3);  // 3 mm
   MarkerSolveOptions ceres_options, dls_options;

@@ -42,9 +42,7 @@ class RotatedPointResidual : public ceres::SizedCostFunction<3, 4> {
     residual = ra - b_;
     if (j != nullptr && j[0] != nullptr) {
       // d(R exp(d) a)/dd = -R [a]x.
-      Eigen::Matrix3d skew;
-      skew << 0, -a_.z(), a_.y(), a_.z(), 0, -a_.x(), -a_.y(), a_.x(), 0;
-      const Eigen::Matrix3d tangent = -q.toRotationMatrix() * skew;
+      const Eigen::Matrix3d tangent = -q.toRotationMatrix() * SkewSymmetric(a_);
       Eigen::Map<Eigen::Matrix<double, 3, 4, Eigen::RowMajor>> ambient(j[0]);
       ambient = tangent * AmbientFromTangent(q.coeffs().data()) / norm;
     }

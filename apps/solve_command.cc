@@ -1,0 +1,148 @@
+// mocapsolve solve: joint angles from optical markers.
+#include <cstdio>
+
+#include "apps/command.h"
+#include "apps/common_flags.h"
+#include "apps/progress.h"
+#include "apps/solver_flags.h"
+#include "io/bvh_writer.h"
+#include "io/marker_file.h"
+#include "io/marker_set_file.h"
+#include "io/motion_file.h"
+#include "problems/marker_solve/marker_observations.h"
+#include "problems/marker_solve/sequence_solver.h"
+
+DEFINE_int32(max_frames, 0, "Solve only the first N frames (0 = all).");
+
+namespace mocapsolve {
+
+// Shared by solve and the other marker commands: the marker file mapped into the
+// skeleton's axes and units.
+Status LoadObservations(const Skeleton& skeleton, const MarkerSet& markers,
+                        MarkerTrajectories* trajectories, MarkerFileToModel* transform,
+                        std::vector<std::vector<Eigen::Vector3d>>* observed) {
+  Status status = ReadMarkerFile(FLAGS_markers, trajectories);
+  if (!status.ok()) return status;
+  status = ParseAxes(FLAGS_axes, &transform->rotation);
+  if (!status.ok()) return status;
+  if (FLAGS_marker_scale > 0.0) {
+    transform->scale = FLAGS_marker_scale;
+  } else {
+    status = UnitScale(trajectories->unit, skeleton.unit(), &transform->scale);
+    if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
+  }
+  status = GatherObservations(markers, *trajectories, *transform, observed);
+  if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
+  return Status::Ok();
+}
+
+namespace {
+
+Status RunSolve(const std::vector<std::string>& arguments) {
+  if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  if (FLAGS_skeleton.empty() || FLAGS_markers.empty() || FLAGS_markerset.empty() || FLAGS_out.empty()) {
+    return Status::Error("--skeleton, --markers, --markerset and --out are required");
+  }
+  if (FileExtension(FLAGS_out) != ".bvh") return Status::Error(FLAGS_out + ": expected a .bvh output");
+  for (const std::string& input : {FLAGS_skeleton, FLAGS_markers, FLAGS_markerset}) {
+    Status status = CheckNotAnInput(FLAGS_out, input);
+    if (!status.ok()) return status;
+  }
+  if (FLAGS_mode != "frame" && FLAGS_mode != "clip") {
+    return Status::Error("--mode: unknown '" + FLAGS_mode + "' (frame, clip)");
+  }
+  MarkerSolveOptions frame_options;
+  Status status = MarkerSolveOptionsFromFlags(&frame_options);
+  if (!status.ok()) return status;
+  ClipSolveOptions clip_options;
+  if (FLAGS_mode == "clip") {
+    status = ClipSolveOptionsFromFlags(&clip_options);
+    if (!status.ok()) return status;
+  }
+
+  Skeleton skeleton;
+  status = ReadSkeletonFile(FLAGS_skeleton, &skeleton);
+  if (!status.ok()) return status;
+  MarkerSet markers;
+  status = ReadMarkerSet(FLAGS_markerset, skeleton, &markers);
+  if (!status.ok()) return status;
+  MarkerTrajectories trajectories;
+  MarkerFileToModel transform;
+  std::vector<std::vector<Eigen::Vector3d>> observed;
+  status = LoadObservations(skeleton, markers, &trajectories, &transform, &observed);
+  if (!status.ok()) return status;
+  if (FLAGS_max_frames > 0 && static_cast<int>(observed.size()) > FLAGS_max_frames) {
+    observed.resize(FLAGS_max_frames);
+  }
+
+  Motion motion;
+  motion.frame_rate = trajectories.frame_rate;
+  SequenceSolveReport sequence;
+  Progress progress("solve (" + FLAGS_solver + ")", static_cast<int>(observed.size()), FLAGS_quiet);
+  status = SolveSequence(skeleton, markers, observed, frame_options, RestPose(skeleton), &motion,
+                         &sequence, [&](int done) { progress.Update(done); });
+  if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
+  const double mm_per_unit = skeleton.unit().known() ? skeleton.unit().metres_per_unit * 1000.0 : 0.0;
+  const char* unit = mm_per_unit > 0.0 ? "mm" : "skeleton units";
+  const double to_output = mm_per_unit > 0.0 ? mm_per_unit : 1.0;
+  std::printf("per-frame (%s): %d frames in %.3f s (%.0f frames/s), %ld iterations, RMS marker "
+              "residual %.4g %s (worst frame %.4g), unsolved frames %d, at iteration limit %d\n",
+              FLAGS_solver.c_str(), sequence.frames, sequence.solve_seconds,
+              sequence.solve_seconds > 0 ? sequence.frames / sequence.solve_seconds : 0.0,
+              sequence.total_iterations, sequence.rms_marker_error * to_output, unit,
+              sequence.max_frame_rms * to_output, sequence.unsolved_frames,
+              sequence.unconverged_frames);
+  JsonObject report;
+  report.Add("skeleton", FLAGS_skeleton).Add("markers", FLAGS_markers)
+      .Add("markerset", FLAGS_markerset).Add("out", FLAGS_out).Add("solver", FLAGS_solver)
+      .Add("mode", FLAGS_mode).Add("frames", sequence.frames)
+      .Add("marker_to_skeleton_scale", transform.scale).Add("residual_unit", unit);
+  JsonObject frame_json;
+  frame_json.Add("seconds", sequence.solve_seconds)
+      .Add("frames_per_second", sequence.solve_seconds > 0 ? sequence.frames / sequence.solve_seconds : 0.0)
+      .Add("iterations", static_cast<double>(sequence.total_iterations))
+      .Add("rms_marker_residual", sequence.rms_marker_error * to_output)
+      .Add("max_frame_rms", sequence.max_frame_rms * to_output)
+      .Add("unsolved_frames", sequence.unsolved_frames)
+      .Add("frames_at_iteration_limit", sequence.unconverged_frames)
+      .Add("total_final_cost", sequence.total_final_cost);
+  report.Add("per_frame", frame_json);
+
+  if (FLAGS_mode == "clip") {
+    ClipSolveReport clip;
+    if (!FLAGS_quiet) std::fprintf(stderr, "clip solve: %zu frames as one problem...\n", observed.size());
+    status = SolveClip(skeleton, markers, observed, clip_options, &motion, &clip);
+    if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
+    std::printf("clip (ceres): %d parameters, %d residual blocks, %d iterations in %.3f s, cost "
+                "%.6g -> %.6g, RMS marker residual %.4g %s\n",
+                clip.parameters, clip.residual_blocks, clip.iterations, clip.solve_seconds,
+                clip.initial_cost, clip.final_cost, clip.rms_marker_error * to_output, unit);
+    JsonObject clip_json;
+    clip_json.Add("seconds", clip.solve_seconds).Add("iterations", clip.iterations)
+        .Add("parameters", clip.parameters).Add("residual_blocks", clip.residual_blocks)
+        .Add("initial_cost", clip.initial_cost).Add("final_cost", clip.final_cost)
+        .Add("rms_marker_residual", clip.rms_marker_error * to_output);
+    report.Add("clip", clip_json);
+  }
+  status = WriteBvh(FLAGS_out, skeleton, motion, BvhWriteOptions());
+  if (!status.ok()) return status;
+  std::printf("wrote %s\n", FLAGS_out.c_str());
+  return WriteReport(report);
+}
+
+const std::string kSolveFlags =
+    std::string("skeleton,markers,markerset,out,axes,marker_scale,report,quiet,") + kSolverFlagNames;
+
+}  // namespace
+
+extern const Command kSolveCommand = {
+    "solve", "joint angles from markers (C3D/TRC) onto a BVH or ASF skeleton, Ceres or DLS",
+    "mocapsolve solve --skeleton=S.asf|S.bvh --markers=M.c3d|M.trc --markerset=J.json "
+    "--out=O.bvh [--solver=ceres|dls] [--mode=frame|clip] [--axes=x,z,-y] [--report=r.json]\n\n"
+    "Solves the root translation and joint rotations per frame (warm-started from the\n"
+    "previous frame; the first frame tries 24 root orientations), and with --mode=clip\n"
+    "refines all frames as one sparse problem with smoothness. Missing markers are simply\n"
+    "left out. Prints the RMS marker residual, iterations and time; --report writes them.",
+    __FILE__, RunSolve, kSolveFlags.c_str()};
+
+}  // namespace mocapsolve
