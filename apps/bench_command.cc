@@ -17,6 +17,7 @@ DEFINE_string(bench_skeleton, "", "Skeleton (.asf/.bvh) of a real-marker problem
 DEFINE_string(bench_markers, "", "Marker file (.c3d/.trc) of a real-marker problem.");
 DEFINE_string(bench_markerset, "", "Marker set (.json) of a real-marker problem.");
 DEFINE_int32(bench_frames, 0, "Use only the first N frames (0 = all).");
+DEFINE_double(bench_noise_mm, 0.0, "Gaussian noise (mm) added to synthesized markers.");
 
 namespace mocapsolve {
 namespace {
@@ -51,6 +52,7 @@ Status RunBench(const std::vector<std::string>& arguments) {
   settings.markers_path = FLAGS_bench_markers;
   settings.markerset_path = FLAGS_bench_markerset;
   settings.max_frames = FLAGS_bench_frames;
+  settings.noise_mm = FLAGS_bench_noise_mm;
   std::vector<JsonObject> records;
   std::printf("%-14s %-8s %10s %12s %14s %10s %14s  %s\n", "problem", "solver", "frames",
               "seconds", "frames/s", "iters", "final_cost", "error");

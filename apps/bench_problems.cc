@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <random>
 
 #include "apps/common_flags.h"
 #include "apps/solver_flags.h"
@@ -72,18 +73,12 @@ Status RunFkProblem(const std::string& solver, const BenchSettings& settings, Be
   return Status::Ok();
 }
 
-// Per-frame marker solving of a take, warm-started frame to frame. Real markers with
-// --bench_skeleton/--bench_markers/--bench_markerset (marker axes/scale flags as for
-// solve), else noise-free markers synthesized from a clip (3 per joint). The solver
-// flags (--max_iterations, tolerances, --loss, ...) apply to both solvers alike; the
-// first frame's orientation search is not timed.
-Status RunMarkerSolveProblem(const std::string& solver, const BenchSettings& settings,
-                             BenchRecord* record) {
-  if (solver != "ceres" && solver != "dls") return Status::Error("marker_solve solvers: ceres, dls");
-  Skeleton skeleton;
-  MarkerSet markers;
-  std::vector<std::vector<Eigen::Vector3d>> observed;
-  double mm_per_unit = 0.0;
+// The marker problem of a benchmark: real files, or markers synthesized from a clip.
+Status LoadMarkerProblem(const BenchSettings& settings, Skeleton* skeleton_out, MarkerSet* markers_out,
+                         std::vector<std::vector<Eigen::Vector3d>>* observed_out, BenchRecord* record) {
+  Skeleton& skeleton = *skeleton_out;
+  MarkerSet& markers = *markers_out;
+  std::vector<std::vector<Eigen::Vector3d>>& observed = *observed_out;
   if (!settings.markers_path.empty()) {
     Status status = ReadSkeletonFile(settings.skeleton_path, &skeleton);
     if (status.ok()) status = ReadMarkerSet(settings.markerset_path, skeleton, &markers);
@@ -111,18 +106,47 @@ Status RunMarkerSolveProblem(const std::string& solver, const BenchSettings& set
     }
     markers = MakeSyntheticMarkerSet(skeleton, 3, 1);
     FkData fk(skeleton);
+    std::mt19937 rng(1);
+    std::normal_distribution<double> noise(0.0, 1.0);
+    const double sigma = settings.noise_mm > 0.0 && skeleton.unit().known()
+                             ? settings.noise_mm / (1000.0 * skeleton.unit().metres_per_unit)
+                             : 0.0;
     for (const Pose& pose : motion.frames) {
       ForwardKinematics(skeleton, pose, &fk);
       observed.emplace_back();
-      for (int m = 0; m < markers.num_markers(); ++m) observed.back().push_back(markers.Position(m, fk));
+      for (int m = 0; m < markers.num_markers(); ++m) {
+        observed.back().push_back(markers.Position(m, fk) +
+                                  sigma * Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+      }
     }
+    if (sigma > 0.0) record->input += ", " + std::to_string(settings.noise_mm) + " mm noise";
   }
   if (settings.max_frames > 0 && static_cast<int>(observed.size()) > settings.max_frames) {
     observed.resize(settings.max_frames);
   }
+  if (settings.max_frames > 0 && static_cast<int>(observed.size()) > settings.max_frames) {
+    observed.resize(settings.max_frames);
+  }
+  return Status::Ok();
+}
+
+// Per-frame marker solving of a take, warm-started frame to frame. Real markers with
+// --bench_skeleton/--bench_markers/--bench_markerset (marker axes/scale flags as for
+// solve), else noise-free markers synthesized from a clip (3 per joint). The solver
+// flags (--max_iterations, tolerances, --loss, ...) apply to both solvers alike; the
+// first frame's orientation search is not timed.
+Status RunMarkerSolveProblem(const std::string& solver, const BenchSettings& settings,
+                             BenchRecord* record) {
+  if (solver != "ceres" && solver != "dls") return Status::Error("marker_solve solvers: ceres, dls");
+  Skeleton skeleton;
+  MarkerSet markers;
+  std::vector<std::vector<Eigen::Vector3d>> observed;
+  double mm_per_unit = 0.0;
+  Status load = LoadMarkerProblem(settings, &skeleton, &markers, &observed, record);
+  if (!load.ok()) return load;
   if (skeleton.unit().known()) mm_per_unit = skeleton.unit().metres_per_unit * 1000.0;
   MarkerSolveOptions options;
-  Status status = MarkerSolveOptionsFromFlags(&options);
+  Status status = MarkerSolveOptionsFromFlags(skeleton.unit(), &options);
   if (!status.ok()) return status;
   options.solver = solver == "ceres" ? SolverKind::kCeres : SolverKind::kDls;
   Motion solved;
@@ -146,12 +170,59 @@ Status RunMarkerSolveProblem(const std::string& solver, const BenchSettings& set
   return Status::Ok();
 }
 
+// The whole-clip solve: per-frame DLS for the initial guess (not timed), then all frames
+// as one sparse Ceres problem with smoothness (timed). Markers as for marker_solve, with
+// --bench_noise_mm of Gaussian noise added to synthesized ones.
+Status RunMarkerClipProblem(const std::string& solver, const BenchSettings& settings,
+                            BenchRecord* record) {
+  if (solver != "ceres") return Status::Error("marker_clip solvers: ceres");
+  Skeleton skeleton;
+  MarkerSet markers;
+  std::vector<std::vector<Eigen::Vector3d>> observed;
+  Status status = LoadMarkerProblem(settings, &skeleton, &markers, &observed, record);
+  if (!status.ok()) return status;
+  MarkerSolveOptions frame_options;
+  status = MarkerSolveOptionsFromFlags(skeleton.unit(), &frame_options);
+  if (!status.ok()) return status;
+  frame_options.solver = SolverKind::kDls;
+  ClipSolveOptions clip_options;
+  status = ClipSolveOptionsFromFlags(&clip_options);
+  if (!status.ok()) return status;
+  Motion initial;
+  SequenceSolveReport sequence;
+  status = SolveSequence(skeleton, markers, observed, frame_options, RestPose(skeleton), &initial, &sequence);
+  if (!status.ok()) return status;
+  std::vector<double> times;
+  ClipSolveReport report;
+  for (int r = 0; r < std::max(1, settings.repeats); ++r) {
+    Motion motion = initial;
+    status = SolveClip(skeleton, markers, observed, clip_options, &motion, &report);
+    if (!status.ok()) return status;
+    times.push_back(report.solve_seconds);
+  }
+  std::sort(times.begin(), times.end());
+  const double mm = skeleton.unit().known() ? skeleton.unit().metres_per_unit * 1000.0 : 0.0;
+  record->seconds = times[times.size() / 2];
+  record->frames = static_cast<int>(observed.size());
+  record->iterations = report.iterations;
+  record->final_cost = report.final_cost;
+  record->error_name = mm > 0 ? "rms_marker_residual_mm" : "rms_marker_residual";
+  record->error = report.rms_marker_error * (mm > 0 ? mm : 1.0);
+  record->notes = std::to_string(report.parameters) + " parameters, " +
+                  std::to_string(report.residual_blocks) + " residual blocks; initial guess: " +
+                  "per-frame DLS (untimed)";
+  return Status::Ok();
+}
+
 }  // namespace
 
 const std::vector<BenchProblem>& AllBenchProblems() {
   static const std::vector<BenchProblem> problems = {
       {"fk", "forward kinematics of every frame of a clip (--motion, default: demo walk)",
        {"fk"}, RunFkProblem},
+      {"marker_clip", "whole-clip marker solve as one sparse Ceres problem (inputs as for "
+       "marker_solve; --bench_noise_mm for synthesized markers)",
+       {"ceres"}, RunMarkerClipProblem},
       {"marker_solve", "per-frame marker solving of a take (--bench_markers/--bench_skeleton/"
        "--bench_markerset, or markers synthesized from --bench_motion)",
        {"ceres", "dls"}, RunMarkerSolveProblem},

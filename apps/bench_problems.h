@@ -35,6 +35,7 @@ struct BenchSettings {
   // Marker problems on real markers (else markers are synthesized from the motion).
   std::string skeleton_path, markers_path, markerset_path;
   int max_frames = 0;       // 0 = all.
+  double noise_mm = 0.0;    // Gaussian noise on synthesized markers (needs a known unit).
 };
 
 struct BenchProblem {

@@ -125,6 +125,9 @@ int main(int argc, char** argv) {
   int count = static_cast<int>(args.size());
   char** data = args.data();
   gflags::SetUsageMessage(command->usage);
+  // Ceres warns when LM retries a step whose normal equations were singular; that is
+  // handled and expected, so only errors are logged unless --minloglevel=0 asks.
+  FLAGS_minloglevel = 2;
   gflags::ParseCommandLineFlags(&count, &data, /*remove_flags=*/true);
   FLAGS_logtostderr = true;
   google::InitGoogleLogging(argv[0]);

@@ -51,18 +51,17 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   if (FLAGS_mode != "frame" && FLAGS_mode != "clip") {
     return Status::Error("--mode: unknown '" + FLAGS_mode + "' (frame, clip)");
   }
+  Skeleton skeleton;
+  Status status = ReadSkeletonFile(FLAGS_skeleton, &skeleton);
+  if (!status.ok()) return status;
   MarkerSolveOptions frame_options;
-  Status status = MarkerSolveOptionsFromFlags(&frame_options);
+  status = MarkerSolveOptionsFromFlags(skeleton.unit(), &frame_options);
   if (!status.ok()) return status;
   ClipSolveOptions clip_options;
   if (FLAGS_mode == "clip") {
     status = ClipSolveOptionsFromFlags(&clip_options);
     if (!status.ok()) return status;
   }
-
-  Skeleton skeleton;
-  status = ReadSkeletonFile(FLAGS_skeleton, &skeleton);
-  if (!status.ok()) return status;
   MarkerSet markers;
   status = ReadMarkerSet(FLAGS_markerset, skeleton, &markers);
   if (!status.ok()) return status;

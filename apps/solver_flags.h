@@ -17,8 +17,9 @@ namespace mocapsolve {
 // Comma-separated names of the flags below, for Command::shared_flags style help.
 extern const char* const kSolverFlagNames;
 
-// Per-frame options (--solver picks Ceres or DLS).
-Status MarkerSolveOptionsFromFlags(MarkerSolveOptions* options);
+// Per-frame options (--solver picks Ceres or DLS); the skeleton's unit converts the
+// prior weight from mm.
+Status MarkerSolveOptionsFromFlags(const LengthUnit& skeleton_unit, MarkerSolveOptions* options);
 // Whole-clip options (always Ceres; --linear_solver defaults to sparse_normal_cholesky).
 Status ClipSolveOptionsFromFlags(ClipSolveOptions* options);
 

@@ -115,6 +115,15 @@ bool ParseDof(std::string_view token, AcclaimDof* dof) {
   return false;
 }
 
+// Acclaim applies the first-listed angle first: M = R_last ... R_first.
+std::vector<int> RotationAxesInProductOrder(const std::vector<AsfDof>& dofs) {
+  std::vector<int> axes;
+  for (auto it = dofs.rbegin(); it != dofs.rend(); ++it) {
+    if (IsRotationDof(it->dof)) axes.push_back(AcclaimDofAxis(it->dof));
+  }
+  return axes;
+}
+
 Channel ChannelOf(AcclaimDof dof) {
   switch (dof) {
     case AcclaimDof::kTx: return Channel::kXposition;
@@ -610,6 +619,7 @@ Status AsfParser::Build(Skeleton* skeleton, AsfInfo* info) {
       spec.offset = out.root_position;
       spec.rest_rotation = out.root_axis_rotation;
       for (const AsfDof& dof : out.root_order) spec.channels.push_back(ChannelOf(dof.dof));
+      spec.rotation_axes = RotationAxesInProductOrder(out.root_order);
     } else {
       const int b = node - 1;
       AsfBone& bone = out.bones[b];
@@ -627,6 +637,7 @@ Status AsfParser::Build(Skeleton* skeleton, AsfInfo* info) {
       }
       spec.rest_rotation = (parent_axis.conjugate() * bone.axis_rotation).normalized();
       for (const AsfDof& dof : bone.dofs) spec.channels.push_back(ChannelOf(dof.dof));
+      spec.rotation_axes = RotationAxesInProductOrder(bone.dofs);
       if (children[node].empty()) {
         EndSite site;
         site.name = bone.name + "_End";

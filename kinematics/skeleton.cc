@@ -27,6 +27,12 @@ Status Skeleton::Create(std::vector<JointSpec> joints, std::vector<EndSite> end_
     for (Channel c : spec.channels) {
       if (!seen.insert(c).second) return Status::Error(where + ": repeated channel");
     }
+    std::set<int> axes;
+    for (int axis : spec.rotation_axes.value_or(std::vector<int>())) {
+      if (axis < 0 || axis > 2 || !axes.insert(axis).second) {
+        return Status::Error(where + ": bad or repeated rotation axis");
+      }
+    }
   }
   for (const EndSite& site : end_sites) {
     if (site.parent < 0 || site.parent >= static_cast<int>(joints.size()) ||
@@ -48,6 +54,7 @@ Status Skeleton::Create(std::vector<JointSpec> joints, std::vector<EndSite> end_
   }
   s.has_rest_rotation_.resize(n);
   s.has_translation_channels_.resize(n);
+  s.rotation_axes_.resize(n);
   for (int j = 0; j < n; ++j) {
     s.has_rest_rotation_[j] = !joints[j].rest_rotation.isApprox(Eigen::Quaterniond::Identity(), 0.0);
     bool translation = false;
@@ -56,6 +63,18 @@ Status Skeleton::Create(std::vector<JointSpec> joints, std::vector<EndSite> end_
                      c == Channel::kZposition;
     }
     s.has_translation_channels_[j] = translation;
+    std::vector<int>& axes = s.rotation_axes_[j];
+    if (joints[j].rotation_axes.has_value()) {
+      axes = *joints[j].rotation_axes;
+    } else if (joints[j].channels.empty()) {
+      axes = {0, 1, 2};
+    } else {
+      for (Channel c : joints[j].channels) {
+        if (c == Channel::kXrotation) axes.push_back(0);
+        if (c == Channel::kYrotation) axes.push_back(1);
+        if (c == Channel::kZrotation) axes.push_back(2);
+      }
+    }
   }
   s.joints_ = std::move(joints);
   s.end_sites_ = std::move(end_sites);

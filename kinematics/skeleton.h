@@ -13,6 +13,7 @@
 #ifndef MOCAPSOLVE_KINEMATICS_SKELETON_H_
 #define MOCAPSOLVE_KINEMATICS_SKELETON_H_
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,12 @@ struct JointSpec {
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // In the parent's frame, file units.
   Eigen::Quaterniond rest_rotation = Eigen::Quaterniond::Identity();
   std::vector<Channel> channels;         // Layout in the source file (may be empty).
+  // The axes (0 = x, 1 = y, 2 = z) of the joint's rotation dofs in product order, left
+  // to right (R_j = R_axes[0](a) R_axes[1](b) ...), where the format fixes them (ASF:
+  // its dof list reversed, since Acclaim applies the first-listed angle first; empty for a
+  // bone without rotation dofs). Unset: the rotation channels in listed order (BVH), or
+  // all three for a joint without channels.
+  std::optional<std::vector<int>> rotation_axes;
 };
 
 struct EndSite {
@@ -63,6 +70,12 @@ class Skeleton {
   }
   // True if the joint's file channels include positions (so its translation is animated).
   bool has_translation_channels(int j) const { return has_translation_channels_[j]; }
+  // The local axes joint j may rotate about, in product order (JointSpec::rotation_axes):
+  // an ASF bone's dofs, all three for a BVH joint with rotation channels or a joint built
+  // without channels, none for a joint whose channels hold no rotation. Solvers keep
+  // each joint's rotation on this set.
+  const std::vector<int>& rotation_axes(int j) const { return rotation_axes_[j]; }
+  int num_rotation_dofs(int j) const { return static_cast<int>(rotation_axes_[j].size()); }
   // Index of the joint, or -1.
   int FindJoint(const std::string& name) const;
 
@@ -75,6 +88,7 @@ class Skeleton {
   std::vector<int> subtree_end_;
   std::vector<bool> has_rest_rotation_;
   std::vector<bool> has_translation_channels_;
+  std::vector<std::vector<int>> rotation_axes_;
   LengthUnit unit_;
 };
 

@@ -46,6 +46,120 @@ bool RightQuaternionManifold::MinusJacobian(const double* x, double* jacobian) c
   return true;
 }
 
+DofQuaternionManifold::DofQuaternionManifold(std::vector<int> axes) : axes_(std::move(axes)) {}
+
+void DofQuaternionManifold::Angles(const double* x, double* angles) const {
+  const Eigen::Map<const Eigen::Quaterniond> q(x);
+  if (axes_.size() == 1) {
+    // q = (cos(t/2), sin(t/2) e_a): t = 2 atan2(q_a, w), wrapped into (-pi, pi].
+    angles[0] = std::remainder(2.0 * std::atan2(q.coeffs()[axes_[0]], q.w()), 2.0 * kPi);
+    return;
+  }
+  const int third = 3 - axes_[0] - axes_[1];
+  const Eigen::Vector3d e = EulerFromQuaternion(q, EulerOrderFromAxes(axes_[0], axes_[1], third));
+  angles[0] = e[0];
+  angles[1] = e[1];
+}
+
+void DofQuaternionManifold::Compose(const double* angles, double* x) const {
+  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+  for (size_t i = 0; i < axes_.size(); ++i) {
+    q = q * Eigen::Quaterniond(Eigen::AngleAxisd(angles[i], Eigen::Vector3d::Unit(axes_[i])));
+  }
+  Eigen::Map<Eigen::Quaterniond> out(x);
+  out = q;
+}
+
+bool DofQuaternionManifold::Plus(const double* x, const double* delta, double* x_plus_delta) const {
+  double angles[2];
+  Angles(x, angles);
+  for (size_t i = 0; i < axes_.size(); ++i) angles[i] += delta[i];
+  Compose(angles, x_plus_delta);
+  return true;
+}
+
+bool DofQuaternionManifold::PlusJacobian(const double* x, double* jacobian) const {
+  // On the set, q = Q0 Q1: d/dt1 = 1/2 q (x) (0, e_a1) (column a1 of P(q)) and
+  // d/dt0 = 1/2 (0, e_a0) (x) q (the left-multiplied twin).
+  double angles[2], on_set[4];
+  Angles(x, angles);
+  Compose(angles, on_set);
+  const Eigen::Quaterniond q = Eigen::Map<const Eigen::Quaterniond>(on_set);
+  const int k = TangentSize();
+  for (int i = 0; i < k; ++i) {
+    Eigen::Quaterniond axis(0.0, 0.0, 0.0, 0.0);
+    axis.vec()[axes_[i]] = 0.5;
+    const Eigen::Quaterniond column = (i == 0 && k == 2) ? axis * q : q * axis;
+    for (int r = 0; r < 4; ++r) jacobian[r * k + i] = column.coeffs()[r];
+  }
+  return true;
+}
+
+bool DofQuaternionManifold::Minus(const double* y, const double* x, double* y_minus_x) const {
+  double ay[2], ax[2];
+  Angles(y, ay);
+  Angles(x, ax);
+  for (size_t i = 0; i < axes_.size(); ++i) y_minus_x[i] = std::remainder(ay[i] - ax[i], 2.0 * kPi);
+  return true;
+}
+
+bool DofQuaternionManifold::MinusJacobian(const double* x, double* jacobian) const {
+  // d Angles(y)/dy at y = x. Angles are the first k angles (t0, t1, t2) of the 3-axis
+  // decomposition R_a(t0) R_b(t1) R_c(t2); a local increment delta moves them by
+  // M^-1 delta with M = [(R_b R_c)^T e_a, R_c^T e_b, e_c], and d delta/dy = 4 P(y)^T.
+  Eigen::Quaterniond q = Eigen::Map<const Eigen::Quaterniond>(x);
+  const double norm = q.norm();
+  q.coeffs() /= norm;
+  Eigen::Matrix3d m_inverse = Eigen::Matrix3d::Identity();
+  if (axes_.size() == 2) {
+    const int a = axes_[0], b = axes_[1], c = 3 - a - b;
+    const Eigen::Vector3d t = EulerFromQuaternion(q, EulerOrderFromAxes(a, b, c));
+    const Eigen::Matrix3d rb = Eigen::AngleAxisd(t[1], Eigen::Vector3d::Unit(b)).toRotationMatrix();
+    const Eigen::Matrix3d rc = Eigen::AngleAxisd(t[2], Eigen::Vector3d::Unit(c)).toRotationMatrix();
+    Eigen::Matrix3d m;
+    m.col(0) = (rb * rc).transpose() * Eigen::Vector3d::Unit(a);
+    m.col(1) = rc.transpose() * Eigen::Vector3d::Unit(b);
+    m.col(2) = Eigen::Vector3d::Unit(c);
+    m_inverse = m.inverse();
+  }
+  const Eigen::Matrix<double, 3, 4> ambient = AmbientFromTangent(q.coeffs().data()) / norm;
+  for (size_t r = 0; r < axes_.size(); ++r) {
+    // One axis: t = 2 atan2(q_a, w) moves only with the a-th tangent component.
+    const Eigen::RowVector4d row =
+        axes_.size() == 2 ? Eigen::RowVector4d(m_inverse.row(r) * ambient)
+                          : Eigen::RowVector4d(ambient.row(axes_[0]));
+    for (int col = 0; col < 4; ++col) jacobian[r * 4 + col] = row[col];
+  }
+  return true;
+}
+
+ceres::Manifold* RotationManifold(const std::vector<int>& axes) {
+  static RightQuaternionManifold full;
+  // One instance per ordered axis list of length 1 (3) or 2 (6).
+  static std::vector<DofQuaternionManifold> partial = [] {
+    std::vector<DofQuaternionManifold> out;
+    for (int a = 0; a < 3; ++a) out.emplace_back(std::vector<int>{a});
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        if (a != b) out.emplace_back(std::vector<int>{a, b});
+      }
+    }
+    return out;
+  }();
+  if (axes.empty()) return nullptr;
+  if (axes.size() >= 3) return &full;
+  if (axes.size() == 1) return &partial[axes[0]];
+  int index = 3;
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      if (a == b) continue;
+      if (a == axes[0] && b == axes[1]) return &partial[index];
+      ++index;
+    }
+  }
+  return &full;  // Unreachable for distinct axes in [0, 3).
+}
+
 Eigen::Matrix<double, 4, 3> QuaternionPlusJacobian(const double* q) {
   // Column k: 1/2 q (x) (0, e_k) = 1/2 (w e_k + v x e_k, -v_k) in (x, y, z, w) order.
   const double x = q[0], y = q[1], z = q[2], w = q[3];

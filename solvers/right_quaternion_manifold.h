@@ -18,6 +18,8 @@
 #ifndef MOCAPSOLVE_SOLVERS_RIGHT_QUATERNION_MANIFOLD_H_
 #define MOCAPSOLVE_SOLVERS_RIGHT_QUATERNION_MANIFOLD_H_
 
+#include <vector>
+
 #include <ceres/manifold.h>
 #include <Eigen/Core>
 
@@ -32,6 +34,40 @@ class RightQuaternionManifold : public ceres::Manifold {
   bool Minus(const double* y, const double* x, double* y_minus_x) const override;
   bool MinusJacobian(const double* x, double* jacobian) const override;
 };
+
+// A joint that rotates about one or two of its local axes only (an ASF bone's dofs):
+// the set { R_a0(t0) R_a1(t1) } of rotations with those Euler angles, in product order
+// (Skeleton::rotation_axes). The chart is the angles themselves:
+//   Plus(q, delta)  = Compose(Angles(q) + delta)
+//   Minus(y, x)     = wrap(Angles(y) - Angles(x)) into (-pi, pi]
+//   PlusJacobian    = [1/2 (0, e_a0) (x) q,  1/2 q (x) (0, e_a1)]   (4 x k, x y z w rows)
+// Angles(q) projects q onto the set (exact for q on it). For one axis this is q exp(d e_a);
+// for two it is exact, unlike restricting increments q exp(d0 e_a0 + d1 e_a1), whose
+// compositions would creep along the third axis. Residuals report the same ambient
+// Jacobians as for the full manifold.
+class DofQuaternionManifold : public ceres::Manifold {
+ public:
+  explicit DofQuaternionManifold(std::vector<int> axes);  // 1 or 2 distinct axes.
+  int AmbientSize() const override { return 4; }
+  int TangentSize() const override { return static_cast<int>(axes_.size()); }
+  bool Plus(const double* x, const double* delta, double* x_plus_delta) const override;
+  bool PlusJacobian(const double* x, double* jacobian) const override;
+  bool Minus(const double* y, const double* x, double* y_minus_x) const override;
+  bool MinusJacobian(const double* x, double* jacobian) const override;
+
+  void Angles(const double* q, double* angles) const;
+  void Compose(const double* angles, double* q) const;
+
+ private:
+  std::vector<int> axes_;
+};
+
+// The manifold of a joint's rotation block given its dof axes in product order
+// (Skeleton::rotation_axes): RightQuaternionManifold for three, DofQuaternionManifold for
+// one or two, nullptr for none (the block is then held constant). Shared instances; Manifold methods are
+// const, so they are safe to share across threads (non-const only because Ceres' API
+// takes Manifold*).
+ceres::Manifold* RotationManifold(const std::vector<int>& axes);
 
 // P(q): 4 x 3, d(q * exp(delta))/d delta at delta = 0, q in (x, y, z, w) order.
 Eigen::Matrix<double, 4, 3> QuaternionPlusJacobian(const double* q);

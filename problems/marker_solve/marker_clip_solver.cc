@@ -66,7 +66,6 @@ Status SolveClip(const Skeleton& skeleton, const MarkerSet& markers,
   std::unique_ptr<ceres::LossFunction> loss;
   Status status = MakeLoss(options.loss, options.loss_scale, &loss);
   if (!status.ok()) return status;
-  RightQuaternionManifold manifold;
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -77,8 +76,13 @@ Status SolveClip(const Skeleton& skeleton, const MarkerSet& markers,
     report->parameters += 3;
     for (int j = 0; j < nj; ++j) {
       if (!moves[j]) continue;
-      problem.AddParameterBlock(rotation(f, j), 4, &manifold);
-      report->parameters += 3;
+      ceres::Manifold* manifold = RotationManifold(skeleton.rotation_axes(j));
+      problem.AddParameterBlock(rotation(f, j), 4, manifold);
+      if (manifold == nullptr) {
+        problem.SetParameterBlockConstant(rotation(f, j));
+      } else {
+        report->parameters += manifold->TangentSize();
+      }
     }
   }
   std::vector<double*> blocks;
@@ -107,7 +111,7 @@ Status SolveClip(const Skeleton& skeleton, const MarkerSet& markers,
     }
     if (options.rotation_smoothness > 0.0) {
       for (int j = 0; j < nj; ++j) {
-        if (!moves[j]) continue;
+        if (!moves[j] || skeleton.num_rotation_dofs(j) == 0) continue;
         blocks.clear();
         for (int k = 0; k <= span; ++k) blocks.push_back(rotation(f + k, j));
         problem.AddResidualBlock(new FiniteDifferenceResidual(options.smoothness_order, true,

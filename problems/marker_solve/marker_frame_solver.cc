@@ -78,8 +78,12 @@ class MarkerFrameSolver::Impl {
                                                  options.marker_weight));
       for (int j : markers.InfluencingJoints(m)) moves[j] = true;
     }
+    // Joints on some marker's chain get a block; those without rotation dofs (an ASF
+    // bone with no dof) keep it constant.
     for (int j = 0; j < skeleton.num_joints(); ++j) {
-      if (moves[j]) solved_joints_.push_back(j);
+      if (!moves[j]) continue;
+      chain_joints_.push_back(j);
+      if (skeleton.num_rotation_dofs(j) > 0) solved_joints_.push_back(j);
     }
     if (options.prior_rotation_weight > 0.0) {
       for (int j : solved_joints_) {
@@ -153,8 +157,10 @@ class MarkerFrameSolver::Impl {
     problem_options.enable_fast_removal = false;
     ceres_problem_.reset(new ceres::Problem(problem_options));
     ceres_problem_->AddParameterBlock(translation_, 3);
-    for (int j : solved_joints_) {
-      ceres_problem_->AddParameterBlock(&rotations_[4 * j], 4, &manifold_);
+    for (int j : chain_joints_) {
+      ceres::Manifold* manifold = RotationManifold(skeleton_.rotation_axes(j));
+      ceres_problem_->AddParameterBlock(&rotations_[4 * j], 4, manifold);
+      if (manifold == nullptr) ceres_problem_->SetParameterBlockConstant(&rotations_[4 * j]);
     }
     std::vector<double*> blocks;
     for (int m = 0; m < markers_.num_markers(); ++m) {
@@ -174,8 +180,10 @@ class MarkerFrameSolver::Impl {
     dls_problem_.Clear();
     std::vector<int> block_of_joint(skeleton_.num_joints(), -1);
     const int translation_block = dls_problem_.AddParameterBlock(translation_, 3);
-    for (int j : solved_joints_) {
-      block_of_joint[j] = dls_problem_.AddParameterBlock(&rotations_[4 * j], 4, &manifold_);
+    for (int j : chain_joints_) {
+      const ceres::Manifold* manifold = RotationManifold(skeleton_.rotation_axes(j));
+      block_of_joint[j] = dls_problem_.AddParameterBlock(&rotations_[4 * j], 4, manifold);
+      if (manifold == nullptr) dls_problem_.SetParameterBlockConstant(block_of_joint[j]);
     }
     for (int m = 0; m < markers_.num_markers(); ++m) {
       if (!visible[m]) continue;
@@ -194,13 +202,13 @@ class MarkerFrameSolver::Impl {
   const MarkerSet& markers_;
   MarkerSolveOptions options_;
   std::unique_ptr<ceres::LossFunction> loss_;
-  RightQuaternionManifold manifold_;
   std::vector<Eigen::Vector3d> observed_;
   double translation_[3] = {0, 0, 0};
   double reference_translation_[3] = {0, 0, 0};
   std::vector<double> rotations_;            // 4 per joint, Eigen order.
   std::vector<double> reference_rotations_;  // The prior's reference, 4 per joint.
-  std::vector<int> solved_joints_;
+  std::vector<int> chain_joints_;   // Joints on some marker's chain: a parameter block each.
+  std::vector<int> solved_joints_;  // Those of them with rotation dofs.
   std::vector<std::unique_ptr<MarkerResidual>> residuals_;
   std::vector<std::unique_ptr<RotationPriorResidual>> rotation_priors_;
   std::unique_ptr<TranslationPriorResidual> translation_prior_;

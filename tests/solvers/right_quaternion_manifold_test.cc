@@ -50,3 +50,46 @@ TEST(RightQuaternionManifold, AmbientFromTangentInvertsPlusJacobian) {
 
 }  // namespace
 }  // namespace mocapsolve
+
+namespace mocapsolve {
+namespace {
+
+TEST(DofQuaternionManifold, InvariantsHoldOnItsSet) {
+  using namespace ceres;  // The macro names Ceres' matchers unqualified.
+  const std::vector<std::vector<int>> axis_lists = {{0}, {1}, {2}, {0, 2}, {2, 0}, {1, 0}, {2, 1}};
+  for (const auto& axes : axis_lists) {
+    DofQuaternionManifold manifold(axes);
+    const int k = manifold.TangentSize();
+    Eigen::VectorXd delta(k);
+    double x_angles[2] = {0.4, -1.1}, y_angles[2] = {-2.0, 0.7};
+    for (int i = 0; i < k; ++i) delta[i] = 0.1 * (i + 1);
+    Eigen::Vector4d x, y;
+    manifold.Compose(x_angles, x.data());
+    manifold.Compose(y_angles, y.data());
+    EXPECT_THAT_MANIFOLD_INVARIANTS_HOLD(manifold, x, delta, y, 1e-6);
+  }
+}
+
+TEST(DofQuaternionManifold, StaysOnTheEulerSetOfItsAxes) {
+  // Knee (one axis) and a two-dof joint (Rz Rx, as an ASF "dof rx rz"): after many
+  // steps the rotation still has exactly the form R_a0(t0) R_a1(t1).
+  DofQuaternionManifold knee({0}), two({2, 0});
+  Eigen::Vector4d q = Eigen::Quaterniond::Identity().coeffs(), r = q;
+  for (double step : {0.3, -0.1, 0.7}) {
+    Eigen::Vector4d next;
+    knee.Plus(q.data(), &step, next.data());
+    q = next;
+    const double steps[2] = {step, -0.5 * step};
+    two.Plus(r.data(), steps, next.data());
+    r = next;
+  }
+  const Eigen::Vector3d v = LogMap(Eigen::Quaterniond(q));
+  EXPECT_NEAR(v.x(), 0.9, 1e-14);
+  EXPECT_NEAR(v.y(), 0.0, 1e-15);
+  EXPECT_NEAR(v.z(), 0.0, 1e-15);
+  const Eigen::Quaterniond expected = QuaternionFromEuler(Eigen::Vector3d(0.9, -0.45, 0.0), EulerOrder::kZXY);
+  EXPECT_LT(AngularDistance(Eigen::Quaterniond(r), expected), 1e-14);
+}
+
+}  // namespace
+}  // namespace mocapsolve
