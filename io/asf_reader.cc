@@ -124,6 +124,20 @@ std::vector<int> RotationAxesInProductOrder(const std::vector<AsfDof>& dofs) {
   return axes;
 }
 
+// The limits of those axes, in the same (product) order, radians; empty when none is
+// finite.
+std::vector<std::pair<double, double>> RotationLimitsInProductOrder(const std::vector<AsfDof>& dofs) {
+  std::vector<std::pair<double, double>> limits;
+  bool any = false;
+  for (auto it = dofs.rbegin(); it != dofs.rend(); ++it) {
+    if (!IsRotationDof(it->dof)) continue;
+    limits.emplace_back(DegToRad(it->lower_deg), DegToRad(it->upper_deg));
+    any |= std::isfinite(it->lower_deg) || std::isfinite(it->upper_deg);
+  }
+  if (!any) limits.clear();
+  return limits;
+}
+
 Channel ChannelOf(AcclaimDof dof) {
   switch (dof) {
     case AcclaimDof::kTx: return Channel::kXposition;
@@ -638,6 +652,7 @@ Status AsfParser::Build(Skeleton* skeleton, AsfInfo* info) {
       spec.rest_rotation = (parent_axis.conjugate() * bone.axis_rotation).normalized();
       for (const AsfDof& dof : bone.dofs) spec.channels.push_back(ChannelOf(dof.dof));
       spec.rotation_axes = RotationAxesInProductOrder(bone.dofs);
+      spec.rotation_limits = RotationLimitsInProductOrder(bone.dofs);
       if (children[node].empty()) {
         EndSite site;
         site.name = bone.name + "_End";

@@ -74,6 +74,34 @@ Eigen::Vector3d EulerFromQuaternion(const Eigen::Quaterniond& q, EulerOrder orde
   return EulerFromMatrix(q.normalized().toRotationMatrix(), order);
 }
 
+void AnglesAboutAxes(const Eigen::Quaterniond& q_in, const std::vector<int>& axes, double* angles,
+                     Eigen::Matrix<double, Eigen::Dynamic, 3>* rate) {
+  const Eigen::Quaterniond q = q_in.normalized();
+  const int k = static_cast<int>(axes.size());
+  if (k == 1) {
+    const int a = axes[0];
+    angles[0] = std::remainder(2.0 * std::atan2(q.coeffs()[a], q.w()), 2.0 * kPi);
+    if (rate != nullptr) {
+      // Only the a-th component of a local increment turns the angle (on the set).
+      rate->setZero(1, 3);
+      (*rate)(0, a) = 1.0;
+    }
+    return;
+  }
+  const int a = axes[0], b = axes[1], c = k == 3 ? axes[2] : 3 - axes[0] - axes[1];
+  const Eigen::Vector3d t = EulerFromQuaternion(q, EulerOrderFromAxes(a, b, c));
+  for (int i = 0; i < k; ++i) angles[i] = t[i];
+  if (rate != nullptr) {
+    const Eigen::Matrix3d rb = Eigen::AngleAxisd(t[1], Eigen::Vector3d::Unit(b)).toRotationMatrix();
+    const Eigen::Matrix3d rc = Eigen::AngleAxisd(t[2], Eigen::Vector3d::Unit(c)).toRotationMatrix();
+    Eigen::Matrix3d m;
+    m.col(0) = (rb * rc).transpose() * Eigen::Vector3d::Unit(a);
+    m.col(1) = rc.transpose() * Eigen::Vector3d::Unit(b);
+    m.col(2) = Eigen::Vector3d::Unit(c);
+    *rate = m.inverse().topRows(k);
+  }
+}
+
 Eigen::Quaterniond ExpMap(const Eigen::Vector3d& v) {
   const double theta_sq = v.squaredNorm();
   double w, scale;  // q = (cos(theta/2), sin(theta/2)/theta * v)

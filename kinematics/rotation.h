@@ -34,6 +34,15 @@ Eigen::Quaterniond QuaternionFromEuler(const Eigen::Vector3d& angles_rad, EulerO
 Eigen::Vector3d EulerFromQuaternion(const Eigen::Quaterniond& q, EulerOrder order);
 Eigen::Vector3d EulerFromMatrix(const Eigen::Matrix3d& m, EulerOrder order);
 
+// Angles of q about `axes` (1 to 3 distinct axes, product order: q = R_a0(t0) R_a1(t1)
+// ...). Three axes: EulerFromQuaternion. Two: the first two angles of the decomposition
+// completed by the remaining axis (exact when q is such a product). One: 2 atan2(q_a, w)
+// wrapped into (-pi, pi]. If `rate` is not null it receives the k x 3 derivative of the
+// angles of q exp(delta) at delta = 0 (delta a local increment): rows of M^-1 with
+// M = [(R_b R_c)^T e_a, R_c^T e_b, e_c]; singular at gimbal lock.
+void AnglesAboutAxes(const Eigen::Quaterniond& q, const std::vector<int>& axes, double* angles,
+                     Eigen::Matrix<double, Eigen::Dynamic, 3>* rate = nullptr);
+
 Eigen::Quaterniond ExpMap(const Eigen::Vector3d& rotation_vector);
 Eigen::Vector3d LogMap(const Eigen::Quaterniond& q);
 

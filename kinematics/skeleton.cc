@@ -1,5 +1,6 @@
 #include "kinematics/skeleton.h"
 
+#include <cmath>
 #include <set>
 
 namespace mocapsolve {
@@ -26,6 +27,17 @@ Status Skeleton::Create(std::vector<JointSpec> joints, std::vector<EndSite> end_
     std::set<Channel> seen;
     for (Channel c : spec.channels) {
       if (!seen.insert(c).second) return Status::Error(where + ": repeated channel");
+    }
+    if (!spec.rotation_limits.empty()) {
+      const size_t dofs = spec.rotation_axes.has_value() ? spec.rotation_axes->size() : 3;
+      if (spec.rotation_limits.size() != dofs) {
+        return Status::Error(where + ": one limit pair per rotation dof expected");
+      }
+      for (const auto& [lower, upper] : spec.rotation_limits) {
+        if (std::isnan(lower) || std::isnan(upper) || lower > upper) {
+          return Status::Error(where + ": bad rotation limits");
+        }
+      }
     }
     std::set<int> axes;
     for (int axis : spec.rotation_axes.value_or(std::vector<int>())) {

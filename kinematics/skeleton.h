@@ -14,6 +14,7 @@
 #define MOCAPSOLVE_KINEMATICS_SKELETON_H_
 
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct JointSpec {
   // bone without rotation dofs). Unset: the rotation channels in listed order (BVH), or
   // all three for a joint without channels.
   std::optional<std::vector<int>> rotation_axes;
+  // Limits (radians, lower <= upper, may be infinite) of the Euler angles about
+  // rotation_axes, in the same order; empty: unlimited. From the ASF 'limits'.
+  std::vector<std::pair<double, double>> rotation_limits;
 };
 
 struct EndSite {
@@ -76,6 +80,10 @@ class Skeleton {
   // each joint's rotation on this set.
   const std::vector<int>& rotation_axes(int j) const { return rotation_axes_[j]; }
   int num_rotation_dofs(int j) const { return static_cast<int>(rotation_axes_[j].size()); }
+  // Limits of the angles about rotation_axes(j) (radians), or empty when unlimited.
+  const std::vector<std::pair<double, double>>& rotation_limits(int j) const {
+    return joints_[j].rotation_limits;
+  }
   // Index of the joint, or -1.
   int FindJoint(const std::string& name) const;
 

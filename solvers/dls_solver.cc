@@ -6,6 +6,35 @@
 #include <Eigen/Cholesky>
 
 namespace mocapsolve {
+namespace {
+
+// Fixed-size kernels for the common 3-row residual blocks with 1-3 tangent columns per
+// parameter block (joint dofs): dynamic-size Eigen products of 3 x 3 blocks cost more in
+// bookkeeping than in arithmetic.
+template <int A, int B>
+void AddTransposeProduct(const double* ja, const double* jb, int row, int col, Eigen::MatrixXd* jtj) {
+  jtj->block<A, B>(row, col).noalias() +=
+      Eigen::Map<const Eigen::Matrix<double, 3, A>>(ja).transpose() *
+      Eigen::Map<const Eigen::Matrix<double, 3, B>>(jb);
+}
+
+using ProductKernel = void (*)(const double*, const double*, int, int, Eigen::MatrixXd*);
+constexpr ProductKernel kProductKernels[3][3] = {
+    {AddTransposeProduct<1, 1>, AddTransposeProduct<1, 2>, AddTransposeProduct<1, 3>},
+    {AddTransposeProduct<2, 1>, AddTransposeProduct<2, 2>, AddTransposeProduct<2, 3>},
+    {AddTransposeProduct<3, 1>, AddTransposeProduct<3, 2>, AddTransposeProduct<3, 3>}};
+
+template <int T>
+void QuaternionTangent(const double* ambient, const double* plus, double scale, double* tangent) {
+  Eigen::Map<Eigen::Matrix<double, 3, T>>(tangent).noalias() =
+      scale * Eigen::Map<const Eigen::Matrix<double, 3, 4, Eigen::RowMajor>>(ambient) *
+      Eigen::Map<const Eigen::Matrix<double, 4, T, (T == 1 ? Eigen::ColMajor : Eigen::RowMajor)>>(plus);
+}
+using TangentKernel = void (*)(const double*, const double*, double, double*);
+constexpr TangentKernel kTangentKernels[3] = {QuaternionTangent<1>, QuaternionTangent<2>,
+                                              QuaternionTangent<3>};
+
+}  // namespace
 
 bool DlsOptions::IsValid(std::string* error) const {
   auto fail = [error](const char* message) {
@@ -69,6 +98,23 @@ bool DlsSolver::Evaluate(DlsProblem* problem, bool linearize, bool dense_j, doub
       jtj_.setZero(num_cols_, num_cols_);
     }
   }
+  if (linearize) {
+    // Each block's PlusJacobian once, not once per residual that touches it.
+    plus_offset_.resize(problem->parameters_.size());
+    size_t total = 0;
+    for (size_t b = 0; b < problem->parameters_.size(); ++b) {
+      const DlsProblem::Parameter& p = problem->parameters_[b];
+      plus_offset_[b] = total;
+      if (p.manifold != nullptr && !p.constant) total += p.size * p.tangent_size;
+    }
+    plus_jacobians_.resize(total);
+    for (size_t b = 0; b < problem->parameters_.size(); ++b) {
+      const DlsProblem::Parameter& p = problem->parameters_[b];
+      if (p.manifold != nullptr && !p.constant) {
+        p.manifold->PlusJacobian(p.values, &plus_jacobians_[plus_offset_[b]]);
+      }
+    }
+  }
   *cost = 0.0;
   int row = 0;
   std::vector<const double*> parameter_pointers;
@@ -116,20 +162,23 @@ bool DlsSolver::Evaluate(DlsProblem* problem, bool linearize, bool dense_j, doub
       if (p.manifold == nullptr) {
         tangent_[k] = scale * ambient;
       } else {
-        plus_.resize(p.size * p.tangent_size);
-        p.manifold->PlusJacobian(p.values, plus_.data());
-        if (nr == 3 && p.size == 4 && p.tangent_size == 3) {
-          // The common case (a 3-row residual on a quaternion), fixed-size.
-          const Eigen::Map<const Eigen::Matrix<double, 3, 4, Eigen::RowMajor>> a(ambient_[k].data());
-          const Eigen::Map<const Eigen::Matrix<double, 4, 3, Eigen::RowMajor>> plus(plus_.data());
-          Eigen::Map<Eigen::Matrix3d>(tangent_[k].data()).noalias() = scale * a * plus;
+        const double* plus_jacobian = &plus_jacobians_[plus_offset_[block.blocks[k]]];
+        if (nr == 3 && p.size == 4 && p.tangent_size <= 3) {
+          kTangentKernels[p.tangent_size - 1](ambient_[k].data(), plus_jacobian, scale,
+                                             tangent_[k].data());
         } else {
           const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
-              plus(plus_.data(), p.size, p.tangent_size);
+              plus(plus_jacobian, p.size, p.tangent_size);
           tangent_[k].noalias() = scale * ambient * plus;
         }
       }
-      jtr_.segment(p.tangent_offset, p.tangent_size).noalias() += tangent_[k].transpose() * r;
+      if (nr == 3 && p.tangent_size == 3) {
+        jtr_.segment<3>(p.tangent_offset).noalias() +=
+            Eigen::Map<const Eigen::Matrix3d>(tangent_[k].data()).transpose() *
+            Eigen::Map<const Eigen::Vector3d>(r_.data());
+      } else {
+        jtr_.segment(p.tangent_offset, p.tangent_size).noalias() += tangent_[k].transpose() * r;
+      }
     }
     if (dense_j) {
       residual_.segment(row, nr) = r;
@@ -147,9 +196,9 @@ bool DlsSolver::Evaluate(DlsProblem* problem, bool linearize, bool dense_j, doub
         for (int b = 0; b < nb; ++b) {
           const DlsProblem::Parameter& pb = problem->parameters_[block.blocks[b]];
           if (pb.constant || pb.tangent_offset < pa.tangent_offset) continue;
-          if (nr == 3 && pa.tangent_size == 3 && pb.tangent_size == 3) {
-            const Eigen::Map<const Eigen::Matrix3d> ja(tangent_[a].data()), jb(tangent_[b].data());
-            jtj_.block<3, 3>(pa.tangent_offset, pb.tangent_offset).noalias() += ja.transpose() * jb;
+          if (nr == 3 && pa.tangent_size <= 3 && pb.tangent_size <= 3) {
+            kProductKernels[pa.tangent_size - 1][pb.tangent_size - 1](
+                tangent_[a].data(), tangent_[b].data(), pa.tangent_offset, pb.tangent_offset, &jtj_);
           } else {
             jtj_.block(pa.tangent_offset, pb.tangent_offset, pa.tangent_size, pb.tangent_size)
                 .noalias() += tangent_[a].transpose() * tangent_[b];

@@ -137,7 +137,9 @@ class DlsSolver {
   std::vector<double> r_;
   std::vector<std::vector<double>> ambient_;
   std::vector<Eigen::MatrixXd> tangent_;
-  std::vector<double> plus_;  // A manifold's PlusJacobian or Plus output.
+  std::vector<double> plus_;  // A manifold's Plus output.
+  std::vector<double> plus_jacobians_;  // Every manifold block's PlusJacobian, row-major.
+  std::vector<size_t> plus_offset_;     // Where each block's starts.
 };
 
 }  // namespace mocapsolve

@@ -49,16 +49,7 @@ bool RightQuaternionManifold::MinusJacobian(const double* x, double* jacobian) c
 DofQuaternionManifold::DofQuaternionManifold(std::vector<int> axes) : axes_(std::move(axes)) {}
 
 void DofQuaternionManifold::Angles(const double* x, double* angles) const {
-  const Eigen::Map<const Eigen::Quaterniond> q(x);
-  if (axes_.size() == 1) {
-    // q = (cos(t/2), sin(t/2) e_a): t = 2 atan2(q_a, w), wrapped into (-pi, pi].
-    angles[0] = std::remainder(2.0 * std::atan2(q.coeffs()[axes_[0]], q.w()), 2.0 * kPi);
-    return;
-  }
-  const int third = 3 - axes_[0] - axes_[1];
-  const Eigen::Vector3d e = EulerFromQuaternion(q, EulerOrderFromAxes(axes_[0], axes_[1], third));
-  angles[0] = e[0];
-  angles[1] = e[1];
+  AnglesAboutAxes(Eigen::Quaterniond(Eigen::Map<const Eigen::Quaterniond>(x)), axes_, angles);
 }
 
 void DofQuaternionManifold::Compose(const double* angles, double* x) const {
@@ -104,31 +95,17 @@ bool DofQuaternionManifold::Minus(const double* y, const double* x, double* y_mi
 }
 
 bool DofQuaternionManifold::MinusJacobian(const double* x, double* jacobian) const {
-  // d Angles(y)/dy at y = x. Angles are the first k angles (t0, t1, t2) of the 3-axis
-  // decomposition R_a(t0) R_b(t1) R_c(t2); a local increment delta moves them by
-  // M^-1 delta with M = [(R_b R_c)^T e_a, R_c^T e_b, e_c], and d delta/dy = 4 P(y)^T.
-  Eigen::Quaterniond q = Eigen::Map<const Eigen::Quaterniond>(x);
-  const double norm = q.norm();
-  q.coeffs() /= norm;
-  Eigen::Matrix3d m_inverse = Eigen::Matrix3d::Identity();
-  if (axes_.size() == 2) {
-    const int a = axes_[0], b = axes_[1], c = 3 - a - b;
-    const Eigen::Vector3d t = EulerFromQuaternion(q, EulerOrderFromAxes(a, b, c));
-    const Eigen::Matrix3d rb = Eigen::AngleAxisd(t[1], Eigen::Vector3d::Unit(b)).toRotationMatrix();
-    const Eigen::Matrix3d rc = Eigen::AngleAxisd(t[2], Eigen::Vector3d::Unit(c)).toRotationMatrix();
-    Eigen::Matrix3d m;
-    m.col(0) = (rb * rc).transpose() * Eigen::Vector3d::Unit(a);
-    m.col(1) = rc.transpose() * Eigen::Vector3d::Unit(b);
-    m.col(2) = Eigen::Vector3d::Unit(c);
-    m_inverse = m.inverse();
-  }
-  const Eigen::Matrix<double, 3, 4> ambient = AmbientFromTangent(q.coeffs().data()) / norm;
-  for (size_t r = 0; r < axes_.size(); ++r) {
-    // One axis: t = 2 atan2(q_a, w) moves only with the a-th tangent component.
-    const Eigen::RowVector4d row =
-        axes_.size() == 2 ? Eigen::RowVector4d(m_inverse.row(r) * ambient)
-                          : Eigen::RowVector4d(ambient.row(axes_[0]));
-    for (int col = 0; col < 4; ++col) jacobian[r * 4 + col] = row[col];
+  // d Angles(y)/dy at y = x: the angles' rate per local increment times d delta/dy.
+  const Eigen::Map<const Eigen::Quaterniond> q(x);
+  double angles[3];
+  Eigen::Matrix<double, Eigen::Dynamic, 3> rate;
+  AnglesAboutAxes(q, axes_, angles, &rate);
+  Eigen::Vector4d unit = q.coeffs();
+  const double norm = unit.norm();
+  unit /= norm;
+  const Eigen::Matrix<double, Eigen::Dynamic, 4> d = rate * AmbientFromTangent(unit.data()) / norm;
+  for (int r = 0; r < d.rows(); ++r) {
+    for (int c = 0; c < 4; ++c) jacobian[r * 4 + c] = d(r, c);
   }
   return true;
 }

@@ -5,6 +5,7 @@
 #include <ceres/problem.h>
 
 #include "kinematics/forward_kinematics.h"
+#include "problems/marker_solve/joint_limit_residual.h"
 #include "problems/marker_solve/marker_residual.h"
 #include "problems/marker_solve/pose_prior_residual.h"
 #include "solvers/right_quaternion_manifold.h"
@@ -14,8 +15,8 @@ namespace mocapsolve {
 bool MarkerSolveOptions::IsValid(std::string* error) const {
   if (!(marker_weight > 0.0)) return *error = "marker weight must be positive", false;
   if (!(loss_scale > 0.0)) return *error = "loss scale must be positive", false;
-  if (prior_rotation_weight < 0.0 || prior_translation_weight < 0.0) {
-    return *error = "prior weights must be >= 0", false;
+  if (prior_rotation_weight < 0.0 || prior_translation_weight < 0.0 || limit_weight < 0.0) {
+    return *error = "prior and limit weights must be >= 0", false;
   }
   if (solver == SolverKind::kDls && !dls.IsValid(error)) return false;
   if (solver == SolverKind::kCeres && !ceres.IsValid(error)) return false;
@@ -89,6 +90,15 @@ class MarkerFrameSolver::Impl {
       for (int j : solved_joints_) {
         rotation_priors_.emplace_back(new RotationPriorResidual(&reference_rotations_[4 * j],
                                                                 options.prior_rotation_weight));
+      }
+    }
+    if (options.limit_weight > 0.0) {
+      for (int j : solved_joints_) {
+        if (skeleton.rotation_limits(j).empty()) continue;
+        limits_.emplace_back(new JointLimitResidual(skeleton.rotation_axes(j),
+                                                    skeleton.rotation_limits(j),
+                                                    options.limit_weight));
+        limit_joints_.push_back(j);
       }
     }
     if (options.prior_translation_weight > 0.0) {
@@ -172,6 +182,9 @@ class MarkerFrameSolver::Impl {
     for (size_t k = 0; k < rotation_priors_.size(); ++k) {
       ceres_problem_->AddResidualBlock(rotation_priors_[k].get(), nullptr, &rotations_[4 * solved_joints_[k]]);
     }
+    for (size_t k = 0; k < limits_.size(); ++k) {
+      ceres_problem_->AddResidualBlock(limits_[k].get(), nullptr, &rotations_[4 * limit_joints_[k]]);
+    }
     if (translation_prior_) ceres_problem_->AddResidualBlock(translation_prior_.get(), nullptr, translation_);
     ceres_visible_ = visible;
   }
@@ -194,6 +207,9 @@ class MarkerFrameSolver::Impl {
     for (size_t k = 0; k < rotation_priors_.size(); ++k) {
       dls_problem_.AddResidualBlock(rotation_priors_[k].get(), nullptr, {block_of_joint[solved_joints_[k]]});
     }
+    for (size_t k = 0; k < limits_.size(); ++k) {
+      dls_problem_.AddResidualBlock(limits_[k].get(), nullptr, {block_of_joint[limit_joints_[k]]});
+    }
     if (translation_prior_) dls_problem_.AddResidualBlock(translation_prior_.get(), nullptr, {translation_block});
     dls_visible_ = visible;
   }
@@ -212,6 +228,8 @@ class MarkerFrameSolver::Impl {
   std::vector<std::unique_ptr<MarkerResidual>> residuals_;
   std::vector<std::unique_ptr<RotationPriorResidual>> rotation_priors_;
   std::unique_ptr<TranslationPriorResidual> translation_prior_;
+  std::vector<std::unique_ptr<JointLimitResidual>> limits_;
+  std::vector<int> limit_joints_;
   std::unique_ptr<ceres::Problem> ceres_problem_;
   std::vector<bool> ceres_visible_;
   DlsProblem dls_problem_;

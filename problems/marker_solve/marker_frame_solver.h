@@ -6,7 +6,8 @@
 // warm-start pose. Residuals: one MarkerResidual per observed marker (missing markers
 // are simply absent), optionally robustified (loss), plus an optional pose prior toward
 // the previous frame's solution (RotationPriorResidual per joint, TranslationPriorResidual
-// for the root).
+// for the root), and soft joint limits (JointLimitResidual) where the skeleton has them.
+// Each joint's rotation stays on its dof set (Skeleton::rotation_axes, RotationManifold).
 //
 // Units: observations in the skeleton's length units; marker residuals scaled by
 // marker_weight; the prior's rotation weight is per radian, its translation weight per
@@ -38,6 +39,7 @@ struct MarkerSolveOptions {
   double loss_scale = 1.0;       // Skeleton units (the residual size where the loss bends).
   double prior_rotation_weight = 0.0;     // Per radian, toward the previous solution.
   double prior_translation_weight = 0.0;  // Per skeleton unit.
+  double limit_weight = 0.0;     // Per radian outside a joint's limits (ASF); 0 = off.
   ceres::Solver::Options ceres;  // Used when solver == kCeres.
   DlsOptions dls;                // Used when solver == kDls.
 

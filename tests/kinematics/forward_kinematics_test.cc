@@ -40,8 +40,8 @@ TEST(ForwardKinematics, MatchesNaiveTransformProduct) {
 
 TEST(ForwardKinematics, HandComputedChain) {
   // Two joints: root at (1,0,0) rotated 90 deg about z; child offset (2,0,0).
-  JointSpec root{"root", -1, {1, 0, 0}, Eigen::Quaterniond::Identity(), {}, std::nullopt};
-  JointSpec child{"child", 0, {2, 0, 0}, Eigen::Quaterniond::Identity(), {}, std::nullopt};
+  JointSpec root{"root", -1, {1, 0, 0}, Eigen::Quaterniond::Identity(), {}, std::nullopt, {}};
+  JointSpec child{"child", 0, {2, 0, 0}, Eigen::Quaterniond::Identity(), {}, std::nullopt, {}};
   Skeleton s;
   ASSERT_TRUE(Skeleton::Create({root, child}, {{"child_End", 1, {0, 1, 0}}}, Metres(), &s).ok());
   Pose pose = RestPose(s);

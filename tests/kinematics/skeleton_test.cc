@@ -30,8 +30,8 @@ TEST(Skeleton, SubtreeRangesInPreorder) {
 
 TEST(Skeleton, RejectsBadSpecs) {
   Skeleton s;
-  JointSpec root{"root", -1, Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(), {}, std::nullopt};
-  JointSpec child{"child", 0, Eigen::Vector3d(0, 1, 0), Eigen::Quaterniond::Identity(), {}, std::nullopt};
+  JointSpec root{"root", -1, Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(), {}, std::nullopt, {}};
+  JointSpec child{"child", 0, Eigen::Vector3d(0, 1, 0), Eigen::Quaterniond::Identity(), {}, std::nullopt, {}};
   EXPECT_FALSE(Skeleton::Create({}, {}, Metres(), &s).ok());
   EXPECT_TRUE(Skeleton::Create({root, child}, {}, Metres(), &s).ok());
 
