@@ -80,7 +80,7 @@ Status LoadMarkerProblem(const BenchSettings& settings, Skeleton* skeleton_out, 
   MarkerSet& markers = *markers_out;
   std::vector<std::vector<Eigen::Vector3d>>& observed = *observed_out;
   if (!settings.markers_path.empty()) {
-    Status status = ReadSkeletonFile(settings.skeleton_path, &skeleton);
+    Status status = LoadSkeleton(settings.skeleton_path, &skeleton);
     if (status.ok()) status = ReadMarkerSet(settings.markerset_path, skeleton, &markers);
     MarkerTrajectories trajectories;
     if (status.ok()) status = ReadMarkerFile(settings.markers_path, &trajectories);

@@ -17,29 +17,10 @@ DEFINE_string(attach, "auto", "auto: each marker rides on the joint in whose fra
               "or a marker set .json whose joints are kept (only offsets re-estimated).");
 DEFINE_int32(frame_offset, 0, "Marker frame index = motion frame index + this (CMU 02_01 C3D vs AMC: 0).");
 DEFINE_int32(min_valid_frames, 2, "Markers valid in fewer matched frames are left out.");
-DECLARE_string(skeleton_units);  // apps/markers_command.cc
 
 namespace mocapsolve {
 namespace {
 
-// The same skeleton with a unit (for --skeleton_units on a BVH; as in markers_command.cc).
-Status ApplySkeletonUnits(const std::string& name, Skeleton* skeleton) {
-  if (name.empty()) return Status::Ok();
-  const LengthUnit unit = LengthUnitFromName(name);
-  if (!unit.known()) return Status::Error("--skeleton_units='" + name + "': expected mm, cm, m or in");
-  if (skeleton->unit().known()) {
-    if (std::abs(skeleton->unit().metres_per_unit / unit.metres_per_unit - 1.0) < 1e-12) return Status::Ok();
-    return Status::Error("--skeleton_units=" + name + ": the skeleton file states its unit ('" +
-                         skeleton->unit().name + "'); the flag is for files that do not");
-  }
-  std::vector<JointSpec> joints;
-  for (int j = 0; j < skeleton->num_joints(); ++j) joints.push_back(skeleton->joint(j));
-  Skeleton with_unit;
-  Status status = Skeleton::Create(std::move(joints), skeleton->end_sites(), unit, &with_unit);
-  if (!status.ok()) return status;
-  *skeleton = std::move(with_unit);
-  return Status::Ok();
-}
 
 Status RunCalibrate(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
@@ -62,8 +43,6 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
   Skeleton skeleton;
   Motion motion;
   Status status = LoadMotion(FLAGS_motion, &skeleton, &motion);
-  if (!status.ok()) return status;
-  status = ApplySkeletonUnits(FLAGS_skeleton_units, &skeleton);
   if (!status.ok()) return status;
   MarkerTrajectories trajectories;
   status = ReadMarkerFile(FLAGS_markers, &trajectories);

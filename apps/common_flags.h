@@ -14,6 +14,7 @@
 
 DECLARE_bool(quiet);
 DECLARE_string(skeleton);
+DECLARE_string(skeleton_units);
 DECLARE_double(amc_fps);
 DECLARE_string(report);
 DECLARE_string(motion);
@@ -25,8 +26,14 @@ DECLARE_double(marker_scale);
 
 namespace mocapsolve {
 
-// ReadMotionFile with --skeleton and --amc_fps.
+// ReadMotionFile with --skeleton and --amc_fps, then --skeleton_units.
 Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion);
+
+// --skeleton_units for a skeleton whose file states no unit (a BVH); an error if the
+// file states another.
+Status ApplySkeletonUnits(Skeleton* skeleton);
+// ReadSkeletonFile (.bvh/.asf) then ApplySkeletonUnits.
+Status LoadSkeleton(const std::string& path, Skeleton* skeleton);
 
 // Writes the report to --report if set (atomically).
 Status WriteReport(const JsonObject& report);

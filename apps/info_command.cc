@@ -1,17 +1,51 @@
 // mocapsolve info FILE: what a motion file holds.
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "io/marker_file.h"
 #include "io/motion_file.h"
 
 namespace mocapsolve {
 namespace {
 
+// Marker files: labels, frames, rate, unit and gaps.
+Status MarkerInfo(const std::string& path) {
+  MarkerTrajectories markers;
+  Status status = ReadMarkerFile(path, &markers);
+  if (!status.ok()) return status;
+  int gap_runs = 0;
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    for (int f = 0; f < markers.num_frames(); ++f) {
+      if (!markers.valid(f, m) && (f == 0 || markers.valid(f - 1, m))) ++gap_runs;
+    }
+  }
+  const double duration = markers.frame_rate > 0 && markers.num_frames() > 0
+                              ? (markers.num_frames() - 1) / markers.frame_rate : 0.0;
+  std::printf("file:      %s\n", path.c_str());
+  std::printf("markers:   %d", markers.num_markers());
+  for (int m = 0; m < std::min(markers.num_markers(), 8); ++m) {
+    std::printf("%s%s", m ? ", " : " (", markers.label(m).c_str());
+  }
+  std::printf("%s\n", markers.num_markers() > 8 ? ", ...)" : markers.num_markers() ? ")" : "");
+  std::printf("frames:    %d at %.6g fps (%.4g s), first frame %d\n", markers.num_frames(),
+              markers.frame_rate, duration, markers.first_frame);
+  std::printf("units:     %s\n", markers.unit.name.c_str());
+  std::printf("missing:   %d of %d samples, %d gap runs\n", markers.CountMissing(),
+              markers.num_frames() * markers.num_markers(), gap_runs);
+  JsonObject report;
+  report.Add("file", path).Add("markers", markers.num_markers()).Add("frames", markers.num_frames())
+      .Add("frame_rate", markers.frame_rate).Add("units", markers.unit.name)
+      .Add("missing_samples", markers.CountMissing()).Add("gap_runs", gap_runs);
+  return WriteReport(report);
+}
+
 Status RunInfo(const std::vector<std::string>& arguments) {
   if (arguments.size() != 1) return Status::Error("expected one file (mocapsolve info FILE)");
   const std::string& path = arguments[0];
+  if (IsMarkerFile(path)) return MarkerInfo(path);
   Skeleton skeleton;
   Motion motion;
   Status status = LoadMotion(path, &skeleton, &motion);
@@ -55,10 +89,12 @@ Status RunInfo(const std::vector<std::string>& arguments) {
 }  // namespace
 
 extern const Command kInfoCommand = {
-    "info", "joints, frames, frame rate, duration, units and root path of a motion file",
-    "mocapsolve info FILE.bvh | FILE.amc --skeleton=FILE.asf [--report=info.json]\n\n"
-    "Prints the joint and end-site counts, frame count and rate, duration, the file's\n"
-    "length unit (BVH does not state one) and the bounding box of the root's path.",
+    "info", "what a motion (BVH, ASF/AMC) or marker (C3D, TRC) file holds",
+    "mocapsolve info FILE.bvh | FILE.amc --skeleton=FILE.asf | FILE.c3d | FILE.trc "
+    "[--report=info.json]\n\n"
+    "Motions: joint and end-site counts, frame count and rate, duration, the file's length\n"
+    "unit (BVH does not state one) and the bounding box of the root's path. Markers:\n"
+    "labels, frames, rate, unit, missing samples and gap runs.",
     __FILE__, RunInfo, "skeleton,amc_fps,report"};
 
 }  // namespace mocapsolve

@@ -1,4 +1,5 @@
 // mocapsolve: motion-capture problems as nonlinear least squares.
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -11,6 +12,7 @@
 #include "apps/common_flags.h"
 #include "io/atomic_file.h"
 #include "io/motion_file.h"
+#include "kinematics/marker_trajectories.h"
 
 namespace mocapsolve {
 namespace {
@@ -64,6 +66,8 @@ DEFINE_bool(quiet, false, "No progress output on stderr.");
 DEFINE_string(skeleton, "", "Skeleton file for motions that lack one: the .asf of an .amc.");
 DEFINE_double(amc_fps, 120.0, "Frame rate of AMC files, which do not store it (CMU: 120).");
 DEFINE_string(report, "", "Write what the command measured to this JSON file.");
+DEFINE_string(skeleton_units, "", "Unit of a skeleton whose file does not state one (BVH): mm, "
+              "cm, m or in; needed to relate it to marker files and mm-based weights.");
 DEFINE_string(motion, "", "Motion file: .bvh, or .amc with --skeleton=X.asf.");
 DEFINE_string(out, "", "Output file (its extension picks the format).");
 DEFINE_string(markers, "", "Marker file: .c3d or .trc.");
@@ -79,7 +83,32 @@ Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
   MotionFileOptions options;
   options.skeleton_path = FLAGS_skeleton;
   options.amc_frame_rate = FLAGS_amc_fps;
-  return ReadMotionFile(path, options, skeleton, motion);
+  Status status = ReadMotionFile(path, options, skeleton, motion);
+  return status.ok() ? ApplySkeletonUnits(skeleton) : status;
+}
+
+Status ApplySkeletonUnits(Skeleton* skeleton) {
+  const std::string& name = FLAGS_skeleton_units;
+  if (name.empty()) return Status::Ok();
+  const LengthUnit unit = LengthUnitFromName(name);
+  if (!unit.known()) return Status::Error("--skeleton_units='" + name + "': expected mm, cm, m or in");
+  if (skeleton->unit().known()) {
+    if (std::abs(skeleton->unit().metres_per_unit / unit.metres_per_unit - 1.0) < 1e-12) return Status::Ok();
+    return Status::Error("--skeleton_units=" + name + ": the skeleton file states its unit ('" +
+                         skeleton->unit().name + "'); the flag is for files that do not");
+  }
+  std::vector<JointSpec> joints;
+  for (int j = 0; j < skeleton->num_joints(); ++j) joints.push_back(skeleton->joint(j));
+  Skeleton with_unit;
+  Status status = Skeleton::Create(std::move(joints), skeleton->end_sites(), unit, &with_unit);
+  if (!status.ok()) return status;
+  *skeleton = std::move(with_unit);
+  return Status::Ok();
+}
+
+Status LoadSkeleton(const std::string& path, Skeleton* skeleton) {
+  Status status = ReadSkeletonFile(path, skeleton);
+  return status.ok() ? ApplySkeletonUnits(skeleton) : status;
 }
 
 Status WriteReport(const JsonObject& report) {

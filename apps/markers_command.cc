@@ -24,8 +24,6 @@ DEFINE_int32(seed, 1, "Seed of the noise and of --markerset=auto:N (the same out
 DEFINE_string(units, "mm", "Length unit of the written markers (mm, cm, m, in) when the skeleton's "
               "unit is known.");
 DEFINE_string(write_markerset, "", "Also write the marker set used (e.g. the auto one) to this .json.");
-DEFINE_string(skeleton_units, "", "Unit of a skeleton whose file does not state one (BVH): mm, cm, m "
-              "or in. Also read by `mocapsolve calibrate`.");
 
 namespace mocapsolve {
 namespace {
@@ -60,24 +58,6 @@ class NoiseSource {
   double spare_ = 0.0;
 };
 
-// The same skeleton with a unit (for --skeleton_units on a BVH).
-Status ApplySkeletonUnits(const std::string& name, Skeleton* skeleton) {
-  if (name.empty()) return Status::Ok();
-  const LengthUnit unit = LengthUnitFromName(name);
-  if (!unit.known()) return Status::Error("--skeleton_units='" + name + "': expected mm, cm, m or in");
-  if (skeleton->unit().known()) {
-    if (std::abs(skeleton->unit().metres_per_unit / unit.metres_per_unit - 1.0) < 1e-12) return Status::Ok();
-    return Status::Error("--skeleton_units=" + name + ": the skeleton file states its unit ('" +
-                         skeleton->unit().name + "'); the flag is for files that do not");
-  }
-  std::vector<JointSpec> joints;
-  for (int j = 0; j < skeleton->num_joints(); ++j) joints.push_back(skeleton->joint(j));
-  Skeleton with_unit;
-  Status status = Skeleton::Create(std::move(joints), skeleton->end_sites(), unit, &with_unit);
-  if (!status.ok()) return status;
-  *skeleton = std::move(with_unit);
-  return Status::Ok();
-}
 
 // "auto:N" or "auto:N:SEED" -> per_joint, seed.
 bool ParseAutoMarkerSet(const std::string& text, int* per_joint, uint32_t* seed) {
@@ -127,8 +107,6 @@ Status RunMarkers(const std::vector<std::string>& arguments) {
   Skeleton skeleton;
   Motion motion;
   Status status = LoadMotion(FLAGS_motion, &skeleton, &motion);
-  if (!status.ok()) return status;
-  status = ApplySkeletonUnits(FLAGS_skeleton_units, &skeleton);
   if (!status.ok()) return status;
   MarkerSet marker_set;
   if (auto_set) {

@@ -52,7 +52,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
     return Status::Error("--mode: unknown '" + FLAGS_mode + "' (frame, clip)");
   }
   Skeleton skeleton;
-  Status status = ReadSkeletonFile(FLAGS_skeleton, &skeleton);
+  Status status = LoadSkeleton(FLAGS_skeleton, &skeleton);
   if (!status.ok()) return status;
   MarkerSolveOptions frame_options;
   status = MarkerSolveOptionsFromFlags(skeleton.unit(), &frame_options);
@@ -130,7 +130,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
 }
 
 const std::string kSolveFlags =
-    std::string("skeleton,markers,markerset,out,axes,marker_scale,report,quiet,") + kSolverFlagNames;
+    std::string("skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,") + kSolverFlagNames;
 
 }  // namespace
 

@@ -1,0 +1,111 @@
+// `mocapsolve solve` end to end on inputs the project makes: the demo clip, markers
+// synthesized from it, solved back by both solvers; and the bad inputs the issue names
+// (labels missing from the marker set, a marker set for another skeleton).
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "io/bvh_reader.h"
+#include "kinematics/forward_kinematics.h"
+#include "tests/test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+using ::testing::HasSubstr;
+
+class SolveCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    demo_ = testing::TempPath("walk.bvh");
+    markers_ = testing::TempPath("walk.c3d");
+    set_ = testing::TempPath("set.json");
+    std::string output;
+    ASSERT_EQ(testing::RunCli("generate --demo_out=" + demo_ + " --frames=40 --fps=30", &output), 0) << output;
+    ASSERT_EQ(testing::RunCli("markers --motion=" + demo_ + " --skeleton_units=cm --markerset=auto:3 "
+                              "--write_markerset=" + set_ + " --out=" + markers_, &output), 0) << output;
+  }
+  std::string Solve(const std::string& extra, int* code) {
+    std::string output;
+    *code = testing::RunCli("solve --quiet --skeleton=" + demo_ + " --skeleton_units=cm --markers=" +
+                            markers_ + " " + extra, &output);
+    return output;
+  }
+  std::string demo_, markers_, set_;
+};
+
+TEST_F(SolveCli, BothSolversRecoverTheClip) {
+  Skeleton skeleton;
+  Motion truth;
+  ASSERT_TRUE(ReadBvh(demo_, &skeleton, &truth).ok());
+  for (const char* solver : {"ceres", "dls"}) {
+    const std::string out = testing::TempPath(std::string(solver) + ".bvh");
+    const std::string report = testing::TempPath(std::string(solver) + ".json");
+    int code = 0;
+    // No prior: noise-free markers are matched exactly.
+    const std::string output = Solve("--markerset=" + set_ + " --out=" + out + " --solver=" + solver +
+                                     " --prior_weight=0 --report=" + report, &code);
+    ASSERT_EQ(code, 0) << output;
+    EXPECT_THAT(output, HasSubstr("RMS marker residual"));
+    Skeleton solved_skeleton;
+    Motion solved;
+    ASSERT_TRUE(ReadBvh(out, &solved_skeleton, &solved).ok());
+    ASSERT_EQ(solved.num_frames(), truth.num_frames());
+    FkData a(skeleton), b(skeleton);
+    double worst = 0.0;
+    for (int f = 0; f < truth.num_frames(); ++f) {
+      ForwardKinematics(skeleton, truth.frames[f], &a);
+      ForwardKinematics(solved_skeleton, solved.frames[f], &b);
+      for (int j = 0; j < skeleton.num_joints(); ++j) {
+        worst = std::max(worst, (a.world_positions[j] - b.world_positions[j]).norm());
+      }
+    }
+    // C3D stores float32 mm and the BVH 6 digits: 0.01 cm (0.1 mm) is their rounding.
+    EXPECT_LT(worst, 0.01) << solver;
+    std::ifstream in(report);
+    std::stringstream json;
+    json << in.rdbuf();
+    EXPECT_THAT(json.str(), HasSubstr("\"rms_marker_residual\""));
+  }
+}
+
+TEST_F(SolveCli, MarkerSetLabelMissingFromTheFile) {
+  // Rename one marker of the set: the C3D has no column for it.
+  std::ifstream in(set_);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string json = text.str();
+  const size_t at = json.find("\"Hips_0\"");
+  ASSERT_NE(at, std::string::npos);
+  json.replace(at, 8, "\"NOPE_0\"");
+  const std::string bad = testing::TempPath("bad_label.json");
+  std::ofstream(bad) << json;
+  int code = 0;
+  const std::string output = Solve("--markerset=" + bad + " --out=" + testing::TempPath("o.bvh"), &code);
+  EXPECT_EQ(code, 1);
+  EXPECT_THAT(output, HasSubstr("NOPE_0"));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+}
+
+TEST_F(SolveCli, MarkerSetForAnotherSkeleton) {
+  std::ifstream in(set_);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string json = text.str();
+  const size_t at = json.find("\"joint\": \"Hips\"");
+  ASSERT_NE(at, std::string::npos) << json.substr(0, 400);
+  json.replace(at, 15, "\"joint\": \"Pelvis\"");
+  const std::string bad = testing::TempPath("bad_joint.json");
+  std::ofstream(bad) << json;
+  int code = 0;
+  const std::string output = Solve("--markerset=" + bad + " --out=" + testing::TempPath("o.bvh"), &code);
+  EXPECT_EQ(code, 1);
+  EXPECT_THAT(output, HasSubstr("Pelvis"));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+}
+
+}  // namespace
+}  // namespace mocapsolve
