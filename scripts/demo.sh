@@ -25,6 +25,32 @@ head -4 "$out/walk_positions.csv"
 echo; echo "== 5. bench: forward kinematics throughput"
 $ms bench --problem=fk --repeats=3 --json="$out/bench_fk.json" | grep -v '^JSON'
 
+echo; echo "== 6. markers: synthesize a C3D from the clip (3 markers per bone, 1 mm noise)"
+$ms markers --motion="$out/walk.bvh" --skeleton_units=cm --markerset=auto:3 \
+  --write_markerset="$out/true_markerset.json" --noise_mm=1 --seed=7 --out="$out/walk_markers.c3d"
+$ms info "$out/walk_markers.c3d"
+
+echo; echo "== 7. calibrate: where each marker rides, from the clip and its markers"
+$ms calibrate --motion="$out/walk.bvh" --skeleton_units=cm --markers="$out/walk_markers.c3d" \
+  --attach=auto --out="$out/calibrated_markerset.json" | tail -1
+
+echo; echo "== 8. solve: joint angles from the markers, Ceres and DLS on the same residuals"
+for solver in ceres dls; do
+  $ms solve --quiet --skeleton="$out/walk.bvh" --skeleton_units=cm --markers="$out/walk_markers.c3d" \
+    --markerset="$out/calibrated_markerset.json" --solver=$solver --out="$out/solved_$solver.bvh" \
+    --report="$out/solve_$solver.json"
+done
+
+echo; echo "== 9. solve --mode=clip: all frames as one sparse problem with smoothness"
+$ms solve --quiet --skeleton="$out/walk.bvh" --skeleton_units=cm --markers="$out/walk_markers.c3d" \
+  --markerset="$out/calibrated_markerset.json" --solver=dls --mode=clip --out="$out/solved_clip.bvh" \
+  --report="$out/solve_clip.json"
+
+echo; echo "== 10. bench: both solvers on the same per-frame problems"
+$ms bench --problem=marker_solve --repeats=3 --bench_skeleton="$out/walk.bvh" --skeleton_units=cm \
+  --bench_markers="$out/walk_markers.c3d" --bench_markerset="$out/calibrated_markerset.json" \
+  --json="$out/bench_marker_solve.json" | grep -v '^JSON'
+
 echo
 echo "Done. Outputs in $out/:"
 ls -1 "$out" | sed 's/^/  /'
