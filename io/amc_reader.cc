@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/quote_token.h"
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
@@ -29,17 +30,6 @@ void Tokenize(std::string_view line, std::vector<std::string_view>* tokens) {
     while (i < line.size() && !IsBlank(line[i])) ++i;
     tokens->push_back(line.substr(begin, i - begin));
   }
-}
-
-std::string Quote(std::string_view token) {
-  constexpr size_t kMax = 40;
-  std::string out = "'";
-  for (size_t i = 0; i < token.size() && i < kMax; ++i) {
-    const unsigned char c = static_cast<unsigned char>(token[i]);
-    out += (c < 0x20 || c == 0x7f) ? '?' : static_cast<char>(c);
-  }
-  if (token.size() > kMax) out += "...";
-  return out + "'";
 }
 
 std::string Upper(std::string_view s) {
@@ -144,7 +134,7 @@ Status ParseAmc(const std::string& text, const std::string& name_for_errors,
     if (tokens.empty() || tokens[0][0] == '#') continue;
 
     if (tokens[0][0] == ':') {
-      if (in_frame) return error(line, "keyword " + Quote(tokens[0]) + " after the first frame");
+      if (in_frame) return error(line, "keyword " + QuoteToken(tokens[0]) + " after the first frame");
       const std::string keyword = Upper(tokens[0]);
       if (keyword == ":DEGREES") degrees = true;
       if (keyword == ":RADIANS") degrees = false;
@@ -170,10 +160,10 @@ Status ParseAmc(const std::string& text, const std::string& name_for_errors,
     }
 
     if (!in_frame) {
-      return error(line, "expected a frame number before bone data, got " + Quote(tokens[0]));
+      return error(line, "expected a frame number before bone data, got " + QuoteToken(tokens[0]));
     }
     const auto found = slot_of_name.find(tokens[0]);
-    if (found == slot_of_name.end()) return error(line, "unknown bone " + Quote(tokens[0]));
+    if (found == slot_of_name.end()) return error(line, "unknown bone " + QuoteToken(tokens[0]));
     const int s = found->second;
     const Slot& slot = slots[s];
     if (seen_line[s] != 0) {
@@ -190,7 +180,7 @@ Status ParseAmc(const std::string& text, const std::string& name_for_errors,
     values.resize(dofs.size());
     for (size_t k = 0; k < dofs.size(); ++k) {
       if (!ParseFinite(tokens[k + 1], &values[k])) {
-        return error(line, "bad number " + Quote(tokens[k + 1]) + " for '" + slot.name + "' " +
+        return error(line, "bad number " + QuoteToken(tokens[k + 1]) + " for '" + slot.name + "' " +
                                AcclaimDofName(dofs[k].dof));
       }
     }

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "io/atomic_file.h"
+#include "io/quote_token.h"
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
@@ -51,18 +52,6 @@ std::vector<std::string_view> Tokenize(std::string_view line, bool split_parens 
     tokens.push_back(line.substr(begin, i - begin));
   }
   return tokens;
-}
-
-// A token for a one-line message: quoted, control characters replaced, long ones cut.
-std::string Quote(std::string_view token) {
-  constexpr size_t kMax = 40;
-  std::string out = "'";
-  for (size_t i = 0; i < token.size() && i < kMax; ++i) {
-    const unsigned char c = static_cast<unsigned char>(token[i]);
-    out += (c < 0x20 || c == 0x7f) ? '?' : static_cast<char>(c);
-  }
-  if (token.size() > kMax) out += "...";
-  return out + "'";
 }
 
 std::string Lower(std::string_view s) {
@@ -254,7 +243,7 @@ Status AsfParser::Parse(Skeleton* skeleton, AsfInfo* info) {
     const size_t line = current_;
     if (tokens[0][0] != ':') {
       return Error(line, "expected a ':' keyword (':units', ':root', ':bonedata', ...), got " +
-                             Quote(tokens[0]));
+                             QuoteToken(tokens[0]));
     }
     const std::string keyword = Lower(tokens[0]);
     const auto [it, inserted] = sections_.emplace(keyword, line);
@@ -298,13 +287,13 @@ Status AsfParser::ParseUnits() {
       } else if (unit == "rad" || unit == "radian" || unit == "radians") {
         degrees_ = false;
       } else {
-        return Error(current_, "angle unit must be 'deg' or 'rad', got " + Quote(tokens[1]));
+        return Error(current_, "angle unit must be 'deg' or 'rad', got " + QuoteToken(tokens[1]));
       }
       continue;
     }
     double value;
     if (!ParseFinite(tokens[1], &value) || !(value > 0.0)) {
-      return Error(current_, key + " must be a positive number, got " + Quote(tokens[1]));
+      return Error(current_, key + " must be a positive number, got " + QuoteToken(tokens[1]));
     }
     (key == "mass" ? mass_ : length_) = value;
   }
@@ -323,10 +312,10 @@ Status AsfParser::ParseRoot(size_t section_line) {
       for (size_t k = 1; k < tokens.size(); ++k) {
         AsfDof dof;
         if (!ParseDof(tokens[k], &dof.dof)) {
-          return Error(line, "root order entries are TX TY TZ RX RY RZ, got " + Quote(tokens[k]));
+          return Error(line, "root order entries are TX TY TZ RX RY RZ, got " + QuoteToken(tokens[k]));
         }
         for (const AsfDof& seen : root_order_) {
-          if (seen.dof == dof.dof) return Error(line, "repeated root order entry " + Quote(tokens[k]));
+          if (seen.dof == dof.dof) return Error(line, "repeated root order entry " + QuoteToken(tokens[k]));
         }
         root_order_.push_back(dof);
       }
@@ -345,11 +334,11 @@ Status AsfParser::ParseRoot(size_t section_line) {
       if (tokens.size() != 4) return Error(line, "expected '" + key + " x y z'");
       for (int k = 0; k < 3; ++k) {
         if (!ParseFinite(tokens[k + 1], &v[k])) {
-          return Error(line, "bad number " + Quote(tokens[k + 1]) + " in '" + key + "'");
+          return Error(line, "bad number " + QuoteToken(tokens[k + 1]) + " in '" + key + "'");
         }
       }
     } else {
-      return Error(line, "unknown :root entry " + Quote(tokens[0]) +
+      return Error(line, "unknown :root entry " + QuoteToken(tokens[0]) +
                              " (expected order, axis, position, orientation)");
     }
   }
@@ -361,7 +350,7 @@ Status AsfParser::ParseBonedata() {
   std::vector<std::string_view> tokens;
   while (NextBodyLine(&tokens)) {
     if (Lower(tokens[0]) != "begin" || tokens.size() != 1) {
-      return Error(current_, "expected 'begin' of a bone, got " + Quote(tokens[0]));
+      return Error(current_, "expected 'begin' of a bone, got " + QuoteToken(tokens[0]));
     }
     Status status = ParseBone(current_);
     if (!status.ok()) return status;
@@ -379,7 +368,7 @@ Status AsfParser::ParseLimitPairs(size_t line, const std::vector<std::string_vie
     double lo, hi;
     if (k + 3 >= tokens.size() || tokens[k] != "(" || tokens[k + 3] != ")" ||
         !ParseNumber(tokens[k + 1], &lo) || !ParseNumber(tokens[k + 2], &hi)) {
-      return Error(line, "expected limits as '(lower upper)' at " + Quote(tokens[k]));
+      return Error(line, "expected limits as '(lower upper)' at " + QuoteToken(tokens[k]));
     }
     if (std::isnan(lo) || std::isnan(hi) || lo > hi) {
       return Error(line, "bad limits (" + std::string(tokens[k + 1]) + " " +
@@ -401,7 +390,7 @@ Status AsfParser::ParseBone(size_t begin_line) {
       return Error(LastLine(), "end of file before 'end'" + begun);
     }
     const size_t line = current_;
-    if (tokens[0][0] == ':') return Error(line, Quote(tokens[0]) + " before 'end'" + begun);
+    if (tokens[0][0] == ':') return Error(line, QuoteToken(tokens[0]) + " before 'end'" + begun);
     const std::string key = Lower(tokens[0]);
     if (key == "end") {
       if (tokens.size() != 1) return Error(line, "unexpected text after 'end'");
@@ -421,7 +410,7 @@ Status AsfParser::ParseBone(size_t begin_line) {
       if (raw.bone.name == "root") return Error(line, "a bone cannot be named 'root'");
       const auto found = bone_index_.find(raw.bone.name);
       if (found != bone_index_.end()) {
-        return Error(line, "bone name " + Quote(tokens[1]) + " already used at line " +
+        return Error(line, "bone name " + QuoteToken(tokens[1]) + " already used at line " +
                                std::to_string(bones_[found->second].line + 1));
       }
     } else if (key == "direction") {
@@ -430,7 +419,7 @@ Status AsfParser::ParseBone(size_t begin_line) {
       if (tokens.size() != 4) return Error(line, "expected 'direction x y z'");
       for (int k = 0; k < 3; ++k) {
         if (!ParseFinite(tokens[k + 1], &raw.bone.direction[k])) {
-          return Error(line, "bad number " + Quote(tokens[k + 1]) + " in 'direction'");
+          return Error(line, "bad number " + QuoteToken(tokens[k + 1]) + " in 'direction'");
         }
       }
     } else if (key == "length") {
@@ -448,7 +437,7 @@ Status AsfParser::ParseBone(size_t begin_line) {
       }
       for (int k = 0; k < 3; ++k) {
         if (!ParseFinite(tokens[k + 1], &raw.bone.axis_deg[k])) {
-          return Error(line, "bad number " + Quote(tokens[k + 1]) + " in 'axis'");
+          return Error(line, "bad number " + QuoteToken(tokens[k + 1]) + " in 'axis'");
         }
       }
       raw.bone.axis_order = Upper(tokens[4]);
@@ -458,10 +447,10 @@ Status AsfParser::ParseBone(size_t begin_line) {
       for (size_t k = 1; k < tokens.size(); ++k) {
         AsfDof dof;
         if (!ParseDof(tokens[k], &dof.dof) || !IsRotationDof(dof.dof)) {
-          return Error(line, "unsupported dof " + Quote(tokens[k]) + " (only rx ry rz)");
+          return Error(line, "unsupported dof " + QuoteToken(tokens[k]) + " (only rx ry rz)");
         }
         for (const AsfDof& seen : raw.bone.dofs) {
-          if (seen.dof == dof.dof) return Error(line, "repeated dof " + Quote(tokens[k]));
+          if (seen.dof == dof.dof) return Error(line, "repeated dof " + QuoteToken(tokens[k]));
         }
         raw.bone.dofs.push_back(dof);
       }
@@ -490,7 +479,7 @@ Status AsfParser::ParseBone(size_t begin_line) {
     } else if (key == "bodymass" || key == "cofmass") {
       // Not used.
     } else {
-      return Error(line, "unknown bone entry " + Quote(tokens[0]));
+      return Error(line, "unknown bone entry " + QuoteToken(tokens[0]));
     }
   }
   const char* missing = !raw.has_name        ? "name"
@@ -499,12 +488,12 @@ Status AsfParser::ParseBone(size_t begin_line) {
                         : !raw.has_axis      ? "axis"
                                              : nullptr;
   if (missing != nullptr) {
-    return Error(begin_line, "bone " + (raw.has_name ? Quote(raw.bone.name) + " " : "") +
+    return Error(begin_line, "bone " + (raw.has_name ? QuoteToken(raw.bone.name) + " " : "") +
                                  "has no '" + missing + "'");
   }
   const double norm = raw.bone.direction.norm();
   if (norm == 0.0 && raw.bone.length > 0.0) {
-    return Error(begin_line, "bone " + Quote(raw.bone.name) + " has a zero direction");
+    return Error(begin_line, "bone " + QuoteToken(raw.bone.name) + " has a zero direction");
   }
   if (norm > 0.0) raw.bone.direction /= norm;
   raw.bone.line = static_cast<int>(begin_line + 1);
@@ -531,7 +520,7 @@ Status AsfParser::ParseHierarchy() {
     hierarchy_.push_back(std::move(entry));
   }
   if (NextBodyLine(&tokens)) {
-    return Error(current_, "unexpected " + Quote(tokens[0]) + " after the :hierarchy 'end'");
+    return Error(current_, "unexpected " + QuoteToken(tokens[0]) + " after the :hierarchy 'end'");
   }
   return Status::Ok();
 }
@@ -556,14 +545,14 @@ Status AsfParser::Build(Skeleton* skeleton, AsfInfo* info) {
   };
   for (const HierarchyLine& entry : hierarchy_) {
     const int p = node_of(entry.names[0]);
-    if (p < 0) return Error(entry.line, "unknown bone " + Quote(entry.names[0]));
+    if (p < 0) return Error(entry.line, "unknown bone " + QuoteToken(entry.names[0]));
     for (size_t k = 1; k < entry.names.size(); ++k) {
       const int c = node_of(entry.names[k]);
-      if (c < 0) return Error(entry.line, "unknown bone " + Quote(entry.names[k]));
+      if (c < 0) return Error(entry.line, "unknown bone " + QuoteToken(entry.names[k]));
       if (c == 0) return Error(entry.line, "'root' cannot be a child");
-      if (c == p) return Error(entry.line, "bone " + Quote(entry.names[k]) + " is its own parent");
+      if (c == p) return Error(entry.line, "bone " + QuoteToken(entry.names[k]) + " is its own parent");
       if (parent[c] != -2) {
-        return Error(entry.line, "bone " + Quote(entry.names[k]) + " already has a parent (line " +
+        return Error(entry.line, "bone " + QuoteToken(entry.names[k]) + " already has a parent (line " +
                                      std::to_string(parent_line[c] + 1) + ")");
       }
       parent[c] = p;
@@ -573,7 +562,7 @@ Status AsfParser::Build(Skeleton* skeleton, AsfInfo* info) {
   }
   for (int b = 0; b < num_bones; ++b) {
     if (parent[b + 1] == -2) {
-      return Error(bones_[b].line, "bone " + Quote(bones_[b].bone.name) +
+      return Error(bones_[b].line, "bone " + QuoteToken(bones_[b].bone.name) +
                                        " is not a child of anything in :hierarchy");
     }
   }
@@ -591,7 +580,7 @@ Status AsfParser::Build(Skeleton* skeleton, AsfInfo* info) {
   }
   for (int b = 0; b < num_bones; ++b) {
     if (!visited[b + 1]) {
-      return Error(bones_[b].line, "bone " + Quote(bones_[b].bone.name) +
+      return Error(bones_[b].line, "bone " + QuoteToken(bones_[b].bone.name) +
                                        " is not connected to the root (cycle in :hierarchy)");
     }
   }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/quote_token.h"
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
@@ -23,26 +24,6 @@ namespace {
 // numbers stay right. '\r' is plain whitespace, which makes CRLF files read like LF ones.
 inline bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 inline bool IsSpace(char c) { return IsBlank(c) || c == '\n'; }
-
-// A token for an error message: at most 40 bytes, control and non-ASCII bytes escaped,
-// so that a binary file still gives a one-line, printable message.
-std::string Quote(std::string_view token) {
-  constexpr size_t kMaxShown = 40;
-  std::string out = "'";
-  for (size_t i = 0; i < token.size() && i < kMaxShown; ++i) {
-    const unsigned char c = static_cast<unsigned char>(token[i]);
-    if (c >= 0x20 && c < 0x7f) {
-      out += static_cast<char>(c);
-    } else {
-      static const char kHex[] = "0123456789abcdef";
-      out += "\\x";
-      out += kHex[c >> 4];
-      out += kHex[c & 15];
-    }
-  }
-  if (token.size() > kMaxShown) out += "...";
-  return out + "'";
-}
 
 // Parses a whole token as a finite double: fixed or scientific, optional leading '+'.
 bool ParseFiniteDouble(std::string_view token, double* value) {
@@ -192,7 +173,7 @@ class BvhParser {
   }
   Status Expected(const std::string& what, const Token& got) const {
     return Error(got.line, "expected " + what + ", got " +
-                               (got.at_end() ? std::string("end of file") : Quote(got.text)));
+                               (got.at_end() ? std::string("end of file") : QuoteToken(got.text)));
   }
   Status ExpectKeyword(const char* keyword) {
     const Token token = Next();
@@ -307,7 +288,7 @@ Status BvhParser::ParseJointHeader(const Token& keyword, int parent) {
   std::string joint_name(name);
   const auto [it, inserted] = joint_name_line_.emplace(joint_name, keyword.line);
   if (!inserted) {
-    return Error(keyword.line, "expected a unique joint name, got " + Quote(name) +
+    return Error(keyword.line, "expected a unique joint name, got " + QuoteToken(name) +
                                    " (already used on line " + std::to_string(it->second) + ")");
   }
   if (!brace_on_name_line) {
@@ -389,7 +370,7 @@ Status BvhParser::ParseMotion(Motion* motion) {
     const std::string_view rest = RestOfLine();
     if (!rest.empty()) {
       return Error(time_token.line, "expected end of line after the frame time, got " +
-                                        Quote(rest));
+                                        QuoteToken(rest));
     }
   }
   motion->frame_rate = 1.0 / frame_time;
@@ -519,7 +500,7 @@ Status BvhParser::ParseFrameLine(const char* line_begin, const char* line_end, i
       while (token_end < line_end && !IsBlank(*token_end)) ++token_end;
       return Error(line, "expected a finite number (frame " + std::to_string(frame + 1) +
                              ", " + ColumnWhere(count) + "), got " +
-                             Quote(std::string_view(token_begin, token_end - token_begin)));
+                             QuoteToken(std::string_view(token_begin, token_end - token_begin)));
     }
     p = ptr;
     ++count;

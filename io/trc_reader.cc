@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -69,10 +70,6 @@ bool EqualsIgnoringCase(std::string_view a, std::string_view b) {
   return true;
 }
 
-std::string Quote(std::string_view cell) {
-  return "'" + std::string(cell.substr(0, 40)) + (cell.size() > 40 ? "...'" : "'");
-}
-
 struct Line {
   int number = 0;  // 1-based.
   std::string_view text;
@@ -110,7 +107,7 @@ Status ParseTrc(std::string_view text, const std::string& file_name,
   const std::vector<std::string_view> first = SplitCells(lines[0].text);
   if (first.empty() || first[0] != "PathFileType") {
     return error(1, "expected 'PathFileType' (a TRC file), got " +
-                        Quote(first.empty() ? "" : first[0]));
+                        QuoteToken(first.empty() ? "" : first[0]));
   }
   // Lines 2-3: keys and values.
   const std::vector<std::string_view> keys = SplitCells(lines[1].text);
@@ -129,21 +126,21 @@ Status ParseTrc(std::string_view text, const std::string& file_name,
   double rate, frames_value, markers_value;
   if (!header_value("DataRate", &cell)) return error(3, "missing DataRate");
   if (!ParseNumber(cell, &rate) || !(rate > 0.0) || !std::isfinite(rate)) {
-    return error(3, "DataRate " + Quote(cell) + " is not a positive number");
+    return error(3, "DataRate " + QuoteToken(cell) + " is not a positive number");
   }
   if (!header_value("NumFrames", &cell)) return error(3, "missing NumFrames");
   if (!ParseNumber(cell, &frames_value) || frames_value < 0 || frames_value > INT_MAX ||
       frames_value != std::floor(frames_value)) {
-    return error(3, "NumFrames " + Quote(cell) + " is not a frame count");
+    return error(3, "NumFrames " + QuoteToken(cell) + " is not a frame count");
   }
   if (!header_value("NumMarkers", &cell)) return error(3, "missing NumMarkers");
   if (!ParseNumber(cell, &markers_value) || markers_value < 0 || markers_value > INT_MAX ||
       markers_value != std::floor(markers_value)) {
-    return error(3, "NumMarkers " + Quote(cell) + " is not a marker count");
+    return error(3, "NumMarkers " + QuoteToken(cell) + " is not a marker count");
   }
   if (!header_value("Units", &cell)) return error(3, "missing Units");
   const LengthUnit unit = LengthUnitFromName(std::string(cell));
-  if (!unit.known()) return error(3, "Units " + Quote(cell) + " is not mm, cm or m");
+  if (!unit.known()) return error(3, "Units " + QuoteToken(cell) + " is not mm, cm or m");
   const int num_frames = static_cast<int>(frames_value);
   const int num_markers = static_cast<int>(markers_value);
 
@@ -151,7 +148,7 @@ Status ParseTrc(std::string_view text, const std::string& file_name,
   const std::vector<std::string_view> name_cells = SplitCells(lines[3].text);
   if (name_cells.size() < 2 || !EqualsIgnoringCase(name_cells[0], "Frame#")) {
     return error(4, "expected the 'Frame#  Time  <marker names>' row, got " +
-                        Quote(TrimView(lines[3].text)));
+                        QuoteToken(TrimView(lines[3].text)));
   }
   std::vector<std::string> labels;
   for (size_t i = 2; i < name_cells.size(); ++i) {
@@ -182,17 +179,17 @@ Status ParseTrc(std::string_view text, const std::string& file_name,
     }
     for (size_t c = needed; c < cells.size(); ++c) {
       if (!cells[c].empty()) {
-        return error(line, "column " + std::to_string(c + 1) + " " + Quote(cells[c]) +
+        return error(line, "column " + std::to_string(c + 1) + " " + QuoteToken(cells[c]) +
                                " beyond the " + std::to_string(needed) + " expected");
       }
     }
     double frame_number, time;
     if (!ParseNumber(cells[0], &frame_number) || frame_number != std::floor(frame_number) ||
         std::abs(frame_number) > INT_MAX) {
-      return error(line, "column 1 (Frame#) " + Quote(cells[0]) + " is not a frame number");
+      return error(line, "column 1 (Frame#) " + QuoteToken(cells[0]) + " is not a frame number");
     }
     if (!ParseNumber(cells[1], &time)) {
-      return error(line, "column 2 (Time) " + Quote(cells[1]) + " is not a number");
+      return error(line, "column 2 (Time) " + QuoteToken(cells[1]) + " is not a number");
     }
     if (f == 0) out.first_frame = static_cast<int>(frame_number);
     for (int m = 0; m < num_markers; ++m) {
@@ -204,7 +201,7 @@ Status ParseTrc(std::string_view text, const std::string& file_name,
           present = false;
         } else if (!ParseNumber(cells[c], &position[k])) {
           return error(line, "column " + std::to_string(c + 1) + " (" + "XYZ"[k] + " of '" +
-                                 out.label(m) + "') " + Quote(cells[c]) + " is not a number");
+                                 out.label(m) + "') " + QuoteToken(cells[c]) + " is not a number");
         }
       }
       if (!present || !position.allFinite()) continue;  // Stays missing.

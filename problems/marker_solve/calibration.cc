@@ -142,31 +142,6 @@ std::string MarkerName(const MarkerTrajectories& trajectories, int m) {
 
 }  // namespace
 
-std::string AxesName(const Eigen::Matrix3d& model_from_file) {
-  std::string name;
-  for (int row = 0; row < 3; ++row) {
-    Eigen::Index col;
-    model_from_file.row(row).cwiseAbs().maxCoeff(&col);
-    if (row > 0) name += ",";
-    if (model_from_file(row, col) < 0.0) name += "-";
-    name += static_cast<char>('x' + col);
-  }
-  return name;
-}
-
-std::vector<Eigen::Matrix3d> AllAxisRotations() {
-  std::vector<Eigen::Matrix3d> result;
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (const auto& p : perms) {
-    for (int signs = 0; signs < 8; ++signs) {
-      Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-      for (int row = 0; row < 3; ++row) m(row, p[row]) = (signs >> row) & 1 ? -1.0 : 1.0;
-      if (m.determinant() > 0.0) result.push_back(m);
-    }
-  }
-  return result;  // perms[0] with signs 0 is the identity: first.
-}
-
 void TransformMarkers(const MarkerFileToModel& transform, const LengthUnit& new_unit,
                       MarkerTrajectories* trajectories) {
   for (int f = 0; f < trajectories->num_frames(); ++f) {

@@ -54,10 +54,7 @@ namespace mocapsolve {
 
 // --- Axes of marker files -----------------------------------------------------------
 
-// model_from_file as text: "x,z,-y" (the inverse of ParseAxes for a signed permutation).
-std::string AxesName(const Eigen::Matrix3d& model_from_file);
-// The 24 signed permutation matrices with det +1, identity first.
-std::vector<Eigen::Matrix3d> AllAxisRotations();
+// AxesName and AllAxisRotations: marker_observations.h.
 
 // y <- transform.Apply(y) for every valid sample (residuals scaled by transform.scale);
 // `unit` is set to new_unit. transform.scale > 0.

@@ -36,6 +36,12 @@ struct MarkerFileToModel {
 // "x,z,-y" -> rotation; must name each axis once and be a proper rotation (det +1).
 Status ParseAxes(const std::string& text, Eigen::Matrix3d* rotation);
 
+// model_from_file as text: "x,z,-y" (the inverse of ParseAxes for a signed permutation).
+std::string AxesName(const Eigen::Matrix3d& model_from_file);
+// The 24 signed permutation matrices with det +1 (the axis-aligned rotations), identity
+// first.
+std::vector<Eigen::Matrix3d> AllAxisRotations();
+
 // Scale from the file's unit to the skeleton's. Both must be known; otherwise an error
 // asking for an explicit scale.
 Status UnitScale(const LengthUnit& file_unit, const LengthUnit& model_unit, double* scale);

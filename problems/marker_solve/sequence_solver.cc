@@ -5,25 +5,9 @@
 #include <limits>
 
 #include "kinematics/forward_kinematics.h"
+#include "problems/marker_solve/marker_observations.h"
 
 namespace mocapsolve {
-namespace {
-
-// The 24 rotations of the cube: every signed permutation matrix with det +1.
-std::vector<Eigen::Quaterniond> AxisAlignedRotations() {
-  std::vector<Eigen::Quaterniond> out;
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (const auto& p : perms) {
-    for (int signs = 0; signs < 8; ++signs) {
-      Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-      for (int r = 0; r < 3; ++r) m(r, p[r]) = (signs >> r) & 1 ? -1.0 : 1.0;
-      if (m.determinant() > 0.0) out.emplace_back(m);
-    }
-  }
-  return out;
-}
-
-}  // namespace
 
 Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
                    const std::vector<Eigen::Vector3d>& observed, const MarkerSolveOptions& options,
@@ -40,7 +24,8 @@ Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
   MarkerFrameSolver solver(skeleton, markers, search);
   double best = std::numeric_limits<double>::infinity();
   Pose best_pose;
-  for (const Eigen::Quaterniond& orientation : AxisAlignedRotations()) {
+  for (const Eigen::Matrix3d& axes : AllAxisRotations()) {
+    const Eigen::Quaterniond orientation(axes);
     Pose candidate = *pose;
     candidate.rotations[0] = orientation;
     // Put the rest markers' centroid on the observed one.
