@@ -83,14 +83,10 @@ Status LoadMarkerProblem(const BenchSettings& settings, Skeleton* skeleton_out, 
     Status status = LoadSkeleton(settings.skeleton_path, &skeleton);
     if (status.ok()) status = ReadMarkerSet(settings.markerset_path, skeleton, &markers);
     MarkerTrajectories trajectories;
-    if (status.ok()) status = ReadMarkerFile(settings.markers_path, &trajectories);
     MarkerFileToModel transform;
-    if (status.ok()) status = ParseAxes(FLAGS_axes, &transform.rotation);
     if (status.ok()) {
-      status = FLAGS_marker_scale > 0 ? (transform.scale = FLAGS_marker_scale, Status::Ok())
-                                      : UnitScale(trajectories.unit, skeleton.unit(), &transform.scale);
+      status = LoadObservations(settings.markers_path, skeleton, markers, &trajectories, &transform, &observed);
     }
-    if (status.ok()) status = GatherObservations(markers, trajectories, transform, &observed);
     if (!status.ok()) return status;
     record->input = settings.markers_path;
   } else {

@@ -8,9 +8,12 @@
 #include <gflags/gflags.h>
 
 #include "io/json_writer.h"
+#include "kinematics/marker_set.h"
+#include "kinematics/marker_trajectories.h"
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
+#include "problems/marker_solve/marker_observations.h"
 
 DECLARE_bool(quiet);
 DECLARE_string(skeleton);
@@ -34,6 +37,12 @@ Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion);
 Status ApplySkeletonUnits(Skeleton* skeleton);
 // ReadSkeletonFile (.bvh/.asf) then ApplySkeletonUnits.
 Status LoadSkeleton(const std::string& path, Skeleton* skeleton);
+
+// The marker file at `path` in the skeleton's axes and units (--axes, --marker_scale or
+// the files' units): observed[f][m] for each marker of the set, NaN where missing.
+Status LoadObservations(const std::string& path, const Skeleton& skeleton, const MarkerSet& markers,
+                        MarkerTrajectories* trajectories, MarkerFileToModel* transform,
+                        std::vector<std::vector<Eigen::Vector3d>>* observed);
 
 // Writes the report to --report if set (atomically).
 Status WriteReport(const JsonObject& report);

@@ -11,6 +11,7 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "io/atomic_file.h"
+#include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "kinematics/marker_trajectories.h"
 
@@ -109,6 +110,24 @@ Status ApplySkeletonUnits(Skeleton* skeleton) {
 Status LoadSkeleton(const std::string& path, Skeleton* skeleton) {
   Status status = ReadSkeletonFile(path, skeleton);
   return status.ok() ? ApplySkeletonUnits(skeleton) : status;
+}
+
+Status LoadObservations(const std::string& path, const Skeleton& skeleton, const MarkerSet& markers,
+                        MarkerTrajectories* trajectories, MarkerFileToModel* transform,
+                        std::vector<std::vector<Eigen::Vector3d>>* observed) {
+  Status status = ReadMarkerFile(path, trajectories);
+  if (!status.ok()) return status;
+  status = ParseAxes(FLAGS_axes, &transform->rotation);
+  if (!status.ok()) return status;
+  if (FLAGS_marker_scale > 0.0) {
+    transform->scale = FLAGS_marker_scale;
+  } else {
+    status = UnitScale(trajectories->unit, skeleton.unit(), &transform->scale);
+    if (!status.ok()) return Status::Error(path + ": " + status.message());
+  }
+  status = GatherObservations(markers, *trajectories, *transform, observed);
+  if (!status.ok()) return Status::Error(path + ": " + status.message());
+  return Status::Ok();
 }
 
 Status WriteReport(const JsonObject& report) {

@@ -15,27 +15,6 @@
 DEFINE_int32(max_frames, 0, "Solve only the first N frames (0 = all).");
 
 namespace mocapsolve {
-
-// Shared by solve and the other marker commands: the marker file mapped into the
-// skeleton's axes and units.
-Status LoadObservations(const Skeleton& skeleton, const MarkerSet& markers,
-                        MarkerTrajectories* trajectories, MarkerFileToModel* transform,
-                        std::vector<std::vector<Eigen::Vector3d>>* observed) {
-  Status status = ReadMarkerFile(FLAGS_markers, trajectories);
-  if (!status.ok()) return status;
-  status = ParseAxes(FLAGS_axes, &transform->rotation);
-  if (!status.ok()) return status;
-  if (FLAGS_marker_scale > 0.0) {
-    transform->scale = FLAGS_marker_scale;
-  } else {
-    status = UnitScale(trajectories->unit, skeleton.unit(), &transform->scale);
-    if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
-  }
-  status = GatherObservations(markers, *trajectories, *transform, observed);
-  if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
-  return Status::Ok();
-}
-
 namespace {
 
 Status RunSolve(const std::vector<std::string>& arguments) {
@@ -68,7 +47,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   MarkerTrajectories trajectories;
   MarkerFileToModel transform;
   std::vector<std::vector<Eigen::Vector3d>> observed;
-  status = LoadObservations(skeleton, markers, &trajectories, &transform, &observed);
+  status = LoadObservations(FLAGS_markers, skeleton, markers, &trajectories, &transform, &observed);
   if (!status.ok()) return status;
   if (FLAGS_max_frames > 0 && static_cast<int>(observed.size()) > FLAGS_max_frames) {
     observed.resize(FLAGS_max_frames);
