@@ -137,19 +137,4 @@ ceres::Manifold* RotationManifold(const std::vector<int>& axes) {
   return &full;  // Unreachable for distinct axes in [0, 3).
 }
 
-Eigen::Matrix<double, 4, 3> QuaternionPlusJacobian(const double* q) {
-  // Column k: 1/2 q (x) (0, e_k) = 1/2 (w e_k + v x e_k, -v_k) in (x, y, z, w) order.
-  const double x = q[0], y = q[1], z = q[2], w = q[3];
-  Eigen::Matrix<double, 4, 3> p;
-  p << w, -z, y,
-       z, w, -x,
-       -y, x, w,
-       -x, -y, -z;
-  return 0.5 * p;
-}
-
-Eigen::Matrix<double, 3, 4> AmbientFromTangent(const double* q) {
-  return 4.0 * QuaternionPlusJacobian(q).transpose();
-}
-
 }  // namespace mocapsolve

@@ -70,9 +70,26 @@ class DofQuaternionManifold : public ceres::Manifold {
 ceres::Manifold* RotationManifold(const std::vector<int>& axes);
 
 // P(q): 4 x 3, d(q * exp(delta))/d delta at delta = 0, q in (x, y, z, w) order.
-Eigen::Matrix<double, 4, 3> QuaternionPlusJacobian(const double* q);
+// Column k: 1/2 q (x) (0, e_k) = 1/2 (w e_k + v x e_k, -v_k). Inline: residuals call it
+// in their inner loops.
+inline Eigen::Matrix<double, 4, 3> QuaternionPlusJacobian(const double* q) {
+  const double x = q[0], y = q[1], z = q[2], w = q[3];
+  Eigen::Matrix<double, 4, 3> p;
+  p << 0.5 * w, -0.5 * z, 0.5 * y,
+       0.5 * z, 0.5 * w, -0.5 * x,
+       -0.5 * y, 0.5 * x, 0.5 * w,
+       -0.5 * x, -0.5 * y, -0.5 * z;
+  return p;
+}
 // 4 P(q)^T: 3 x 4, maps a tangent Jacobian to the ambient one (see above).
-Eigen::Matrix<double, 3, 4> AmbientFromTangent(const double* q);
+inline Eigen::Matrix<double, 3, 4> AmbientFromTangent(const double* q) {
+  const double x = q[0], y = q[1], z = q[2], w = q[3];
+  Eigen::Matrix<double, 3, 4> a;
+  a << 2.0 * w, 2.0 * z, -2.0 * y, -2.0 * x,
+       -2.0 * z, 2.0 * w, 2.0 * x, -2.0 * y,
+       2.0 * y, -2.0 * x, 2.0 * w, -2.0 * z;
+  return a;
+}
 
 }  // namespace mocapsolve
 
