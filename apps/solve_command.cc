@@ -5,7 +5,9 @@
 #include "apps/common_flags.h"
 #include "apps/progress.h"
 #include "apps/solver_flags.h"
+#include "io/atomic_file.h"
 #include "io/bvh_writer.h"
+#include "io/svg_plot.h"
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
@@ -13,6 +15,7 @@
 #include "problems/marker_solve/sequence_solver.h"
 
 DEFINE_int32(max_frames, 0, "Solve only the first N frames (0 = all).");
+DEFINE_string(plot, "", "Write an SVG plot of the per-frame RMS marker residual to this file.");
 
 namespace mocapsolve {
 namespace {
@@ -105,11 +108,20 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   status = WriteBvh(FLAGS_out, skeleton, motion, BvhWriteOptions());
   if (!status.ok()) return status;
   std::printf("wrote %s\n", FLAGS_out.c_str());
+  if (!FLAGS_plot.empty()) {
+    PlotSeries rms{"per-frame " + FLAGS_solver, {}};
+    for (double v : sequence.frame_rms) rms.y.push_back(v * to_output);
+    status = WriteFileAtomically(FLAGS_plot, LinePlotSvg("RMS marker residual per frame: " + FLAGS_markers,
+                                                        "frame", std::string("RMS residual (") + unit + ")",
+                                                        {rms}));
+    if (!status.ok()) return status;
+    std::printf("wrote %s\n", FLAGS_plot.c_str());
+  }
   return WriteReport(report);
 }
 
 const std::string kSolveFlags =
-    std::string("skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,") + kSolverFlagNames;
+    std::string("skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,plot,max_frames,") + kSolverFlagNames;
 
 }  // namespace
 

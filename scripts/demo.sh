@@ -38,7 +38,7 @@ echo; echo "== 8. solve: joint angles from the markers, Ceres and DLS on the sam
 for solver in ceres dls; do
   $ms solve --quiet --skeleton="$out/walk.bvh" --skeleton_units=cm --markers="$out/walk_markers.c3d" \
     --markerset="$out/calibrated_markerset.json" --solver=$solver --out="$out/solved_$solver.bvh" \
-    --report="$out/solve_$solver.json"
+    --report="$out/solve_$solver.json" --plot="$out/solve_${solver}_residual.svg"
 done
 
 echo; echo "== 9. solve --mode=clip: all frames as one sparse problem with smoothness"

@@ -46,8 +46,9 @@ TEST_F(SolveCli, BothSolversRecoverTheClip) {
     const std::string report = testing::TempPath(std::string(solver) + ".json");
     int code = 0;
     // No prior: noise-free markers are matched exactly.
+    const std::string plot = testing::TempPath(std::string(solver) + ".svg");
     const std::string output = Solve("--markerset=" + set_ + " --out=" + out + " --solver=" + solver +
-                                     " --prior_weight=0 --report=" + report, &code);
+                                     " --prior_weight=0 --report=" + report + " --plot=" + plot, &code);
     ASSERT_EQ(code, 0) << output;
     EXPECT_THAT(output, HasSubstr("RMS marker residual"));
     Skeleton solved_skeleton;
@@ -69,6 +70,11 @@ TEST_F(SolveCli, BothSolversRecoverTheClip) {
     std::stringstream json;
     json << in.rdbuf();
     EXPECT_THAT(json.str(), HasSubstr("\"rms_marker_residual\""));
+    std::ifstream svg_in(plot);
+    std::stringstream svg;
+    svg << svg_in.rdbuf();
+    EXPECT_THAT(svg.str(), HasSubstr("<svg"));
+    EXPECT_THAT(svg.str(), HasSubstr("<polyline"));
   }
 }
 
