@@ -27,7 +27,10 @@ DEFINE_double(limit_weight, 0.0, "Soft joint limits (ASF 'limits'): 1 radian bey
               "of 02_01 leaves its ASF limits in 4.5% of dof samples, by up to 30 degrees).");
 DEFINE_double(prior_translation_weight, 0.0, "Per-frame pull of the root translation toward "
               "the previous frame's, per skeleton unit (0 = off).");
-DEFINE_string(smooth_order, "acceleration", "Clip smoothness: velocity | acceleration.");
+DEFINE_string(smooth_order, "velocity", "Clip smoothness: velocity (faster: a block-tridiagonal "
+              "system) | acceleration (keeps speed through the smoothing).");
+DEFINE_string(sparse_library, "eigen_sparse", "Clip solve's sparse Cholesky: eigen_sparse (faster "
+              "here, and no GPL code) | suite_sparse (CHOLMOD).");
 DEFINE_double(smooth_weight, 1.0, "Clip smoothness weight of joint rotations, per radian of "
               "per-frame difference.");
 DEFINE_double(smooth_translation_weight, 0.1, "Clip smoothness weight of the root translation, "
@@ -43,7 +46,7 @@ const char* const kSolverFlagNames =
     "solver,mode,linear_solver,trust_region,max_iterations,function_tolerance,"
     "gradient_tolerance,parameter_tolerance,num_threads,loss,loss_scale,marker_weight,"
     "prior_weight,prior_translation_weight,limit_weight,smooth_order,smooth_weight,"
-    "smooth_translation_weight,clip_function_tolerance,dls_lambda,dls_damping";
+    "smooth_translation_weight,clip_function_tolerance,sparse_library,dls_lambda,dls_damping";
 
 namespace {
 
@@ -111,6 +114,10 @@ Status ClipSolveOptionsFromFlags(ClipSolveOptions* options) {
   if (!status.ok()) return status;
   options->ceres.num_threads = std::max(FLAGS_num_threads, 1);
   options->ceres.function_tolerance = FLAGS_clip_function_tolerance;
+  if (!ceres::StringToSparseLinearAlgebraLibraryType(FLAGS_sparse_library,
+                                                     &options->ceres.sparse_linear_algebra_library_type)) {
+    return Status::Error("--sparse_library: unknown '" + FLAGS_sparse_library + "' (eigen_sparse, suite_sparse)");
+  }
   options->marker_weight = FLAGS_marker_weight;
   options->loss = FLAGS_loss;
   options->loss_scale = FLAGS_loss_scale;

