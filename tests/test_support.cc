@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -102,6 +103,50 @@ void ExpectMatchesGolden(const std::string& name, const std::vector<std::string>
     ASSERT_EQ(c, rows[r].size()) << path << ":" << r + 2 << ": column count";
   }
   EXPECT_EQ(r, rows.size()) << path << ": fewer rows than computed";
+}
+
+int CheckAnnotatedBadFiles(const std::string& extension,
+                           const std::function<Status(const std::string& path)>& read) {
+  int checked = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(SourcePath("tests/data/bad"))) {
+    if (entry.path().extension() != extension ||
+        entry.path().filename().string().rfind("bad_", 0) != 0) {
+      continue;
+    }
+    const std::string path = entry.path().string();
+    SCOPED_TRACE(path);
+    std::ifstream in(path);
+    std::string header;
+    std::getline(in, header);
+    const std::string tag = "# expect-error: line ";
+    EXPECT_EQ(header.rfind(tag, 0), 0u) << "first line must be '" << tag << "N: text'";
+    const size_t colon = header.find(": ", tag.size());
+    if (header.rfind(tag, 0) != 0 || colon == std::string::npos) continue;
+    const std::string line = header.substr(tag.size(), colon - tag.size());
+    const std::string expected = header.substr(colon + 2);
+    const Status status = read(path);
+    EXPECT_FALSE(status.ok());
+    EXPECT_EQ(status.message().rfind(path + ":" + line + ": ", 0), 0u) << status.message();
+    EXPECT_NE(status.message().find(expected), std::string::npos) << status.message();
+    EXPECT_EQ(status.message().find('\n'), std::string::npos) << status.message();
+    ++checked;
+  }
+  return checked;
+}
+
+std::string RandomlyDamaged(const std::string& base, const std::string& alphabet, std::mt19937* rng) {
+  std::string text = base;
+  const int edits = 1 + static_cast<int>((*rng)() % 4);
+  for (int e = 0; e < edits && !text.empty(); ++e) {
+    const size_t at = (*rng)() % text.size();
+    switch ((*rng)() % 4) {
+      case 0: text[at] = alphabet[(*rng)() % alphabet.size()]; break;
+      case 1: text.erase(at, 1 + (*rng)() % 20); break;
+      case 2: text.insert(at, 1, alphabet[(*rng)() % alphabet.size()]); break;
+      case 3: text.resize(at); break;
+    }
+  }
+  return text;
 }
 
 int RunCli(const std::string& arguments, std::string* output) {

@@ -2,10 +2,14 @@
 #ifndef MOCAPSOLVE_TESTS_TEST_SUPPORT_H_
 #define MOCAPSOLVE_TESTS_TEST_SUPPORT_H_
 
+#include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include "kinematics/status.h"
 
 namespace mocapsolve::testing {
 
@@ -37,6 +41,16 @@ std::string TempPath(const std::string& name);        // A fresh path in a per-t
 bool UpdateGoldenMode();
 void ExpectMatchesGolden(const std::string& name, const std::vector<std::string>& columns,
                          const std::vector<std::vector<double>>& rows, double abs_tolerance);
+
+// For each tests/data/bad/bad_*<extension> (e.g. ".asf"), whose first line must read
+// "# expect-error: line N: <part of the message>": `read` must fail with one line that
+// starts "<path>:N: " and contains that part. Returns how many files were checked.
+int CheckAnnotatedBadFiles(const std::string& extension,
+                           const std::function<Status(const std::string& path)>& read);
+
+// `text` with 1-4 random edits (a byte replaced from `alphabet`, up to 20 bytes erased, a
+// byte inserted, or the rest cut), for robustness tests of parsers.
+std::string RandomlyDamaged(const std::string& text, const std::string& alphabet, std::mt19937* rng);
 
 // Runs the built CLI with arguments (shell-quoted by the caller); returns its exit code
 // and fills *output with stdout+stderr.

@@ -354,34 +354,10 @@ TEST(AmcReader, BadFilesGiveOneLineErrorsWithFileAndLine) {
   AsfInfo info;
   Status status = ReadAsf(testing::SourcePath("tests/data/bad/tiny_ok.asf"), &skeleton, &info);
   ASSERT_TRUE(status.ok()) << status.message();
-  int checked = 0;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(testing::SourcePath("tests/data/bad"))) {
-    // Only bad_*.amc: tiny_ok.amc beside them is the good motion of the CLI test.
-    if (entry.path().extension() != ".amc" ||
-        entry.path().filename().string().rfind("bad_", 0) != 0) {
-      continue;
-    }
-    const std::string path = entry.path().string();
-    SCOPED_TRACE(path);
-    std::ifstream in(path);
-    std::string header;
-    std::getline(in, header);
-    const std::string tag = "# expect-error: line ";
-    ASSERT_EQ(header.rfind(tag, 0), 0u) << "first line must be '" << tag << "N: text'";
-    const size_t colon = header.find(": ", tag.size());
-    ASSERT_NE(colon, std::string::npos);
-    const std::string line = header.substr(tag.size(), colon - tag.size());
-    const std::string expected = header.substr(colon + 2);
-
+  const int checked = testing::CheckAnnotatedBadFiles(".amc", [&](const std::string& path) {
     Motion motion;
-    status = ReadAmc(path, skeleton, info, 120.0, &motion);
-    ASSERT_FALSE(status.ok());
-    EXPECT_EQ(status.message().rfind(path + ":" + line + ": ", 0), 0u) << status.message();
-    EXPECT_NE(status.message().find(expected), std::string::npos) << status.message();
-    EXPECT_EQ(status.message().find('\n'), std::string::npos) << status.message();
-    ++checked;
-  }
+    return ReadAmc(path, skeleton, info, 120.0, &motion);
+  });
   EXPECT_GE(checked, 4);
 }
 
@@ -396,17 +372,7 @@ TEST(AmcReader, SurvivesRandomDamage) {
   alphabet += '\xff';
   int parsed = 0;
   for (int trial = 0; trial < 3000; ++trial) {
-    std::string text = base;
-    const int edits = 1 + static_cast<int>(rng() % 4);
-    for (int e = 0; e < edits && !text.empty(); ++e) {
-      const size_t at = rng() % text.size();
-      switch (rng() % 4) {
-        case 0: text[at] = alphabet[rng() % alphabet.size()]; break;
-        case 1: text.erase(at, 1 + rng() % 20); break;
-        case 2: text.insert(at, 1, alphabet[rng() % alphabet.size()]); break;
-        case 3: text.resize(at); break;
-      }
-    }
+    const std::string text = testing::RandomlyDamaged(base, alphabet, &rng);
     Motion motion;
     const Status status = ParseAmc(text, "fuzz.amc", skeleton, info, 120.0, &motion);
     if (status.ok()) {
