@@ -64,6 +64,7 @@ Status MakeLoss(const std::string& name, double scale, std::unique_ptr<ceres::Lo
 
 class MarkerFrameSolver {
  public:
+  // Keeps references to the skeleton and marker set: they must outlive the solver.
   MarkerFrameSolver(const Skeleton& skeleton, const MarkerSet& markers,
                     const MarkerSolveOptions& options);
   ~MarkerFrameSolver();

@@ -24,7 +24,11 @@ Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
   MarkerFrameSolver solver(skeleton, markers, search);
   double best = std::numeric_limits<double>::infinity();
   Pose best_pose;
-  for (const Eigen::Matrix3d& axes : AllAxisRotations()) {
+  // A root that cannot rotate freely keeps the orientation it was given.
+  const std::vector<Eigen::Matrix3d> orientations =
+      skeleton.num_rotation_dofs(0) == 3 ? AllAxisRotations()
+                                         : std::vector<Eigen::Matrix3d>{pose->rotations[0].toRotationMatrix()};
+  for (const Eigen::Matrix3d& axes : orientations) {
     const Eigen::Quaterniond orientation(axes);
     Pose candidate = *pose;
     candidate.rotations[0] = orientation;

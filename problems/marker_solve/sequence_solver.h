@@ -1,8 +1,8 @@
 // Frame-by-frame solving of a whole take: each frame is warm-started from the previous
 // frame's solution (and, with a prior, pulled toward it). The first frame starts from a
 // coarse search: the root is placed at the markers' centroid and tried in the 24
-// axis-aligned orientations, and the best solve is kept, so a take need not start near
-// the skeleton's rest orientation.
+// axis-aligned orientations (when it has three rotation dofs), and the best solve is
+// kept, so a take need not start near the skeleton's rest orientation.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SEQUENCE_SOLVER_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SEQUENCE_SOLVER_H_
 
