@@ -176,7 +176,9 @@ int main(int argc, char** argv) {
   // Ceres warns when LM retries a step whose normal equations were singular; that is
   // handled and expected, so only errors are logged unless --minloglevel=0 asks.
   FLAGS_minloglevel = 2;
+  FLAGS_v = 0;
   gflags::ParseCommandLineFlags(&count, &data, /*remove_flags=*/true);
+  if (FLAGS_v > 0) FLAGS_minloglevel = std::min<int>(FLAGS_minloglevel, 0);
   FLAGS_logtostderr = true;
   google::InitGoogleLogging(argv[0]);
   const std::vector<std::string> positional(data + 1, data + count);

@@ -128,7 +128,7 @@ const std::string kSolveFlags =
 extern const Command kSolveCommand = {
     "solve", "joint angles from markers (C3D/TRC) onto a BVH or ASF skeleton, Ceres or DLS",
     "mocapsolve solve --skeleton=S.asf|S.bvh --markers=M.c3d|M.trc --markerset=J.json "
-    "--out=O.bvh [--solver=ceres|dls] [--mode=frame|clip] [--axes=x,z,-y] [--report=r.json]\n\n"
+    "--out=O.bvh [--solver=ceres|dls] [--mode=frame|clip] [--axes=y,z,x] [--report=r.json]\n\n"
     "Solves the root translation and joint rotations per frame (warm-started from the\n"
     "previous frame; the first frame tries 24 root orientations), and with --mode=clip\n"
     "refines all frames as one sparse problem with smoothness. Missing markers are simply\n"

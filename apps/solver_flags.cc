@@ -1,6 +1,7 @@
 #include "apps/solver_flags.h"
 
 #include <ceres/types.h>
+#include <glog/logging.h>
 
 DEFINE_string(solver, "ceres", "ceres | dls: who minimizes the (same) residual blocks.");
 DEFINE_string(mode, "frame", "frame: solve frame by frame, warm-started; clip: then refine all "
@@ -64,6 +65,10 @@ Status CeresOptionsFromFlags(ceres::Solver::Options* options) {
   options->gradient_tolerance = FLAGS_gradient_tolerance;
   options->parameter_tolerance = FLAGS_parameter_tolerance;
   options->num_threads = FLAGS_num_threads;
+  if (FLAGS_v >= 1) {  // --v=1: Ceres prints every iteration (DLS logs through VLOG(1)).
+    options->logging_type = ceres::PER_MINIMIZER_ITERATION;
+    options->minimizer_progress_to_stdout = true;
+  }
   std::string error;
   if (!options->IsValid(&error)) return Status::Error("Ceres options: " + error);
   return Status::Ok();

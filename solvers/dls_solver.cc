@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include <Eigen/Cholesky>
+#include <glog/logging.h>
 
 namespace mocapsolve {
 namespace {
@@ -314,6 +315,8 @@ void DlsSolver::Solve(const DlsOptions& options, DlsProblem* problem, DlsSummary
                            Evaluate(problem, true, dense_j, &new_cost);
     const bool accept = evaluated && (!options.adaptive_damping || new_cost < cost);
     if (!accept) {
+      VLOG(1) << "DLS iteration " << summary->iterations << ": rejected (cost " << new_cost
+              << " >= " << cost << "), lambda " << lambda << " -> " << lambda * options.lambda_increase;
       RestoreParameters(problem);
       RestoreLinearization();
       if (!options.adaptive_damping) {
@@ -327,6 +330,8 @@ void DlsSolver::Solve(const DlsOptions& options, DlsProblem* problem, DlsSummary
       }
       continue;
     }
+    VLOG(1) << "DLS iteration " << summary->iterations << ": cost " << cost << " -> " << new_cost
+            << ", lambda " << lambda << ", |step| " << step_norm;
     ++summary->accepted_steps;
     const double old_cost = cost;
     cost = new_cost;
