@@ -11,12 +11,16 @@ extern const Command kBenchCommand;
 extern const Command kSolveCommand;
 extern const Command kMarkersCommand;
 extern const Command kCalibrateCommand;
+extern const Command kFilterCommand;
+extern const Command kBandsCommand;
+extern const Command kBlendCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
                                                 kGenerateCommand, kBenchCommand,
                                                 kSolveCommand,
-                                                kMarkersCommand, kCalibrateCommand};
+                                                kMarkersCommand, kCalibrateCommand,
+                                                kFilterCommand, kBandsCommand, kBlendCommand};
   return commands;
 }
 

@@ -51,6 +51,11 @@ $ms bench --problem=marker_solve --repeats=3 --bench_skeleton="$out/walk.bvh" --
   --bench_markers="$out/walk_markers.c3d" --bench_markerset="$out/calibrated_markerset.json" \
   --json="$out/bench_marker_solve.json" | grep -v '^JSON'
 
+echo; echo "== 11. filter and blend: multiresolution (Laplacian pyramid) filtering of the clip"
+$ms filter --motion="$out/walk.bvh" --levels=2 --out="$out/walk_filtered.bvh"
+$ms blend --a="$out/walk.bvh" --b="$out/walk_filtered.bvh" --transition=100:112 --b_start=0 \
+  --out="$out/walk_blend.bvh"
+
 echo
 echo "Done. Outputs in $out/:"
 ls -1 "$out" | sed 's/^/  /'

@@ -28,6 +28,15 @@ using Signal = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowM
 // and fine_rows in {2 coarse.rows() - 1, 2 coarse.rows()} (CHECKed: programmer error).
 void ExpandMidpoints(const Signal& coarse, int fine_rows, double tension, Signal* fine);
 
+// Fused EXPAND and combination, one pass over memory (the pyramid's inner loop):
+// out = alpha EXPAND(coarse) + beta other, with other.rows() fine rows. out must not
+// alias coarse or other.
+void ExpandAndCombine(const Signal& coarse, double tension, double alpha, const Signal& other,
+                      double beta, Signal* out);
+// The same on raw row-major buffers: coarse m x cols, other and out n x cols.
+void ExpandAndCombine(const double* coarse, int m, int cols, double tension, double alpha,
+                      const double* other, int n, double beta, double* out);
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_SIGNAL_CARDINAL_SPLINE_H_

@@ -1,0 +1,109 @@
+// mocapsolve filter --motion=IN|--markers=IN --levels=N --out=OUT: multiresolution data
+// filtering (Huang, Boulic & Thalmann, section 5): a Laplacian pyramid of N levels is
+// collapsed without its N finest bands, i.e. EXPAND^N(G_N). signal/motion_pyramid.h.
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "apps/command.h"
+#include "apps/common_flags.h"
+#include "apps/pyramid_flags.h"
+#include "io/bvh_writer.h"
+#include "io/marker_file.h"
+#include "io/motion_file.h"
+#include "signal/motion_pyramid.h"
+
+DEFINE_int32(levels, 2, "Pyramid levels N; the N finest bands are dropped (each level halves "
+             "the rate: 2^N frames is the shortest period kept).");
+DEFINE_double(kernel_a, 0.4, "Centre weight a of the 5-tap generating kernel (b = 1/4, "
+              "c = 1/4 - a/2; eq. 1), in [0.25, 0.75].");
+DEFINE_double(tension, 0.0, "Tension of the cubic Cardinal spline of EXPAND, in [0, 1] "
+              "(0 = Catmull-Rom).");
+
+namespace mocapsolve {
+
+PyramidOptions PyramidOptionsFromFlags(int levels) {
+  PyramidOptions options;
+  options.kernel.a = FLAGS_kernel_a;
+  options.tension = FLAGS_tension;
+  options.levels = levels;
+  return options;
+}
+
+Status FilterFromFlags(const char* command, int levels, const std::vector<double>& weights) {
+  if (FLAGS_out.empty()) return Status::Error("--out is required");
+  if (FLAGS_motion.empty() == FLAGS_markers.empty()) {
+    return Status::Error("give exactly one of --motion and --markers");
+  }
+  const std::string& input = FLAGS_motion.empty() ? FLAGS_markers : FLAGS_motion;
+  Status status = CheckNotAnInput(FLAGS_out, input);
+  if (!status.ok()) return status;
+  const PyramidOptions options = PyramidOptionsFromFlags(levels);
+  status = options.Validate();
+  if (!status.ok()) return Status::Error("--kernel_a/--tension/--levels: " + status.message());
+  JsonObject report;
+  report.Add("command", command).Add("in", input).Add("out", FLAGS_out).Add("levels", levels)
+      .Add("kernel_a", FLAGS_kernel_a).Add("tension", FLAGS_tension);
+  if (!FLAGS_motion.empty()) {
+    if (FileExtension(FLAGS_out) != ".bvh") return Status::Error(FLAGS_out + ": expected a .bvh");
+    Skeleton skeleton;
+    Motion motion, filtered;
+    status = LoadMotion(FLAGS_motion, &skeleton, &motion);
+    if (!status.ok()) return status;
+    status = FilterMotion(motion, options, weights, &filtered);
+    if (!status.ok()) return Status::Error(FLAGS_motion + ": " + status.message());
+    status = WriteBvh(FLAGS_out, skeleton, filtered);
+    if (!status.ok()) return status;
+    std::printf("wrote %s: %d frames, %d joints, %d levels\n", FLAGS_out.c_str(),
+                filtered.num_frames(), skeleton.num_joints(), levels);
+    report.Add("frames", filtered.num_frames()).Add("joints", skeleton.num_joints());
+  } else {
+    if (!IsMarkerFile(FLAGS_out)) return Status::Error(FLAGS_out + ": expected a .c3d or .trc");
+    MarkerTrajectories trajectories, filtered;
+    status = ReadMarkerFile(FLAGS_markers, &trajectories);
+    if (!status.ok()) return status;
+    status = FilterMarkers(trajectories, options, weights, &filtered);
+    if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
+    double sum = 0.0;
+    int count = 0;
+    for (int f = 0; f < filtered.num_frames(); ++f) {
+      for (int m = 0; m < filtered.num_markers(); ++m) {
+        if (!trajectories.valid(f, m)) continue;
+        sum += (filtered.position(f, m) - trajectories.position(f, m)).squaredNorm();
+        ++count;
+      }
+    }
+    const double rms = count > 0 ? std::sqrt(sum / count) : 0.0;
+    status = WriteMarkerFile(FLAGS_out, filtered);
+    if (!status.ok()) return status;
+    std::printf("wrote %s: %d frames, %d markers (%d missing samples kept missing), %d levels, "
+                "rms change %.4g %s\n", FLAGS_out.c_str(), filtered.num_frames(),
+                filtered.num_markers(), filtered.CountMissing(), levels, rms,
+                trajectories.unit.name.c_str());
+    report.Add("frames", filtered.num_frames()).Add("markers", filtered.num_markers())
+        .Add("rms_change", rms).Add("units", trajectories.unit.name);
+  }
+  return WriteReport(report);
+}
+
+namespace {
+
+Status RunFilter(const std::vector<std::string>& arguments) {
+  if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  if (FLAGS_levels < 1 || FLAGS_levels > 30) return Status::Error("--levels must be in [1, 30]");
+  return FilterFromFlags("filter", FLAGS_levels, DropFinestBands(FLAGS_levels, FLAGS_levels));
+}
+
+}  // namespace
+
+extern const Command kFilterCommand = {
+    "filter", "multiresolution low-pass filtering of a motion or marker trajectories",
+    "mocapsolve filter --motion=IN.bvh|--markers=IN.c3d --levels=N --out=OUT\n\n"
+    "Builds a Laplacian pyramid of N levels (5-tap generating kernel, EXPAND by cubic\n"
+    "Cardinal splines) and collapses it without its N finest bands (Huang, Boulic &\n"
+    "Thalmann, section 5). Rotations are filtered as sign-continuous quaternions and\n"
+    "renormalized, positions and markers per channel; missing marker samples stay missing. A\n"
+    "motion is written as BVH, markers as C3D or TRC (by --out's extension).",
+    __FILE__, RunFilter, "motion,markers,out,skeleton,skeleton_units,amc_fps,report,quiet"};
+
+}  // namespace mocapsolve
