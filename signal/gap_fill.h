@@ -1,0 +1,52 @@
+// Marker gaps and their refill from a reference path (thesis 3.3.4, Algorithm 3) — the
+// building blocks of marker repair (issue 4).
+//
+// A gap is a maximal run of missing samples of one marker, frames [first, last]
+// inclusive. Refill: with X the original path and R a reference path of the same marker
+// (e.g. markers reconstructed from a robust kinematic solve), the offset D = X - R is
+// known at the frames around the gap; the fill is R plus a cubic Hermite offset that
+// matches D and its velocity D' at both ends:
+//   X(t) = R(t) + H(t),  H(s-1) = D(s-1), H'(s-1) = D'(s-1), H(e+1) = D(e+1), H'(e+1) = D'(e+1)
+// so the filled path is C1-continuous with the original at both edges and moves like the
+// reference inside. Velocities are backward/forward differences per frame (length units
+// per frame) from the two samples at each edge (zero offset velocity when only one is
+// valid), clamped componentwise to +-velocity_clamp (thesis: keeps the fill from straying
+// when the two paths' speeds differ). Degenerate gaps, as in the thesis: a gap that runs
+// to the end uses D(e+1) = D(s-1), D'(e+1) = 0; one at the start D(s-1) = D(e+1),
+// D'(s-1) = 0; a marker missing all take takes the reference as it is.
+#ifndef MOCAPSOLVE_SIGNAL_GAP_FILL_H_
+#define MOCAPSOLVE_SIGNAL_GAP_FILL_H_
+
+#include <limits>
+#include <vector>
+
+#include "kinematics/marker_trajectories.h"
+#include "kinematics/status.h"
+
+namespace mocapsolve {
+
+struct Gap {
+  int marker = 0;
+  int first = 0;  // First missing frame.
+  int last = 0;   // Last missing frame (inclusive).
+  int length() const { return last - first + 1; }
+};
+
+// Every gap of every marker, ordered by marker then frame.
+std::vector<Gap> FindGaps(const MarkerTrajectories& markers);
+
+struct GapFillOptions {
+  // Componentwise clamp of the offset velocities at the gap edges, in the markers' length
+  // units per frame; infinity = no clamp.
+  double velocity_clamp = std::numeric_limits<double>::infinity();
+};
+
+// Fills `gap` of *markers from the same marker (same index) of `reference`, which must
+// have the same frame count and be valid over the gap and at the edges used. Errors (one
+// line) on mismatched sizes or a reference sample missing where it is needed.
+Status FillGapFromReference(const Gap& gap, const MarkerTrajectories& reference,
+                            const GapFillOptions& options, MarkerTrajectories* markers);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_SIGNAL_GAP_FILL_H_
