@@ -1,0 +1,193 @@
+#include "problems/marker_repair/marker_repair.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "kinematics/forward_kinematics.h"
+#include "kinematics/marker_trajectories.h"
+#include "problems/marker_solve/sequence_solver.h"
+#include "signal/bad_interval_detection.h"
+#include "signal/gap_cleanup.h"
+#include "signal/gap_fill.h"
+
+namespace mocapsolve {
+namespace {
+
+using Observations = std::vector<std::vector<Eigen::Vector3d>>;
+
+MarkerTrajectories ToTrajectories(const MarkerSet& markers, const Observations& observed) {
+  std::vector<std::string> labels;
+  for (int m = 0; m < markers.num_markers(); ++m) labels.push_back(markers.label(m));
+  MarkerTrajectories out(labels, static_cast<int>(observed.size()));
+  for (size_t f = 0; f < observed.size(); ++f) {
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      if (observed[f][m].allFinite()) out.SetSample(static_cast<int>(f), m, observed[f][m]);
+    }
+  }
+  return out;
+}
+
+double RmsOver(const Skeleton& skeleton, const MarkerSet& markers, const Motion& motion,
+               const Observations& observed) {
+  double sum = 0.0;
+  long n = 0;
+  for (size_t f = 0; f < observed.size(); ++f) {
+    int count = 0;
+    const double rms = RmsMarkerError(skeleton, markers, motion.frames[f], observed[f], &count);
+    sum += rms * rms * count;
+    n += count;
+  }
+  return n > 0 ? std::sqrt(sum / n) : 0.0;
+}
+
+// Velocity difference |(X - R)'| at frame f (backward difference), or +inf if unknown.
+double SlopeDifference(const MarkerTrajectories& x, const MarkerTrajectories& r, int m, int f) {
+  if (f < 1 || f >= x.num_frames() || !x.valid(f, m) || !x.valid(f - 1, m)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  return ((x.position(f, m) - x.position(f - 1, m)) - (r.position(f, m) - r.position(f - 1, m))).norm();
+}
+
+// Smart trimming: on each side of each gap, cut k <= trim_max valid frames, k chosen so
+// that the new edge sample has the smallest slope difference to the reference.
+int TrimAroundGaps(const MarkerTrajectories& reference, int trim_max, MarkerTrajectories* x) {
+  int trimmed = 0;
+  for (const Gap& gap : FindGaps(*x)) {
+    const int m = gap.marker;
+    if (gap.first > 0) {
+      int best = 0;
+      double best_difference = SlopeDifference(*x, reference, m, gap.first - 1);
+      for (int k = 1; k <= trim_max && gap.first - 1 - k >= 0 && x->valid(gap.first - 1 - k, m); ++k) {
+        const double d = SlopeDifference(*x, reference, m, gap.first - 1 - k);
+        if (d < best_difference) best_difference = d, best = k;
+      }
+      for (int k = 0; k < best; ++k) x->SetMissing(gap.first - 1 - k, m);
+      trimmed += best;
+    }
+    if (gap.last + 1 < x->num_frames()) {
+      int best = 0;
+      double best_difference = SlopeDifference(*x, reference, m, gap.last + 2);
+      for (int k = 1; k <= trim_max && gap.last + 1 + k < x->num_frames() && x->valid(gap.last + 1 + k, m); ++k) {
+        const double d = SlopeDifference(*x, reference, m, gap.last + 2 + k);
+        if (d < best_difference) best_difference = d, best = k;
+      }
+      for (int k = 0; k < best; ++k) x->SetMissing(gap.last + 1 + k, m);
+      trimmed += best;
+    }
+  }
+  return trimmed;
+}
+
+class StageClock {
+ public:
+  explicit StageClock(RepairReport* report) : report_(report), start_(std::chrono::steady_clock::now()) {}
+  void Lap(const char* stage) {
+    const auto now = std::chrono::steady_clock::now();
+    report_->timings.push_back({stage, std::chrono::duration<double>(now - start_).count()});
+    start_ = now;
+  }
+
+ private:
+  RepairReport* report_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
+                     const RepairOptions& options, Observations* repaired, Motion* motion,
+                     RepairReport* report) {
+  *report = RepairReport();
+  StageClock clock(report);
+  // 1. Naive solve.
+  Motion naive;
+  SequenceSolveReport sequence;
+  Status status = SolveSequence(skeleton, markers, observed, options.naive, RestPose(skeleton), &naive, &sequence);
+  if (!status.ok()) return status;
+  clock.Lap("IK (naive solve)");
+  // 2. Robust reference.
+  Motion reference = naive;
+  ClipSolveReport clip;
+  status = SolveClip(skeleton, markers, observed, options.reference, &reference, &clip);
+  if (!status.ok()) return status;
+  clock.Lap("Reference solve (robust clip)");
+  report->naive_rms = RmsOver(skeleton, markers, naive, observed);
+  report->reference_rms = RmsOver(skeleton, markers, reference, observed);
+  // 3. Marker reconstruction.
+  Observations reconstructed(observed.size(), std::vector<Eigen::Vector3d>(markers.num_markers()));
+  FkData fk(skeleton);
+  for (size_t f = 0; f < observed.size(); ++f) {
+    ForwardKinematics(skeleton, reference.frames[f], &fk);
+    for (int m = 0; m < markers.num_markers(); ++m) reconstructed[f][m] = markers.Position(m, fk);
+  }
+  const MarkerTrajectories reference_paths = ToTrajectories(markers, reconstructed);
+  clock.Lap("Marker Reconstruction");
+  // 4. Gap detection.
+  MarkerTrajectories x = ToTrajectories(markers, observed);
+  for (const Gap& gap : FindGaps(x)) report->detected.push_back({gap.marker, gap.first, gap.last, "missing"});
+  std::vector<std::vector<char>> bad_joints;
+  status = DetectBadJoints(skeleton, naive, reference, {options.dp_max, options.dr_max_rad}, &bad_joints);
+  if (!status.ok()) return status;
+  const auto bad = BadMarkerSamples(markers, bad_joints);
+  const double outlier = options.outlier_distance > 0.0 ? options.outlier_distance : options.dp_max;
+  MarkerTrajectories outliers_removed = x;
+  for (int f = 0; f < x.num_frames(); ++f) {
+    for (int m = 0; m < x.num_markers(); ++m) {
+      if (x.valid(f, m) && (x.position(f, m) - reconstructed[f][m]).norm() > outlier) {
+        outliers_removed.SetMissing(f, m);
+      }
+    }
+  }
+  MarkerTrajectories flagged = outliers_removed;
+  for (int f = 0; f < x.num_frames(); ++f) {
+    for (int m = 0; m < x.num_markers(); ++m) {
+      if (bad[f][m] && flagged.valid(f, m)) flagged.SetMissing(f, m);
+    }
+  }
+  // Name each new gap by its first cause: outlier, else joint difference.
+  for (const Gap& gap : FindGaps(flagged)) {
+    bool natural = true, outlying = false;
+    for (int f = gap.first; f <= gap.last; ++f) {
+      natural &= !x.valid(f, gap.marker);
+      outlying |= x.valid(f, gap.marker) && !outliers_removed.valid(f, gap.marker);
+    }
+    if (!natural) {
+      report->detected.push_back({gap.marker, gap.first, gap.last, outlying ? "outlier" : "joint difference"});
+    }
+  }
+  x = flagged;
+  clock.Lap("Gap Detection");
+  // 5. Preprocessing, in the thesis' order.
+  report->trimmed_samples = TrimAroundGaps(reference_paths, options.trim_max, &x);
+  report->removed_track_samples = RemoveSmallTracks(options.small_track, &x);
+  const MarkerTrajectories before_small = x;
+  report->polynomial_samples = FillSmallGaps(options.small_gap, &x);
+  for (const Gap& gap : FindGaps(before_small)) {
+    if (x.valid(gap.first, gap.marker)) report->filled.push_back({gap.marker, gap.first, gap.last, "polynomial"});
+  }
+  clock.Lap("Gap Preprocessing");
+  // 6. Marker filling from the reference.
+  GapFillOptions fill;
+  if (options.velocity_clamp > 0.0) fill.velocity_clamp = options.velocity_clamp;
+  for (const Gap& gap : FindGaps(x)) {
+    status = FillGapFromReference(gap, reference_paths, fill, &x);
+    if (!status.ok()) return status;
+    const bool whole = gap.first == 0 && gap.last + 1 == x.num_frames();
+    report->filled.push_back({gap.marker, gap.first, gap.last, whole ? "reference only" : "reference"});
+  }
+  // Every sample is now valid; those never marked bad are the input's, bit for bit.
+  repaired->assign(observed.size(), std::vector<Eigen::Vector3d>(markers.num_markers()));
+  for (int f = 0; f < x.num_frames(); ++f) {
+    for (int m = 0; m < x.num_markers(); ++m) (*repaired)[f][m] = x.position(f, m);
+  }
+  clock.Lap("Marker Filling");
+  // 7. Re-solve.
+  status = SolveSequence(skeleton, markers, *repaired, options.naive, naive.frames.front(), motion, &sequence);
+  if (!status.ok()) return status;
+  report->repaired_rms = RmsOver(skeleton, markers, *motion, *repaired);
+  clock.Lap("IK (re-solve)");
+  return Status::Ok();
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,74 @@
+// Marker trajectory repair (thesis chapter 3, section 3.3): find broken intervals against
+// a robust kinematic reference and refill them with Hermite-blended reference paths.
+//
+//   1. Naive solve Y: per-frame least squares (MarkerFrameSolver, warm-started).
+//   2. Reference Y^: the thesis' robust neural solver is replaced, as section 3.3 allows,
+//      by the whole-clip solve with a robust loss and smoothness (SolveClip), from Y.
+//   3. Marker reconstruction X^ = LBS(Y^, Z) (eq. 9, MarkerSet::Position).
+//   4. Gap detection: naturally missing samples; outliers, samples farther than
+//      outlier_distance from their reconstruction X^ (the thesis takes these from its
+//      neural solver); and DetectBad(Y, Y^) (Algorithm 2).
+//   5. Gap preprocessing (3.3.4): smart trimming (cut up to trim_max frames on each side of
+//      a gap, stopping where the velocity difference between original and reference is
+//      smallest), then small-track removal, then small-gap filling, in that order.
+//   6. Marker filling (Algorithm 3): Hermite offsets on the reference paths.
+//   7. Re-solve Y- on the filled markers.
+// Samples never marked bad are returned unchanged. Lengths are skeleton units
+// (observations in the skeleton's frame, marker_observations.h).
+#ifndef MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_MARKER_REPAIR_H_
+#define MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_MARKER_REPAIR_H_
+
+#include <string>
+#include <vector>
+
+#include "kinematics/marker_set.h"
+#include "kinematics/motion.h"
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+#include "problems/marker_solve/marker_clip_solver.h"
+#include "problems/marker_solve/marker_frame_solver.h"
+
+namespace mocapsolve {
+
+struct RepairOptions {
+  MarkerSolveOptions naive;        // Steps 1 and 7.
+  ClipSolveOptions reference;      // Step 2 (give it a robust loss).
+  double dp_max = 0.0;             // Joint position threshold, skeleton units.
+  double dr_max_rad = 0.0;         // Joint rotation threshold.
+  double outlier_distance = 0.0;   // Skeleton units; <= 0: dp_max.
+  int trim_max = 120;              // Frames, per side of a gap.
+  int small_track = 120;           // Frames.
+  int small_gap = 5;               // Frames.
+  double velocity_clamp = 0.0;     // Skeleton units per frame (<= 0: no clamp).
+};
+
+struct RepairInterval {
+  int marker = 0;
+  int first = 0, last = 0;  // Frames, inclusive.
+  std::string what;         // "missing", "outlier", "joint difference" (detected); "reference",
+                            // "polynomial" (filled); "reference only" (whole take).
+};
+
+struct RepairStageTime {
+  std::string stage;  // Named after the thesis' Table 2 where it has a counterpart.
+  double seconds = 0.0;
+};
+
+struct RepairReport {
+  std::vector<RepairInterval> detected;  // Gaps found (before preprocessing).
+  std::vector<RepairInterval> filled;    // Gaps filled (after preprocessing).
+  std::vector<RepairStageTime> timings;
+  int trimmed_samples = 0, removed_track_samples = 0, polynomial_samples = 0;
+  double naive_rms = 0.0, reference_rms = 0.0, repaired_rms = 0.0;  // Skeleton units.
+};
+
+// observed[f][m]: marker m of the set at frame f (NaN = missing). Writes the repaired
+// observations (same layout), the re-solved motion, and the report.
+Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers,
+                     const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                     const RepairOptions& options, std::vector<std::vector<Eigen::Vector3d>>* repaired,
+                     Motion* motion, RepairReport* report);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_MARKER_REPAIR_H_
