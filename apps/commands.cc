@@ -14,11 +14,12 @@ extern const Command kCalibrateCommand;
 extern const Command kFilterCommand;
 extern const Command kBandsCommand;
 extern const Command kBlendCommand;
+extern const Command kRepairCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
                                                 kGenerateCommand, kBenchCommand,
-                                                kSolveCommand,
+                                                kSolveCommand, kRepairCommand,
                                                 kMarkersCommand, kCalibrateCommand,
                                                 kFilterCommand, kBandsCommand, kBlendCommand};
   return commands;

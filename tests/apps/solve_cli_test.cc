@@ -113,5 +113,28 @@ TEST_F(SolveCli, MarkerSetForAnotherSkeleton) {
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
 }
 
+TEST_F(SolveCli, RepairLeavesCleanMarkersAloneAndWritesTheReport) {
+  const std::string out = testing::TempPath("repaired.c3d");
+  const std::string report = testing::TempPath("repair.json");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("repair --quiet --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + markers_ +
+                            " --markerset=" + set_ + " --out_markers=" + out + " --out_motion=" +
+                            testing::TempPath("repaired.bvh") + " --report=" + report, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("Marker Filling"));
+  std::ifstream in(report);
+  std::stringstream json;
+  json << in.rdbuf();
+  EXPECT_THAT(json.str(), HasSubstr("\"timings\""));
+  // Clean synthetic markers: nothing to repair, so the file comes back sample for sample.
+  std::string info_in, info_out;
+  ASSERT_EQ(testing::RunCli("info " + markers_, &info_in), 0);
+  ASSERT_EQ(testing::RunCli("info " + out, &info_out), 0);
+  EXPECT_EQ(info_in.substr(info_in.find("markers:")), info_out.substr(info_out.find("markers:")));
+  // A skeleton whose unit is unknown cannot take cm thresholds.
+  EXPECT_EQ(testing::RunCli("repair --skeleton=" + demo_ + " --markers=" + markers_ + " --markerset=" + set_ +
+                            " --out_markers=" + testing::TempPath("x.c3d"), &output), 1);
+  EXPECT_THAT(output, HasSubstr("--skeleton_units"));
+}
+
 }  // namespace
 }  // namespace mocapsolve

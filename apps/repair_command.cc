@@ -1,0 +1,155 @@
+// mocapsolve repair: find broken marker intervals against a robust kinematic reference
+// and refill them (thesis chapter 3; problems/marker_repair/marker_repair.h).
+#include <cstdio>
+
+#include "apps/command.h"
+#include "apps/common_flags.h"
+#include "apps/solver_flags.h"
+#include "io/bvh_writer.h"
+#include "io/marker_file.h"
+#include "io/marker_set_file.h"
+#include "io/motion_file.h"
+#include "kinematics/rotation.h"
+#include "problems/marker_repair/marker_repair.h"
+
+DEFINE_string(out_markers, "", "Repaired markers (.c3d or .trc), in the input file's axes and units.");
+DEFINE_string(out_motion, "", "The motion solved from the repaired markers (.bvh); optional.");
+DEFINE_double(dp_max_cm, 10.0, "A joint farther than this (cm) from the robust reference is bad "
+              "(thesis 3.4.2: 10 cm).");
+DEFINE_double(dr_max_deg, 30.0, "A joint turned more than this (degrees) from the reference is bad "
+              "(thesis: 30).");
+DEFINE_int32(trim_max, 120, "Frames trimmed at most on each side of a gap (thesis: 120).");
+DEFINE_int32(small_track, 120, "Valid runs of at most this many frames between gaps are dropped.");
+DEFINE_int32(small_gap, 5, "Gaps of at most this many frames are filled by a plain cubic.");
+DEFINE_double(vel_clamp, 0.25, "Clamp of the offset velocity at gap edges, in cm per frame "
+              "(the thesis' 0.25; its unit is not stated, its data are in cm).");
+DEFINE_string(reference_loss, "cauchy", "Robust loss of the reference solve: cauchy | huber.");
+DEFINE_double(reference_loss_cm, 1.0, "Where the reference solve's loss bends (cm).");
+
+namespace mocapsolve {
+namespace {
+
+Status RunRepair(const std::vector<std::string>& arguments) {
+  if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  if (FLAGS_skeleton.empty() || FLAGS_markers.empty() || FLAGS_markerset.empty() || FLAGS_out_markers.empty()) {
+    return Status::Error("--skeleton, --markers, --markerset and --out_markers are required");
+  }
+  for (const std::string& out : {FLAGS_out_markers, FLAGS_out_motion}) {
+    if (out.empty()) continue;
+    for (const std::string& in : {FLAGS_skeleton, FLAGS_markers, FLAGS_markerset}) {
+      Status status = CheckNotAnInput(out, in);
+      if (!status.ok()) return status;
+    }
+  }
+  if (!IsMarkerFile(FLAGS_out_markers)) return Status::Error(FLAGS_out_markers + ": expected .c3d or .trc");
+  if (!FLAGS_out_motion.empty() && FileExtension(FLAGS_out_motion) != ".bvh") {
+    return Status::Error(FLAGS_out_motion + ": expected a .bvh");
+  }
+  Skeleton skeleton;
+  Status status = LoadSkeleton(FLAGS_skeleton, &skeleton);
+  if (!status.ok()) return status;
+  if (!skeleton.unit().known()) {
+    return Status::Error(FLAGS_skeleton + ": the skeleton's unit is unknown; give --skeleton_units");
+  }
+  const double units_per_cm = 0.01 / skeleton.unit().metres_per_unit;
+  MarkerSet markers;
+  status = ReadMarkerSet(FLAGS_markerset, skeleton, &markers);
+  if (!status.ok()) return status;
+  MarkerTrajectories trajectories;
+  MarkerFileToModel transform;
+  std::vector<std::vector<Eigen::Vector3d>> observed;
+  status = LoadObservations(FLAGS_markers, skeleton, markers, &trajectories, &transform, &observed);
+  if (!status.ok()) return status;
+
+  RepairOptions options;
+  status = MarkerSolveOptionsFromFlags(skeleton.unit(), &options.naive);
+  if (status.ok()) status = ClipSolveOptionsFromFlags(&options.reference);
+  if (!status.ok()) return status;
+  options.reference.loss = FLAGS_reference_loss;
+  options.reference.loss_scale = FLAGS_reference_loss_cm * units_per_cm;
+  options.dp_max = FLAGS_dp_max_cm * units_per_cm;
+  options.dr_max_rad = DegToRad(FLAGS_dr_max_deg);
+  options.trim_max = FLAGS_trim_max;
+  options.small_track = FLAGS_small_track;
+  options.small_gap = FLAGS_small_gap;
+  options.velocity_clamp = FLAGS_vel_clamp * units_per_cm;
+  std::string error;
+  if (!options.reference.IsValid(&error)) return Status::Error(error);
+
+  std::vector<std::vector<Eigen::Vector3d>> repaired;
+  Motion motion;
+  RepairReport report;
+  status = RepairMarkers(skeleton, markers, observed, options, &repaired, &motion, &report);
+  if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
+  motion.frame_rate = trajectories.frame_rate;
+
+  // Output: the input file with the repaired samples of the marker set's markers, mapped
+  // back to the file's axes and units; every other sample as it was read.
+  MarkerTrajectories out = trajectories;
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    const int column = trajectories.FindMarker(markers.label(m));
+    for (int f = 0; f < out.num_frames(); ++f) {
+      const bool same = observed[f][m].allFinite() && repaired[f][m] == observed[f][m];
+      if (!same) out.SetSample(f, column, transform.Invert(repaired[f][m]));
+    }
+  }
+  status = WriteMarkerFile(FLAGS_out_markers, out);
+  if (!status.ok()) return status;
+  if (!FLAGS_out_motion.empty()) {
+    status = WriteBvh(FLAGS_out_motion, skeleton, motion, BvhWriteOptions());
+    if (!status.ok()) return status;
+  }
+  const double mm = skeleton.unit().metres_per_unit * 1000.0;
+  std::printf("repair: %zu intervals detected, %zu filled (%d samples trimmed, %d in small tracks "
+              "dropped, %d by polynomial); RMS marker residual naive %.3g mm, reference %.3g mm, "
+              "repaired %.3g mm\n",
+              report.detected.size(), report.filled.size(), report.trimmed_samples,
+              report.removed_track_samples, report.polynomial_samples, report.naive_rms * mm,
+              report.reference_rms * mm, report.repaired_rms * mm);
+  double total = 0.0;
+  for (const RepairStageTime& t : report.timings) total += t.seconds;
+  for (const RepairStageTime& t : report.timings) {
+    std::printf("  %-30s %8.3f s  %5.1f %%\n", t.stage.c_str(), t.seconds, total > 0 ? 100 * t.seconds / total : 0.0);
+  }
+  std::printf("  %-30s %8.3f s  (%.0f frames/s)\nwrote %s\n", "total", total,
+              total > 0 ? observed.size() / total : 0.0, FLAGS_out_markers.c_str());
+  auto intervals = [&](const std::vector<RepairInterval>& list) {
+    std::vector<JsonObject> json;
+    for (const RepairInterval& i : list) {
+      JsonObject o;
+      o.Add("marker", markers.label(i.marker)).Add("first_frame", i.first).Add("last_frame", i.last).Add("what", i.what);
+      json.push_back(o);
+    }
+    return json;
+  };
+  std::vector<JsonObject> timings;
+  for (const RepairStageTime& t : report.timings) {
+    JsonObject o;
+    o.Add("stage", t.stage).Add("seconds", t.seconds);
+    timings.push_back(o);
+  }
+  JsonObject json;
+  json.Add("markers", FLAGS_markers).Add("out_markers", FLAGS_out_markers).Add("frames", static_cast<int>(observed.size()))
+      .Add("detected", intervals(report.detected)).Add("filled", intervals(report.filled))
+      .Add("timings", timings).Add("rms_naive_mm", report.naive_rms * mm)
+      .Add("rms_reference_mm", report.reference_rms * mm).Add("rms_repaired_mm", report.repaired_rms * mm);
+  return WriteReport(json);
+}
+
+const std::string kRepairFlags =
+    std::string("skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet,") + kSolverFlagNames;
+
+}  // namespace
+
+extern const Command kRepairCommand = {
+    "repair", "find broken marker intervals against a robust reference and refill them",
+    "mocapsolve repair --skeleton=S --markers=IN.c3d|.trc --markerset=J.json "
+    "--out_markers=OUT.c3d|.trc [--out_motion=OUT.bvh] [--report=r.json]\n\n"
+    "Thesis chapter 3: a naive per-frame solve and a robust whole-clip reference (Cauchy\n"
+    "loss, smoothness); marker paths rebuilt from the reference; gaps = missing samples,\n"
+    "outliers and joints that differ from the reference (--dp_max_cm, --dr_max_deg);\n"
+    "trimming, small tracks and small gaps; Hermite refill from the reference; re-solve.\n"
+    "Samples never marked bad are written as they were read. Prints per-stage timings.",
+    __FILE__, RunRepair, kRepairFlags.c_str()};
+
+}  // namespace mocapsolve
