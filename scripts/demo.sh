@@ -56,6 +56,11 @@ $ms filter --motion="$out/walk.bvh" --levels=2 --out="$out/walk_filtered.bvh"
 $ms blend --a="$out/walk.bvh" --b="$out/walk_filtered.bvh" --transition=100:112 --b_start=0 \
   --out="$out/walk_blend.bvh"
 
+echo; echo "== 12. repair (in progress): broken intervals against a robust reference, refilled"
+$ms repair --quiet --skeleton="$out/walk.bvh" --skeleton_units=cm --markers="$out/walk_markers.c3d" \
+  --markerset="$out/calibrated_markerset.json" --out_markers="$out/walk_markers_repaired.c3d" \
+  --report="$out/repair.json" | head -1
+
 echo
 echo "Done. Outputs in $out/:"
 ls -1 "$out" | sed 's/^/  /'
