@@ -15,11 +15,12 @@ extern const Command kFilterCommand;
 extern const Command kBandsCommand;
 extern const Command kBlendCommand;
 extern const Command kRepairCommand;
+extern const Command kCorruptCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
                                                 kGenerateCommand, kBenchCommand,
-                                                kSolveCommand, kRepairCommand,
+                                                kSolveCommand, kRepairCommand, kCorruptCommand,
                                                 kMarkersCommand, kCalibrateCommand,
                                                 kFilterCommand, kBandsCommand, kBlendCommand};
   return commands;

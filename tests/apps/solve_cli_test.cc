@@ -136,5 +136,24 @@ TEST_F(SolveCli, RepairLeavesCleanMarkersAloneAndWritesTheReport) {
   EXPECT_THAT(output, HasSubstr("--skeleton_units"));
 }
 
+TEST_F(SolveCli, CorruptThenRepair) {
+  const std::string bad = testing::TempPath("bad.c3d"), mask = testing::TempPath("mask.csv");
+  const std::string fixed = testing::TempPath("fixed.c3d");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("corrupt --markers=" + markers_ + " --out=" + bad + " --mask_out=" + mask +
+                            " --gaps=4 --gap_min=5 --gap_max=10 --swaps=0 --noisy_markers=0", &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("gap"));
+  std::ifstream in(mask);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "frame,marker,kind");
+  ASSERT_EQ(testing::RunCli("repair --quiet --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + bad +
+                            " --markerset=" + set_ + " --out_markers=" + fixed + " --trim_max=5", &output), 0) << output;
+  std::string info;
+  ASSERT_EQ(testing::RunCli("info " + fixed, &info), 0);
+  EXPECT_THAT(info, HasSubstr("missing:   0 of"));  // Every gap refilled.
+  EXPECT_EQ(testing::RunCli("corrupt --markers=" + bad + " --out=" + bad, &output), 1);
+}
+
 }  // namespace
 }  // namespace mocapsolve

@@ -1,0 +1,91 @@
+#include "signal/marker_corruption.h"
+
+#include <algorithm>
+#include <limits>
+#include <random>
+
+namespace mocapsolve {
+namespace {
+
+int Uniform(std::mt19937* rng, int lo, int hi) {  // Inclusive; hi < lo gives lo.
+  return hi <= lo ? lo : std::uniform_int_distribution<int>(lo, hi)(*rng);
+}
+
+void MakeGap(int m, int first, int length, MarkerTrajectories* markers, CorruptionMask* mask) {
+  for (int f = first; f < std::min(markers->num_frames(), first + length); ++f) {
+    markers->SetMissing(f, m);
+    (*mask)[f][m] = 'g';
+  }
+}
+
+}  // namespace
+
+void CorruptMarkers(const CorruptionOptions& o, MarkerTrajectories* markers, CorruptionMask* mask) {
+  const int nf = markers->num_frames(), nm = markers->num_markers();
+  mask->assign(nf, std::vector<char>(nm, 0));
+  if (nf == 0 || nm == 0) return;
+  std::mt19937 rng(o.seed);
+  std::normal_distribution<double> normal;
+  // Fly-off, then the gap it precedes (the thesis' "markers fly off before disappearing").
+  auto gap_with_fly_off = [&](int m, int first, int length) {
+    if (first > 0 && o.fly_off_distance > 0.0) {
+      const Eigen::Vector3d direction = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+      for (int k = 1; k <= o.fly_off_frames && first - k >= 0; ++k) {
+        const int f = first - k;
+        if (!markers->valid(f, m) || (*mask)[f][m]) break;
+        const double t = 1.0 - (k - 1.0) / o.fly_off_frames;
+        markers->SetSample(f, m, markers->position(f, m) + t * o.fly_off_distance * direction);
+        (*mask)[f][m] = 'f';
+      }
+    }
+    MakeGap(m, first, length, markers, mask);
+  };
+  for (int g = 0; g < o.gaps; ++g) {
+    const int length = Uniform(&rng, o.gap_min, o.gap_max);
+    gap_with_fly_off(Uniform(&rng, 0, nm - 1), Uniform(&rng, 0, std::max(0, nf - length)), length);
+  }
+  for (int c = 0; c < o.cluster_gaps; ++c) {
+    const int length = Uniform(&rng, o.gap_min, o.gap_max);
+    const int first = Uniform(&rng, 0, std::max(0, nf - length));
+    const int centre = Uniform(&rng, 0, nm - 1);
+    if (!markers->valid(first, centre)) continue;
+    const Eigen::Vector3d at = markers->position(first, centre);
+    for (int m = 0; m < nm; ++m) {
+      if (markers->valid(first, m) && (markers->position(first, m) - at).norm() <= o.cluster_radius) {
+        gap_with_fly_off(m, first, length);
+      }
+    }
+  }
+  for (int s = 0; s < o.swaps; ++s) {
+    const int first = Uniform(&rng, 0, std::max(0, nf - o.swap_length));
+    const int a = Uniform(&rng, 0, nm - 1);
+    if (!markers->valid(first, a)) continue;
+    int b = -1;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int m = 0; m < nm; ++m) {
+      if (m == a || !markers->valid(first, m)) continue;
+      const double d = (markers->position(first, m) - markers->position(first, a)).norm();
+      if (d < nearest && d <= o.swap_radius) nearest = d, b = m;
+    }
+    if (b < 0) continue;
+    for (int f = first; f < std::min(nf, first + o.swap_length); ++f) {
+      if (!markers->valid(f, a) || !markers->valid(f, b)) continue;
+      const Eigen::Vector3d pa = markers->position(f, a), pb = markers->position(f, b);
+      markers->SetSample(f, a, pb);
+      markers->SetSample(f, b, pa);
+      (*mask)[f][a] = (*mask)[f][b] = 's';
+    }
+  }
+  for (int n = 0; n < o.noisy_markers && o.noise_sigma > 0.0; ++n) {
+    const int m = Uniform(&rng, 0, nm - 1);
+    const int first = Uniform(&rng, 0, std::max(0, nf - o.noise_length));
+    for (int f = first; f < std::min(nf, first + o.noise_length); ++f) {
+      if (!markers->valid(f, m) || (*mask)[f][m]) continue;
+      markers->SetSample(f, m, markers->position(f, m) +
+                                   o.noise_sigma * Eigen::Vector3d(normal(rng), normal(rng), normal(rng)));
+      (*mask)[f][m] = 'n';
+    }
+  }
+}
+
+}  // namespace mocapsolve
