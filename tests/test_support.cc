@@ -16,13 +16,17 @@
 namespace mocapsolve::testing {
 bool g_update_golden = false;  // Set by main from --update_golden.
 
-namespace {
-
 bool FileExists(const std::string& path) {
   struct stat st;
   return ::stat(path.c_str(), &st) == 0;
 }
-}  // namespace
+
+std::string ReadTextFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 std::string DataRoot() {
   const char* env = std::getenv("MOCAPSOLVE_DATA");

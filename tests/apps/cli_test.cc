@@ -19,11 +19,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-bool Exists(const std::string& path) {
-  struct stat st;
-  return ::stat(path.c_str(), &st) == 0;
-}
-
 int CountLines(const std::string& text) {
   return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
 }
@@ -116,7 +111,7 @@ TEST_F(Cli, BenchHarness) {
   const std::string json = testing::TempPath("bench.json");
   ASSERT_EQ(testing::RunCli("bench --problem=fk --repeats=1 --bench_motion=" + demo_ + " --json=" + json, &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("JSON {\"problem\": \"fk\""));
-  EXPECT_TRUE(Exists(json));
+  EXPECT_TRUE(testing::FileExists(json));
   EXPECT_EQ(testing::RunCli("bench --problem=nope", &output), 1);
   EXPECT_THAT(output, HasSubstr("known: fk"));
 }
@@ -166,7 +161,7 @@ TEST(CliBadInput, EveryBadFileGetsAOneLineError) {
     EXPECT_EQ(testing::RunCli(command, &output), 1) << name << ": " << output;
     EXPECT_EQ(CountLines(output), 1) << name << ": " << output;
     EXPECT_THAT(output, HasSubstr(name)) << command;
-    EXPECT_FALSE(Exists(testing::TempPath(name + ".csv"))) << name << ": partial output";
+    EXPECT_FALSE(testing::FileExists(testing::TempPath(name + ".csv"))) << name << ": partial output";
   }
 }
 

@@ -23,18 +23,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-bool Exists(const std::string& path) {
-  struct stat st;
-  return ::stat(path.c_str(), &st) == 0;
-}
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 class MarkersCalibrateCli : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -149,8 +137,8 @@ TEST_F(MarkersCalibrateCli, NoiseIsInMillimetresAndSeeded) {
     ASSERT_EQ(testing::RunCli("markers --quiet --motion=" + demo_ + " --skeleton_units=cm --markerset=auto:3 "
                               "--noise_mm=2 --seed=5 --units=cm --out=" + out, &output), 0) << output;
   }
-  const std::string text_a = ReadText(trc_a);
-  EXPECT_EQ(text_a.substr(text_a.find('\n')), ReadText(trc_b).substr(ReadText(trc_b).find('\n')));  // Same seed.
+  const std::string text_a = testing::ReadTextFile(trc_a);
+  EXPECT_EQ(text_a.substr(text_a.find('\n')), testing::ReadTextFile(trc_b).substr(testing::ReadTextFile(trc_b).find('\n')));  // Same seed.
   const std::string report = testing::TempPath("noisy.json");
   ASSERT_EQ(testing::RunCli("calibrate --quiet --motion=" + demo_ + " --skeleton_units=cm --markers=" + trc_a +
                             " --out=" + testing::TempPath("noisy_set.json") + " --report=" + report, &output), 0)
@@ -181,8 +169,8 @@ TEST_F(MarkersCalibrateCli, BadFlagsAndInputsGiveOneLineErrors) {
   EXPECT_EQ(testing::RunCli("markers --quiet --motion=" + demo_ + " --skeleton_units=cm --markerset=auto:3 --out=" +
                             out + " --write_markerset=" + demo_ + ".json --units=furlong", &output), 1);
   EXPECT_THAT(output, HasSubstr("furlong"));
-  EXPECT_FALSE(Exists(out));
-  EXPECT_FALSE(Exists(demo_ + ".json"));
+  EXPECT_FALSE(testing::FileExists(out));
+  EXPECT_FALSE(testing::FileExists(demo_ + ".json"));
 
   EXPECT_EQ(testing::RunCli("calibrate --quiet --motion=" + demo_ + " --out=" + testing::TempPath("c.json"), &output), 1);
   EXPECT_THAT(output, HasSubstr("--markers"));
@@ -202,7 +190,7 @@ TEST_F(MarkersCalibrateCli, BadFlagsAndInputsGiveOneLineErrors) {
   EXPECT_EQ(testing::RunCli("calibrate --quiet --motion=" + demo_ + " --markers=" + out + " --marker_scale=1 "
                             "--frame_offset=100 --out=" + testing::TempPath("d.json"), &output), 1);
   EXPECT_THAT(output, HasSubstr("no overlapping frames"));
-  EXPECT_FALSE(Exists(testing::TempPath("d.json")));
+  EXPECT_FALSE(testing::FileExists(testing::TempPath("d.json")));
   EXPECT_EQ(testing::RunCli("calibrate --quiet --motion=" + demo_ + " --markers=" + out + " --marker_scale=1 "
                             "--attach=/nonexistent/set.json --out=" + testing::TempPath("d.json"), &output), 1);
   EXPECT_THAT(output, HasSubstr("/nonexistent/set.json"));

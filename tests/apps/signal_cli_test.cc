@@ -18,11 +18,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-bool Exists(const std::string& path) {
-  struct stat st;
-  return ::stat(path.c_str(), &st) == 0;
-}
-
 double MaxRotationDifference(const Motion& a, const Motion& b) {
   double worst = 0.0;
   for (int f = 0; f < a.num_frames(); ++f) {
@@ -128,7 +123,7 @@ TEST_F(SignalCli, BadInputsFailWithOneLine) {
     EXPECT_THAT(output, HasSubstr(c.expected)) << c.arguments;
     EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
   }
-  EXPECT_FALSE(Exists(out));
+  EXPECT_FALSE(testing::FileExists(out));
 }
 
 }  // namespace

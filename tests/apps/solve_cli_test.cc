@@ -66,24 +66,16 @@ TEST_F(SolveCli, BothSolversRecoverTheClip) {
     }
     // C3D stores float32 mm and the BVH 6 digits: 0.01 cm (0.1 mm) is their rounding.
     EXPECT_LT(worst, 0.01) << solver;
-    std::ifstream in(report);
-    std::stringstream json;
-    json << in.rdbuf();
-    EXPECT_THAT(json.str(), HasSubstr("\"rms_marker_residual\""));
-    std::ifstream svg_in(plot);
-    std::stringstream svg;
-    svg << svg_in.rdbuf();
-    EXPECT_THAT(svg.str(), HasSubstr("<svg"));
-    EXPECT_THAT(svg.str(), HasSubstr("<polyline"));
+    EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"rms_marker_residual\""));
+    const std::string svg = testing::ReadTextFile(plot);
+    EXPECT_THAT(svg, HasSubstr("<svg"));
+    EXPECT_THAT(svg, HasSubstr("<polyline"));
   }
 }
 
 TEST_F(SolveCli, MarkerSetLabelMissingFromTheFile) {
   // Rename one marker of the set: the C3D has no column for it.
-  std::ifstream in(set_);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string json = text.str();
+  std::string json = testing::ReadTextFile(set_);
   const size_t at = json.find("\"Hips_0\"");
   ASSERT_NE(at, std::string::npos);
   json.replace(at, 8, "\"NOPE_0\"");
@@ -97,10 +89,7 @@ TEST_F(SolveCli, MarkerSetLabelMissingFromTheFile) {
 }
 
 TEST_F(SolveCli, MarkerSetForAnotherSkeleton) {
-  std::ifstream in(set_);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string json = text.str();
+  std::string json = testing::ReadTextFile(set_);
   const size_t at = json.find("\"joint\": \"Hips\"");
   ASSERT_NE(at, std::string::npos) << json.substr(0, 400);
   json.replace(at, 15, "\"joint\": \"Pelvis\"");
@@ -121,10 +110,7 @@ TEST_F(SolveCli, RepairLeavesCleanMarkersAloneAndWritesTheReport) {
                             " --markerset=" + set_ + " --out_markers=" + out + " --out_motion=" +
                             testing::TempPath("repaired.bvh") + " --report=" + report, &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("Marker Filling"));
-  std::ifstream in(report);
-  std::stringstream json;
-  json << in.rdbuf();
-  EXPECT_THAT(json.str(), HasSubstr("\"timings\""));
+  EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"timings\""));
   // Clean synthetic markers: nothing to repair, so the file comes back sample for sample.
   std::string info_in, info_out;
   ASSERT_EQ(testing::RunCli("info " + markers_, &info_in), 0);
