@@ -6,7 +6,8 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libsuitesparse-dev
-          libgoogle-glog-dev libgflags-dev libgtest-dev libgmock-dev libbenchmark-dev)
+          libgoogle-glog-dev libgflags-dev libgtest-dev libgmock-dev libbenchmark-dev
+          libtinygltf-dev libassimp-dev libnanoflann-dev libspectra-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
