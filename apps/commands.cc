@@ -16,11 +16,13 @@ extern const Command kBandsCommand;
 extern const Command kBlendCommand;
 extern const Command kRepairCommand;
 extern const Command kCorruptCommand;
+extern const Command kEvaluateCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
                                                 kGenerateCommand, kBenchCommand,
                                                 kSolveCommand, kRepairCommand, kCorruptCommand,
+                                                kEvaluateCommand,
                                                 kMarkersCommand, kCalibrateCommand,
                                                 kFilterCommand, kBandsCommand, kBlendCommand};
   return commands;

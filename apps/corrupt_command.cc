@@ -5,25 +5,12 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/corruption_flags.h"
 #include "io/atomic_file.h"
 #include "io/marker_file.h"
 #include "signal/marker_corruption.h"
 
 DEFINE_string(mask_out, "", "CSV of the damaged samples: frame,marker,kind (gap, fly_off, swap, noise).");
-DEFINE_int32(corrupt_seed, 1, "Seed of every random draw.");
-DEFINE_int32(gaps, 10, "Gaps on random markers.");
-DEFINE_int32(gap_min, 10, "Shortest gap (frames).");
-DEFINE_int32(gap_max, 60, "Longest gap (frames).");
-DEFINE_int32(cluster_gaps, 2, "Occlusions of a marker and its neighbours together.");
-DEFINE_double(cluster_radius_mm, 150.0, "Neighbours within this distance share a cluster gap.");
-DEFINE_int32(fly_off_frames, 5, "Frames before each interior gap in which the marker drifts off.");
-DEFINE_double(fly_off_mm, 100.0, "How far it drifts (mm) by the gap.");
-DEFINE_int32(swaps, 1, "Swaps of a marker with its nearest neighbour.");
-DEFINE_int32(swap_length, 30, "Frames each swap lasts.");
-DEFINE_double(swap_radius_mm, 200.0, "Only neighbours this close are swapped.");
-DEFINE_int32(noisy_markers, 2, "Markers that get high-frequency noise over an interval.");
-DEFINE_int32(noise_length, 60, "Frames of that interval.");
-DEFINE_double(noise_sigma_mm, 5.0, "Noise per axis (mm).");
 
 namespace mocapsolve {
 namespace {
@@ -36,27 +23,12 @@ Status RunCorrupt(const std::vector<std::string>& arguments) {
     Status status = CheckNotAnInput(out, FLAGS_markers);
     if (!status.ok()) return status;
   }
-  if (FLAGS_gap_min < 1 || FLAGS_gap_max < FLAGS_gap_min) return Status::Error("--gap_min/--gap_max: need 1 <= min <= max");
   MarkerTrajectories markers;
   Status status = ReadMarkerFile(FLAGS_markers, &markers);
   if (!status.ok()) return status;
-  if (!markers.unit.known()) return Status::Error(FLAGS_markers + ": unknown length unit");
-  const double per_mm = 0.001 / markers.unit.metres_per_unit;
   CorruptionOptions options;
-  options.seed = static_cast<uint32_t>(FLAGS_corrupt_seed);
-  options.gaps = FLAGS_gaps;
-  options.gap_min = FLAGS_gap_min;
-  options.gap_max = FLAGS_gap_max;
-  options.cluster_gaps = FLAGS_cluster_gaps;
-  options.cluster_radius = FLAGS_cluster_radius_mm * per_mm;
-  options.fly_off_frames = FLAGS_fly_off_frames;
-  options.fly_off_distance = FLAGS_fly_off_mm * per_mm;
-  options.swaps = FLAGS_swaps;
-  options.swap_length = FLAGS_swap_length;
-  options.swap_radius = FLAGS_swap_radius_mm * per_mm;
-  options.noisy_markers = FLAGS_noisy_markers;
-  options.noise_length = FLAGS_noise_length;
-  options.noise_sigma = FLAGS_noise_sigma_mm * per_mm;
+  status = CorruptionOptionsFromFlags(markers.unit, &options);
+  if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
   CorruptionMask mask;
   CorruptMarkers(options, &markers, &mask);
   status = WriteMarkerFile(FLAGS_out, markers);
@@ -86,6 +58,8 @@ Status RunCorrupt(const std::vector<std::string>& arguments) {
   return WriteReport(report);
 }
 
+const std::string kCorruptFlags = std::string("markers,out,report,") + kCorruptionFlagNames;
+
 }  // namespace
 
 extern const Command kCorruptCommand = {
@@ -94,6 +68,6 @@ extern const Command kCorruptCommand = {
     "[--corrupt_seed=1] [--gaps=10 ...]\n\n"
     "Writes a corrupted copy and, with --mask_out, which samples were damaged and how.\n"
     "Distances are in mm (converted with the file's unit); frames are frame indices.",
-    __FILE__, RunCorrupt, "markers,out,report"};
+    __FILE__, RunCorrupt, kCorruptFlags.c_str()};
 
 }  // namespace mocapsolve

@@ -4,27 +4,16 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/repair_flags.h"
 #include "apps/solver_flags.h"
 #include "io/bvh_writer.h"
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
-#include "kinematics/rotation.h"
 #include "problems/marker_repair/marker_repair.h"
 
 DEFINE_string(out_markers, "", "Repaired markers (.c3d or .trc), in the input file's axes and units.");
 DEFINE_string(out_motion, "", "The motion solved from the repaired markers (.bvh); optional.");
-DEFINE_double(dp_max_cm, 10.0, "A joint farther than this (cm) from the robust reference is bad "
-              "(thesis 3.4.2: 10 cm).");
-DEFINE_double(dr_max_deg, 30.0, "A joint turned more than this (degrees) from the reference is bad "
-              "(thesis: 30).");
-DEFINE_int32(trim_max, 120, "Frames trimmed at most on each side of a gap (thesis: 120).");
-DEFINE_int32(small_track, 120, "Valid runs of at most this many frames between gaps are dropped.");
-DEFINE_int32(small_gap, 5, "Gaps of at most this many frames are filled by a plain cubic.");
-DEFINE_double(vel_clamp, 0.25, "Clamp of the offset velocity at gap edges, in cm per frame "
-              "(the thesis' 0.25; its unit is not stated, its data are in cm).");
-DEFINE_string(reference_loss, "cauchy", "Robust loss of the reference solve: cauchy | huber.");
-DEFINE_double(reference_loss_cm, 1.0, "Where the reference solve's loss bends (cm).");
 
 namespace mocapsolve {
 namespace {
@@ -51,7 +40,6 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   if (!skeleton.unit().known()) {
     return Status::Error(FLAGS_skeleton + ": the skeleton's unit is unknown; give --skeleton_units");
   }
-  const double units_per_cm = 0.01 / skeleton.unit().metres_per_unit;
   MarkerSet markers;
   status = ReadMarkerSet(FLAGS_markerset, skeleton, &markers);
   if (!status.ok()) return status;
@@ -62,19 +50,8 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
 
   RepairOptions options;
-  status = MarkerSolveOptionsFromFlags(skeleton.unit(), &options.naive);
-  if (status.ok()) status = ClipSolveOptionsFromFlags(&options.reference);
+  status = RepairOptionsFromFlags(skeleton, &options);
   if (!status.ok()) return status;
-  options.reference.loss = FLAGS_reference_loss;
-  options.reference.loss_scale = FLAGS_reference_loss_cm * units_per_cm;
-  options.dp_max = FLAGS_dp_max_cm * units_per_cm;
-  options.dr_max_rad = DegToRad(FLAGS_dr_max_deg);
-  options.trim_max = FLAGS_trim_max;
-  options.small_track = FLAGS_small_track;
-  options.small_gap = FLAGS_small_gap;
-  options.velocity_clamp = FLAGS_vel_clamp * units_per_cm;
-  std::string error;
-  if (!options.reference.IsValid(&error)) return Status::Error(error);
 
   std::vector<std::vector<Eigen::Vector3d>> repaired;
   Motion motion;
@@ -102,10 +79,10 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   const double mm = skeleton.unit().metres_per_unit * 1000.0;
   std::printf("repair: %zu intervals detected, %zu filled (%d samples trimmed, %d in small tracks "
               "dropped, %d by polynomial); RMS marker residual naive %.3g mm, reference %.3g mm, "
-              "repaired %.3g mm\n",
+              "repaired %.3g mm (%d frames re-solved)\n",
               report.detected.size(), report.filled.size(), report.trimmed_samples,
               report.removed_track_samples, report.polynomial_samples, report.naive_rms * mm,
-              report.reference_rms * mm, report.repaired_rms * mm);
+              report.reference_rms * mm, report.repaired_rms * mm, report.resolved_frames);
   double total = 0.0;
   for (const RepairStageTime& t : report.timings) total += t.seconds;
   for (const RepairStageTime& t : report.timings) {
@@ -132,12 +109,14 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   json.Add("markers", FLAGS_markers).Add("out_markers", FLAGS_out_markers).Add("frames", static_cast<int>(observed.size()))
       .Add("detected", intervals(report.detected)).Add("filled", intervals(report.filled))
       .Add("timings", timings).Add("rms_naive_mm", report.naive_rms * mm)
-      .Add("rms_reference_mm", report.reference_rms * mm).Add("rms_repaired_mm", report.repaired_rms * mm);
+      .Add("rms_reference_mm", report.reference_rms * mm).Add("rms_repaired_mm", report.repaired_rms * mm)
+      .Add("resolved_frames", report.resolved_frames).Add("reference", FLAGS_reference);
   return WriteReport(json);
 }
 
 const std::string kRepairFlags =
-    std::string("skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet,") + kSolverFlagNames;
+    std::string("skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet,") +
+    kRepairFlagNames + "," + kSolverFlagNames;
 
 }  // namespace
 
@@ -145,9 +124,9 @@ extern const Command kRepairCommand = {
     "repair", "find broken marker intervals against a robust reference and refill them",
     "mocapsolve repair --skeleton=S --markers=IN.c3d|.trc --markerset=J.json "
     "--out_markers=OUT.c3d|.trc [--out_motion=OUT.bvh] [--report=r.json]\n\n"
-    "Thesis chapter 3: a naive per-frame solve and a robust whole-clip reference (Cauchy\n"
-    "loss, smoothness); marker paths rebuilt from the reference; gaps = missing samples,\n"
-    "outliers and joints that differ from the reference (--dp_max_cm, --dr_max_deg);\n"
+    "Thesis chapter 3: a naive per-frame solve and a robust reference (--reference: a robust\n"
+    "tracker or the whole-clip solve; Cauchy loss); marker paths rebuilt from the\n"
+    "reference; gaps = missing samples, outliers and joints that differ from the reference (--dp_max_cm, --dr_max_deg);\n"
     "trimming, small tracks and small gaps; Hermite refill from the reference; re-solve.\n"
     "Samples never marked bad are written as they were read. Prints per-stage timings.",
     __FILE__, RunRepair, kRepairFlags.c_str()};

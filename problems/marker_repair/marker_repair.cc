@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/marker_trajectories.h"
@@ -15,18 +16,6 @@ namespace mocapsolve {
 namespace {
 
 using Observations = std::vector<std::vector<Eigen::Vector3d>>;
-
-MarkerTrajectories ToTrajectories(const MarkerSet& markers, const Observations& observed) {
-  std::vector<std::string> labels;
-  for (int m = 0; m < markers.num_markers(); ++m) labels.push_back(markers.label(m));
-  MarkerTrajectories out(labels, static_cast<int>(observed.size()));
-  for (size_t f = 0; f < observed.size(); ++f) {
-    for (int m = 0; m < markers.num_markers(); ++m) {
-      if (observed[f][m].allFinite()) out.SetSample(static_cast<int>(f), m, observed[f][m]);
-    }
-  }
-  return out;
-}
 
 double RmsOver(const Skeleton& skeleton, const MarkerSet& markers, const Motion& motion,
                const Observations& observed) {
@@ -79,6 +68,50 @@ int TrimAroundGaps(const MarkerTrajectories& reference, int trim_max, MarkerTraj
   return trimmed;
 }
 
+bool SameSample(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return a.allFinite() ? a == b : !b.allFinite();
+}
+
+// Step 7: the per-frame solve of `repaired`, reusing `naive` (the solve of `observed`
+// with the same options) wherever the two problems coincide: a frame whose markers are
+// unchanged, warm-started and pulled from a pose equal to naive's previous one, has
+// naive's solution. After a changed frame the solve goes on until it rejoins naive
+// (joint positions within `tolerance`).
+Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
+                            const Observations& repaired, const Motion& naive,
+                            const MarkerSolveOptions& options, double tolerance, Motion* motion,
+                            int* resolved) {
+  *motion = naive;
+  *resolved = 0;
+  MarkerFrameSolver solver(skeleton, markers, options);
+  FkData fk(skeleton), fk_naive(skeleton);
+  bool in_sync = true;
+  for (size_t f = 0; f < repaired.size(); ++f) {
+    bool changed = false;
+    for (int m = 0; m < markers.num_markers() && !changed; ++m) {
+      changed = !SameSample(repaired[f][m], observed[f][m]);
+    }
+    if (!changed && in_sync) continue;
+    Pose pose = f > 0 ? motion->frames[f - 1] : naive.frames[0];
+    FrameSolveReport frame;
+    if (solver.Solve(repaired[f], &pose, &frame).ok()) motion->frames[f] = pose;
+    ++*resolved;
+    in_sync = false;
+    if (!changed) {
+      ForwardKinematics(skeleton, motion->frames[f], &fk);
+      ForwardKinematics(skeleton, naive.frames[f], &fk_naive);
+      double difference = 0.0;
+      for (int j = 0; j < skeleton.num_joints(); ++j) {
+        difference = std::max(difference, (fk.world_positions[j] - fk_naive.world_positions[j]).norm());
+      }
+      in_sync = difference <= tolerance;
+      if (in_sync) motion->frames[f] = naive.frames[f];
+    }
+  }
+  MakeSignContinuous(motion);
+  return Status::Ok();
+}
+
 class StageClock {
  public:
   explicit StageClock(RepairReport* report) : report_(report), start_(std::chrono::steady_clock::now()) {}
@@ -95,23 +128,64 @@ class StageClock {
 
 }  // namespace
 
+MarkerTrajectories ObservationTrajectories(const MarkerSet& markers, const Observations& observed) {
+  std::vector<std::string> labels;
+  for (int m = 0; m < markers.num_markers(); ++m) labels.push_back(markers.label(m));
+  MarkerTrajectories out(labels, static_cast<int>(observed.size()));
+  for (size_t f = 0; f < observed.size(); ++f) {
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      if (observed[f][m].allFinite()) out.SetSample(static_cast<int>(f), m, observed[f][m]);
+    }
+  }
+  return out;
+}
+
+Observations TrajectoryObservations(const MarkerTrajectories& trajectories) {
+  Observations out(trajectories.num_frames(), std::vector<Eigen::Vector3d>(trajectories.num_markers()));
+  for (int f = 0; f < trajectories.num_frames(); ++f) {
+    for (int m = 0; m < trajectories.num_markers(); ++m) out[f][m] = trajectories.position(f, m);
+  }
+  return out;
+}
+
 Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
                      const RepairOptions& options, Observations* repaired, Motion* motion,
-                     RepairReport* report) {
+                     RepairReport* report, RepairIntermediates* intermediates) {
   *report = RepairReport();
   StageClock clock(report);
-  // 1. Naive solve.
-  Motion naive;
+  // 1. Naive solve and 2. robust reference (the tracker needs no naive solve, so with two
+  // threads the two run side by side).
+  Motion naive, reference;
   SequenceSolveReport sequence;
-  Status status = SolveSequence(skeleton, markers, observed, options.naive, RestPose(skeleton), &naive, &sequence);
-  if (!status.ok()) return status;
-  clock.Lap("IK (naive solve)");
-  // 2. Robust reference.
-  Motion reference = naive;
-  ClipSolveReport clip;
-  status = SolveClip(skeleton, markers, observed, options.reference, &reference, &clip);
-  if (!status.ok()) return status;
-  clock.Lap("Reference solve (robust clip)");
+  Status status = Status::Ok(), reference_status = Status::Ok();
+  if (options.reference_kind == ReferenceKind::kTracker) {
+    SequenceSolveReport tracker_report;
+    auto track = [&] {
+      reference_status = SolveSequence(skeleton, markers, observed, options.tracker, RestPose(skeleton),
+                                       &reference, &tracker_report);
+    };
+    std::thread tracker;
+    if (options.parallel) tracker = std::thread(track);
+    status = SolveSequence(skeleton, markers, observed, options.naive, RestPose(skeleton), &naive, &sequence);
+    if (options.parallel) {
+      tracker.join();
+    } else {
+      track();
+    }
+    if (!status.ok()) return status;
+    if (!reference_status.ok()) return reference_status;
+    clock.Lap(options.parallel ? "IK (naive) + reference (robust tracker), in parallel"
+                               : "IK (naive) + reference (robust tracker)");
+  } else {
+    status = SolveSequence(skeleton, markers, observed, options.naive, RestPose(skeleton), &naive, &sequence);
+    if (!status.ok()) return status;
+    clock.Lap("IK (naive solve)");
+    reference = naive;
+    ClipSolveReport clip;
+    status = SolveClip(skeleton, markers, observed, options.reference, &reference, &clip);
+    if (!status.ok()) return status;
+    clock.Lap("Reference solve (robust clip)");
+  }
   report->naive_rms = RmsOver(skeleton, markers, naive, observed);
   report->reference_rms = RmsOver(skeleton, markers, reference, observed);
   // 3. Marker reconstruction.
@@ -121,10 +195,10 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     ForwardKinematics(skeleton, reference.frames[f], &fk);
     for (int m = 0; m < markers.num_markers(); ++m) reconstructed[f][m] = markers.Position(m, fk);
   }
-  const MarkerTrajectories reference_paths = ToTrajectories(markers, reconstructed);
+  const MarkerTrajectories reference_paths = ObservationTrajectories(markers, reconstructed);
   clock.Lap("Marker Reconstruction");
   // 4. Gap detection.
-  MarkerTrajectories x = ToTrajectories(markers, observed);
+  MarkerTrajectories x = ObservationTrajectories(markers, observed);
   for (const Gap& gap : FindGaps(x)) report->detected.push_back({gap.marker, gap.first, gap.last, "missing"});
   std::vector<std::vector<char>> bad_joints;
   status = DetectBadJoints(skeleton, naive, reference, {options.dp_max, options.dr_max_rad}, &bad_joints);
@@ -177,16 +251,20 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     report->filled.push_back({gap.marker, gap.first, gap.last, whole ? "reference only" : "reference"});
   }
   // Every sample is now valid; those never marked bad are the input's, bit for bit.
-  repaired->assign(observed.size(), std::vector<Eigen::Vector3d>(markers.num_markers()));
-  for (int f = 0; f < x.num_frames(); ++f) {
-    for (int m = 0; m < x.num_markers(); ++m) (*repaired)[f][m] = x.position(f, m);
-  }
+  *repaired = TrajectoryObservations(x);
   clock.Lap("Marker Filling");
   // 7. Re-solve.
-  status = SolveSequence(skeleton, markers, *repaired, options.naive, naive.frames.front(), motion, &sequence);
+  const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-4;
+  status = ResolveChangedFrames(skeleton, markers, observed, *repaired, naive, options.naive, tolerance,
+                                motion, &report->resolved_frames);
   if (!status.ok()) return status;
   report->repaired_rms = RmsOver(skeleton, markers, *motion, *repaired);
   clock.Lap("IK (re-solve)");
+  if (intermediates != nullptr) {
+    intermediates->naive = std::move(naive);
+    intermediates->reference = std::move(reference);
+    intermediates->reconstructed = std::move(reconstructed);
+  }
   return Status::Ok();
 }
 

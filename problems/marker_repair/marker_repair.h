@@ -3,7 +3,10 @@
 //
 //   1. Naive solve Y: per-frame least squares (MarkerFrameSolver, warm-started).
 //   2. Reference Y^: the thesis' robust neural solver is replaced, as section 3.3 allows,
-//      by the whole-clip solve with a robust loss and smoothness (SolveClip), from Y.
+//      by a robust kinematic solve: either the whole-clip solve with a robust loss and
+//      smoothness (SolveClip, from Y), or the robust tracker: frame by frame with a
+//      robust loss and a strong pull toward the previous frame (SolveSequence), which
+//      needs no Y and so runs beside step 1 on a second thread, ~10x faster than the clip.
 //   3. Marker reconstruction X^ = LBS(Y^, Z) (eq. 9, MarkerSet::Position).
 //   4. Gap detection: naturally missing samples; outliers, samples farther than
 //      outlier_distance from their reconstruction X^ (the thesis takes these from its
@@ -12,7 +15,9 @@
 //      a gap, stopping where the velocity difference between original and reference is
 //      smallest), then small-track removal, then small-gap filling, in that order.
 //   6. Marker filling (Algorithm 3): Hermite offsets on the reference paths.
-//   7. Re-solve Y- on the filled markers.
+//   7. Re-solve Y- on the filled markers: only the frames whose markers changed, and the
+//      frames after each until the solution rejoins Y (within resync_tolerance), since
+//      elsewhere the per-frame problem, its warm start and its prior are Y's own.
 // Samples never marked bad are returned unchanged. Lengths are skeleton units
 // (observations in the skeleton's frame, marker_observations.h).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_MARKER_REPAIR_H_
@@ -22,6 +27,7 @@
 #include <vector>
 
 #include "kinematics/marker_set.h"
+#include "kinematics/marker_trajectories.h"
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
@@ -30,9 +36,15 @@
 
 namespace mocapsolve {
 
+enum class ReferenceKind { kClip, kTracker };
+
 struct RepairOptions {
   MarkerSolveOptions naive;        // Steps 1 and 7.
-  ClipSolveOptions reference;      // Step 2 (give it a robust loss).
+  ReferenceKind reference_kind = ReferenceKind::kClip;
+  ClipSolveOptions reference;      // Step 2, kClip (give it a robust loss).
+  MarkerSolveOptions tracker;      // Step 2, kTracker (a robust loss and a prior).
+  bool parallel = true;            // kTracker: steps 1 and 2 on two threads.
+  double resync_tolerance = 0.0;   // Skeleton units (joint positions); <= 0: dp_max * 1e-4.
   double dp_max = 0.0;             // Joint position threshold, skeleton units.
   double dr_max_rad = 0.0;         // Joint rotation threshold.
   double outlier_distance = 0.0;   // Skeleton units; <= 0: dp_max.
@@ -60,14 +72,29 @@ struct RepairReport {
   std::vector<RepairStageTime> timings;
   int trimmed_samples = 0, removed_track_samples = 0, polynomial_samples = 0;
   double naive_rms = 0.0, reference_rms = 0.0, repaired_rms = 0.0;  // Skeleton units.
+  int resolved_frames = 0;  // Frames step 7 solved again (the others are Y's).
 };
+
+// What the pipeline computed on the way, for evaluation (repair_evaluation.h).
+struct RepairIntermediates {
+  Motion naive;      // Y.
+  Motion reference;  // Y^.
+  std::vector<std::vector<Eigen::Vector3d>> reconstructed;  // X^ = LBS(Y^, Z).
+};
+
+// The observations observed[f][m] as trajectories labelled by the marker set (NaN =
+// missing), and back.
+MarkerTrajectories ObservationTrajectories(const MarkerSet& markers,
+                                           const std::vector<std::vector<Eigen::Vector3d>>& observed);
+std::vector<std::vector<Eigen::Vector3d>> TrajectoryObservations(const MarkerTrajectories& trajectories);
 
 // observed[f][m]: marker m of the set at frame f (NaN = missing). Writes the repaired
 // observations (same layout), the re-solved motion, and the report.
 Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers,
                      const std::vector<std::vector<Eigen::Vector3d>>& observed,
                      const RepairOptions& options, std::vector<std::vector<Eigen::Vector3d>>* repaired,
-                     Motion* motion, RepairReport* report);
+                     Motion* motion, RepairReport* report,
+                     RepairIntermediates* intermediates = nullptr);
 
 }  // namespace mocapsolve
 

@@ -1,0 +1,164 @@
+// mocapsolve evaluate: marker repair against the usual gap fills on the same damage, the
+// analogue of the thesis' Table 1 (problems/marker_repair/repair_evaluation.h).
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "apps/command.h"
+#include "apps/common_flags.h"
+#include "apps/corruption_flags.h"
+#include "apps/repair_flags.h"
+#include "apps/solver_flags.h"
+#include "io/atomic_file.h"
+#include "io/marker_set_file.h"
+#include "problems/marker_repair/repair_evaluation.h"
+
+DEFINE_int32(trials, 1, "Damage draws to average over (seeds --corrupt_seed, +1, ...).");
+DEFINE_string(table_csv, "", "Also write the table as CSV (one row per method and trial).");
+
+namespace mocapsolve {
+namespace {
+
+constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
+
+Status RunEvaluate(const std::vector<std::string>& arguments) {
+  if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  if (FLAGS_skeleton.empty() || FLAGS_markers.empty() || FLAGS_markerset.empty()) {
+    return Status::Error("--skeleton, --markers (clean) and --markerset are required");
+  }
+  if (FLAGS_trials < 1 || FLAGS_trials > 1000) return Status::Error("--trials: expected 1..1000");
+  if (!FLAGS_table_csv.empty()) {
+    for (const std::string& in : {FLAGS_skeleton, FLAGS_markers, FLAGS_markerset}) {
+      Status status = CheckNotAnInput(FLAGS_table_csv, in);
+      if (!status.ok()) return status;
+    }
+  }
+  Skeleton skeleton;
+  Status status = LoadSkeleton(FLAGS_skeleton, &skeleton);
+  if (!status.ok()) return status;
+  if (!skeleton.unit().known()) {
+    return Status::Error(FLAGS_skeleton + ": the skeleton's unit is unknown; give --skeleton_units");
+  }
+  MarkerSet markers;
+  status = ReadMarkerSet(FLAGS_markerset, skeleton, &markers);
+  if (!status.ok()) return status;
+  MarkerTrajectories trajectories;
+  MarkerFileToModel transform;
+  MarkerObservations clean;
+  status = LoadObservations(FLAGS_markers, skeleton, markers, &trajectories, &transform, &clean);
+  if (!status.ok()) return status;
+  RepairOptions options;
+  status = RepairOptionsFromFlags(skeleton, &options);
+  if (!status.ok()) return status;
+  CorruptionOptions damage;
+  status = CorruptionOptionsFromFlags(skeleton.unit(), &damage);
+  if (!status.ok()) return status;
+
+  const double cm = skeleton.unit().metres_per_unit * 100.0, mm = cm * 10.0;
+  std::vector<RepairEvaluationRow> mean_rows;
+  std::string csv = "trial,seed,method,joint_position_cm,joint_rotation_deg,marker_mean_mm,marker_rms_mm,"
+                    "marker_max_mm,damaged_samples,covered_samples,velocity_jump_mm_per_frame,seconds\n";
+  for (int trial = 0; trial < FLAGS_trials; ++trial) {
+    damage.seed = static_cast<uint32_t>(FLAGS_corrupt_seed + trial);
+    MarkerTrajectories x = ObservationTrajectories(markers, clean);
+    x.unit = skeleton.unit();
+    CorruptionMask mask;
+    CorruptMarkers(damage, &x, &mask);
+    std::vector<RepairEvaluationRow> rows;
+    status = EvaluateRepair(skeleton, markers, clean, TrajectoryObservations(x), mask, options, &rows);
+    if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
+    if (mean_rows.empty()) mean_rows.assign(rows.size(), RepairEvaluationRow());
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const RepairEvaluationRow& r = rows[i];
+      RepairEvaluationRow& m = mean_rows[i];
+      const double w = 1.0 / FLAGS_trials;
+      m.method = r.method;
+      m.joint_position_error += w * r.joint_position_error;
+      m.joint_rotation_error += w * r.joint_rotation_error;
+      m.marker_error_mean += w * r.marker_error_mean;
+      m.marker_error_rms += w * r.marker_error_rms;
+      m.marker_error_max = std::max(m.marker_error_max, r.marker_error_max);
+      m.damaged_samples += r.damaged_samples;
+      m.covered_samples += r.covered_samples;
+      m.velocity_jump += w * r.velocity_jump;
+      m.seconds += w * r.seconds;
+      char line[512];
+      std::snprintf(line, sizeof(line), "%d,%u,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g,%.4g\n", trial, damage.seed,
+                    r.method.c_str(), r.joint_position_error * cm, r.joint_rotation_error * kDegreesPerRadian,
+                    r.marker_error_mean * mm, r.marker_error_rms * mm, r.marker_error_max * mm, r.damaged_samples,
+                    r.covered_samples, r.velocity_jump * mm, r.seconds);
+      csv += line;
+    }
+    if (!FLAGS_quiet) std::fprintf(stderr, "\revaluate: trial %d/%d", trial + 1, FLAGS_trials);
+  }
+  if (!FLAGS_quiet) std::fprintf(stderr, "\n");
+
+  std::printf("%d frames, %d markers, %d trial(s); errors against the solve of the clean markers\n",
+              static_cast<int>(clean.size()), markers.num_markers(), FLAGS_trials);
+  std::printf("| method | joint pos (cm) | joint rot (deg) | damaged markers mean / RMS / max (mm) | covered "
+              "| velocity jump (mm/frame) | time (s) |\n|---|---|---|---|---|---|---|\n");
+  std::vector<JsonObject> json_rows;
+  for (const RepairEvaluationRow& r : mean_rows) {
+    std::printf("| %s | %.3f | %.3f | %.2f / %.2f / %.1f | %.1f %% | %.3f | %.3f |\n", r.method.c_str(),
+                r.joint_position_error * cm, r.joint_rotation_error * kDegreesPerRadian, r.marker_error_mean * mm,
+                r.marker_error_rms * mm, r.marker_error_max * mm,
+                r.damaged_samples > 0 ? 100.0 * r.covered_samples / r.damaged_samples : 100.0,
+                r.velocity_jump * mm, r.seconds);
+    JsonObject o;
+    o.Add("method", r.method).Add("joint_position_cm", r.joint_position_error * cm)
+        .Add("joint_rotation_deg", r.joint_rotation_error * kDegreesPerRadian)
+        .Add("marker_mean_mm", r.marker_error_mean * mm).Add("marker_rms_mm", r.marker_error_rms * mm)
+        .Add("marker_max_mm", r.marker_error_max * mm).Add("damaged_samples", r.damaged_samples)
+        .Add("covered_samples", r.covered_samples).Add("velocity_jump_mm_per_frame", r.velocity_jump * mm)
+        .Add("seconds", r.seconds);
+    json_rows.push_back(o);
+  }
+  auto find = [&](const char* name) -> const RepairEvaluationRow* {
+    for (const RepairEvaluationRow& r : mean_rows) {
+      if (r.method == name) return &r;
+    }
+    return nullptr;
+  };
+  const RepairEvaluationRow* ours = find("ours");
+  JsonObject ratios;
+  if (ours != nullptr && ours->joint_position_error > 0.0) {
+    std::printf("joint position error of each method / ours:");
+    for (const RepairEvaluationRow& r : mean_rows) {
+      if (r.method == "clean" || r.method == "ours") continue;
+      const double ratio = r.joint_position_error / ours->joint_position_error;
+      std::printf(" %s %.1fx", r.method.c_str(), ratio);
+      ratios.Add(r.method, ratio);
+    }
+    std::printf("\n");
+  }
+  if (!FLAGS_table_csv.empty()) {
+    status = WriteFileAtomically(FLAGS_table_csv, csv);
+    if (!status.ok()) return status;
+  }
+  JsonObject report;
+  report.Add("markers", FLAGS_markers).Add("frames", static_cast<int>(clean.size())).Add("trials", FLAGS_trials)
+      .Add("first_seed", FLAGS_corrupt_seed).Add("reference", FLAGS_reference).Add("methods", json_rows)
+      .Add("position_error_ratio_to_ours", ratios);
+  return WriteReport(report);
+}
+
+const std::string kEvaluateFlags = std::string("skeleton,skeleton_units,markers,markerset,axes,marker_scale,"
+                                               "report,quiet,") +
+                                   kCorruptionFlagNames + "," + kRepairFlagNames + "," + kSolverFlagNames;
+
+}  // namespace
+
+extern const Command kEvaluateCommand = {
+    "evaluate", "score marker repair against linear, polynomial, PCA and reference-only fills",
+    "mocapsolve evaluate --skeleton=S --markers=CLEAN.c3d|.trc --markerset=J.json [--trials=N] "
+    "[--corrupt_seed=1 --gaps=10 ...] [--table_csv=t.csv] [--report=r.json]\n\n"
+    "Damages the clean markers (as `corrupt` does, in the skeleton's frame), runs every method\n"
+    "on the same damage and prints the analogue of the thesis' Table 1: mean global joint\n"
+    "position (cm) and rotation (deg) error of the per-frame solve after each method against\n"
+    "the solve of the clean markers, the marker error over the damaged samples, and the\n"
+    "velocity jump at the edges of damaged runs (the 'clean' row: the natural one).\n"
+    "Clean markers from a BVH: mocapsolve markers --motion=X.bvh --markerset=auto:3\n"
+    "--out=clean.c3d --write_markerset=set.json, then evaluate with --skeleton=X.bvh.",
+    __FILE__, RunEvaluate, kEvaluateFlags.c_str()};
+
+}  // namespace mocapsolve

@@ -1,0 +1,25 @@
+// The marker-repair knobs `repair` and `evaluate` share (gflags, defined in
+// repair_flags.cc), turned into RepairOptions in one place.
+#ifndef MOCAPSOLVE_APPS_REPAIR_FLAGS_H_
+#define MOCAPSOLVE_APPS_REPAIR_FLAGS_H_
+
+#include <gflags/gflags.h>
+
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+#include "problems/marker_repair/marker_repair.h"
+
+DECLARE_string(reference);
+
+namespace mocapsolve {
+
+// Comma-separated names of the repair flags, for Command::shared_flags style help.
+extern const char* const kRepairFlagNames;
+
+// Thresholds in cm and degrees are converted with the skeleton's unit (which must be
+// known). The naive solve takes the solver flags (--solver defaults to dls here).
+Status RepairOptionsFromFlags(const Skeleton& skeleton, RepairOptions* options);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_APPS_REPAIR_FLAGS_H_
