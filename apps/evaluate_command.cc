@@ -81,6 +81,7 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
       m.damaged_samples += r.damaged_samples;
       m.covered_samples += r.covered_samples;
       m.velocity_jump += w * r.velocity_jump;
+      for (int k = 0; k < 4; ++k) m.kind_error[k] += w * r.kind_error[k];
       m.seconds += w * r.seconds;
       char line[512];
       std::snprintf(line, sizeof(line), "%d,%u,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g,%.4g\n", trial, damage.seed,
@@ -110,8 +111,16 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
         .Add("marker_mean_mm", r.marker_error_mean * mm).Add("marker_rms_mm", r.marker_error_rms * mm)
         .Add("marker_max_mm", r.marker_error_max * mm).Add("damaged_samples", r.damaged_samples)
         .Add("covered_samples", r.covered_samples).Add("velocity_jump_mm_per_frame", r.velocity_jump * mm)
-        .Add("seconds", r.seconds);
+        .Add("seconds", r.seconds).Add("gap_mean_mm", r.kind_error[0] * mm)
+        .Add("fly_off_mean_mm", r.kind_error[1] * mm).Add("swap_mean_mm", r.kind_error[2] * mm)
+        .Add("noise_mean_mm", r.kind_error[3] * mm);
     json_rows.push_back(o);
+  }
+  std::printf("damaged-marker mean error by kind (mm): gap / fly-off / swap / noise\n");
+  for (const RepairEvaluationRow& r : mean_rows) {
+    if (r.method == "clean") continue;
+    std::printf("  %-15s %7.2f / %7.2f / %7.2f / %7.2f\n", r.method.c_str(), r.kind_error[0] * mm,
+                r.kind_error[1] * mm, r.kind_error[2] * mm, r.kind_error[3] * mm);
   }
   auto find = [&](const char* name) -> const RepairEvaluationRow* {
     for (const RepairEvaluationRow& r : mean_rows) {

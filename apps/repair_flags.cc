@@ -9,6 +9,9 @@ DEFINE_double(dp_max_cm, 10.0, "A joint farther than this (cm) from the robust r
               "(thesis 3.4.2: 10 cm).");
 DEFINE_double(dr_max_deg, 30.0, "A joint turned more than this (degrees) from the reference is bad "
               "(thesis: 30).");
+DEFINE_double(outlier_cm, 4.0, "A marker sample farther than this (cm) from its reconstruction on "
+              "the reference is an outlier (the thesis takes outliers from its neural solver; a "
+              "swap with a neighbour moves a marker by a few cm, below --dp_max_cm).");
 DEFINE_int32(trim_max, 120, "Frames trimmed at most on each side of a gap (thesis: 120).");
 DEFINE_int32(small_track, 120, "Valid runs of at most this many frames between gaps are dropped.");
 DEFINE_int32(small_gap, 5, "Gaps of at most this many frames are filled by a plain cubic.");
@@ -19,15 +22,15 @@ DEFINE_string(reference, "tracker", "The robust reference Y^: tracker (frame by 
               "whole-clip solve with a robust loss and smoothness; ~10x slower).");
 DEFINE_string(reference_loss, "cauchy", "Robust loss of the reference solve: cauchy | huber.");
 DEFINE_double(reference_loss_cm, 1.0, "Where the reference solve's loss bends (cm).");
-DEFINE_double(tracker_prior_weight, 200.0, "Tracker reference: pull of each joint rotation toward "
+DEFINE_double(tracker_prior_weight, 20.0, "Tracker reference: pull of each joint rotation toward "
               "the previous frame, mm per radian (the naive solve's is --prior_weight).");
-DEFINE_double(tracker_translation_prior, 0.5, "Tracker reference: pull of the root translation "
+DEFINE_double(tracker_translation_prior, 0.0, "Tracker reference: pull of the root translation "
               "toward the previous frame (residual per unit of displacement).");
 
 namespace mocapsolve {
 
 const char* const kRepairFlagNames =
-    "dp_max_cm,dr_max_deg,trim_max,small_track,small_gap,vel_clamp,reference,reference_loss,"
+    "dp_max_cm,dr_max_deg,outlier_cm,trim_max,small_track,small_gap,vel_clamp,reference,reference_loss,"
     "reference_loss_cm,tracker_prior_weight,tracker_translation_prior";
 
 Status RepairOptionsFromFlags(const Skeleton& skeleton, RepairOptions* options) {
@@ -60,6 +63,7 @@ Status RepairOptionsFromFlags(const Skeleton& skeleton, RepairOptions* options) 
   options->tracker.prior_translation_weight = FLAGS_tracker_translation_prior;
   options->dp_max = FLAGS_dp_max_cm * units_per_cm;
   options->dr_max_rad = DegToRad(FLAGS_dr_max_deg);
+  options->outlier_distance = FLAGS_outlier_cm * units_per_cm;
   options->trim_max = FLAGS_trim_max;
   options->small_track = FLAGS_small_track;
   options->small_gap = FLAGS_small_gap;
@@ -68,8 +72,8 @@ Status RepairOptionsFromFlags(const Skeleton& skeleton, RepairOptions* options) 
   if (!options->reference.IsValid(&error) || !options->tracker.IsValid(&error)) {
     return Status::Error(error);
   }
-  if (options->dp_max <= 0.0 || options->dr_max_rad <= 0.0) {
-    return Status::Error("--dp_max_cm and --dr_max_deg must be positive");
+  if (!(options->dp_max > 0.0) || !(options->dr_max_rad > 0.0) || !(options->outlier_distance > 0.0)) {
+    return Status::Error("--dp_max_cm, --dr_max_deg and --outlier_cm must be positive");
   }
   return Status::Ok();
 }

@@ -8,14 +8,14 @@
 //               one-sided difference velocities (gap_cleanup.h's FillSmallGaps at any
 //               length);
 //   PCA         after Gloersen & Federolf (2016), "Predicting missing marker trajectories
-//               in human motion data using marker intercorrelations": the #F x 3#M
-//               matrix is modelled as its column means plus a low-rank part spanned by
-//               the principal components that explain `pca_variance` of the variance;
-//               missing entries start from the linear fill and are replaced by their
-//               low-rank reconstruction until they change less than `pca_tolerance`
-//               (iterative PCA imputation). Their method weights markers by distance to
-//               the missing one and solves once; this variant uses every marker alike and
-//               iterates, which needs no complete frames (real takes may have none).
+//               in human motion data using marker intercorrelations": the principal
+//               components that explain `pca_variance` of the complete frames (every
+//               marker present), then each incomplete frame's component coefficients by
+//               least squares from its known coordinates, and the missing ones from them.
+//               Their method also weights markers by distance to the missing one; this
+//               one weights all alike. With too few complete frames (a real take may
+//               have none): iterative PCA imputation from the linear fill until the
+//               filled entries change less than `pca_tolerance`.
 // Gaps that touch the start or the end of the take hold the nearest valid sample in
 // linear and polynomial (there is nothing to interpolate toward).
 #ifndef MOCAPSOLVE_SIGNAL_BASELINE_GAP_FILL_H_

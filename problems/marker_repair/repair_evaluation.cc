@@ -36,7 +36,8 @@ void ScoreJoints(const Skeleton& skeleton, const Motion& truth, const Motion& mo
 // Marker errors over the damaged samples, and velocity jumps at the edges of damaged runs.
 void ScoreMarkers(const MarkerObservations& clean, const MarkerObservations& x, const CorruptionMask& mask,
                   RepairEvaluationRow* row) {
-  double sum = 0.0, sum_sq = 0.0;
+  double sum = 0.0, sum_sq = 0.0, kind_sum[4] = {0.0, 0.0, 0.0, 0.0};
+  int kind_count[4] = {0, 0, 0, 0};
   const int frames = static_cast<int>(clean.size());
   const int markers = frames > 0 ? static_cast<int>(clean[0].size()) : 0;
   for (int f = 0; f < frames; ++f) {
@@ -49,8 +50,13 @@ void ScoreMarkers(const MarkerObservations& clean, const MarkerObservations& x, 
       sum += e;
       sum_sq += e * e;
       row->marker_error_max = std::max(row->marker_error_max, e);
+      const char kind = mask[f][m];
+      const int k = kind == 'g' ? 0 : kind == 'f' ? 1 : kind == 's' ? 2 : 3;
+      kind_sum[k] += e;
+      ++kind_count[k];
     }
   }
+  for (int k = 0; k < 4; ++k) row->kind_error[k] = kind_count[k] > 0 ? kind_sum[k] / kind_count[k] : 0.0;
   if (row->covered_samples > 0) {
     row->marker_error_mean = sum / row->covered_samples;
     row->marker_error_rms = std::sqrt(sum_sq / row->covered_samples);

@@ -38,6 +38,8 @@ struct RepairEvaluationRow {
   double joint_rotation_error = 0.0;  // Radians.
   double marker_error_mean = 0.0, marker_error_rms = 0.0, marker_error_max = 0.0;
   int damaged_samples = 0, covered_samples = 0;
+  // Mean marker error per kind of damage: gap, fly-off, swap, noise (0 where none covered).
+  double kind_error[4] = {0.0, 0.0, 0.0, 0.0};
   double velocity_jump = 0.0;  // Skeleton units per frame.
   double seconds = 0.0;        // Fill + solve.
 };
