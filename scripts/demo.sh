@@ -56,10 +56,15 @@ $ms filter --motion="$out/walk.bvh" --levels=2 --out="$out/walk_filtered.bvh"
 $ms blend --a="$out/walk.bvh" --b="$out/walk_filtered.bvh" --transition=100:112 --b_start=0 \
   --out="$out/walk_blend.bvh"
 
-echo; echo "== 12. repair (in progress): broken intervals against a robust reference, refilled"
-$ms repair --quiet --skeleton="$out/walk.bvh" --skeleton_units=cm --markers="$out/walk_markers.c3d" \
+echo; echo "== 12. repair: damage the markers, find the broken intervals against a robust reference, refill"
+$ms corrupt --markers="$out/walk_markers.c3d" --out="$out/walk_markers_damaged.c3d" \
+  --mask_out="$out/walk_damage.csv" --gaps=6 --swaps=1
+$ms repair --quiet --skeleton="$out/walk.bvh" --skeleton_units=cm --markers="$out/walk_markers_damaged.c3d" \
   --markerset="$out/calibrated_markerset.json" --out_markers="$out/walk_markers_repaired.c3d" \
   --report="$out/repair.json" | head -1
+echo "-- evaluate: repair against linear, polynomial, PCA and reference-only fills on the same damage"
+$ms evaluate --quiet --skeleton="$out/walk.bvh" --skeleton_units=cm --markers="$out/walk_markers.c3d" \
+  --markerset="$out/calibrated_markerset.json" --gaps=6 --swaps=1 --report="$out/evaluate.json" | head -11
 
 echo
 echo "Done. Outputs in $out/:"

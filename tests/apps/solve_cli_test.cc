@@ -141,5 +141,26 @@ TEST_F(SolveCli, CorruptThenRepair) {
   EXPECT_EQ(testing::RunCli("corrupt --markers=" + bad + " --out=" + bad, &output), 1);
 }
 
+TEST_F(SolveCli, EvaluatePrintsTheTableAndTheReport) {
+  const std::string report = testing::TempPath("evaluate.json"), csv = testing::TempPath("evaluate.csv");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("evaluate --quiet --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + markers_ +
+                            " --markerset=" + set_ + " --gaps=3 --gap_min=5 --gap_max=10 --trim_max=5" +
+                            " --report=" + report + " --table_csv=" + csv, &output), 0) << output;
+  for (const char* method : {"| original |", "| polynomial |", "| linear |", "| pca |", "| reference only |",
+                             "| ours |"}) {
+    EXPECT_THAT(output, HasSubstr(method));
+  }
+  EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"position_error_ratio_to_ours\""));
+  EXPECT_THAT(testing::ReadTextFile(csv), HasSubstr("trial,seed,method,joint_position_cm"));
+  // Bad flags give one line and exit code 1.
+  EXPECT_EQ(testing::RunCli("evaluate --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + markers_ +
+                            " --markerset=" + set_ + " --gap_min=0", &output), 1);
+  EXPECT_THAT(output, HasSubstr("--gap_min"));
+  EXPECT_EQ(testing::RunCli("evaluate --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + markers_ +
+                            " --markerset=" + set_ + " --reference=magic", &output), 1);
+  EXPECT_THAT(output, HasSubstr("--reference"));
+}
+
 }  // namespace
 }  // namespace mocapsolve
