@@ -17,13 +17,14 @@ extern const Command kBlendCommand;
 extern const Command kRepairCommand;
 extern const Command kCorruptCommand;
 extern const Command kEvaluateCommand;
+extern const Command kFitSkeletonCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
                                                 kGenerateCommand, kBenchCommand,
                                                 kSolveCommand, kRepairCommand, kCorruptCommand,
                                                 kEvaluateCommand,
-                                                kMarkersCommand, kCalibrateCommand,
+                                                kMarkersCommand, kCalibrateCommand, kFitSkeletonCommand,
                                                 kFilterCommand, kBandsCommand, kBlendCommand};
   return commands;
 }

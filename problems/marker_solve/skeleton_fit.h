@@ -1,0 +1,61 @@
+// Skeleton fitting: bone lengths and marker offsets of a subject from its markers alone,
+// for captures that come without a skeleton (issue 4's natural-gap takes).
+//
+// Alternation (as subject calibration in commercial solvers):
+//   1. poses: the per-frame solve of the markers on the current skeleton (SolveSequence);
+//   2. lengths and offsets: every marker is linear in the bone-length scales s_a
+//      (offset_a <- s_a * offset_a) and its offsets z_mk at the current rotations:
+//        x_m(f) = t(f) + sum_k w_mk ( sum_{a in path(j_mk), a != root} R_parent(a)(f) s_a o_a
+//                                    + R_{j_mk}(f) z_mk )
+//      One Gauss-Newton step on (s, z) with every frame's pose (root translation and
+//      rotation dofs) eliminated to first order (a Schur complement per frame), so the
+//      step knows the poses will follow; plain alternation with the rotations held
+//      converges linearly, slowly where lengths and offsets trade off. The step is
+//      damped (Levenberg-Marquardt) and kept only if the pose solve on the new skeleton
+//      fits the markers better; otherwise the damping grows. A ridge of
+//      relative weight `scale_ridge` damps the scale step, so bones no marker measures
+//      keep their length; scales are clamped to [min_scale, max_scale] per step.
+// With `symmetric`, a left and a right bone share one scale (names that differ only in a
+// leading l/r or Left/Right, any case: lfemur/rfemur, LeftUpLeg/RightUpLeg), which
+// halves the unknowns and keeps a limb from growing to make up for its marker offsets.
+// End sites are scaled with their joint's bone (the mean scale of the joint's children,
+// else its own). Frames are subsampled (every `frame_step`-th) for step 2.
+#ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SKELETON_FIT_H_
+#define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SKELETON_FIT_H_
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinematics/marker_set.h"
+#include "kinematics/motion.h"
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+#include "problems/marker_solve/marker_frame_solver.h"
+
+namespace mocapsolve {
+
+struct SkeletonFitOptions {
+  int iterations = 6;
+  int frame_step = 4;
+  double scale_ridge = 1e-3;  // Relative to the largest diagonal entry of the scales' block.
+  bool symmetric = true;
+  double min_scale = 0.5, max_scale = 2.0;
+};
+
+struct SkeletonFitReport {
+  std::vector<double> rms;          // Marker RMS before and after each iteration (skeleton units).
+  std::vector<double> bone_scales;  // Per joint: its offset's overall scale (1 for the root).
+};
+
+// observed[f][m] in skeleton units (marker_observations.h). Writes the fitted skeleton
+// and marker set, and the motion solved on them (one more pose solve after the last fit).
+Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers,
+                            const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                            const MarkerSolveOptions& solve_options, const SkeletonFitOptions& options,
+                            Skeleton* fitted_skeleton, MarkerSet* fitted_markers, Motion* motion,
+                            SkeletonFitReport* report);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SKELETON_FIT_H_
