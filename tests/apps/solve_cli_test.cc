@@ -162,5 +162,20 @@ TEST_F(SolveCli, EvaluatePrintsTheTableAndTheReport) {
   EXPECT_THAT(output, HasSubstr("--reference"));
 }
 
+TEST_F(SolveCli, FitSkeletonWritesTheSkeletonAndTheMarkerSet) {
+  const std::string bvh = testing::TempPath("fitted.bvh"), set = testing::TempPath("fitted.json");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("fit_skeleton --quiet --solver=dls --fit_iterations=2 --skeleton=" + demo_ +
+                            " --skeleton_units=cm --markers=" + markers_ + " --markerset=" + set_ + " --out=" + bvh +
+                            " --out_markerset=" + set, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("marker RMS (mm) by iteration"));
+  // The fitted pair solves the markers again.
+  ASSERT_EQ(testing::RunCli("solve --quiet --skeleton=" + bvh + " --skeleton_units=cm --markers=" + markers_ +
+                            " --markerset=" + set + " --out=" + testing::TempPath("refit.bvh"), &output), 0) << output;
+  EXPECT_EQ(testing::RunCli("fit_skeleton --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + markers_ +
+                            " --markerset=" + set_ + " --out=" + bvh + " --out_markerset=" + bvh, &output), 1);
+  EXPECT_THAT(output, HasSubstr("expected a .json"));
+}
+
 }  // namespace
 }  // namespace mocapsolve
