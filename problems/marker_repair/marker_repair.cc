@@ -77,25 +77,27 @@ bool SameSample(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 // unchanged, warm-started and pulled from a pose equal to naive's previous one, has
 // naive's solution. After a changed frame the solve goes on until it rejoins naive
 // (joint positions within `tolerance`).
-Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                            const Observations& repaired, const Motion& naive,
-                            const MarkerSolveOptions& options, double tolerance, Motion* motion,
-                            int* resolved) {
-  *motion = naive;
-  *resolved = 0;
+// Frames [begin, end) of step 7; motion->frames[begin - 1] (or naive's first frame) is
+// the previous pose. Returns the number of frames solved.
+int ResolveChangedRange(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
+                        const Observations& repaired, const Motion& naive, const MarkerSolveOptions& options,
+                        double tolerance, size_t begin, size_t end, Motion* motion) {
+  int resolved = 0;
   MarkerFrameSolver solver(skeleton, markers, options);
   FkData fk(skeleton), fk_naive(skeleton);
   bool in_sync = true;
-  for (size_t f = 0; f < repaired.size(); ++f) {
+  for (size_t f = begin; f < end; ++f) {
     bool changed = false;
     for (int m = 0; m < markers.num_markers() && !changed; ++m) {
       changed = !SameSample(repaired[f][m], observed[f][m]);
     }
     if (!changed && in_sync) continue;
-    Pose pose = f > 0 ? motion->frames[f - 1] : naive.frames[0];
+    // The previous pose; at the start of a range, naive's (the other range may be
+    // writing the frame before it).
+    Pose pose = f > begin ? motion->frames[f - 1] : naive.frames[begin > 0 ? begin - 1 : 0];
     FrameSolveReport frame;
     if (solver.Solve(repaired[f], &pose, &frame).ok()) motion->frames[f] = pose;
-    ++*resolved;
+    ++resolved;
     in_sync = false;
     if (!changed) {
       ForwardKinematics(skeleton, motion->frames[f], &fk);
@@ -108,6 +110,27 @@ Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, 
       if (in_sync) motion->frames[f] = naive.frames[f];
     }
   }
+  return resolved;
+}
+
+// With two threads the clip is solved in two halves; the second starts from naive's pose
+// before its first frame, as if the frames before it had rejoined naive.
+Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
+                            const Observations& repaired, const Motion& naive,
+                            const MarkerSolveOptions& options, double tolerance, bool parallel, Motion* motion,
+                            int* resolved) {
+  *motion = naive;
+  const size_t n = repaired.size(), half = parallel && n >= 64 ? n / 2 : n;
+  int second = 0;
+  std::thread worker;
+  if (half < n) {
+    worker = std::thread([&] {
+      second = ResolveChangedRange(skeleton, markers, observed, repaired, naive, options, tolerance, half, n, motion);
+    });
+  }
+  *resolved = ResolveChangedRange(skeleton, markers, observed, repaired, naive, options, tolerance, 0, half, motion);
+  if (worker.joinable()) worker.join();
+  *resolved += second;
   MakeSignContinuous(motion);
   return Status::Ok();
 }
@@ -254,9 +277,9 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   *repaired = TrajectoryObservations(x);
   clock.Lap("Marker Filling");
   // 7. Re-solve.
-  const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-4;
+  const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
   status = ResolveChangedFrames(skeleton, markers, observed, *repaired, naive, options.naive, tolerance,
-                                motion, &report->resolved_frames);
+                                options.parallel, motion, &report->resolved_frames);
   if (!status.ok()) return status;
   report->repaired_rms = RmsOver(skeleton, markers, *motion, *repaired);
   clock.Lap("IK (re-solve)");

@@ -17,7 +17,9 @@
 //   6. Marker filling (Algorithm 3): Hermite offsets on the reference paths.
 //   7. Re-solve Y- on the filled markers: only the frames whose markers changed, and the
 //      frames after each until the solution rejoins Y (within resync_tolerance), since
-//      elsewhere the per-frame problem, its warm start and its prior are Y's own.
+//      elsewhere the per-frame problem, its warm start and its prior are Y's own. With
+//      `parallel`, the two halves of the clip on two threads (the second half starts
+//      from Y's pose before it).
 // Samples never marked bad are returned unchanged. Lengths are skeleton units
 // (observations in the skeleton's frame, marker_observations.h).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_MARKER_REPAIR_H_
@@ -43,7 +45,7 @@ struct RepairOptions {
   ReferenceKind reference_kind = ReferenceKind::kClip;
   ClipSolveOptions reference;      // Step 2, kClip (give it a robust loss).
   MarkerSolveOptions tracker;      // Step 2, kTracker (a robust loss and a prior).
-  bool parallel = true;            // kTracker: steps 1 and 2 on two threads.
+  bool parallel = true;            // Two threads: steps 1 and 2 (kTracker), step 7.
   double resync_tolerance = 0.0;   // Skeleton units (joint positions); <= 0: dp_max * 1e-4.
   double dp_max = 0.0;             // Joint position threshold, skeleton units.
   double dr_max_rad = 0.0;         // Joint rotation threshold.

@@ -90,8 +90,9 @@ void CheckRepair(ReferenceKind reference_kind) {
       worst = std::max(worst, (a.world_positions[j] - b.world_positions[j]).norm());
     }
   }
-  // Both stop at the same relative cost change; 1e-2 mm apart at most (cm units).
-  EXPECT_LT(worst, 1e-3);
+  // The re-solve rejoins the naive solve within dp_max * 1e-3 (0.1 mm) and starts its
+  // second half from the naive pose: 0.1 mm apart at most (cm units).
+  EXPECT_LT(worst, 1e-2);
 }
 
 TEST(MarkerRepair, RefillsGapsAndReplacesAFlyingMarkerWithTheClipReference) {
