@@ -43,6 +43,7 @@ bool FalloffOptions::IsValid(std::string* error) const {
   else if (region_end < -1) *error = "region: end must be >= 0 (or -1 for the clip's end)";
   else if (diffusion_steps < 1) *error = "diffusion_steps: expected >= 1";
   else if (knn < 1) *error = "knn: expected >= 1";
+  else if (isomap_knn < 1) *error = "isomap_knn: expected >= 1";
   else if (sparse_above_frames < 0) *error = "sparse_above_frames: expected >= 0";
   else if (kernel == KernelMode::kSparse && eigenpairs == 0) {
     *error = "eigenpairs: 0 (all terms) needs the dense kernel";
@@ -209,7 +210,7 @@ Status ComputeFalloff(const Skeleton& skeleton, const Motion& motion, int frame,
   if (!status.ok()) return status;
   if (method == FalloffMethod::kIsomap) {
     if (n < 2) return Status::Error("motion: a falloff needs at least 2 frames");
-    FalloffFromDistance(GeodesicDistances(PoseNeighbourGraph(features, options.knn), frame), frame,
+    FalloffFromDistance(GeodesicDistances(PoseNeighbourGraph(features, options.isomap_knn), frame), frame,
                         begin, end, falloff);
     falloff->sigma_used = 0.0;
     falloff->eigenpairs_used = 0;

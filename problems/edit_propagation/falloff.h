@@ -43,7 +43,7 @@
 //               psi_k(j) = phi_k(j) / sqrt(pi_j), pi_j = D_jj / sum D (the right
 //               eigenvectors of P, normalized in the stationary measure pi); the same
 //               `eigenpairs` truncation as kGreen (0 = all).
-//   kIsomap:    the geodesic distance itself (Dijkstra over the knn graph with Euclidean
+//   kIsomap:    the geodesic distance itself (Dijkstra over the isomap_knn graph with Euclidean
 //               edge lengths, temporal neighbours always linked), i.e. the distance that
 //               ISOMAP's classical-MDS embedding approximates; no MDS step is done.
 #ifndef MOCAPSOLVE_PROBLEMS_EDIT_PROPAGATION_FALLOFF_H_
@@ -76,7 +76,9 @@ struct FalloffOptions {
   int region_begin = 0;        // Frames [region_begin, region_end); -1 = to the end.
   int region_end = -1;
   int diffusion_steps = 10;    // t for kDiffusion (the paper's Fig. 3 uses 10).
-  int knn = 10;                // Neighbours per frame: sparse kernel and ISOMAP graph.
+  int knn = 30;                // Neighbours per frame of the sparse kernel (10 misses the
+                               // other strides of 16_15: same-phase weight ~0.5).
+  int isomap_knn = 10;         // Neighbours per frame of the ISOMAP graph.
   KernelMode kernel = KernelMode::kAuto;
   int sparse_above_frames = 1000;  // kAuto: sparse kernel for clips longer than this.
 
