@@ -12,10 +12,6 @@
 namespace mocapsolve {
 namespace {
 
-// Eigenvalues of L at or below this are the null space (lambda_0 of each connected
-// component) and are left out of eq. 3's sum.
-constexpr double kNullEigenvalue = 1e-10;
-
 }  // namespace
 
 bool ParseFalloffMethod(const std::string& text, FalloffMethod* method) {
@@ -45,6 +41,7 @@ bool FalloffOptions::IsValid(std::string* error) const {
   else if (knn < 1) *error = "knn: expected >= 1";
   else if (isomap_knn < 1) *error = "isomap_knn: expected >= 1";
   else if (sparse_above_frames < 0) *error = "sparse_above_frames: expected >= 0";
+  else if (!(null_eigenvalue >= 0.0) || !(null_eigenvalue < 1.0)) *error = "null_eigenvalue: expected [0, 1)";
   else if (kernel == KernelMode::kSparse && eigenpairs == 0) {
     *error = "eigenpairs: 0 (all terms) needs the dense kernel";
   } else {
@@ -74,8 +71,9 @@ Status GreenFunction::Build(const Eigen::MatrixXd& features, const FalloffOption
   }
   Status status = Status::Ok();
   if (sparse_) {
-    // m kept terms plus lambda_0; Lanczos needs count < n.
-    const int count = std::min(options.eigenpairs + 1, n - 1);
+    // m kept terms plus lambda_0 and up to 4 more null-space (island) eigenvalues;
+    // Lanczos needs count < n.
+    const int count = std::min(options.eigenpairs + 5, n - 1);
     status = SparseLaplacianEigenpairs(SparsePoseKernel(PoseNeighbourGraph(features, options.knn), sigma_),
                                        count, 0, &eigen_);
   } else {
@@ -86,7 +84,7 @@ Status GreenFunction::Build(const Eigen::MatrixXd& features, const FalloffOption
   std::vector<int> kept;
   const int limit = options.eigenpairs == 0 ? n : options.eigenpairs;
   for (int k = 0; k < eigen_.eigenvalues.size() && static_cast<int>(kept.size()) < limit; ++k) {
-    if (eigen_.eigenvalues[k] > kNullEigenvalue) kept.push_back(k);
+    if (eigen_.eigenvalues[k] > options.null_eigenvalue) kept.push_back(k);
   }
   if (kept.empty()) return Status::Error("eigenpairs: no nonzero eigenvalue (every frame isolated?); widen sigma");
   const int m = static_cast<int>(kept.size());

@@ -22,6 +22,12 @@
 // sigma_scale = 4 by default (on CMU 16_15 and 131_01 this lets 5-20 eigenpairs reach the
 // same phase of the other strides with weight >= 0.8 while the opposite phase stays low).
 //
+// Islands: a run of frames whose poses are far from all others (a data glitch, e.g. a
+// finger joint flipping by ~180 degrees for a few frames in CMU 131_01) is nearly a
+// separate graph component: lambda_k ~ 1e-11 with phi_k its indicator, and that one term
+// would swamp the sum. Eigenvalues <= null_eigenvalue (default 1e-6) are therefore treated
+// as the null space, like lambda_0, and left out.
+//
 // Kernel: dense for short clips; above `sparse_above_frames` (or with sparse = kSparse)
 // each frame keeps only its `knn` nearest poses plus its temporal neighbours i-1, i+1
 // (symmetrized), and the smallest eigenpairs of L come from Spectra (largest of A).
@@ -81,6 +87,9 @@ struct FalloffOptions {
   int isomap_knn = 10;         // Neighbours per frame of the ISOMAP graph.
   KernelMode kernel = KernelMode::kAuto;
   int sparse_above_frames = 1000;  // kAuto: sparse kernel for clips longer than this.
+  // Eigenvalues of L at or below this count as the null space and are left out of eq. 3
+  // (see "Islands" above).
+  double null_eigenvalue = 1e-6;
 
   // Message names the bad field.
   bool IsValid(std::string* error) const;

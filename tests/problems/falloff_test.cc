@@ -242,6 +242,30 @@ TEST(FalloffAnalysis, PeriodKinkAndEnds) {
   EXPECT_EQ(FalloffEnd(corner, 5, -1, 0.1), -1);
 }
 
+// A glitch island (one joint flipped by 180 degrees for 4 frames, as CMU 131_01's thumb)
+// is nearly its own graph component; its tiny eigenvalue must not swamp eq. 3's sum.
+TEST(Falloff, GlitchIslandDoesNotSwampTheSum) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  Motion motion = NoisyWalk(skeleton, 120, 30.0, 8);
+  const int j = skeleton.FindJoint("LeftForeArm");
+  ASSERT_GE(j, 0);
+  for (int i = 70; i < 74; ++i) {
+    motion.frames[i].rotations[j] = motion.frames[i].rotations[j] * Eigen::Quaterniond(0.0, 1.0, 0.0, 0.0);
+  }
+  FalloffOptions options;
+  options.region_end = 66;  // Normalize away from the island.
+  Falloff robust, swamped;
+  ASSERT_TRUE(ComputeFalloff(skeleton, motion, 20, FalloffMethod::kGreen, options, &robust).ok());
+  options.null_eigenvalue = 0.0;
+  ASSERT_TRUE(ComputeFalloff(skeleton, motion, 20, FalloffMethod::kGreen, options, &swamped).ok());
+  // Half a demo cycle (16 frames) from the edit: the opposite phase.
+  EXPECT_LT(robust.weight[36], 0.3);
+  EXPECT_LT(robust.weight[4], 0.3);
+  EXPECT_GT(robust.weight[53], 0.7);  // The same phase, one cycle (33 frames) later.
+  // Without the threshold the island's indicator term flattens the falloff: the control.
+  EXPECT_GT(swamped.weight[36], robust.weight[36] + 0.3);
+}
+
 // The criterion on a real periodic walk: an edit reaches the same phase of the
 // other cycles (weight >= 0.8) and leaves the opposite phase (<= 0.2).
 TEST(Falloff, Walk1615ReachesSamePhaseOfOtherStrides) {
