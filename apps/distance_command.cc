@@ -237,6 +237,29 @@ Status RunDistance(const std::vector<std::string>& arguments) {
     std::printf("\n");
   }
   report.Add("methods", per_method);
+  std::vector<JsonObject> per_sigma;
+  for (size_t s = 0; s < sweep.size(); ++s) {
+    const Falloff& f = swept[s];
+    double min_same = 1.0, max_opposite = 0.0;
+    for (int j : phases.same) min_same = std::min(min_same, f.weight[j]);
+    for (int j : phases.opposite) max_opposite = std::max(max_opposite, f.weight[j]);
+    JsonObject o;
+    o.Add("sigma", sweep[s]).Add("eigenpairs_used", f.eigenpairs_used)
+        .Add("second_difference", SecondDifference(f.weight, frame))
+        .Add("kink_ratio", KinkRatio(f.weight, frame))
+        .Add("end_before_0.05", FalloffEnd(f.weight, frame, -1, 0.05))
+        .Add("end_after_0.05", FalloffEnd(f.weight, frame, +1, 0.05));
+    if (!phases.same.empty()) o.Add("min_same_phase_weight", min_same);
+    if (!phases.opposite.empty()) o.Add("max_opposite_phase_weight", max_opposite);
+    per_sigma.push_back(o);
+    std::printf("sigma %-7.4g weight < 0.05 at frames %d/%d", sweep[s], FalloffEnd(f.weight, frame, -1, 0.05),
+                FalloffEnd(f.weight, frame, +1, 0.05));
+    if (!phases.same.empty()) {
+      std::printf("; same phase min weight %.3f, opposite phase max %.3f", min_same, max_opposite);
+    }
+    std::printf("\n");
+  }
+  if (!sweep.empty()) report.Add("sweep", per_sigma);
   if (spectral) {
     std::printf("sigma %.4g (%s), %d eigenpairs, %s kernel; features %.1f ms, build %.1f ms\n",
                 green.sigma_used(), options.sigma > 0.0 ? "given" : "auto", green.eigenpairs_used(),
