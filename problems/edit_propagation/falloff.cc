@@ -191,43 +191,59 @@ void FalloffFromDistance(const Eigen::VectorXd& distance, int frame, int region_
   falloff->weight = 1.0 - falloff->distance.array();
 }
 
-Status ComputeFalloff(const Skeleton& skeleton, const Motion& motion, int frame,
-                      FalloffMethod method, const FalloffOptions& options, Falloff* falloff) {
+Status ComputeFalloffs(const Skeleton& skeleton, const Motion& motion,
+                       const std::vector<int>& frames, FalloffMethod method,
+                       const FalloffOptions& options, std::vector<Falloff>* falloffs) {
   std::string error;
   if (!options.IsValid(&error)) return Status::Error(error);
   Eigen::MatrixXd features;
   Status status = PoseFeatures(skeleton, motion, options.features, &features);
   if (!status.ok()) return status;
   const int n = static_cast<int>(features.rows());
-  if (frame < 0 || frame >= n) {
-    return Status::Error("frame: " + std::to_string(frame) + " is outside the clip's 0.." +
-                         std::to_string(n - 1));
-  }
   int begin = 0, end = 0;
-  status = ResolveRegion(n, frame, options.region_begin, options.region_end, &begin, &end);
-  if (!status.ok()) return status;
+  for (int frame : frames) {
+    if (frame < 0 || frame >= n) {
+      return Status::Error("frame: " + std::to_string(frame) + " is outside the clip's 0.." +
+                           std::to_string(n - 1));
+    }
+    status = ResolveRegion(n, frame, options.region_begin, options.region_end, &begin, &end);
+    if (!status.ok()) return status;
+  }
+  falloffs->assign(frames.size(), Falloff());
+  if (frames.empty()) return Status::Ok();
   if (method == FalloffMethod::kIsomap) {
-    if (n < 2) return Status::Error("motion: a falloff needs at least 2 frames");
-    FalloffFromDistance(GeodesicDistances(PoseNeighbourGraph(features, options.isomap_knn), frame), frame,
-                        begin, end, falloff);
-    falloff->sigma_used = 0.0;
-    falloff->eigenpairs_used = 0;
-    falloff->sparse_used = true;
+    const auto graph = PoseNeighbourGraph(features, options.isomap_knn);
+    for (size_t e = 0; e < frames.size(); ++e) {
+      FalloffFromDistance(GeodesicDistances(graph, frames[e]), frames[e], begin, end, &(*falloffs)[e]);
+      (*falloffs)[e].sparse_used = true;
+    }
     return Status::Ok();
   }
   GreenFunction green;
   status = green.Build(features, options);
   if (!status.ok()) return status;
-  if (method == FalloffMethod::kGreen) {
-    green.Weights(frame, begin, end, falloff);
-  } else {
-    Eigen::VectorXd d;
-    green.DiffusionDistance(frame, options.diffusion_steps, &d);
-    FalloffFromDistance(d, frame, begin, end, falloff);
-    falloff->sigma_used = green.sigma_used();
-    falloff->eigenpairs_used = green.eigenpairs_used();
-    falloff->sparse_used = green.sparse_used();
+  for (size_t e = 0; e < frames.size(); ++e) {
+    Falloff* falloff = &(*falloffs)[e];
+    if (method == FalloffMethod::kGreen) {
+      green.Weights(frames[e], begin, end, falloff);
+    } else {
+      Eigen::VectorXd d;
+      green.DiffusionDistance(frames[e], options.diffusion_steps, &d);
+      FalloffFromDistance(d, frames[e], begin, end, falloff);
+      falloff->sigma_used = green.sigma_used();
+      falloff->eigenpairs_used = green.eigenpairs_used();
+      falloff->sparse_used = green.sparse_used();
+    }
   }
+  return Status::Ok();
+}
+
+Status ComputeFalloff(const Skeleton& skeleton, const Motion& motion, int frame,
+                      FalloffMethod method, const FalloffOptions& options, Falloff* falloff) {
+  std::vector<Falloff> falloffs;
+  Status status = ComputeFalloffs(skeleton, motion, {frame}, method, options, &falloffs);
+  if (!status.ok()) return status;
+  *falloff = std::move(falloffs[0]);
   return Status::Ok();
 }
 

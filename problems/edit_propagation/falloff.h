@@ -65,6 +65,7 @@
 #define MOCAPSOLVE_PROBLEMS_EDIT_PROPAGATION_FALLOFF_H_
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -162,6 +163,12 @@ void FalloffFromDistance(const Eigen::VectorXd& distance, int frame, int region_
 // The whole pipeline for one edit: features, kernel, eigenpairs, row, weights.
 Status ComputeFalloff(const Skeleton& skeleton, const Motion& motion, int frame,
                       FalloffMethod method, const FalloffOptions& options, Falloff* falloff);
+
+// The same for several edits of one clip, building the features, graph and eigenpairs
+// once: (*falloffs)[e] is the falloff of frames[e]. Each frame must lie in the region.
+Status ComputeFalloffs(const Skeleton& skeleton, const Motion& motion,
+                       const std::vector<int>& frames, FalloffMethod method,
+                       const FalloffOptions& options, std::vector<Falloff>* falloffs);
 
 }  // namespace mocapsolve
 

@@ -147,6 +147,20 @@ TEST(Falloff, GreenFunctionRowsMatchComputeFalloff) {
   EXPECT_LT((once.weight - reused.weight).cwiseAbs().maxCoeff(), 1e-12);
   EXPECT_EQ(once.eigenpairs_used, 10);
   EXPECT_EQ(once.sigma_used, green.sigma_used());
+
+  // Several edits at once: the same falloffs as one at a time, for every method.
+  for (FalloffMethod method : {FalloffMethod::kGreen, FalloffMethod::kDiffusion, FalloffMethod::kIsomap}) {
+    std::vector<Falloff> many;
+    ASSERT_TRUE(ComputeFalloffs(skeleton, motion, {3, 17, 40}, method, FalloffOptions(), &many).ok());
+    ASSERT_EQ(many.size(), 3u);
+    for (int e = 0; e < 3; ++e) {
+      Falloff single;
+      ASSERT_TRUE(ComputeFalloff(skeleton, motion, std::vector<int>{3, 17, 40}[e], method, FalloffOptions(), &single).ok());
+      EXPECT_LT((many[e].weight - single.weight).cwiseAbs().maxCoeff(), 1e-12) << FalloffMethodName(method) << e;
+    }
+  }
+  std::vector<Falloff> many;
+  EXPECT_FALSE(ComputeFalloffs(skeleton, motion, {3, 60}, FalloffMethod::kGreen, FalloffOptions(), &many).ok());
 }
 
 TEST(Falloff, RejectsBadInput) {
