@@ -3,8 +3,11 @@
 // three methods, bad input, pose features, and the periodic-walk criterion on CMU 16_15.
 #include "problems/edit_propagation/falloff.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include <Eigen/SVD>
 #include <gtest/gtest.h>
@@ -278,6 +281,46 @@ TEST(Falloff, GlitchIslandDoesNotSwampTheSum) {
   EXPECT_GT(robust.weight[53], 0.7);  // The same phase, one cycle (33 frames) later.
   // Without the threshold the island's indicator term flattens the falloff: the control.
   EXPECT_GT(swamped.weight[36], robust.weight[36] + 0.3);
+}
+
+// The kNN search runs in the leading principal subspace and reranks; on a real clip
+// (93-D pose vectors) it must find nearly all of the exact nearest neighbours.
+TEST(PoseNeighbourGraph, ApproximateSearchFindsTheNearestPoses) {
+  MOCAPSOLVE_DATA_FILE(path, "bvh/16_15.bvh");
+  Skeleton skeleton;
+  Motion motion;
+  ASSERT_TRUE(ReadMotionFile(path, MotionFileOptions(), &skeleton, &motion).ok());
+  Eigen::MatrixXd features;
+  ASSERT_TRUE(PoseFeatures(skeleton, motion, PoseFeatureOptions(), &features).ok());
+  ASSERT_GT(features.cols(), 12);  // So the projected search is the one exercised.
+  const int n = static_cast<int>(features.rows()), knn = 10;
+  const auto graph = PoseNeighbourGraph(features, knn);
+  int found = 0;
+  for (int i = 0; i < n; ++i) {
+    std::vector<std::pair<double, int>> exact;
+    for (int j = 0; j < n; ++j) {
+      if (j != i) exact.emplace_back((features.row(i) - features.row(j)).squaredNorm(), j);
+    }
+    std::partial_sort(exact.begin(), exact.begin() + knn, exact.end());
+    for (int r = 0; r < knn; ++r) {
+      for (const GraphEdge& e : graph[i]) found += e.neighbour == exact[r].second;
+    }
+    // Symmetric, sorted, no self, lengths are the pose distances.
+    for (size_t r = 0; r < graph[i].size(); ++r) {
+      const GraphEdge& e = graph[i][r];
+      ASSERT_NE(e.neighbour, i);
+      if (r > 0) {
+        ASSERT_LT(graph[i][r - 1].neighbour, e.neighbour);
+      }
+      EXPECT_NEAR(e.distance, (features.row(i) - features.row(e.neighbour)).norm(), 1e-12);
+      bool back = false;
+      for (const GraphEdge& f : graph[e.neighbour]) back = back || f.neighbour == i;
+      ASSERT_TRUE(back) << i << " -> " << e.neighbour;
+    }
+  }
+  const double recall = static_cast<double>(found) / (n * knn);
+  EXPECT_GT(recall, 0.95) << recall;
+  RecordProperty("recall", std::to_string(recall));
 }
 
 // The criterion on a real periodic walk: an edit reaches the same phase of the
