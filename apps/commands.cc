@@ -18,6 +18,7 @@ extern const Command kRepairCommand;
 extern const Command kCorruptCommand;
 extern const Command kEvaluateCommand;
 extern const Command kFitSkeletonCommand;
+extern const Command kDistanceCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
@@ -25,7 +26,8 @@ const std::vector<Command>& AllCommands() {
                                                 kSolveCommand, kRepairCommand, kCorruptCommand,
                                                 kEvaluateCommand,
                                                 kMarkersCommand, kCalibrateCommand, kFitSkeletonCommand,
-                                                kFilterCommand, kBandsCommand, kBlendCommand};
+                                                kFilterCommand, kBandsCommand, kBlendCommand,
+                                                kDistanceCommand};
   return commands;
 }
 
