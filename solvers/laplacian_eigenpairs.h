@@ -8,9 +8,8 @@
 //
 // phi_0 is D^1/2 1 / |D^1/2 1| for a connected graph. Dense: Eigen's
 // SelfAdjointEigenSolver on A (all N pairs, or the first `count`). Sparse: Spectra's
-// Lanczos (SymEigsSolver with SparseSymMatProd) for the `count` largest eigenvalues of A,
-// i.e. the smallest of L, on A + I (shifted to be positive semi-definite so that "largest"
-// means largest algebraic and magnitude alike).
+// Lanczos (SymEigsSolver with SparseSymMatProd, SortRule::LargestAlge) for the `count`
+// largest algebraic eigenvalues mu_k of A, i.e. the smallest lambda_k = 1 - mu_k of L.
 #ifndef MOCAPSOLVE_SOLVERS_LAPLACIAN_EIGENPAIRS_H_
 #define MOCAPSOLVE_SOLVERS_LAPLACIAN_EIGENPAIRS_H_
 

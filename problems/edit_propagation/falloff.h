@@ -40,7 +40,9 @@
 //   kDiffusion: diffusion distance after t = diffusion_steps steps of the random walk
 //               P = D^-1 K (Coifman and Lafon 2006), from the same eigenpairs:
 //               d_j^2 = sum_{k>0} mu_k^(2t) (psi_k(i) - psi_k(j))^2, mu_k = 1 - lambda_k,
-//               psi_k = phi_k / sqrt(D_kk / sum D) (the right eigenvectors of P).
+//               psi_k(j) = phi_k(j) / sqrt(pi_j), pi_j = D_jj / sum D (the right
+//               eigenvectors of P, normalized in the stationary measure pi); the same
+//               `eigenpairs` truncation as kGreen (0 = all).
 //   kIsomap:    the geodesic distance itself (Dijkstra over the knn graph with Euclidean
 //               edge lengths, temporal neighbours always linked), i.e. the distance that
 //               ISOMAP's classical-MDS embedding approximates; no MDS step is done.
