@@ -17,6 +17,7 @@ extern const Command kBlendCommand;
 extern const Command kRepairCommand;
 extern const Command kCorruptCommand;
 extern const Command kDistanceCommand;
+extern const Command kPropagateCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
@@ -24,7 +25,8 @@ const std::vector<Command>& AllCommands() {
                                                 kSolveCommand, kRepairCommand, kCorruptCommand,
                                                 kMarkersCommand, kCalibrateCommand,
                                                 kFilterCommand, kBandsCommand, kBlendCommand,
-                                                kDistanceCommand};
+                                                kDistanceCommand,
+                                                kPropagateCommand};
   return commands;
 }
 

@@ -9,58 +9,23 @@
 #include <glog/logging.h>
 
 #include "problems/edit_propagation/harmonic_residual.h"
+#include "problems/edit_propagation/pose_kernel.h"
 
 namespace mocapsolve {
-
-namespace {
-
-// For each row of `features`, its `knn` nearest other rows (Euclidean), by blocks of the
-// Gram matrix: |a - b|^2 = |a|^2 + |b|^2 - 2 a.b.
-std::vector<std::vector<std::pair<double, int>>> NearestRows(const Eigen::MatrixXd& features, int knn) {
-  const int n = static_cast<int>(features.rows());
-  knn = std::min(knn, n - 1);
-  const Eigen::VectorXd norms = features.rowwise().squaredNorm();
-  std::vector<std::vector<std::pair<double, int>>> nearest(n);
-  constexpr int kBlock = 256;
-  std::vector<std::pair<double, int>> row;
-  for (int begin = 0; begin < n; begin += kBlock) {
-    const int size = std::min(kBlock, n - begin);
-    const Eigen::MatrixXd gram = features.middleRows(begin, size) * features.transpose();
-    for (int r = 0; r < size; ++r) {
-      const int i = begin + r;
-      row.clear();
-      for (int j = 0; j < n; ++j) {
-        if (j != i) row.emplace_back(std::max(0.0, norms[i] + norms[j] - 2.0 * gram(r, j)), j);
-      }
-      std::partial_sort(row.begin(), row.begin() + knn, row.end());
-      nearest[i].assign(row.begin(), row.begin() + knn);
-    }
-  }
-  return nearest;
-}
-
-}  // namespace
 
 std::vector<WeightedEdge> PoseGraphEdges(const Eigen::MatrixXd& features, int knn, double sigma) {
   CHECK_GT(sigma, 0.0);
   CHECK_GE(knn, 1);
-  const int n = static_cast<int>(features.rows());
-  std::vector<std::pair<int, int>> pairs;
-  if (n >= 2) {
-    const auto nearest = NearestRows(features, knn);
-    for (int i = 0; i < n; ++i) {
-      for (const auto& [distance_sq, j] : nearest[i]) pairs.emplace_back(std::min(i, j), std::max(i, j));
-      if (i + 1 < n) pairs.emplace_back(i, i + 1);  // Temporal neighbours: one connected chain.
-    }
-  }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   std::vector<WeightedEdge> edges;
-  edges.reserve(pairs.size());
+  if (features.rows() < 2) return edges;
+  const std::vector<std::vector<GraphEdge>> graph = PoseNeighbourGraph(features, knn);
   const double scale = 1.0 / (2.0 * sigma * sigma);
-  for (const auto& [a, b] : pairs) {
-    const double d2 = (features.row(a) - features.row(b)).squaredNorm();
-    edges.push_back({a, b, std::max(1e-300, std::exp(-d2 * scale))});
+  for (int a = 0; a < static_cast<int>(graph.size()); ++a) {
+    for (const GraphEdge& edge : graph[a]) {
+      if (edge.neighbour <= a) continue;  // Symmetrized: each edge once.
+      edges.push_back({a, edge.neighbour,
+                       std::max(1e-300, std::exp(-edge.distance * edge.distance * scale))});
+    }
   }
   return edges;
 }
@@ -68,6 +33,10 @@ std::vector<WeightedEdge> PoseGraphEdges(const Eigen::MatrixXd& features, int kn
 bool HarmonicOptions::IsValid(std::string* error) const {
   if (max_iterations < 1) {
     *error = "max_iterations must be >= 1";
+    return false;
+  }
+  if (!(ground_weight >= 0.0) || !std::isfinite(ground_weight)) {
+    *error = "ground_weight must be >= 0";
     return false;
   }
   if (num_threads < 1) {
@@ -116,6 +85,15 @@ Status SolveHarmonicFields(int num_frames, const std::vector<WeightedEdge>& edge
   for (const WeightedEdge& edge : edges) {
     if (edge.kernel == 0.0) continue;
     problem.AddResidualBlock(new HarmonicEdgeResidual(edge.kernel), nullptr, &u[edge.a], &u[edge.b]);
+  }
+  // The ground node: one more frame, always labelled 0, linked to every frame.
+  double ground = 0.0;
+  if (options.ground_weight > 0.0) {
+    problem.AddParameterBlock(&ground, 1);
+    problem.SetParameterBlockConstant(&ground);
+    for (int f = 0; f < num_frames; ++f) {
+      problem.AddResidualBlock(new HarmonicEdgeResidual(options.ground_weight), nullptr, &u[f], &ground);
+    }
   }
 
   ceres::Solver::Options solver_options;
@@ -167,6 +145,7 @@ Status SolveHarmonicFields(int num_frames, const std::vector<WeightedEdge>& edge
       gradient[edge.a] += g;
       gradient[edge.b] -= g;
     }
+    for (int f = 0; f < num_frames; ++f) gradient[f] += options.ground_weight * u[f];
     for (int f = 0; f < num_frames; ++f) {
       if (!fixed[f]) local.max_gradient = std::max(local.max_gradient, std::abs(gradient[f]));
     }

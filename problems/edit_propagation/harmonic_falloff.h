@@ -5,18 +5,21 @@
 //   subject to u_l = y_l at the labelled frames l (parameter blocks held constant)
 //
 // over one scalar u per frame. K_ij is the Gaussian pose kernel (Dean et al. 2018, eq. 1)
-// on the edges of the symmetrized kNN graph of the pose vectors (exact neighbours by
-// blocked Gram products) plus the temporal neighbours, so the graph of a clip is connected. The
+// on the edges of the symmetrized kNN graph of the pose vectors plus the temporal
+// neighbours (pose_kernel.h, PoseNeighbourGraph), so the graph of a clip is connected. The
 // optimum solves L_FF u_F = -L_FL y_L with L = D - K the unnormalized graph Laplacian: each
 // free u_i is the K-weighted mean of its neighbours, so 0 <= u <= 1 when the labels are 0
 // or 1 (maximum principle), and the field follows the motion's own geometry: it reaches
 // every frame similar to the edited one (the other strides of a walk) through the kNN
 // edges, and decays toward dissimilar poses.
 //
+// Optionally a ground node labelled 0 is linked to every frame with kernel K_g
+// (HarmonicOptions::ground_weight): the screened energy E + 1/2 K_g sum_i u_i^2.
+//
 // Labels of an edit at frame i: u_i = 1, u = 0 at the other edited frames (each edit gets
 // its own field, so at its own frame only its delta is applied, see pose_edit.h) and at the
-// anchors (the ends of the edit region: a harmonic function with a single label would be
-// the constant 1). Frames outside the region are not in the graph and get weight 0.
+// anchors (`mocapsolve propagate` uses the ends of the edit region without a ground node,
+// none with one: a harmonic function with a single label and no ground is the constant 1). Frames outside the region are not in the graph and get weight 0.
 //
 // The problem is linear; Levenberg-Marquardt with a huge initial trust region (negligible
 // damping) solves it in one Gauss-Newton step, by SPARSE_NORMAL_CHOLESKY on Eigen's sparse
@@ -44,11 +47,16 @@ struct WeightedEdge {
 };
 
 // Edges of the symmetrized kNN + temporal graph of `features` (#frames x D pose vectors,
-// pose_features.h), each once (a < b, sorted), weighted exp(-|p_a - p_b|^2 / (2 sigma^2))
+// pose_features.h), each once (a < b), weighted exp(-|p_a - p_b|^2 / (2 sigma^2))
 // floored at 1e-300 so the temporal chain never breaks numerically. sigma > 0; knn >= 1.
 std::vector<WeightedEdge> PoseGraphEdges(const Eigen::MatrixXd& features, int knn, double sigma);
 
 struct HarmonicOptions {
+  // Kernel weight K_g of an edge from every frame to a "ground" node labelled 0 (the
+  // absorbing node of Zhu et al.'s random-walk reading: at each step the walk is absorbed
+  // with probability K_g / (degree + K_g)), so the field decays away from the edit instead
+  // of spreading almost evenly when the only 0 labels are far away. 0 = off (pure harmonic).
+  double ground_weight = 0.0;
   ceres::SparseLinearAlgebraLibraryType sparse_library = ceres::EIGEN_SPARSE;
   int max_iterations = 10;
   int num_threads = 1;

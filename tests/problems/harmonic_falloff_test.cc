@@ -147,6 +147,25 @@ TEST(HarmonicFalloffTest, MatchesDenseSolveOfTheLaplacianSystem) {
   EXPECT_LT(report.max_gradient, 1e-8);
 }
 
+TEST(HarmonicFalloffTest, GroundNodeMatchesDenseSolveWithAnExtraLabelledNode) {
+  std::mt19937 rng(4);
+  const int n = 150;
+  const Eigen::MatrixXd features = CircleFeatures(n, &rng);
+  const std::vector<WeightedEdge> edges = PoseGraphEdges(features, 6, 0.3);
+  HarmonicOptions options;
+  options.ground_weight = 0.05;
+  std::vector<Eigen::VectorXd> fields;
+  ASSERT_TRUE(HarmonicFalloffs(n, edges, {70}, {}, options, &fields, nullptr).ok());
+  std::vector<WeightedEdge> grounded = edges;
+  for (int f = 0; f < n; ++f) grounded.push_back({f, n, 0.05});
+  const Eigen::VectorXd dense = DenseHarmonic(n + 1, grounded, {{70, 1.0}, {n, 0.0}});
+  // 1e-7: two direct solves of one SPD system.
+  EXPECT_LT((fields[0] - dense.head(n)).cwiseAbs().maxCoeff(), 1e-7);
+  EXPECT_LT(fields[0].maxCoeff(), 1.0 + 1e-12);
+  EXPECT_GT(fields[0].minCoeff(), 0.0);  // Connected to the edit: strictly positive.
+  EXPECT_LT(fields[0][0], 0.5);          // Absorbed far from the edit.
+}
+
 TEST(HarmonicFalloffTest, GraphEdgesAreTheExactSymmetrizedKnnPlusTemporalNeighbours) {
   std::mt19937 rng(11);
   const int n = 300;  // More than one Gram block.
