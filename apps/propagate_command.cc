@@ -285,6 +285,8 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
     status = SolveIkEdit(skeleton, motion, FLAGS_frame, targets, solve, &edit, &ik);
     if (!status.ok()) return status;
     edits.push_back(std::move(edit));
+    std::printf("IK edit at frame %d (%s): %d iterations, max target error %.4g skeleton units\n",
+                FLAGS_frame, FLAGS_solver.c_str(), ik.solve.iterations, ik.max_target_error);
     edit_report.Add("source", "ik_target").Add("ik_target", FLAGS_ik_target)
         .Add("solver", FLAGS_solver).Add("ik_iterations", ik.solve.iterations)
         .Add("ik_max_target_error", ik.max_target_error).Add("ik_final_cost", ik.solve.final_cost);
