@@ -59,6 +59,8 @@ DEFINE_double(contact_height_cm, 5.0, "Contact: foot joint at most this high abo
 DEFINE_double(contact_speed_cm, 20.0, "Contact: foot joint slower than this (cm/s).");
 DEFINE_double(contact_prior_cm, 1.0, "Contact re-solve: cm of foot error worth one radian of "
               "change from the propagated pose (smaller: feet held tighter).");
+DEFINE_double(contact_blend_s, 0.2, "Contact re-solve: seconds over which each leg correction "
+              "eases in and out around planted frames (0 = off: legs pop).");
 DEFINE_string(weights_csv, "", "Write the falloff weights: frame,weight (one column per edit).");
 DEFINE_bool(compare_falloffs, false, "Also compute the other falloffs of the first edit and "
             "report their correlation and largest difference with the chosen one.");
@@ -353,6 +355,7 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
       ContactSolveOptions solve;
       if (!(FLAGS_contact_prior_cm >= 0.0)) return Status::Error("--contact_prior_cm must be >= 0");
       solve.prior_weight = FLAGS_contact_prior_cm * units_per_cm;
+      solve.blend_seconds = FLAGS_contact_blend_s;
       ContactSolveReport kept;
       status = KeepContacts(skeleton, contacts, solve, &propagated, &kept);
       if (!status.ok()) return Status::Error("--keep_contacts: " + status.message());

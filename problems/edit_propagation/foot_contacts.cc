@@ -11,6 +11,7 @@
 
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/marker_set.h"
+#include "kinematics/rotation.h"
 #include "problems/marker_solve/marker_residual.h"
 #include "problems/marker_solve/pose_prior_residual.h"
 #include "solvers/right_quaternion_manifold.h"
@@ -55,6 +56,10 @@ Status DetectFootContacts(const Skeleton& skeleton, const Motion& motion,
   if (!(options.speed_threshold > 0.0) || !std::isfinite(options.speed_threshold)) {
     return Status::Error("contact speed threshold must be positive");
   }
+  if (!(options.max_gap_seconds >= 0.0) || !(options.min_contact_seconds >= 0.0) ||
+      !std::isfinite(options.max_gap_seconds) || !std::isfinite(options.min_contact_seconds)) {
+    return Status::Error("contact gap and minimum duration must be >= 0");
+  }
   if (options.up_axis < 0 || options.up_axis > 2) return Status::Error("up axis must be 0, 1 or 2");
   if (!(motion.frame_rate > 0.0)) return Status::Error("the motion has no frame rate");
   Status status = ValidateMotion(skeleton, motion);
@@ -87,6 +92,26 @@ Status DetectFootContacts(const Skeleton& skeleton, const Motion& motion,
       result.in_contact[k][f] =
           height <= options.height_threshold && speed <= options.speed_threshold ? 1 : 0;
     }
+    // Clean-up: close gaps of at most max_gap frames between contacts, then drop contact
+    // runs shorter than min_run frames.
+    std::vector<char>& flags = result.in_contact[k];
+    const int max_gap = static_cast<int>(std::floor(options.max_gap_seconds * motion.frame_rate));
+    const int min_run = static_cast<int>(std::ceil(options.min_contact_seconds * motion.frame_rate));
+    for (int f = 0, last = -1; f < num_frames; ++f) {
+      if (!flags[f]) continue;
+      if (last >= 0 && f - last - 1 <= max_gap) std::fill(flags.begin() + last + 1, flags.begin() + f, 1);
+      last = f;
+    }
+    for (int f = 0; f < num_frames;) {
+      if (!flags[f]) {
+        ++f;
+        continue;
+      }
+      int end = f;
+      while (end < num_frames && flags[end]) ++end;
+      if (end - f < min_run) std::fill(flags.begin() + f, flags.begin() + end, 0);
+      f = end;
+    }
   }
   *contacts = std::move(result);
   return Status::Ok();
@@ -115,6 +140,10 @@ bool ContactSolveOptions::IsValid(std::string* error) const {
   }
   if (!(prior_weight >= 0.0) || !std::isfinite(prior_weight)) {
     *error = "contact prior weight must be >= 0";
+    return false;
+  }
+  if (!(blend_seconds >= 0.0) || !std::isfinite(blend_seconds)) {
+    *error = "contact blend time must be >= 0";
     return false;
   }
   if (max_iterations < 1) {
@@ -158,7 +187,11 @@ Status KeepContacts(const Skeleton& skeleton, const FootContacts& contacts,
   solver_options.logging_type = ceres::SILENT;
   solver_options.num_threads = 1;
 
-  for (int f = 0; f < motion->num_frames(); ++f) {
+  // solved[j][f]: joint j was an unknown of frame f's re-solve; its correction there is a key.
+  const int num_frames = motion->num_frames();
+  const Motion propagated = *motion;
+  std::vector<std::vector<char>> solved(num_joints, std::vector<char>(num_frames, 0));
+  for (int f = 0; f < num_frames; ++f) {
     std::vector<int> active;
     for (int k = 0; k < num_feet; ++k) {
       if (contacts.in_contact[k][f]) active.push_back(k);
@@ -167,7 +200,13 @@ Status KeepContacts(const Skeleton& skeleton, const FootContacts& contacts,
     Pose& pose = motion->frames[f];
     for (int i = 0; i < 3; ++i) translation[i] = pose.translations[0][i];
     for (int j = 0; j < num_joints; ++j) {
-      const Eigen::Quaterniond q = pose.rotations[j].normalized();
+      // Temporal coherence: a joint solved at the previous frame starts from, and is pulled
+      // toward, this frame's propagated rotation with the previous correction applied.
+      Eigen::Quaterniond q = pose.rotations[j].normalized();
+      if (f > 0 && solved[j][f - 1]) {
+        q = (q * (propagated.frames[f - 1].rotations[j].conjugate() * motion->frames[f - 1].rotations[j]))
+                .normalized();
+      }
       for (int i = 0; i < 4; ++i) rotations[4 * j + i] = references[4 * j + i] = q.coeffs()[i];
     }
     ceres::Problem::Options problem_options;
@@ -207,9 +246,48 @@ Status KeepContacts(const Skeleton& skeleton, const FootContacts& contacts,
     }
     for (int i = 0; i < 3; ++i) pose.translations[0][i] = translation[i];
     for (int j = 0; j < num_joints; ++j) {
-      if (!added[j]) continue;
+      if (!added[j] || problem.IsParameterBlockConstant(&rotations[4 * j])) continue;
       pose.rotations[j] = Eigen::Quaterniond(rotations[4 * j + 3], rotations[4 * j],
                                              rotations[4 * j + 1], rotations[4 * j + 2]).normalized();
+      solved[j][f] = 1;
+    }
+  }
+  // Blend each joint's correction c(f) = log(q_prop(f)^-1 q(f)) (a local increment) into the
+  // frames where it was not solved, so legs do not pop at the ends of contact intervals:
+  // between keys a < f < b, c(f) = e(f) ((1 - t) c(a) + t c(b)), t = (f - a) / (b - a), with
+  // the envelope e(f) = max(h((f - a) / W), h((b - f) / W)), h the cubic ease 1 -> 0 over
+  // W = blend_seconds * frame rate (a missing key contributes nothing).
+  const double width = std::max(1.0, options.blend_seconds * motion->frame_rate);
+  auto ease = [width](double distance) {
+    const double s = distance / width;
+    return s >= 1.0 ? 0.0 : 1.0 - s * s * (3.0 - 2.0 * s);
+  };
+  for (int j = 0; j < num_joints; ++j) {
+    std::vector<Eigen::Vector3d> correction(num_frames, Eigen::Vector3d::Zero());
+    std::vector<int> keys;
+    for (int f = 0; f < num_frames; ++f) {
+      if (!solved[j][f]) continue;
+      keys.push_back(f);
+      correction[f] = LogMap(propagated.frames[f].rotations[j].conjugate() * motion->frames[f].rotations[j]);
+    }
+    if (keys.empty() || options.blend_seconds <= 0.0) continue;
+    size_t next = 0;  // First key > f.
+    for (int f = 0; f < num_frames; ++f) {
+      while (next < keys.size() && keys[next] <= f) ++next;
+      if (solved[j][f]) continue;
+      const int a = next > 0 ? keys[next - 1] : -1;
+      const int b = next < keys.size() ? keys[next] : -1;
+      Eigen::Vector3d c;
+      if (a >= 0 && b >= 0) {
+        const double t = static_cast<double>(f - a) / (b - a);
+        c = std::max(ease(f - a), ease(b - f)) * ((1.0 - t) * correction[a] + t * correction[b]);
+      } else if (a >= 0) {
+        c = ease(f - a) * correction[a];
+      } else {
+        c = ease(b - f) * correction[b];
+      }
+      if (c.squaredNorm() == 0.0) continue;
+      motion->frames[f].rotations[j] = (propagated.frames[f].rotations[j] * ExpMap(c)).normalized();
     }
   }
   local.max_drift_after = MaxContactDrift(skeleton, contacts, *motion);
