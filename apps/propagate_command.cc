@@ -47,8 +47,9 @@ DEFINE_double(ik_root_weight, 1.0, "IK edit: pull of the root translation toward
               "per skeleton unit (0 lets the root slide freely).");
 DEFINE_double(harmonic_ground, 0.01, "--method=harmonic: kernel weight of every frame's edge to a "
               "ground node held at 0, so the field decays away from the edit (kernel values are "
-              "<= 1; on 16_15, 0.01 tracks the Green's falloff best: correlation 0.93). 0 = pure "
-              "harmonic with the region's ends held at 0 instead (flatter: correlation 0.37).");
+              "<= 1). On 16_15 (arm edits at frames 30-400) 0.01 follows the Green's falloff with "
+              "correlation 0.85-0.93; 0 = pure harmonic with the region's ends held at 0 instead "
+              "(0.26-0.95: often nearly flat).");
 DEFINE_double(spline_width, 30.0, "--method=spline: half-width of the cubic bump, frames.");
 DEFINE_bool(keep_contacts, false, "Re-solve frames where a foot was planted in the source so "
             "that it stays where it was (legs absorb the edit; the root keeps it).");

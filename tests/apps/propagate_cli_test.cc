@@ -72,6 +72,23 @@ TEST_F(PropagateCli, FalloffsAndKeepContactsOn16_15) {
   }
 }
 
+TEST_F(PropagateCli, HarmonicFollowsTheGreensFalloffOn16_15) {
+  MOCAPSOLVE_DATA_FILE(motion, "bvh/16_15.bvh");
+  const std::string report = testing::TempPath("compare.json");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("propagate --motion=" + motion + " --skeleton_units=cm --edit=" + edit_ +
+                            " --method=harmonic --compare_falloffs --out=" + testing::TempPath("h.bvh") +
+                            " --report=" + report, &output), 0) << output;
+  JsonNode root;
+  ASSERT_TRUE(ReadJsonFile(report, &root).ok());
+  const JsonNode* green = root.Find("comparison")->Find("green");
+  ASSERT_NE(green, nullptr);
+  // Measured 0.93 / 0.35 with the default ground weight (0.37 / 0.68 without it).
+  EXPECT_GT(green->Find("correlation")->number, 0.85);
+  EXPECT_LT(green->Find("max_difference")->number, 0.45);
+  EXPECT_THAT(output, HasSubstr("harmonic vs green falloff of frame 200"));
+}
+
 TEST_F(PropagateCli, IkTargetWithBothSolvers) {
   MOCAPSOLVE_DATA_FILE(motion, "bvh/16_15.bvh");
   Skeleton skeleton;
