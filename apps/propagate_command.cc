@@ -142,9 +142,11 @@ Status HarmonicWeights(const Skeleton& skeleton, const Motion& motion, const Fal
   HarmonicReport harmonic;
   HarmonicOptions options;
   options.ground_weight = FLAGS_harmonic_ground;
-  // The region's ends are labelled 0 unless the ground node already pins the field down.
-  const std::vector<int> anchors =
-      options.ground_weight > 0.0 ? std::vector<int>() : std::vector<int>{0, end - begin - 1};
+  // The region's ends are labelled 0 where the region cuts the clip (so the weights reach 0
+  // there, without a step), and at the clip's ends too when no ground node pins the field.
+  std::vector<int> anchors;
+  if (begin > 0 || options.ground_weight == 0.0) anchors.push_back(0);
+  if (end < motion.num_frames() || options.ground_weight == 0.0) anchors.push_back(end - begin - 1);
   status = HarmonicFalloffs(end - begin, edges, local_frames, anchors, options, &fields, &harmonic);
   if (!status.ok()) return status;
   out->weights.clear();
@@ -404,7 +406,7 @@ extern const Command kPropagateCommand = {
     "p'_f = exp(log p_f + w(f) delta) per joint (Dean, Lewis & Chalmers 2018, eqs. 4-5), with\n"
     "w the falloff: green (row of the pose-space Green's function, normalized), harmonic (the\n"
     "harmonic function on the kNN pose graph, 1 at the edit, 0 at other edits and at a ground\n"
-    "node (--harmonic_ground; or at the region's ends); Zhu et al. 2003) or spline (a cubic\n"
+    "node (--harmonic_ground) and at the ends of --region; Zhu et al. 2003) or spline (a cubic\n"
     "bump of half-width --spline_width frames).\n"
     "Reports the largest drift of feet planted in the source; --keep_contacts re-solves those\n"
     "frames so the feet stay put.",

@@ -18,8 +18,9 @@
 //
 // Labels of an edit at frame i: u_i = 1, u = 0 at the other edited frames (each edit gets
 // its own field, so at its own frame only its delta is applied, see pose_edit.h) and at the
-// anchors (`mocapsolve propagate` uses the ends of the edit region without a ground node,
-// none with one: a harmonic function with a single label and no ground is the constant 1). Frames outside the region are not in the graph and get weight 0.
+// anchors (`mocapsolve propagate` labels the ends of --region where it cuts the clip, and
+// the clip's ends too without a ground node: a harmonic function with a single label and
+// no ground is the constant 1). Frames outside the region are not in the graph and get weight 0.
 //
 // The problem is linear; Levenberg-Marquardt with a huge initial trust region (negligible
 // damping) solves it in one Gauss-Newton step, by SPARSE_NORMAL_CHOLESKY on Eigen's sparse
