@@ -140,7 +140,7 @@ Status RunDistance(const std::vector<std::string>& arguments) {
       r.falloff.eigenpairs_used = green.eigenpairs_used();
       r.falloff.sparse_used = green.sparse_used();
     } else {
-      FalloffFromDistance(GeodesicDistances(PoseNeighbourGraph(features, options.knn), frame), frame,
+      FalloffFromDistance(GeodesicDistances(PoseNeighbourGraph(features, options.isomap_knn), frame), frame,
                           begin, end, &r.falloff);
       r.falloff.sparse_used = true;
     }
@@ -214,6 +214,7 @@ Status RunDistance(const std::vector<std::string>& arguments) {
     JsonObject m;
     m.Add("method", FalloffMethodName(r.method)).Add("ms", r.ms)
         .Add("second_difference", SecondDifference(f.weight, frame))
+        .Add("kink_ratio", KinkRatio(f.weight, frame))
         .Add("slope_before", frame > 0 ? f.weight[frame] - f.weight[frame - 1] : NAN)
         .Add("slope_after", frame + 1 < n ? f.weight[frame + 1] - f.weight[frame] : NAN)
         .Add("end_before_0.5", FalloffEnd(f.weight, frame, -1, 0.5))
@@ -224,9 +225,10 @@ Status RunDistance(const std::vector<std::string>& arguments) {
     if (!phases.same.empty()) m.Add("min_same_phase_weight", min_same);
     if (!phases.opposite.empty()) m.Add("max_opposite_phase_weight", max_opposite);
     per_method.push_back(m);
-    std::printf("%-9s second difference at the edit %.3g; weight < 0.5 at frames %d/%d, < 0.05 at %d/%d "
+    std::printf("%-9s second difference at the edit %.3g (kink ratio %.2f: 0.67 smooth, 2 corner); weight < 0.5 at frames %d/%d, < 0.05 at %d/%d "
                 "(-1: never)",
                 FalloffMethodName(r.method).c_str(), SecondDifference(f.weight, frame),
+                KinkRatio(f.weight, frame),
                 FalloffEnd(f.weight, frame, -1, 0.5), FalloffEnd(f.weight, frame, +1, 0.5),
                 FalloffEnd(f.weight, frame, -1, 0.05), FalloffEnd(f.weight, frame, +1, 0.05));
     if (!phases.same.empty()) {
@@ -235,6 +237,29 @@ Status RunDistance(const std::vector<std::string>& arguments) {
     std::printf("\n");
   }
   report.Add("methods", per_method);
+  std::vector<JsonObject> per_sigma;
+  for (size_t s = 0; s < sweep.size(); ++s) {
+    const Falloff& f = swept[s];
+    double min_same = 1.0, max_opposite = 0.0;
+    for (int j : phases.same) min_same = std::min(min_same, f.weight[j]);
+    for (int j : phases.opposite) max_opposite = std::max(max_opposite, f.weight[j]);
+    JsonObject o;
+    o.Add("sigma", sweep[s]).Add("eigenpairs_used", f.eigenpairs_used)
+        .Add("second_difference", SecondDifference(f.weight, frame))
+        .Add("kink_ratio", KinkRatio(f.weight, frame))
+        .Add("end_before_0.05", FalloffEnd(f.weight, frame, -1, 0.05))
+        .Add("end_after_0.05", FalloffEnd(f.weight, frame, +1, 0.05));
+    if (!phases.same.empty()) o.Add("min_same_phase_weight", min_same);
+    if (!phases.opposite.empty()) o.Add("max_opposite_phase_weight", max_opposite);
+    per_sigma.push_back(o);
+    std::printf("sigma %-7.4g weight < 0.05 at frames %d/%d", sweep[s], FalloffEnd(f.weight, frame, -1, 0.05),
+                FalloffEnd(f.weight, frame, +1, 0.05));
+    if (!phases.same.empty()) {
+      std::printf("; same phase min weight %.3f, opposite phase max %.3f", min_same, max_opposite);
+    }
+    std::printf("\n");
+  }
+  if (!sweep.empty()) report.Add("sweep", per_sigma);
   if (spectral) {
     std::printf("sigma %.4g (%s), %d eigenpairs, %s kernel; features %.1f ms, build %.1f ms\n",
                 green.sigma_used(), options.sigma > 0.0 ? "given" : "auto", green.eigenpairs_used(),
@@ -262,7 +287,7 @@ extern const Command kDistanceCommand = {
     __FILE__, RunDistance,
     // The falloff flags are kFalloffFlagNames (apps/falloff_flags.h).
     "motion,out,plot,method,skeleton,skeleton_units,amc_fps,report,quiet,sigma,sigma_scale,"
-    "eigenpairs,region,diffusion_steps,knn,falloff_kernel,feature_joints,joint_weights,"
+    "eigenpairs,region,diffusion_steps,knn,isomap_knn,falloff_kernel,feature_joints,joint_weights,"
     "temporal_weight"};
 
 }  // namespace mocapsolve

@@ -14,7 +14,8 @@ DEFINE_int32(eigenpairs, 10, "Terms of the Green's function sum (eq. 3): the sma
 DEFINE_string(region, "", "Edited region a:b (frames, b exclusive; either side may be empty): "
               "weights are normalized over it and are 0 outside. Empty = the whole clip.");
 DEFINE_int32(diffusion_steps, 10, "Diffusion-map steps t for --method=diffusion.");
-DEFINE_int32(knn, 10, "Nearest poses per frame in the sparse kernel and the ISOMAP graph.");
+DEFINE_int32(knn, 30, "Nearest poses per frame in the sparse (kNN) kernel.");
+DEFINE_int32(isomap_knn, 10, "Nearest poses per frame in the ISOMAP graph (--method=isomap).");
 DEFINE_string(falloff_kernel, "auto", "auto (sparse kNN kernel above 1000 frames), dense or sparse.");
 DEFINE_string(feature_joints, "", "Comma-separated joints of the pose vector; empty = every "
               "rotating joint.");
@@ -49,7 +50,7 @@ bool ParseInt(const std::string& text, int* value) {
 }  // namespace
 
 const char kFalloffFlagNames[] =
-    "sigma,sigma_scale,eigenpairs,region,diffusion_steps,knn,falloff_kernel,feature_joints,"
+    "sigma,sigma_scale,eigenpairs,region,diffusion_steps,knn,isomap_knn,falloff_kernel,feature_joints,"
     "joint_weights,temporal_weight";
 
 Status FalloffOptionsFromFlags(int num_frames, FalloffOptions* options) {
@@ -58,6 +59,7 @@ Status FalloffOptionsFromFlags(int num_frames, FalloffOptions* options) {
   options->eigenpairs = FLAGS_eigenpairs;
   options->diffusion_steps = FLAGS_diffusion_steps;
   options->knn = FLAGS_knn;
+  options->isomap_knn = FLAGS_isomap_knn;
   if (FLAGS_falloff_kernel == "auto") options->kernel = KernelMode::kAuto;
   else if (FLAGS_falloff_kernel == "dense") options->kernel = KernelMode::kDense;
   else if (FLAGS_falloff_kernel == "sparse") options->kernel = KernelMode::kSparse;

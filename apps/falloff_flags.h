@@ -1,5 +1,5 @@
 // The falloff flags (--sigma, --sigma_scale, --eigenpairs, --region, --diffusion_steps,
-// --knn, --falloff_kernel, --feature_joints, --joint_weights, --temporal_weight), defined
+// --knn, --isomap_knn, --falloff_kernel, --feature_joints, --joint_weights, --temporal_weight), defined
 // once in apps/falloff_flags.cc for every command that computes a pose-space falloff
 // (problems/edit_propagation/falloff.h): distance, propagate.
 #ifndef MOCAPSOLVE_APPS_FALLOFF_FLAGS_H_

@@ -12,10 +12,6 @@
 namespace mocapsolve {
 namespace {
 
-// Eigenvalues of L at or below this are the null space (lambda_0 of each connected
-// component) and are left out of eq. 3's sum.
-constexpr double kNullEigenvalue = 1e-10;
-
 }  // namespace
 
 bool ParseFalloffMethod(const std::string& text, FalloffMethod* method) {
@@ -43,7 +39,9 @@ bool FalloffOptions::IsValid(std::string* error) const {
   else if (region_end < -1) *error = "region: end must be >= 0 (or -1 for the clip's end)";
   else if (diffusion_steps < 1) *error = "diffusion_steps: expected >= 1";
   else if (knn < 1) *error = "knn: expected >= 1";
+  else if (isomap_knn < 1) *error = "isomap_knn: expected >= 1";
   else if (sparse_above_frames < 0) *error = "sparse_above_frames: expected >= 0";
+  else if (!(null_eigenvalue >= 0.0) || !(null_eigenvalue < 1.0)) *error = "null_eigenvalue: expected [0, 1)";
   else if (kernel == KernelMode::kSparse && eigenpairs == 0) {
     *error = "eigenpairs: 0 (all terms) needs the dense kernel";
   } else {
@@ -73,8 +71,9 @@ Status GreenFunction::Build(const Eigen::MatrixXd& features, const FalloffOption
   }
   Status status = Status::Ok();
   if (sparse_) {
-    // m kept terms plus lambda_0; Lanczos needs count < n.
-    const int count = std::min(options.eigenpairs + 1, n - 1);
+    // m kept terms plus lambda_0 and up to 4 more null-space (island) eigenvalues;
+    // Lanczos needs count < n.
+    const int count = std::min(options.eigenpairs + 5, n - 1);
     status = SparseLaplacianEigenpairs(SparsePoseKernel(PoseNeighbourGraph(features, options.knn), sigma_),
                                        count, 0, &eigen_);
   } else {
@@ -85,7 +84,7 @@ Status GreenFunction::Build(const Eigen::MatrixXd& features, const FalloffOption
   std::vector<int> kept;
   const int limit = options.eigenpairs == 0 ? n : options.eigenpairs;
   for (int k = 0; k < eigen_.eigenvalues.size() && static_cast<int>(kept.size()) < limit; ++k) {
-    if (eigen_.eigenvalues[k] > kNullEigenvalue) kept.push_back(k);
+    if (eigen_.eigenvalues[k] > options.null_eigenvalue) kept.push_back(k);
   }
   if (kept.empty()) return Status::Error("eigenpairs: no nonzero eigenvalue (every frame isolated?); widen sigma");
   const int m = static_cast<int>(kept.size());
@@ -192,43 +191,59 @@ void FalloffFromDistance(const Eigen::VectorXd& distance, int frame, int region_
   falloff->weight = 1.0 - falloff->distance.array();
 }
 
-Status ComputeFalloff(const Skeleton& skeleton, const Motion& motion, int frame,
-                      FalloffMethod method, const FalloffOptions& options, Falloff* falloff) {
+Status ComputeFalloffs(const Skeleton& skeleton, const Motion& motion,
+                       const std::vector<int>& frames, FalloffMethod method,
+                       const FalloffOptions& options, std::vector<Falloff>* falloffs) {
   std::string error;
   if (!options.IsValid(&error)) return Status::Error(error);
   Eigen::MatrixXd features;
   Status status = PoseFeatures(skeleton, motion, options.features, &features);
   if (!status.ok()) return status;
   const int n = static_cast<int>(features.rows());
-  if (frame < 0 || frame >= n) {
-    return Status::Error("frame: " + std::to_string(frame) + " is outside the clip's 0.." +
-                         std::to_string(n - 1));
-  }
   int begin = 0, end = 0;
-  status = ResolveRegion(n, frame, options.region_begin, options.region_end, &begin, &end);
-  if (!status.ok()) return status;
+  for (int frame : frames) {
+    if (frame < 0 || frame >= n) {
+      return Status::Error("frame: " + std::to_string(frame) + " is outside the clip's 0.." +
+                           std::to_string(n - 1));
+    }
+    status = ResolveRegion(n, frame, options.region_begin, options.region_end, &begin, &end);
+    if (!status.ok()) return status;
+  }
+  falloffs->assign(frames.size(), Falloff());
+  if (frames.empty()) return Status::Ok();
   if (method == FalloffMethod::kIsomap) {
-    if (n < 2) return Status::Error("motion: a falloff needs at least 2 frames");
-    FalloffFromDistance(GeodesicDistances(PoseNeighbourGraph(features, options.knn), frame), frame,
-                        begin, end, falloff);
-    falloff->sigma_used = 0.0;
-    falloff->eigenpairs_used = 0;
-    falloff->sparse_used = true;
+    const auto graph = PoseNeighbourGraph(features, options.isomap_knn);
+    for (size_t e = 0; e < frames.size(); ++e) {
+      FalloffFromDistance(GeodesicDistances(graph, frames[e]), frames[e], begin, end, &(*falloffs)[e]);
+      (*falloffs)[e].sparse_used = true;
+    }
     return Status::Ok();
   }
   GreenFunction green;
   status = green.Build(features, options);
   if (!status.ok()) return status;
-  if (method == FalloffMethod::kGreen) {
-    green.Weights(frame, begin, end, falloff);
-  } else {
-    Eigen::VectorXd d;
-    green.DiffusionDistance(frame, options.diffusion_steps, &d);
-    FalloffFromDistance(d, frame, begin, end, falloff);
-    falloff->sigma_used = green.sigma_used();
-    falloff->eigenpairs_used = green.eigenpairs_used();
-    falloff->sparse_used = green.sparse_used();
+  for (size_t e = 0; e < frames.size(); ++e) {
+    Falloff* falloff = &(*falloffs)[e];
+    if (method == FalloffMethod::kGreen) {
+      green.Weights(frames[e], begin, end, falloff);
+    } else {
+      Eigen::VectorXd d;
+      green.DiffusionDistance(frames[e], options.diffusion_steps, &d);
+      FalloffFromDistance(d, frames[e], begin, end, falloff);
+      falloff->sigma_used = green.sigma_used();
+      falloff->eigenpairs_used = green.eigenpairs_used();
+      falloff->sparse_used = green.sparse_used();
+    }
   }
+  return Status::Ok();
+}
+
+Status ComputeFalloff(const Skeleton& skeleton, const Motion& motion, int frame,
+                      FalloffMethod method, const FalloffOptions& options, Falloff* falloff) {
+  std::vector<Falloff> falloffs;
+  Status status = ComputeFalloffs(skeleton, motion, {frame}, method, options, &falloffs);
+  if (!status.ok()) return status;
+  *falloff = std::move(falloffs[0]);
   return Status::Ok();
 }
 

@@ -19,12 +19,24 @@
 // strides of a walk, so the default is a truncated sum (m = 10) with a wide kernel.
 //
 // sigma: 0 selects sigma = sigma_scale * (median over frames of |p_{i+1} - p_i|), with
-// sigma_scale = 4 by default (on CMU 16_15 and 131_01 this lets 5-20 eigenpairs reach the
-// same phase of the other strides with weight >= 0.8 while the opposite phase stays low).
+// sigma_scale = 4 by default. Chosen on CMU 16_15 (edits at frames 100, 200, 300; scale
+// 2, 3, 4, 6 x m = 5, 10, 20): scale 4 with m = 5-20 gives weight >= 0.91 at the same
+// phase of every other stride and <= 0.28 (m = 10: <= 0.15) at the opposite phase; scale
+// 2 breaks the graph apart, 3 leaves ~0.5 at the opposite phase, 6 with m = 20 drops the
+// same phase to 0.75. The truncated sum's peak can sit 1-3 frames off the edited frame
+// (the paper's "offset of 2-3 frames"), which the clamp turns into a short plateau.
 //
-// Kernel: dense for short clips; above `sparse_above_frames` (or with sparse = kSparse)
+// Islands: a run of frames whose poses are far from all others (a data glitch, e.g. a
+// finger joint flipping by ~180 degrees for a few frames in CMU 131_01) is nearly a
+// separate graph component: lambda_k ~ 1e-11 with phi_k its indicator, and that one term
+// would swamp the sum. Eigenvalues <= null_eigenvalue (default 1e-6) are therefore treated
+// as the null space, like lambda_0, and left out.
+//
+// Kernel: dense for short clips; above `sparse_above_frames` (or with kernel = kSparse)
 // each frame keeps only its `knn` nearest poses plus its temporal neighbours i-1, i+1
-// (symmetrized), and the smallest eigenpairs of L come from Spectra (largest of A).
+// (symmetrized; pose_kernel.h), and the smallest eigenpairs of L come from Spectra
+// (largest of A). This is a thinner kernel than the dense one, so its falloff differs a
+// little; knn = 30 still meets the 16_15 criterion above (knn = 10 does not: ~0.5).
 //
 // Weights (eq. 5's w): row i of G over the region [region_begin, region_end), scaled so
 // the edited frame i has weight 1 and the least similar frame in the region weight 0,
@@ -42,14 +54,18 @@
 //               d_j^2 = sum_{k>0} mu_k^(2t) (psi_k(i) - psi_k(j))^2, mu_k = 1 - lambda_k,
 //               psi_k(j) = phi_k(j) / sqrt(pi_j), pi_j = D_jj / sum D (the right
 //               eigenvectors of P, normalized in the stationary measure pi); the same
-//               `eigenpairs` truncation as kGreen (0 = all).
-//   kIsomap:    the geodesic distance itself (Dijkstra over the knn graph with Euclidean
+//               `eigenpairs` truncation as kGreen (0 = all). Frames of low degree
+//               (poses seen once, e.g. the first frames of 16_15) get large psi and so
+//               the largest distance, which then sets the normalization: choose a
+//               region without them to compare shapes.
+//   kIsomap:    the geodesic distance itself (Dijkstra over the isomap_knn graph with Euclidean
 //               edge lengths, temporal neighbours always linked), i.e. the distance that
 //               ISOMAP's classical-MDS embedding approximates; no MDS step is done.
 #ifndef MOCAPSOLVE_PROBLEMS_EDIT_PROPAGATION_FALLOFF_H_
 #define MOCAPSOLVE_PROBLEMS_EDIT_PROPAGATION_FALLOFF_H_
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -76,9 +92,14 @@ struct FalloffOptions {
   int region_begin = 0;        // Frames [region_begin, region_end); -1 = to the end.
   int region_end = -1;
   int diffusion_steps = 10;    // t for kDiffusion (the paper's Fig. 3 uses 10).
-  int knn = 10;                // Neighbours per frame: sparse kernel and ISOMAP graph.
+  int knn = 30;                // Neighbours per frame of the sparse kernel (10 misses the
+                               // other strides of 16_15: same-phase weight ~0.5).
+  int isomap_knn = 10;         // Neighbours per frame of the ISOMAP graph.
   KernelMode kernel = KernelMode::kAuto;
   int sparse_above_frames = 1000;  // kAuto: sparse kernel for clips longer than this.
+  // Eigenvalues of L at or below this count as the null space and are left out of eq. 3
+  // (see "Islands" above).
+  double null_eigenvalue = 1e-6;
 
   // Message names the bad field.
   bool IsValid(std::string* error) const;
@@ -142,6 +163,12 @@ void FalloffFromDistance(const Eigen::VectorXd& distance, int frame, int region_
 // The whole pipeline for one edit: features, kernel, eigenpairs, row, weights.
 Status ComputeFalloff(const Skeleton& skeleton, const Motion& motion, int frame,
                       FalloffMethod method, const FalloffOptions& options, Falloff* falloff);
+
+// The same for several edits of one clip, building the features, graph and eigenpairs
+// once: (*falloffs)[e] is the falloff of frames[e]. Each frame must lie in the region.
+Status ComputeFalloffs(const Skeleton& skeleton, const Motion& motion,
+                       const std::vector<int>& frames, FalloffMethod method,
+                       const FalloffOptions& options, std::vector<Falloff>* falloffs);
 
 }  // namespace mocapsolve
 

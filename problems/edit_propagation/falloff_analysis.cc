@@ -67,6 +67,14 @@ double SecondDifference(const Eigen::VectorXd& values, int frame) {
   return values[frame - 1] - 2.0 * values[frame] + values[frame + 1];
 }
 
+double KinkRatio(const Eigen::VectorXd& values, int frame) {
+  if (frame < 2 || frame + 2 >= values.size()) return std::numeric_limits<double>::quiet_NaN();
+  const double slopes = 0.5 * (std::abs(values[frame + 2] - values[frame + 1]) +
+                               std::abs(values[frame - 1] - values[frame - 2]));
+  if (!(slopes > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return std::abs(SecondDifference(values, frame)) / slopes;
+}
+
 int FalloffEnd(const Eigen::VectorXd& weight, int frame, int direction, double threshold) {
   for (int j = frame + direction; j >= 0 && j < weight.size(); j += direction) {
     if (weight[j] < threshold) return j;

@@ -30,6 +30,12 @@ PhaseFrames FindPhaseFrames(const Eigen::MatrixXd& features, int frame, int peri
 // v[i-1] - 2 v[i] + v[i+1]; NaN at the ends.
 double SecondDifference(const Eigen::VectorXd& values, int frame);
 
+// Scale-free corner measure at `frame`: |v[i-1] - 2 v[i] + v[i+1]| divided by the mean
+// of the neighbouring slopes |v[i+2] - v[i+1]| and |v[i-1] - v[i-2]|. About 2/3 for a
+// smooth (parabolic) peak, 2 for a corner like |x|; NaN within 2 frames of the ends or
+// when those slopes are 0.
+double KinkRatio(const Eigen::VectorXd& values, int frame);
+
 // The first frame after (direction +1) or before (-1) `frame` whose weight is below
 // `threshold`; -1 if the weight never drops below it on that side.
 int FalloffEnd(const Eigen::VectorXd& weight, int frame, int direction, double threshold);
