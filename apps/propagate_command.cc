@@ -45,11 +45,11 @@ DEFINE_string(ik_target, "", "IK edit: JOINT:x,y,z moves JOINT to (x, y, z) (wor
               "units) at --frame; several targets separated by ';'.");
 DEFINE_double(ik_root_weight, 1.0, "IK edit: pull of the root translation toward the original, "
               "per skeleton unit (0 lets the root slide freely).");
-DEFINE_double(harmonic_ground, 0.01, "--method=harmonic: kernel weight of every frame's edge to a "
-              "ground node held at 0, so the field decays away from the edit (kernel values are "
-              "<= 1). On 16_15 (arm edits at frames 30-400) 0.01 follows the Green's falloff with "
-              "correlation 0.85-0.93; 0 = pure harmonic with the region's ends held at 0 instead "
-              "(0.26-0.95: often nearly flat).");
+DEFINE_double(harmonic_ground, 0.002, "--method=harmonic: weight of every frame's edge to a "
+              "ground node held at 0, as a fraction of the graph's mean degree, so the field "
+              "decays away from the edit. On 16_15 (arm edits at frames 30-400, default --knn) 0.002 "
+              "follows the Green's falloff with correlation 0.90-0.94. 0 = pure harmonic, with the "
+              "clip's ends held at 0 instead (correlation 0.24-0.96: often nearly flat).");
 DEFINE_double(spline_width, 30.0, "--method=spline: half-width of the cubic bump, frames.");
 DEFINE_bool(keep_contacts, false, "Re-solve frames where a foot was planted in the source so "
             "that it stays where it was (legs absorb the edit; the root keeps it).");
@@ -140,8 +140,13 @@ Status HarmonicWeights(const Skeleton& skeleton, const Motion& motion, const Fal
   for (int frame : frames) local_frames.push_back(frame - begin);
   std::vector<Eigen::VectorXd> fields;
   HarmonicReport harmonic;
+  // The ground edge is a fraction of the mean degree, so --harmonic_ground means the same
+  // whatever --knn and --sigma make the degrees.
+  double degree_sum = 0.0;
+  for (const WeightedEdge& edge : edges) degree_sum += 2.0 * edge.kernel;
+  const double mean_degree = degree_sum / (end - begin);
   HarmonicOptions options;
-  options.ground_weight = FLAGS_harmonic_ground;
+  options.ground_weight = FLAGS_harmonic_ground * mean_degree;
   // The region's ends are labelled 0 where the region cuts the clip (so the weights reach 0
   // there, without a step), and at the clip's ends too when no ground node pins the field.
   std::vector<int> anchors;
@@ -158,23 +163,20 @@ Status HarmonicWeights(const Skeleton& skeleton, const Motion& motion, const Fal
   out->report.Add("sigma", sigma).Add("knn", falloff.knn).Add("graph_edges", harmonic.edges)
       .Add("harmonic_iterations", harmonic.iterations).Add("harmonic_solve_seconds", harmonic.solve_seconds)
       .Add("harmonic_max_gradient", harmonic.max_gradient)
-      .Add("harmonic_ground", FLAGS_harmonic_ground);
+      .Add("harmonic_ground", FLAGS_harmonic_ground).Add("mean_degree", mean_degree)
+      .Add("ground_kernel", options.ground_weight);
   return Status::Ok();
 }
 
 Status GreenWeights(const Skeleton& skeleton, const Motion& motion, const FalloffOptions& falloff,
                     const std::vector<int>& frames, Falloffs* out) {
+  std::vector<Falloff> falloffs;
+  Status status = ComputeFalloffs(skeleton, motion, frames, FalloffMethod::kGreen, falloff, &falloffs);
+  if (!status.ok()) return status;
   out->weights.clear();
-  for (int frame : frames) {
-    Falloff result;
-    Status status = ComputeFalloff(skeleton, motion, frame, FalloffMethod::kGreen, falloff, &result);
-    if (!status.ok()) return status;
-    out->weights.push_back(result.weight);
-    if (out->weights.size() == 1) {
-      out->report.Add("sigma", result.sigma_used).Add("eigenpairs", result.eigenpairs_used)
-          .Add("sparse_kernel", result.sparse_used);
-    }
-  }
+  for (const Falloff& result : falloffs) out->weights.push_back(result.weight);
+  out->report.Add("sigma", falloffs[0].sigma_used).Add("eigenpairs", falloffs[0].eigenpairs_used)
+      .Add("sparse_kernel", falloffs[0].sparse_used);
   return Status::Ok();
 }
 
