@@ -35,6 +35,7 @@
 #include "problems/edit_propagation/spline_falloff.h"
 
 DECLARE_string(method);  // apps/blend_command.cc; here green | harmonic | spline.
+DECLARE_string(sparse_library);  // apps/solver_flags.cc: eigen_sparse | suite_sparse.
 
 // apps/distance_command.cc; here required with --ik_target, optional with --edit (then it
 // must match a one-edit file's "frame").
@@ -147,6 +148,14 @@ Status HarmonicWeights(const Skeleton& skeleton, const Motion& motion, const Fal
   const double mean_degree = degree_sum / (end - begin);
   HarmonicOptions options;
   options.ground_weight = FLAGS_harmonic_ground * mean_degree;
+  if (FLAGS_sparse_library == "suite_sparse") {
+    options.sparse_library = ceres::SUITE_SPARSE;
+  } else if (FLAGS_sparse_library != "eigen_sparse") {
+    return Status::Error("--sparse_library: expected eigen_sparse or suite_sparse, got '" +
+                         FLAGS_sparse_library + "'");
+  }
+  std::string error;
+  if (!options.IsValid(&error)) return Status::Error("--harmonic_ground/--sparse_library: " + error);
   // The region's ends are labelled 0 where the region cuts the clip (so the weights reach 0
   // there, without a step), and at the clip's ends too when no ground node pins the field.
   std::vector<int> anchors;
@@ -415,6 +424,6 @@ extern const Command kPropagateCommand = {
     __FILE__, RunPropagate,
     "motion,out,report,skeleton,skeleton_units,amc_fps,quiet,sigma,sigma_scale,eigenpairs,region,"
     "knn,falloff_kernel,feature_joints,joint_weights,temporal_weight,solver,prior_weight,"
-    "max_iterations,marker_weight,dls_lambda,dls_damping,frame"};
+    "max_iterations,marker_weight,dls_lambda,dls_damping,frame,sparse_library"};
 
 }  // namespace mocapsolve

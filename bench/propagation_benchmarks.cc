@@ -1,14 +1,18 @@
 // Edit propagation, edit side (issue 6): the harmonic falloff solve (one field, Ceres
 // SPARSE_NORMAL_CHOLESKY on Eigen's sparse LDLT) at 1k and 10k frames of the demo walk,
-// the kNN pose graph it runs on, and eq. 5 applied to a whole clip.
+// the kNN pose graph it runs on, eq. 5 applied to a whole clip, and the foot-contact
+// re-solve on CMU 16_15.
 //   build/bin/mocapsolve_bench --benchmark_filter=Harmonic
+#include <cstdlib>
 #include <map>
 #include <string>
 
 #include <benchmark/benchmark.h>
 
+#include "io/motion_file.h"
 #include "kinematics/demo_character.h"
 #include "kinematics/rotation.h"
+#include "problems/edit_propagation/foot_contacts.h"
 #include "problems/edit_propagation/harmonic_falloff.h"
 #include "problems/edit_propagation/pose_edit.h"
 #include "problems/edit_propagation/spline_falloff.h"
@@ -90,6 +94,44 @@ void BM_PropagateEdits(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PropagateEdits)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+// KeepContacts on CMU 16_15 (471 frames, cm) after a hips edit spread over +-80 frames:
+// the per-frame re-solves of the planted frames plus the blending.
+void BM_KeepContacts16_15(benchmark::State& state) {
+  const char* env = std::getenv("MOCAPSOLVE_DATA");
+  const std::string root = env != nullptr && *env ? env : MOCAPSOLVE_SOURCE_DIR "/../shared/data";
+  Skeleton skeleton;
+  Motion motion;
+  if (!ReadMotionFile(root + "/bvh/16_15.bvh", MotionFileOptions(), &skeleton, &motion).ok()) {
+    state.SkipWithError("bvh/16_15.bvh not found (set MOCAPSOLVE_DATA)");
+    return;
+  }
+  FootContactOptions detect;
+  detect.height_threshold = 5.0;  // cm
+  detect.speed_threshold = 20.0;  // cm/s
+  FootContacts contacts;
+  PoseOffsets offsets;
+  offsets.frame = 200;
+  offsets.root_translation_offset = Eigen::Vector3d(0.0, -6.0, 0.0);
+  PoseEdit edit;
+  Motion propagated;
+  if (!DetectFootContacts(skeleton, motion, detect, &contacts).ok() || !MakeEdit(motion, offsets, &edit).ok() ||
+      !PropagateEdits(skeleton, motion, {edit}, {SplineFalloff(motion.num_frames(), 200, 80.0)}, &propagated).ok()) {
+    state.SkipWithError("setup failed");
+    return;
+  }
+  ContactSolveReport report;
+  for (auto _ : state) {
+    Motion kept = propagated;
+    const Status status = KeepContacts(skeleton, contacts, ContactSolveOptions(), &kept, &report);
+    if (!status.ok()) state.SkipWithError(status.message().c_str());
+    benchmark::DoNotOptimize(kept.frames.data());
+  }
+  state.counters["contact_frames"] = report.frames_solved;
+  state.counters["drift_cm_before"] = report.max_drift_before;
+  state.counters["drift_cm_after"] = report.max_drift_after;
+}
+BENCHMARK(BM_KeepContacts16_15)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace mocapsolve
