@@ -283,7 +283,9 @@ extern const Command kDistanceCommand = {
     "diffusion: diffusion-map distance after --diffusion_steps; isomap: kNN-graph geodesic\n"
     "distance. Several methods: the first fills distance,weight, the others add columns.\n"
     "Prints the clip's period (if periodic), the weight at the same and opposite phase of the\n"
-    "other cycles, the second difference at the edit and where the weight drops below 0.5/0.05.",
+    "other cycles, the second difference at the edit and where the weight drops below 0.5/0.05.\n"
+    "Here --method defaults to green (the flag is shared with blend) and --plot writes the\n"
+    "distance curves (1 - weight) of every method and --sweep sigma as SVG.",
     __FILE__, RunDistance,
     // The falloff flags are kFalloffFlagNames (apps/falloff_flags.h).
     "motion,out,plot,method,skeleton,skeleton_units,amc_fps,report,quiet,sigma,sigma_scale,"

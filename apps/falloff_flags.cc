@@ -32,7 +32,11 @@ std::vector<std::string> SplitCommas(const std::string& text) {
   size_t begin = 0;
   while (true) {
     const size_t end = text.find(',', begin);
-    items.push_back(text.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
+    std::string item = text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    // Names pasted from files may carry spaces or a CR; joint names never do.
+    const size_t first = item.find_first_not_of(" \t\r\n");
+    const size_t last = item.find_last_not_of(" \t\r\n");
+    items.push_back(first == std::string::npos ? "" : item.substr(first, last - first + 1));
     if (end == std::string::npos) break;
     begin = end + 1;
   }

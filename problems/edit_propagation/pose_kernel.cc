@@ -40,7 +40,7 @@ std::vector<std::vector<GraphEdge>> PoseNeighbourGraph(const Eigen::MatrixXd& fe
     const Eigen::MatrixXd points = SearchCoordinates(features);  // One column per frame.
     const bool projected = points.rows() < features.cols();
     const int k = std::min(knn + 1, n);  // The query frame finds itself too.
-    const int candidates = projected ? std::min(3 * k, n) : k;
+    const int candidates = projected ? std::min(2 * k, n) : k;
     using Tree = nanoflann::KDTreeEigenMatrixAdaptor<Eigen::MatrixXd, -1, nanoflann::metric_L2,
                                                      /*row_major=*/false>;
     Tree tree(static_cast<Tree::Dimension>(points.rows()), std::cref(points), 16);

