@@ -19,6 +19,7 @@ extern const Command kCorruptCommand;
 extern const Command kEvaluateCommand;
 extern const Command kFitSkeletonCommand;
 extern const Command kDistanceCommand;
+extern const Command kPropagateCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
@@ -27,7 +28,8 @@ const std::vector<Command>& AllCommands() {
                                                 kEvaluateCommand,
                                                 kMarkersCommand, kCalibrateCommand, kFitSkeletonCommand,
                                                 kFilterCommand, kBandsCommand, kBlendCommand,
-                                                kDistanceCommand};
+                                                kDistanceCommand,
+                                                kPropagateCommand};
   return commands;
 }
 
