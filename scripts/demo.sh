@@ -66,6 +66,16 @@ echo "-- evaluate: repair against linear, polynomial, PCA and reference-only fil
 $ms evaluate --quiet --skeleton="$out/walk.bvh" --skeleton_units=cm --markers="$out/walk_markers.c3d" \
   --markerset="$out/calibrated_markerset.json" --gaps=6 --swaps=1 --report="$out/evaluate.json" | head -11
 
+echo; echo "== 13. edit propagation: the falloff of a pose edit through the walk, and the edit itself"
+$ms distance --motion="$out/walk.bvh" --frame=60 --method=green,isomap --out="$out/falloff.csv" \
+  --plot="$out/falloff.svg" --report="$out/falloff.json" | tail -2
+cat > "$out/edit.json" <<'JSON'
+{"comment": "raise the left arm 30 degrees at frame 60", "frame": 60,
+ "joints": {"LeftArm": {"rotation_offset_deg": [0, 0, 30]}}}
+JSON
+$ms propagate --motion="$out/walk.bvh" --skeleton_units=cm --edit="$out/edit.json" --keep_contacts \
+  --out="$out/walk_edited.bvh" --weights_csv="$out/edit_weights.csv" --report="$out/edit_report.json" | tail -2
+
 echo
 echo "Done. Outputs in $out/:"
 ls -1 "$out" | sed 's/^/  /'
