@@ -103,5 +103,56 @@ TEST(MarkerRepair, RefillsGapsAndReplacesAFlyingMarkerWithTheTrackerReference) {
   CheckRepair(ReferenceKind::kTracker);
 }
 
+// Two neighbouring markers exchange places for 20 frames (a labelling swap): both are
+// outliers against the reference and come back near their true paths; a gap at each end
+// of the take and a one-frame gap are refilled too.
+TEST(MarkerRepair, UndoesASwapAndFillsGapsAtTheEndsAndOfOneFrame) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const Motion truth = MakeDemoWalk(skeleton, 120, 60.0);
+  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, 5);
+  std::vector<std::vector<Eigen::Vector3d>> clean;
+  FkData fk(skeleton);
+  for (const Pose& pose : truth.frames) {
+    ForwardKinematics(skeleton, pose, &fk);
+    clean.emplace_back();
+    for (int m = 0; m < markers.num_markers(); ++m) clean.back().push_back(markers.Position(m, fk));
+  }
+  auto corrupted = clean;
+  const int a = markers.FindMarker("LeftLeg_0"), b = markers.FindMarker("LeftLeg_2");
+  const int ends = markers.FindMarker("RightArm_1"), one = markers.FindMarker("Head_1");
+  ASSERT_TRUE(a >= 0 && b >= 0 && ends >= 0 && one >= 0);
+  for (int f = 50; f < 70; ++f) std::swap(corrupted[f][a], corrupted[f][b]);
+  const Eigen::Vector3d missing = Eigen::Vector3d::Constant(std::nan(""));
+  for (int f = 0; f < 8; ++f) corrupted[f][ends] = missing;
+  for (int f = 112; f < 120; ++f) corrupted[f][ends] = missing;
+  corrupted[30][one] = missing;
+
+  RepairOptions options;
+  options.naive.solver = SolverKind::kDls;
+  options.naive.prior_rotation_weight = 2.0;
+  options.reference_kind = ReferenceKind::kTracker;
+  options.tracker = options.naive;
+  options.tracker.loss = "cauchy";
+  options.tracker.loss_scale = 1.0;
+  options.dp_max = 10.0;
+  options.dr_max_rad = DegToRad(30.0);
+  options.outlier_distance = 4.0;
+  options.trim_max = 5;
+  options.small_track = 5;
+  options.small_gap = 0;  // So the one-frame gap goes through the reference fill.
+  std::vector<std::vector<Eigen::Vector3d>> repaired;
+  Motion motion;
+  RepairReport report;
+  ASSERT_TRUE(RepairMarkers(skeleton, markers, corrupted, options, &repaired, &motion, &report).ok());
+  ASSERT_GT((clean[60][a] - clean[60][b]).norm(), 4.0);  // The swap moves them past the outlier test.
+  double worst = 0.0;
+  for (int f = 50; f < 70; ++f) {
+    worst = std::max({worst, (repaired[f][a] - clean[f][a]).norm(), (repaired[f][b] - clean[f][b]).norm()});
+  }
+  EXPECT_LT(worst, 1.0);  // cm: back on their own paths, not the swapped ones.
+  for (int f : {0, 5, 7, 112, 119}) EXPECT_LT((repaired[f][ends] - clean[f][ends]).norm(), 1.0) << f;
+  EXPECT_LT((repaired[30][one] - clean[30][one]).norm(), 0.5);
+}
+
 }  // namespace
 }  // namespace mocapsolve
