@@ -44,6 +44,17 @@ Status LoadObservations(const std::string& path, const Skeleton& skeleton, const
                         MarkerTrajectories* trajectories, MarkerFileToModel* transform,
                         std::vector<std::vector<Eigen::Vector3d>>* observed);
 
+// A take of markers with its model, from --skeleton (whose unit must be known: repair
+// thresholds are in cm), --markerset and --markers (LoadObservations).
+struct MarkerTake {
+  Skeleton skeleton;
+  MarkerSet markers;
+  MarkerTrajectories trajectories;  // The file as read.
+  MarkerFileToModel transform;      // File to skeleton frame.
+  std::vector<std::vector<Eigen::Vector3d>> observed;  // [frame][marker], skeleton units.
+};
+Status LoadMarkerTake(MarkerTake* take);
+
 // Writes the report to --report if set (atomically).
 Status WriteReport(const JsonObject& report);
 

@@ -33,20 +33,12 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
       if (!status.ok()) return status;
     }
   }
-  Skeleton skeleton;
-  Status status = LoadSkeleton(FLAGS_skeleton, &skeleton);
+  MarkerTake take;
+  Status status = LoadMarkerTake(&take);
   if (!status.ok()) return status;
-  if (!skeleton.unit().known()) {
-    return Status::Error(FLAGS_skeleton + ": the skeleton's unit is unknown; give --skeleton_units");
-  }
-  MarkerSet markers;
-  status = ReadMarkerSet(FLAGS_markerset, skeleton, &markers);
-  if (!status.ok()) return status;
-  MarkerTrajectories trajectories;
-  MarkerFileToModel transform;
-  MarkerObservations clean;
-  status = LoadObservations(FLAGS_markers, skeleton, markers, &trajectories, &transform, &clean);
-  if (!status.ok()) return status;
+  const Skeleton& skeleton = take.skeleton;
+  const MarkerSet& markers = take.markers;
+  const MarkerObservations& clean = take.observed;
   RepairOptions options;
   status = RepairOptionsFromFlags(skeleton, &options);
   if (!status.ok()) return status;

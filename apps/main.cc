@@ -12,6 +12,7 @@
 #include "apps/common_flags.h"
 #include "io/atomic_file.h"
 #include "io/marker_file.h"
+#include "io/marker_set_file.h"
 #include "io/motion_file.h"
 #include "kinematics/marker_trajectories.h"
 
@@ -110,6 +111,18 @@ Status ApplySkeletonUnits(Skeleton* skeleton) {
 Status LoadSkeleton(const std::string& path, Skeleton* skeleton) {
   Status status = ReadSkeletonFile(path, skeleton);
   return status.ok() ? ApplySkeletonUnits(skeleton) : status;
+}
+
+Status LoadMarkerTake(MarkerTake* take) {
+  Status status = LoadSkeleton(FLAGS_skeleton, &take->skeleton);
+  if (!status.ok()) return status;
+  if (!take->skeleton.unit().known()) {
+    return Status::Error(FLAGS_skeleton + ": the skeleton's unit is unknown; give --skeleton_units");
+  }
+  status = ReadMarkerSet(FLAGS_markerset, take->skeleton, &take->markers);
+  if (!status.ok()) return status;
+  return LoadObservations(FLAGS_markers, take->skeleton, take->markers, &take->trajectories, &take->transform,
+                          &take->observed);
 }
 
 Status LoadObservations(const std::string& path, const Skeleton& skeleton, const MarkerSet& markers,

@@ -34,20 +34,13 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   if (!FLAGS_out_motion.empty() && FileExtension(FLAGS_out_motion) != ".bvh") {
     return Status::Error(FLAGS_out_motion + ": expected a .bvh");
   }
-  Skeleton skeleton;
-  Status status = LoadSkeleton(FLAGS_skeleton, &skeleton);
+  MarkerTake take;
+  Status status = LoadMarkerTake(&take);
   if (!status.ok()) return status;
-  if (!skeleton.unit().known()) {
-    return Status::Error(FLAGS_skeleton + ": the skeleton's unit is unknown; give --skeleton_units");
-  }
-  MarkerSet markers;
-  status = ReadMarkerSet(FLAGS_markerset, skeleton, &markers);
-  if (!status.ok()) return status;
-  MarkerTrajectories trajectories;
-  MarkerFileToModel transform;
-  std::vector<std::vector<Eigen::Vector3d>> observed;
-  status = LoadObservations(FLAGS_markers, skeleton, markers, &trajectories, &transform, &observed);
-  if (!status.ok()) return status;
+  const Skeleton& skeleton = take.skeleton;
+  const MarkerSet& markers = take.markers;
+  const MarkerTrajectories& trajectories = take.trajectories;
+  const auto& observed = take.observed;
 
   RepairOptions options;
   status = RepairOptionsFromFlags(skeleton, &options);
@@ -67,7 +60,7 @@ Status RunRepair(const std::vector<std::string>& arguments) {
     const int column = trajectories.FindMarker(markers.label(m));
     for (int f = 0; f < out.num_frames(); ++f) {
       const bool same = observed[f][m].allFinite() && repaired[f][m] == observed[f][m];
-      if (!same) out.SetSample(f, column, transform.Invert(repaired[f][m]));
+      if (!same) out.SetSample(f, column, take.transform.Invert(repaired[f][m]));
     }
   }
   status = WriteMarkerFile(FLAGS_out_markers, out);

@@ -6,26 +6,21 @@
 
 #include <gtest/gtest.h>
 
-#include "kinematics/demo_character.h"
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/rotation.h"
 #include "problems/marker_solve/sequence_solver.h"
 #include "problems/marker_solve/synthetic_marker_set.h"
+#include "tests/problems/repair_test_support.h"
 
 namespace mocapsolve {
 namespace {
 
 void CheckRepair(ReferenceKind reference_kind) {
-  const Skeleton skeleton = MakeDemoSkeleton();
-  const Motion truth = MakeDemoWalk(skeleton, 120, 60.0);
-  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, 5);
-  std::vector<std::vector<Eigen::Vector3d>> clean;
-  FkData fk(skeleton);
-  for (const Pose& pose : truth.frames) {
-    ForwardKinematics(skeleton, pose, &fk);
-    clean.emplace_back();
-    for (int m = 0; m < markers.num_markers(); ++m) clean.back().push_back(markers.Position(m, fk));
-  }
+  const testing::DemoTake take = testing::MakeDemoTake(120, 60.0, 5);
+  const Skeleton& skeleton = take.skeleton;
+  const Motion& truth = take.truth;
+  const MarkerSet& markers = take.markers;
+  const auto& clean = take.clean;
   auto corrupted = clean;
   const int gap_marker = markers.FindMarker("LeftForeArm_1");
   const int fly_marker = markers.FindMarker("RightForeArm_0");
@@ -34,18 +29,8 @@ void CheckRepair(ReferenceKind reference_kind) {
   for (int f = 40; f < 70; ++f) corrupted[f][gap_marker] = Eigen::Vector3d::Constant(std::nan(""));
   for (int f = 80; f < 95; ++f) corrupted[f][fly_marker] += Eigen::Vector3d(0, 40, 0);  // 40 cm off.
 
-  RepairOptions options;
-  options.naive.solver = SolverKind::kDls;
-  options.naive.prior_rotation_weight = 2.0;  // 20 mm/rad in cm.
-  options.reference.ceres = DefaultClipCeresOptions();
-  options.reference.loss = "cauchy";
-  options.reference.loss_scale = 1.0;  // cm
-  options.reference_kind = reference_kind;
-  options.tracker = options.naive;
-  options.tracker.loss = "cauchy";
-  options.tracker.loss_scale = 1.0;
-  options.dp_max = 10.0;               // cm, thesis 3.4.2
-  options.dr_max_rad = DegToRad(30.0);
+  RepairOptions options = testing::DemoRepairOptions(reference_kind);
+  options.outlier_distance = 0.0;  // Outliers at dp_max, as the thesis' joint threshold.
   options.trim_max = 10;
   options.small_track = 10;
   options.small_gap = 3;
@@ -107,16 +92,10 @@ TEST(MarkerRepair, RefillsGapsAndReplacesAFlyingMarkerWithTheTrackerReference) {
 // outliers against the reference and come back near their true paths; a gap at each end
 // of the take and a one-frame gap are refilled too.
 TEST(MarkerRepair, UndoesASwapAndFillsGapsAtTheEndsAndOfOneFrame) {
-  const Skeleton skeleton = MakeDemoSkeleton();
-  const Motion truth = MakeDemoWalk(skeleton, 120, 60.0);
-  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, 5);
-  std::vector<std::vector<Eigen::Vector3d>> clean;
-  FkData fk(skeleton);
-  for (const Pose& pose : truth.frames) {
-    ForwardKinematics(skeleton, pose, &fk);
-    clean.emplace_back();
-    for (int m = 0; m < markers.num_markers(); ++m) clean.back().push_back(markers.Position(m, fk));
-  }
+  const testing::DemoTake take = testing::MakeDemoTake(120, 60.0, 5);
+  const Skeleton& skeleton = take.skeleton;
+  const MarkerSet& markers = take.markers;
+  const auto& clean = take.clean;
   auto corrupted = clean;
   const int a = markers.FindMarker("LeftLeg_0"), b = markers.FindMarker("LeftLeg_2");
   const int ends = markers.FindMarker("RightArm_1"), one = markers.FindMarker("Head_1");
@@ -127,16 +106,7 @@ TEST(MarkerRepair, UndoesASwapAndFillsGapsAtTheEndsAndOfOneFrame) {
   for (int f = 112; f < 120; ++f) corrupted[f][ends] = missing;
   corrupted[30][one] = missing;
 
-  RepairOptions options;
-  options.naive.solver = SolverKind::kDls;
-  options.naive.prior_rotation_weight = 2.0;
-  options.reference_kind = ReferenceKind::kTracker;
-  options.tracker = options.naive;
-  options.tracker.loss = "cauchy";
-  options.tracker.loss_scale = 1.0;
-  options.dp_max = 10.0;
-  options.dr_max_rad = DegToRad(30.0);
-  options.outlier_distance = 4.0;
+  RepairOptions options = testing::DemoRepairOptions(ReferenceKind::kTracker);
   options.trim_max = 5;
   options.small_track = 5;
   options.small_gap = 0;  // So the one-frame gap goes through the reference fill.

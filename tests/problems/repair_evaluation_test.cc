@@ -6,24 +6,17 @@
 #include <gtest/gtest.h>
 
 #include "kinematics/demo_character.h"
-#include "kinematics/forward_kinematics.h"
-#include "kinematics/rotation.h"
 #include "problems/marker_solve/synthetic_marker_set.h"
+#include "tests/problems/repair_test_support.h"
 
 namespace mocapsolve {
 namespace {
 
 TEST(RepairEvaluation, ScoresEveryMethodOnTheSameDamage) {
-  const Skeleton skeleton = MakeDemoSkeleton();  // cm
-  const Motion truth = MakeDemoWalk(skeleton, 150, 60.0);
-  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, 5);
-  MarkerObservations clean;
-  FkData fk(skeleton);
-  for (const Pose& pose : truth.frames) {
-    ForwardKinematics(skeleton, pose, &fk);
-    clean.emplace_back();
-    for (int m = 0; m < markers.num_markers(); ++m) clean.back().push_back(markers.Position(m, fk));
-  }
+  const testing::DemoTake take = testing::MakeDemoTake(150, 60.0, 5);
+  const Skeleton& skeleton = take.skeleton;
+  const MarkerSet& markers = take.markers;
+  const MarkerObservations& clean = take.clean;
   MarkerTrajectories x = ObservationTrajectories(markers, clean);
   CorruptionOptions damage;
   damage.seed = 3;
@@ -39,16 +32,7 @@ TEST(RepairEvaluation, ScoresEveryMethodOnTheSameDamage) {
   CorruptionMask mask;
   CorruptMarkers(damage, &x, &mask);
 
-  RepairOptions options;
-  options.naive.solver = SolverKind::kDls;
-  options.naive.prior_rotation_weight = 2.0;  // 20 mm/rad in cm.
-  options.reference_kind = ReferenceKind::kTracker;
-  options.tracker = options.naive;
-  options.tracker.loss = "cauchy";
-  options.tracker.loss_scale = 1.0;
-  options.dp_max = 10.0;
-  options.dr_max_rad = DegToRad(30.0);
-  options.outlier_distance = 4.0;
+  RepairOptions options = testing::DemoRepairOptions(ReferenceKind::kTracker);
   options.trim_max = 10;
   options.small_track = 10;
   options.small_gap = 3;

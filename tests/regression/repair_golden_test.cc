@@ -4,12 +4,9 @@
 // build/bin/repair_golden_test --update_golden, then review the diff.
 #include <gtest/gtest.h>
 
-#include "kinematics/demo_character.h"
-#include "kinematics/forward_kinematics.h"
-#include "kinematics/rotation.h"
 #include "problems/marker_repair/marker_repair.h"
-#include "problems/marker_solve/synthetic_marker_set.h"
 #include "signal/marker_corruption.h"
+#include "tests/problems/repair_test_support.h"
 #include "tests/test_support.h"
 
 namespace mocapsolve {
@@ -24,17 +21,10 @@ double KindCode(const std::string& what) {
 }
 
 TEST(RepairGolden, DamagedDemoWalk) {
-  const Skeleton skeleton = MakeDemoSkeleton();  // cm
-  const Motion truth = MakeDemoWalk(skeleton, 240, 120.0);
-  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, 1);
-  std::vector<std::vector<Eigen::Vector3d>> clean;
-  FkData fk(skeleton);
-  for (const Pose& pose : truth.frames) {
-    ForwardKinematics(skeleton, pose, &fk);
-    clean.emplace_back();
-    for (int m = 0; m < markers.num_markers(); ++m) clean.back().push_back(markers.Position(m, fk));
-  }
-  MarkerTrajectories x = ObservationTrajectories(markers, clean);
+  const testing::DemoTake take = testing::MakeDemoTake(240, 120.0, 1);
+  const Skeleton& skeleton = take.skeleton;
+  const MarkerSet& markers = take.markers;
+  MarkerTrajectories x = ObservationTrajectories(markers, take.clean);
   CorruptionOptions damage;  // The `corrupt` defaults, in cm.
   damage.seed = 1;
   damage.cluster_radius = 15.0;
@@ -45,17 +35,7 @@ TEST(RepairGolden, DamagedDemoWalk) {
   CorruptMarkers(damage, &x, &mask);
   const auto corrupted = TrajectoryObservations(x);
 
-  RepairOptions options;  // The `repair` defaults, in cm.
-  options.naive.solver = SolverKind::kDls;
-  options.naive.prior_rotation_weight = 2.0;
-  options.reference_kind = ReferenceKind::kTracker;
-  options.tracker = options.naive;
-  options.tracker.loss = "cauchy";
-  options.tracker.loss_scale = 1.0;
-  options.dp_max = 10.0;
-  options.dr_max_rad = DegToRad(30.0);
-  options.outlier_distance = 4.0;
-  options.velocity_clamp = 0.25;
+  const RepairOptions options = testing::DemoRepairOptions(ReferenceKind::kTracker);  // `repair`'s defaults
   std::vector<std::vector<Eigen::Vector3d>> repaired;
   Motion motion;
   RepairReport report;
