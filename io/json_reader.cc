@@ -350,6 +350,20 @@ std::string JsonNode::Where(const std::string& file_name) const {
   return file_name + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 
+const std::pair<std::string, JsonNode>* FindUnknownKey(const JsonNode& object,
+                                                       const std::set<std::string>& allowed) {
+  for (const auto& member : object.members) {
+    if (allowed.count(member.first) == 0) return &member;
+  }
+  return nullptr;
+}
+
+std::string KeyList(const std::set<std::string>& allowed) {
+  std::string list;
+  for (const std::string& key : allowed) list += (list.empty() ? "" : ", ") + key;
+  return list;
+}
+
 const char* JsonTypeName(JsonNode::Type type) {
   switch (type) {
     case JsonNode::Type::kNull: return "null";

@@ -23,6 +23,7 @@
 #ifndef MOCAPSOLVE_IO_JSON_READER_H_
 #define MOCAPSOLVE_IO_JSON_READER_H_
 
+#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -60,6 +61,13 @@ class JsonNode {
 
 // "null", "boolean", "number", "string", "array", "object".
 const char* JsonTypeName(JsonNode::Type type);
+
+// The first member of `object` whose key is not in `allowed` (nullptr if none), and the
+// allowed keys as "a, b, c" for the message: file formats reject unknown keys so that
+// typos surface.
+const std::pair<std::string, JsonNode>* FindUnknownKey(const JsonNode& object,
+                                                       const std::set<std::string>& allowed);
+std::string KeyList(const std::set<std::string>& allowed);
 
 struct JsonReadOptions {
   int max_depth = 128;  // Arrays and objects nested deeper than this are an error.

@@ -47,12 +47,8 @@ class Interpreter {
 
   Status CheckKeys(const JsonNode& object, const std::set<std::string>& allowed,
                    const std::string& prefix) const {
-    for (const auto& member : object.members) {
-      if (allowed.count(member.first) == 0) {
-        std::string list;
-        for (const std::string& key : allowed) list += (list.empty() ? "" : ", ") + key;
-        return Error(member.second, prefix + "unknown key '" + member.first + "' (known: " + list + ")");
-      }
+    if (const auto* member = FindUnknownKey(object, allowed)) {
+      return Error(member->second, prefix + "unknown key '" + member->first + "' (known: " + KeyList(allowed) + ")");
     }
     return Status::Ok();
   }
