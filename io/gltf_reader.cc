@@ -703,16 +703,12 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
   }
   double rate = options.frame_rate;
   if (rate == 0.0) {
-    double spacing = 0.0;
-    bool uniform = true;
+    std::vector<double> spacings;
     for (const Track& t : tracks) {
-      for (size_t k = 1; k < t.times.size() && uniform; ++k) {
-        const double d = t.times[k] - t.times[k - 1];
-        if (spacing == 0.0) spacing = d;
-        uniform = std::abs(d - spacing) <= 1e-3 * spacing;
-      }
+      for (size_t k = 1; k < t.times.size(); ++k) spacings.push_back(t.times[k] - t.times[k - 1]);
     }
-    rate = uniform && spacing > 0.0 ? 1.0 / spacing : 30.0;
+    const double spacing = gltf_internal::KeySpacing(spacings);
+    rate = spacing > 0.0 ? 1.0 / spacing : 30.0;
     if (std::abs(rate - std::round(rate)) < 1e-3) rate = std::round(rate);
   }
   const double span_frames = (t1 - t0) * rate;

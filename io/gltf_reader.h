@@ -51,8 +51,9 @@
 //
 // Animation (ReadGltfAnimation): the channels of one animation (by name or index),
 // sampled at frame k at time t0 + k / frame_rate (t0 = the earliest key time, last frame
-// at or before the latest key time + 1e-6 s). frame_rate 0 picks the key rate if every
-// channel's keys are uniformly spaced with one common spacing, else 30 fps. Samplers:
+// at or before the latest key time + 1e-6 s). frame_rate 0 picks the key rate: 1 / the smallest
+// key spacing if every spacing is a whole multiple of it (keys may be dropped where a
+// curve is constant), else 30 fps. Samplers:
 // STEP, LINEAR (translation/scale lerp, rotation slerp) and CUBICSPLINE (Hermite with
 // the in/out tangents scaled by the key interval; rotations renormalized); before the
 // first and after the last key the end values hold. Channels on translation, rotation and

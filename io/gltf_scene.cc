@@ -123,6 +123,17 @@ double UniformScale(const Eigen::Vector3d& s, bool* exact) {
   return uniform;
 }
 
+double KeySpacing(const std::vector<double>& spacings) {
+  if (spacings.empty()) return 0.0;
+  const double smallest = *std::min_element(spacings.begin(), spacings.end());
+  if (!(smallest > 0.0)) return 0.0;
+  for (double d : spacings) {
+    const double multiple = d / smallest;
+    if (std::abs(multiple - std::round(multiple)) > 1e-3) return 0.0;
+  }
+  return smallest;
+}
+
 Similarity SimilarityFromMatrix(const Eigen::Matrix4d& m, bool* exact) {
   Similarity out;
   const Eigen::Matrix3d a = m.topLeftCorner<3, 3>();
