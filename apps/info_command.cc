@@ -89,12 +89,12 @@ Status RunInfo(const std::vector<std::string>& arguments) {
 }  // namespace
 
 extern const Command kInfoCommand = {
-    "info", "what a motion (BVH, ASF/AMC) or marker (C3D, TRC) file holds",
-    "mocapsolve info FILE.bvh | FILE.amc --skeleton=FILE.asf | FILE.c3d | FILE.trc "
-    "[--report=info.json]\n\n"
+    "info", "what a motion (BVH, ASF/AMC, glTF/GLB, FBX) or marker (C3D, TRC) file holds",
+    "mocapsolve info FILE.bvh | FILE.amc --skeleton=FILE.asf | FILE.glb|.gltf|.fbx "
+    "[--animation=NAME] | FILE.c3d | FILE.trc [--report=info.json]\n\n"
     "Motions: joint and end-site counts, frame count and rate, duration, the file's length\n"
     "unit (BVH does not state one) and the bounding box of the root's path. Markers:\n"
     "labels, frames, rate, unit, missing samples and gap runs.",
-    __FILE__, RunInfo, "skeleton,amc_fps,report"};
+    __FILE__, RunInfo, "skeleton,amc_fps,animation,sample_fps,report"};
 
 }  // namespace mocapsolve

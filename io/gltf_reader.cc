@@ -536,10 +536,14 @@ void SampleTrack(const Track& track, double t, double* out) {
       std::upper_bound(track.times.begin(), track.times.end(), t) - track.times.begin());
   const size_t k0 = k1 - 1;
   const double dt = track.times[k1] - track.times[k0];
-  const double s = dt > 0.0 ? (t - track.times[k0]) / dt : 0.0;
+  double s = dt > 0.0 ? (t - track.times[k0]) / dt : 0.0;
+  // A sample within 1e-5 of the interval from a key takes the key: key times are floats
+  // (k / fps rounded), sample times are doubles.
+  if (s < 1e-5) s = 0.0;
+  if (s > 1.0 - 1e-5) s = 1.0;
   switch (track.interpolation) {
     case Interpolation::kStep:
-      std::copy(value(k0, 1), value(k0, 1) + c, out);
+      std::copy(value(s == 1.0 ? k1 : k0, 1), value(s == 1.0 ? k1 : k0, 1) + c, out);
       break;
     case Interpolation::kLinear:
       if (track.path == Path::kRotation) {

@@ -56,7 +56,8 @@
 // curve is constant), else 30 fps. Samplers:
 // STEP, LINEAR (translation/scale lerp, rotation slerp) and CUBICSPLINE (Hermite with
 // the in/out tangents scaled by the key interval; rotations renormalized); before the
-// first and after the last key the end values hold. Channels on translation, rotation and
+// first and after the last key the end values hold; a sample time within 1e-5 of the key
+// interval from a key takes that key (float key times k / fps then sample back exactly). Channels on translation, rotation and
 // scale of joint nodes and of the baked non-joint nodes above them are used; `weights`
 // channels (morph targets) and channels on unrelated nodes are ignored. An animated
 // scale is used if uniform and constant over the clip, otherwise it is ignored (node
