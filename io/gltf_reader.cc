@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <map>
 #include <utility>
@@ -296,6 +297,19 @@ Status GltfDocument::Parse(const std::string& bytes, const std::string& name_for
   bool ok = false;
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   if (bytes.size() > 0xffffffffu) return Status::Error(name_for_errors + ": file too large");
+  if (binary) {  // tinygltf only says "Invalid glTF binary" for a truncated file.
+    if (bytes.size() < 12) {
+      return Status::Error(name_for_errors + ": GLB: " + std::to_string(bytes.size()) +
+                           " bytes, shorter than the 12-byte header");
+    }
+    uint32_t declared = 0;
+    std::memcpy(&declared, bytes.data() + 8, 4);
+    if (declared != bytes.size()) {
+      return Status::Error(name_for_errors + ": GLB: header declares " + std::to_string(declared) +
+                           " bytes, the file has " + std::to_string(bytes.size()) +
+                           (declared > bytes.size() ? " (truncated)" : ""));
+    }
+  }
   try {
     if (binary) {
       ok = loader.LoadBinaryFromMemory(model.get(), &err, &warn,

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include <tiny_gltf.h>
 
 #include "io/atomic_file.h"
+#include "io/gltf_writer.h"
+#include "io/motion_file.h"
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/skinning.h"
 #include "tests/test_support.h"
@@ -612,6 +615,79 @@ TEST(GltfReaderTiny, SeveralRootsGetTheirCommonAncestorOrASyntheticRoot) {
   status = ReadGltfCharacter(doc, options, &c);
   ASSERT_FALSE(status.ok());
   EXPECT_EQ(status.message(), "tiny.gltf: no skin named 'nope' (skins: '', 'two_roots', 'two_trees')");
+}
+
+// tests/data/bad/bad_gltf_*: each fails (through ReadMotionFile, as `mocapsolve info`
+// reads it) with one line "<path>: ..." containing its asset.extras "expect-error"; the
+// CLI exits 1 with that one line.
+TEST(GltfBadFiles, AnnotatedBadFilesFailWithOneLine) {
+  int checked = 0;
+  for (const char* name : {"bad_gltf_accessor_range.gltf", "bad_gltf_skin_joint.gltf", "bad_gltf_ibm_count.gltf",
+                           "bad_gltf_weight_joint.gltf", "bad_gltf_truncated.glb"}) {
+    const std::string path = testing::SourcePath(std::string("tests/data/bad/") + name);
+    std::string bytes;
+    ASSERT_TRUE(ReadFileToString(path, &bytes).ok()) << path;
+    const std::string key = "\"expect-error\":";
+    size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos) << name << " has no expect-error annotation";
+    at = bytes.find('"', at + key.size()) + 1;
+    const std::string expected = bytes.substr(at, bytes.find('"', at) - at);
+    Skeleton skeleton;
+    Motion motion;
+    const Status status = ReadMotionFile(path, MotionFileOptions(), &skeleton, &motion);
+    ASSERT_FALSE(status.ok()) << name;
+    EXPECT_EQ(status.message().find('\n'), std::string::npos) << status.message();
+    EXPECT_EQ(status.message().rfind(path + ": ", 0), 0u) << status.message();
+    EXPECT_NE(status.message().find(expected), std::string::npos) << status.message() << " vs " << expected;
+    std::string output;
+    EXPECT_EQ(testing::RunCli("info " + path, &output), 1) << output;
+    EXPECT_EQ(output, "mocapsolve info: " + status.message() + "\n");
+    ++checked;
+  }
+  EXPECT_EQ(checked, 5);
+}
+
+// Damaged copies of the tiny file (JSON) and of a GLB written from it never crash, and
+// every failure is one line.
+TEST(GltfBadFiles, DamagedFilesFailCleanly) {
+  tiny::Builder b;
+  const std::string json = tiny::TinyFile(&b);
+  GltfDocument doc;
+  ASSERT_TRUE(GltfDocument::Parse(json, "tiny.gltf", "", &doc).ok());
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(doc, {}, &c).ok());
+  Motion motion;
+  ASSERT_TRUE(ReadGltfAnimation(doc, c, {}, &motion).ok());
+  std::string glb;
+  ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "copy", true, &glb).ok());
+  std::mt19937 rng(5);
+  int failures = 0, successes = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const bool binary = trial % 2 == 1;
+    std::string bytes;
+    if (binary) {  // Damage the JSON chunk and the binary data, keeping the header length.
+      bytes = glb;
+      for (int k = 0; k < 3; ++k) bytes[20 + rng() % (bytes.size() - 20)] = static_cast<char>(rng() & 0xff);
+    } else {
+      bytes = testing::RandomlyDamaged(json, "0123456789[]{},:.-\"e", &rng);
+    }
+    GltfDocument d;
+    Status status = GltfDocument::Parse(bytes, "damaged", "", &d);
+    GltfCharacter dc;
+    if (status.ok()) status = ReadGltfCharacter(d, {}, &dc);
+    Motion dm;
+    if (status.ok() && !dc.animation_names.empty()) status = ReadGltfAnimation(d, dc, {}, &dm);
+    if (status.ok()) {
+      ++successes;
+      EXPECT_TRUE(ValidateMotion(dc.skeleton, dm).ok() || dc.animation_names.empty());
+    } else {
+      ++failures;
+      ASSERT_EQ(status.message().find('\n'), std::string::npos) << status.message();
+      ASSERT_EQ(status.message().rfind("damaged: ", 0), 0u) << status.message();
+    }
+  }
+  std::printf("%d damaged files rejected, %d still readable\n", failures, successes);
+  EXPECT_GT(failures, 0);
 }
 }  // namespace
 }  // namespace mocapsolve
