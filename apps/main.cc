@@ -89,11 +89,8 @@ Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
   MotionFileOptions options;
   options.skeleton_path = FLAGS_skeleton;
   options.amc_frame_rate = FLAGS_amc_fps;
-  const std::string ext = FileExtension(path);
-  if (ext == ".glb" || ext == ".gltf" || ext == ".fbx") {
-    options.animation = FLAGS_animation;
-    options.sample_rate = FLAGS_sample_fps;
-  }
+  options.animation = FLAGS_animation;  // An error for formats with one clip.
+  options.sample_rate = FLAGS_sample_fps;
   Status status = ReadMotionFile(path, options, skeleton, motion);
   return status.ok() ? ApplySkeletonUnits(skeleton) : status;
 }
