@@ -69,6 +69,14 @@ Status RunInfo(const std::vector<std::string>& arguments) {
   } else {
     std::printf("units:     not stated by the file (lengths below are in file units)\n");
   }
+  std::vector<std::string> clips;
+  status = ReadAnimationNames(path, &clips);
+  if (!status.ok()) return status;
+  if (!clips.empty()) {
+    std::printf("clips:     %zu:", clips.size());
+    for (size_t k = 0; k < clips.size(); ++k) std::printf("%s %zu '%s'", k ? "," : "", k, clips[k].c_str());
+    std::printf(" (pick one with --animation=NAME or index)\n");
+  }
   std::printf("root path: min (%.4g, %.4g, %.4g) max (%.4g, %.4g, %.4g) extent (%.4g, %.4g, %.4g)\n",
               lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z(), hi.x() - lo.x(), hi.y() - lo.y(),
               hi.z() - lo.z());
@@ -83,6 +91,10 @@ Status RunInfo(const std::vector<std::string>& arguments) {
       .Add("metres_per_unit", unit.metres_per_unit)
       .Add("root_min", std::vector<JsonValue>{lo.x(), lo.y(), lo.z()})
       .Add("root_max", std::vector<JsonValue>{hi.x(), hi.y(), hi.z()});
+  if (!clips.empty()) {
+    std::vector<JsonValue> names(clips.begin(), clips.end());
+    report.Add("animations", names);
+  }
   return WriteReport(report);
 }
 

@@ -19,6 +19,28 @@ std::string FileExtension(const std::string& path) {
   return ext;
 }
 
+Status ReadAnimationNames(const std::string& path, std::vector<std::string>* names) {
+  const std::string ext = FileExtension(path);
+  names->clear();
+  if (ext == ".glb" || ext == ".gltf") {
+    GltfDocument document;
+    Status status = GltfDocument::Read(path, &document);
+    if (!status.ok()) return status;
+    GltfCharacter character;
+    status = ReadGltfCharacter(document, GltfReadOptions(), &character);
+    if (!status.ok()) return status;
+    *names = character.animation_names;
+  } else if (ext == ".fbx") {
+    Skeleton skeleton;
+    Motion motion;
+    FbxInfo info;
+    Status status = ReadFbx(path, FbxReadOptions(), &skeleton, &motion, &info);
+    if (!status.ok()) return status;
+    *names = info.animation_names;
+  }
+  return Status::Ok();
+}
+
 Status ReadSkeletonFile(const std::string& path, Skeleton* skeleton, AsfInfo* asf_info) {
   const std::string ext = FileExtension(path);
   if (ext == ".bvh") {

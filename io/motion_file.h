@@ -7,6 +7,7 @@
 #define MOCAPSOLVE_IO_MOTION_FILE_H_
 
 #include <string>
+#include <vector>
 
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
@@ -31,6 +32,10 @@ Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
 // receives the ASF's dofs and limits (left empty for the other formats).
 struct AsfInfo;
 Status ReadSkeletonFile(const std::string& path, Skeleton* skeleton, AsfInfo* asf_info = nullptr);
+
+// The clips of a file that can hold several (.glb/.gltf/.fbx; "" for an unnamed one);
+// empty for the other formats.
+Status ReadAnimationNames(const std::string& path, std::vector<std::string>* names);
 
 // Lower-case extension with the dot (".bvh"), or "".
 std::string FileExtension(const std::string& path);
