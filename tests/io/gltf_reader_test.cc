@@ -190,6 +190,17 @@ double Extent(const GltfCharacter& c, const Pose& pose) {
   return (p.rowwise().maxCoeff() - p.rowwise().minCoeff()).maxCoeff();
 }
 
+// Y (glTF's up) extent of the mesh skinned at a pose.
+double YExtent(const GltfCharacter& c, const Pose& pose) {
+  FkData fk(c.skeleton);
+  ForwardKinematics(c.skeleton, pose, &fk);
+  std::vector<Eigen::Isometry3d> transforms;
+  ComputeSkinningTransforms(c.mesh, fk, &transforms);
+  Eigen::Matrix3Xd p;
+  SkinMesh(c.mesh, transforms, &p, nullptr);
+  return p.row(1).maxCoeff() - p.row(1).minCoeff();
+}
+
 struct CharacterCase {
   const char* file;
   int joints;  // Per shared/data/README.md (skin 0).
@@ -214,11 +225,11 @@ TEST_P(GltfCharacters, LoadsWithJointCountAndSkinningMatchesGltf) {
   EXPECT_LT(c.triangles.maxCoeff(), c.mesh.num_vertices());
   EXPECT_EQ(c.skeleton.unit().name, "m");
   const double height = Extent(c, c.rest_pose);
-  std::printf("%s: %d joints (skin %d), %d vertices, %d triangles, rest-pose extent %.4f m, bind scale %g, "
-              "%zu animations, %zu warnings\n",
+  std::printf("%s: %d joints (skin %d), %d vertices, %d triangles, rest-pose extent %.4f m, height (y) "
+              "rest pose %.4f m, bind pose %.4f m, bind scale %g, %zu animations, %zu warnings\n",
               GetParam().file, c.skeleton.num_joints(), skin_joints, c.mesh.num_vertices(),
-              static_cast<int>(c.triangles.cols()), height, c.bind_scale, c.animation_names.size(),
-              c.warnings.size());
+              static_cast<int>(c.triangles.cols()), height, YExtent(c, c.rest_pose), YExtent(c, c.bind_pose),
+              c.bind_scale, c.animation_names.size(), c.warnings.size());
   for (const std::string& w : c.warnings) std::printf("  warning: %s\n", w.c_str());
 
   // FK of the bind pose places each skin joint at its inverse bind matrix (scale removed).
