@@ -340,7 +340,9 @@ Status ReadFbx(const std::string& path, const FbxReadOptions& options, Skeleton*
     if (std::abs(rate - std::round(rate)) < 1e-3) rate = std::round(rate);
   }
   const double seconds = (t1 - t0) / ticks_per_second;
-  if (!(seconds * rate < 1e6)) return Status::Error(where + ": over a million frames");
+  if (!(seconds * rate * rig.joint_nodes.size() < 1e7)) {  // As in gltf_reader.cc.
+    return Status::Error(where + ": over 1e7 joint-frames");
+  }
   const int num_frames = static_cast<int>(std::floor(seconds * rate + 1e-6 * rate)) + 1;
   Motion out;
   out.frame_rate = rate;

@@ -345,6 +345,12 @@ Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& op
   if (!document.loaded()) return Status::Error("glTF document not loaded");
   const tinygltf::Model& model = document.model();
   const std::string& file = document.name();
+  for (const std::string& extension : model.extensionsRequired) {
+    if (extension == "KHR_draco_mesh_compression" || extension == "EXT_meshopt_compression" ||
+        extension == "KHR_mesh_quantization") {
+      return Status::Error(file + ": requires extension " + extension + ", which is not supported");
+    }
+  }
   GltfCharacter out;
   Status status = FindSkin(model, file, options.skin, &out.skin);
   if (!status.ok()) return status;
@@ -730,9 +736,12 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
     if (std::abs(rate - std::round(rate)) < 1e-3) rate = std::round(rate);
   }
   const double span_frames = (t1 - t0) * rate;
-  if (!(span_frames < 1e6)) {
+  // At most 1e7 joint-frames (about 0.6 GB of poses; a 10-minute 120 fps take of 65
+  // joints is 4.7e6).
+  if (!(span_frames * character.skeleton.num_joints() < 1e7)) {
     return Status::Error(where + ": " + std::to_string(t1 - t0) + " s at " + std::to_string(rate) +
-                         " fps is over a million frames");
+                         " fps for " + std::to_string(character.skeleton.num_joints()) +
+                         " joints is over 1e7 joint-frames");
   }
   const int num_frames = static_cast<int>(std::floor(span_frames + 1e-6 * rate)) + 1;
   Motion out;

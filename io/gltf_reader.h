@@ -64,9 +64,12 @@
 // default kept) with a warning. Rotation series are made sign-continuous.
 //
 // Errors: Status with one line "<path>: <where>: <what>", e.g. "Xbot.glb: skin 0:
-// inverseBindMatrices accessor 7: has 3 matrices for 65 joints". Every index, accessor
+// inverseBindMatrices accessor 7 has 3 matrices for 65 joints". Every index, accessor
 // bound, count and number is checked; nothing can crash, allocate without bound, or
-// return non-finite values.
+// return non-finite values (a sampled clip is limited to 1e7 joint-frames; an accessor
+// without a bufferView to 4x the file's data bytes). Files requiring Draco, meshopt or
+// mesh quantization are refused. Weights that do not sum to 1 (RobotExpressive) are
+// normalized, as three.js does.
 #ifndef MOCAPSOLVE_IO_GLTF_READER_H_
 #define MOCAPSOLVE_IO_GLTF_READER_H_
 
