@@ -99,7 +99,7 @@ class GltfDocument {
   // resolved beside the file).
   static Status Read(const std::string& path, GltfDocument* document);
   // Bytes held in memory; error messages name `name_for_errors`; `base_dir` resolves
-  // external buffer URIs ("" = none allowed).
+  // external buffer URIs ("" = relative to the working directory).
   static Status Parse(const std::string& bytes, const std::string& name_for_errors,
                       const std::string& base_dir, GltfDocument* document);
 

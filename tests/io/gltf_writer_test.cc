@@ -1,10 +1,12 @@
 #include "io/gltf_writer.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include "io/atomic_file.h"
 #include "io/gltf_reader.h"
@@ -137,5 +139,57 @@ TEST(GltfWriter, RefusesBadRequests) {
   EXPECT_NE(twice.message().find("already has an animation named 'x'"), std::string::npos) << twice.message();
 }
 
+// Joint nodes given by a `matrix` (allowed by glTF, not animatable) read the same as
+// TRS nodes and are rewritten as TRS by the writer; the clip round-trips.
+TEST(GltfWriter, MatrixJointNodesAreReadAndRewrittenAsTrs) {
+  MOCAPSOLVE_DATA_FILE(path, "gltf/CesiumMan.glb");
+  GltfDocument doc;
+  ASSERT_TRUE(GltfDocument::Read(path, &doc).ok());
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(doc, {}, &c).ok());
+  tinygltf::Model model = doc.model();
+  for (int n : model.skins[0].joints) {
+    tinygltf::Node& node = model.nodes[n];
+    Eigen::Affine3d a = Eigen::Affine3d::Identity();
+    if (node.translation.size() == 3) a.translate(Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]));
+    if (node.rotation.size() == 4) a.rotate(Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]).normalized());
+    if (node.scale.size() == 3) a.scale(Eigen::Vector3d(node.scale[0], node.scale[1], node.scale[2]));
+    node.matrix.assign(a.matrix().data(), a.matrix().data() + 16);  // Column-major, as glTF.
+    node.translation.clear();
+    node.rotation.clear();
+    node.scale.clear();
+  }
+  tinygltf::TinyGLTF writer;
+  std::ostringstream stream;
+  ASSERT_TRUE(writer.WriteGltfSceneToStream(&model, stream, false, true));
+  GltfDocument matrix_doc;
+  Status status = GltfDocument::Parse(stream.str(), "matrix.glb", "", &matrix_doc);
+  ASSERT_TRUE(status.ok()) << status.message();
+  GltfCharacter mc;
+  ASSERT_TRUE(ReadGltfCharacter(matrix_doc, {}, &mc).ok());
+  ASSERT_EQ(mc.skeleton.num_joints(), c.skeleton.num_joints());
+  for (int j = 0; j < c.skeleton.num_joints(); ++j) {
+    // 1e-12: the matrix holds the same TRS composed in double.
+    EXPECT_LT((mc.skeleton.offset(j) - c.skeleton.offset(j)).norm(), 1e-12);
+    EXPECT_LT(mc.rest_pose.rotations[j].angularDistance(c.rest_pose.rotations[j]), 1e-12);
+  }
+  const Motion motion = NewMotion(doc, c);
+  std::string bytes;
+  status = SerializeGltfWithAnimation(matrix_doc, mc, motion, "from_matrix", true, &bytes);
+  ASSERT_TRUE(status.ok()) << status.message();
+  GltfDocument back;
+  ASSERT_TRUE(GltfDocument::Parse(bytes, "back.glb", "", &back).ok());
+  for (int n : back.model().skins[0].joints) {
+    EXPECT_TRUE(back.model().nodes[n].matrix.empty());
+    EXPECT_EQ(back.model().nodes[n].rotation.size(), 4u);
+  }
+  GltfCharacter bc;
+  ASSERT_TRUE(ReadGltfCharacter(back, {}, &bc).ok());
+  Motion read;
+  GltfAnimationOptions options;
+  options.animation = "from_matrix";
+  ASSERT_TRUE(ReadGltfAnimation(back, bc, options, &read).ok());
+  ExpectSameMotion(motion, read, 1.0);
+}
 }  // namespace
 }  // namespace mocapsolve
