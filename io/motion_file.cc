@@ -92,8 +92,13 @@ Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
     animation.animation = options.animation;
     animation.frame_rate = options.sample_rate;
     Motion sampled;
-    status = ReadGltfAnimation(document, character, animation, &sampled);
+    std::vector<std::string> clip_warnings;
+    status = ReadGltfAnimation(document, character, animation, &sampled, &clip_warnings);
     if (!status.ok()) return status;
+    if (options.warnings != nullptr) {
+      *options.warnings = character.warnings;
+      options.warnings->insert(options.warnings->end(), clip_warnings.begin(), clip_warnings.end());
+    }
     *skeleton = character.skeleton;
     *motion = std::move(sampled);
     return Status::Ok();
@@ -102,7 +107,10 @@ Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
     FbxReadOptions fbx;
     fbx.animation = options.animation;
     fbx.frame_rate = options.sample_rate;
-    return ReadFbx(path, fbx, skeleton, motion);
+    FbxInfo info;
+    Status status = ReadFbx(path, fbx, skeleton, motion, &info);
+    if (status.ok() && options.warnings != nullptr) *options.warnings = info.warnings;
+    return status;
   }
   if (ext == ".bvh") {
     if (!options.skeleton_path.empty()) {

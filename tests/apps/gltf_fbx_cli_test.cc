@@ -70,5 +70,31 @@ TEST(GltfFbxCli, InfoAndFk) {
   EXPECT_NE(output.find("applies to .glb/.gltf/.fbx only"), std::string::npos) << output;
 }
 
+TEST(GltfFbxCli, SkeletonFilesAndWarnings) {
+  MOCAPSOLVE_DATA_FILE(glb, "gltf/Xbot.glb");
+  MOCAPSOLVE_DATA_FILE(fbx, "fbx/08_02_cmu.fbx");
+  Skeleton skeleton;
+  ASSERT_TRUE(ReadSkeletonFile(glb, &skeleton).ok());
+  EXPECT_EQ(skeleton.num_joints(), 65);
+  EXPECT_EQ(skeleton.unit().name, "m");
+  ASSERT_TRUE(ReadSkeletonFile(fbx, &skeleton).ok());
+  EXPECT_EQ(skeleton.num_joints(), 31);
+  std::vector<std::string> clips;
+  ASSERT_TRUE(ReadAnimationNames(glb, &clips).ok());
+  EXPECT_EQ(clips, std::vector<std::string>{"Armature|mixamo.com|Layer0"});
+  // RobotExpressive's legs have a slightly non-uniform scale: a warning, on stderr in the CLI.
+  MOCAPSOLVE_DATA_FILE(robot, "gltf/RobotExpressive.glb");
+  std::vector<std::string> warnings;
+  MotionFileOptions options;
+  options.warnings = &warnings;
+  Motion motion;
+  ASSERT_TRUE(ReadMotionFile(robot, options, &skeleton, &motion).ok());
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_NE(warnings[0].find("'Leg.R': non-uniform or negative scale"), std::string::npos) << warnings[0];
+  std::string output;
+  ASSERT_EQ(testing::RunCli("info " + robot, &output), 0);
+  EXPECT_NE(output.find("warning: " + warnings[0]), std::string::npos) << output;
+}
+
 }  // namespace
 }  // namespace mocapsolve
