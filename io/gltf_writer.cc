@@ -1,5 +1,6 @@
 #include "io/gltf_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -179,6 +180,66 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
   }
   if (!ok) return Status::Error(file + ": glTF writer failed");
   *bytes = stream.str();
+  return Status::Ok();
+}
+
+Status MotionForCharacter(const Skeleton& source, const Motion& motion, const GltfCharacter& character,
+                          Motion* out) {
+  const Skeleton& target = character.skeleton;
+  const int nj = target.num_joints();
+  double scale = 1.0;
+  if (source.unit().known() && target.unit().known()) {
+    scale = source.unit().metres_per_unit / target.unit().metres_per_unit;
+  }
+  double size = 0.0;
+  for (int j = 0; j < nj; ++j) size = std::max(size, target.offset(j).norm());
+  std::vector<int> from(nj, -1);
+  for (int j = 0; j < nj; ++j) {
+    from[j] = source.FindJoint(target.name(j));
+    const bool synthetic = !character.joint_nodes.empty() && character.joint_nodes[j] < 0;
+    if (from[j] < 0) {
+      if (synthetic) continue;
+      return Status::Error("joint '" + target.name(j) + "' of the character is missing from the motion's skeleton");
+    }
+    const int p = target.parent(j);
+    const int sp = source.parent(from[j]);
+    const std::string target_parent = p >= 0 ? target.name(p) : "";
+    std::string source_parent = sp >= 0 ? source.name(sp) : "";
+    if (p >= 0 && from[p] < 0 && sp < 0) source_parent = target_parent;  // Below a missing gltf_root.
+    if (target_parent != source_parent) {
+      return Status::Error("joint '" + target.name(j) + "': parent '" + source_parent + "' in the motion, '" +
+                           target_parent + "' in the character");
+    }
+    if (p >= 0 && (scale * source.offset(from[j]) - target.offset(j)).norm() > 1e-3 * size) {
+      return Status::Error("joint '" + target.name(j) + "': offset differs from the character's by more than "
+                           "1e-3 of its size (a different skeleton or unit?)");
+    }
+  }
+  Motion result;
+  result.frame_rate = motion.frame_rate;
+  result.frames.resize(motion.frames.size());
+  for (size_t f = 0; f < motion.frames.size(); ++f) {
+    const Pose& in = motion.frames[f];
+    if (static_cast<int>(in.rotations.size()) != source.num_joints() ||
+        static_cast<int>(in.translations.size()) != source.num_joints()) {
+      return Status::Error("frame " + std::to_string(f) + ": pose size differs from the skeleton's");
+    }
+    Pose& pose = result.frames[f];
+    pose.rotations.resize(nj);
+    pose.translations.resize(nj);
+    for (int j = 0; j < nj; ++j) {
+      if (from[j] < 0) {
+        pose.rotations[j] = Eigen::Quaterniond::Identity();
+        pose.translations[j] = target.offset(j);
+        continue;
+      }
+      pose.rotations[j] = (target.rest_rotation(j).conjugate() * source.rest_rotation(from[j]) *
+                           in.rotations[from[j]]).normalized();
+      pose.translations[j] = scale * in.translations[from[j]];
+    }
+  }
+  MakeSignContinuous(&result);
+  *out = std::move(result);
   return Status::Ok();
 }
 

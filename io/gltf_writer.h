@@ -44,6 +44,19 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
                                   const Motion& motion, const std::string& animation_name,
                                   bool binary, std::string* bytes);
 
+// Re-expresses a motion of another skeleton that has the character's joints (same names
+// and parents, e.g. a BVH converted from the character and edited) in the character's
+// joint order and rest rotations, so that FK is unchanged:
+//   rotation_j = R_rest_char_j^-1 * R_rest_source_j * rotation_source_j,
+//   translation_j = scale * translation_source_j,
+// scale = source.unit / character.unit when both are known, else 1 (a BVH states no
+// unit: it is taken to be the character's). Joints of the source the character does not
+// have are dropped; a character joint missing from the source, a different parent, or an
+// offset that differs by more than 1e-3 of the character's size is an error naming the
+// joint. The synthetic "gltf_root" may be missing (it stays at rest).
+Status MotionForCharacter(const Skeleton& source, const Motion& motion, const GltfCharacter& character,
+                          Motion* out);
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_IO_GLTF_WRITER_H_

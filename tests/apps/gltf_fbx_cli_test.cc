@@ -96,5 +96,42 @@ TEST(GltfFbxCli, SkeletonFilesAndWarnings) {
   EXPECT_NE(output.find("warning: " + warnings[0]), std::string::npos) << output;
 }
 
+// glTF -> BVH -> back into the character as a new clip: FK equals the original clip's.
+TEST(GltfFbxCli, BvhBackIntoTheCharacter) {
+  MOCAPSOLVE_DATA_FILE(soldier, "gltf/Soldier.glb");
+  const std::string bvh = testing::TempPath("run.bvh");
+  const std::string glb = testing::TempPath("soldier_run.glb");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("convert " + soldier + " " + bvh + " --animation=Run --precision=12", &output), 0)
+      << output;
+  ASSERT_EQ(testing::RunCli("convert " + bvh + " " + glb + " --target=" + soldier + " --clip_name=RunAgain", &output),
+            0)
+      << output;
+  Skeleton a, b;
+  Motion ma, mb;
+  MotionFileOptions options;
+  options.animation = "Run";
+  ASSERT_TRUE(ReadMotionFile(soldier, options, &a, &ma).ok());
+  options.animation = "RunAgain";
+  const Status status = ReadMotionFile(glb, options, &b, &mb);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_EQ(ma.num_frames(), mb.num_frames());
+  FkData fa(a), fb(b);
+  for (int f = 0; f < ma.num_frames(); ++f) {
+    ForwardKinematics(a, ma.frames[f], &fa);
+    ForwardKinematics(b, mb.frames[f], &fb);
+    for (int j = 0; j < a.num_joints(); ++j) {
+      // 1e-6 m on a 0.2 m figure: float keys in the glTF, 12 digits in the BVH.
+      ASSERT_LT((fa.world_positions[j] - fb.world_positions[j]).norm(), 1e-6) << "frame " << f << " joint " << j;
+    }
+  }
+  // Another character's skeleton does not fit: one line, exit 1.
+  MOCAPSOLVE_DATA_FILE(xbot, "gltf/Xbot.glb");
+  EXPECT_EQ(testing::RunCli("convert " + bvh + " " + testing::TempPath("x.glb") + " --target=" + xbot, &output), 1);
+  EXPECT_NE(output.find("offset differs"), std::string::npos) << output;
+  EXPECT_EQ(testing::RunCli("convert " + bvh + " " + testing::TempPath("y.glb"), &output), 1);
+  EXPECT_NE(output.find("needs --target"), std::string::npos) << output;
+}
+
 }  // namespace
 }  // namespace mocapsolve
