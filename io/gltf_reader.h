@@ -51,13 +51,13 @@
 //
 // Animation (ReadGltfAnimation): the channels of one animation (by name or index),
 // sampled at frame k at time t0 + k / frame_rate (t0 = the earliest key time, last frame
-// at or before the latest key time + 1e-6 s). frame_rate 0 picks the key rate: 1 / the smallest
-// key spacing if every spacing is a whole multiple of it (keys may be dropped where a
-// curve is constant), else 30 fps. Samplers:
-// STEP, LINEAR (translation/scale lerp, rotation slerp) and CUBICSPLINE (Hermite with
-// the in/out tangents scaled by the key interval; rotations renormalized); before the
-// first and after the last key the end values hold; a sample time within 1e-5 of the key
-// interval from a key takes that key (float key times k / fps then sample back exactly). Channels on translation, rotation and
+// at or before the latest key time + 1e-6 s). frame_rate 0 picks the key rate: 1 / the
+// smallest key spacing if every spacing is a whole multiple of it (keys may be dropped
+// where a curve is constant), else 30 fps. Samplers: STEP, LINEAR (translation/scale
+// lerp, rotation slerp) and CUBICSPLINE (Hermite with the in/out tangents scaled by the
+// key interval; rotations renormalized). Before the first and after the last key the end
+// values hold; a sample time within 1e-5 of the key interval from a key takes that key
+// (so float key times k / fps sample back exactly). Channels on translation, rotation and
 // scale of joint nodes and of the baked non-joint nodes above them are used; `weights`
 // channels (morph targets) and channels on unrelated nodes are ignored. An animated
 // scale is used if uniform and constant over the clip, otherwise it is ignored (node
