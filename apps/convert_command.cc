@@ -1,9 +1,11 @@
-// mocapsolve convert IN OUT: motion files to BVH.
+// mocapsolve convert IN OUT: motion files to BVH, or into a glTF character.
 #include <cstdio>
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "io/bvh_writer.h"
+#include "io/gltf_reader.h"
+#include "io/gltf_writer.h"
 #include "io/motion_file.h"
 #include "kinematics/rotation.h"
 
@@ -12,15 +14,56 @@ DEFINE_double(scale, 1.0, "Multiply every length (offsets, translations) by this
 DEFINE_string(euler_order, "", "Write every joint's rotation channels in this order (XYZ, XZY, "
               "YXZ, YZX, ZXY, ZYX); default: keep each joint's order from the input.");
 DEFINE_int32(precision, 6, "Significant digits of the written channel values.");
+DEFINE_string(target, "", "glTF output: the character (.glb/.gltf) the motion is written into, as a "
+              "new animation; default: IN when IN is a glTF file. The motion's skeleton must have the "
+              "character's joints (e.g. a BVH converted from it).");
+DEFINE_string(clip_name, "mocapsolve", "glTF output: name of the added animation.");
 
 namespace mocapsolve {
 namespace {
+
+// IN's motion as a new animation of the --target character.
+Status ConvertToGltf(const std::string& in, const std::string& out) {
+  const std::string in_ext = FileExtension(in);
+  const std::string target = !FLAGS_target.empty() ? FLAGS_target
+                             : in_ext == ".glb" || in_ext == ".gltf" ? in
+                                                                     : "";
+  if (target.empty()) return Status::Error(out + ": glTF output needs --target=CHARACTER.glb");
+  Status status = CheckNotAnInput(out, in);
+  if (status.ok()) status = CheckNotAnInput(out, target);
+  if (!status.ok()) return status;
+  if (FLAGS_scale != 1.0 || !FLAGS_euler_order.empty()) {
+    return Status::Error("--scale and --euler_order apply to BVH output only");
+  }
+  GltfDocument document;
+  status = GltfDocument::Read(target, &document);
+  if (!status.ok()) return status;
+  GltfCharacter character;
+  status = ReadGltfCharacter(document, GltfReadOptions(), &character);
+  if (!status.ok()) return status;
+  Skeleton skeleton;
+  Motion motion, mapped;
+  status = LoadMotion(in, &skeleton, &motion);
+  if (!status.ok()) return status;
+  status = MotionForCharacter(skeleton, motion, character, &mapped);
+  if (!status.ok()) return Status::Error(in + " onto " + target + ": " + status.message());
+  status = WriteGltfWithAnimation(document, character, mapped, FLAGS_clip_name, out);
+  if (!status.ok()) return status;
+  std::printf("wrote %s: %s plus animation '%s' (%d frames at %.6g fps)\n", out.c_str(), target.c_str(),
+              FLAGS_clip_name.c_str(), mapped.num_frames(), mapped.frame_rate);
+  JsonObject report;
+  report.Add("input", in).Add("output", out).Add("target", target).Add("clip_name", FLAGS_clip_name)
+      .Add("joints", character.skeleton.num_joints()).Add("frames", mapped.num_frames());
+  return WriteReport(report);
+}
 
 Status RunConvert(const std::vector<std::string>& arguments) {
   if (arguments.size() != 2) return Status::Error("expected IN OUT (mocapsolve convert IN OUT)");
   const std::string& in = arguments[0];
   const std::string& out = arguments[1];
-  if (FileExtension(out) != ".bvh") return Status::Error(out + ": only .bvh output is supported");
+  const std::string out_ext = FileExtension(out);
+  if (out_ext == ".glb" || out_ext == ".gltf") return ConvertToGltf(in, out);
+  if (out_ext != ".bvh") return Status::Error(out + ": output must be .bvh, .glb or .gltf");
   Status status = CheckNotAnInput(out, in);
   if (status.ok() && !FLAGS_skeleton.empty()) status = CheckNotAnInput(out, FLAGS_skeleton);
   if (!status.ok()) return status;
@@ -56,11 +99,14 @@ Status RunConvert(const std::vector<std::string>& arguments) {
 }  // namespace
 
 extern const Command kConvertCommand = {
-    "convert", "BVH or ASF/AMC in, BVH out (rescale, change Euler order)",
-    "mocapsolve convert IN.bvh|IN.amc OUT.bvh [--skeleton=X.asf] [--scale=S] "
-    "[--euler_order=ZXY]\n\n"
+    "convert", "BVH, ASF/AMC, glTF/GLB or FBX in; BVH out, or a new clip of a glTF character",
+    "mocapsolve convert IN.bvh|IN.amc|IN.glb|IN.gltf|IN.fbx OUT.bvh [--skeleton=X.asf] "
+    "[--animation=NAME] [--scale=S] [--euler_order=ZXY]\n"
+    "       mocapsolve convert IN OUT.glb|OUT.gltf [--target=CHARACTER.glb] [--clip_name=NAME]\n\n"
     "Reads a motion and writes it as BVH. Rest rotations of ASF skeletons are folded into\n"
-    "the BVH rotation channels. OUT is written atomically and may not be an input.",
-    __FILE__, RunConvert, "skeleton,amc_fps,report"};
+    "the BVH rotation channels. With a .glb/.gltf OUT, the motion (whose skeleton must have\n"
+    "the character's joints, e.g. a BVH converted from it) is added as a new animation to a\n"
+    "copy of --target (default IN). OUT is written atomically and may not be an input.",
+    __FILE__, RunConvert, "skeleton,amc_fps,animation,sample_fps,report"};
 
 }  // namespace mocapsolve

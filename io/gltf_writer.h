@@ -1,0 +1,62 @@
+// glTF 2.0 writer: the file a character was read from, unchanged, plus one new animation
+// holding a Motion of that character (e.g. a retargeted clip), as .glb or as .gltf
+// with embedded (data URI) buffers; the output's extension decides.
+//
+// The source model is copied through tinygltf and the animation appended: one shared
+// time accessor (frame k at k / frame_rate seconds, float, with min/max), and per joint
+// node a LINEAR rotation channel (VEC4 float) and, for the root joint and every joint
+// whose translation differs from its rest offset in some frame (by more than 1e-9 of
+// |offset| + 1), a LINEAR translation channel (VEC3 float). The data go at the end of
+// buffer 0 (4-byte aligned, one bufferView per accessor); existing buffers, images (as
+// stored: buffer views or their URIs) and animations are kept.
+//
+// The reader's baking is undone (gltf_reader.h): with A_j the default-transform
+// similarity of the nodes between j's parent joint and j's node and c_p the parent's
+// accumulated rest scale, node rotation = A_j.rotation^-1 * R_rest_j * rotation_j and
+// node translation = A_j.rotation^-1 (translation_j / c_p - A_j.translation) / A_j.scale,
+// so reading the new animation back gives the Motion again (to float precision). Scales
+// are not animated (the nodes keep their default scale). A joint node given by a
+// `matrix` is rewritten as the equivalent TRS (channels cannot target a matrix node);
+// a matrix that is not a uniform-scale similarity is an error. A synthetic "gltf_root"
+// cannot be written: the motion must leave it at rest.
+//
+// Output is written atomically (io/atomic_file.h). Errors: Status naming the output
+// path and what is wrong (motion size, frame rate, animation name already used, ...).
+#ifndef MOCAPSOLVE_IO_GLTF_WRITER_H_
+#define MOCAPSOLVE_IO_GLTF_WRITER_H_
+
+#include <string>
+
+#include "io/gltf_reader.h"
+#include "kinematics/motion.h"
+#include "kinematics/status.h"
+
+namespace mocapsolve {
+
+// `character` must have been read from `source` (ReadGltfCharacter); `animation_name`
+// must be non-empty and not name an existing animation of the source.
+Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
+                              const Motion& motion, const std::string& animation_name,
+                              const std::string& path);
+
+// The same, into memory: .glb bytes if `binary`, else .gltf JSON text.
+Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
+                                  const Motion& motion, const std::string& animation_name,
+                                  bool binary, std::string* bytes);
+
+// Re-expresses a motion of another skeleton that has the character's joints (same names
+// and parents, e.g. a BVH converted from the character and edited) in the character's
+// joint order and rest rotations, so that FK is unchanged:
+//   rotation_j = R_rest_char_j^-1 * R_rest_source_j * rotation_source_j,
+//   translation_j = scale * translation_source_j,
+// scale = source.unit / character.unit when both are known, else 1 (a BVH states no
+// unit: it is taken to be the character's). Joints of the source the character does not
+// have are dropped; a character joint missing from the source, a different parent, or an
+// offset that differs by more than 1e-3 of the character's size is an error naming the
+// joint. The synthetic "gltf_root" may be missing (it stays at rest).
+Status MotionForCharacter(const Skeleton& source, const Motion& motion, const GltfCharacter& character,
+                          Motion* out);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_IO_GLTF_WRITER_H_
