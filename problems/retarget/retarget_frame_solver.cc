@@ -1,0 +1,520 @@
+#include "problems/retarget/retarget_frame_solver.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <ceres/problem.h>
+#include <Eigen/Cholesky>
+#include <glog/logging.h>
+
+#include "kinematics/forward_kinematics.h"
+#include "kinematics/rotation.h"
+#include "kinematics/skinning.h"
+#include "problems/marker_solve/joint_limit_residual.h"
+#include "problems/marker_solve/pose_prior_residual.h"
+#include "problems/retarget/tracked_vertex_residual.h"
+#include "solvers/dls_solver.h"
+#include "solvers/right_quaternion_manifold.h"
+
+namespace mocapsolve {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point from, Clock::time_point to) {
+  return std::chrono::duration<double>(to - from).count();
+}
+
+}  // namespace
+
+bool ParseRetargetSolverKind(const std::string& name, RetargetSolverKind* kind) {
+  if (name == "dls") return *kind = RetargetSolverKind::kDls, true;
+  if (name == "dls_generic") return *kind = RetargetSolverKind::kDlsGeneric, true;
+  if (name == "ceres") return *kind = RetargetSolverKind::kCeres, true;
+  return false;
+}
+
+const char* RetargetSolverName(RetargetSolverKind kind) {
+  switch (kind) {
+    case RetargetSolverKind::kDls: return "dls";
+    case RetargetSolverKind::kDlsGeneric: return "dls_generic";
+    case RetargetSolverKind::kCeres: return "ceres";
+  }
+  return "?";
+}
+
+bool RetargetSolveOptions::IsValid(std::string* error) const {
+  if (iterations < 1) return *error = "iterations must be >= 1", false;
+  if (!(lambda >= 0.0) || !std::isfinite(lambda)) return *error = "lambda must be >= 0", false;
+  if (!(position_weight > 0.0) || !(normal_weight >= 0.0)) {
+    return *error = "position weight must be > 0 and normal weight >= 0", false;
+  }
+  if (!(smoothness_weight >= 0.0) || !(limit_weight >= 0.0)) {
+    return *error = "smoothness and limit weights must be >= 0", false;
+  }
+  if (solver == RetargetSolverKind::kCeres && !ceres.IsValid(error)) return false;
+  return true;
+}
+
+ceres::Solver::Options DefaultRetargetCeresOptions() {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  options.max_num_iterations = 10;
+  options.function_tolerance = 1e-10;
+  options.gradient_tolerance = 1e-12;
+  options.parameter_tolerance = 1e-10;
+  options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
+  return options;
+}
+
+void TrackedVertexErrors(const Skeleton& skeleton, const SkinnedMesh& mesh,
+                         const RetargetSetup& setup, const Pose& pose,
+                         const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
+                         double* mean_position_error, double* mean_normal_angle) {
+  FkData fk(skeleton);
+  ForwardKinematics(skeleton, pose, &fk);
+  std::vector<Eigen::Isometry3d> transforms;
+  ComputeSkinningTransforms(mesh, fk, &transforms);
+  double position = 0.0, angle = 0.0;
+  const int nt = static_cast<int>(setup.tracked.size());
+  for (int s = 0; s < nt; ++s) {
+    const int v = setup.tracked[s].target_vertex;
+    position += (SkinPosition(mesh, transforms, v) - goal_positions.col(s)).norm();
+    const Eigen::Vector3d n = SkinNormal(mesh, transforms, v);
+    const Eigen::Vector3d m = goal_normals.col(s);
+    angle += std::atan2(n.cross(m).norm(), n.dot(m));
+  }
+  *mean_position_error = nt > 0 ? position / nt : 0.0;
+  *mean_normal_angle = nt > 0 ? angle / nt : 0.0;
+}
+
+class RetargetFrameSolver::Impl {
+ public:
+  Impl(const Skeleton& skeleton, const SkinnedMesh& mesh, const RetargetSetup& setup, double sigma,
+       const RetargetSolveOptions& options)
+      : skeleton_(skeleton), mesh_(mesh), setup_(setup), sigma_(sigma), options_(options) {
+    std::string error;
+    CHECK(options.IsValid(&error)) << error;
+    CHECK_GT(sigma, 0.0);
+    const int nj = skeleton.num_joints();
+    const int nt = static_cast<int>(setup.tracked.size());
+    rotations_.assign(4 * nj, 0.0);
+    reference_rotations_.assign(4 * nj, 0.0);
+    goals_.resize(nt);
+    column_.assign(nj, -1);
+    std::vector<bool> solved(nj, false);
+    for (int s = 0; s < nt; ++s) {
+      const TrackedVertex& t = setup.tracked[s];
+      const double scale =
+          t.track_position ? options.position_weight / sigma : options.normal_weight;
+      residuals_.emplace_back(
+          new TrackedVertexResidual(&skeleton, &mesh, t.target_vertex, t.track_position, &goals_[s], scale));
+      for (int j : residuals_.back()->joints()) solved[j] = true;
+    }
+    int n = 3;
+    for (int j = 0; j < nj; ++j) {
+      if (solved[j]) {
+        column_[j] = n;
+        solved_joints_.push_back(j);
+        n += 3;
+      }
+    }
+    // Extra single-block residuals: priors and limits (marker_solve's, reused).
+    if (options.smoothness_weight > 0.0) {
+      translation_prior_.reset(
+          new TranslationPriorResidual(reference_translation_.data(), options.smoothness_weight / sigma));
+      for (int j : solved_joints_) {
+        extras_.push_back({std::unique_ptr<ceres::CostFunction>(new RotationPriorResidual(
+                               &reference_rotations_[4 * j], options.smoothness_weight)),
+                           j});
+      }
+    }
+    if (options.limit_weight > 0.0) {
+      for (int j : solved_joints_) {
+        if (skeleton.rotation_limits(j).empty()) continue;
+        extras_.push_back({std::unique_ptr<ceres::CostFunction>(new JointLimitResidual(
+                               skeleton.rotation_axes(j), skeleton.rotation_limits(j),
+                               options.limit_weight)),
+                           j});
+      }
+    }
+    int extra_rows = translation_prior_ ? 3 : 0;
+    for (const Extra& extra : extras_) extra_rows += extra.cost->num_residuals();
+
+    // Lean kernel: flattened rows.
+    for (int s = 0; s < nt; ++s) {
+      const TrackedVertexResidual& residual = *residuals_[s];
+      Row row;
+      row.track_position = residual.track_position();
+      row.scale = residual.scale();
+      row.chain = residual.joints();
+      const int v = residual.vertex();
+      for (int k = mesh.weight_begin(v); k < mesh.weight_end(v); ++k) {
+        const int b = mesh.weight_joint(k);
+        const Eigen::Isometry3d& joint_from_bind = mesh.joint_from_bind(b);
+        row.joints.push_back(b);
+        row.weights.push_back(mesh.weight(k));
+        row.locals.push_back(row.track_position
+                                 ? Eigen::Vector3d(joint_from_bind * mesh.rest_positions().col(v))
+                                 : Eigen::Vector3d(joint_from_bind.linear() * mesh.rest_normals().col(v)));
+        row.total_weight += mesh.weight(k);
+      }
+      rows_.push_back(std::move(row));
+    }
+    jacobian_ = Eigen::MatrixXd::Zero(3 * nt + extra_rows, n);
+    residual_.resize(3 * nt + extra_rows);
+    world_rotations_.resize(nj);
+    world_positions_.resize(nj);
+
+    if (options.solver == RetargetSolverKind::kCeres) BuildCeres();
+    if (options.solver == RetargetSolverKind::kDlsGeneric) BuildDls();
+  }
+
+  Status Solve(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
+               Pose* pose, RetargetFrameReport* report) {
+    const int nt = static_cast<int>(goals_.size());
+    if (goal_positions.cols() != nt || goal_normals.cols() != nt) {
+      return Status::Error("retarget: goal count differs from the tracked vertex count");
+    }
+    SetGoals(goal_positions, goal_normals);
+    SetParameters(*pose);
+    reference_rotations_ = rotations_;
+    reference_translation_ = translation_;
+    RetargetFrameReport result;
+    switch (options_.solver) {
+      case RetargetSolverKind::kDls:
+        if (!SolveLean(&result)) return Status::Error("retarget: the DLS solve failed (non-finite step)");
+        break;
+      case RetargetSolverKind::kDlsGeneric: {
+        DlsSummary summary;
+        DlsOptions dls;
+        dls.max_iterations = options_.iterations;
+        dls.adaptive_damping = false;
+        dls.lambda = options_.lambda;
+        dls.function_tolerance = dls.gradient_tolerance = dls.parameter_tolerance = 0.0;
+        dls_solver_.Solve(dls, &dls_problem_, &summary);
+        if (!summary.IsSolutionUsable()) return Status::Error("retarget: DLS failed: " + summary.BriefReport());
+        result.initial_cost = summary.initial_cost;
+        result.final_cost = summary.final_cost;
+        result.iterations = summary.iterations;
+        break;
+      }
+      case RetargetSolverKind::kCeres: {
+        ceres::Solver::Options ceres_options = options_.ceres;
+        ceres_options.max_num_iterations = options_.iterations;
+        ceres::Solver::Summary summary;
+        ceres::Solve(ceres_options, ceres_problem_.get(), &summary);
+        if (!summary.IsSolutionUsable()) return Status::Error("retarget: Ceres failed: " + summary.BriefReport());
+        result.initial_cost = summary.initial_cost;
+        result.final_cost = summary.final_cost;
+        result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+        break;
+      }
+    }
+    GetParameters(pose);
+    if (!translation_.allFinite()) return Status::Error("retarget: the solve produced a non-finite pose");
+    if (report != nullptr) {
+      TrackedVertexErrors(skeleton_, mesh_, setup_, *pose, goal_positions, goal_normals,
+                          &result.mean_position_error, &result.mean_normal_angle);
+      *report = result;
+    }
+    return Status::Ok();
+  }
+
+  void Linearize(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
+                 const Pose& pose, Eigen::VectorXd* residual, Eigen::MatrixXd* jacobian) {
+    SetGoals(goal_positions, goal_normals);
+    SetParameters(pose);
+    reference_rotations_ = rotations_;
+    reference_translation_ = translation_;
+    Fk();
+    SkinAndLinearize(true);
+    const int nt = static_cast<int>(goals_.size());
+    *residual = residual_.head(3 * nt);
+    jacobian->setZero(3 * nt, PoseTangentColumns());
+    jacobian->leftCols<3>() = jacobian_.topLeftCorner(3 * nt, 3);
+    for (int j : solved_joints_) {
+      jacobian->middleCols<3>(3 + 3 * j) = jacobian_.block(0, column_[j], 3 * nt, 3);
+    }
+  }
+
+  RetargetStageTimes times;
+
+ private:
+  struct Row {
+    bool track_position = false;
+    double scale = 1.0;
+    double total_weight = 0.0;
+    std::vector<int> chain;
+    std::vector<int> joints;
+    std::vector<double> weights;
+    std::vector<Eigen::Vector3d> locals;
+  };
+  struct Extra {
+    std::unique_ptr<ceres::CostFunction> cost;
+    int joint;
+  };
+
+  int PoseTangentColumns() const { return 3 + 3 * skeleton_.num_joints(); }
+
+  void SetGoals(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals) {
+    for (size_t s = 0; s < goals_.size(); ++s) {
+      goals_[s] = setup_.tracked[s].track_position ? goal_positions.col(s) : goal_normals.col(s);
+    }
+  }
+
+  void SetParameters(const Pose& pose) {
+    translation_ = pose.translations[0];
+    for (int j = 0; j < skeleton_.num_joints(); ++j) {
+      Eigen::Map<Eigen::Vector4d> q(rotations_.data() + 4 * j);
+      q = pose.rotations[j].normalized().coeffs();
+    }
+  }
+
+  void GetParameters(Pose* pose) const {
+    pose->translations[0] = translation_;
+    for (int j : solved_joints_) {
+      pose->rotations[j].coeffs() = Eigen::Map<const Eigen::Vector4d>(&rotations_[4 * j]).normalized();
+    }
+  }
+
+  void Fk() {
+    for (int j = 0; j < skeleton_.num_joints(); ++j) {
+      Eigen::Quaterniond local = Eigen::Map<const Eigen::Quaterniond>(&rotations_[4 * j]);
+      if (skeleton_.has_rest_rotation(j)) local = skeleton_.rest_rotation(j) * local;
+      const Eigen::Matrix3d local_matrix = local.toRotationMatrix();
+      const int p = skeleton_.parent(j);
+      if (p < 0) {
+        world_rotations_[j] = local_matrix;
+        world_positions_[j] = translation_;
+      } else {
+        world_positions_[j] = world_positions_[p] + world_rotations_[p] * skeleton_.offset(j);
+        world_rotations_[j] = world_rotations_[p] * local_matrix;
+      }
+    }
+  }
+
+  // Residual rows of the tracked vertices (and, if `jacobian`, their J blocks).
+  void SkinAndLinearize(bool jacobian) {
+    Eigen::Vector3d terms[32];
+    const int nt = static_cast<int>(rows_.size());
+    for (int s = 0; s < nt; ++s) {
+      const Row& row = rows_[s];
+      const int ni = static_cast<int>(row.joints.size());
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (int k = 0; k < ni; ++k) {
+        const int b = row.joints[k];
+        terms[k] = world_rotations_[b] * row.locals[k];
+        if (row.track_position) terms[k] += world_positions_[b];
+        x += row.weights[k] * terms[k];
+      }
+      residual_.segment<3>(3 * s) = row.scale * (x - goals_[s]);
+      if (!jacobian) continue;
+      if (row.track_position) {
+        jacobian_.block<3, 3>(3 * s, 0) = (row.scale * row.total_weight) * Eigen::Matrix3d::Identity();
+      }
+      for (int j : row.chain) {
+        Eigen::Vector3d lever = Eigen::Vector3d::Zero();
+        for (int k = 0; k < ni; ++k) {
+          if (skeleton_.IsAncestorOrSelf(j, row.joints[k])) {
+            lever += row.weights[k] *
+                     (row.track_position ? Eigen::Vector3d(world_positions_[j] - terms[k])
+                                         : Eigen::Vector3d(-terms[k]));
+          }
+        }
+        jacobian_.block<3, 3>(3 * s, column_[j]).noalias() =
+            row.scale * SkewSymmetric(lever) * world_rotations_[j];
+      }
+    }
+  }
+
+  // Prior and limit rows after the tracked ones.
+  bool LinearizeExtras() {
+    int row = 3 * static_cast<int>(rows_.size());
+    if (translation_prior_) {
+      const double* parameters[] = {translation_.data()};
+      Eigen::Matrix<double, 3, 3, Eigen::RowMajor> jt;
+      double* jacobians[] = {jt.data()};
+      if (!translation_prior_->Evaluate(parameters, residual_.data() + row, jacobians)) return false;
+      jacobian_.block<3, 3>(row, 0) = jt;
+      row += 3;
+    }
+    for (const Extra& extra : extras_) {
+      const int k = extra.cost->num_residuals();
+      const double* parameters[] = {&rotations_[4 * extra.joint]};
+      Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor> ambient(k, 4);
+      double* jacobians[] = {ambient.data()};
+      if (!extra.cost->Evaluate(parameters, residual_.data() + row, jacobians)) return false;
+      jacobian_.block(row, column_[extra.joint], k, 3) =
+          ambient * QuaternionPlusJacobian(&rotations_[4 * extra.joint]);
+      row += k;
+    }
+    return true;
+  }
+
+  bool SolveLean(RetargetFrameReport* report) {
+    const int m = static_cast<int>(jacobian_.rows());
+    const int n = static_cast<int>(jacobian_.cols());
+    Clock::time_point t0, t1;
+    const bool timed = options_.time_stages;
+    for (int iteration = 0; iteration <= options_.iterations; ++iteration) {
+      const bool last = iteration == options_.iterations;
+      if (timed) t0 = Clock::now();
+      Fk();
+      if (timed) {
+        t1 = Clock::now();
+        times.fk += Seconds(t0, t1);
+        t0 = t1;
+      }
+      double skinning_seconds = 0.0;
+      if (timed && !last) {
+        // Skinning alone, timed apart from the Jacobian (the kernel fuses them, so the
+        // Jacobian's share is the fused pass minus this one).
+        SkinAndLinearize(false);
+        t1 = Clock::now();
+        skinning_seconds = Seconds(t0, t1);
+        times.skinning += skinning_seconds;
+        t0 = t1;
+      }
+      SkinAndLinearize(!last);
+      if (!LinearizeExtras()) return false;
+      const double cost = 0.5 * residual_.squaredNorm();
+      if (iteration == 0) report->initial_cost = cost;
+      if (last) {
+        report->final_cost = cost;
+        break;
+      }
+      if (timed) {
+        t1 = Clock::now();
+        times.jacobian += Seconds(t0, t1) - skinning_seconds;
+        t0 = t1;
+      }
+      // delta = J^T (J J^T + lambda I)^-1 e  or  (J^T J + lambda I)^-1 J^T e,  e = -r.
+      if (m < n) {
+        normal_.setZero(m, m);
+        normal_.selfadjointView<Eigen::Lower>().rankUpdate(jacobian_);
+        normal_.diagonal().array() += options_.lambda;
+        llt_.compute(normal_);
+        delta_.noalias() = -(jacobian_.transpose() * llt_.solve(residual_));
+      } else {
+        normal_.setZero(n, n);
+        normal_.selfadjointView<Eigen::Lower>().rankUpdate(jacobian_.transpose());
+        normal_.diagonal().array() += options_.lambda;
+        llt_.compute(normal_);
+        gradient_.noalias() = jacobian_.transpose() * residual_;
+        delta_ = -llt_.solve(gradient_);
+      }
+      if (llt_.info() != Eigen::Success || !delta_.allFinite()) return false;
+      if (timed) {
+        t1 = Clock::now();
+        times.solve += Seconds(t0, t1);
+        t0 = t1;
+      }
+      translation_ += delta_.head<3>();
+      for (int j : solved_joints_) {
+        Eigen::Map<Eigen::Quaterniond> q(&rotations_[4 * j]);
+        q = q * ExpMap(delta_.segment<3>(column_[j]));
+        q.normalize();
+      }
+      ++report->iterations;
+      if (timed) {
+        times.update += Seconds(t0, Clock::now());
+        ++times.iterations;
+      }
+    }
+    return true;
+  }
+
+  void BuildCeres() {
+    ceres::Problem::Options problem_options;
+    problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    ceres_problem_.reset(new ceres::Problem(problem_options));
+    ceres_problem_->AddParameterBlock(translation_.data(), 3);
+    for (int j : solved_joints_) {
+      ceres_problem_->AddParameterBlock(&rotations_[4 * j], 4, &manifold_);
+    }
+    for (const auto& residual : residuals_) {
+      std::vector<double*> blocks = {translation_.data()};
+      for (int j : residual->joints()) blocks.push_back(&rotations_[4 * j]);
+      ceres_problem_->AddResidualBlock(residual.get(), nullptr, blocks);
+    }
+    if (translation_prior_) {
+      ceres_problem_->AddResidualBlock(translation_prior_.get(), nullptr, translation_.data());
+    }
+    for (const Extra& extra : extras_) {
+      ceres_problem_->AddResidualBlock(extra.cost.get(), nullptr, &rotations_[4 * extra.joint]);
+    }
+  }
+
+  void BuildDls() {
+    const int translation = dls_problem_.AddParameterBlock(translation_.data(), 3);
+    std::vector<int> block(skeleton_.num_joints(), -1);
+    for (int j : solved_joints_) block[j] = dls_problem_.AddParameterBlock(&rotations_[4 * j], 4, &manifold_);
+    for (const auto& residual : residuals_) {
+      std::vector<int> blocks = {translation};
+      for (int j : residual->joints()) blocks.push_back(block[j]);
+      dls_problem_.AddResidualBlock(residual.get(), nullptr, blocks);
+    }
+    if (translation_prior_) dls_problem_.AddResidualBlock(translation_prior_.get(), nullptr, {translation});
+    for (const Extra& extra : extras_) {
+      dls_problem_.AddResidualBlock(extra.cost.get(), nullptr, {block[extra.joint]});
+    }
+  }
+
+  const Skeleton& skeleton_;
+  const SkinnedMesh& mesh_;
+  const RetargetSetup& setup_;
+  double sigma_;
+  RetargetSolveOptions options_;
+
+  Eigen::Vector3d translation_ = Eigen::Vector3d::Zero();
+  std::vector<double> rotations_;
+  Eigen::Vector3d reference_translation_ = Eigen::Vector3d::Zero();
+  std::vector<double> reference_rotations_;
+  std::vector<Eigen::Vector3d> goals_;
+  std::vector<std::unique_ptr<TrackedVertexResidual>> residuals_;
+  std::unique_ptr<ceres::CostFunction> translation_prior_;
+  std::vector<Extra> extras_;
+  std::vector<int> solved_joints_;
+  std::vector<int> column_;
+  RightQuaternionManifold manifold_;
+
+  std::vector<Row> rows_;
+  std::vector<Eigen::Matrix3d> world_rotations_;
+  std::vector<Eigen::Vector3d> world_positions_;
+  Eigen::MatrixXd jacobian_;
+  Eigen::VectorXd residual_;
+  Eigen::MatrixXd normal_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::VectorXd delta_, gradient_;
+
+  std::unique_ptr<ceres::Problem> ceres_problem_;
+  DlsProblem dls_problem_;
+  DlsSolver dls_solver_;
+};
+
+RetargetFrameSolver::RetargetFrameSolver(const Skeleton& skeleton, const SkinnedMesh& mesh,
+                                         const RetargetSetup& setup, double sigma,
+                                         const RetargetSolveOptions& options)
+    : impl_(new Impl(skeleton, mesh, setup, sigma, options)) {}
+
+RetargetFrameSolver::~RetargetFrameSolver() = default;
+
+Status RetargetFrameSolver::Solve(const Eigen::Matrix3Xd& goal_positions,
+                                  const Eigen::Matrix3Xd& goal_normals, Pose* pose,
+                                  RetargetFrameReport* report) {
+  return impl_->Solve(goal_positions, goal_normals, pose, report);
+}
+
+const RetargetStageTimes& RetargetFrameSolver::stage_times() const { return impl_->times; }
+void RetargetFrameSolver::ResetStageTimes() { impl_->times = RetargetStageTimes(); }
+
+void RetargetFrameSolver::Linearize(const Eigen::Matrix3Xd& goal_positions,
+                                    const Eigen::Matrix3Xd& goal_normals, const Pose& pose,
+                                    Eigen::VectorXd* residual, Eigen::MatrixXd* jacobian) {
+  impl_->Linearize(goal_positions, goal_normals, pose, residual, jacobian);
+}
+
+}  // namespace mocapsolve
