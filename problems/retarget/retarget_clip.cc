@@ -71,12 +71,22 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
   const int nf = source_motion.num_frames();
   const double height = setup.target_frame.height;
 
-  Pose pose = RestPose(target_skeleton);
+  Pose pose = options.start_pose.rotations.empty() ? RestPose(target_skeleton) : options.start_pose;
+  if (static_cast<int>(pose.rotations.size()) != target_skeleton.num_joints() ||
+      pose.translations.size() != pose.rotations.size()) {
+    return Status::Error("retarget: the start pose does not match the target skeleton");
+  }
   {
-    FkData rest(source_skeleton), first(source_skeleton);
-    ForwardKinematics(source_skeleton, RestPose(source_skeleton), &rest);
-    ForwardKinematics(source_skeleton, source_motion.frames[0], &first);
-    pose.translations[0] += setup.scale * (first.world_positions[0] - rest.world_positions[0]);
+    FkData fk(target_skeleton);
+    ForwardKinematics(target_skeleton, pose, &fk);
+    std::vector<Eigen::Isometry3d> transforms;
+    ComputeSkinningTransforms(target_mesh, fk, &transforms);
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const TrackedVertex& t : setup.tracked) {
+      centroid += SkinPosition(target_mesh, transforms, t.target_vertex);
+    }
+    centroid /= static_cast<double>(setup.tracked.size());
+    pose.translations[0] += goals.positions[0].rowwise().mean() - centroid;
   }
   RetargetFrameSolver solver(target_skeleton, target_mesh, setup, goals.sigma, options.solve);
   const auto start = std::chrono::steady_clock::now();

@@ -3,9 +3,11 @@
 //
 // Loop: goals for every frame (retarget_setup.h: ComputeRetargetGoals, which also gives
 // sigma), then per frame RetargetFrameSolver::Solve warm-started from the previous
-// frame's solution. Frame 0 starts from the target's rest pose with the root moved by the
-// source root's displacement from its rest position, scaled by the height ratio (the root
-// translation is then solved with everything else; it is not copied from the source).
+// frame's solution. Frame 0 starts from options.start_pose (default: the skeleton's
+// RestPose; for glTF characters pass the bind pose) with the root moved so that the
+// centroid of the tracked target vertices lands on the centroid of the frame's position
+// goals; the root translation is then solved with everything else (it is not copied
+// from the source, whose skeleton may be unrelated).
 // The output motion has the source's frame rate; non-root translations are the target's
 // rest offsets.
 //
@@ -36,6 +38,8 @@ namespace mocapsolve {
 struct RetargetClipOptions {
   RetargetSolveOptions solve;
   double contact_height = 0.02;  // Fraction of the target height above its rest floor.
+  Pose start_pose;  // Warm start of frame 0 (its root translation is re-centred); empty:
+                    // RestPose(target skeleton).
 };
 
 struct RetargetFrameFigures {

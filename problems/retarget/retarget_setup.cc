@@ -17,23 +17,18 @@ std::string Lower(std::string text) {
 
 }  // namespace
 
-void RestSkinnedMesh(const Skeleton& skeleton, const SkinnedMesh& mesh, Eigen::Matrix3Xd* positions,
-                     Eigen::Matrix3Xd* normals) {
-  FkData fk(skeleton);
-  ForwardKinematics(skeleton, RestPose(skeleton), &fk);
-  std::vector<Eigen::Isometry3d> transforms;
-  ComputeSkinningTransforms(mesh, fk, &transforms);
-  SkinMesh(mesh, transforms, positions, normals);
-  if (normals != nullptr) {
-    for (int i = 0; i < normals->cols(); ++i) {
-      const double norm = normals->col(i).norm();
-      if (norm > 0.0) normals->col(i) /= norm;
-    }
+void BindPoseMesh(const SkinnedMesh& mesh, Eigen::Matrix3Xd* positions, Eigen::Matrix3Xd* normals) {
+  *positions = mesh.rest_positions();
+  if (normals == nullptr) return;
+  *normals = mesh.rest_normals();
+  for (int i = 0; i < normals->cols(); ++i) {
+    const double norm = normals->col(i).norm();
+    if (norm > 0.0) normals->col(i) /= norm;
   }
 }
 
-Status BuildRetargetSetup(const Skeleton& source_skeleton, const SkinnedMesh& source_mesh,
-                          const Skeleton& target_skeleton, const SkinnedMesh& target_mesh,
+Status BuildRetargetSetup(const SkinnedMesh& source_mesh, const Skeleton& target_skeleton,
+                          const SkinnedMesh& target_mesh,
                           const RetargetSetupOptions& options, RetargetSetup* setup) {
   if (source_mesh.num_vertices() == 0 || target_mesh.num_vertices() == 0) {
     return Status::Error("retarget: a mesh has no vertices");
@@ -70,8 +65,8 @@ Status BuildRetargetSetup(const Skeleton& source_skeleton, const SkinnedMesh& so
   }
 
   Eigen::Matrix3Xd source_rest, source_normals, target_rest;
-  RestSkinnedMesh(source_skeleton, source_mesh, &source_rest, &source_normals);
-  RestSkinnedMesh(target_skeleton, target_mesh, &target_rest, nullptr);
+  BindPoseMesh(source_mesh, &source_rest, &source_normals);
+  BindPoseMesh(target_mesh, &target_rest, nullptr);
   result.source_frame = ComputeCharacterFrame(source_rest);
   result.target_frame = ComputeCharacterFrame(target_rest);
   result.scale = result.target_frame.height / result.source_frame.height;

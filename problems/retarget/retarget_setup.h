@@ -1,7 +1,7 @@
 // Retarget setup (thesis 4.3.1-4.3.5): which target vertex tracks which source vertex,
 // by position or by normal, and what it tracks in each frame.
 //
-// Tracked vertices: the source mesh is subsampled (vertex_subsampling.h, in its rest
+// Tracked vertices: the source mesh is subsampled (vertex_subsampling.h, in its bind
 // pose) and each sample s is mapped to the nearest target vertex k(s) in the common rest
 // frame (mesh_mapping.h). The correspondence comes from the meshes only: the skeletons
 // may differ in joint count, names and hierarchy.
@@ -10,7 +10,8 @@
 // position p_s and LBS normal n_s (eqs. 5-6, not renormalized) at frame f,
 //   position goal  g = o_t + (h_t / h_s) (p_s - o_s)
 //   normal goal    m = n_s
-// where o, h are the characters' rest frames (CharacterFrame: feet-level origin, height).
+// where o, h are the characters' rest frames (CharacterFrame of the bind-pose meshes:
+// feet-level origin, height).
 // So positions are brought into the target's scale by the height ratio about the rest
 // frames' origins: the source's global path (its root's travel) is scaled by the same
 // ratio, and the target root translation is an unknown of each frame's solve, held
@@ -66,13 +67,13 @@ struct RetargetSetup {
   std::vector<std::string> notes;    // Decisions worth reporting (fallbacks).
 };
 
-// Skinned positions and unit normals at the skeleton's rest pose (3 x #V each).
-void RestSkinnedMesh(const Skeleton& skeleton, const SkinnedMesh& mesh, Eigen::Matrix3Xd* positions,
-                     Eigen::Matrix3Xd* normals);
+// The mesh as modelled (its bind pose, bind space = world at bind time): the rest
+// positions and unit rest normals, 3 x #V each. Subsampling, mapping and the rest frames
+// all use this pose, so both characters should be bound in similar poses (T or A).
+void BindPoseMesh(const SkinnedMesh& mesh, Eigen::Matrix3Xd* positions, Eigen::Matrix3Xd* normals);
 
 // Errors: a mesh without normals or vertices, an unknown position joint name.
-Status BuildRetargetSetup(const Skeleton& source_skeleton, const SkinnedMesh& source_mesh,
-                          const Skeleton& target_skeleton, const SkinnedMesh& target_mesh,
+Status BuildRetargetSetup(const SkinnedMesh& source_mesh, const Skeleton& target_skeleton, const SkinnedMesh& target_mesh,
                           const RetargetSetupOptions& options, RetargetSetup* setup);
 
 // Per-frame goals of the tracked vertices (3 x #tracked each) and sigma.
