@@ -25,6 +25,37 @@ double Seconds(Clock::time_point from, Clock::time_point to) {
   return std::chrono::duration<double>(to - from).count();
 }
 
+// The root translation's chart in units of sigma: Plus(t, d) = t + sigma d. With it the
+// translation columns of J are on the scale of the (normalized) rotation columns, so a
+// fixed damping lambda damps both alike (thesis 4.3.3 normalizes GP_t by sigma).
+class ScaledEuclideanManifold : public ceres::Manifold {
+ public:
+  explicit ScaledEuclideanManifold(double scale) : scale_(scale) {}
+  int AmbientSize() const override { return 3; }
+  int TangentSize() const override { return 3; }
+  bool Plus(const double* x, const double* delta, double* x_plus_delta) const override {
+    for (int i = 0; i < 3; ++i) x_plus_delta[i] = x[i] + scale_ * delta[i];
+    return true;
+  }
+  bool PlusJacobian(const double*, double* jacobian) const override {
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> j(jacobian);
+    j = scale_ * Eigen::Matrix3d::Identity();
+    return true;
+  }
+  bool Minus(const double* y, const double* x, double* y_minus_x) const override {
+    for (int i = 0; i < 3; ++i) y_minus_x[i] = (y[i] - x[i]) / scale_;
+    return true;
+  }
+  bool MinusJacobian(const double*, double* jacobian) const override {
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> j(jacobian);
+    j = Eigen::Matrix3d::Identity() / scale_;
+    return true;
+  }
+
+ private:
+  double scale_;
+};
+
 }  // namespace
 
 bool ParseRetargetSolverKind(const std::string& name, RetargetSolverKind* kind) {
@@ -93,7 +124,8 @@ class RetargetFrameSolver::Impl {
  public:
   Impl(const Skeleton& skeleton, const SkinnedMesh& mesh, const RetargetSetup& setup, double sigma,
        const RetargetSolveOptions& options)
-      : skeleton_(skeleton), mesh_(mesh), setup_(setup), sigma_(sigma), options_(options) {
+      : skeleton_(skeleton), mesh_(mesh), setup_(setup), sigma_(sigma), options_(options),
+        translation_manifold_(sigma) {
     std::string error;
     CHECK(options.IsValid(&error)) << error;
     CHECK_GT(sigma, 0.0);
@@ -233,7 +265,7 @@ class RetargetFrameSolver::Impl {
     const int nt = static_cast<int>(goals_.size());
     *residual = residual_.head(3 * nt);
     jacobian->setZero(3 * nt, PoseTangentColumns());
-    jacobian->leftCols<3>() = jacobian_.topLeftCorner(3 * nt, 3);
+    jacobian->leftCols<3>() = jacobian_.topLeftCorner(3 * nt, 3) / sigma_;  // Back to units.
     for (int j : solved_joints_) {
       jacobian->middleCols<3>(3 + 3 * j) = jacobian_.block(0, column_[j], 3 * nt, 3);
     }
@@ -312,7 +344,8 @@ class RetargetFrameSolver::Impl {
       residual_.segment<3>(3 * s) = row.scale * (x - goals_[s]);
       if (!jacobian) continue;
       if (row.track_position) {
-        jacobian_.block<3, 3>(3 * s, 0) = (row.scale * row.total_weight) * Eigen::Matrix3d::Identity();
+        jacobian_.block<3, 3>(3 * s, 0) =
+            (row.scale * row.total_weight * sigma_) * Eigen::Matrix3d::Identity();
       }
       for (int j : row.chain) {
         Eigen::Vector3d lever = Eigen::Vector3d::Zero();
@@ -337,7 +370,7 @@ class RetargetFrameSolver::Impl {
       Eigen::Matrix<double, 3, 3, Eigen::RowMajor> jt;
       double* jacobians[] = {jt.data()};
       if (!translation_prior_->Evaluate(parameters, residual_.data() + row, jacobians)) return false;
-      jacobian_.block<3, 3>(row, 0) = jt;
+      jacobian_.block<3, 3>(row, 0) = sigma_ * jt;
       row += 3;
     }
     for (const Extra& extra : extras_) {
@@ -411,7 +444,7 @@ class RetargetFrameSolver::Impl {
         times.solve += Seconds(t0, t1);
         t0 = t1;
       }
-      translation_ += delta_.head<3>();
+      translation_ += sigma_ * delta_.head<3>();
       for (int j : solved_joints_) {
         Eigen::Map<Eigen::Quaterniond> q(&rotations_[4 * j]);
         q = q * ExpMap(delta_.segment<3>(column_[j]));
@@ -431,7 +464,7 @@ class RetargetFrameSolver::Impl {
     problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     ceres_problem_.reset(new ceres::Problem(problem_options));
-    ceres_problem_->AddParameterBlock(translation_.data(), 3);
+    ceres_problem_->AddParameterBlock(translation_.data(), 3, &translation_manifold_);
     for (int j : solved_joints_) {
       ceres_problem_->AddParameterBlock(&rotations_[4 * j], 4, &manifold_);
     }
@@ -449,7 +482,7 @@ class RetargetFrameSolver::Impl {
   }
 
   void BuildDls() {
-    const int translation = dls_problem_.AddParameterBlock(translation_.data(), 3);
+    const int translation = dls_problem_.AddParameterBlock(translation_.data(), 3, &translation_manifold_);
     std::vector<int> block(skeleton_.num_joints(), -1);
     for (int j : solved_joints_) block[j] = dls_problem_.AddParameterBlock(&rotations_[4 * j], 4, &manifold_);
     for (const auto& residual : residuals_) {
@@ -480,6 +513,7 @@ class RetargetFrameSolver::Impl {
   std::vector<int> solved_joints_;
   std::vector<int> column_;
   RightQuaternionManifold manifold_;
+  ScaledEuclideanManifold translation_manifold_;
 
   std::vector<Row> rows_;
   std::vector<Eigen::Matrix3d> world_rotations_;

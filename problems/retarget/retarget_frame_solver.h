@@ -19,6 +19,9 @@
 // DLS (kDls, kDlsGeneric): a fixed number of iterations, every step taken (Buss), with
 //   delta = J^T (J J^T + lambda I)^-1 e   (eq. 18; m < n)   or   (J^T J + lambda I)^-1 J^T e,
 // e = -r, J the tangent Jacobian (3 #tracked (+ prior rows) by 3 + 3 #solved joints).
+// The root translation's tangent is in units of sigma (t <- t + sigma delta_t, for every
+// solver), so that its columns are on the scale of the normalized rotation columns and
+// the fixed lambda damps both alike (thesis 4.3.3 divides GP_t by sigma).
 // The lean kernel (kDls) does FK over the skeleton once per iteration, skins only the
 // tracked vertices, writes their 3 x 3 tangent blocks straight into a dense J (the same
 // formulas as TrackedVertexResidual; the test checks they agree) and solves with a dense
