@@ -16,13 +16,14 @@ extern const Command kBandsCommand;
 extern const Command kBlendCommand;
 extern const Command kRepairCommand;
 extern const Command kCorruptCommand;
+extern const Command kRetargetCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
                                                 kGenerateCommand, kBenchCommand,
                                                 kSolveCommand, kRepairCommand, kCorruptCommand,
                                                 kMarkersCommand, kCalibrateCommand,
-                                                kFilterCommand, kBandsCommand, kBlendCommand};
+                                                kFilterCommand, kBandsCommand, kBlendCommand, kRetargetCommand};
   return commands;
 }
 

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 
+
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/skinning.h"
 
@@ -17,14 +18,23 @@ std::string Lower(std::string text) {
 
 }  // namespace
 
-void BindPoseMesh(const SkinnedMesh& mesh, Eigen::Matrix3Xd* positions, Eigen::Matrix3Xd* normals) {
-  *positions = mesh.rest_positions();
+void BindPoseMesh(const SkinnedMesh& mesh, const Eigen::Matrix3d& world_from_bind,
+                  Eigen::Matrix3Xd* positions, Eigen::Matrix3Xd* normals) {
+  *positions = world_from_bind * mesh.rest_positions();
   if (normals == nullptr) return;
-  *normals = mesh.rest_normals();
+  *normals = world_from_bind * mesh.rest_normals();
   for (int i = 0; i < normals->cols(); ++i) {
     const double norm = normals->col(i).norm();
     if (norm > 0.0) normals->col(i) /= norm;
   }
+}
+
+Eigen::Matrix3d WorldFromBindRotation(const Skeleton& skeleton, const Pose& bind_pose,
+                                      const Pose& world_pose) {
+  FkData bind(skeleton), world(skeleton);
+  ForwardKinematics(skeleton, bind_pose, &bind);
+  ForwardKinematics(skeleton, world_pose, &world);
+  return (world.world_rotations[0] * bind.world_rotations[0].conjugate()).toRotationMatrix();
 }
 
 Status BuildRetargetSetup(const SkinnedMesh& source_mesh, const Skeleton& target_skeleton,
@@ -58,30 +68,57 @@ Status BuildRetargetSetup(const SkinnedMesh& source_mesh, const Skeleton& target
       }
     }
     if (result.position_joints.empty()) {
-      result.notes.push_back(
-          "blend mask: no target joint named like a hand, foot, toe or head; every sample tracks "
-          "its position");
+      std::vector<bool> dominates(target_skeleton.num_joints(), false), has_child(target_skeleton.num_joints(), false);
+      for (int v = 0; v < target_mesh.num_vertices(); ++v) dominates[DominantJoint(target_mesh, v)] = true;
+      for (int j = 1; j < target_skeleton.num_joints(); ++j) has_child[target_skeleton.parent(j)] = true;
+      std::vector<bool> chosen(target_skeleton.num_joints(), false);
+      for (int j = 0; j < target_skeleton.num_joints(); ++j) {
+        if (has_child[j]) continue;
+        int a = j;
+        while (a > 0 && !dominates[a]) a = target_skeleton.parent(a);
+        if (a > 0 && !chosen[a]) {
+          chosen[a] = true;
+          result.position_joints.push_back(a);
+        }
+      }
+      std::string names;
+      for (int j : result.position_joints) names += (names.empty() ? "" : ", ") + target_skeleton.name(j);
+      result.notes.push_back("blend mask: no target joint named like a hand, foot, toe or head; "
+                             "tracking the ends of the chains by position: " + names);
+      if (result.position_joints.empty()) result.notes.push_back("blend mask: every sample tracks its position");
     }
   }
 
-  Eigen::Matrix3Xd source_rest, source_normals, target_rest;
-  BindPoseMesh(source_mesh, &source_rest, &source_normals);
-  BindPoseMesh(target_mesh, &target_rest, nullptr);
+  Eigen::Matrix3Xd source_rest, source_normals, target_rest, target_normals;
+  BindPoseMesh(source_mesh, options.source_world_from_bind, &source_rest, &source_normals);
+  BindPoseMesh(target_mesh, options.target_world_from_bind, &target_rest, &target_normals);
   result.source_frame = ComputeCharacterFrame(source_rest);
   result.target_frame = ComputeCharacterFrame(target_rest);
   result.scale = result.target_frame.height / result.source_frame.height;
 
   const std::vector<int> samples =
       SubsampleVertices(source_mesh, source_rest, source_normals, options.subsample);
-  Eigen::Matrix3Xd sample_rest(3, samples.size());
-  for (size_t s = 0; s < samples.size(); ++s) sample_rest.col(s) = source_rest.col(samples[s]);
+  Eigen::Matrix3Xd sample_rest(3, samples.size()), sample_normals(3, samples.size());
+  for (size_t s = 0; s < samples.size(); ++s) {
+    sample_rest.col(s) = source_rest.col(samples[s]);
+    sample_normals.col(s) = source_normals.col(samples[s]);
+  }
   const std::vector<int> mapping =
-      MapToNearestVertices(sample_rest, result.source_frame, target_rest, result.target_frame);
+      MapToNearestVertices(sample_rest, result.source_frame, target_rest, result.target_frame,
+                           sample_normals, target_normals, options.mapping_normal_weight);
+  // Target world -> source bind space, for transferred normals.
+  const Eigen::Matrix3d source_bind_from_target_world =
+      options.source_world_from_bind.transpose() * result.source_frame.facing.transpose() *
+      result.target_frame.facing;
 
   for (size_t s = 0; s < samples.size(); ++s) {
     TrackedVertex tracked;
     tracked.source_vertex = samples[s];
     tracked.target_vertex = mapping[s];
+    tracked.rest_normal =
+        options.transfer_normals
+            ? Eigen::Vector3d(source_bind_from_target_world * target_normals.col(mapping[s]))
+            : Eigen::Vector3d(source_mesh.rest_normals().col(samples[s]).normalized());
     if (result.position_joints.empty()) {
       tracked.track_position = true;
     } else {
@@ -110,6 +147,8 @@ void ComputeRetargetGoals(const RetargetSetup& setup, const Skeleton& source_ske
                           RetargetGoals* goals) {
   const int nt = static_cast<int>(setup.tracked.size());
   const int nf = source_motion.num_frames();
+  // Target world from source world: face the source the way the target faces.
+  const Eigen::Matrix3d turn = setup.target_frame.facing.transpose() * setup.source_frame.facing;
   goals->positions.assign(nf, Eigen::Matrix3Xd(3, nt));
   goals->normals.assign(nf, Eigen::Matrix3Xd(3, nt));
   FkData fk(source_skeleton);
@@ -122,8 +161,13 @@ void ComputeRetargetGoals(const RetargetSetup& setup, const Skeleton& source_ske
       const int v = setup.tracked[s].source_vertex;
       goals->positions[f].col(s) =
           setup.target_frame.origin +
-          setup.scale * (SkinPosition(source_mesh, transforms, v) - setup.source_frame.origin);
-      goals->normals[f].col(s) = SkinNormal(source_mesh, transforms, v);
+          setup.scale * (turn * (SkinPosition(source_mesh, transforms, v) - setup.source_frame.origin));
+      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+      for (int k = source_mesh.weight_begin(v); k < source_mesh.weight_end(v); ++k) {
+        normal += source_mesh.weight(k) *
+                  (transforms[source_mesh.weight_joint(k)].linear() * setup.tracked[s].rest_normal);
+      }
+      goals->normals[f].col(s) = turn * normal;
       sum += goals->positions[f].col(s);
     }
   }

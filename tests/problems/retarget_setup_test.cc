@@ -24,7 +24,7 @@ class RetargetSetupTest : public ::testing::Test {
 
 TEST_F(RetargetSetupTest, SubsamplingSpreadsAndCoversEveryJoint) {
   Eigen::Matrix3Xd positions, normals;
-  BindPoseMesh(mesh_, &positions, &normals);
+  BindPoseMesh(mesh_, Eigen::Matrix3d::Identity(), &positions, &normals);
   SubsampleOptions options;
   const std::vector<int> samples = SubsampleVertices(mesh_, positions, normals, options);
   const int nv = mesh_.num_vertices();
@@ -54,7 +54,7 @@ TEST_F(RetargetSetupTest, SubsamplingSpreadsAndCoversEveryJoint) {
 
 TEST_F(RetargetSetupTest, NormalCheckExcludesVerticesUnlikeTheirNeighbours) {
   Eigen::Matrix3Xd positions, normals;
-  BindPoseMesh(mesh_, &positions, &normals);
+  BindPoseMesh(mesh_, Eigen::Matrix3d::Identity(), &positions, &normals);
   // Flip the normals of every tenth vertex: none of them may be picked by the sampling
   // proper (the per-joint minimum may still fall back to them, so use min_per_joint 0).
   for (int i = 0; i < normals.cols(); i += 10) normals.col(i) = -normals.col(i);
