@@ -51,6 +51,20 @@ std::vector<int> FootTrackedVertices(const Skeleton& target_skeleton, const Skin
   return feet;
 }
 
+Pose RecenteredStartPose(const Skeleton& target_skeleton, const SkinnedMesh& target_mesh,
+                         const RetargetSetup& setup, const Eigen::Matrix3Xd& goal_positions,
+                         Pose start) {
+  FkData fk(target_skeleton);
+  ForwardKinematics(target_skeleton, start, &fk);
+  std::vector<Eigen::Isometry3d> transforms;
+  ComputeSkinningTransforms(target_mesh, fk, &transforms);
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const TrackedVertex& t : setup.tracked) centroid += SkinPosition(target_mesh, transforms, t.target_vertex);
+  centroid /= static_cast<double>(std::max<size_t>(1, setup.tracked.size()));
+  start.translations[0] += goal_positions.rowwise().mean() - centroid;
+  return start;
+}
+
 Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_mesh,
                     const Motion& source_motion, const Skeleton& target_skeleton,
                     const SkinnedMesh& target_mesh, const RetargetSetup& setup,
@@ -76,18 +90,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
       pose.translations.size() != pose.rotations.size()) {
     return Status::Error("retarget: the start pose does not match the target skeleton");
   }
-  {
-    FkData fk(target_skeleton);
-    ForwardKinematics(target_skeleton, pose, &fk);
-    std::vector<Eigen::Isometry3d> transforms;
-    ComputeSkinningTransforms(target_mesh, fk, &transforms);
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (const TrackedVertex& t : setup.tracked) {
-      centroid += SkinPosition(target_mesh, transforms, t.target_vertex);
-    }
-    centroid /= static_cast<double>(setup.tracked.size());
-    pose.translations[0] += goals.positions[0].rowwise().mean() - centroid;
-  }
+  pose = RecenteredStartPose(target_skeleton, target_mesh, setup, goals.positions[0], pose);
   RetargetFrameSolver solver(target_skeleton, target_mesh, setup, goals.sigma, options.solve);
   const auto start = std::chrono::steady_clock::now();
   for (int f = 0; f < nf; ++f) {

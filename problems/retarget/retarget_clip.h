@@ -73,6 +73,12 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
                     const RetargetClipOptions& options, RetargetClipResult* result,
                     const RetargetProgressCallback& progress = nullptr);
 
+// `start` with its root translated so that the centroid of the tracked target vertices
+// lands on the centroid of `goal_positions` (3 x #tracked): the warm start of frame 0.
+Pose RecenteredStartPose(const Skeleton& target_skeleton, const SkinnedMesh& target_mesh,
+                         const RetargetSetup& setup, const Eigen::Matrix3Xd& goal_positions,
+                         Pose start);
+
 // Tracked vertices whose target vertex has cumulative weight >= 0.5 on joints named
 // foot or toe (case-insensitive), as indices into setup.tracked.
 std::vector<int> FootTrackedVertices(const Skeleton& target_skeleton, const SkinnedMesh& target_mesh,

@@ -1,10 +1,17 @@
 #include "problems/retarget/retarget_frame_solver.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <map>
+#include <utility>
 
 #include <ceres/problem.h>
 #include <Eigen/Cholesky>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <glog/logging.h>
 
 #include "kinematics/forward_kinematics.h"
@@ -195,6 +202,7 @@ class RetargetFrameSolver::Impl {
       rows_.push_back(std::move(row));
     }
     jacobian_ = Eigen::MatrixXd::Zero(3 * nt + extra_rows, n);
+    if (jacobian_.rows() >= n) BuildNormalPattern();
     residual_.resize(3 * nt + extra_rows);
     world_rotations_.resize(nj);
     world_positions_.resize(nj);
@@ -282,6 +290,15 @@ class RetargetFrameSolver::Impl {
     std::vector<int> joints;
     std::vector<double> weights;
     std::vector<Eigen::Vector3d> locals;
+    // Normal-equation kernel: per chain joint, which influences lie in its subtree (bit k
+    // = influence k) and their summed weight (the cumulative weight, 4.3.5); the row's
+    // blocks (0 = translation, for position rows only) and, for each pair of them
+    // (a >= b, a-major), the index of the pair's accumulator.
+    std::vector<uint32_t> subtree_masks;
+    std::vector<double> cumulative;
+    std::vector<int> blocks;
+    std::vector<int> pair_index;
+    int term_offset = 0;
   };
   struct Extra {
     std::unique_ptr<ceres::CostFunction> cost;
@@ -389,6 +406,7 @@ class RetargetFrameSolver::Impl {
   bool SolveLean(RetargetFrameReport* report) {
     const int m = static_cast<int>(jacobian_.rows());
     const int n = static_cast<int>(jacobian_.cols());
+    if (m >= n) return SolveNormal(report);
     Clock::time_point t0, t1;
     const bool timed = options_.time_stages;
     for (int iteration = 0; iteration <= options_.iterations; ++iteration) {
@@ -459,6 +477,235 @@ class RetargetFrameSolver::Impl {
     return true;
   }
 
+  // The block-sparse normal equations (J^T J + lambda I) delta = -J^T r, assembled without
+  // forming J. With J_sp = [u_p]x R_p (u_p = scale * lever, R_p joint p's world rotation)
+  // and J_s0 = kappa I for the translation (kappa = scale * total weight * sigma):
+  //   (J^T J)_pq = R_p^T (sum_s (u_sp . u_sq) I - u_sq u_sp^T) R_q,
+  //   (J^T J)_p0 = R_p^T (sum_s -kappa_s [u_sp]x),  (J^T J)_00 = sum_s kappa_s^2 I,
+  //   (J^T r)_p  = R_p^T sum_s r_s x u_sp,          (J^T r)_0  = sum_s kappa_s r_s,
+  // so the per-vertex work is a dot and an outer product per pair of chain joints, and the
+  // world rotations are applied once per block. Blocks (p, q) are non-zero only when p and
+  // q share a tracked vertex's chain (in practice: ancestor pairs), so A is factored by a
+  // sparse LDL^T (Eigen::SimplicialLDLT) whose symbolic analysis is done once.
+  void BuildNormalPattern() {
+    const int nb = 1 + static_cast<int>(solved_joints_.size());
+    block_joint_.assign(nb, -1);
+    for (int j : solved_joints_) block_joint_[column_[j] / 3] = j;
+    std::map<std::pair<int, int>, int> pair_ids;
+    auto pair_id = [&](int a, int b) {
+      auto it = pair_ids.find({a, b});
+      if (it != pair_ids.end()) return it->second;
+      const int id = static_cast<int>(pairs_.size());
+      pair_ids[{a, b}] = id;
+      pairs_.push_back({a, b});
+      return id;
+    };
+    for (int b = 0; b < nb; ++b) pair_id(b, b);
+    int terms = 0;
+    for (Row& row : rows_) {
+      row.term_offset = terms;
+      terms += static_cast<int>(row.joints.size());
+      CHECK_LE(row.joints.size(), 32u);
+      row.blocks.clear();
+      if (row.track_position) row.blocks.push_back(0);
+      for (int j : row.chain) {
+        row.blocks.push_back(column_[j] / 3);
+        uint32_t mask = 0;
+        double cumulative = 0.0;
+        for (size_t k = 0; k < row.joints.size(); ++k) {
+          if (skeleton_.IsAncestorOrSelf(j, row.joints[k])) {
+            mask |= 1u << k;
+            cumulative += row.weights[k];
+          }
+        }
+        row.subtree_masks.push_back(mask);
+        row.cumulative.push_back(cumulative);
+      }
+      for (size_t a = 0; a < row.blocks.size(); ++a) {
+        for (size_t b = 0; b <= a; ++b) row.pair_index.push_back(pair_id(row.blocks[a], row.blocks[b]));
+      }
+    }
+    terms_.resize(terms);
+    accumulators_.resize(pairs_.size());
+    gradient_blocks_.resize(nb);
+    // The lower triangle of A: diagonal blocks' lower halves, full off-diagonal blocks.
+    const int n = 3 * nb;
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (const auto& pair : pairs_) {
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) {
+          if (pair.first == pair.second && c > r) continue;
+          triplets.emplace_back(3 * pair.first + r, 3 * pair.second + c, 1.0);
+        }
+      }
+    }
+    normal_sparse_.resize(n, n);
+    normal_sparse_.setFromTriplets(triplets.begin(), triplets.end());
+    normal_sparse_.makeCompressed();
+    auto offset = [&](int row, int col) {
+      const int* inner = normal_sparse_.innerIndexPtr();
+      const int begin = normal_sparse_.outerIndexPtr()[col], end = normal_sparse_.outerIndexPtr()[col + 1];
+      const int* found = std::lower_bound(inner + begin, inner + end, row);
+      CHECK(found != inner + end && *found == row);
+      return static_cast<int>(found - inner);
+    };
+    pair_offsets_.resize(pairs_.size());
+    for (size_t i = 0; i < pairs_.size(); ++i) {
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) {
+          const bool upper = pairs_[i].first == pairs_[i].second && c > r;
+          pair_offsets_[i][3 * r + c] = upper ? -1 : offset(3 * pairs_[i].first + r, 3 * pairs_[i].second + c);
+        }
+      }
+    }
+    diagonal_offsets_.resize(n);
+    for (int i = 0; i < n; ++i) diagonal_offsets_[i] = offset(i, i);
+    ldlt_.analyzePattern(normal_sparse_);
+    gradient_.resize(n);
+  }
+
+  // Skinned terms and residual rows of the tracked vertices.
+  void SkinRows() {
+    const int nt = static_cast<int>(rows_.size());
+    for (int s = 0; s < nt; ++s) {
+      const Row& row = rows_[s];
+      const int ni = static_cast<int>(row.joints.size());
+      Eigen::Vector3d* terms = &terms_[row.term_offset];
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (int k = 0; k < ni; ++k) {
+        const int b = row.joints[k];
+        terms[k] = world_rotations_[b] * row.locals[k];
+        if (row.track_position) terms[k] += world_positions_[b];
+        x += row.weights[k] * terms[k];
+      }
+      residual_.segment<3>(3 * s) = row.scale * (x - goals_[s]);
+    }
+  }
+
+  void AccumulateNormal() {
+    for (Eigen::Matrix3d& m : accumulators_) m.setZero();
+    for (Eigen::Vector3d& g : gradient_blocks_) g.setZero();
+    Eigen::Vector3d u[kMaxChainBlocks];
+    const int nt = static_cast<int>(rows_.size());
+    for (int s = 0; s < nt; ++s) {
+      const Row& row = rows_[s];
+      const Eigen::Vector3d* terms = &terms_[row.term_offset];
+      const Eigen::Vector3d r = residual_.segment<3>(3 * s);
+      const int first = row.track_position ? 1 : 0;  // Index of the first joint block.
+      const double kappa = row.scale * row.total_weight * sigma_;
+      const int nc = static_cast<int>(row.chain.size());
+      DCHECK_LT(nc + first, kMaxChainBlocks);
+      for (int c = 0; c < nc; ++c) {
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (uint32_t mask = row.subtree_masks[c]; mask != 0; mask &= mask - 1) {
+          const int k = __builtin_ctz(mask);
+          sum += row.weights[k] * terms[k];
+        }
+        const Eigen::Vector3d lever =
+            row.track_position ? Eigen::Vector3d(row.cumulative[c] * world_positions_[row.chain[c]] - sum)
+                               : Eigen::Vector3d(-sum);
+        u[first + c] = row.scale * lever;
+        gradient_blocks_[row.blocks[first + c]] += r.cross(u[first + c]);
+      }
+      const int nblocks = first + nc;
+      int index = 0;
+      for (int a = 0; a < nblocks; ++a) {
+        for (int b = 0; b <= a; ++b) {
+          Eigen::Matrix3d& acc = accumulators_[row.pair_index[index++]];
+          if (a < first) {  // (translation, translation).
+            acc.diagonal().array() += kappa * kappa;
+          } else if (b < first) {  // (joint, translation): -kappa [u_a]x.
+            acc -= kappa * SkewSymmetric(u[a]);
+          } else {
+            acc.diagonal().array() += u[a].dot(u[b]);
+            acc.noalias() -= u[b] * u[a].transpose();
+          }
+        }
+      }
+      if (first == 1) gradient_blocks_[0] += kappa * r;
+    }
+  }
+
+  void AssembleNormal() {
+    double* values = normal_sparse_.valuePtr();
+    for (size_t i = 0; i < pairs_.size(); ++i) {
+      const int a = pairs_[i].first, b = pairs_[i].second;
+      Eigen::Matrix3d block = accumulators_[i];
+      if (a > 0) block = world_rotations_[block_joint_[a]].transpose() * block;
+      if (b > 0) block = block * world_rotations_[block_joint_[b]];
+      const std::array<int, 9>& offsets = pair_offsets_[i];
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) {
+          if (offsets[3 * r + c] >= 0) values[offsets[3 * r + c]] = block(r, c);
+        }
+      }
+    }
+    for (size_t b = 0; b < gradient_blocks_.size(); ++b) {
+      gradient_.segment<3>(3 * b) =
+          b == 0 ? gradient_blocks_[0] : Eigen::Vector3d(world_rotations_[block_joint_[b]].transpose() * gradient_blocks_[b]);
+    }
+    // Prior and limit rows (each on one block), from LinearizeExtras.
+    int row = 3 * static_cast<int>(rows_.size());
+    auto add_extra = [&](int block, int k) {
+      const Eigen::MatrixXd j = jacobian_.block(row, 3 * block, k, 3);
+      const Eigen::Matrix3d jtj = j.transpose() * j;
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c <= r; ++c) values[pair_offsets_[block][3 * r + c]] += jtj(r, c);
+      }
+      gradient_.segment<3>(3 * block) += j.transpose() * residual_.segment(row, k);
+      row += k;
+    };
+    if (translation_prior_) add_extra(0, 3);
+    for (const Extra& extra : extras_) add_extra(column_[extra.joint] / 3, extra.cost->num_residuals());
+    for (int offset : diagonal_offsets_) values[offset] += options_.lambda;
+  }
+
+  bool SolveNormal(RetargetFrameReport* report) {
+    Clock::time_point t0, t1;
+    const bool timed = options_.time_stages;
+    auto lap = [&](double* stage) {
+      if (!timed) return;
+      t1 = Clock::now();
+      *stage += Seconds(t0, t1);
+      t0 = t1;
+    };
+    for (int iteration = 0; iteration <= options_.iterations; ++iteration) {
+      const bool last = iteration == options_.iterations;
+      if (timed) t0 = Clock::now();
+      Fk();
+      lap(&times.fk);
+      SkinRows();
+      lap(&times.skinning);
+      if (!LinearizeExtras()) return false;
+      const double cost = 0.5 * residual_.squaredNorm();
+      if (iteration == 0) report->initial_cost = cost;
+      if (last) {
+        report->final_cost = cost;
+        break;
+      }
+      AccumulateNormal();
+      AssembleNormal();
+      lap(&times.jacobian);
+      ldlt_.factorize(normal_sparse_);
+      if (ldlt_.info() != Eigen::Success) return false;
+      delta_ = -ldlt_.solve(gradient_);
+      if (!delta_.allFinite()) return false;
+      lap(&times.solve);
+      translation_ += sigma_ * delta_.head<3>();
+      for (int j : solved_joints_) {
+        Eigen::Map<Eigen::Quaterniond> q(rotations_.data() + 4 * j);
+        q = q * ExpMap(delta_.segment<3>(column_[j]));
+        q.normalize();
+      }
+      ++report->iterations;
+      if (timed) {
+        lap(&times.update);
+        ++times.iterations;
+      }
+    }
+    return true;
+  }
+
   void BuildCeres() {
     ceres::Problem::Options problem_options;
     problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -522,6 +769,17 @@ class RetargetFrameSolver::Impl {
   Eigen::VectorXd residual_;
   Eigen::MatrixXd normal_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
+  // Normal-equation kernel (see BuildNormalPattern).
+  static constexpr int kMaxChainBlocks = 130;
+  std::vector<int> block_joint_;                 // Joint of each block (-1: translation).
+  std::vector<std::pair<int, int>> pairs_;        // (a, b), a >= b.
+  std::vector<std::array<int, 9>> pair_offsets_;  // Into normal_sparse_'s values; -1: upper.
+  std::vector<int> diagonal_offsets_;
+  std::vector<Eigen::Matrix3d> accumulators_;
+  std::vector<Eigen::Vector3d> gradient_blocks_;
+  std::vector<Eigen::Vector3d> terms_;
+  Eigen::SparseMatrix<double> normal_sparse_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
   Eigen::VectorXd delta_, gradient_;
 
   std::unique_ptr<ceres::Problem> ceres_problem_;
