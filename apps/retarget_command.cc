@@ -206,6 +206,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
       .Add("mean_position_error_fraction_of_height", result.mean_position_error)
       .Add("max_position_error_fraction_of_height", result.max_position_error)
       .Add("mean_normal_error_deg", result.mean_normal_error_deg)
+      .Add("mean_final_cost", result.mean_final_cost)
       .Add("foot_vertices", result.foot_vertices)
       .Add("source_foot_skating_heights_per_s", result.source_foot_skating)
       .Add("result_foot_skating_heights_per_s", result.result_foot_skating)

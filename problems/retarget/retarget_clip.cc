@@ -111,6 +111,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
   for (const RetargetFrameFigures& figures : out.frames) {
     out.mean_position_error += figures.position_error / nf;
     out.mean_normal_error_deg += figures.normal_error_deg / nf;
+    out.mean_final_cost += figures.final_cost / nf;
     out.max_position_error = std::max(out.max_position_error, figures.position_error);
   }
 

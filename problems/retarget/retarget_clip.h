@@ -56,6 +56,7 @@ struct RetargetClipResult {
   double mean_position_error = 0.0;  // Fraction of target height, over frames.
   double max_position_error = 0.0;
   double mean_normal_error_deg = 0.0;
+  double mean_final_cost = 0.0;  // 1/2 |r|^2 after each frame's solve, averaged.
   int foot_vertices = 0;
   int contact_pairs_source = 0, contact_pairs_result = 0;
   double source_foot_skating = 0.0;  // Target heights per second.

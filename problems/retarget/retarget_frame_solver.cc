@@ -98,6 +98,7 @@ ceres::Solver::Options DefaultRetargetCeresOptions() {
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   options.max_num_iterations = 10;
+  options.initial_trust_region_radius = 0.1;
   options.function_tolerance = 1e-10;
   options.gradient_tolerance = 1e-12;
   options.parameter_tolerance = 1e-10;

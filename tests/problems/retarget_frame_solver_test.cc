@@ -98,29 +98,38 @@ TEST_F(RetargetFrameSolverTest, LeanLinearizationEqualsKinematicJacobians) {
   }
 }
 
+// Both forms of the lean kernel: the block-sparse normal equations (40 tracked vertices,
+// 120 rows >= 36 columns) and eq. 18's J^T (J J^T + lambda I)^-1 (4 vertices, 12 rows),
+// with and without the smoothness rows.
 TEST_F(RetargetFrameSolverTest, LeanAndGenericDlsTakeTheSameSteps) {
-  for (double smoothness : {0.0, 0.3}) {
-    RetargetSolveOptions options;
-    options.iterations = 4;
-    options.smoothness_weight = smoothness;
-    options.solver = RetargetSolverKind::kDls;
-    RetargetFrameSolver lean(skeleton_, mesh_, setup_, sigma_, options);
-    options.solver = RetargetSolverKind::kDlsGeneric;
-    RetargetFrameSolver generic(skeleton_, mesh_, setup_, sigma_, options);
-    const Pose start = Start();
-    Pose a = start, b = start;
-    RetargetFrameReport ra, rb;
-    ASSERT_TRUE(lean.Solve(goal_positions_, goal_normals_, &a, &ra).ok());
-    ASSERT_TRUE(generic.Solve(goal_positions_, goal_normals_, &b, &rb).ok());
-    EXPECT_EQ(ra.iterations, 4);
-    EXPECT_EQ(rb.iterations, 4);
-    // Same linear algebra in a different order: agreement to round-off.
-    EXPECT_NEAR(ra.initial_cost, rb.initial_cost, 1e-10 * (1.0 + rb.initial_cost));
-    EXPECT_NEAR(ra.final_cost, rb.final_cost, 1e-9 * (1.0 + rb.final_cost));
-    EXPECT_LT(ra.final_cost, ra.initial_cost);
-    EXPECT_LT((a.translations[0] - b.translations[0]).norm(), 1e-9);
-    for (int j = 0; j < skeleton_.num_joints(); ++j) {
-      EXPECT_LT(AngularDistance(a.rotations[j], b.rotations[j]), 1e-8) << "joint " << j;
+  RetargetSetup few = setup_;
+  few.tracked.resize(4);
+  for (const RetargetSetup* setup : {&setup_, &few}) {
+    const int nt = static_cast<int>(setup->tracked.size());
+    const Eigen::Matrix3Xd positions = goal_positions_.leftCols(nt), normals = goal_normals_.leftCols(nt);
+    for (double smoothness : {0.0, 0.3}) {
+      RetargetSolveOptions options;
+      options.iterations = 4;
+      options.smoothness_weight = smoothness;
+      options.solver = RetargetSolverKind::kDls;
+      RetargetFrameSolver lean(skeleton_, mesh_, *setup, sigma_, options);
+      options.solver = RetargetSolverKind::kDlsGeneric;
+      RetargetFrameSolver generic(skeleton_, mesh_, *setup, sigma_, options);
+      const Pose start = Start();
+      Pose a = start, b = start;
+      RetargetFrameReport ra, rb;
+      ASSERT_TRUE(lean.Solve(positions, normals, &a, &ra).ok());
+      ASSERT_TRUE(generic.Solve(positions, normals, &b, &rb).ok());
+      EXPECT_EQ(ra.iterations, 4);
+      EXPECT_EQ(rb.iterations, 4);
+      // Same linear algebra in a different order: agreement to round-off.
+      EXPECT_NEAR(ra.initial_cost, rb.initial_cost, 1e-10 * (1.0 + rb.initial_cost));
+      EXPECT_NEAR(ra.final_cost, rb.final_cost, 1e-9 * (1.0 + rb.final_cost));
+      EXPECT_LT(ra.final_cost, ra.initial_cost);
+      EXPECT_LT((a.translations[0] - b.translations[0]).norm(), 1e-9);
+      for (int j = 0; j < skeleton_.num_joints(); ++j) {
+        EXPECT_LT(AngularDistance(a.rotations[j], b.rotations[j]), 1e-8) << "joint " << j;
+      }
     }
   }
 }
