@@ -19,6 +19,8 @@ DECLARE_bool(quiet);
 DECLARE_string(skeleton);
 DECLARE_string(skeleton_units);
 DECLARE_double(amc_fps);
+DECLARE_string(animation);
+DECLARE_double(sample_fps);
 DECLARE_string(report);
 DECLARE_string(motion);
 DECLARE_string(out);

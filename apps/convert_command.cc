@@ -56,11 +56,11 @@ Status RunConvert(const std::vector<std::string>& arguments) {
 }  // namespace
 
 extern const Command kConvertCommand = {
-    "convert", "BVH or ASF/AMC in, BVH out (rescale, change Euler order)",
-    "mocapsolve convert IN.bvh|IN.amc OUT.bvh [--skeleton=X.asf] [--scale=S] "
-    "[--euler_order=ZXY]\n\n"
+    "convert", "BVH, ASF/AMC, glTF/GLB or FBX in, BVH out (rescale, change Euler order)",
+    "mocapsolve convert IN.bvh|IN.amc|IN.glb|IN.gltf|IN.fbx OUT.bvh [--skeleton=X.asf] "
+    "[--animation=NAME] [--scale=S] [--euler_order=ZXY]\n\n"
     "Reads a motion and writes it as BVH. Rest rotations of ASF skeletons are folded into\n"
     "the BVH rotation channels. OUT is written atomically and may not be an input.",
-    __FILE__, RunConvert, "skeleton,amc_fps,report"};
+    __FILE__, RunConvert, "skeleton,amc_fps,animation,sample_fps,report"};
 
 }  // namespace mocapsolve

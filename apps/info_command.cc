@@ -69,6 +69,14 @@ Status RunInfo(const std::vector<std::string>& arguments) {
   } else {
     std::printf("units:     not stated by the file (lengths below are in file units)\n");
   }
+  std::vector<std::string> clips;
+  status = ReadAnimationNames(path, &clips);
+  if (!status.ok()) return status;
+  if (!clips.empty()) {
+    std::printf("clips:     %zu:", clips.size());
+    for (size_t k = 0; k < clips.size(); ++k) std::printf("%s %zu '%s'", k ? "," : "", k, clips[k].c_str());
+    std::printf(" (pick one with --animation=NAME or index)\n");
+  }
   std::printf("root path: min (%.4g, %.4g, %.4g) max (%.4g, %.4g, %.4g) extent (%.4g, %.4g, %.4g)\n",
               lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z(), hi.x() - lo.x(), hi.y() - lo.y(),
               hi.z() - lo.z());
@@ -83,18 +91,22 @@ Status RunInfo(const std::vector<std::string>& arguments) {
       .Add("metres_per_unit", unit.metres_per_unit)
       .Add("root_min", std::vector<JsonValue>{lo.x(), lo.y(), lo.z()})
       .Add("root_max", std::vector<JsonValue>{hi.x(), hi.y(), hi.z()});
+  if (!clips.empty()) {
+    std::vector<JsonValue> names(clips.begin(), clips.end());
+    report.Add("animations", names);
+  }
   return WriteReport(report);
 }
 
 }  // namespace
 
 extern const Command kInfoCommand = {
-    "info", "what a motion (BVH, ASF/AMC) or marker (C3D, TRC) file holds",
-    "mocapsolve info FILE.bvh | FILE.amc --skeleton=FILE.asf | FILE.c3d | FILE.trc "
-    "[--report=info.json]\n\n"
+    "info", "what a motion (BVH, ASF/AMC, glTF/GLB, FBX) or marker (C3D, TRC) file holds",
+    "mocapsolve info FILE.bvh | FILE.amc --skeleton=FILE.asf | FILE.glb|.gltf|.fbx "
+    "[--animation=NAME] | FILE.c3d | FILE.trc [--report=info.json]\n\n"
     "Motions: joint and end-site counts, frame count and rate, duration, the file's length\n"
     "unit (BVH does not state one) and the bounding box of the root's path. Markers:\n"
     "labels, frames, rate, unit, missing samples and gap runs.",
-    __FILE__, RunInfo, "skeleton,amc_fps,report"};
+    __FILE__, RunInfo, "skeleton,amc_fps,animation,sample_fps,report"};
 
 }  // namespace mocapsolve

@@ -28,7 +28,8 @@ void PrintCommandList() {
   }
   std::printf(
       "\nCommon flags: --quiet (no progress on stderr), --v=1 (per-iteration detail).\n"
-      "Files: BVH, ASF/AMC (--skeleton=X.asf goes with an .amc). Lengths stay in the\n"
+      "Files: BVH, ASF/AMC (--skeleton=X.asf goes with an .amc), glTF/GLB and FBX\n"
+      "(--animation=NAME picks a clip). Lengths stay in the\n"
       "file's units unless a command says otherwise.\n");
 }
 
@@ -66,10 +67,14 @@ void PrintCommandHelp(const Command& command) {
 DEFINE_bool(quiet, false, "No progress output on stderr.");
 DEFINE_string(skeleton, "", "Skeleton file for motions that lack one: the .asf of an .amc.");
 DEFINE_double(amc_fps, 120.0, "Frame rate of AMC files, which do not store it (CMU: 120).");
+DEFINE_string(animation, "", "Animation of a .glb/.gltf/.fbx motion file: name or index (default: "
+              "the first).");
+DEFINE_double(sample_fps, 0.0, "Sampling rate of .glb/.gltf/.fbx animations; 0 = the key rate "
+              "when the keys are uniformly spaced, else 30.");
 DEFINE_string(report, "", "Write what the command measured to this JSON file.");
 DEFINE_string(skeleton_units, "", "Unit of a skeleton whose file does not state one (BVH): mm, "
               "cm, m or in; needed to relate it to marker files and mm-based weights.");
-DEFINE_string(motion, "", "Motion file: .bvh, or .amc with --skeleton=X.asf.");
+DEFINE_string(motion, "", "Motion file: .bvh, .glb/.gltf, .fbx, or .amc with --skeleton=X.asf.");
 DEFINE_string(out, "", "Output file (its extension picks the format).");
 DEFINE_string(markers, "", "Marker file: .c3d or .trc.");
 DEFINE_string(markerset, "", "Marker set file (.json): which joint each marker rides on, with offsets.");
@@ -84,6 +89,8 @@ Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
   MotionFileOptions options;
   options.skeleton_path = FLAGS_skeleton;
   options.amc_frame_rate = FLAGS_amc_fps;
+  options.animation = FLAGS_animation;  // An error for formats with one clip.
+  options.sample_rate = FLAGS_sample_fps;
   Status status = ReadMotionFile(path, options, skeleton, motion);
   return status.ok() ? ApplySkeletonUnits(skeleton) : status;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <map>
 #include <utility>
@@ -296,6 +297,19 @@ Status GltfDocument::Parse(const std::string& bytes, const std::string& name_for
   bool ok = false;
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   if (bytes.size() > 0xffffffffu) return Status::Error(name_for_errors + ": file too large");
+  if (binary) {  // tinygltf only says "Invalid glTF binary" for a truncated file.
+    if (bytes.size() < 12) {
+      return Status::Error(name_for_errors + ": GLB: " + std::to_string(bytes.size()) +
+                           " bytes, shorter than the 12-byte header");
+    }
+    uint32_t declared = 0;
+    std::memcpy(&declared, bytes.data() + 8, 4);
+    if (declared != bytes.size()) {
+      return Status::Error(name_for_errors + ": GLB: header declares " + std::to_string(declared) +
+                           " bytes, the file has " + std::to_string(bytes.size()) +
+                           (declared > bytes.size() ? " (truncated)" : ""));
+    }
+  }
   try {
     if (binary) {
       ok = loader.LoadBinaryFromMemory(model.get(), &err, &warn,
@@ -331,6 +345,12 @@ Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& op
   if (!document.loaded()) return Status::Error("glTF document not loaded");
   const tinygltf::Model& model = document.model();
   const std::string& file = document.name();
+  for (const std::string& extension : model.extensionsRequired) {
+    if (extension == "KHR_draco_mesh_compression" || extension == "EXT_meshopt_compression" ||
+        extension == "KHR_mesh_quantization") {
+      return Status::Error(file + ": requires extension " + extension + ", which is not supported");
+    }
+  }
   GltfCharacter out;
   Status status = FindSkin(model, file, options.skin, &out.skin);
   if (!status.ok()) return status;
@@ -536,10 +556,14 @@ void SampleTrack(const Track& track, double t, double* out) {
       std::upper_bound(track.times.begin(), track.times.end(), t) - track.times.begin());
   const size_t k0 = k1 - 1;
   const double dt = track.times[k1] - track.times[k0];
-  const double s = dt > 0.0 ? (t - track.times[k0]) / dt : 0.0;
+  double s = dt > 0.0 ? (t - track.times[k0]) / dt : 0.0;
+  // A sample within 1e-5 of the interval from a key takes the key: key times are floats
+  // (k / fps rounded), sample times are doubles.
+  if (s < 1e-5) s = 0.0;
+  if (s > 1.0 - 1e-5) s = 1.0;
   switch (track.interpolation) {
     case Interpolation::kStep:
-      std::copy(value(k0, 1), value(k0, 1) + c, out);
+      std::copy(value(s == 1.0 ? k1 : k0, 1), value(s == 1.0 ? k1 : k0, 1) + c, out);
       break;
     case Interpolation::kLinear:
       if (track.path == Path::kRotation) {
@@ -703,22 +727,21 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
   }
   double rate = options.frame_rate;
   if (rate == 0.0) {
-    double spacing = 0.0;
-    bool uniform = true;
+    std::vector<double> spacings;
     for (const Track& t : tracks) {
-      for (size_t k = 1; k < t.times.size() && uniform; ++k) {
-        const double d = t.times[k] - t.times[k - 1];
-        if (spacing == 0.0) spacing = d;
-        uniform = std::abs(d - spacing) <= 1e-3 * spacing;
-      }
+      for (size_t k = 1; k < t.times.size(); ++k) spacings.push_back(t.times[k] - t.times[k - 1]);
     }
-    rate = uniform && spacing > 0.0 ? 1.0 / spacing : 30.0;
+    const double spacing = gltf_internal::KeySpacing(spacings);
+    rate = spacing > 0.0 ? 1.0 / spacing : 30.0;
     if (std::abs(rate - std::round(rate)) < 1e-3) rate = std::round(rate);
   }
   const double span_frames = (t1 - t0) * rate;
-  if (!(span_frames < 1e6)) {
+  // At most 1e7 joint-frames (about 0.6 GB of poses; a 10-minute 120 fps take of 65
+  // joints is 4.7e6).
+  if (!(span_frames * character.skeleton.num_joints() < 1e7)) {
     return Status::Error(where + ": " + std::to_string(t1 - t0) + " s at " + std::to_string(rate) +
-                         " fps is over a million frames");
+                         " fps for " + std::to_string(character.skeleton.num_joints()) +
+                         " joints is over 1e7 joint-frames");
   }
   const int num_frames = static_cast<int>(std::floor(span_frames + 1e-6 * rate)) + 1;
   Motion out;

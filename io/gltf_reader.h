@@ -51,20 +51,25 @@
 //
 // Animation (ReadGltfAnimation): the channels of one animation (by name or index),
 // sampled at frame k at time t0 + k / frame_rate (t0 = the earliest key time, last frame
-// at or before the latest key time + 1e-6 s). frame_rate 0 picks the key rate if every
-// channel's keys are uniformly spaced with one common spacing, else 30 fps. Samplers:
+// at or before the latest key time + 1e-6 s). frame_rate 0 picks the key rate: 1 / the smallest
+// key spacing if every spacing is a whole multiple of it (keys may be dropped where a
+// curve is constant), else 30 fps. Samplers:
 // STEP, LINEAR (translation/scale lerp, rotation slerp) and CUBICSPLINE (Hermite with
 // the in/out tangents scaled by the key interval; rotations renormalized); before the
-// first and after the last key the end values hold. Channels on translation, rotation and
+// first and after the last key the end values hold; a sample time within 1e-5 of the key
+// interval from a key takes that key (float key times k / fps then sample back exactly). Channels on translation, rotation and
 // scale of joint nodes and of the baked non-joint nodes above them are used; `weights`
 // channels (morph targets) and channels on unrelated nodes are ignored. An animated
 // scale is used if uniform and constant over the clip, otherwise it is ignored (node
 // default kept) with a warning. Rotation series are made sign-continuous.
 //
 // Errors: Status with one line "<path>: <where>: <what>", e.g. "Xbot.glb: skin 0:
-// inverseBindMatrices accessor 7: has 3 matrices for 65 joints". Every index, accessor
+// inverseBindMatrices accessor 7 has 3 matrices for 65 joints". Every index, accessor
 // bound, count and number is checked; nothing can crash, allocate without bound, or
-// return non-finite values.
+// return non-finite values (a sampled clip is limited to 1e7 joint-frames; an accessor
+// without a bufferView to 4x the file's data bytes). Files requiring Draco, meshopt or
+// mesh quantization are refused. Weights that do not sum to 1 (RobotExpressive) are
+// normalized, as three.js does.
 #ifndef MOCAPSOLVE_IO_GLTF_READER_H_
 #define MOCAPSOLVE_IO_GLTF_READER_H_
 

@@ -123,6 +123,17 @@ double UniformScale(const Eigen::Vector3d& s, bool* exact) {
   return uniform;
 }
 
+double KeySpacing(const std::vector<double>& spacings) {
+  if (spacings.empty()) return 0.0;
+  const double smallest = *std::min_element(spacings.begin(), spacings.end());
+  if (!(smallest > 0.0)) return 0.0;
+  for (double d : spacings) {
+    const double multiple = d / smallest;
+    if (std::abs(multiple - std::round(multiple)) > 1e-3) return 0.0;
+  }
+  return smallest;
+}
+
 Similarity SimilarityFromMatrix(const Eigen::Matrix4d& m, bool* exact) {
   Similarity out;
   const Eigen::Matrix3d a = m.topLeftCorner<3, 3>();
@@ -246,6 +257,17 @@ Status ReadAccessor(const tinygltf::Model& model, int index, int components,
   const size_t component_size =
       static_cast<size_t>(tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType)));
   const size_t element_size = component_size * components;
+  if (a.bufferView < 0) {
+    // Zeros (plus sparse values): bound the size by the file's data so that a tiny file
+    // cannot make us allocate gigabytes.
+    size_t total = 0;
+    for (const tinygltf::Buffer& b : model.buffers) total += b.data.size();
+    if (a.count > 4 * total + 1024) {
+      return Status::Error(where + ": count " + std::to_string(a.count) +
+                           " without a bufferView is out of proportion to the file's " +
+                           std::to_string(total) + " data bytes");
+    }
+  }
   std::vector<double> out(a.count * components, 0.0);
   if (a.bufferView >= 0) {
     if (a.bufferView >= static_cast<int>(model.bufferViews.size())) {

@@ -54,6 +54,11 @@ Status BuildNodeGraph(const tinygltf::Model& model, const std::string& file,
 // Uniform scale from a TRS scale; *exact false if non-uniform or not positive.
 double UniformScale(const Eigen::Vector3d& scale, bool* exact);
 
+// The key spacing of a clip: the smallest spacing, if every spacing is an integer
+// multiple of it (to 1e-3 of it; keys dropped where a curve is linear or constant);
+// else 0 (no common key rate).
+double KeySpacing(const std::vector<double>& spacings);
+
 // Reads accessor `index` as doubles, `components` values per element (1 SCALAR, 3 VEC3,
 // 4 VEC4, 16 MAT4), with the given allowed component types (TINYGLTF_COMPONENT_TYPE_*),
 // normalized integers mapped per the glTF spec, sparse substitution applied, all bounds

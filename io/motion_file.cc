@@ -5,6 +5,8 @@
 #include "io/amc_reader.h"
 #include "io/asf_reader.h"
 #include "io/bvh_reader.h"
+#include "io/fbx_reader.h"
+#include "io/gltf_reader.h"
 
 namespace mocapsolve {
 
@@ -15,6 +17,28 @@ std::string FileExtension(const std::string& path) {
   std::string ext = path.substr(dot);
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext;
+}
+
+Status ReadAnimationNames(const std::string& path, std::vector<std::string>* names) {
+  const std::string ext = FileExtension(path);
+  names->clear();
+  if (ext == ".glb" || ext == ".gltf") {
+    GltfDocument document;
+    Status status = GltfDocument::Read(path, &document);
+    if (!status.ok()) return status;
+    GltfCharacter character;
+    status = ReadGltfCharacter(document, GltfReadOptions(), &character);
+    if (!status.ok()) return status;
+    *names = character.animation_names;
+  } else if (ext == ".fbx") {
+    Skeleton skeleton;
+    Motion motion;
+    FbxInfo info;
+    Status status = ReadFbx(path, FbxReadOptions(), &skeleton, &motion, &info);
+    if (!status.ok()) return status;
+    *names = info.animation_names;
+  }
+  return Status::Ok();
 }
 
 Status ReadSkeletonFile(const std::string& path, Skeleton* skeleton, AsfInfo* asf_info) {
@@ -30,12 +54,56 @@ Status ReadSkeletonFile(const std::string& path, Skeleton* skeleton, AsfInfo* as
     if (status.ok() && asf_info != nullptr) *asf_info = std::move(info);
     return status;
   }
-  return Status::Error(path + ": unknown skeleton format '" + ext + "' (expected .bvh or .asf)");
+  if (ext == ".glb" || ext == ".gltf") {
+    GltfCharacter character;
+    Status status = ReadGltfCharacter(path, GltfReadOptions(), &character);
+    if (!status.ok()) return status;
+    if (asf_info != nullptr) *asf_info = AsfInfo();
+    *skeleton = character.skeleton;
+    return Status::Ok();
+  }
+  if (ext == ".fbx") {
+    Motion ignored;
+    if (asf_info != nullptr) *asf_info = AsfInfo();
+    return ReadFbx(path, FbxReadOptions(), skeleton, &ignored);
+  }
+  return Status::Error(path + ": unknown skeleton format '" + ext +
+                       "' (expected .bvh, .asf, .glb, .gltf or .fbx)");
 }
 
 Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
                       Skeleton* skeleton, Motion* motion) {
   const std::string ext = FileExtension(path);
+  const bool animated_format = ext == ".glb" || ext == ".gltf" || ext == ".fbx";
+  if (!animated_format && (!options.animation.empty() || options.sample_rate != 0.0)) {
+    return Status::Error(path + ": an animation name or sample rate applies to .glb/.gltf/.fbx only");
+  }
+  if (animated_format && !options.skeleton_path.empty()) {
+    return Status::Error(path + ": a " + ext + " carries its own skeleton; drop --skeleton");
+  }
+  if (ext == ".glb" || ext == ".gltf") {
+    GltfDocument document;
+    Status status = GltfDocument::Read(path, &document);
+    if (!status.ok()) return status;
+    GltfCharacter character;
+    status = ReadGltfCharacter(document, GltfReadOptions(), &character);
+    if (!status.ok()) return status;
+    GltfAnimationOptions animation;
+    animation.animation = options.animation;
+    animation.frame_rate = options.sample_rate;
+    Motion sampled;
+    status = ReadGltfAnimation(document, character, animation, &sampled);
+    if (!status.ok()) return status;
+    *skeleton = character.skeleton;
+    *motion = std::move(sampled);
+    return Status::Ok();
+  }
+  if (ext == ".fbx") {
+    FbxReadOptions fbx;
+    fbx.animation = options.animation;
+    fbx.frame_rate = options.sample_rate;
+    return ReadFbx(path, fbx, skeleton, motion);
+  }
   if (ext == ".bvh") {
     if (!options.skeleton_path.empty()) {
       return Status::Error(path + ": a BVH carries its own skeleton; drop --skeleton");
@@ -54,7 +122,8 @@ Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
     if (!status.ok()) return status;
     return ReadAmc(path, *skeleton, info, options.amc_frame_rate, motion);
   }
-  return Status::Error(path + ": unknown motion format '" + ext + "' (expected .bvh or .amc)");
+  return Status::Error(path + ": unknown motion format '" + ext +
+                       "' (expected .bvh, .amc, .glb, .gltf or .fbx)");
 }
 
 }  // namespace mocapsolve

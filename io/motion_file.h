@@ -1,9 +1,13 @@
-// Reading a skeleton motion from whatever file the user names: .bvh on its own, or an
-// Acclaim .amc with its .asf skeleton. The extension decides (case-insensitive).
+// Reading a skeleton motion from whatever file the user names: .bvh on its own, an
+// Acclaim .amc with its .asf skeleton, a glTF character (.glb/.gltf: skin 0 and one of
+// its animations, see io/gltf_reader.h; metres) or an FBX (.fbx: the animated node
+// hierarchy and one animation, see io/fbx_reader.h; the file's unit). The extension
+// decides (case-insensitive).
 #ifndef MOCAPSOLVE_IO_MOTION_FILE_H_
 #define MOCAPSOLVE_IO_MOTION_FILE_H_
 
 #include <string>
+#include <vector>
 
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
@@ -14,15 +18,24 @@ namespace mocapsolve {
 struct MotionFileOptions {
   std::string skeleton_path;      // The .asf for an .amc; must be empty for a .bvh.
   double amc_frame_rate = 120.0;  // AMC files do not store their rate; CMU's is 120 Hz.
+  // glTF/FBX: the animation (name or index; "" = the first) and the sampling rate (0 =
+  // the key rate when uniform, else 30 fps). Must stay at their defaults for BVH/AMC.
+  std::string animation;
+  double sample_rate = 0.0;
 };
 
 Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
                       Skeleton* skeleton, Motion* motion);
 
-// The skeleton of a .bvh (its motion is ignored) or an .asf. *asf_info, if not null,
-// receives the ASF's dofs and limits (left empty for a BVH).
+// The skeleton of a .bvh (its motion is ignored), an .asf, a .glb/.gltf (skin 0) or an
+// .fbx (the hierarchy animated by its first animation). *asf_info, if not null,
+// receives the ASF's dofs and limits (left empty for the other formats).
 struct AsfInfo;
 Status ReadSkeletonFile(const std::string& path, Skeleton* skeleton, AsfInfo* asf_info = nullptr);
+
+// The clips of a file that can hold several (.glb/.gltf/.fbx; "" for an unnamed one);
+// empty for the other formats.
+Status ReadAnimationNames(const std::string& path, std::vector<std::string>* names);
 
 // Lower-case extension with the dot (".bvh"), or "".
 std::string FileExtension(const std::string& path);

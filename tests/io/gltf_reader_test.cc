@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include <tiny_gltf.h>
 
 #include "io/atomic_file.h"
+#include "io/gltf_writer.h"
+#include "io/motion_file.h"
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/skinning.h"
 #include "tests/test_support.h"
@@ -187,6 +190,17 @@ double Extent(const GltfCharacter& c, const Pose& pose) {
   return (p.rowwise().maxCoeff() - p.rowwise().minCoeff()).maxCoeff();
 }
 
+// Y (glTF's up) extent of the mesh skinned at a pose.
+double YExtent(const GltfCharacter& c, const Pose& pose) {
+  FkData fk(c.skeleton);
+  ForwardKinematics(c.skeleton, pose, &fk);
+  std::vector<Eigen::Isometry3d> transforms;
+  ComputeSkinningTransforms(c.mesh, fk, &transforms);
+  Eigen::Matrix3Xd p;
+  SkinMesh(c.mesh, transforms, &p, nullptr);
+  return p.row(1).maxCoeff() - p.row(1).minCoeff();
+}
+
 struct CharacterCase {
   const char* file;
   int joints;  // Per shared/data/README.md (skin 0).
@@ -211,11 +225,11 @@ TEST_P(GltfCharacters, LoadsWithJointCountAndSkinningMatchesGltf) {
   EXPECT_LT(c.triangles.maxCoeff(), c.mesh.num_vertices());
   EXPECT_EQ(c.skeleton.unit().name, "m");
   const double height = Extent(c, c.rest_pose);
-  std::printf("%s: %d joints (skin %d), %d vertices, %d triangles, rest-pose extent %.4f m, bind scale %g, "
-              "%zu animations, %zu warnings\n",
+  std::printf("%s: %d joints (skin %d), %d vertices, %d triangles, rest-pose extent %.4f m, height (y) "
+              "rest pose %.4f m, bind pose %.4f m, bind scale %g, %zu animations, %zu warnings\n",
               GetParam().file, c.skeleton.num_joints(), skin_joints, c.mesh.num_vertices(),
-              static_cast<int>(c.triangles.cols()), height, c.bind_scale, c.animation_names.size(),
-              c.warnings.size());
+              static_cast<int>(c.triangles.cols()), height, YExtent(c, c.rest_pose), YExtent(c, c.bind_pose),
+              c.bind_scale, c.animation_names.size(), c.warnings.size());
   for (const std::string& w : c.warnings) std::printf("  warning: %s\n", w.c_str());
 
   // FK of the bind pose places each skin joint at its inverse bind matrix (scale removed).
@@ -284,5 +298,407 @@ INSTANTIATE_TEST_SUITE_P(
       return name.substr(0, name.find('.'));
     });
 
+
+// ---------------------------------------------------------------------------------
+// A small glTF built here: every sampler kind, a baked non-joint node between joints,
+// uniform scales, a scale channel, u8/u16 joints, normalized u16 and float weights, a
+// sparse accessor, two extra skins with several root joints.
+namespace tiny {
+
+std::string Base64(const std::string& in) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  size_t i = 0;
+  for (; i + 2 < in.size(); i += 3) {
+    const unsigned v = (static_cast<unsigned char>(in[i]) << 16) |
+                       (static_cast<unsigned char>(in[i + 1]) << 8) | static_cast<unsigned char>(in[i + 2]);
+    for (int k = 3; k >= 0; --k) out += table[(v >> (6 * k)) & 63];
+  }
+  if (i + 1 == in.size()) {
+    const unsigned v = static_cast<unsigned char>(in[i]) << 16;
+    out += table[(v >> 18) & 63];
+    out += table[(v >> 12) & 63];
+    out += "==";
+  } else if (i + 2 == in.size()) {
+    const unsigned v = (static_cast<unsigned char>(in[i]) << 16) | (static_cast<unsigned char>(in[i + 1]) << 8);
+    out += table[(v >> 18) & 63];
+    out += table[(v >> 12) & 63];
+    out += table[(v >> 6) & 63];
+    out += '=';
+  }
+  return out;
+}
+
+struct Builder {
+  std::string bin;
+  std::vector<std::string> views, accessors;
+
+  int View(const void* data, size_t bytes) {
+    while (bin.size() % 4) bin.push_back('\0');
+    views.push_back("{\"buffer\":0,\"byteOffset\":" + std::to_string(bin.size()) +
+                    ",\"byteLength\":" + std::to_string(bytes) + "}");
+    bin.append(static_cast<const char*>(data), bytes);
+    return static_cast<int>(views.size()) - 1;
+  }
+  template <typename T>
+  int Add(const std::vector<T>& v, int component_type, const std::string& type, int n,
+          const std::string& extra = "") {
+    const int view = View(v.data(), v.size() * sizeof(T));
+    accessors.push_back("{\"bufferView\":" + std::to_string(view) + ",\"componentType\":" +
+                        std::to_string(component_type) + ",\"count\":" + std::to_string(v.size() / n) +
+                        ",\"type\":\"" + type + "\"" + extra + "}");
+    return static_cast<int>(accessors.size()) - 1;
+  }
+  int Floats(const std::vector<float>& v, const std::string& type, int n) { return Add(v, 5126, type, n); }
+  int Times(const std::vector<float>& v) {
+    char mm[96];
+    std::snprintf(mm, sizeof mm, ",\"min\":[%.9g],\"max\":[%.9g]", v.front(), v.back());
+    return Add(v, 5126, "SCALAR", 1, mm);
+  }
+  std::string Json(const std::string& body) const {
+    std::string out = "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":" +
+                      std::to_string(bin.size()) + ",\"uri\":\"data:application/octet-stream;base64," +
+                      Base64(bin) + "\"}],\"bufferViews\":[";
+    for (size_t i = 0; i < views.size(); ++i) out += (i ? "," : "") + views[i];
+    out += "],\"accessors\":[";
+    for (size_t i = 0; i < accessors.size(); ++i) out += (i ? "," : "") + accessors[i];
+    return out + "]," + body + "}";
+  }
+};
+
+Eigen::Quaterniond Q(double deg, const Eigen::Vector3d& axis) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(deg * M_PI / 180.0, axis.normalized()));
+}
+std::string Vec(const Eigen::Quaterniond& q) {
+  char s[128];
+  std::snprintf(s, sizeof s, "[%.17g,%.17g,%.17g,%.17g]", q.x(), q.y(), q.z(), q.w());
+  return s;
+}
+
+// Node defaults (TRS); node 5 holds the mesh, node 6 is a separate top-level node.
+struct Scene {
+  std::vector<NodeTrs> trs;
+  Scene() : trs(7) {
+    trs[0].s = Eigen::Vector3d::Constant(0.01);
+    trs[0].r = Q(90, Eigen::Vector3d::UnitX());
+    trs[1].t = Eigen::Vector3d(0, 0, 100);
+    trs[2].t = Eigen::Vector3d(10, 0, 0);
+    trs[2].r = Q(30, Eigen::Vector3d::UnitZ());
+    trs[3].t = Eigen::Vector3d(0, -50, 0);
+    trs[3].r = Q(10, Eigen::Vector3d(1, 1, 0));
+    trs[4].t = Eigen::Vector3d(0, 30, 0);
+    trs[4].s = Eigen::Vector3d::Constant(2.0);
+    trs[6].t = Eigen::Vector3d(5, 5, 5);
+  }
+};
+
+std::vector<Eigen::Matrix4d> Worlds(const std::vector<NodeTrs>& trs) {
+  std::vector<int> parent = {-1, 0, 1, 2, 1, -1, -1};
+  std::vector<Eigen::Matrix4d> world(trs.size());
+  for (size_t i = 0; i < trs.size(); ++i) {
+    const Eigen::Affine3d local = Eigen::Translation3d(trs[i].t) * trs[i].r * Eigen::Scaling(trs[i].s);
+    world[i] = parent[i] < 0 ? local.matrix() : Eigen::Matrix4d(world[parent[i]] * local.matrix());
+  }
+  return world;
+}
+
+// The leg's CUBICSPLINE keys (in-tangent, value, out-tangent per key, times 0 and 1).
+const Eigen::Vector4d kLegKeys[6] = {
+    Eigen::Vector4d(0, 0, 0, 0), Q(10, Eigen::Vector3d(1, 1, 0)).coeffs(), Eigen::Vector4d(0, 0.5, 0, 0),
+    Eigen::Vector4d(0, 0.3, 0, 0), Q(90, Eigen::Vector3d::UnitY()).coeffs(), Eigen::Vector4d(0, 0, 0, 0)};
+
+// The node transforms at time t per the glTF spec, computed here by hand.
+std::vector<NodeTrs> AtTime(double t) {
+  Scene scene;
+  std::vector<NodeTrs> trs = scene.trs;
+  const double s = std::clamp(t, 0.0, 1.0), s2 = s * s, s3 = s2 * s;
+  const Eigen::Vector4d leg = (2 * s3 - 3 * s2 + 1) * kLegKeys[1] + (s3 - 2 * s2 + s) * kLegKeys[2] +
+                              (-2 * s3 + 3 * s2) * kLegKeys[4] + (s3 - s2) * kLegKeys[3];
+  trs[3].r = Eigen::Quaterniond(leg.normalized());  // coeffs() order x, y, z, w.
+  trs[1].t = Eigen::Vector3d(0, t < 0.5 ? 0 : t < 1.0 ? 10 : 20, 100);  // STEP.
+  trs[2].r = Q(30 + 60 * s, Eigen::Vector3d::UnitZ());                    // LINEAR slerp.
+  return trs;
+}
+
+std::string TinyFile(Builder* b) {
+  Scene scene;
+  const std::vector<Eigen::Matrix4d> rest = Worlds(scene.trs);
+  // Skin 0 joints: leg, hip, spine (not in preorder on purpose).
+  const int skin_nodes[3] = {3, 1, 4};
+  std::vector<float> ibm;
+  for (int n : skin_nodes) {
+    const Eigen::Matrix4d inv = rest[n].inverse();
+    for (int e = 0; e < 16; ++e) ibm.push_back(static_cast<float>(inv(e % 4, e / 4)));
+  }
+  const int ibm_accessor = b->Floats(ibm, "MAT4", 16);
+  // Primitive 0: 4 vertices, u8 joints, normalized u16 weights, u16 indices.
+  const int p0_pos = b->Floats({0.f, 0.f, 1.f, 0.1f, -0.3f, 1.f, 0.f, 0.5f, 1.2f, 0.2f, 0.1f, 0.9f}, "VEC3", 3);
+  const int p0_joints = b->Add(std::vector<uint8_t>{0, 1, 0, 0, 0, 0, 0, 0, 2, 1, 0, 0, 2, 0, 0, 0},
+                               5121, "VEC4", 4);
+  const int p0_weights = b->Add(std::vector<uint16_t>{32768, 32767, 0, 0, 65535, 0, 0, 0, 49151, 16384, 0, 0,
+                                                      65535, 0, 0, 0},
+                                5123, "VEC4", 4, ",\"normalized\":true");
+  const int p0_idx = b->Add(std::vector<uint16_t>{0, 1, 2, 0, 2, 3}, 5123, "SCALAR", 1);
+  // Primitive 1: 3 vertices (non-indexed), u16 joints, float weights, sparse POSITION.
+  const int p1_pos_base = b->View(std::vector<float>{0, 0, 0, 1, 1, 1, 0.3f, 0.2f, 1.1f}.data(), 36);
+  const int sparse_idx = b->View(std::vector<uint16_t>{1, 0}.data(), 2);
+  const int sparse_val = b->View(std::vector<float>{-0.1f, -0.2f, 0.8f}.data(), 12);
+  b->accessors.push_back("{\"bufferView\":" + std::to_string(p1_pos_base) +
+                         ",\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"sparse\":{\"count\":1,"
+                         "\"indices\":{\"bufferView\":" + std::to_string(sparse_idx) +
+                         ",\"componentType\":5123},\"values\":{\"bufferView\":" + std::to_string(sparse_val) + "}}}");
+  const int p1_pos = static_cast<int>(b->accessors.size()) - 1;
+  const int p1_joints = b->Add(std::vector<uint16_t>{1, 0, 0, 0, 0, 2, 0, 0, 2, 0, 0, 0}, 5123, "VEC4", 4);
+  const int p1_weights = b->Floats({1, 0, 0, 0, 0.25f, 0.75f, 0, 0, 1, 0, 0, 0}, "VEC4", 4);
+  // Animation samplers.
+  std::vector<float> leg;
+  for (const Eigen::Vector4d& k : kLegKeys) {
+    for (int c = 0; c < 4; ++c) leg.push_back(static_cast<float>(k[c]));
+  }
+  const int t01 = b->Times({0.f, 1.f});
+  const int t_step = b->Times({0.f, 0.5f, 1.f});
+  const int leg_out = b->Floats(leg, "VEC4", 4);
+  const int hip_out = b->Floats({0, 0, 100, 0, 10, 100, 0, 20, 100}, "VEC3", 3);
+  std::vector<float> helper;
+  for (double deg : {30.0, 90.0}) {
+    const Eigen::Quaterniond q = Q(deg, Eigen::Vector3d::UnitZ());
+    for (double c : {q.x(), q.y(), q.z(), q.w()}) helper.push_back(static_cast<float>(c));
+  }
+  const int helper_out = b->Floats(helper, "VEC4", 4);
+  const int spine_scale = b->Floats({2, 2, 2, 2, 2, 2}, "VEC3", 3);
+  const int varying_scale = b->Floats({1, 1, 1, 1, 2, 1}, "VEC3", 3);
+  auto s = [](int i) { return std::to_string(i); };
+  auto node = [&](const char* name, const NodeTrs& t, const std::string& extra) {
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "{\"name\":\"%s\",\"translation\":[%.17g,%.17g,%.17g],\"rotation\":%s,\"scale\":[%.17g,%.17g,%.17g]%s}",
+                  name, t.t.x(), t.t.y(), t.t.z(), Vec(t.r).c_str(), t.s.x(), t.s.y(), t.s.z(), extra.c_str());
+    return std::string(buf);
+  };
+  const std::string body =
+      "\"scene\":0,\"scenes\":[{\"nodes\":[0,5,6]}],\"nodes\":[" + node("Armature", scene.trs[0], ",\"children\":[1]") +
+      "," + node("hip", scene.trs[1], ",\"children\":[2,4]") + "," + node("helper", scene.trs[2], ",\"children\":[3]") +
+      "," + node("leg", scene.trs[3], "") + "," + node("spine", scene.trs[4], "") + "," +
+      node("body", scene.trs[5], ",\"mesh\":0,\"skin\":0") + "," + node("other", scene.trs[6], "") +
+      "],\"skins\":[{\"joints\":[3,1,4],\"inverseBindMatrices\":" + s(ibm_accessor) +
+      "},{\"name\":\"two_roots\",\"joints\":[4,3]},{\"name\":\"two_trees\",\"joints\":[3,6]}],"
+      "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":" + s(p0_pos) + ",\"JOINTS_0\":" + s(p0_joints) +
+      ",\"WEIGHTS_0\":" + s(p0_weights) + "},\"indices\":" + s(p0_idx) + "},{\"attributes\":{\"POSITION\":" +
+      s(p1_pos) + ",\"JOINTS_0\":" + s(p1_joints) + ",\"WEIGHTS_0\":" + s(p1_weights) + "}}]}],"
+      "\"animations\":[{\"name\":\"clip\",\"samplers\":["
+      "{\"input\":" + s(t01) + ",\"output\":" + s(leg_out) + ",\"interpolation\":\"CUBICSPLINE\"},"
+      "{\"input\":" + s(t_step) + ",\"output\":" + s(hip_out) + ",\"interpolation\":\"STEP\"},"
+      "{\"input\":" + s(t01) + ",\"output\":" + s(helper_out) + "},"
+      "{\"input\":" + s(t01) + ",\"output\":" + s(spine_scale) + "},"
+      "{\"input\":" + s(t01) + ",\"output\":" + s(varying_scale) + "}],"
+      "\"channels\":[{\"sampler\":0,\"target\":{\"node\":3,\"path\":\"rotation\"}},"
+      "{\"sampler\":1,\"target\":{\"node\":1,\"path\":\"translation\"}},"
+      "{\"sampler\":2,\"target\":{\"node\":2,\"path\":\"rotation\"}},"
+      "{\"sampler\":3,\"target\":{\"node\":4,\"path\":\"scale\"}},"
+      "{\"sampler\":4,\"target\":{\"node\":0,\"path\":\"scale\"}}]}]";
+  return b->Json(body);
+}
+
+}  // namespace tiny
+
+TEST(GltfReaderTiny, SkeletonBakesNodesAndScales) {
+  tiny::Builder b;
+  GltfDocument doc;
+  Status status = GltfDocument::Parse(tiny::TinyFile(&b), "tiny.gltf", "", &doc);
+  ASSERT_TRUE(status.ok()) << status.message();
+  GltfCharacter c;
+  status = ReadGltfCharacter(doc, {}, &c);
+  ASSERT_TRUE(status.ok()) << status.message();
+  // Preorder hip, leg (below the non-joint helper), spine.
+  ASSERT_EQ(c.skeleton.num_joints(), 3);
+  EXPECT_EQ(c.skeleton.name(0), "hip");
+  EXPECT_EQ(c.skeleton.name(1), "leg");
+  EXPECT_EQ(c.skeleton.name(2), "spine");
+  EXPECT_EQ(c.skeleton.parent(1), 0);
+  EXPECT_EQ(c.skeleton.parent(2), 0);
+  EXPECT_EQ(c.skin_joints, (std::vector<int>{1, 0, 2}));
+  EXPECT_EQ(c.joint_nodes, (std::vector<int>{1, 3, 4}));
+  // Offsets: the parent's accumulated scale (0.01) times the chain translation.
+  tiny::Scene scene;
+  const Eigen::Vector3d leg_offset = 0.01 * (scene.trs[2].t + scene.trs[2].r * scene.trs[3].t);
+  EXPECT_LT((c.skeleton.offset(1) - leg_offset).norm(), 1e-15);
+  EXPECT_LT((c.skeleton.offset(0) - 0.01 * (scene.trs[0].r * scene.trs[1].t)).norm(), 1e-15);
+  EXPECT_LT(c.skeleton.rest_rotation(1).angularDistance(scene.trs[2].r), 1e-15);
+  EXPECT_LT(c.skeleton.rest_rotation(0).angularDistance(scene.trs[0].r), 1e-15);
+  EXPECT_LT(c.rest_pose.rotations[1].angularDistance(scene.trs[3].r), 1e-15);
+  // Mesh: 4 + 3 vertices, 2 + 1 triangles, the sparse vertex substituted.
+  ASSERT_EQ(c.mesh.num_vertices(), 7);
+  EXPECT_EQ(c.triangles.cols(), 3);
+  EXPECT_EQ(c.triangles.col(2), Eigen::Vector3i(4, 5, 6));
+  EXPECT_LT((c.mesh.rest_positions().col(5) - Eigen::Vector3d(-0.1, -0.2, 0.8)).norm(), 1e-6);
+  EXPECT_NEAR(c.bind_scale, 1.0, 1e-6);
+  EXPECT_TRUE(c.warnings.empty());
+  EXPECT_EQ(c.mesh.num_joints(), 3);
+  ASSERT_EQ(c.animation_names, std::vector<std::string>{"clip"});
+}
+
+TEST(GltfReaderTiny, SamplersAndSkinningMatchTheSpec) {
+  tiny::Builder b;
+  GltfDocument doc;
+  ASSERT_TRUE(GltfDocument::Parse(tiny::TinyFile(&b), "tiny.gltf", "", &doc).ok());
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(doc, {}, &c).ok());
+  // Default rate: the smallest key spacing (0.5 s) -> 2 fps, 3 frames.
+  Motion motion;
+  std::vector<std::string> warnings;
+  ASSERT_TRUE(ReadGltfAnimation(doc, c, {}, &motion, &warnings).ok());
+  EXPECT_EQ(motion.frame_rate, 2.0);
+  EXPECT_EQ(motion.num_frames(), 3);
+  // The varying scale on the Armature is ignored with a warning; the constant one used.
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("scale of node 0"), std::string::npos) << warnings[0];
+  GltfAnimationOptions options;
+  options.animation = "clip";
+  options.frame_rate = 8.0;
+  ASSERT_TRUE(ReadGltfAnimation(doc, c, options, &motion).ok());
+  ASSERT_EQ(motion.num_frames(), 9);
+  const tinygltf::Model& m = doc.model();
+  const int ibm_accessor = m.skins[0].inverseBindMatrices;
+  const std::vector<float> ibm = Floats(m, ibm_accessor);
+  FkData fk(c.skeleton);
+  std::vector<Eigen::Isometry3d> transforms;
+  for (int f = 0; f < motion.num_frames(); ++f) {
+    const std::vector<Eigen::Matrix4d> world = tiny::Worlds(tiny::AtTime(f / 8.0));
+    ForwardKinematics(c.skeleton, motion.frames[f], &fk);
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Matrix4d& g = world[c.joint_nodes[j]];
+      // 1e-6: float key data.
+      EXPECT_LT((fk.world_positions[j] - g.topRightCorner<3, 1>()).norm(), 1e-6) << "frame " << f;
+      const Eigen::Matrix3d rotation = g.topLeftCorner<3, 3>() / g.topLeftCorner<3, 3>().col(0).norm();
+      EXPECT_LT((fk.world_rotations[j].toRotationMatrix() - rotation).norm(), 1e-6) << "frame " << f << " joint " << j;
+    }
+    // Skinning of the 4 vertices of primitive 0 by glTF's formula.
+    ComputeSkinningTransforms(c.mesh, fk, &transforms);
+    const std::vector<float> pos = Floats(m, m.meshes[0].primitives[0].attributes.at("POSITION"));
+    const std::vector<float> joints = Floats(m, m.meshes[0].primitives[0].attributes.at("JOINTS_0"));
+    const std::vector<float> weights = Floats(m, m.meshes[0].primitives[0].attributes.at("WEIGHTS_0"));
+    for (int v = 0; v < 4; ++v) {
+      Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+      double total = 0;
+      for (int k = 0; k < 4; ++k) {
+        const int skin_joint = static_cast<int>(joints[4 * v + k]);
+        Eigen::Matrix4d inv_bind;
+        for (int e = 0; e < 16; ++e) inv_bind(e % 4, e / 4) = ibm[16 * skin_joint + e];
+        sum += weights[4 * v + k] * (world[m.skins[0].joints[skin_joint]] * inv_bind *
+                                     Eigen::Vector4d(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2], 1));
+        total += weights[4 * v + k];
+      }
+      EXPECT_LT((SkinPosition(c.mesh, transforms, v) - sum.head<3>() / total).norm(), 1e-6)
+          << "frame " << f << " vertex " << v;
+    }
+  }
+}
+
+TEST(GltfReaderTiny, SeveralRootsGetTheirCommonAncestorOrASyntheticRoot) {
+  tiny::Builder b;
+  GltfDocument doc;
+  ASSERT_TRUE(GltfDocument::Parse(tiny::TinyFile(&b), "tiny.gltf", "", &doc).ok());
+  GltfCharacter c;
+  GltfReadOptions options;
+  options.skin = "two_roots";  // spine and leg: their common ancestor hip becomes the root.
+  Status status = ReadGltfCharacter(doc, options, &c);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_EQ(c.skeleton.num_joints(), 3);
+  EXPECT_EQ(c.skeleton.name(0), "hip");
+  EXPECT_EQ(c.skin_joints, (std::vector<int>{2, 1}));
+  EXPECT_EQ(c.mesh.num_vertices(), 0);
+  options.skin = "2";  // leg and 'other' are in different trees: a synthetic root.
+  status = ReadGltfCharacter(doc, options, &c);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_EQ(c.skeleton.num_joints(), 3);
+  EXPECT_EQ(c.skeleton.name(0), "gltf_root");
+  EXPECT_EQ(c.joint_nodes[0], -1);
+  // FK still gives glTF's world positions.
+  Motion motion;
+  ASSERT_TRUE(ReadGltfAnimation(doc, c, {}, &motion).ok());
+  FkData fk(c.skeleton);
+  ForwardKinematics(c.skeleton, motion.frames[1], &fk);
+  const std::vector<Eigen::Matrix4d> world = tiny::Worlds(tiny::AtTime(0.5));
+  for (int j = 1; j < 3; ++j) {
+    EXPECT_LT((fk.world_positions[j] - world[c.joint_nodes[j]].topRightCorner<3, 1>()).norm(), 1e-6);
+  }
+  options.skin = "nope";
+  status = ReadGltfCharacter(doc, options, &c);
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.message(), "tiny.gltf: no skin named 'nope' (skins: '', 'two_roots', 'two_trees')");
+}
+
+// tests/data/bad/bad_gltf_*: each fails (through ReadMotionFile, as `mocapsolve info`
+// reads it) with one line "<path>: ..." containing its asset.extras "expect-error"; the
+// CLI exits 1 with that one line.
+TEST(GltfBadFiles, AnnotatedBadFilesFailWithOneLine) {
+  int checked = 0;
+  for (const char* name : {"bad_gltf_accessor_range.gltf", "bad_gltf_skin_joint.gltf", "bad_gltf_ibm_count.gltf",
+                           "bad_gltf_weight_joint.gltf", "bad_gltf_truncated.glb"}) {
+    const std::string path = testing::SourcePath(std::string("tests/data/bad/") + name);
+    std::string bytes;
+    ASSERT_TRUE(ReadFileToString(path, &bytes).ok()) << path;
+    const std::string key = "\"expect-error\":";
+    size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos) << name << " has no expect-error annotation";
+    at = bytes.find('"', at + key.size()) + 1;
+    const std::string expected = bytes.substr(at, bytes.find('"', at) - at);
+    Skeleton skeleton;
+    Motion motion;
+    const Status status = ReadMotionFile(path, MotionFileOptions(), &skeleton, &motion);
+    ASSERT_FALSE(status.ok()) << name;
+    EXPECT_EQ(status.message().find('\n'), std::string::npos) << status.message();
+    EXPECT_EQ(status.message().rfind(path + ": ", 0), 0u) << status.message();
+    EXPECT_NE(status.message().find(expected), std::string::npos) << status.message() << " vs " << expected;
+    std::string output;
+    EXPECT_EQ(testing::RunCli("info " + path, &output), 1) << output;
+    EXPECT_EQ(output, "mocapsolve info: " + status.message() + "\n");
+    ++checked;
+  }
+  EXPECT_EQ(checked, 5);
+}
+
+// Damaged copies of the tiny file (JSON) and of a GLB written from it never crash, and
+// every failure is one line.
+TEST(GltfBadFiles, DamagedFilesFailCleanly) {
+  tiny::Builder b;
+  const std::string json = tiny::TinyFile(&b);
+  GltfDocument doc;
+  ASSERT_TRUE(GltfDocument::Parse(json, "tiny.gltf", "", &doc).ok());
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(doc, {}, &c).ok());
+  Motion motion;
+  ASSERT_TRUE(ReadGltfAnimation(doc, c, {}, &motion).ok());
+  std::string glb;
+  ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "copy", true, &glb).ok());
+  std::mt19937 rng(5);
+  int failures = 0, successes = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const bool binary = trial % 2 == 1;
+    std::string bytes;
+    if (binary) {  // Damage the JSON chunk and the binary data, keeping the header length.
+      bytes = glb;
+      for (int k = 0; k < 3; ++k) bytes[20 + rng() % (bytes.size() - 20)] = static_cast<char>(rng() & 0xff);
+    } else {
+      bytes = testing::RandomlyDamaged(json, "0123456789[]{},:.-\"e", &rng);
+    }
+    GltfDocument d;
+    Status status = GltfDocument::Parse(bytes, "damaged", "", &d);
+    GltfCharacter dc;
+    if (status.ok()) status = ReadGltfCharacter(d, {}, &dc);
+    Motion dm;
+    if (status.ok() && !dc.animation_names.empty()) status = ReadGltfAnimation(d, dc, {}, &dm);
+    if (status.ok()) {
+      ++successes;
+      EXPECT_TRUE(ValidateMotion(dc.skeleton, dm).ok() || dc.animation_names.empty());
+    } else {
+      ++failures;
+      ASSERT_EQ(status.message().find('\n'), std::string::npos) << status.message();
+      ASSERT_EQ(status.message().rfind("damaged: ", 0), 0u) << status.message();
+    }
+  }
+  std::printf("%d damaged files rejected, %d still readable\n", failures, successes);
+  EXPECT_GT(failures, 0);
+}
 }  // namespace
 }  // namespace mocapsolve

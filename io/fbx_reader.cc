@@ -1,0 +1,373 @@
+#include "io/fbx_reader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include <assimp/Importer.hpp>
+#include <assimp/config.h>
+#include <assimp/scene.h>
+
+#include "io/atomic_file.h"
+#include "io/gltf_scene.h"
+
+namespace mocapsolve {
+namespace {
+
+using gltf_internal::Rig;
+using gltf_internal::Similarity;
+
+struct FlatNode {
+  const aiNode* node;
+  int parent;
+};
+
+void Flatten(const aiNode* node, int parent, std::vector<FlatNode>* out) {
+  const int index = static_cast<int>(out->size());
+  out->push_back({node, parent});
+  for (unsigned c = 0; c < node->mNumChildren; ++c) Flatten(node->mChildren[c], index, out);
+}
+
+Eigen::Matrix4d ToEigen(const aiMatrix4x4& m) {
+  Eigen::Matrix4d e;
+  e << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3, m.d4;
+  return e;
+}
+
+bool ParseIndex(const std::string& s, int* index) {
+  if (s.empty() || s.size() > 9) return false;
+  for (char c : s) {
+    if (!std::isdigit(static_cast<unsigned char>(c))) return false;
+  }
+  *index = std::stoi(s);
+  return true;
+}
+
+template <typename Key>
+size_t KeyAfter(const Key* keys, unsigned n, double ticks) {
+  size_t lo = 0, hi = n;  // First key with time > ticks.
+  while (lo < hi) {
+    const size_t mid = (lo + hi) / 2;
+    if (keys[mid].mTime <= ticks) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  return lo;
+}
+
+Eigen::Vector3d SampleVector(const aiVectorKey* keys, unsigned n, double ticks) {
+  auto v = [&](size_t k) { return Eigen::Vector3d(keys[k].mValue.x, keys[k].mValue.y, keys[k].mValue.z); };
+  if (n == 1 || ticks <= keys[0].mTime) return v(0);
+  if (ticks >= keys[n - 1].mTime) return v(n - 1);
+  const size_t k1 = KeyAfter(keys, n, ticks), k0 = k1 - 1;
+  const double dt = keys[k1].mTime - keys[k0].mTime;
+  const double s = dt > 0 ? (ticks - keys[k0].mTime) / dt : 0.0;
+  return (1 - s) * v(k0) + s * v(k1);
+}
+
+Eigen::Quaterniond SampleRotation(const aiQuatKey* keys, unsigned n, double ticks) {
+  auto q = [&](size_t k) {
+    const aiQuaternion& a = keys[k].mValue;
+    return Eigen::Quaterniond(a.w, a.x, a.y, a.z).normalized();
+  };
+  if (n == 1 || ticks <= keys[0].mTime) return q(0);
+  if (ticks >= keys[n - 1].mTime) return q(n - 1);
+  const size_t k1 = KeyAfter(keys, n, ticks), k0 = k1 - 1;
+  const double dt = keys[k1].mTime - keys[k0].mTime;
+  const double s = dt > 0 ? (ticks - keys[k0].mTime) / dt : 0.0;
+  return q(k0).slerp(s, q(k1)).normalized();
+}
+
+}  // namespace
+
+Status ReadFbx(const std::string& path, const FbxReadOptions& options, Skeleton* skeleton,
+               Motion* motion, FbxInfo* info) {
+  if (!(options.frame_rate >= 0.0) || !std::isfinite(options.frame_rate)) {
+    return Status::Error(path + ": frame rate must be positive (or 0 for the key rate)");
+  }
+  std::string bytes;
+  Status status = ReadFileToString(path, &bytes);
+  if (!status.ok()) return status;
+  Assimp::Importer importer;
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_READ_ANIMATIONS, true);
+  const aiScene* scene = nullptr;
+  try {
+    scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, "fbx");
+  } catch (const std::exception& e) {
+    return Status::Error(path + ": assimp: " + e.what());
+  }
+  if (scene == nullptr || scene->mRootNode == nullptr) {
+    std::string message = importer.GetErrorString();
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    return Status::Error(path + ": assimp: " + (message.empty() ? "cannot read the file" : message));
+  }
+  FbxInfo out_info;
+  if (scene->mMetaData != nullptr) {
+    double factor = 0.0;
+    float factor_f = 0.0f;
+    if (scene->mMetaData->Get("UnitScaleFactor", factor) && factor > 0.0 && std::isfinite(factor)) {
+      out_info.unit_scale_factor = factor;
+    } else if (scene->mMetaData->Get("UnitScaleFactor", factor_f) && factor_f > 0.0f &&
+               std::isfinite(factor_f)) {
+      out_info.unit_scale_factor = factor_f;
+    }
+  }
+  for (unsigned a = 0; a < scene->mNumAnimations; ++a) {
+    out_info.animation_names.push_back(scene->mAnimations[a]->mName.C_Str());
+  }
+  if (scene->mNumAnimations == 0) return Status::Error(path + ": has no animation");
+  int anim_index = 0;
+  if (!options.animation.empty()) {
+    anim_index = -1;
+    std::string names;
+    for (unsigned a = 0; a < scene->mNumAnimations; ++a) {
+      if (out_info.animation_names[a] == options.animation) anim_index = static_cast<int>(a);
+      names += (a ? ", " : "") + std::to_string(a) + " '" + out_info.animation_names[a] + "'";
+    }
+    int i = 0;
+    if (anim_index < 0 && ParseIndex(options.animation, &i) && i < static_cast<int>(scene->mNumAnimations)) {
+      anim_index = i;
+    }
+    if (anim_index < 0) {
+      return Status::Error(path + ": animation '" + options.animation + "' not found (animations: " + names + ")");
+    }
+  }
+  const aiAnimation* anim = scene->mAnimations[anim_index];
+  const std::string where = path + ": animation " + std::to_string(anim_index);
+
+  std::vector<FlatNode> nodes;
+  Flatten(scene->mRootNode, -1, &nodes);
+  const int nn = static_cast<int>(nodes.size());
+  std::vector<Similarity> locals(nn);
+  for (int i = 0; i < nn; ++i) {
+    bool exact = true;
+    const Eigen::Matrix4d m = ToEigen(nodes[i].node->mTransformation);
+    if (!m.allFinite()) return Status::Error(path + ": node '" + nodes[i].node->mName.C_Str() + "': non-finite transform");
+    locals[i] = gltf_internal::SimilarityFromMatrix(m, &exact);
+    if (!exact) {
+      out_info.warnings.push_back(path + ": node '" + std::string(nodes[i].node->mName.C_Str()) +
+                                  "': transform is not a uniform-scale similarity; approximated");
+    }
+  }
+  // Channels to nodes (by name; the first node of that name).
+  std::map<std::string, int> node_by_name;
+  for (int i = nn - 1; i >= 0; --i) node_by_name[nodes[i].node->mName.C_Str()] = i;
+  std::vector<int> channel_node(anim->mNumChannels, -1);
+  std::vector<bool> animated(nn, false);
+  for (unsigned c = 0; c < anim->mNumChannels; ++c) {
+    const aiNodeAnim* ch = anim->mChannels[c];
+    auto it = node_by_name.find(ch->mNodeName.C_Str());
+    if (it == node_by_name.end()) {
+      out_info.warnings.push_back(where + ": channel for unknown node '" +
+                                  std::string(ch->mNodeName.C_Str()) + "' ignored");
+      continue;
+    }
+    channel_node[c] = it->second;
+    // Channels whose keys never change (Blender keys the armature object and fixed
+    // bones) still apply, but do not make their node a joint of their own.
+    bool changes = false;
+    for (unsigned k = 1; k < ch->mNumPositionKeys && !changes; ++k) {
+      changes = !(ch->mPositionKeys[k].mValue == ch->mPositionKeys[0].mValue);
+    }
+    for (unsigned k = 1; k < ch->mNumRotationKeys && !changes; ++k) {
+      changes = !(ch->mRotationKeys[k].mValue == ch->mRotationKeys[0].mValue);
+    }
+    if (changes) animated[it->second] = true;
+  }
+  std::vector<int> animated_nodes;
+  for (int i = 0; i < nn; ++i) {
+    if (animated[i]) animated_nodes.push_back(i);
+  }
+  if (animated_nodes.empty()) {  // A static clip: every keyed node.
+    for (unsigned c = 0; c < anim->mNumChannels; ++c) {
+      if (channel_node[c] >= 0) animated_nodes.push_back(channel_node[c]);
+    }
+    std::sort(animated_nodes.begin(), animated_nodes.end());
+  }
+  if (animated_nodes.empty()) return Status::Error(where + ": animates no node");
+  // Root: lowest common ancestor of the animated nodes (inclusive).
+  auto path_from_top = [&](int i) {
+    std::vector<int> p;
+    for (int a = i; a != -1; a = nodes[a].parent) p.push_back(a);
+    std::reverse(p.begin(), p.end());
+    return p;
+  };
+  std::vector<int> common = path_from_top(animated_nodes[0]);
+  for (size_t k = 1; k < animated_nodes.size(); ++k) {
+    const std::vector<int> p = path_from_top(animated_nodes[k]);
+    size_t n = 0;
+    while (n < common.size() && n < p.size() && common[n] == p[n]) ++n;
+    common.resize(n);
+  }
+  const int root = common.back();  // Non-empty: every path starts at the scene root.
+  std::vector<bool> is_joint(nn, false);
+  for (int i : animated_nodes) {
+    for (int a = i; a != -1; a = nodes[a].parent) {
+      if (is_joint[a]) break;
+      is_joint[a] = true;
+      if (a == root) break;
+    }
+  }
+  is_joint[root] = true;
+  // Preorder = flattened order (Flatten is a preorder DFS).
+  Rig rig;
+  std::vector<int> joint_of_node(nn, -1);
+  std::vector<EndSite> end_sites;
+  for (int i = 0; i < nn; ++i) {
+    if (!is_joint[i]) continue;
+    joint_of_node[i] = static_cast<int>(rig.joint_nodes.size());
+    rig.joint_nodes.push_back(i);
+    if (i == root) {
+      rig.parents.push_back(-1);
+      rig.chains.push_back(common);
+    } else {
+      rig.parents.push_back(joint_of_node[nodes[i].parent]);
+      rig.chains.push_back({i});
+    }
+    std::string name = nodes[i].node->mName.C_Str();
+    if (name.empty()) name = "node" + std::to_string(i);
+    if (std::find(rig.names.begin(), rig.names.end(), name) != rig.names.end()) {
+      name += "#" + std::to_string(i);
+    }
+    rig.names.push_back(name);
+  }
+  rig.rest_rotations.assign(rig.joint_nodes.size(), Eigen::Quaterniond::Identity());
+  for (size_t k = 0; k + 1 < common.size(); ++k) {
+    rig.rest_rotations[0] = rig.rest_rotations[0] * locals[common[k]].rotation;
+  }
+  rig.rest_rotations[0].normalize();
+  Pose rest;
+  gltf_internal::EvaluateRig(rig, locals, &rest, &rig.rest_scales);
+  const int nj = static_cast<int>(rig.joint_nodes.size());
+  std::vector<JointSpec> specs(nj);
+  for (int j = 0; j < nj; ++j) {
+    specs[j].name = rig.names[j];
+    specs[j].parent = rig.parents[j];
+    specs[j].offset = rest.translations[j];
+    specs[j].rest_rotation = rig.rest_rotations[j];
+  }
+  for (int i = 0; i < nn; ++i) {
+    const int p = nodes[i].parent;
+    if (is_joint[i] || p < 0 || !is_joint[p] || nodes[i].node->mNumChildren != 0) continue;
+    EndSite site;
+    site.name = nodes[i].node->mName.C_Str();
+    site.parent = joint_of_node[p];
+    site.offset = rig.rest_scales[site.parent] * locals[i].translation;
+    end_sites.push_back(site);
+  }
+  LengthUnit unit;
+  if (std::abs(out_info.unit_scale_factor - 1.0) < 1e-12) {
+    unit = Centimetres();
+  } else {
+    char name[64];
+    std::snprintf(name, sizeof name, "fbx unit (%g cm)", out_info.unit_scale_factor);
+    unit = {name, out_info.unit_scale_factor / 100.0};
+  }
+  Skeleton out_skeleton;
+  status = Skeleton::Create(std::move(specs), std::move(end_sites), unit, &out_skeleton);
+  if (!status.ok()) return Status::Error(path + ": " + status.message());
+
+  // Sampling.
+  const double ticks_per_second = anim->mTicksPerSecond > 0.0 ? anim->mTicksPerSecond : 25.0;
+  double t0 = 0.0, t1 = 0.0;
+  bool any = false;
+  std::vector<double> spacings;
+  auto note_keys = [&](auto* keys, unsigned n) {
+    for (unsigned k = 0; k < n; ++k) {
+      const double t = keys[k].mTime;
+      if (!std::isfinite(t)) return false;
+      t0 = any ? std::min(t0, t) : t;
+      t1 = any ? std::max(t1, t) : t;
+      any = true;
+      if (k > 0) {
+        const double d = t - keys[k - 1].mTime;
+        if (!(d > 0.0)) return false;
+        spacings.push_back(d);
+      }
+    }
+    return true;
+  };
+  std::vector<bool> use_scale(anim->mNumChannels, false);
+  for (unsigned c = 0; c < anim->mNumChannels; ++c) {
+    if (channel_node[c] < 0) continue;
+    const aiNodeAnim* ch = anim->mChannels[c];
+    if (!note_keys(ch->mPositionKeys, ch->mNumPositionKeys) ||
+        !note_keys(ch->mRotationKeys, ch->mNumRotationKeys)) {
+      return Status::Error(where + ": node '" + std::string(ch->mNodeName.C_Str()) +
+                           "': key times not finite and increasing");
+    }
+    for (unsigned k = 0; k < ch->mNumPositionKeys; ++k) {
+      const aiVector3D& v = ch->mPositionKeys[k].mValue;
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+        return Status::Error(where + ": node '" + std::string(ch->mNodeName.C_Str()) + "': non-finite position key");
+      }
+    }
+    for (unsigned k = 0; k < ch->mNumRotationKeys; ++k) {
+      const aiQuaternion& q = ch->mRotationKeys[k].mValue;
+      const double norm = std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z);
+      if (!std::isfinite(norm) || !(norm > 1e-6)) {
+        return Status::Error(where + ": node '" + std::string(ch->mNodeName.C_Str()) + "': bad rotation key");
+      }
+    }
+    if (ch->mNumScalingKeys > 0) {
+      bool ok = true;
+      double first = 0.0;
+      for (unsigned k = 0; k < ch->mNumScalingKeys && ok; ++k) {
+        const aiVector3D& s = ch->mScalingKeys[k].mValue;
+        bool exact = true;
+        const double u = gltf_internal::UniformScale(Eigen::Vector3d(s.x, s.y, s.z), &exact);
+        if (k == 0) first = u;
+        ok = exact && std::isfinite(u) && std::abs(u - first) <= 1e-5 * first;
+      }
+      if (ok) {
+        locals[channel_node[c]].scale = first;
+        use_scale[c] = true;
+      } else {
+        out_info.warnings.push_back(where + ": node '" + std::string(ch->mNodeName.C_Str()) +
+                                    "': scale keys not uniform and constant; ignored");
+      }
+    }
+  }
+  double rate = options.frame_rate;
+  if (rate == 0.0) {
+    const double spacing = gltf_internal::KeySpacing(spacings);
+    rate = spacing > 0.0 ? ticks_per_second / spacing : 30.0;
+    if (std::abs(rate - std::round(rate)) < 1e-3) rate = std::round(rate);
+  }
+  const double seconds = (t1 - t0) / ticks_per_second;
+  if (!(seconds * rate * rig.joint_nodes.size() < 1e7)) {  // As in gltf_reader.cc.
+    return Status::Error(where + ": over 1e7 joint-frames");
+  }
+  const int num_frames = static_cast<int>(std::floor(seconds * rate + 1e-6 * rate)) + 1;
+  Motion out;
+  out.frame_rate = rate;
+  out.frames.resize(num_frames);
+  std::vector<Similarity> frame_locals;
+  std::vector<double> scales;
+  for (int f = 0; f < num_frames; ++f) {
+    const double ticks = t0 + f / rate * ticks_per_second;
+    frame_locals = locals;
+    for (unsigned c = 0; c < anim->mNumChannels; ++c) {
+      if (channel_node[c] < 0) continue;
+      const aiNodeAnim* ch = anim->mChannels[c];
+      Similarity& l = frame_locals[channel_node[c]];
+      if (ch->mNumPositionKeys > 0) l.translation = SampleVector(ch->mPositionKeys, ch->mNumPositionKeys, ticks);
+      if (ch->mNumRotationKeys > 0) l.rotation = SampleRotation(ch->mRotationKeys, ch->mNumRotationKeys, ticks);
+    }
+    gltf_internal::EvaluateRig(rig, frame_locals, &out.frames[f], &scales);
+  }
+  MakeSignContinuous(&out);
+  status = ValidateMotion(out_skeleton, out);
+  if (!status.ok()) return Status::Error(where + ": " + status.message());
+  *skeleton = std::move(out_skeleton);
+  *motion = std::move(out);
+  if (info != nullptr) *info = std::move(out_info);
+  return Status::Ok();
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,202 @@
+#include "io/gltf_writer.h"
+
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include "io/atomic_file.h"
+#include "io/gltf_scene.h"
+#include "io/motion_file.h"
+
+namespace mocapsolve {
+namespace {
+
+using gltf_internal::Similarity;
+
+// Keeps every image as it is in the source (URI or buffer view): never re-encoded.
+bool KeepImageAsIs(const std::string*, const std::string*, const tinygltf::Image*, bool, std::string*,
+                   void*) {
+  return false;
+}
+
+// Appends floats to buffer 0 as a new buffer view + accessor; returns the accessor index.
+int AppendFloatAccessor(tinygltf::Model* model, const std::vector<float>& values, int type,
+                        size_t count, bool with_min_max) {
+  tinygltf::Buffer& buffer = model->buffers[0];
+  while (buffer.data.size() % 4 != 0) buffer.data.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buffer.data.size();
+  view.byteLength = values.size() * sizeof(float);
+  const size_t old = buffer.data.size();
+  buffer.data.resize(old + view.byteLength);
+  if (!values.empty()) std::memcpy(buffer.data.data() + old, values.data(), view.byteLength);
+  model->bufferViews.push_back(view);
+  tinygltf::Accessor accessor;
+  accessor.bufferView = static_cast<int>(model->bufferViews.size()) - 1;
+  accessor.byteOffset = 0;
+  accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  accessor.count = count;
+  accessor.type = type;
+  accessor.normalized = false;
+  if (with_min_max && count > 0) {
+    const size_t n = values.size() / count;
+    accessor.minValues.assign(values.begin(), values.begin() + n);
+    accessor.maxValues = accessor.minValues;
+    for (size_t e = 0; e < count; ++e) {
+      for (size_t c = 0; c < n; ++c) {
+        accessor.minValues[c] = std::min<double>(accessor.minValues[c], values[e * n + c]);
+        accessor.maxValues[c] = std::max<double>(accessor.maxValues[c], values[e * n + c]);
+      }
+    }
+  }
+  model->accessors.push_back(accessor);
+  return static_cast<int>(model->accessors.size()) - 1;
+}
+
+}  // namespace
+
+Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
+                                  const Motion& motion, const std::string& animation_name,
+                                  bool binary, std::string* bytes) {
+  if (!source.loaded()) return Status::Error("glTF writer: source document not loaded");
+  const std::string& file = source.name();
+  const Skeleton& skeleton = character.skeleton;
+  if (animation_name.empty()) return Status::Error(file + ": the new animation needs a name");
+  for (const tinygltf::Animation& a : source.model().animations) {
+    if (a.name == animation_name) {
+      return Status::Error(file + ": already has an animation named '" + animation_name + "'");
+    }
+  }
+  if (!(motion.frame_rate > 0.0) || !std::isfinite(motion.frame_rate)) {
+    return Status::Error(file + ": animation '" + animation_name + "': frame rate must be positive");
+  }
+  if (motion.frames.empty()) return Status::Error(file + ": animation '" + animation_name + "' has no frames");
+  Status status = ValidateMotion(skeleton, motion);
+  if (!status.ok()) return Status::Error(file + ": animation '" + animation_name + "': " + status.message());
+
+  tinygltf::Model model = source.model();
+  gltf_internal::NodeGraph graph;
+  status = gltf_internal::BuildNodeGraph(model, file, &graph, nullptr);
+  if (!status.ok()) return status;
+  gltf_internal::Rig rig;
+  status = gltf_internal::BuildRig(model, graph, character.skin, file, &rig);
+  if (!status.ok()) return status;
+  if (rig.joint_nodes != character.joint_nodes || rig.joint_nodes.size() != static_cast<size_t>(skeleton.num_joints())) {
+    return Status::Error(file + ": the character was not read from this file");
+  }
+  const int nj = skeleton.num_joints();
+  const int nf = motion.num_frames();
+  if (model.buffers.empty()) model.buffers.emplace_back();
+  if (binary) model.buffers[0].uri.clear();  // Buffer 0 becomes the GLB BIN chunk.
+
+  std::vector<float> times(nf);
+  for (int f = 0; f < nf; ++f) times[f] = static_cast<float>(f / motion.frame_rate);
+  const int time_accessor = AppendFloatAccessor(&model, times, TINYGLTF_TYPE_SCALAR, nf, true);
+
+  tinygltf::Animation animation;
+  animation.name = animation_name;
+  auto add_channel = [&](int node, const char* path, const std::vector<float>& values, int type) {
+    tinygltf::AnimationSampler sampler;
+    sampler.input = time_accessor;
+    sampler.output = AppendFloatAccessor(&model, values, type, nf, false);
+    sampler.interpolation = "LINEAR";
+    animation.samplers.push_back(sampler);
+    tinygltf::AnimationChannel channel;
+    channel.sampler = static_cast<int>(animation.samplers.size()) - 1;
+    channel.target_node = node;
+    channel.target_path = path;
+    animation.channels.push_back(channel);
+  };
+  std::vector<float> rotations(4 * nf), translations(3 * nf);
+  for (int j = 0; j < nj; ++j) {
+    const int node = rig.joint_nodes[j];
+    if (node < 0) {  // The synthetic root must stay at rest.
+      for (int f = 0; f < nf; ++f) {
+        const Pose& pose = motion.frames[f];
+        if (pose.translations[j].norm() > 1e-9 ||
+            pose.rotations[j].angularDistance(Eigen::Quaterniond::Identity()) > 1e-9) {
+          return Status::Error(file + ": frame " + std::to_string(f) +
+                               ": moves the synthetic root 'gltf_root', which has no node to animate");
+        }
+      }
+      continue;
+    }
+    tinygltf::Node& target = model.nodes[node];
+    if (target.matrix.size() == 16) {
+      Eigen::Matrix4d m;
+      for (int k = 0; k < 16; ++k) m(k % 4, k / 4) = target.matrix[k];
+      bool exact = true;
+      const Similarity s = gltf_internal::SimilarityFromMatrix(m, &exact);
+      if (!exact) {
+        return Status::Error(file + ": node " + std::to_string(node) +
+                             ": matrix is not a uniform-scale similarity; cannot animate it");
+      }
+      target.matrix.clear();
+      target.translation = {s.translation.x(), s.translation.y(), s.translation.z()};
+      target.rotation = {s.rotation.x(), s.rotation.y(), s.rotation.z(), s.rotation.w()};
+      target.scale = {s.scale, s.scale, s.scale};
+    }
+    // A = the default transforms above j's node within its chain.
+    Similarity above;
+    const std::vector<int>& chain = rig.chains[j];
+    for (size_t k = 0; k + 1 < chain.size(); ++k) above = above * graph.local[chain[k]];
+    const int p = rig.parents[j];
+    const double parent_scale = p >= 0 ? rig.rest_scales[p] : 1.0;
+    const Eigen::Quaterniond above_inverse = above.rotation.conjugate();
+    bool moves = p < 0 || rig.joint_nodes[p] < 0;  // Roots always get translations.
+    const Eigen::Vector3d& offset = skeleton.offset(j);
+    for (int f = 0; f < nf; ++f) {
+      const Pose& pose = motion.frames[f];
+      const Eigen::Quaterniond q =
+          (above_inverse * skeleton.rest_rotation(j) * pose.rotations[j]).normalized();
+      rotations[4 * f + 0] = static_cast<float>(q.x());
+      rotations[4 * f + 1] = static_cast<float>(q.y());
+      rotations[4 * f + 2] = static_cast<float>(q.z());
+      rotations[4 * f + 3] = static_cast<float>(q.w());
+      const Eigen::Vector3d t =
+          above_inverse * (pose.translations[j] / parent_scale - above.translation) / above.scale;
+      for (int c = 0; c < 3; ++c) translations[3 * f + c] = static_cast<float>(t[c]);
+      if ((pose.translations[j] - offset).norm() > 1e-9 * (offset.norm() + 1.0)) moves = true;
+    }
+    add_channel(node, "rotation", rotations, TINYGLTF_TYPE_VEC4);
+    if (moves) add_channel(node, "translation", translations, TINYGLTF_TYPE_VEC3);
+  }
+  model.animations.push_back(std::move(animation));
+
+  tinygltf::TinyGLTF writer;
+  writer.SetImageWriter(&KeepImageAsIs, nullptr);
+  std::ostringstream stream;
+  bool ok = false;
+  try {
+    ok = writer.WriteGltfSceneToStream(&model, stream, /*prettyPrint=*/!binary, binary);
+  } catch (const std::exception& e) {
+    return Status::Error(file + ": glTF writer: " + e.what());
+  }
+  if (!ok) return Status::Error(file + ": glTF writer failed");
+  *bytes = stream.str();
+  return Status::Ok();
+}
+
+Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
+                              const Motion& motion, const std::string& animation_name,
+                              const std::string& path) {
+  const std::string ext = FileExtension(path);
+  if (ext != ".glb" && ext != ".gltf") {
+    return Status::Error(path + ": glTF output must end in .glb or .gltf");
+  }
+  if (SameFile(path, source.name())) {
+    return Status::Error(path + ": refusing to overwrite the input");
+  }
+  std::string bytes;
+  Status status = SerializeGltfWithAnimation(source, character, motion, animation_name,
+                                             ext == ".glb", &bytes);
+  if (!status.ok()) return status;
+  return WriteFileAtomically(path, bytes);
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,52 @@
+// The Khronos glTF-Validator on a file the writer produced (scripts/validate_gltf.sh).
+// Skips when node is missing or the validator cannot be installed (exit 77).
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "io/gltf_reader.h"
+#include "io/gltf_writer.h"
+#include "kinematics/rotation.h"
+#include "tests/test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+TEST(GltfValidator, WrittenFilesHaveNoErrors) {
+  if (std::system("command -v node >/dev/null 2>&1") != 0) GTEST_SKIP() << "node not found";
+  MOCAPSOLVE_DATA_FILE(path, "gltf/CesiumMan.glb");
+  GltfDocument doc;
+  ASSERT_TRUE(GltfDocument::Read(path, &doc).ok());
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(doc, {}, &c).ok());
+  Motion motion;
+  ASSERT_TRUE(ReadGltfAnimation(doc, c, {}, &motion).ok());
+  for (int f = 0; f < motion.num_frames(); ++f) {  // A clip the file does not hold.
+    for (int j = 0; j < c.skeleton.num_joints(); ++j) {
+      motion.frames[f].rotations[j] =
+          motion.frames[f].rotations[j] * ExpMap(Eigen::Vector3d(0.2 * std::sin(0.2 * f + j), 0.0, 0.1));
+    }
+  }
+  const std::string glb = testing::TempPath("validated.glb");
+  const std::string gltf = testing::TempPath("validated.gltf");
+  ASSERT_TRUE(WriteGltfWithAnimation(doc, c, motion, "validated", glb).ok());
+  ASSERT_TRUE(WriteGltfWithAnimation(doc, c, motion, "validated", gltf).ok());
+  const std::string log = testing::TempPath("validator.log");
+  const std::string command = testing::SourcePath("scripts/validate_gltf.sh") + " " + glb + " " + gltf +
+                              " > " + log + " 2>&1";
+  const int raw = std::system(command.c_str());
+  const int code = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  const std::string output = testing::ReadTextFile(log);
+  std::printf("%s", output.c_str());
+  if (code == 77) GTEST_SKIP() << "glTF validator unavailable: " << output;
+  EXPECT_EQ(code, 0) << output;
+  EXPECT_NE(output.find("validated.glb: 0 errors"), std::string::npos) << output;
+  EXPECT_NE(output.find("validated.gltf: 0 errors"), std::string::npos) << output;
+}
+
+}  // namespace
+}  // namespace mocapsolve
