@@ -10,6 +10,7 @@
 #include "apps/solver_flags.h"
 #include "io/bvh_writer.h"
 #include "io/gltf_reader.h"
+#include "io/gltf_writer.h"
 #include "io/json_reader.h"
 #include "kinematics/rotation.h"
 #include "problems/retarget/retarget_clip.h"
@@ -23,6 +24,8 @@ DEFINE_string(source, "", "Source character (.glb/.gltf) whose animation is reta
 DEFINE_string(source_animation, "", "Animation of the source, by name or index (default: the first).");
 DEFINE_string(target, "", "Target character (.glb/.gltf).");
 DEFINE_string(out_bvh, "", "Also write the result as BVH (target skeleton, metres).");
+DEFINE_string(animation_name, "", "Name of the new animation in --out (.glb/.gltf); default: "
+              "'retargeted from <source animation or file>'.");
 DEFINE_int32(subsample, 128, "Subsampling ratio #V : #tracked vertices of the source mesh.");
 DEFINE_int32(iterations, 10, "Solver iterations per frame.");
 DEFINE_double(lambda, 5.0, "DLS damping (thesis eq. 18).");
@@ -83,13 +86,14 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
       if (!status.ok()) return status;
     }
   }
-  if (!FLAGS_out.empty()) {
-    const std::string& out = FLAGS_out;
-    const bool bvh = out.size() > 4 && out.compare(out.size() - 4, 4, ".bvh") == 0;
-    if (!bvh) {
-      return Status::Error("--out: " + out + ": only .bvh output is available in this build "
-                           "(the glTF writer is not merged yet)");
-    }
+  auto has_extension = [](const std::string& path, const std::string& extension) {
+    return path.size() > extension.size() &&
+           path.compare(path.size() - extension.size(), extension.size(), extension) == 0;
+  };
+  const bool out_bvh = has_extension(FLAGS_out, ".bvh");
+  if (!FLAGS_out.empty() && !out_bvh && !has_extension(FLAGS_out, ".glb") &&
+      !has_extension(FLAGS_out, ".gltf")) {
+    return Status::Error("--out: " + FLAGS_out + ": expected .glb, .gltf or .bvh");
   }
   RetargetSolveOptions solve;
   const std::string solver_name =
@@ -117,7 +121,10 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   GltfCharacter source, target;
   status = ReadGltfCharacter(source_document, GltfReadOptions(), &source);
   if (!status.ok()) return status;
-  status = ReadGltfCharacter(FLAGS_target, GltfReadOptions(), &target);
+  GltfDocument target_document;
+  status = GltfDocument::Read(FLAGS_target, &target_document);
+  if (!status.ok()) return status;
+  status = ReadGltfCharacter(target_document, GltfReadOptions(), &target);
   if (!status.ok()) return status;
   GltfAnimationOptions animation_options;
   animation_options.animation = FLAGS_source_animation;
@@ -159,7 +166,19 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
 
   if (!FLAGS_out.empty()) {
-    status = WriteBvh(FLAGS_out, target.skeleton, result.motion);
+    if (out_bvh) {
+      status = WriteBvh(FLAGS_out, target.skeleton, result.motion);
+    } else {
+      std::string name = FLAGS_animation_name;
+      if (name.empty()) {
+        std::string from = FLAGS_source_animation;
+        if (from.empty()) {
+          from = FLAGS_source.substr(FLAGS_source.find_last_of('/') + 1);
+        }
+        name = "retargeted from " + from;
+      }
+      status = WriteGltfWithAnimation(target_document, target, result.motion, name, FLAGS_out);
+    }
     if (!status.ok()) return status;
   }
   if (!FLAGS_out_bvh.empty()) {
@@ -224,12 +243,13 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
 extern const Command kRetargetCommand = {
     "retarget", "transfer a glTF animation between characters by their meshes (thesis ch. 4)",
     "mocapsolve retarget --source=SRC.glb [--source_animation=NAME] --target=TGT.glb "
-    "--out=OUT.bvh [--out_bvh=OUT.bvh] [--solver=dls|dls_generic|ceres] [--subsample=128] "
+    "--out=OUT.glb|.gltf|.bvh [--out_bvh=OUT.bvh] [--animation_name=NAME] [--solver=dls|dls_generic|ceres] [--subsample=128] "
     "[--iterations=10] [--lambda=5] [--blend_mask=auto|FILE.json] [--report=r.json]\n\n"
     "Subsamples the source mesh (farthest points, normal check, >= 3 per joint), maps the samples\n"
     "to the nearest target vertices in a height-normalized rest frame, and solves each frame's\n"
     "target pose (root translation and joint rotations) so that the target vertices track the\n"
     "source's: hands, feet and head by position, the rest by normals. The skeletons may differ.\n"
+    "A .glb/.gltf --out is the target file with the result added as a new animation.\n"
     "--solver: dls (the default here: a lean dense DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
     __FILE__, RunRetarget, "out,report,quiet,solver,max_frames"};

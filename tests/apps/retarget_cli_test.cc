@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "io/bvh_reader.h"
+#include "io/gltf_reader.h"
 #include "io/json_reader.h"
 #include "tests/test_support.h"
 
@@ -51,6 +52,34 @@ TEST(RetargetCli, CesiumManOntoRiggedFigureByBothSolvers) {
   }
 }
 
+// A .glb output is the target file plus the result as a new animation that reads back.
+TEST(RetargetCli, WritesTheResultIntoTheTargetGlb) {
+  MOCAPSOLVE_DATA_FILE(source, "gltf/CesiumMan.glb");
+  MOCAPSOLVE_DATA_FILE(target, "gltf/RiggedFigure.glb");
+  const std::string out = testing::TempPath("out.glb");
+  const std::string bvh = testing::TempPath("out.bvh");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("retarget --quiet --source=" + source + " --target=" + target + " --out=" + out +
+                                " --out_bvh=" + bvh + " --iterations=3 --max_frames=6 --animation_name=walk",
+                            &output),
+            0)
+      << output;
+  GltfDocument document;
+  ASSERT_TRUE(GltfDocument::Read(out, &document).ok());
+  GltfCharacter character;
+  ASSERT_TRUE(ReadGltfCharacter(document, GltfReadOptions(), &character).ok());
+  EXPECT_EQ(character.animation_names.size(), 2u);
+  GltfAnimationOptions options;
+  options.animation = "walk";
+  Motion from_glb;
+  ASSERT_TRUE(ReadGltfAnimation(document, character, options, &from_glb).ok());
+  Skeleton skeleton;
+  Motion from_bvh;
+  ASSERT_TRUE(ReadBvh(bvh, &skeleton, &from_bvh).ok());
+  EXPECT_EQ(from_glb.num_frames(), 6);
+  EXPECT_EQ(from_bvh.num_frames(), 6);
+}
+
 TEST(RetargetCli, BadInputsFailWithOneLine) {
   MOCAPSOLVE_DATA_FILE(source, "gltf/CesiumMan.glb");
   MOCAPSOLVE_DATA_FILE(target, "gltf/RiggedFigure.glb");
@@ -72,6 +101,7 @@ TEST(RetargetCli, BadInputsFailWithOneLine) {
       {base + "--out=" + out + " --blend_mask=" + mask, "no_such_joint"},
       {base + "--out=" + target, "input"},
       {base + "--out=" + out + " --subsample=0", "--subsample"},
+      {base + "--out=" + testing::TempPath("out.fbx"), "expected .glb"},
       {"retarget --source=" + source + " --target=" + target, "--out"},
   };
   for (const Case& c : cases) {
