@@ -17,6 +17,7 @@
 // the linear solve in one DLS iteration (thesis Table 3), from RetargetSolveOptions::
 // time_stages.
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -139,6 +140,7 @@ void RunFrames(benchmark::State& state, int which) {
   options.iterations = 5;
   options.lambda = 5.0;
   options.ceres = DefaultRetargetCeresOptions();
+  options.ceres.initial_trust_region_radius = std::pow(10.0, static_cast<double>(state.range(2)));
   RetargetFrameSolver solver(c.target.skeleton, c.target.mesh, c.setup, c.goals.sigma, options);
   // Settle into the loop (frame 0 starts from the rest pose), untimed.
   Pose pose = StartPose(c);
@@ -174,12 +176,14 @@ void BM_RetargetSoldierToXbot(benchmark::State& state) { RunFrames(state, 1); }
 void BM_RetargetCesiumManToRiggedFigure(benchmark::State& state) { RunFrames(state, 2); }
 
 void RatiosAndSolvers(benchmark::internal::Benchmark* b) {
+  // solver 0 = dls, 2 = ceres; radius = log10 of Ceres' initial trust region (4: its
+  // default, 0: radius 1, which the retarget command uses).
   for (int ratio : {128, 64, 32}) {
-    for (RetargetSolverKind kind : {RetargetSolverKind::kDls, RetargetSolverKind::kCeres}) {
-      b->Args({ratio, static_cast<int>(kind)});
-    }
+    b->Args({ratio, static_cast<int>(RetargetSolverKind::kDls), 0});
+    b->Args({ratio, static_cast<int>(RetargetSolverKind::kCeres), 4});
+    b->Args({ratio, static_cast<int>(RetargetSolverKind::kCeres), 0});
   }
-  b->ArgNames({"ratio", "solver"})->Unit(benchmark::kMillisecond)->MinTime(0.3);
+  b->ArgNames({"ratio", "solver", "radius"})->Unit(benchmark::kMillisecond)->MinTime(0.3);
 }
 BENCHMARK(BM_RetargetSynthetic)->Apply(RatiosAndSolvers);
 BENCHMARK(BM_RetargetSoldierToXbot)->Apply(RatiosAndSolvers);

@@ -98,7 +98,6 @@ ceres::Solver::Options DefaultRetargetCeresOptions() {
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   options.max_num_iterations = 10;
-  options.initial_trust_region_radius = 0.1;
   options.function_tolerance = 1e-10;
   options.gradient_tolerance = 1e-12;
   options.parameter_tolerance = 1e-10;
@@ -298,8 +297,22 @@ class RetargetFrameSolver::Impl {
     std::vector<uint32_t> subtree_masks;
     std::vector<double> cumulative;
     std::vector<int> blocks;
-    std::vector<int> pair_index;
+    std::vector<int> pair_index;  // Pairs (a, b) with a a partial block, see AccumulateNormal.
+    int full = 0;   // The first `full` chain joints hold all the influences in their subtree.
+    int group = -1;  // Group of rows sharing those joints and the mode.
     int term_offset = 0;
+  };
+  // Rows that share their full chain joints (the ancestors of the influences' lowest common
+  // ancestor) and their mode: their contributions to the pairs of those joints are
+  // accumulated through moments (AccumulateNormal).
+  struct Group {
+    bool track_position = false;
+    std::vector<int> blocks;      // [0 (translation, positions only)] + the full joints' blocks.
+    std::vector<int> joints;      // The joint of each block (-1 for the translation).
+    std::vector<int> pair_index;  // (a, b), a >= b over `blocks`, a-major.
+    double s0 = 0.0;              // Positions: sum s^2 W^2.
+    Eigen::Vector3d s1, g1, g2;   // sum s^2 W x, sum s^2 W (x - g), sum s^2 (x - g) x x.
+    Eigen::Matrix3d s2;           // Positions: sum s^2 x x^T; normals: sum s^2 n n^T.
   };
   struct Extra {
     std::unique_ptr<ceres::CostFunction> cost;
@@ -502,6 +515,7 @@ class RetargetFrameSolver::Impl {
       return id;
     };
     for (int b = 0; b < nb; ++b) pair_id(b, b);
+    std::map<std::pair<int, bool>, int> group_ids;
     int terms = 0;
     for (Row& row : rows_) {
       row.term_offset = terms;
@@ -522,7 +536,28 @@ class RetargetFrameSolver::Impl {
         row.subtree_masks.push_back(mask);
         row.cumulative.push_back(cumulative);
       }
-      for (size_t a = 0; a < row.blocks.size(); ++a) {
+      const uint32_t all = row.joints.size() >= 32 ? ~0u : (1u << row.joints.size()) - 1;
+      row.full = 0;
+      while (row.full < static_cast<int>(row.chain.size()) && row.subtree_masks[row.full] == all) ++row.full;
+      CHECK_GE(row.full, 1);  // The root holds everything.
+      const int first = row.track_position ? 1 : 0;
+      const std::pair<int, bool> key(row.chain[row.full - 1], row.track_position);
+      auto it = group_ids.find(key);
+      if (it == group_ids.end()) {
+        Group group;
+        group.track_position = row.track_position;
+        for (int a = 0; a < first + row.full; ++a) {
+          group.blocks.push_back(row.blocks[a]);
+          group.joints.push_back(a < first ? -1 : row.chain[a - first]);
+        }
+        for (size_t a = 0; a < group.blocks.size(); ++a) {
+          for (size_t b = 0; b <= a; ++b) group.pair_index.push_back(pair_id(group.blocks[a], group.blocks[b]));
+        }
+        it = group_ids.emplace(key, static_cast<int>(groups_.size())).first;
+        groups_.push_back(group);
+      }
+      row.group = it->second;
+      for (size_t a = first + row.full; a < row.blocks.size(); ++a) {
         for (size_t b = 0; b <= a; ++b) row.pair_index.push_back(pair_id(row.blocks[a], row.blocks[b]));
       }
     }
@@ -583,18 +618,46 @@ class RetargetFrameSolver::Impl {
     }
   }
 
+  // Per row, u_p = scale * lever_p. For a full joint p (all influences in its subtree)
+  // lever_p = W o_p - x (positions; W the total weight, x the skinned point) or -n
+  // (normals), so the row's terms on the pairs of full joints are polynomials in o_p, o_q
+  // with per-row coefficients; they are summed per group as moments and expanded once per
+  // pair (FinishGroups). Pairs with a partial joint (below the influences' common
+  // ancestor) are accumulated per row.
   void AccumulateNormal() {
     for (Eigen::Matrix3d& m : accumulators_) m.setZero();
     for (Eigen::Vector3d& g : gradient_blocks_) g.setZero();
+    for (Group& g : groups_) {
+      g.s0 = 0.0;
+      g.s1.setZero();
+      g.g1.setZero();
+      g.g2.setZero();
+      g.s2.setZero();
+    }
     Eigen::Vector3d u[kMaxChainBlocks];
     const int nt = static_cast<int>(rows_.size());
     for (int s = 0; s < nt; ++s) {
       const Row& row = rows_[s];
       const Eigen::Vector3d* terms = &terms_[row.term_offset];
       const Eigen::Vector3d r = residual_.segment<3>(3 * s);
+      const Eigen::Vector3d x = r / row.scale + goals_[s];  // Skinned point or normal.
+      const double s2 = row.scale * row.scale;
+      Group& group = groups_[row.group];
+      if (row.track_position) {
+        const double w = row.total_weight;
+        group.s0 += s2 * w * w;
+        group.s1 += (s2 * w) * x;
+        group.g1 += (s2 * w) * (x - goals_[s]);
+        group.g2 += s2 * (x - goals_[s]).cross(x);
+        group.s2.noalias() += s2 * x * x.transpose();
+      } else {
+        group.s2.noalias() += s2 * x * x.transpose();
+        group.g2 += s2 * goals_[s].cross(x);
+      }
+      const int nc = static_cast<int>(row.chain.size());
+      if (row.full == nc) continue;  // No partial joints.
       const int first = row.track_position ? 1 : 0;  // Index of the first joint block.
       const double kappa = row.scale * row.total_weight * sigma_;
-      const int nc = static_cast<int>(row.chain.size());
       DCHECK_LT(nc + first, kMaxChainBlocks);
       for (int c = 0; c < nc; ++c) {
         Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -606,16 +669,14 @@ class RetargetFrameSolver::Impl {
             row.track_position ? Eigen::Vector3d(row.cumulative[c] * world_positions_[row.chain[c]] - sum)
                                : Eigen::Vector3d(-sum);
         u[first + c] = row.scale * lever;
-        gradient_blocks_[row.blocks[first + c]] += r.cross(u[first + c]);
+        if (c >= row.full) gradient_blocks_[row.blocks[first + c]] += r.cross(u[first + c]);
       }
       const int nblocks = first + nc;
       int index = 0;
-      for (int a = 0; a < nblocks; ++a) {
+      for (int a = first + row.full; a < nblocks; ++a) {
         for (int b = 0; b <= a; ++b) {
           Eigen::Matrix3d& acc = accumulators_[row.pair_index[index++]];
-          if (a < first) {  // (translation, translation).
-            acc.diagonal().array() += kappa * kappa;
-          } else if (b < first) {  // (joint, translation): -kappa [u_a]x.
+          if (b < first) {  // (joint, translation): -kappa [u_a]x.
             acc -= kappa * SkewSymmetric(u[a]);
           } else {
             acc.diagonal().array() += u[a].dot(u[b]);
@@ -623,7 +684,51 @@ class RetargetFrameSolver::Impl {
           }
         }
       }
-      if (first == 1) gradient_blocks_[0] += kappa * r;
+    }
+    FinishGroups();
+  }
+
+  // The full-joint pairs from the group moments (see AccumulateNormal):
+  //   positions, u_p = s (W o_p - x):
+  //     (p, q): (S0 o_p.o_q - (o_p + o_q).S1 + tr S2) I - (S0 o_q o_p^T - o_q S1^T - S1 o_p^T + S2)
+  //     (p, 0): -sigma [S0 o_p - S1]x,   (0, 0): sigma^2 S0 I
+  //     gradient: h_p += G1 x o_p - G2,  h_0 += sigma G1
+  //   normals, u_p = -s n:  (p, q): tr(S2) I - S2;  gradient h_p += sum s^2 m x n.
+  void FinishGroups() {
+    for (const Group& g : groups_) {
+      const int nb = static_cast<int>(g.blocks.size());
+      const int first = g.track_position ? 1 : 0;
+      int index = 0;
+      if (!g.track_position) {
+        const Eigen::Matrix3d n2 = g.s2.trace() * Eigen::Matrix3d::Identity() - g.s2;
+        for (int a = 0; a < nb; ++a) {
+          gradient_blocks_[g.blocks[a]] += g.g2;
+          for (int b = 0; b <= a; ++b) accumulators_[g.pair_index[index++]] += n2;
+        }
+        continue;
+      }
+      const double trace = g.s2.trace();
+      for (int a = 0; a < nb; ++a) {
+        const Eigen::Vector3d oa = a < first ? Eigen::Vector3d::Zero() : world_positions_[g.joints[a]];
+        if (a < first) {
+          gradient_blocks_[0] += sigma_ * g.g1;
+        } else {
+          gradient_blocks_[g.blocks[a]] += g.g1.cross(oa) - g.g2;
+        }
+        for (int b = 0; b <= a; ++b) {
+          Eigen::Matrix3d& acc = accumulators_[g.pair_index[index++]];
+          if (a < first) {
+            acc.diagonal().array() += sigma_ * sigma_ * g.s0;
+          } else if (b < first) {
+            acc -= sigma_ * SkewSymmetric(g.s0 * oa - g.s1);
+          } else {
+            const Eigen::Vector3d& ob = world_positions_[g.joints[b]];
+            acc.diagonal().array() += g.s0 * oa.dot(ob) - (oa + ob).dot(g.s1) + trace;
+            acc.noalias() -= g.s0 * ob * oa.transpose() - ob * g.s1.transpose() - g.s1 * oa.transpose();
+            acc -= g.s2;
+          }
+        }
+      }
     }
   }
 
@@ -779,6 +884,7 @@ class RetargetFrameSolver::Impl {
   std::vector<Eigen::Matrix3d> accumulators_;
   std::vector<Eigen::Vector3d> gradient_blocks_;
   std::vector<Eigen::Vector3d> terms_;
+  std::vector<Group> groups_;
   Eigen::SparseMatrix<double> normal_sparse_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
   Eigen::VectorXd delta_, gradient_;

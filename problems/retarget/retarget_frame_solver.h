@@ -67,7 +67,9 @@ struct RetargetSolveOptions {
   bool IsValid(std::string* error) const;
 };
 
-// Ceres options for these small dense problems (DENSE_QR... see the .cc), single thread.
+// Ceres options for these small dense problems: Levenberg-Marquardt, DENSE_NORMAL_CHOLESKY,
+// single thread, Ceres' default initial trust region (1e4; a radius of ~1 helps the
+// cross-character glTF cases, see the retarget command's --ceres_trust_radius).
 ceres::Solver::Options DefaultRetargetCeresOptions();
 
 // Seconds spent in each stage of the lean DLS iterations (thesis Table 3).
