@@ -23,10 +23,15 @@
 // solver), so that its columns are on the scale of the normalized rotation columns and
 // the fixed lambda damps both alike (thesis 4.3.3 divides GP_t by sigma).
 // The lean kernel (kDls) does FK over the skeleton once per iteration, skins only the
-// tracked vertices, writes their 3 x 3 tangent blocks straight into a dense J (the same
-// formulas as TrackedVertexResidual; the test checks they agree) and solves with a dense
-// Cholesky; kDlsGeneric hands the residual blocks to DlsSolver. Ceres (kCeres): the
-// blocks in a ceres::Problem, Levenberg-Marquardt, max_num_iterations = iterations.
+// tracked vertices and, when m >= n, assembles J^T J and J^T r directly from the 3 x 3
+// tangent blocks (the same formulas as TrackedVertexResidual; J is never formed): rows
+// that share the joints above their influences' common ancestor are summed as moments,
+// the world rotations are applied once per block, and the block-sparse system (non-zero
+// only for joints on a common chain) is factored by a sparse LDL^T whose ordering is
+// analysed once. When m < n it forms the dense J and solves eq. 18 as written. The
+// test checks both against DlsSolver on the residual blocks (kDlsGeneric) step for step.
+// Ceres (kCeres): the blocks in a ceres::Problem, Levenberg-Marquardt,
+// max_num_iterations = iterations.
 //
 // Costs are 1/2 |r|^2 over the tracked-vertex rows (and priors/limits when on).
 #ifndef MOCAPSOLVE_PROBLEMS_RETARGET_RETARGET_FRAME_SOLVER_H_
@@ -72,7 +77,10 @@ struct RetargetSolveOptions {
 // cross-character glTF cases, see the retarget command's --ceres_trust_radius).
 ceres::Solver::Options DefaultRetargetCeresOptions();
 
-// Seconds spent in each stage of the lean DLS iterations (thesis Table 3).
+// Seconds spent in each stage of the lean DLS iterations (thesis Table 3): FK; skinning
+// of the tracked vertices (and their residuals); "jacobian": the levers and the assembly
+// of J^T J and J^T r (or of the dense J when m < n); "solve": factorization and solve;
+// "update": the retraction.
 struct RetargetStageTimes {
   double fk = 0.0, skinning = 0.0, jacobian = 0.0, solve = 0.0, update = 0.0;
   int iterations = 0;
