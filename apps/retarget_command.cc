@@ -23,6 +23,8 @@ DECLARE_int32(max_frames);
 DEFINE_string(source, "", "Source character (.glb/.gltf) whose animation is retargeted.");
 DEFINE_string(source_animation, "", "Animation of the source, by name or index (default: the first).");
 DEFINE_string(target, "", "Target character (.glb/.gltf).");
+DEFINE_string(source_skin, "", "Skin of the source file (name or index; default: skin 0).");
+DEFINE_string(target_skin, "", "Skin of the target file (name or index; default: skin 0).");
 DEFINE_string(out_bvh, "", "Also write the result as BVH (target skeleton, metres).");
 DEFINE_string(animation_name, "", "Name of the new animation in --out (.glb/.gltf); default: "
               "'retargeted from <source animation or file>'.");
@@ -122,12 +124,15 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   Status status = GltfDocument::Read(FLAGS_source, &source_document);
   if (!status.ok()) return status;
   GltfCharacter source, target;
-  status = ReadGltfCharacter(source_document, GltfReadOptions(), &source);
+  GltfReadOptions source_options, target_options;
+  source_options.skin = FLAGS_source_skin;
+  target_options.skin = FLAGS_target_skin;
+  status = ReadGltfCharacter(source_document, source_options, &source);
   if (!status.ok()) return status;
   GltfDocument target_document;
   status = GltfDocument::Read(FLAGS_target, &target_document);
   if (!status.ok()) return status;
-  status = ReadGltfCharacter(target_document, GltfReadOptions(), &target);
+  status = ReadGltfCharacter(target_document, target_options, &target);
   if (!status.ok()) return status;
   GltfAnimationOptions animation_options;
   animation_options.animation = FLAGS_source_animation;
