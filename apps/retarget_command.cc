@@ -19,6 +19,7 @@
 // Shared with other commands: --solver (apps/solver_flags.cc; here dls | dls_generic |
 // ceres, and dls when not given), --max_frames (apps/solve_command.cc).
 DECLARE_int32(max_frames);
+DECLARE_double(limit_weight);  // apps/solver_flags.cc: soft joint limits, where the skeleton has them.
 
 DEFINE_string(source, "", "Source character (.glb/.gltf) whose animation is retargeted.");
 DEFINE_string(source_animation, "", "Animation of the source, by name or index (default: the first).");
@@ -113,6 +114,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   solve.lambda = FLAGS_lambda;
   solve.normal_weight = FLAGS_normal_weight;
   solve.smoothness_weight = FLAGS_smoothness;
+  solve.limit_weight = FLAGS_limit_weight;
   solve.time_stages = FLAGS_stage_times;
   solve.ceres = DefaultRetargetCeresOptions();
   solve.ceres.initial_trust_region_radius = FLAGS_ceres_trust_radius;
@@ -158,7 +160,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   setup_options.target_world_from_bind = WorldFromBindRotation(target.skeleton, target.bind_pose, target.rest_pose);
   RetargetSetup setup;
   status = BuildRetargetSetup(source.mesh, target.skeleton, target.mesh, setup_options, &setup);
-  if (!status.ok()) return Status::Error(FLAGS_target + ": " + status.message());
+  if (!status.ok()) return Status::Error(FLAGS_source + " -> " + FLAGS_target + ": " + status.message());
   const double setup_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (const std::string& note : setup.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
@@ -260,6 +262,6 @@ extern const Command kRetargetCommand = {
     "A .glb/.gltf --out is the target file with the result added as a new animation.\n"
     "--solver: dls (the default here: a lean dense DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
-    __FILE__, RunRetarget, "out,report,quiet,solver,max_frames"};
+    __FILE__, RunRetarget, "out,report,quiet,solver,max_frames,limit_weight"};
 
 }  // namespace mocapsolve
