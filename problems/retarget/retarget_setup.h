@@ -10,19 +10,19 @@
 // position p_s and LBS normal n_s (eqs. 5-6, not renormalized) at frame f,
 //   position goal  g = o_t + (h_t / h_s) F_t^T F_s (p_s - o_s)
 //   normal goal    m = F_t^T F_s n_s,  n_s = sum_b w_b rot(S_b) y   (LBS, eq. 6)
-// with y the source vertex's rest normal (eq. 16 as written) or, by default, the target
-// vertex's rest normal brought into the source's bind space (normal transfer: the target
-// surface turns as the source surface turns; nearest vertices of two different meshes
-// often face quite different ways, measured ~50-65 degrees on average between the glTF
-// characters, which eq. 16 would try to force onto the target)
 // where o, h, F are the characters' rest frames (CharacterFrame of the bind-pose meshes:
 // feet-level origin, height, facing; mesh_mapping.h), so the source's motion is turned
-// to face the way the target faces.
+// to face the way the target faces, and y is either the source vertex's rest normal
+// (eq. 16 as written) or, by default, the target vertex's rest normal brought into the
+// source's bind space (normal transfer: the target surface turns as the source surface
+// turns). Nearest vertices of two different meshes often face quite different ways
+// (measured ~50-65 degrees on average between the glTF characters), which eq. 16 would
+// try to force onto the target even in the rest pose.
 // So positions are brought into the target's scale by the height ratio about the rest
 // frames' origins: the source's global path (its root's travel) is scaled by the same
-// ratio, and the target root translation is an unknown of each frame's solve, held
-// in place by the position-tracked vertices (warm start: the previous frame, see
-// retarget_clip.h).
+// ratio. The target root translation is an unknown of each frame's solve, held in place
+// by the position-tracked vertices (warm start: the previous frame; frame 0 re-centred
+// on the goals, see retarget_clip.h).
 //
 // Normalization (4.3.3): sigma = the standard deviation of all position goals over the
 // clip, sqrt(sum |g - mean g|^2 / (3 N)), computed once; position residuals are divided
