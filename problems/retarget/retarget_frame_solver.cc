@@ -1,7 +1,6 @@
 #include "problems/retarget/retarget_frame_solver.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -10,8 +9,6 @@
 
 #include <ceres/problem.h>
 #include <Eigen/Cholesky>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 #include <glog/logging.h>
 
 #include "kinematics/forward_kinematics.h"
@@ -20,6 +17,7 @@
 #include "problems/marker_solve/joint_limit_residual.h"
 #include "problems/marker_solve/pose_prior_residual.h"
 #include "problems/retarget/tracked_vertex_residual.h"
+#include "solvers/block_sparse_cholesky.h"
 #include "solvers/dls_solver.h"
 #include "solvers/right_quaternion_manifold.h"
 
@@ -500,7 +498,7 @@ class RetargetFrameSolver::Impl {
   // so the per-vertex work is a dot and an outer product per pair of chain joints, and the
   // world rotations are applied once per block. Blocks (p, q) are non-zero only when p and
   // q share a tracked vertex's chain (in practice: ancestor pairs), so A is factored by a
-  // sparse LDL^T (Eigen::SimplicialLDLT) whose symbolic analysis is done once.
+  // block sparse Cholesky (solvers/block_sparse_cholesky.h) analysed once, leaves first.
   void BuildNormalPattern() {
     const int nb = 1 + static_cast<int>(solved_joints_.size());
     block_joint_.assign(nb, -1);
@@ -564,40 +562,20 @@ class RetargetFrameSolver::Impl {
     terms_.resize(terms);
     accumulators_.resize(pairs_.size());
     gradient_blocks_.resize(nb);
-    // The lower triangle of A: diagonal blocks' lower halves, full off-diagonal blocks.
-    const int n = 3 * nb;
-    std::vector<Eigen::Triplet<double>> triplets;
+    // The factorization eliminates leaves first: block b of the normal equations is block
+    // nb - 1 - b of the factor (joints are in preorder, the translation is block 0).
+    std::vector<std::pair<int, int>> lower;
     for (const auto& pair : pairs_) {
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) {
-          if (pair.first == pair.second && c > r) continue;
-          triplets.emplace_back(3 * pair.first + r, 3 * pair.second + c, 1.0);
-        }
-      }
+      if (pair.first != pair.second) lower.push_back({nb - 1 - pair.second, nb - 1 - pair.first});
     }
-    normal_sparse_.resize(n, n);
-    normal_sparse_.setFromTriplets(triplets.begin(), triplets.end());
-    normal_sparse_.makeCompressed();
-    auto offset = [&](int row, int col) {
-      const int* inner = normal_sparse_.innerIndexPtr();
-      const int begin = normal_sparse_.outerIndexPtr()[col], end = normal_sparse_.outerIndexPtr()[col + 1];
-      const int* found = std::lower_bound(inner + begin, inner + end, row);
-      CHECK(found != inner + end && *found == row);
-      return static_cast<int>(found - inner);
-    };
-    pair_offsets_.resize(pairs_.size());
+    cholesky_.Analyze(nb, lower);
+    pair_slot_.assign(pairs_.size(), -1);
+    int slot = 0;
     for (size_t i = 0; i < pairs_.size(); ++i) {
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) {
-          const bool upper = pairs_[i].first == pairs_[i].second && c > r;
-          pair_offsets_[i][3 * r + c] = upper ? -1 : offset(3 * pairs_[i].first + r, 3 * pairs_[i].second + c);
-        }
-      }
+      if (pairs_[i].first != pairs_[i].second) pair_slot_[i] = slot++;
     }
-    diagonal_offsets_.resize(n);
-    for (int i = 0; i < n; ++i) diagonal_offsets_[i] = offset(i, i);
-    ldlt_.analyzePattern(normal_sparse_);
-    gradient_.resize(n);
+    gradient_.resize(3 * nb);
+    reordered_.resize(3 * nb);
   }
 
   // Skinned terms and residual rows of the tracked vertices.
@@ -732,18 +710,20 @@ class RetargetFrameSolver::Impl {
     }
   }
 
+  // Writes lambda I + J^T J into the factor's blocks (reordered, see BuildNormalPattern)
+  // and J^T r into gradient_ (normal-equation order).
   void AssembleNormal() {
-    double* values = normal_sparse_.valuePtr();
+    const int nb = cholesky_.num_blocks();
+    cholesky_.SetZero();  // Fill-in blocks hold the previous factor.
     for (size_t i = 0; i < pairs_.size(); ++i) {
       const int a = pairs_[i].first, b = pairs_[i].second;
       Eigen::Matrix3d block = accumulators_[i];
       if (a > 0) block = world_rotations_[block_joint_[a]].transpose() * block;
       if (b > 0) block = block * world_rotations_[block_joint_[b]];
-      const std::array<int, 9>& offsets = pair_offsets_[i];
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) {
-          if (offsets[3 * r + c] >= 0) values[offsets[3 * r + c]] = block(r, c);
-        }
+      if (a == b) {
+        cholesky_.Diagonal(nb - 1 - a) = block;
+      } else {
+        cholesky_.Block(pair_slot_[i]) = block.transpose();  // Row nb-1-b, column nb-1-a.
       }
     }
     for (size_t b = 0; b < gradient_blocks_.size(); ++b) {
@@ -754,16 +734,14 @@ class RetargetFrameSolver::Impl {
     int row = 3 * static_cast<int>(rows_.size());
     auto add_extra = [&](int block, int k) {
       const Eigen::MatrixXd j = jacobian_.block(row, 3 * block, k, 3);
-      const Eigen::Matrix3d jtj = j.transpose() * j;
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c <= r; ++c) values[pair_offsets_[block][3 * r + c]] += jtj(r, c);
-      }
+      cholesky_.Diagonal(nb - 1 - block) += j.transpose() * j;
       gradient_.segment<3>(3 * block) += j.transpose() * residual_.segment(row, k);
       row += k;
     };
     if (translation_prior_) add_extra(0, 3);
     for (const Extra& extra : extras_) add_extra(column_[extra.joint] / 3, extra.cost->num_residuals());
-    for (int offset : diagonal_offsets_) values[offset] += options_.lambda;
+    for (int b = 0; b < nb; ++b) cholesky_.Diagonal(b).diagonal().array() += options_.lambda;
+    for (int b = 0; b < nb; ++b) reordered_.segment<3>(3 * (nb - 1 - b)) = gradient_.segment<3>(3 * b);
   }
 
   bool SolveNormal(RetargetFrameReport* report) {
@@ -792,9 +770,11 @@ class RetargetFrameSolver::Impl {
       AccumulateNormal();
       AssembleNormal();
       lap(&times.jacobian);
-      ldlt_.factorize(normal_sparse_);
-      if (ldlt_.info() != Eigen::Success) return false;
-      delta_ = -ldlt_.solve(gradient_);
+      if (!cholesky_.Factorize()) return false;
+      cholesky_.Solve(reordered_, &reordered_);
+      const int nb = cholesky_.num_blocks();
+      delta_.resize(3 * nb);
+      for (int b = 0; b < nb; ++b) delta_.segment<3>(3 * b) = -reordered_.segment<3>(3 * (nb - 1 - b));
       if (!delta_.allFinite()) return false;
       lap(&times.solve);
       translation_ += sigma_ * delta_.head<3>();
@@ -879,14 +859,13 @@ class RetargetFrameSolver::Impl {
   static constexpr int kMaxChainBlocks = 130;
   std::vector<int> block_joint_;                 // Joint of each block (-1: translation).
   std::vector<std::pair<int, int>> pairs_;        // (a, b), a >= b.
-  std::vector<std::array<int, 9>> pair_offsets_;  // Into normal_sparse_'s values; -1: upper.
-  std::vector<int> diagonal_offsets_;
+  std::vector<int> pair_slot_;                    // Off-diagonal pair -> factor slot.
   std::vector<Eigen::Matrix3d> accumulators_;
   std::vector<Eigen::Vector3d> gradient_blocks_;
   std::vector<Eigen::Vector3d> terms_;
   std::vector<Group> groups_;
-  Eigen::SparseMatrix<double> normal_sparse_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
+  BlockSparseCholesky cholesky_;
+  Eigen::VectorXd reordered_;  // J^T r, then the step, in the factor's block order.
   Eigen::VectorXd delta_, gradient_;
 
   std::unique_ptr<ceres::Problem> ceres_problem_;

@@ -108,6 +108,7 @@ TEST_F(RetargetFrameSolverTest, LeanAndGenericDlsTakeTheSameSteps) {
     const int nt = static_cast<int>(setup->tracked.size());
     const Eigen::Matrix3Xd positions = goal_positions_.leftCols(nt), normals = goal_normals_.leftCols(nt);
     for (double smoothness : {0.0, 0.3}) {
+      SCOPED_TRACE(::testing::Message() << nt << " tracked vertices, smoothness " << smoothness);
       RetargetSolveOptions options;
       options.iterations = 4;
       options.smoothness_weight = smoothness;
