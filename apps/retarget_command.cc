@@ -34,6 +34,10 @@ DEFINE_int32(iterations, 10, "Solver iterations per frame.");
 DEFINE_double(lambda, 5.0, "DLS damping (thesis eq. 18).");
 DEFINE_string(blend_mask, "auto", "auto (hands, feet, toes, head by position; the rest by normals) "
               "or a JSON file {\"position_joints\": [target joint names]}.");
+DEFINE_double(mapping_normal_weight, 0.0, "Normals in the mesh mapping's nearest-neighbour distance "
+              "(heights per unit normal difference); 0 = positions only (thesis eq. 11).");
+DEFINE_bool(transfer_normals, true, "Normal goals: the target vertex's rest normal turned by the "
+            "source vertex's skinning (true) or the source's skinned normal itself (false, eq. 16).");
 DEFINE_double(normal_weight, 1.0, "Weight of the normal residuals (positions: 1 per sigma).");
 DEFINE_double(smoothness, 0.0, "Weight of a pull toward the previous frame (per radian); 0 = off.");
 DEFINE_double(contact_height, 0.02, "Foot contact: height above the rest floor, fraction of the "
@@ -152,6 +156,9 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
 
   RetargetSetupOptions setup_options;
   setup_options.subsample.ratio = FLAGS_subsample;
+  if (FLAGS_mapping_normal_weight < 0.0) return Status::Error("--mapping_normal_weight: must be >= 0");
+  setup_options.mapping_normal_weight = FLAGS_mapping_normal_weight;
+  setup_options.transfer_normals = FLAGS_transfer_normals;
   if (FLAGS_blend_mask != "auto") {
     status = ReadBlendMask(FLAGS_blend_mask, &setup_options.position_joints);
     if (!status.ok()) return status;

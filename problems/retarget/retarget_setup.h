@@ -64,8 +64,10 @@ struct RetargetSetupOptions {
   std::vector<std::string> position_name_patterns = {"hand", "foot", "toe", "head"};
   double position_weight_threshold = 0.5;
   // Normals in the mapping's distance (heights per unit normal difference; 0 = eq. 11
-  // as written). See MapToNearestVertices.
-  double mapping_normal_weight = 0.05;
+  // as written). See MapToNearestVertices. With transferred normals the mapping's normal
+  // mismatch no longer matters and 0 measured best on Soldier -> Xbot (vertex error
+  // 0.0195 vs 0.0243 of the height at 0.05), about even on CesiumMan -> RiggedFigure.
+  double mapping_normal_weight = 0.0;
   // Normal goals: true = transfer (the target vertex's own rest normal, carried by the
   // source vertex's skinning rotation), false = the source's skinned normal (eq. 16 as
   // written). Identical when the rest normals agree (same mesh, scaled copy).
