@@ -244,6 +244,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
       .Add("mean_normal_error_deg", result.mean_normal_error_deg)
       .Add("mean_final_cost", result.mean_final_cost)
       .Add("foot_vertices", result.foot_vertices)
+      .Add("foot_contact_pairs", result.contact_pairs)
       .Add("source_foot_skating_heights_per_s", result.source_foot_skating)
       .Add("result_foot_skating_heights_per_s", result.result_foot_skating)
       .Add("setup_seconds", setup_seconds)

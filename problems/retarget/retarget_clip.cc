@@ -18,15 +18,20 @@ bool IsFootName(std::string name) {
   return name.find("foot") != std::string::npos || name.find("toe") != std::string::npos;
 }
 
-// Mean horizontal speed of the vertices while in contact (see the header).
-double FootSkating(const std::vector<Eigen::Matrix3Xd>& positions, const std::vector<int>& feet,
+// Mean horizontal speed of the vertices while the source's are in contact (see the
+// header): `contact_positions` decide contact, `positions` give the speed.
+double FootSkating(const std::vector<Eigen::Matrix3Xd>& contact_positions,
+                   const std::vector<Eigen::Matrix3Xd>& positions, const std::vector<int>& feet,
                    double floor_y, double contact, double height, double frame_rate, int* pairs) {
   double sum = 0.0;
   int count = 0;
   for (size_t f = 1; f < positions.size(); ++f) {
     for (int s : feet) {
+      if (contact_positions[f - 1](1, s) - floor_y >= contact ||
+          contact_positions[f](1, s) - floor_y >= contact) {
+        continue;
+      }
       const Eigen::Vector3d a = positions[f - 1].col(s), b = positions[f].col(s);
-      if (a.y() - floor_y >= contact || b.y() - floor_y >= contact) continue;
       sum += std::hypot(b.x() - a.x(), b.z() - a.z()) * frame_rate / height;
       ++count;
     }
@@ -131,10 +136,10 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
     }
     const double floor_y = setup.target_frame.origin.y();
     const double contact = options.contact_height * height;
-    out.source_foot_skating = FootSkating(goals.positions, feet, floor_y, contact, height,
-                                          source_motion.frame_rate, &out.contact_pairs_source);
-    out.result_foot_skating = FootSkating(skinned, feet, floor_y, contact, height,
-                                          source_motion.frame_rate, &out.contact_pairs_result);
+    out.source_foot_skating = FootSkating(goals.positions, goals.positions, feet, floor_y, contact,
+                                          height, source_motion.frame_rate, &out.contact_pairs);
+    out.result_foot_skating = FootSkating(goals.positions, skinned, feet, floor_y, contact, height,
+                                          source_motion.frame_rate, &out.contact_pairs);
   }
   *result = std::move(out);
   return Status::Ok();

@@ -15,11 +15,11 @@
 //   position error  mean |v - g| over all tracked vertices / target height;
 //   normal error    mean angle between the target's and the source's LBS normals (degrees);
 //   foot skating    over the tracked vertices weighted (>= 0.5) on joints named foot or toe:
-//                   while a vertex is in contact (height above the target's rest floor
-//                   < contact_height * target height in two consecutive frames), its
-//                   horizontal (x, z) speed, averaged over those frame pairs, in target
-//                   heights per second; for the source (its goals, i.e. already in the
-//                   target's scale) and for the result.
+//                   while the source's vertex is in contact (its goal's height above the
+//                   target's rest floor < contact_height * target height in two
+//                   consecutive frames), the horizontal (x, z) speed of the source's goal
+//                   and of the result's vertex, averaged over those frame pairs, in target
+//                   heights per second: does the result slide where the source is planted.
 #ifndef MOCAPSOLVE_PROBLEMS_RETARGET_RETARGET_CLIP_H_
 #define MOCAPSOLVE_PROBLEMS_RETARGET_RETARGET_CLIP_H_
 
@@ -58,7 +58,7 @@ struct RetargetClipResult {
   double mean_normal_error_deg = 0.0;
   double mean_final_cost = 0.0;  // 1/2 |r|^2 after each frame's solve, averaged.
   int foot_vertices = 0;
-  int contact_pairs_source = 0, contact_pairs_result = 0;
+  int contact_pairs = 0;  // (vertex, frame pair)s in contact.
   double source_foot_skating = 0.0;  // Target heights per second.
   double result_foot_skating = 0.0;
   double solve_seconds = 0.0;  // The frame loop (solves and their error figures).
