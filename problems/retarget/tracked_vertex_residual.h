@@ -26,8 +26,8 @@
 //             d r / d q_j    = -weight sum_{b in subtree(j)} w_b [R_b y_b]x R_j
 //                              * AmbientFromTangent(q_j) / |q_j|.
 // Both are exact also when part of the vertex's weight lies outside subtree(j) (thesis
-// eq. 12's w^_j (v - o_j) is not). TangentJacobian() gives the 3 x 3 blocks in the tangent
-// (the lean DLS kernel of retarget_frame_solver.h uses them directly).
+// eq. 12's w^_j (v - o_j) is not). The tangent blocks (before AmbientFromTangent) are
+// what the lean DLS kernel of retarget_frame_solver.h assembles directly.
 //
 // The goal is read through a pointer at each Evaluate, so a solver moves one Problem
 // from frame to frame by updating the goals in place.
