@@ -1,5 +1,5 @@
 // RetargetFrameSolver: the target pose of one frame from the tracked vertices' goals
-// (thesis Algorithm 6, eqs. 14-18), through a lean dense DLS kernel, through the generic
+// (thesis Algorithm 6, eqs. 14-18), through a lean DLS kernel, through the generic
 // DLS solver (solvers/dls_solver.h) or through Ceres, all on the same residuals.
 //
 // Unknowns: the target root translation (3) and the local rotation of every joint on
@@ -27,8 +27,8 @@
 // tangent blocks (the same formulas as TrackedVertexResidual; J is never formed): rows
 // that share the joints above their influences' common ancestor are summed as moments,
 // the world rotations are applied once per block, and the block-sparse system (non-zero
-// only for joints on a common chain) is factored by a sparse LDL^T whose ordering is
-// analysed once. When m < n it forms the dense J and solves eq. 18 as written. The
+// only for joints on a common chain) is factored by solvers/block_sparse_cholesky.h,
+// leaves first, with its fill analysed once. When m < n it forms the dense J and solves eq. 18 as written. The
 // test checks both against DlsSolver on the residual blocks (kDlsGeneric) step for step.
 // Ceres (kCeres): the blocks in a ceres::Problem, Levenberg-Marquardt,
 // max_num_iterations = iterations.
