@@ -47,7 +47,7 @@ DEFINE_double(ceres_trust_radius, 1.0, "Ceres' initial trust region radius (its 
 DEFINE_double(frame_rate, 0.0, "Sampling rate of the source animation; 0 = its key rate.");
 DEFINE_int32(loop, 1, "Repeat the source clip N times (timing long clips).");
 DEFINE_bool(stage_times, false, "Time FK, skinning, Jacobian and solve separately (dls only; "
-            "adds a skinning pass per iteration).");
+            "the report gets each stage's share of an iteration, thesis Table 3).");
 
 namespace mocapsolve {
 namespace {
@@ -268,7 +268,7 @@ extern const Command kRetargetCommand = {
     "target pose (root translation and joint rotations) so that the target vertices track the\n"
     "source's: hands, feet and head by position, the rest by normals. The skeletons may differ.\n"
     "A .glb/.gltf --out is the target file with the result added as a new animation.\n"
-    "--solver: dls (the default here: a lean dense DLS kernel, eq. 18), dls_generic\n"
+    "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
     __FILE__, RunRetarget, "out,report,quiet,solver,max_frames,limit_weight"};
 
