@@ -20,6 +20,7 @@ extern const Command kEvaluateCommand;
 extern const Command kFitSkeletonCommand;
 extern const Command kDistanceCommand;
 extern const Command kPropagateCommand;
+extern const Command kRetargetCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
@@ -28,8 +29,7 @@ const std::vector<Command>& AllCommands() {
                                                 kEvaluateCommand,
                                                 kMarkersCommand, kCalibrateCommand, kFitSkeletonCommand,
                                                 kFilterCommand, kBandsCommand, kBlendCommand,
-                                                kDistanceCommand,
-                                                kPropagateCommand};
+                                                kRetargetCommand, kDistanceCommand, kPropagateCommand};
   return commands;
 }
 

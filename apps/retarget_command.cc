@@ -1,0 +1,275 @@
+// mocapsolve retarget: a source character's glTF animation onto a target character by
+// their meshes (thesis chapter 4; problems/retarget/).
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include "apps/command.h"
+#include "apps/common_flags.h"
+#include "apps/progress.h"
+#include "apps/solver_flags.h"
+#include "io/bvh_writer.h"
+#include "io/gltf_reader.h"
+#include "io/gltf_writer.h"
+#include "io/json_reader.h"
+#include "kinematics/rotation.h"
+#include "problems/retarget/retarget_clip.h"
+#include "problems/retarget/retarget_setup.h"
+
+// Shared with other commands: --solver (apps/solver_flags.cc; here dls | dls_generic |
+// ceres, and dls when not given), --max_frames (apps/solve_command.cc).
+DECLARE_int32(max_frames);
+DECLARE_double(limit_weight);  // apps/solver_flags.cc: soft joint limits, where the skeleton has them.
+
+DEFINE_string(source, "", "Source character (.glb/.gltf) whose animation is retargeted.");
+DEFINE_string(source_animation, "", "Animation of the source, by name or index (default: the first).");
+DEFINE_string(target, "", "Target character (.glb/.gltf).");
+DEFINE_string(source_skin, "", "Skin of the source file (name or index; default: skin 0).");
+DEFINE_string(target_skin, "", "Skin of the target file (name or index; default: skin 0).");
+DEFINE_string(out_bvh, "", "Also write the result as BVH (target skeleton, metres).");
+DEFINE_string(animation_name, "", "Name of the new animation in --out (.glb/.gltf); default: "
+              "'retargeted from <source animation or file>'.");
+DEFINE_int32(subsample, 128, "Subsampling ratio #V : #tracked vertices of the source mesh.");
+DEFINE_int32(iterations, 10, "Solver iterations per frame.");
+DEFINE_double(lambda, 5.0, "DLS damping (thesis eq. 18).");
+DEFINE_string(blend_mask, "auto", "auto (hands, feet, toes, head by position; the rest by normals) "
+              "or a JSON file {\"position_joints\": [target joint names]}.");
+DEFINE_double(mapping_normal_weight, 0.0, "Normals in the mesh mapping's nearest-neighbour distance "
+              "(heights per unit normal difference); 0 = positions only (thesis eq. 11).");
+DEFINE_bool(transfer_normals, true, "Normal goals: the target vertex's rest normal turned by the "
+            "source vertex's skinning (true) or the source's skinned normal itself (false, eq. 16).");
+DEFINE_double(normal_weight, 1.0, "Weight of the normal residuals (positions: 1 per sigma).");
+DEFINE_double(smoothness, 0.0, "Weight of a pull toward the previous frame (per radian); 0 = off.");
+DEFINE_double(contact_height, 0.02, "Foot contact: height above the rest floor, fraction of the "
+              "target height (for the foot-skating figures).");
+DEFINE_double(ceres_trust_radius, 1.0, "Ceres' initial trust region radius (its default is 1e4; ~1 "
+              "converges better within a few iterations on the cross-character cases).");
+DEFINE_double(frame_rate, 0.0, "Sampling rate of the source animation; 0 = its key rate.");
+DEFINE_int32(loop, 1, "Repeat the source clip N times (timing long clips).");
+DEFINE_bool(stage_times, false, "Time FK, skinning, Jacobian and solve separately (dls only; "
+            "the report gets each stage's share of an iteration, thesis Table 3).");
+
+namespace mocapsolve {
+namespace {
+
+Status ReadBlendMask(const std::string& path, std::vector<std::string>* joints) {
+  JsonNode root;
+  Status status = ReadJsonFile(path, &root);
+  if (!status.ok()) return status;
+  const JsonNode* list = root.Find("position_joints");
+  if (list == nullptr || !list->is_array()) {
+    return Status::Error(root.Where(path) + ": expected an object with an array \"position_joints\"");
+  }
+  for (const JsonNode& item : list->items) {
+    if (!item.is_string() || item.string.empty()) {
+      return Status::Error(item.Where(path) + ": position_joints: expected a joint name");
+    }
+    joints->push_back(item.string);
+  }
+  if (joints->empty()) return Status::Error(list->Where(path) + ": position_joints is empty");
+  return Status::Ok();
+}
+
+JsonObject Stages(const RetargetStageTimes& stages) {
+  const double total = stages.total();
+  auto share = [total](double seconds) { return total > 0 ? 100.0 * seconds / total : 0.0; };
+  JsonObject out;
+  out.Add("iterations", stages.iterations)
+      .Add("fk_percent", share(stages.fk))
+      .Add("skinning_percent", share(stages.skinning))
+      .Add("jacobian_percent", share(stages.jacobian))
+      .Add("solve_percent", share(stages.solve))
+      .Add("update_percent", share(stages.update))
+      .Add("us_per_iteration", stages.iterations > 0 ? 1e6 * total / stages.iterations : 0.0);
+  return out;
+}
+
+Status RunRetarget(const std::vector<std::string>& arguments) {
+  if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  if (FLAGS_source.empty() || FLAGS_target.empty()) return Status::Error("--source and --target are required");
+  if (FLAGS_out.empty() && FLAGS_out_bvh.empty()) return Status::Error("--out or --out_bvh is required");
+  for (const std::string& out : {FLAGS_out, FLAGS_out_bvh, FLAGS_report}) {
+    if (out.empty()) continue;
+    for (const std::string& in : {FLAGS_source, FLAGS_target}) {
+      Status status = CheckNotAnInput(out, in);
+      if (!status.ok()) return status;
+    }
+  }
+  auto has_extension = [](const std::string& path, const std::string& extension) {
+    return path.size() > extension.size() &&
+           path.compare(path.size() - extension.size(), extension.size(), extension) == 0;
+  };
+  const bool out_bvh = has_extension(FLAGS_out, ".bvh");
+  if (!FLAGS_out.empty() && !out_bvh && !has_extension(FLAGS_out, ".glb") &&
+      !has_extension(FLAGS_out, ".gltf")) {
+    return Status::Error("--out: " + FLAGS_out + ": expected .glb, .gltf or .bvh");
+  }
+  RetargetSolveOptions solve;
+  const std::string solver_name =
+      gflags::GetCommandLineFlagInfoOrDie("solver").is_default ? "dls" : FLAGS_solver;
+  if (!ParseRetargetSolverKind(solver_name, &solve.solver)) {
+    return Status::Error("--solver: unknown solver '" + FLAGS_solver + "' (dls, dls_generic, ceres)");
+  }
+  if (FLAGS_subsample < 1) return Status::Error("--subsample: must be >= 1");
+  if (FLAGS_loop < 1) return Status::Error("--loop: must be >= 1");
+  if (FLAGS_max_frames < 0) return Status::Error("--max_frames: must be >= 0");
+  if (!(FLAGS_contact_height > 0.0)) return Status::Error("--contact_height: must be > 0");
+  solve.iterations = FLAGS_iterations;
+  solve.lambda = FLAGS_lambda;
+  solve.normal_weight = FLAGS_normal_weight;
+  solve.smoothness_weight = FLAGS_smoothness;
+  solve.limit_weight = FLAGS_limit_weight;
+  solve.time_stages = FLAGS_stage_times;
+  solve.ceres = DefaultRetargetCeresOptions();
+  solve.ceres.initial_trust_region_radius = FLAGS_ceres_trust_radius;
+  std::string error;
+  if (!solve.IsValid(&error)) return Status::Error("retarget options: " + error);
+
+  const auto start = std::chrono::steady_clock::now();
+  GltfDocument source_document;
+  Status status = GltfDocument::Read(FLAGS_source, &source_document);
+  if (!status.ok()) return status;
+  GltfCharacter source, target;
+  GltfReadOptions source_options, target_options;
+  source_options.skin = FLAGS_source_skin;
+  target_options.skin = FLAGS_target_skin;
+  status = ReadGltfCharacter(source_document, source_options, &source);
+  if (!status.ok()) return status;
+  GltfDocument target_document;
+  status = GltfDocument::Read(FLAGS_target, &target_document);
+  if (!status.ok()) return status;
+  status = ReadGltfCharacter(target_document, target_options, &target);
+  if (!status.ok()) return status;
+  GltfAnimationOptions animation_options;
+  animation_options.animation = FLAGS_source_animation;
+  animation_options.frame_rate = FLAGS_frame_rate;
+  Motion clip;
+  status = ReadGltfAnimation(source_document, source, animation_options, &clip);
+  if (!status.ok()) return status;
+  if (clip.num_frames() == 0) return Status::Error(FLAGS_source + ": the animation has no frames");
+  Motion motion;
+  motion.frame_rate = clip.frame_rate;
+  for (int l = 0; l < FLAGS_loop; ++l) {
+    for (const Pose& pose : clip.frames) motion.frames.push_back(pose);
+  }
+  if (FLAGS_max_frames > 0 && motion.num_frames() > FLAGS_max_frames) motion.frames.resize(FLAGS_max_frames);
+
+  RetargetSetupOptions setup_options;
+  setup_options.subsample.ratio = FLAGS_subsample;
+  if (FLAGS_mapping_normal_weight < 0.0) return Status::Error("--mapping_normal_weight: must be >= 0");
+  setup_options.mapping_normal_weight = FLAGS_mapping_normal_weight;
+  setup_options.transfer_normals = FLAGS_transfer_normals;
+  if (FLAGS_blend_mask != "auto") {
+    status = ReadBlendMask(FLAGS_blend_mask, &setup_options.position_joints);
+    if (!status.ok()) return status;
+  }
+  setup_options.source_world_from_bind = WorldFromBindRotation(source.skeleton, source.bind_pose, source.rest_pose);
+  setup_options.target_world_from_bind = WorldFromBindRotation(target.skeleton, target.bind_pose, target.rest_pose);
+  RetargetSetup setup;
+  status = BuildRetargetSetup(source.mesh, target.skeleton, target.mesh, setup_options, &setup);
+  if (!status.ok()) return Status::Error(FLAGS_source + " -> " + FLAGS_target + ": " + status.message());
+  const double setup_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (const std::string& note : setup.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
+
+  RetargetClipOptions options;
+  options.solve = solve;
+  options.contact_height = FLAGS_contact_height;
+  options.start_pose = target.rest_pose;
+  RetargetClipResult result;
+  Progress progress("retarget", motion.num_frames(), FLAGS_quiet);
+  status = RetargetClip(source.skeleton, source.mesh, motion, target.skeleton, target.mesh, setup,
+                        options, &result, [&](int done, int) { progress.Update(done); });
+  if (!status.ok()) return status;
+
+  if (!FLAGS_out.empty()) {
+    if (out_bvh) {
+      status = WriteBvh(FLAGS_out, target.skeleton, result.motion);
+    } else {
+      std::string name = FLAGS_animation_name;
+      if (name.empty()) {
+        std::string from = FLAGS_source_animation;
+        if (from.empty()) {
+          from = FLAGS_source.substr(FLAGS_source.find_last_of('/') + 1);
+        }
+        name = "retargeted from " + from;
+      }
+      status = WriteGltfWithAnimation(target_document, target, result.motion, name, FLAGS_out);
+    }
+    if (!status.ok()) return status;
+  }
+  if (!FLAGS_out_bvh.empty()) {
+    status = WriteBvh(FLAGS_out_bvh, target.skeleton, result.motion);
+    if (!status.ok()) return status;
+  }
+  int positions = 0;
+  for (const TrackedVertex& t : setup.tracked) positions += t.track_position ? 1 : 0;
+  const double ms_per_frame = 1e3 * result.solve_seconds / motion.num_frames();
+  if (!FLAGS_quiet) {
+    std::fprintf(stderr,
+                 "%s -> %s: %d frames, %zu tracked vertices (%d by position), %s: vertex error "
+                 "%.4f of height (max %.4f), normal error %.2f deg, foot skating %.4f -> %.4f "
+                 "heights/s, %.3f ms/frame\n",
+                 FLAGS_source.c_str(), FLAGS_target.c_str(), motion.num_frames(), setup.tracked.size(),
+                 positions, RetargetSolverName(solve.solver), result.mean_position_error,
+                 result.max_position_error, result.mean_normal_error_deg,
+                 result.source_foot_skating, result.result_foot_skating, ms_per_frame);
+  }
+  JsonObject report;
+  std::vector<JsonValue> position_error, normal_error;
+  for (const RetargetFrameFigures& f : result.frames) {
+    position_error.push_back(f.position_error);
+    normal_error.push_back(f.normal_error_deg);
+  }
+  report.Add("command", "retarget")
+      .Add("source", FLAGS_source)
+      .Add("source_animation", FLAGS_source_animation)
+      .Add("target", FLAGS_target)
+      .Add("solver", RetargetSolverName(solve.solver))
+      .Add("frames", motion.num_frames())
+      .Add("frame_rate", motion.frame_rate)
+      .Add("iterations", solve.iterations)
+      .Add("lambda", solve.lambda)
+      .Add("subsample", FLAGS_subsample)
+      .Add("source_vertices", source.mesh.num_vertices())
+      .Add("target_vertices", target.mesh.num_vertices())
+      .Add("source_joints", source.skeleton.num_joints())
+      .Add("target_joints", target.skeleton.num_joints())
+      .Add("tracked_vertices", static_cast<int>(setup.tracked.size()))
+      .Add("position_tracked", positions)
+      .Add("height_ratio", setup.scale)
+      .Add("sigma_m", result.sigma)
+      .Add("mean_position_error_fraction_of_height", result.mean_position_error)
+      .Add("max_position_error_fraction_of_height", result.max_position_error)
+      .Add("mean_normal_error_deg", result.mean_normal_error_deg)
+      .Add("mean_final_cost", result.mean_final_cost)
+      .Add("foot_vertices", result.foot_vertices)
+      .Add("foot_contact_pairs", result.contact_pairs)
+      .Add("source_foot_skating_heights_per_s", result.source_foot_skating)
+      .Add("result_foot_skating_heights_per_s", result.result_foot_skating)
+      .Add("setup_seconds", setup_seconds)
+      .Add("solve_seconds", result.solve_seconds)
+      .Add("ms_per_frame", ms_per_frame)
+      .Add("per_frame_position_error", position_error)
+      .Add("per_frame_normal_error_deg", normal_error);
+  if (FLAGS_stage_times) report.Add("stages", Stages(result.stages));
+  return WriteReport(report);
+}
+
+}  // namespace
+
+extern const Command kRetargetCommand = {
+    "retarget", "transfer a glTF animation between characters by their meshes (thesis ch. 4)",
+    "mocapsolve retarget --source=SRC.glb [--source_animation=NAME] --target=TGT.glb "
+    "--out=OUT.glb|.gltf|.bvh [--out_bvh=OUT.bvh] [--animation_name=NAME] [--solver=dls|dls_generic|ceres] [--subsample=128] "
+    "[--iterations=10] [--lambda=5] [--blend_mask=auto|FILE.json] [--report=r.json]\n\n"
+    "Subsamples the source mesh (farthest points, normal check, >= 3 per joint), maps the samples\n"
+    "to the nearest target vertices in a height-normalized rest frame, and solves each frame's\n"
+    "target pose (root translation and joint rotations) so that the target vertices track the\n"
+    "source's: hands, feet and head by position, the rest by normals. The skeletons may differ.\n"
+    "A .glb/.gltf --out is the target file with the result added as a new animation.\n"
+    "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
+    "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
+    __FILE__, RunRetarget, "out,report,quiet,solver,max_frames,limit_weight"};
+
+}  // namespace mocapsolve

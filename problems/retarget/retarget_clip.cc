@@ -1,0 +1,148 @@
+#include "problems/retarget/retarget_clip.h"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "kinematics/forward_kinematics.h"
+#include "kinematics/rotation.h"
+#include "kinematics/skinning.h"
+
+namespace mocapsolve {
+namespace {
+
+bool IsFootName(std::string name) {
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return name.find("foot") != std::string::npos || name.find("toe") != std::string::npos;
+}
+
+// Mean horizontal speed of the vertices while the source's are in contact (see the
+// header): `contact_positions` decide contact, `positions` give the speed.
+double FootSkating(const std::vector<Eigen::Matrix3Xd>& contact_positions,
+                   const std::vector<Eigen::Matrix3Xd>& positions, const std::vector<int>& feet,
+                   double floor_y, double contact, double height, double frame_rate, int* pairs) {
+  double sum = 0.0;
+  int count = 0;
+  for (size_t f = 1; f < positions.size(); ++f) {
+    for (int s : feet) {
+      if (contact_positions[f - 1](1, s) - floor_y >= contact ||
+          contact_positions[f](1, s) - floor_y >= contact) {
+        continue;
+      }
+      const Eigen::Vector3d a = positions[f - 1].col(s), b = positions[f].col(s);
+      sum += std::hypot(b.x() - a.x(), b.z() - a.z()) * frame_rate / height;
+      ++count;
+    }
+  }
+  *pairs = count;
+  return count > 0 ? sum / count : 0.0;
+}
+
+}  // namespace
+
+std::vector<int> FootTrackedVertices(const Skeleton& target_skeleton, const SkinnedMesh& target_mesh,
+                                     const RetargetSetup& setup) {
+  std::vector<int> feet;
+  for (size_t s = 0; s < setup.tracked.size(); ++s) {
+    const int v = setup.tracked[s].target_vertex;
+    double weight = 0.0;
+    for (int k = target_mesh.weight_begin(v); k < target_mesh.weight_end(v); ++k) {
+      if (IsFootName(target_skeleton.name(target_mesh.weight_joint(k)))) weight += target_mesh.weight(k);
+    }
+    if (weight >= 0.5) feet.push_back(static_cast<int>(s));
+  }
+  return feet;
+}
+
+Pose RecenteredStartPose(const Skeleton& target_skeleton, const SkinnedMesh& target_mesh,
+                         const RetargetSetup& setup, const Eigen::Matrix3Xd& goal_positions,
+                         Pose start) {
+  FkData fk(target_skeleton);
+  ForwardKinematics(target_skeleton, start, &fk);
+  std::vector<Eigen::Isometry3d> transforms;
+  ComputeSkinningTransforms(target_mesh, fk, &transforms);
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const TrackedVertex& t : setup.tracked) centroid += SkinPosition(target_mesh, transforms, t.target_vertex);
+  centroid /= static_cast<double>(std::max<size_t>(1, setup.tracked.size()));
+  start.translations[0] += goal_positions.rowwise().mean() - centroid;
+  return start;
+}
+
+Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_mesh,
+                    const Motion& source_motion, const Skeleton& target_skeleton,
+                    const SkinnedMesh& target_mesh, const RetargetSetup& setup,
+                    const RetargetClipOptions& options, RetargetClipResult* result,
+                    const RetargetProgressCallback& progress) {
+  std::string error;
+  if (!options.solve.IsValid(&error)) return Status::Error("retarget: " + error);
+  if (source_motion.num_frames() == 0) return Status::Error("retarget: the source animation has no frames");
+  if (setup.tracked.empty()) return Status::Error("retarget: no tracked vertices");
+  RetargetGoals goals;
+  ComputeRetargetGoals(setup, source_skeleton, source_mesh, source_motion, &goals);
+  for (const Eigen::Matrix3Xd& g : goals.positions) {
+    if (!g.allFinite()) return Status::Error("retarget: the source animation gives non-finite vertices");
+  }
+  RetargetClipResult out;
+  out.sigma = goals.sigma;
+  out.motion.frame_rate = source_motion.frame_rate;
+  const int nf = source_motion.num_frames();
+  const double height = setup.target_frame.height;
+
+  Pose pose = options.start_pose.rotations.empty() ? RestPose(target_skeleton) : options.start_pose;
+  if (static_cast<int>(pose.rotations.size()) != target_skeleton.num_joints() ||
+      pose.translations.size() != pose.rotations.size()) {
+    return Status::Error("retarget: the start pose does not match the target skeleton");
+  }
+  pose = RecenteredStartPose(target_skeleton, target_mesh, setup, goals.positions[0], pose);
+  RetargetFrameSolver solver(target_skeleton, target_mesh, setup, goals.sigma, options.solve);
+  const auto start = std::chrono::steady_clock::now();
+  for (int f = 0; f < nf; ++f) {
+    RetargetFrameReport report;
+    const Status status = solver.Solve(goals.positions[f], goals.normals[f], &pose, &report);
+    if (!status.ok()) return Status::Error(status.message() + " (frame " + std::to_string(f) + ")");
+    out.motion.frames.push_back(pose);
+    RetargetFrameFigures figures;
+    figures.position_error = report.mean_position_error / height;
+    figures.normal_error_deg = RadToDeg(report.mean_normal_angle);
+    figures.final_cost = report.final_cost;
+    figures.iterations = report.iterations;
+    out.frames.push_back(figures);
+    if (progress) progress(f + 1, nf);
+  }
+  out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.stages = solver.stage_times();
+  for (const RetargetFrameFigures& figures : out.frames) {
+    out.mean_position_error += figures.position_error / nf;
+    out.mean_normal_error_deg += figures.normal_error_deg / nf;
+    out.mean_final_cost += figures.final_cost / nf;
+    out.max_position_error = std::max(out.max_position_error, figures.position_error);
+  }
+
+  // Foot skating of the source (goals) and of the result (skinned tracked vertices).
+  const std::vector<int> feet = FootTrackedVertices(target_skeleton, target_mesh, setup);
+  out.foot_vertices = static_cast<int>(feet.size());
+  if (!feet.empty() && source_motion.frame_rate > 0.0) {
+    std::vector<Eigen::Matrix3Xd> skinned(nf, Eigen::Matrix3Xd(3, setup.tracked.size()));
+    FkData fk(target_skeleton);
+    std::vector<Eigen::Isometry3d> transforms;
+    for (int f = 0; f < nf; ++f) {
+      ForwardKinematics(target_skeleton, out.motion.frames[f], &fk);
+      ComputeSkinningTransforms(target_mesh, fk, &transforms);
+      for (size_t s = 0; s < setup.tracked.size(); ++s) {
+        skinned[f].col(s) = SkinPosition(target_mesh, transforms, setup.tracked[s].target_vertex);
+      }
+    }
+    const double floor_y = setup.target_frame.origin.y();
+    const double contact = options.contact_height * height;
+    out.source_foot_skating = FootSkating(goals.positions, goals.positions, feet, floor_y, contact,
+                                          height, source_motion.frame_rate, &out.contact_pairs);
+    out.result_foot_skating = FootSkating(goals.positions, skinned, feet, floor_y, contact, height,
+                                          source_motion.frame_rate, &out.contact_pairs);
+  }
+  *result = std::move(out);
+  return Status::Ok();
+}
+
+}  // namespace mocapsolve

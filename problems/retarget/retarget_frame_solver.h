@@ -1,0 +1,134 @@
+// RetargetFrameSolver: the target pose of one frame from the tracked vertices' goals
+// (thesis Algorithm 6, eqs. 14-18), through a lean DLS kernel, through the generic
+// DLS solver (solvers/dls_solver.h) or through Ceres, all on the same residuals.
+//
+// Unknowns: the target root translation (3) and the local rotation of every joint on
+// some tracked vertex's chain (quaternions, increments R_j <- R_j exp(delta_j), delta in
+// the joint's local frame; every joint is treated as a free 3-dof rotation, as glTF
+// joints are). Other joints keep the warm-start pose.
+//
+// Residuals, stacked (eq. 17 with the blend mask B of retarget_setup.h):
+//   per tracked vertex s: TrackedVertexResidual (tracked_vertex_residual.h), 3 rows,
+//     position ones scaled by position_weight / sigma, normal ones by normal_weight;
+//   optional temporal smoothness toward the previous frame's solution (the warm start):
+//     RotationPriorResidual per solved joint (smoothness_weight per radian) and
+//     TranslationPriorResidual for the root (smoothness_weight / sigma per unit);
+//   optional soft joint limits (JointLimitResidual, limit_weight per radian) where the
+//     target skeleton has limits (problems/marker_solve/, reused as they are).
+//
+// DLS (kDls, kDlsGeneric): a fixed number of iterations, every step taken (Buss), with
+//   delta = J^T (J J^T + lambda I)^-1 e   (eq. 18; m < n)   or   (J^T J + lambda I)^-1 J^T e,
+// e = -r, J the tangent Jacobian (3 #tracked (+ prior rows) by 3 + 3 #solved joints).
+// The root translation's tangent is in units of sigma (t <- t + sigma delta_t, for every
+// solver), so that its columns are on the scale of the normalized rotation columns and
+// the fixed lambda damps both alike (thesis 4.3.3 divides GP_t by sigma).
+// The lean kernel (kDls) does FK over the skeleton once per iteration, skins only the
+// tracked vertices and, when m >= n, assembles J^T J and J^T r directly from the 3 x 3
+// tangent blocks (the same formulas as TrackedVertexResidual; J is never formed): rows
+// that share the joints above their influences' common ancestor are summed as moments,
+// the world rotations are applied once per block, and the block-sparse system (non-zero
+// only for joints on a common chain) is factored by solvers/block_sparse_cholesky.h,
+// leaves first, with its fill analysed once. When m < n it forms the dense J and solves eq. 18 as written. The
+// test checks both against DlsSolver on the residual blocks (kDlsGeneric) step for step.
+// Ceres (kCeres): the blocks in a ceres::Problem, Levenberg-Marquardt,
+// max_num_iterations = iterations.
+//
+// Costs are 1/2 |r|^2 over the tracked-vertex rows (and priors/limits when on).
+#ifndef MOCAPSOLVE_PROBLEMS_RETARGET_RETARGET_FRAME_SOLVER_H_
+#define MOCAPSOLVE_PROBLEMS_RETARGET_RETARGET_FRAME_SOLVER_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ceres/solver.h>
+#include <Eigen/Core>
+
+#include "kinematics/motion.h"
+#include "kinematics/skeleton.h"
+#include "kinematics/skinned_mesh.h"
+#include "kinematics/status.h"
+#include "problems/retarget/retarget_setup.h"
+
+namespace mocapsolve {
+
+enum class RetargetSolverKind { kDls, kDlsGeneric, kCeres };
+
+// "dls", "dls_generic", "ceres"; false on an unknown name.
+bool ParseRetargetSolverKind(const std::string& name, RetargetSolverKind* kind);
+const char* RetargetSolverName(RetargetSolverKind kind);
+
+struct RetargetSolveOptions {
+  RetargetSolverKind solver = RetargetSolverKind::kDls;
+  int iterations = 10;           // Per frame (thesis: 10; Table 4: 5).
+  double lambda = 5.0;           // DLS damping (eq. 18).
+  double position_weight = 1.0;  // Per sigma of position error.
+  double normal_weight = 1.0;    // Per unit of normal difference.
+  double smoothness_weight = 0.0;  // Per radian toward the previous frame; 0 = off.
+  double limit_weight = 0.0;       // Per radian outside joint limits; 0 = off.
+  bool time_stages = false;        // Accumulate RetargetStageTimes (kDls only).
+  ceres::Solver::Options ceres;    // kCeres; max_num_iterations is set from iterations.
+
+  bool IsValid(std::string* error) const;
+};
+
+// Ceres options for these small dense problems: Levenberg-Marquardt, DENSE_NORMAL_CHOLESKY,
+// single thread, Ceres' default initial trust region (1e4; a radius of ~1 helps the
+// cross-character glTF cases, see the retarget command's --ceres_trust_radius).
+ceres::Solver::Options DefaultRetargetCeresOptions();
+
+// Seconds spent in each stage of the lean DLS iterations (thesis Table 3): FK; skinning
+// of the tracked vertices (and their residuals); "jacobian": the levers and the assembly
+// of J^T J and J^T r (or of the dense J when m < n); "solve": factorization and solve;
+// "update": the retraction.
+struct RetargetStageTimes {
+  double fk = 0.0, skinning = 0.0, jacobian = 0.0, solve = 0.0, update = 0.0;
+  int iterations = 0;
+  double total() const { return fk + skinning + jacobian + solve + update; }
+};
+
+struct RetargetFrameReport {
+  double initial_cost = 0.0;
+  double final_cost = 0.0;
+  int iterations = 0;
+  double mean_position_error = 0.0;  // Mean |v - g| over all tracked vertices, target units.
+  double mean_normal_angle = 0.0;    // Mean angle between n and m (radians), all tracked.
+};
+
+class RetargetFrameSolver {
+ public:
+  // Keeps references to everything: it must outlive the solver. sigma from
+  // RetargetGoals. Options must be valid (CHECKed).
+  RetargetFrameSolver(const Skeleton& skeleton, const SkinnedMesh& mesh, const RetargetSetup& setup,
+                      double sigma, const RetargetSolveOptions& options);
+  ~RetargetFrameSolver();
+
+  // Goals 3 x #tracked. `pose` is the warm start (and the smoothness reference) on input,
+  // the solution on output. `report` may be null (then the errors are not computed).
+  Status Solve(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
+               Pose* pose, RetargetFrameReport* report);
+
+  const RetargetStageTimes& stage_times() const;
+  void ResetStageTimes();
+
+  // The lean kernel's residual (3 #tracked) and tangent Jacobian in the pose tangent layout
+  // of kinematic_jacobians.h (3 + 3 #J columns; unsolved joints' columns zero), at `pose`
+  // with the given goals. For tests.
+  void Linearize(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
+                 const Pose& pose, Eigen::VectorXd* residual, Eigen::MatrixXd* jacobian);
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Mean |v - g| (target units) and mean normal angle (radians) of the tracked vertices at a
+// pose, all of them whatever their mask.
+void TrackedVertexErrors(const Skeleton& skeleton, const SkinnedMesh& mesh,
+                         const RetargetSetup& setup, const Pose& pose,
+                         const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
+                         double* mean_position_error, double* mean_normal_angle);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PROBLEMS_RETARGET_RETARGET_FRAME_SOLVER_H_

@@ -1,0 +1,117 @@
+// `mocapsolve retarget` end to end on the shared glTF characters (skipped without the
+// data): CesiumMan's walk onto RiggedFigure (different names and proportions) by both
+// solvers, the report's figures, and the bad inputs (missing file, unknown solver and
+// animation, bad blend-mask file, output over an input) as one-line errors with exit 1.
+#include <algorithm>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "io/bvh_reader.h"
+#include "io/gltf_reader.h"
+#include "io/json_reader.h"
+#include "tests/test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(RetargetCli, CesiumManOntoRiggedFigureByBothSolvers) {
+  MOCAPSOLVE_DATA_FILE(source, "gltf/CesiumMan.glb");
+  MOCAPSOLVE_DATA_FILE(target, "gltf/RiggedFigure.glb");
+  for (const char* solver : {"dls", "ceres"}) {
+    const std::string out = testing::TempPath(std::string(solver) + ".bvh");
+    const std::string report = testing::TempPath(std::string(solver) + ".json");
+    std::string output;
+    ASSERT_EQ(testing::RunCli("retarget --quiet --source=" + source + " --target=" + target + " --out=" + out +
+                                  " --solver=" + solver + " --iterations=5 --max_frames=12 --report=" + report,
+                              &output),
+              0)
+        << output;
+    Skeleton skeleton;
+    Motion motion;
+    ASSERT_TRUE(ReadBvh(out, &skeleton, &motion).ok());
+    EXPECT_EQ(motion.num_frames(), 12);
+    EXPECT_EQ(skeleton.num_joints(), 19);
+    JsonNode root;
+    ASSERT_TRUE(ReadJsonFile(report, &root).ok());
+    const JsonNode* error = root.Find("mean_position_error_fraction_of_height");
+    const JsonNode* normal = root.Find("mean_normal_error_deg");
+    const JsonNode* frames = root.Find("per_frame_position_error");
+    ASSERT_TRUE(error != nullptr && normal != nullptr && frames != nullptr);
+    EXPECT_EQ(frames->items.size(), 12u);
+    // Different proportions: the tracked vertices cannot all be matched; measured ~0.045 of
+    // the height and ~4-5 degrees for both solvers. Bounds with headroom, but tight enough
+    // to catch a broken mapping or facing (0.2 and 60+ degrees).
+    EXPECT_LT(error->number, 0.08) << solver;
+    EXPECT_LT(normal->number, 10.0) << solver;
+  }
+}
+
+// A .glb output is the target file plus the result as a new animation that reads back.
+TEST(RetargetCli, WritesTheResultIntoTheTargetGlb) {
+  MOCAPSOLVE_DATA_FILE(source, "gltf/CesiumMan.glb");
+  MOCAPSOLVE_DATA_FILE(target, "gltf/RiggedFigure.glb");
+  const std::string out = testing::TempPath("out.glb");
+  const std::string bvh = testing::TempPath("out.bvh");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("retarget --quiet --source=" + source + " --target=" + target + " --out=" + out +
+                                " --out_bvh=" + bvh + " --iterations=3 --max_frames=6 --animation_name=walk",
+                            &output),
+            0)
+      << output;
+  GltfDocument document;
+  ASSERT_TRUE(GltfDocument::Read(out, &document).ok());
+  GltfCharacter character;
+  ASSERT_TRUE(ReadGltfCharacter(document, GltfReadOptions(), &character).ok());
+  EXPECT_EQ(character.animation_names.size(), 2u);
+  GltfAnimationOptions options;
+  options.animation = "walk";
+  Motion from_glb;
+  ASSERT_TRUE(ReadGltfAnimation(document, character, options, &from_glb).ok());
+  Skeleton skeleton;
+  Motion from_bvh;
+  ASSERT_TRUE(ReadBvh(bvh, &skeleton, &from_bvh).ok());
+  EXPECT_EQ(from_glb.num_frames(), 6);
+  EXPECT_EQ(from_bvh.num_frames(), 6);
+}
+
+TEST(RetargetCli, BadInputsFailWithOneLine) {
+  MOCAPSOLVE_DATA_FILE(source, "gltf/CesiumMan.glb");
+  MOCAPSOLVE_DATA_FILE(target, "gltf/RiggedFigure.glb");
+  const std::string out = testing::TempPath("out.bvh");
+  const std::string mask = testing::TempPath("mask.json");
+  {
+    std::ofstream file(mask);
+    file << "{\"position_joints\": [\"no_such_joint\"]}";
+  }
+  const std::string base = "retarget --quiet --source=" + source + " --target=" + target + " --max_frames=3 ";
+  struct Case {
+    std::string arguments;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"retarget --source=/nonexistent.glb --target=" + target + " --out=" + out, "nonexistent.glb"},
+      {base + "--out=" + out + " --solver=newton", "--solver"},
+      {base + "--out=" + out + " --source_animation=Dance", "Dance"},
+      {base + "--out=" + out + " --blend_mask=" + mask, "no_such_joint"},
+      {base + "--out=" + target, "input"},
+      {base + "--out=" + out + " --subsample=0", "--subsample"},
+      {base + "--out=" + testing::TempPath("out.fbx"), "expected .glb"},
+      {"retarget --source=" + source + " --target=" + target, "--out"},
+  };
+  for (const Case& c : cases) {
+    std::string output;
+    EXPECT_EQ(testing::RunCli(c.arguments, &output), 1) << c.arguments << "\n" << output;
+    EXPECT_THAT(output, HasSubstr(c.message)) << c.arguments;
+    EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  }
+  EXPECT_FALSE(testing::FileExists(out));
+}
+
+}  // namespace
+}  // namespace mocapsolve
