@@ -14,9 +14,6 @@ DEFINE_double(scale, 1.0, "Multiply every length (offsets, translations) by this
 DEFINE_string(euler_order, "", "Write every joint's rotation channels in this order (XYZ, XZY, "
               "YXZ, YZX, ZXY, ZYX); default: keep each joint's order from the input.");
 DEFINE_int32(precision, 6, "Significant digits of the written channel values.");
-DEFINE_string(target, "", "glTF output: the character (.glb/.gltf) the motion is written into, as a "
-              "new animation; default: IN when IN is a glTF file. The motion's skeleton must have the "
-              "character's joints (e.g. a BVH converted from it).");
 DEFINE_string(clip_name, "mocapsolve", "glTF output: name of the added animation.");
 
 namespace mocapsolve {
@@ -107,6 +104,6 @@ extern const Command kConvertCommand = {
     "the BVH rotation channels. With a .glb/.gltf OUT, the motion (whose skeleton must have\n"
     "the character's joints, e.g. a BVH converted from it) is added as a new animation to a\n"
     "copy of --target (default IN). OUT is written atomically and may not be an input.",
-    __FILE__, RunConvert, "skeleton,amc_fps,animation,sample_fps,report"};
+    __FILE__, RunConvert, "skeleton,amc_fps,animation,sample_fps,target,report"};
 
 }  // namespace mocapsolve

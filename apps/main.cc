@@ -78,6 +78,9 @@ DEFINE_string(skeleton_units, "", "Unit of a skeleton whose file does not state 
 DEFINE_string(motion, "", "Motion file: .bvh, .glb/.gltf, .fbx, or .amc with --skeleton=X.asf.");
 DEFINE_string(out, "", "Output file (its extension picks the format).");
 DEFINE_string(markers, "", "Marker file: .c3d or .trc.");
+DEFINE_string(target, "", "Target character (.glb/.gltf): where retarget puts the motion; for convert, "
+              "the character a motion is written into as a new animation (default: IN when IN is glTF; "
+              "the motion's skeleton must have the character's joints).");
 DEFINE_string(markerset, "", "Marker set file (.json): which joint each marker rides on, with offsets.");
 DEFINE_string(axes, "x,y,z", "Marker file axes to skeleton axes: 'y,z,x' means (x, y, z)_skeleton = "
               "(y, z, x)_file; CMU C3D (Z-up) onto CMU ASF/AMC (Y-up) is y,z,x.");

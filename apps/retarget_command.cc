@@ -23,7 +23,6 @@ DECLARE_double(limit_weight);  // apps/solver_flags.cc: soft joint limits, where
 
 DEFINE_string(source, "", "Source character (.glb/.gltf) whose animation is retargeted.");
 DEFINE_string(source_animation, "", "Animation of the source, by name or index (default: the first).");
-DEFINE_string(target, "", "Target character (.glb/.gltf).");
 DEFINE_string(source_skin, "", "Skin of the source file (name or index; default: skin 0).");
 DEFINE_string(target_skin, "", "Skin of the target file (name or index; default: skin 0).");
 DEFINE_string(out_bvh, "", "Also write the result as BVH (target skeleton, metres).");
@@ -270,6 +269,6 @@ extern const Command kRetargetCommand = {
     "A .glb/.gltf --out is the target file with the result added as a new animation.\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
-    __FILE__, RunRetarget, "out,report,quiet,solver,max_frames,limit_weight"};
+    __FILE__, RunRetarget, "target,out,report,quiet,solver,max_frames,limit_weight"};
 
 }  // namespace mocapsolve
