@@ -76,6 +76,15 @@ JSON
 $ms propagate --motion="$out/walk.bvh" --skeleton_units=cm --edit="$out/edit.json" --keep_contacts \
   --out="$out/walk_edited.bvh" --weights_csv="$out/edit_weights.csv" --report="$out/edit_report.json" | tail -2
 
+echo; echo "== 14. retarget: CesiumMan's walk onto RiggedFigure (other proportions), by mesh vertices"
+gltf_dir="${MOCAPSOLVE_DATA:-../shared/data}/gltf"
+if [ -f "$gltf_dir/CesiumMan.glb" ] && [ -f "$gltf_dir/RiggedFigure.glb" ]; then
+  $ms retarget --source="$gltf_dir/CesiumMan.glb" --target="$gltf_dir/RiggedFigure.glb" \
+    --out="$out/riggedfigure_walk.glb" --out_bvh="$out/riggedfigure_walk.bvh" --report="$out/retarget.json" 2>/dev/null | tail -1
+else
+  echo "(skipped: no $gltf_dir/CesiumMan.glb; set MOCAPSOLVE_DATA to the shared data folder)"
+fi
+
 echo
 echo "Done. Outputs in $out/:"
 ls -1 "$out" | sed 's/^/  /'
