@@ -80,7 +80,7 @@ echo; echo "== 14. retarget: CesiumMan's walk onto RiggedFigure (other proportio
 gltf_dir="${MOCAPSOLVE_DATA:-../shared/data}/gltf"
 if [ -f "$gltf_dir/CesiumMan.glb" ] && [ -f "$gltf_dir/RiggedFigure.glb" ]; then
   $ms retarget --source="$gltf_dir/CesiumMan.glb" --target="$gltf_dir/RiggedFigure.glb" \
-    --out="$out/riggedfigure_walk.glb" --out_bvh="$out/riggedfigure_walk.bvh" --report="$out/retarget.json" 2>/dev/null | tail -1
+    --out="$out/riggedfigure_walk.glb" --out_bvh="$out/riggedfigure_walk.bvh" --report="$out/retarget.json" 2>&1 | tail -1
 else
   echo "(skipped: no $gltf_dir/CesiumMan.glb; set MOCAPSOLVE_DATA to the shared data folder)"
 fi
