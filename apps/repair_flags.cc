@@ -27,11 +27,16 @@ DEFINE_double(tracker_prior_weight, 20.0, "Tracker reference: pull of each joint
 DEFINE_double(tracker_translation_prior, 0.0, "Tracker reference: pull of the root translation "
               "toward the previous frame (residual per unit of displacement).");
 
+DEFINE_double(tracker_function_tolerance, 1e-4, "Tracker reference: stop when the relative cost "
+              "change is below this. The reference only has to show where the markers broke: on "
+              "02_01 1e-4 instead of 1e-6 leaves the repaired solve as good (0.170 vs 0.176 cm) and "
+              "makes repair 1.6x faster.");
+
 namespace mocapsolve {
 
 const char* const kRepairFlagNames =
     "dp_max_cm,dr_max_deg,outlier_cm,trim_max,small_track,small_gap,vel_clamp,reference,reference_loss,"
-    "reference_loss_cm,tracker_prior_weight,tracker_translation_prior";
+    "reference_loss_cm,tracker_prior_weight,tracker_translation_prior,tracker_function_tolerance";
 
 Status RepairOptionsFromFlags(const Skeleton& skeleton, RepairOptions* options) {
   if (!skeleton.unit().known()) {
@@ -61,6 +66,8 @@ Status RepairOptionsFromFlags(const Skeleton& skeleton, RepairOptions* options) 
   options->tracker.loss_scale = FLAGS_reference_loss_cm * units_per_cm;
   options->tracker.prior_rotation_weight = FLAGS_tracker_prior_weight * units_per_mm;
   options->tracker.prior_translation_weight = FLAGS_tracker_translation_prior;
+  options->tracker.dls.function_tolerance = FLAGS_tracker_function_tolerance;
+  options->tracker.ceres.function_tolerance = FLAGS_tracker_function_tolerance;
   options->dp_max = FLAGS_dp_max_cm * units_per_cm;
   options->dr_max_rad = DegToRad(FLAGS_dr_max_deg);
   options->outlier_distance = FLAGS_outlier_cm * units_per_cm;

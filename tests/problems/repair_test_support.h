@@ -38,7 +38,8 @@ inline DemoTake MakeDemoTake(int frames, double frame_rate, uint32_t set_seed) {
 }
 
 // `mocapsolve repair`'s defaults in cm: DLS naive solve with a 20 mm/rad prior, a Cauchy
-// reference bending at 1 cm, thesis thresholds (10 cm, 30 degrees), outliers past 4 cm.
+// reference bending at 1 cm (the tracker stopping at a relative cost change of 1e-4),
+// thesis thresholds (10 cm, 30 degrees), outliers past 4 cm.
 inline RepairOptions DemoRepairOptions(ReferenceKind reference_kind) {
   RepairOptions options;
   options.naive.solver = SolverKind::kDls;
@@ -50,6 +51,7 @@ inline RepairOptions DemoRepairOptions(ReferenceKind reference_kind) {
   options.tracker = options.naive;
   options.tracker.loss = "cauchy";
   options.tracker.loss_scale = 1.0;
+  options.tracker.dls.function_tolerance = 1e-4;
   options.dp_max = 10.0;
   options.dr_max_rad = DegToRad(30.0);
   options.outlier_distance = 4.0;
