@@ -15,6 +15,7 @@
 #include "kinematics/rotation.h"
 #include "kinematics/skinning.h"
 #include "problems/marker_solve/joint_limit_residual.h"
+#include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/pose_prior_residual.h"
 #include "problems/retarget/tracked_vertex_residual.h"
 #include "solvers/block_sparse_cholesky.h"
@@ -93,14 +94,10 @@ bool RetargetSolveOptions::IsValid(std::string* error) const {
 }
 
 ceres::Solver::Options DefaultRetargetCeresOptions() {
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  // The per-frame marker solve's options (small dense problems), capped at Algorithm 4's
+  // 10 iterations.
+  ceres::Solver::Options options = DefaultFrameCeresOptions();
   options.max_num_iterations = 10;
-  options.function_tolerance = 1e-10;
-  options.gradient_tolerance = 1e-12;
-  options.parameter_tolerance = 1e-10;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
   return options;
 }
 
