@@ -91,6 +91,18 @@ inline Eigen::Matrix<double, 3, 4> AmbientFromTangent(const double* q) {
   return a;
 }
 
+// The ambient Jacobian (3 x 4, row-major as Ceres wants it) of a residual that reads a
+// quaternion block q_raw as q = q_raw / |q_raw|, from its tangent Jacobian d r / d delta
+// (3 x 3): the 1 / |q_raw| is that normalization's (its radial part vanishes, since the
+// rows of AmbientFromTangent(q) are orthogonal to q).
+inline void AmbientJacobianOfNormalized(const Eigen::Matrix3d& tangent, const double* q_raw, double* jacobian) {
+  Eigen::Vector4d q = Eigen::Map<const Eigen::Vector4d>(q_raw);
+  const double norm = q.norm();
+  q /= norm;
+  Eigen::Map<Eigen::Matrix<double, 3, 4, Eigen::RowMajor>> out(jacobian);
+  out = tangent * AmbientFromTangent(q.data()) / norm;
+}
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_SOLVERS_RIGHT_QUATERNION_MANIFOLD_H_

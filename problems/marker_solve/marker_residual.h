@@ -29,6 +29,7 @@
 #include <ceres/cost_function.h>
 #include <Eigen/Core>
 
+#include "kinematics/chain_kinematics.h"
 #include "kinematics/marker_set.h"
 #include "kinematics/skeleton.h"
 
@@ -44,7 +45,7 @@ class MarkerResidual : public ceres::CostFunction {
                 double** jacobians) const override;
 
   // chain(m): the joint of each rotation parameter block 1..n.
-  const std::vector<int>& joints() const { return chain_; }
+  const std::vector<int>& joints() const { return chain_.joints; }
   int marker() const { return marker_; }
 
  private:
@@ -53,8 +54,7 @@ class MarkerResidual : public ceres::CostFunction {
   int marker_;
   const Eigen::Vector3d* observed_;
   double weight_;
-  std::vector<int> chain_;        // Joint of each rotation block.
-  std::vector<int> parent_slot_;  // Slot of each chain joint's parent (-1 for the root).
+  JointChain chain_;              // Joint of each rotation block.
   std::vector<int> attachment_slot_;  // Slot of each attachment's joint.
 };
 

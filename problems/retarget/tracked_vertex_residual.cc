@@ -34,17 +34,14 @@ TrackedVertexResidual::TrackedVertexResidual(const Skeleton* skeleton, const Ski
                                              int vertex, bool track_position,
                                              const Eigen::Vector3d* goal, double scale)
     : skeleton_(skeleton), vertex_(vertex), track_position_(track_position), goal_(goal),
-      scale_(scale), chain_(VertexChain(*skeleton, *mesh, vertex)) {
-  CHECK_LE(static_cast<int>(chain_.size()), kMaxChain) << "skeleton deeper than supported";
+      scale_(scale), chain_(*skeleton, VertexChain(*skeleton, *mesh, vertex)) {
+  CHECK_LE(chain_.size(), kMaxChain) << "skeleton deeper than supported";
   CHECK_LE(mesh->weight_end(vertex) - mesh->weight_begin(vertex), kMaxInfluences);
   CHECK(track_position || mesh->has_normals());
   set_num_residuals(3);
   mutable_parameter_block_sizes()->push_back(3);
-  for (size_t s = 0; s < chain_.size(); ++s) mutable_parameter_block_sizes()->push_back(4);
-  auto slot_of = [this](int joint) {
-    return static_cast<int>(std::lower_bound(chain_.begin(), chain_.end(), joint) - chain_.begin());
-  };
-  for (int j : chain_) parent_slot_.push_back(skeleton->parent(j) < 0 ? -1 : slot_of(skeleton->parent(j)));
+  for (int s = 0; s < chain_.size(); ++s) mutable_parameter_block_sizes()->push_back(4);
+  auto slot_of = [this](int joint) { return chain_.slot(joint); };
   for (int k = mesh->weight_begin(vertex); k < mesh->weight_end(vertex); ++k) {
     const int b = mesh->weight_joint(k);
     const Eigen::Isometry3d& joint_from_bind = mesh->joint_from_bind(b);
@@ -60,26 +57,10 @@ TrackedVertexResidual::TrackedVertexResidual(const Skeleton* skeleton, const Ski
 
 bool TrackedVertexResidual::Evaluate(double const* const* parameters, double* residuals,
                                      double** jacobians) const {
-  const int n = static_cast<int>(chain_.size());
+  const int n = chain_.size();
   Eigen::Matrix3d rotation[kMaxChain];
   Eigen::Vector3d position[kMaxChain];
-  for (int s = 0; s < n; ++s) {
-    const int j = chain_[s];
-    Eigen::Quaterniond local = Eigen::Map<const Eigen::Quaterniond>(parameters[1 + s]);
-    const double norm = local.norm();
-    if (!(norm > 0.0)) return false;
-    local.coeffs() /= norm;
-    if (skeleton_->has_rest_rotation(j)) local = skeleton_->rest_rotation(j) * local;
-    const Eigen::Matrix3d local_matrix = local.toRotationMatrix();
-    if (parent_slot_[s] < 0) {
-      position[s] = Eigen::Map<const Eigen::Vector3d>(parameters[0]);
-      rotation[s] = local_matrix;
-    } else {
-      const int p = parent_slot_[s];
-      position[s] = position[p] + rotation[p] * skeleton_->offset(j);
-      rotation[s] = rotation[p] * local_matrix;
-    }
-  }
+  if (!ChainForwardKinematics(*skeleton_, chain_, parameters, rotation, position)) return false;
   // p_b (position) or R_b y_b (normal), one per influence.
   Eigen::Vector3d terms[kMaxInfluences];
   Eigen::Vector3d x = Eigen::Vector3d::Zero();
@@ -106,20 +87,15 @@ bool TrackedVertexResidual::Evaluate(double const* const* parameters, double* re
   }
   for (int s = 0; s < n; ++s) {
     if (jacobians[1 + s] == nullptr) continue;
-    const int j = chain_[s];
+    const int j = chain_.joints[s];
     Eigen::Vector3d lever = Eigen::Vector3d::Zero();  // sum w_b (o_j - p_b) or -sum w_b n_b.
     for (int k = 0; k < ni; ++k) {
-      if (skeleton_->IsAncestorOrSelf(j, chain_[influences_[k].slot])) {
+      if (skeleton_->IsAncestorOrSelf(j, chain_.joints[influences_[k].slot])) {
         lever += influences_[k].weight *
                  (track_position_ ? Eigen::Vector3d(position[s] - terms[k]) : Eigen::Vector3d(-terms[k]));
       }
     }
-    const Eigen::Matrix3d tangent = scale_ * SkewSymmetric(lever) * rotation[s];
-    Eigen::Map<Eigen::Matrix<double, 3, 4, Eigen::RowMajor>> jq(jacobians[1 + s]);
-    Eigen::Vector4d q = Eigen::Map<const Eigen::Vector4d>(parameters[1 + s]);
-    const double norm = q.norm();
-    q /= norm;
-    jq = tangent * AmbientFromTangent(q.data()) / norm;
+    AmbientJacobianOfNormalized(scale_ * SkewSymmetric(lever) * rotation[s], parameters[1 + s], jacobians[1 + s]);
   }
   return true;
 }

@@ -40,6 +40,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "kinematics/chain_kinematics.h"
 #include "kinematics/skeleton.h"
 #include "kinematics/skinned_mesh.h"
 
@@ -58,7 +59,7 @@ class TrackedVertexResidual : public ceres::CostFunction {
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
 
-  const std::vector<int>& joints() const { return chain_; }
+  const std::vector<int>& joints() const { return chain_.joints; }
   int vertex() const { return vertex_; }
   bool track_position() const { return track_position_; }
   double scale() const { return scale_; }
@@ -69,8 +70,7 @@ class TrackedVertexResidual : public ceres::CostFunction {
   bool track_position_;
   const Eigen::Vector3d* goal_;
   double scale_;
-  std::vector<int> chain_;
-  std::vector<int> parent_slot_;
+  JointChain chain_;
   struct Influence {
     int slot;
     double weight;
