@@ -353,6 +353,20 @@ class RetargetFrameSolver::Impl {
     }
   }
 
+  // One tracked vertex at the current FK: its residual scale * (x - goal), with x the
+  // weighted sum of its influences' terms (p_b = R_b y_b + o_b, or R_b y_b for a normal),
+  // which are written to terms[] for the Jacobian.
+  Eigen::Vector3d SkinRow(const Row& row, const Eigen::Vector3d& goal, Eigen::Vector3d* terms) const {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (size_t k = 0; k < row.joints.size(); ++k) {
+      const int b = row.joints[k];
+      terms[k] = world_rotations_[b] * row.locals[k];
+      if (row.track_position) terms[k] += world_positions_[b];
+      x += row.weights[k] * terms[k];
+    }
+    return row.scale * (x - goal);
+  }
+
   // Residual rows of the tracked vertices (and, if `jacobian`, their J blocks).
   void SkinAndLinearize(bool jacobian) {
     Eigen::Vector3d terms[32];
@@ -360,14 +374,7 @@ class RetargetFrameSolver::Impl {
     for (int s = 0; s < nt; ++s) {
       const Row& row = rows_[s];
       const int ni = static_cast<int>(row.joints.size());
-      Eigen::Vector3d x = Eigen::Vector3d::Zero();
-      for (int k = 0; k < ni; ++k) {
-        const int b = row.joints[k];
-        terms[k] = world_rotations_[b] * row.locals[k];
-        if (row.track_position) terms[k] += world_positions_[b];
-        x += row.weights[k] * terms[k];
-      }
-      residual_.segment<3>(3 * s) = row.scale * (x - goals_[s]);
+      residual_.segment<3>(3 * s) = SkinRow(row, goals_[s], terms);
       if (!jacobian) continue;
       if (row.track_position) {
         jacobian_.block<3, 3>(3 * s, 0) =
@@ -580,16 +587,7 @@ class RetargetFrameSolver::Impl {
     const int nt = static_cast<int>(rows_.size());
     for (int s = 0; s < nt; ++s) {
       const Row& row = rows_[s];
-      const int ni = static_cast<int>(row.joints.size());
-      Eigen::Vector3d* terms = &terms_[row.term_offset];
-      Eigen::Vector3d x = Eigen::Vector3d::Zero();
-      for (int k = 0; k < ni; ++k) {
-        const int b = row.joints[k];
-        terms[k] = world_rotations_[b] * row.locals[k];
-        if (row.track_position) terms[k] += world_positions_[b];
-        x += row.weights[k] * terms[k];
-      }
-      residual_.segment<3>(3 * s) = row.scale * (x - goals_[s]);
+      residual_.segment<3>(3 * s) = SkinRow(row, goals_[s], &terms_[row.term_offset]);
     }
   }
 
