@@ -23,11 +23,8 @@ Status ReadAnimationNames(const std::string& path, std::vector<std::string>* nam
   const std::string ext = FileExtension(path);
   names->clear();
   if (ext == ".glb" || ext == ".gltf") {
-    GltfDocument document;
-    Status status = GltfDocument::Read(path, &document);
-    if (!status.ok()) return status;
     GltfCharacter character;
-    status = ReadGltfCharacter(document, GltfReadOptions(), &character);
+    Status status = ReadGltfCharacter(path, GltfReadOptions(), &character);
     if (!status.ok()) return status;
     *names = character.animation_names;
   } else if (ext == ".fbx") {
