@@ -5,6 +5,8 @@
 #define MOCAPSOLVE_TESTS_KINEMATICS_TEST_RIGS_H_
 
 #include <random>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -67,6 +69,31 @@ inline Pose RandomPose(const Skeleton& skeleton, std::mt19937* rng, double angle
   pose.translations[0] += Eigen::Vector3d(normal(*rng), normal(*rng), normal(*rng));
   pose.translations[9] += 0.05 * Eigen::Vector3d(normal(*rng), normal(*rng), normal(*rng));
   return pose;
+}
+
+// The poses every residual's Jacobian test sweeps: zero rotation, three random, every
+// joint near pi, every joint at gimbal lock (ZXY, 90 degrees). Non-root translations stay
+// at the skeleton's offsets, as the residuals model them (RandomPose moves joint 9).
+struct NamedPose {
+  Pose pose;
+  std::string name;
+};
+inline std::vector<NamedPose> ResidualPoseSweep(const Skeleton& skeleton, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::vector<NamedPose> samples;
+  samples.push_back({RestPose(skeleton), "zero rotation"});
+  for (int i = 0; i < 3; ++i) samples.push_back({RandomPose(skeleton, &rng), "random"});
+  Pose near_pi = RandomPose(skeleton, &rng);
+  for (auto& q : near_pi.rotations) q = ExpMap(Eigen::Vector3d(0.0, kPi - 1e-7, 0.0));
+  samples.push_back({near_pi, "near pi"});
+  Pose gimbal = RandomPose(skeleton, &rng);
+  for (auto& q : gimbal.rotations) q = QuaternionFromEuler(Eigen::Vector3d(0.4, kPi / 2, 0.2), EulerOrder::kZXY);
+  samples.push_back({gimbal, "gimbal"});
+  const Pose rest = RestPose(skeleton);
+  for (NamedPose& sample : samples) {
+    for (int j = 1; j < skeleton.num_joints(); ++j) sample.pose.translations[j] = rest.translations[j];
+  }
+  return samples;
 }
 
 // A mesh bound at the rest pose: a few vertices per bone, some weighted on 2-4 bones

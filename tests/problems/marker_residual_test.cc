@@ -70,25 +70,6 @@ MarkerSet MakeMarkers(const Skeleton& skeleton) {
   return markers;
 }
 
-struct Sample {
-  Pose pose;
-  std::string name;
-};
-
-std::vector<Sample> SweepPoses(const Skeleton& skeleton) {
-  std::mt19937 rng(17);
-  std::vector<Sample> samples;
-  samples.push_back({RestPose(skeleton), "zero rotation"});
-  for (int i = 0; i < 3; ++i) samples.push_back({testing::RandomPose(skeleton, &rng), "random"});
-  Pose near_pi = testing::RandomPose(skeleton, &rng);
-  for (auto& q : near_pi.rotations) q = ExpMap(Eigen::Vector3d(0.0, kPi - 1e-7, 0.0));
-  samples.push_back({near_pi, "near pi"});
-  Pose gimbal = testing::RandomPose(skeleton, &rng);
-  for (auto& q : gimbal.rotations) q = QuaternionFromEuler(Eigen::Vector3d(0.4, kPi / 2, 0.2), EulerOrder::kZXY);
-  samples.push_back({gimbal, "gimbal"});
-  return samples;
-}
-
 class MarkerResidualTest : public ::testing::Test {
  protected:
   Skeleton skeleton_ = testing::MakeTestSkeleton();
@@ -98,7 +79,7 @@ class MarkerResidualTest : public ::testing::Test {
 
 TEST_F(MarkerResidualTest, GradientCheckerOnTheManifold) {
   RightQuaternionManifold quaternion_manifold;
-  for (const Sample& sample : SweepPoses(skeleton_)) {
+  for (const testing::NamedPose& sample : testing::ResidualPoseSweep(skeleton_, 17)) {
     for (int m = 0; m < markers_.num_markers(); ++m) {
       MarkerResidual residual(&skeleton_, &markers_, m, &observed_, 2.0);
       std::vector<const double*> parameters = {sample.pose.translations[0].data()};
@@ -128,7 +109,7 @@ TEST_F(MarkerResidualTest, GradientCheckerOnTheManifold) {
 }
 
 TEST_F(MarkerResidualTest, MatchesAutodiffTwin) {
-  for (const Sample& sample : SweepPoses(skeleton_)) {
+  for (const testing::NamedPose& sample : testing::ResidualPoseSweep(skeleton_, 17)) {
     for (int m = 0; m < markers_.num_markers(); ++m) {
       MarkerResidual residual(&skeleton_, &markers_, m, &observed_, 2.0);
       auto* twin_functor = new MarkerResidualTwin{&skeleton_, &markers_, m, observed_, 2.0};

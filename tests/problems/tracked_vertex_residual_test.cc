@@ -71,30 +71,6 @@ struct TrackedVertexTwin {
   }
 };
 
-struct Sample {
-  Pose pose;
-  std::string name;
-};
-
-// Non-root translations stay at the skeleton offsets (the residual's model).
-std::vector<Sample> SweepPoses(const Skeleton& skeleton) {
-  std::mt19937 rng(23);
-  std::vector<Sample> samples;
-  samples.push_back({RestPose(skeleton), "zero rotation"});
-  for (int i = 0; i < 3; ++i) samples.push_back({testing::RandomPose(skeleton, &rng), "random"});
-  Pose near_pi = testing::RandomPose(skeleton, &rng);
-  for (auto& q : near_pi.rotations) q = ExpMap(Eigen::Vector3d(0.0, kPi - 1e-7, 0.0));
-  samples.push_back({near_pi, "near pi"});
-  Pose gimbal = testing::RandomPose(skeleton, &rng);
-  for (auto& q : gimbal.rotations) q = QuaternionFromEuler(Eigen::Vector3d(0.4, kPi / 2, 0.2), EulerOrder::kZXY);
-  samples.push_back({gimbal, "gimbal"});
-  const Pose rest = RestPose(skeleton);
-  for (Sample& sample : samples) {
-    for (int j = 1; j < skeleton.num_joints(); ++j) sample.pose.translations[j] = rest.translations[j];
-  }
-  return samples;
-}
-
 class TrackedVertexResidualTest : public ::testing::Test {
  protected:
   TrackedVertexResidualTest() : rng_(5), skeleton_(testing::MakeTestSkeleton()),
@@ -108,7 +84,7 @@ class TrackedVertexResidualTest : public ::testing::Test {
 
 TEST_F(TrackedVertexResidualTest, GradientCheckerOnTheManifold) {
   RightQuaternionManifold quaternion_manifold;
-  for (const Sample& sample : SweepPoses(skeleton_)) {
+  for (const testing::NamedPose& sample : testing::ResidualPoseSweep(skeleton_, 23)) {
     for (int v = 0; v < mesh_.num_vertices(); ++v) {
       for (bool position : {true, false}) {
         TrackedVertexResidual residual(&skeleton_, &mesh_, v, position, &goal_, scale_);
@@ -140,7 +116,7 @@ TEST_F(TrackedVertexResidualTest, GradientCheckerOnTheManifold) {
 }
 
 TEST_F(TrackedVertexResidualTest, MatchesAutodiffTwin) {
-  for (const Sample& sample : SweepPoses(skeleton_)) {
+  for (const testing::NamedPose& sample : testing::ResidualPoseSweep(skeleton_, 23)) {
     for (int v = 0; v < mesh_.num_vertices(); ++v) {
       for (bool position : {true, false}) {
         TrackedVertexResidual residual(&skeleton_, &mesh_, v, position, &goal_, scale_);
@@ -190,7 +166,7 @@ TEST_F(TrackedVertexResidualTest, MatchesAutodiffTwin) {
 // The residual's tangent blocks (ambient Jacobian times PlusJacobian) equal the kinematics
 // layer's exact skinned-vertex Jacobians, column block by column block.
 TEST_F(TrackedVertexResidualTest, AgreesWithKinematicJacobians) {
-  for (const Sample& sample : SweepPoses(skeleton_)) {
+  for (const testing::NamedPose& sample : testing::ResidualPoseSweep(skeleton_, 23)) {
     FkData fk(skeleton_);
     ForwardKinematics(skeleton_, sample.pose, &fk);
     std::vector<Eigen::Isometry3d> transforms;
