@@ -27,6 +27,14 @@ struct Command {
 // Every command, in the order `--help` lists them.
 const std::vector<Command>& AllCommands();
 
+// A command that succeeds but must say more than "done" (pipeline: 3 = the take failed
+// its quality gate, outputs written) sets the exit code main returns after committing
+// the outputs.
+void SetExitCodeOnSuccess(int code);
+
+// The program's version (CMake's project version), for --version and reports.
+const char* Version();
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_APPS_COMMAND_H_

@@ -11,6 +11,7 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "io/atomic_file.h"
+#include "io/file_transaction.h"
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
@@ -19,10 +20,13 @@
 namespace mocapsolve {
 namespace {
 
+int exit_code_on_success = 0;
+
 void PrintCommandList() {
   std::printf(
       "mocapsolve: motion-capture problems as nonlinear least squares.\n\n"
       "usage: mocapsolve <command> [--flags] [arguments]\n"
+      "       mocapsolve --version\n"
       "       mocapsolve <command> --help   (that command's flags)\n\ncommands:\n");
   for (const Command& command : AllCommands()) {
     std::printf("  %-10s %s\n", command.name, command.summary);
@@ -37,6 +41,15 @@ void PrintCommandList() {
 bool EndsWith(const std::string& text, const std::string& suffix) {
   return text.size() >= suffix.size() &&
          text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// A default as people write it: 1e-06 and 0.25, not gflags' 9.9999999999999995e-07.
+std::string ShownDefault(const gflags::CommandLineFlagInfo& flag) {
+  if (flag.type == "string") return "\"" + flag.default_value + "\"";
+  if (flag.type != "double") return flag.default_value;
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", std::strtod(flag.default_value.c_str(), nullptr));
+  return text;
 }
 
 void PrintCommandHelp(const Command& command) {
@@ -56,9 +69,7 @@ void PrintCommandHelp(const Command& command) {
     if (!own && !common) continue;
     if (!header) std::printf("flags:\n"), header = true;
     std::printf("  --%s (%s) default: %s\n      %s\n", flag.name.c_str(), flag.type.c_str(),
-                flag.type == "string" ? ("\"" + flag.default_value + "\"").c_str()
-                                      : flag.default_value.c_str(),
-                flag.description.c_str());
+                ShownDefault(flag).c_str(), flag.description.c_str());
   }
 }
 
@@ -161,6 +172,48 @@ Status WriteReport(const JsonObject& report) {
   return WriteFileAtomically(FLAGS_report, report.ToString() + "\n");
 }
 
+// Early, before any work: --report and --plot must not name a file that another argument
+// names (an input, or another output). The FileTransaction checks every output again
+// when it is written; this only spares a long run that would end in that error.
+Status CheckReportPaths(const std::vector<std::string>& positional) {
+  std::vector<gflags::CommandLineFlagInfo> flags;
+  gflags::GetAllFlags(&flags);
+  for (const char* name : {"report", "plot"}) {
+    gflags::CommandLineFlagInfo output;
+    if (!gflags::GetCommandLineFlagInfo(name, &output) || output.current_value.empty()) continue;
+    const std::string& path = output.current_value;
+    auto same = [&](const std::string& other) {
+      return other == path || SameFile(other, path);
+    };
+    for (const auto& flag : flags) {
+      if (flag.is_default || flag.type != "string" || flag.name == name) continue;
+      if (same(flag.current_value)) {
+        return Status::Error("--" + std::string(name) + "=" + path + ": names the same file as --" + flag.name);
+      }
+    }
+    for (const std::string& argument : positional) {
+      if (same(argument)) return Status::Error("--" + std::string(name) + "=" + path + ": names the same file as " + argument);
+    }
+  }
+  return Status::Ok();
+}
+
+// A failed run still answers --report, so a pipeline reads failures as it reads results:
+// {"status": "error", "command", "version", "message"}. Written outside the failed
+// transaction (whose outputs are dropped); not over an input or another argument's file.
+void WriteFailureReport(const char* command, const std::string& message,
+                        const std::vector<std::string>& positional, const FileTransaction& files) {
+  if (FLAGS_report.empty() || !CheckReportPaths(positional).ok() || files.NamesAnInput(FLAGS_report)) return;
+  JsonObject report;
+  report.Add("status", "error").Add("command", command).Add("version", Version()).Add("message", message);
+  StagedFile staged;
+  if (StagedFile::Create(FLAGS_report, report.ToString() + "\n", &staged).ok()) (void)staged.Publish();
+}
+
+void SetExitCodeOnSuccess(int code) { exit_code_on_success = code; }
+
+const char* Version() { return MOCAPSOLVE_VERSION; }
+
 Status CheckNotAnInput(const std::string& output, const std::string& input) {
   if (output == input || SameFile(output, input)) {
     return Status::Error(output + ": output would overwrite the input " + input);
@@ -172,6 +225,10 @@ Status CheckNotAnInput(const std::string& output, const std::string& input) {
 
 int main(int argc, char** argv) {
   using mocapsolve::AllCommands;
+  if (argc >= 2 && (std::strcmp(argv[1], "--version") == 0 || std::strcmp(argv[1], "version") == 0)) {
+    std::printf("mocapsolve %s\n", mocapsolve::Version());
+    return 0;
+  }
   if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0 ||
       std::strcmp(argv[1], "help") == 0) {
     mocapsolve::PrintCommandList();
@@ -208,10 +265,16 @@ int main(int argc, char** argv) {
   FLAGS_logtostderr = true;
   google::InitGoogleLogging(argv[0]);
   const std::vector<std::string> positional(data + 1, data + count);
-  const mocapsolve::Status status = command->run(positional);
+  // Every file the command reads is an input no output may overwrite; its outputs are
+  // published together when it succeeds, and none of them when it fails.
+  mocapsolve::FileTransaction files;
+  mocapsolve::Status status = mocapsolve::CheckReportPaths(positional);
+  if (status.ok()) status = command->run(positional);
+  if (status.ok()) status = files.Commit();
+  if (!status.ok()) mocapsolve::WriteFailureReport(command->name, status.message(), positional, files);
   if (!status.ok()) {
     std::fprintf(stderr, "mocapsolve %s: %s\n", command->name, status.message().c_str());
     return 1;
   }
-  return 0;
+  return mocapsolve::exit_code_on_success;
 }

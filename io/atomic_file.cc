@@ -1,34 +1,161 @@
 #include "io/atomic_file.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <utility>
+
+#include "io/file_transaction.h"
 
 namespace mocapsolve {
+namespace {
 
-Status WriteFileAtomically(const std::string& path, const std::string& contents) {
-  const std::string temp = path + ".tmp." + std::to_string(::getpid());
-  FILE* file = std::fopen(temp.c_str(), "wb");
-  if (file == nullptr) {
-    return Status::Error(path + ": cannot write (" + std::strerror(errno) + ")");
+std::string Reason() { return std::strerror(errno); }
+
+std::string FolderOf(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+// Writes all of `bytes` to `fd`, retrying short writes and EINTR.
+bool WriteAll(int fd, const std::string& bytes) {
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<size_t>(n);
   }
-  const bool written = std::fwrite(contents.data(), 1, contents.size(), file) == contents.size();
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) {
-    std::remove(temp.c_str());
-    return Status::Error(path + ": write failed (" + std::strerror(errno) + ")");
+  return true;
+}
+
+// A name no other writer of this process or another uses at the same time.
+std::string TemporaryName(const std::string& path) {
+  static std::atomic<int> counter{0};
+  return path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+}
+
+}  // namespace
+
+Status StagedFile::Create(const std::string& path, const std::string& contents, StagedFile* staged) {
+  staged->Discard();
+  staged->path_ = path;
+  if (path.empty() || path.back() == '/') return Status::Error("'" + path + "': expected a file name");
+  struct stat st;
+  if (::stat(path.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) return Status::Error(path + ": is a directory");
+    if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) {
+      staged->stream_ = true;
+      staged->stream_bytes_ = contents;
+      return Status::Ok();
+    }
+    if (!S_ISREG(st.st_mode)) return Status::Error(path + ": not a regular file");
   }
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(temp.c_str());
-    return Status::Error(path + ": cannot replace (" + reason + ")");
+  const std::string folder = FolderOf(path);
+  // The unnamed file can only be named later through /proc/self/fd.
+  if (::access("/proc/self/fd", X_OK) == 0) {
+    staged->fd_ = ::open(folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  }
+  if (staged->fd_ < 0) {
+    if (errno != EOPNOTSUPP && errno != EISDIR && errno != EINVAL && errno != ENOENT &&
+        errno != 0) {
+      return Status::Error(path + ": cannot write (" + Reason() + ")");
+    }
+    // No O_TMPFILE here (or the folder is missing: the named attempt says so).
+    staged->named_temp_ = TemporaryName(path);
+    staged->fd_ = ::open(staged->named_temp_.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0666);
+    if (staged->fd_ < 0) {
+      const std::string reason = Reason();
+      staged->named_temp_.clear();
+      return Status::Error(path + ": cannot write (" + reason + ")");
+    }
+  }
+  if (!WriteAll(staged->fd_, contents)) {
+    const std::string reason = Reason();
+    staged->Discard();
+    return Status::Error(path + ": write failed (" + reason + ")");
   }
   return Status::Ok();
+}
+
+Status StagedFile::Publish() {
+  if (stream_) {
+    const int fd = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0) return Status::Error(path_ + ": cannot write (" + Reason() + ")");
+    const bool written = WriteAll(fd, stream_bytes_);
+    const std::string reason = Reason();
+    const bool closed = ::close(fd) == 0;
+    stream_ = false;
+    stream_bytes_.clear();
+    if (!written || !closed) return Status::Error(path_ + ": write failed (" + reason + ")");
+    return Status::Ok();
+  }
+  if (fd_ < 0) return Status::Error(path_ + ": nothing staged");
+  if (named_temp_.empty()) {
+    // Name the unnamed file, then move the name over the target in one step.
+    const std::string temp = TemporaryName(path_);
+    const std::string proc = "/proc/self/fd/" + std::to_string(fd_);
+    if (::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD, temp.c_str(), AT_SYMLINK_FOLLOW) != 0) {
+      const std::string reason = Reason();
+      Discard();
+      return Status::Error(path_ + ": cannot write (" + reason + ")");
+    }
+    named_temp_ = temp;
+  }
+  if (::close(fd_) != 0) {
+    fd_ = -1;
+    const std::string reason = Reason();
+    Discard();
+    return Status::Error(path_ + ": write failed (" + reason + ")");
+  }
+  fd_ = -1;
+  if (std::rename(named_temp_.c_str(), path_.c_str()) != 0) {
+    const std::string reason = Reason();
+    Discard();
+    return Status::Error(path_ + ": cannot replace (" + reason + ")");
+  }
+  named_temp_.clear();
+  return Status::Ok();
+}
+
+void StagedFile::Discard() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (!named_temp_.empty()) ::unlink(named_temp_.c_str());
+  named_temp_.clear();
+  stream_ = false;
+  stream_bytes_.clear();
+}
+
+StagedFile::~StagedFile() { Discard(); }
+
+StagedFile::StagedFile(StagedFile&& other) noexcept { *this = std::move(other); }
+
+StagedFile& StagedFile::operator=(StagedFile&& other) noexcept {
+  if (this == &other) return *this;
+  Discard();
+  path_ = std::move(other.path_);
+  fd_ = std::exchange(other.fd_, -1);
+  named_temp_ = std::move(other.named_temp_);
+  other.named_temp_.clear();
+  stream_ = std::exchange(other.stream_, false);
+  stream_bytes_ = std::move(other.stream_bytes_);
+  return *this;
+}
+
+Status WriteFileAtomically(const std::string& path, const std::string& contents) {
+  if (FileTransaction* transaction = FileTransaction::Current()) return transaction->Stage(path, contents);
+  StagedFile staged;
+  Status status = StagedFile::Create(path, contents, &staged);
+  return status.ok() ? staged.Publish() : status;
 }
 
 Status ReadFileToString(const std::string& path, std::string* contents) {
@@ -37,6 +164,7 @@ Status ReadFileToString(const std::string& path, std::string* contents) {
     return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
   }
   if (S_ISDIR(st.st_mode)) return Status::Error(path + ": is a directory");
+  NoteInputFile(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
   std::ostringstream buffer;
@@ -44,6 +172,10 @@ Status ReadFileToString(const std::string& path, std::string* contents) {
   if (in.bad()) return Status::Error(path + ": read failed");
   *contents = buffer.str();
   return Status::Ok();
+}
+
+void NoteInputFile(const std::string& path) {
+  if (FileTransaction* transaction = FileTransaction::Current()) transaction->RecordInput(path);
 }
 
 bool SameFile(const std::string& a, const std::string& b) {

@@ -1,6 +1,12 @@
-// Atomic output: every writer in io/ builds its file in memory and hands it here. The
-// bytes go to a temporary file beside the target, which is then renamed over it, so a
-// reader never sees a partial file and a failed write leaves no output behind.
+// Atomic output: every writer in io/ builds its file in memory and hands it to
+// WriteFileAtomically. The bytes go to a temporary file beside the target, which is then
+// renamed over it, so a reader never sees a partial file and a failed write leaves no
+// output behind. Inside a FileTransaction (io/file_transaction.h; apps/main.cc opens one
+// per command) the rename waits for the transaction's Commit, which also refuses outputs
+// that would overwrite an input or each other.
+//
+// An existing character device or FIFO (/dev/null, /dev/full, a pipe) is written into,
+// never replaced by a regular file; a directory or another special file is an error.
 #ifndef MOCAPSOLVE_IO_ATOMIC_FILE_H_
 #define MOCAPSOLVE_IO_ATOMIC_FILE_H_
 
@@ -12,11 +18,48 @@ namespace mocapsolve {
 
 Status WriteFileAtomically(const std::string& path, const std::string& contents);
 
-// Reads a whole file; the error names the path.
+// Reads a whole file; the error names the path. Inside a FileTransaction the file is
+// recorded as an input.
 Status ReadFileToString(const std::string& path, std::string* contents);
+
+// Records a file that a third-party library reads by itself (a glTF's external buffers)
+// as an input of the open FileTransaction, if any.
+void NoteInputFile(const std::string& path);
 
 // True if both paths name the same existing file (used to refuse overwriting an input).
 bool SameFile(const std::string& a, const std::string& b);
+
+// An output written but not yet visible: an unnamed temporary file in the target's
+// folder (O_TMPFILE; a named "<target>.tmp.<pid>.<n>" where the file system lacks it),
+// or, for a target that is a character device or FIFO, the bytes held for writing into
+// it. Publish() gives the file its name (or writes the stream); the destructor drops an
+// unpublished file.
+class StagedFile {
+ public:
+  // Errors (one line, naming `path`): a missing or unwritable folder, a full disk, a
+  // directory or special file as the target.
+  static Status Create(const std::string& path, const std::string& contents, StagedFile* staged);
+
+  StagedFile() = default;
+  ~StagedFile();
+  StagedFile(StagedFile&& other) noexcept;
+  StagedFile& operator=(StagedFile&& other) noexcept;
+  StagedFile(const StagedFile&) = delete;
+  StagedFile& operator=(const StagedFile&) = delete;
+
+  Status Publish();
+  const std::string& path() const { return path_; }
+  bool is_stream() const { return stream_; }
+
+ private:
+  void Discard();
+
+  std::string path_;
+  int fd_ = -1;                // The unnamed (or named) temporary file.
+  std::string named_temp_;     // Non-empty when the temporary file has a name.
+  bool stream_ = false;        // The target is a character device or FIFO.
+  std::string stream_bytes_;   // What a stream target receives.
+};
 
 }  // namespace mocapsolve
 

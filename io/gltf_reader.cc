@@ -337,7 +337,16 @@ Status GltfDocument::Read(const std::string& path, GltfDocument* document) {
   if (!status.ok()) return status;
   const size_t slash = path.find_last_of('/');
   const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash);
-  return Parse(bytes, path, dir, document);
+  status = Parse(bytes, path, dir, document);
+  if (!status.ok()) return status;
+  // tinygltf read the external buffers and images itself: they are inputs too.
+  for (const tinygltf::Buffer& buffer : document->model().buffers) {
+    if (!buffer.uri.empty() && buffer.uri.rfind("data:", 0) != 0) NoteInputFile(dir + "/" + buffer.uri);
+  }
+  for (const tinygltf::Image& image : document->model().images) {
+    if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) NoteInputFile(dir + "/" + image.uri);
+  }
+  return Status::Ok();
 }
 
 Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& options,

@@ -210,6 +210,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     clock.Lap("Reference solve (robust clip)");
   }
   report->naive_rms = RmsOver(skeleton, markers, naive, observed);
+  report->naive_unconverged_frames = sequence.unconverged_frames;
   report->reference_rms = RmsOver(skeleton, markers, reference, observed);
   // 3. Marker reconstruction.
   Observations reconstructed(observed.size(), std::vector<Eigen::Vector3d>(markers.num_markers()));

@@ -75,6 +75,7 @@ struct RepairReport {
   int trimmed_samples = 0, removed_track_samples = 0, polynomial_samples = 0;
   double naive_rms = 0.0, reference_rms = 0.0, repaired_rms = 0.0;  // Skeleton units.
   int resolved_frames = 0;  // Frames step 7 solved again (the others are Y's).
+  int naive_unconverged_frames = 0;  // Frames whose naive solve stopped at the iteration limit.
 };
 
 // What the pipeline computed on the way, for evaluation (repair_evaluation.h).

@@ -1,0 +1,61 @@
+// A command's files as one transaction: its inputs are never overwritten, and its
+// outputs appear together or not at all.
+//
+// While a FileTransaction is open (apps/main.cc opens one around every command):
+//   - every file read through ReadFileToString (io/atomic_file.h), which every reader in
+//     io/ uses, is recorded as an input (by path and by device/inode, so a symlink or a
+//     hard link to an input counts as the input);
+//   - every WriteFileAtomically is staged: its bytes go at once to an unnamed temporary
+//     file in the target's folder (Linux O_TMPFILE; a named ".tmp" file where the file
+//     system lacks it), so a full disk or an unwritable folder is reported at once and a
+//     process killed while writing leaves nothing behind. Staging an output that names an
+//     input, or the same file as an earlier output, is an error.
+//   - Commit() checks the whole set again (an input read after an output was staged
+//     counts too), then writes the outputs that are streams (an existing character device
+//     or FIFO such as /dev/null: written into, never replaced by a regular file), then
+//     gives each staged file its name (link to a temporary name, rename over the target).
+//     Only that last loop of renames can be cut short by a SIGKILL.
+//   - Without Commit (the command failed), the destructor drops every staged file.
+// With no transaction open (library use, tests), WriteFileAtomically writes and renames
+// at once, as before.
+#ifndef MOCAPSOLVE_IO_FILE_TRANSACTION_H_
+#define MOCAPSOLVE_IO_FILE_TRANSACTION_H_
+
+#include <memory>
+#include <string>
+
+#include "kinematics/status.h"
+
+namespace mocapsolve {
+
+class FileTransaction {
+ public:
+  // Becomes the process's current transaction; one at a time (CHECKed).
+  FileTransaction();
+  ~FileTransaction();
+  FileTransaction(const FileTransaction&) = delete;
+  FileTransaction& operator=(const FileTransaction&) = delete;
+
+  // Publishes every staged output (see above). Errors name the file; on an error before
+  // the renames begin nothing has been published.
+  Status Commit();
+
+  // The open transaction, or nullptr. Used by io/atomic_file.cc.
+  static FileTransaction* Current();
+
+  // Hooks for io/atomic_file.cc.
+  void RecordInput(const std::string& path);
+  Status Stage(const std::string& path, const std::string& contents);
+
+  int num_staged() const;
+  // True if `path` names a file recorded as an input (by name or device/inode).
+  bool NamesAnInput(const std::string& path) const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_IO_FILE_TRANSACTION_H_

@@ -1,0 +1,52 @@
+// The quality gate: does a take's result deserve to go on without a person looking?
+// Every take's report states pass or fail against thresholds; `pipeline` exits 3 on a
+// failed gate (its outputs are still written, flagged in the report).
+//
+// The figures are chosen so that a low residual cannot hide a wrong result:
+//   naive marker RMS      the plain per-frame solve on the raw markers (mm): a subject
+//                         whose marker set does not fit the actor shows here first
+//                         (CMU 02_05 with another subject's set: ~50 mm; with its own: ~8);
+//   repaired marker RMS   the final solve on the repaired markers (mm);
+//   repaired share        repaired samples / all samples of the subject's markers: a
+//                         repair that rewrites much of the take is rebuilding, not cleaning;
+//   iteration-limit share frames whose solve stopped at the iteration limit;
+//   max marker offset     the subject's largest marker-to-joint distance (cm): a fit that
+//                         bought its residual with absurd offsets.
+// A threshold <= 0 (or, for shares, >= 1) turns that check off.
+#ifndef MOCAPSOLVE_PIPELINE_QUALITY_GATE_H_
+#define MOCAPSOLVE_PIPELINE_QUALITY_GATE_H_
+
+#include <string>
+#include <vector>
+
+namespace mocapsolve {
+
+struct QualityGate {
+  double max_naive_rms_mm = 30.0;
+  double max_repaired_rms_mm = 20.0;
+  double max_repaired_share = 0.25;
+  double max_iteration_limit_share = 0.2;
+  double max_marker_offset_cm = 20.0;
+
+  bool IsValid(std::string* error) const;
+};
+
+struct QualityFigures {
+  double naive_rms_mm = 0.0;
+  double repaired_rms_mm = 0.0;
+  double repaired_share = 0.0;
+  double iteration_limit_share = 0.0;
+  double max_marker_offset_cm = 0.0;
+};
+
+struct QualityVerdict {
+  bool pass = true;
+  // One line per failed check: "repaired marker RMS 23.1 mm > 20 mm".
+  std::vector<std::string> failures;
+};
+
+QualityVerdict CheckQuality(const QualityGate& gate, const QualityFigures& figures);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PIPELINE_QUALITY_GATE_H_

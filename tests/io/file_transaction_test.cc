@@ -1,0 +1,214 @@
+// FileTransaction and StagedFile (io/file_transaction.h, io/atomic_file.h): inputs are
+// never overwritten, outputs appear together or not at all, nothing partial is left
+// behind, streams are written into rather than replaced.
+#include "io/file_transaction.h"
+
+#include <dirent.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <set>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "io/atomic_file.h"
+#include "tests/test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+using ::testing::HasSubstr;
+
+void WriteNow(const std::string& path, const std::string& text) {
+  ASSERT_TRUE(WriteFileAtomically(path, text).ok()) << path;
+}
+
+std::string Folder(const std::string& path) { return path.substr(0, path.find_last_of('/')); }
+
+// The names in a folder (without . and ..).
+std::set<std::string> Listing(const std::string& folder) {
+  std::set<std::string> names;
+  DIR* dir = ::opendir(folder.c_str());
+  if (dir == nullptr) return names;
+  while (dirent* entry = ::readdir(dir)) {
+    const std::string name = entry->d_name;
+    if (name != "." && name != "..") names.insert(name);
+  }
+  ::closedir(dir);
+  return names;
+}
+
+TEST(FileTransaction, OutputsAppearOnlyAtCommit) {
+  const std::string a = testing::TempPath("a.txt"), b = testing::TempPath("b.txt");
+  FileTransaction files;
+  ASSERT_TRUE(WriteFileAtomically(a, "alpha").ok());
+  ASSERT_TRUE(WriteFileAtomically(b, "beta").ok());
+  EXPECT_FALSE(testing::FileExists(a));
+  EXPECT_FALSE(testing::FileExists(b));
+  EXPECT_EQ(files.num_staged(), 2);
+  ASSERT_TRUE(files.Commit().ok());
+  EXPECT_EQ(testing::ReadTextFile(a), "alpha");
+  EXPECT_EQ(testing::ReadTextFile(b), "beta");
+  EXPECT_EQ(Listing(Folder(a)), (std::set<std::string>{"a.txt", "b.txt"}));  // No temporaries.
+}
+
+TEST(FileTransaction, FailedCommandPublishesNothingAndLeavesNothing) {
+  const std::string a = testing::TempPath("a.txt");
+  WriteNow(a, "old");
+  {
+    FileTransaction files;
+    ASSERT_TRUE(WriteFileAtomically(a, "new").ok());
+    // No Commit: the command failed.
+  }
+  EXPECT_EQ(testing::ReadTextFile(a), "old");
+  EXPECT_EQ(Listing(Folder(a)), (std::set<std::string>{"a.txt"}));
+}
+
+TEST(FileTransaction, RefusesToOverwriteAnInput) {
+  const std::string input = testing::TempPath("set.json");
+  WriteNow(input, "{\"markers\": []}");
+  FileTransaction files;
+  std::string text;
+  ASSERT_TRUE(ReadFileToString(input, &text).ok());
+  const Status status = WriteFileAtomically(input, "report");
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("would overwrite the input"));
+  EXPECT_EQ(status.message().find('\n'), std::string::npos);
+  EXPECT_TRUE(files.Commit().ok());
+  EXPECT_EQ(testing::ReadTextFile(input), "{\"markers\": []}");
+}
+
+TEST(FileTransaction, RefusesInputsUnderOtherNames) {
+  const std::string input = testing::TempPath("take.c3d");
+  WriteNow(input, "bytes");
+  const std::string folder = Folder(input);
+  const std::string link = folder + "/link.c3d", hard = folder + "/hard.c3d";
+  ASSERT_EQ(::symlink(input.c_str(), link.c_str()), 0);
+  ASSERT_EQ(::link(input.c_str(), hard.c_str()), 0);
+  FileTransaction files;
+  std::string text;
+  ASSERT_TRUE(ReadFileToString(input, &text).ok());
+  for (const std::string& output : {link, hard, folder + "/./take.c3d", folder + "/../" +
+                                    folder.substr(folder.find_last_of('/') + 1) + "/take.c3d"}) {
+    EXPECT_FALSE(WriteFileAtomically(output, "x").ok()) << output;
+  }
+  EXPECT_EQ(testing::ReadTextFile(input), "bytes");
+}
+
+TEST(FileTransaction, InputReadAfterStagingIsCheckedAtCommit) {
+  const std::string path = testing::TempPath("late.txt");
+  WriteNow(path, "input");
+  FileTransaction files;
+  ASSERT_TRUE(WriteFileAtomically(path, "output").ok());
+  std::string text;
+  ASSERT_TRUE(ReadFileToString(path, &text).ok());
+  EXPECT_EQ(text, "input");
+  const Status status = files.Commit();
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("would overwrite the input"));
+  EXPECT_EQ(testing::ReadTextFile(path), "input");
+}
+
+TEST(FileTransaction, TwoOutputsOnOnePathAreAnError) {
+  const std::string out = testing::TempPath("x.bvh");
+  FileTransaction files;
+  ASSERT_TRUE(WriteFileAtomically(out, "HIERARCHY").ok());
+  const Status status = WriteFileAtomically(Folder(out) + "/./x.bvh", "{}");
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("named twice as an output"));
+}
+
+TEST(FileTransaction, StreamsAreWrittenIntoNotReplaced) {
+  {
+    FileTransaction files;
+    ASSERT_TRUE(WriteFileAtomically("/dev/null", "nothing").ok());
+    ASSERT_TRUE(files.Commit().ok());
+  }
+  struct stat st;
+  ASSERT_EQ(::stat("/dev/null", &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode));
+  // A full disk: the error names the file, and the regular outputs are not published.
+  const std::string other = testing::TempPath("other.txt");
+  FileTransaction files;
+  ASSERT_TRUE(WriteFileAtomically(other, "x").ok());
+  ASSERT_TRUE(WriteFileAtomically("/dev/full", "x").ok());
+  const Status status = files.Commit();
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("/dev/full"));
+  EXPECT_FALSE(testing::FileExists(other));
+}
+
+TEST(FileTransaction, UnwritableTargetsFailAtOnce) {
+  FileTransaction files;
+  EXPECT_FALSE(WriteFileAtomically(testing::TempPath("no/such/folder/x.json"), "x").ok());
+  EXPECT_FALSE(WriteFileAtomically(Folder(testing::TempPath("d.json")), "x").ok());  // A directory.
+  // A read-only file system (root may write anywhere else).
+  const Status status = WriteFileAtomically("/proc/mocapsolve_test.json", "x");
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("/proc/mocapsolve_test.json: cannot write"));
+}
+
+TEST(FileTransaction, WithoutATransactionWritesAtOnce) {
+  const std::string path = testing::TempPath("now.txt");
+  WriteNow(path, "now");
+  EXPECT_EQ(testing::ReadTextFile(path), "now");
+  EXPECT_EQ(Listing(Folder(path)), (std::set<std::string>{"now.txt"}));
+}
+
+// A process killed at any moment while writing a large output: the old output stays
+// whole or the new one is whole, and no other file appears.
+TEST(FileTransaction, KilledWhileWritingLeavesOldOrNewWhole) {
+  const std::string path = testing::TempPath("big.bin");
+  const std::string old_text = "old output";
+  WriteNow(path, old_text);
+  const std::string new_text(48 << 20, 'n');
+  for (int delay_us : {0, 2000, 20000, 200000}) {
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      FileTransaction files;
+      if (!WriteFileAtomically(path, new_text).ok()) ::_exit(2);
+      if (!files.Commit().ok()) ::_exit(3);
+      ::_exit(0);
+    }
+    ::usleep(delay_us);
+    ::kill(child, SIGKILL);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    const std::string now = testing::ReadTextFile(path);
+    EXPECT_TRUE(now == old_text || now == new_text) << "delay " << delay_us << " us: " << now.size() << " bytes";
+    EXPECT_EQ(Listing(Folder(path)), (std::set<std::string>{"big.bin"})) << "delay " << delay_us << " us";
+    WriteNow(path, old_text);
+  }
+}
+
+// Two processes writing the same output at once: one wins, whole.
+TEST(FileTransaction, ConcurrentWritersOneWinsWhole) {
+  const std::string path = testing::TempPath("shared.bin");
+  const std::string a(8 << 20, 'a'), b(8 << 20, 'b');
+  pid_t children[2];
+  for (int i = 0; i < 2; ++i) {
+    children[i] = ::fork();
+    ASSERT_GE(children[i], 0);
+    if (children[i] == 0) {
+      FileTransaction files;
+      const bool ok = WriteFileAtomically(path, i == 0 ? a : b).ok() && files.Commit().ok();
+      ::_exit(ok ? 0 : 1);
+    }
+  }
+  for (pid_t child : children) {
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  }
+  const std::string now = testing::ReadTextFile(path);
+  EXPECT_TRUE(now == a || now == b);
+  EXPECT_EQ(Listing(Folder(path)), (std::set<std::string>{"shared.bin"}));
+}
+
+}  // namespace
+}  // namespace mocapsolve
