@@ -305,6 +305,11 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   }
   for (const std::string& joint : retarget.plant_joints) plant_joints.push_back(joint);
   const Skeleton& source_joints = use_source_mesh ? source_character.skeleton : source_skeleton;
+  JsonObject joint_map;
+  for (int j = 0; j < source_joints.num_joints(); ++j) {
+    const int t = retarget.joint_map.target_of_source[j];
+    if (t >= 0) joint_map.Add(source_joints.name(j), target.skeleton.name(t));
+  }
   report.Add("command", "retarget")
       .Add("source", FLAGS_source)
       .Add("source_animation", FLAGS_source_animation)
@@ -321,6 +326,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
       .Add("source_joints", source_joints.num_joints())
       .Add("target_joints", target.skeleton.num_joints())
       .Add("mapped_joints", retarget.joint_map.num_mapped())
+      .Add("joint_map", joint_map)
       .Add("rest_alignment_mean_bone_angle_deg", retarget.mean_bone_angle_deg)
       .Add("tracked_vertices", static_cast<int>(setup.tracked.size()))
       .Add("position_tracked", positions)

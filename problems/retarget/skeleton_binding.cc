@@ -13,12 +13,22 @@
 namespace mocapsolve {
 namespace {
 
-// argmin_R sum |R u_i - v_i|^2 over unit vectors (Kabsch), or the minimal rotation for one.
+// argmin_R sum |R u_i - v_i|^2 over unit vectors (Kabsch), or the minimal rotation taking
+// the mean u to the mean v when the u are (nearly) parallel: then the rotation about them
+// is not determined (CMU's thorax, whose neck and both clavicles start at one point) and
+// the minimal one keeps the source's.
 Eigen::Quaterniond BestRotation(const std::vector<Eigen::Vector3d>& u, const std::vector<Eigen::Vector3d>& v) {
-  if (u.size() == 1) return Eigen::Quaterniond::FromTwoVectors(u[0], v[0]);
+  Eigen::Vector3d mean_u = Eigen::Vector3d::Zero(), mean_v = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < u.size(); ++i) {
+    mean_u += u[i];
+    mean_v += v[i];
+  }
   Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
   for (size_t i = 0; i < u.size(); ++i) h += u[i] * v[i].transpose();
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  if (u.size() == 1 || svd.singularValues()(1) < 0.05 * svd.singularValues()(0)) {
+    return Eigen::Quaterniond::FromTwoVectors(mean_u, mean_v);
+  }
   Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
   d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
   return Eigen::Quaterniond(Eigen::Matrix3d(svd.matrixV() * d * svd.matrixU().transpose())).normalized();
