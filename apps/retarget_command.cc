@@ -290,12 +290,12 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
     std::fprintf(stderr,
                  "%s -> %s (%s): %d frames, %zu tracked vertices (%d by position), %s: vertex error "
                  "%.4f of height (max %.4f), normal error %.2f deg, foot skating %.4f -> %.4f "
-                 "heights/s; planted joints %zu: skating %.2f -> %.2f cm/s; %.3f ms/frame\n",
+                 "heights/s; foot joints in contact: skating %.2f -> %.2f cm/s (%zu planted); %.3f ms/frame\n",
                  FLAGS_source.c_str(), FLAGS_target.c_str(), retarget.skeleton_only ? "skeleton only" : "mesh",
                  motion.num_frames(), setup.tracked.size(), positions, RetargetSolverName(solve.solver),
                  result.mean_position_error, result.max_position_error, result.mean_normal_error_deg,
-                 result.source_foot_skating, result.result_foot_skating, retarget.plant_joints.size(),
-                 retarget.source_plant_skating_cm_s, retarget.result_plant_skating_cm_s, ms_per_frame);
+                 result.source_foot_skating, result.result_foot_skating, retarget.source_plant_skating_cm_s,
+                 retarget.result_plant_skating_cm_s, retarget.plant_joints.size(), ms_per_frame);
   }
   JsonObject report;
   std::vector<JsonValue> position_error, normal_error, plant_joints;

@@ -26,6 +26,7 @@ bool CharacterRetargetOptions::IsValid(std::string* error) const {
   }
   if (!(clip.contact_height > 0.0)) return *error = "skating contact height must be > 0", false;
   if (setup.subsample.ratio < 1) return *error = "subsample ratio must be >= 1", false;
+  if (first_frame_solves < 1) return *error = "first frame solves must be >= 1", false;
   return true;
 }
 
@@ -93,7 +94,8 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
   clip.plant_contacts.clear();
   FootContacts contacts;
   std::vector<int> plant_source_joints;
-  if (options.plant_feet) {
+  std::vector<int> contact_targets;  // Target joint of each contact joint.
+  {
     FootContactOptions contact_options;
     for (const std::string& name : options.foot_joints) {
       const int j = source.skeleton->FindJoint(name);
@@ -110,14 +112,16 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
     contact_options.speed_threshold = options.contact_speed * source_height;
     contact_options.up_axis = 1;
     if (mapped.empty()) {
-      out.notes.push_back("feet not planted: no source foot joint maps to a target joint");
+      out.notes.push_back("no foot contacts: no source foot joint maps to a target joint");
     } else if (!(motion.frame_rate > 0.0)) {
-      out.notes.push_back("feet not planted: the source has no frame rate");
+      out.notes.push_back("no foot contacts: the source has no frame rate");
     } else {
       status = DetectFootContacts(*source.skeleton, motion, contact_options, &contacts);
       if (!status.ok()) return Status::Error("retarget: foot contacts: " + status.message());
       for (size_t k = 0; k < contacts.joints.size(); ++k) {
         const int t = out.joint_map.target_of_source[contacts.joints[k]];
+        contact_targets.push_back(t);
+        if (!options.plant_feet) continue;  // Contacts for the skating figures only.
         clip.solve.plant_joints.push_back(t);
         clip.plant_contacts.push_back(contacts.in_contact[k]);
         out.plant_joints.push_back(target_skeleton.name(t));
@@ -137,7 +141,7 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
     double source_sum = 0.0, result_sum = 0.0;
     int pairs = 0;
     for (size_t k = 0; k < contacts.joints.size(); ++k) {
-      const int t = clip.solve.plant_joints[k];
+      const int t = contact_targets[k];
       for (int f = 1; f < motion.num_frames(); ++f) {
         if (!contacts.in_contact[k][f - 1] || !contacts.in_contact[k][f]) continue;
         const Eigen::Vector3d a = contacts.positions[k][f] - contacts.positions[k][f - 1];

@@ -19,7 +19,7 @@
 // height). Every foot joint that maps to a target joint (joint_map.h) becomes a plant
 // of the per-frame solve (FootPlantResidual, RetargetClipOptions::plant_contacts): from
 // the second frame of a contact on, the target joint is held where it was at the first.
-// Skating figures: mean horizontal speed of those joints over the frame pairs in which the
+// Contacts are detected (for the figures) also with plant_feet off. Skating figures: mean horizontal speed of those joints over the frame pairs in which the
 // source joint is in contact, for the source (its joint, times the height ratio, so in the
 // target's scale) and the result, in cm/s (target units through its skeleton's unit; the
 // target's own units when unknown).
@@ -73,7 +73,7 @@ struct CharacterRetargetResult {
   bool skeleton_only = false;
   double height_ratio = 1.0;        // Target units per source unit.
   double mean_bone_angle_deg = 0.0;  // Skeleton only: aligned rest bones vs the target's.
-  std::vector<std::string> plant_joints;  // Target joints planted.
+  std::vector<std::string> plant_joints;  // Target joints planted (none with plant_feet off).
   int contact_samples = 0;                // (joint, frame)s in contact.
   int plant_pairs = 0;                    // (joint, frame pair)s in contact.
   double source_plant_skating_cm_s = 0.0;

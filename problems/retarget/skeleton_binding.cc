@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include <Eigen/SVD>
@@ -97,8 +98,9 @@ Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motio
                         " (turned to +y)");
   }
 
-  // Rest-pose alignment.
-  ForwardKinematics(source, RestPose(source), &fk);
+  // Rest-pose alignment, from the source's rest pose or, when that leaves a mapped bone
+  // more than kRetryAngleDeg off (a rest pose with every bone along one axis, as the CMU
+  // FBX files have), from frames of the motion; the start with the lowest mean angle wins.
   std::vector<int> mapped_parent(ns, -1);  // Nearest mapped proper ancestor.
   std::vector<std::vector<int>> children(ns);
   for (int j = 1; j < ns; ++j) {
@@ -106,31 +108,86 @@ Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motio
     mapped_parent[j] = map.target_of_source[p] >= 0 ? p : mapped_parent[p];
     if (map.target_of_source[j] >= 0 && mapped_parent[j] >= 0) children[mapped_parent[j]].push_back(j);
   }
-  std::vector<Eigen::Quaterniond> correction(ns);
-  for (int j = 0; j < ns; ++j) {
-    const Eigen::Quaterniond parent =
-        source.parent(j) < 0 ? Eigen::Quaterniond::Identity() : correction[source.parent(j)];
-    correction[j] = parent;
-    const int t = map.target_of_source[j];
-    if (t < 0) continue;
-    std::vector<Eigen::Vector3d> u, v;
-    for (int c : children[j]) {
-      const Eigen::Vector3d a = parent * (fk.world_positions[c] - fk.world_positions[j]);
-      const Eigen::Vector3d b = q[map.target_of_source[c]] - q[t];
-      if (a.norm() < 1e-9 || b.norm() < 1e-9) continue;
-      u.push_back(a.normalized());
-      v.push_back(b.normalized());
+  struct Alignment {
+    Pose pose;
+    std::vector<Eigen::Quaterniond> world;
+    double mean_angle = 0.0, max_angle = 0.0;
+    std::string worst;
+  };
+  auto align = [&](const Pose& start, Alignment* result) {
+    ForwardKinematics(source, start, &fk);
+    std::vector<Eigen::Quaterniond> correction(ns);
+    for (int j = 0; j < ns; ++j) {
+      const Eigen::Quaterniond parent =
+          source.parent(j) < 0 ? Eigen::Quaterniond::Identity() : correction[source.parent(j)];
+      correction[j] = parent;
+      const int t = map.target_of_source[j];
+      if (t < 0) continue;
+      std::vector<Eigen::Vector3d> u, v;
+      for (int c : children[j]) {
+        const Eigen::Vector3d a = parent * (fk.world_positions[c] - fk.world_positions[j]);
+        const Eigen::Vector3d b = q[map.target_of_source[c]] - q[t];
+        if (a.norm() < 1e-9 || b.norm() < 1e-9) continue;
+        u.push_back(a.normalized());
+        v.push_back(b.normalized());
+      }
+      if (!u.empty()) correction[j] = (BestRotation(u, v) * parent).normalized();
     }
-    if (!u.empty()) correction[j] = (BestRotation(u, v) * parent).normalized();
+    result->pose = start;
+    result->world.resize(ns);
+    for (int j = 0; j < ns; ++j) {
+      result->world[j] = correction[j] * fk.world_rotations[j];
+      const int p = source.parent(j);
+      const Eigen::Quaterniond above =
+          (p < 0 ? Eigen::Quaterniond::Identity() : result->world[p]) * source.rest_rotation(j);
+      result->pose.rotations[j] = (above.conjugate() * result->world[j]).normalized();
+    }
+    ForwardKinematics(source, result->pose, &fk);
+    int bones = 0;
+    for (int j = 0; j < ns; ++j) {
+      for (int c : children[j]) {
+        const Eigen::Vector3d a = fk.world_positions[c] - fk.world_positions[j];
+        const Eigen::Vector3d b = q[map.target_of_source[c]] - q[map.target_of_source[j]];
+        if (a.norm() < 1e-9 || b.norm() < 1e-9) continue;
+        const double angle = RadToDeg(std::atan2(a.cross(b).norm(), a.dot(b)));
+        result->mean_angle += angle;
+        ++bones;
+        if (angle > result->max_angle) {
+          result->max_angle = angle;
+          result->worst = target.name(map.target_of_source[c]);
+        }
+      }
+    }
+    if (bones > 0) result->mean_angle /= bones;
+  };
+  constexpr double kRetryAngleDeg = 45.0;
+  Alignment best;
+  align(RestPose(source), &best);
+  if (best.max_angle > kRetryAngleDeg && nf > 0) {
+    const double rest_angle = best.max_angle;
+    int chosen = -1;
+    for (int k = 0; k < 8; ++k) {
+      const int f = k * nf / 8;
+      Alignment candidate;
+      align(source_motion.frames[f], &candidate);
+      if (candidate.mean_angle < best.mean_angle) {
+        best = std::move(candidate);
+        chosen = f;
+      }
+    }
+    if (chosen >= 0) {
+      char note[200];
+      std::snprintf(note, sizeof note,
+                    "the source's rest pose aligns badly (a bone %.0f deg off); aligned from frame %d instead",
+                    rest_angle, chosen);
+      out.notes.push_back(note);
+    }
   }
-  Pose aligned = RestPose(source);
-  std::vector<Eigen::Quaterniond> world(ns);
-  for (int j = 0; j < ns; ++j) {
-    world[j] = correction[j] * fk.world_rotations[j];
-    const int p = source.parent(j);
-    const Eigen::Quaterniond above = (p < 0 ? Eigen::Quaterniond::Identity() : world[p]) * source.rest_rotation(j);
-    aligned.rotations[j] = (above.conjugate() * world[j]).normalized();
-  }
+  Pose aligned = best.pose;
+  std::vector<Eigen::Quaterniond>& world = best.world;
+  out.mean_bone_angle_deg = best.mean_angle;
+  out.max_bone_angle_deg = best.max_angle;
+  out.worst_bone = best.worst;
   ForwardKinematics(source, aligned, &fk);
   const Vector3dVector& positions = fk.world_positions;
   const auto map_height = [&](double* s_min, double* s_max, double* t_min, double* t_max) {
@@ -145,24 +202,6 @@ Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motio
       *t_max = std::max(*t_max, q[t].y());
     }
   };
-
-  // How well the mapped bones agree.
-  int bones = 0;
-  for (int j = 0; j < ns; ++j) {
-    for (int c : children[j]) {
-      const Eigen::Vector3d a = positions[c] - positions[j];
-      const Eigen::Vector3d b = q[map.target_of_source[c]] - q[map.target_of_source[j]];
-      if (a.norm() < 1e-9 || b.norm() < 1e-9) continue;
-      const double angle = RadToDeg(std::atan2(a.cross(b).norm(), a.dot(b)));
-      out.mean_bone_angle_deg += angle;
-      ++bones;
-      if (angle > out.max_bone_angle_deg) {
-        out.max_bone_angle_deg = angle;
-        out.worst_bone = target.name(map.target_of_source[c]);
-      }
-    }
-  }
-  if (bones > 0) out.mean_bone_angle_deg /= bones;
 
   // Scale from the vertical extents of the mapped joints.
   double s_min, s_max, t_min, t_max;

@@ -25,6 +25,12 @@
 //    bone points where the target's bind-pose bone points, which absorbs T vs A pose,
 //    facing and the up axis (the root's correction comes from its children: hips, spine).
 //    Twist about a bone with one mapped child is left as in the source's rest pose.
+//    Where the u_c are (nearly) parallel (CMU's thorax: neck and clavicles start at one
+//    point), the minimal rotation of their mean replaces Kabsch, whose twist about them
+//    would be arbitrary. If the rest pose leaves a mapped bone more than 45 degrees off
+//    (CMU FBX files: every bone of the rest pose along +y, the posture is all in the
+//    animation), eight frames of the motion are tried as the start instead and the one
+//    with the lowest mean bone angle is kept (noted).
 // 4. Scale k = h_t / h_s with h the vertical extent of the mapped joints (target bind
 //    pose; aligned source pose): the source's units (cm, CMU's 1/0.45 in, m) disappear.
 // 6. Placement: the aligned pose and the bound mesh are translated so that the bound
