@@ -71,7 +71,7 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
     source_height = binding.source_height;
     out.mean_bone_angle_deg = binding.mean_bone_angle_deg;
     out.notes = binding.notes;
-    out.notes.push_back(std::to_string(out.joint_map.num_mapped()) + " joints mapped by name; rest poses aligned: " +
+    out.notes.push_back(std::to_string(out.joint_map.num_mapped()) + " joints mapped (names, joint map); rest poses aligned: " +
                         Format("mean bone angle %.1f deg, worst %.1f deg (", binding.mean_bone_angle_deg,
                                binding.max_bone_angle_deg) +
                         binding.worst_bone + ")");

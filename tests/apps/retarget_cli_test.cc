@@ -141,6 +141,35 @@ TEST(RetargetCli, CmuBvhWalkOntoXbot) {
             root.Find("source_plant_skating_cm_per_s")->number + 0.5);
 }
 
+// Names that match nothing (CesiumMan's) through a joint map file.
+TEST(RetargetCli, JointMapFileMapsUnrelatedNames) {
+  MOCAPSOLVE_DATA_FILE(cesium, "gltf/CesiumMan.glb");
+  MOCAPSOLVE_DATA_FILE(target, "gltf/Xbot.glb");
+  const std::string bvh = testing::TempPath("cesium.bvh");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("convert --quiet " + cesium + " " + bvh, &output), 0) << output;
+  const std::string map = testing::TempPath("map.json");
+  {
+    std::ofstream file(map);
+    file << "{\"joints\": {\"Skeleton_torso_joint_1\": \"mixamorig:Hips\", "
+            "\"Skeleton_torso_joint_2\": \"mixamorig:Spine1\", \"torso_joint_3\": \"mixamorig:Spine2\", "
+            "\"Skeleton_neck_joint_2\": \"mixamorig:Head\", "
+            "\"leg_joint_L_1\": \"mixamorig:LeftUpLeg\", \"leg_joint_L_2\": \"mixamorig:LeftLeg\", "
+            "\"leg_joint_L_3\": \"mixamorig:LeftFoot\", \"leg_joint_R_1\": \"mixamorig:RightUpLeg\", "
+            "\"leg_joint_R_2\": \"mixamorig:RightLeg\", \"leg_joint_R_3\": \"mixamorig:RightFoot\"}}";
+  }
+  const std::string out = testing::TempPath("out.bvh");
+  const std::string report = testing::TempPath("report.json");
+  const std::string base = "retarget --quiet --source=" + bvh + " --target=" + target + " --max_frames=10 --out=" + out;
+  EXPECT_EQ(testing::RunCli(base, &output), 1);  // Without the map: nothing to align by.
+  EXPECT_THAT(output, HasSubstr("cannot align the skeletons"));
+  ASSERT_EQ(testing::RunCli(base + " --joint_map=" + map + " --report=" + report, &output), 0) << output;
+  JsonNode root;
+  ASSERT_TRUE(ReadJsonFile(report, &root).ok());
+  EXPECT_EQ(root.Find("mapped_joints")->number, 10);
+  EXPECT_LT(root.Find("mean_position_error_fraction_of_height")->number, 0.05);
+}
+
 TEST(RetargetCli, SkeletonSourceBadInputsFailWithOneLine) {
   MOCAPSOLVE_DATA_FILE(source, "bvh/16_15.bvh");
   MOCAPSOLVE_DATA_FILE(target, "gltf/Xbot.glb");
