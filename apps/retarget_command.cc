@@ -1,8 +1,11 @@
 // mocapsolve retarget: a source character's glTF animation onto a target character by
 // their meshes (thesis chapter 4; problems/retarget/).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
@@ -13,15 +16,29 @@
 #include "io/gltf_writer.h"
 #include "io/json_reader.h"
 #include "kinematics/rotation.h"
-#include "problems/retarget/retarget_clip.h"
-#include "problems/retarget/retarget_setup.h"
+#include "io/motion_file.h"
+#include "problems/retarget/retarget_character.h"
 
 // Shared with other commands: --solver (apps/solver_flags.cc; here dls | dls_generic |
 // ceres, and dls when not given), --max_frames (apps/solve_command.cc).
 DECLARE_int32(max_frames);
 DECLARE_double(limit_weight);  // apps/solver_flags.cc: soft joint limits, where the skeleton has them.
+// apps/propagate_command.cc: here the source joints to plant (default: names with foot, toe, ankle).
+DECLARE_string(foot_joints);
 
-DEFINE_string(source, "", "Source character (.glb/.gltf) whose animation is retargeted.");
+DEFINE_string(source, "", "Source motion: a skinned character (.glb/.gltf) or a skeleton motion (.bvh, "
+              ".amc with --skeleton=X.asf, .fbx).");
+DEFINE_bool(source_mesh, true, "Track a skinned glTF source's own mesh; false: treat it as a "
+            "skeleton only (the target's mesh is bound to its skeleton, as for BVH/AMC/FBX).");
+DEFINE_string(joint_map, "", "JSON {\"joints\": {\"<source joint>\": \"<target joint>\"}}: overrides "
+              "of the automatic joint map (names; used to bind a skeleton-only source and for the plants).");
+DEFINE_bool(plant_feet, true, "Keep the target's feet planted where the source's foot joints are in "
+            "contact (an IK term in each frame's solve).");
+DEFINE_double(plant_weight, 10.0, "Weight of a planted foot joint (per sigma of position error, as a "
+              "position-tracked vertex has 1); 0 = off.");
+DEFINE_double(plant_height, 0.03, "Foot contact: source foot joint at most this high above its lowest "
+              "point (fraction of the source height).");
+DEFINE_double(plant_speed, 0.15, "Foot contact: source foot joint slower than this (source heights/s).");
 DEFINE_string(source_animation, "", "Animation of the source, by name or index (default: the first).");
 DEFINE_string(source_skin, "", "Skin of the source file (name or index; default: skin 0).");
 DEFINE_string(target_skin, "", "Skin of the target file (name or index; default: skin 0).");
@@ -83,27 +100,48 @@ JsonObject Stages(const RetargetStageTimes& stages) {
   return out;
 }
 
+// {"joints": {"<source joint>": "<target joint>", ...}}.
+Status ReadJointMap(const std::string& path, std::vector<std::pair<std::string, std::string>>* pairs) {
+  JsonNode root;
+  Status status = ReadJsonFile(path, &root);
+  if (!status.ok()) return status;
+  const JsonNode* joints = root.Find("joints");
+  if (joints == nullptr || !joints->is_object()) {
+    return Status::Error(root.Where(path) + ": expected an object with an object \"joints\" "
+                         "{\"<source joint>\": \"<target joint>\"}");
+  }
+  for (const auto& [source, target] : joints->members) {
+    if (!target.is_string() || target.string.empty()) {
+      return Status::Error(target.Where(path) + ": joints: '" + source + "': expected a target joint name");
+    }
+    pairs->push_back({source, target.string});
+  }
+  return Status::Ok();
+}
+
+bool HasExtension(const std::string& path, const std::string& extension) {
+  return path.size() > extension.size() &&
+         path.compare(path.size() - extension.size(), extension.size(), extension) == 0;
+}
+
 Status RunRetarget(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   if (FLAGS_source.empty() || FLAGS_target.empty()) return Status::Error("--source and --target are required");
   if (FLAGS_out.empty() && FLAGS_out_bvh.empty()) return Status::Error("--out or --out_bvh is required");
   for (const std::string& out : {FLAGS_out, FLAGS_out_bvh, FLAGS_report}) {
     if (out.empty()) continue;
-    for (const std::string& in : {FLAGS_source, FLAGS_target}) {
+    for (const std::string& in : {FLAGS_source, FLAGS_target, FLAGS_skeleton, FLAGS_joint_map}) {
+      if (in.empty()) continue;
       Status status = CheckNotAnInput(out, in);
       if (!status.ok()) return status;
     }
   }
-  auto has_extension = [](const std::string& path, const std::string& extension) {
-    return path.size() > extension.size() &&
-           path.compare(path.size() - extension.size(), extension.size(), extension) == 0;
-  };
-  const bool out_bvh = has_extension(FLAGS_out, ".bvh");
-  if (!FLAGS_out.empty() && !out_bvh && !has_extension(FLAGS_out, ".glb") &&
-      !has_extension(FLAGS_out, ".gltf")) {
+  const bool out_bvh = HasExtension(FLAGS_out, ".bvh");
+  if (!FLAGS_out.empty() && !out_bvh && !HasExtension(FLAGS_out, ".glb") && !HasExtension(FLAGS_out, ".gltf")) {
     return Status::Error("--out: " + FLAGS_out + ": expected .glb, .gltf or .bvh");
   }
-  RetargetSolveOptions solve;
+  CharacterRetargetOptions options;
+  RetargetSolveOptions& solve = options.clip.solve;
   const std::string solver_name =
       gflags::GetCommandLineFlagInfoOrDie("solver").is_default ? "dls" : FLAGS_solver;
   if (!ParseRetargetSolverKind(solver_name, &solve.solver)) {
@@ -113,38 +151,88 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   if (FLAGS_loop < 1) return Status::Error("--loop: must be >= 1");
   if (FLAGS_max_frames < 0) return Status::Error("--max_frames: must be >= 0");
   if (!(FLAGS_contact_height > 0.0)) return Status::Error("--contact_height: must be > 0");
+  if (FLAGS_mapping_normal_weight < 0.0) return Status::Error("--mapping_normal_weight: must be >= 0");
+  if (!(FLAGS_plant_weight >= 0.0)) return Status::Error("--plant_weight: must be >= 0");
+  if (!(FLAGS_plant_height > 0.0) || !(FLAGS_plant_speed > 0.0)) {
+    return Status::Error("--plant_height and --plant_speed: must be > 0");
+  }
   solve.iterations = FLAGS_iterations;
   solve.lambda = FLAGS_lambda;
   solve.normal_weight = FLAGS_normal_weight;
   solve.smoothness_weight = FLAGS_smoothness;
   solve.limit_weight = FLAGS_limit_weight;
   solve.time_stages = FLAGS_stage_times;
+  solve.plant_weight = FLAGS_plant_weight;
   solve.ceres = DefaultRetargetCeresOptions();
   solve.ceres.initial_trust_region_radius = FLAGS_ceres_trust_radius;
+  options.clip.contact_height = FLAGS_contact_height;
+  options.setup.subsample.ratio = FLAGS_subsample;
+  options.setup.mapping_normal_weight = FLAGS_mapping_normal_weight;
+  options.setup.transfer_normals = FLAGS_transfer_normals;
+  options.plant_feet = FLAGS_plant_feet && FLAGS_plant_weight > 0.0;
+  options.contact_height = FLAGS_plant_height;
+  options.contact_speed = FLAGS_plant_speed;
+  if (!FLAGS_foot_joints.empty()) {
+    size_t begin = 0;
+    while (begin <= FLAGS_foot_joints.size()) {
+      const size_t comma = std::min(FLAGS_foot_joints.find(',', begin), FLAGS_foot_joints.size());
+      if (comma > begin) options.foot_joints.push_back(FLAGS_foot_joints.substr(begin, comma - begin));
+      begin = comma + 1;
+    }
+  }
   std::string error;
-  if (!solve.IsValid(&error)) return Status::Error("retarget options: " + error);
+  if (!options.IsValid(&error)) return Status::Error("retarget options: " + error);
+  Status status = Status::Ok();
+  if (FLAGS_blend_mask != "auto") {
+    status = ReadBlendMask(FLAGS_blend_mask, &options.setup.position_joints);
+    if (!status.ok()) return status;
+  }
+  if (!FLAGS_joint_map.empty()) {
+    status = ReadJointMap(FLAGS_joint_map, &options.joint_map);
+    if (!status.ok()) return status;
+  }
 
   const auto start = std::chrono::steady_clock::now();
-  GltfDocument source_document;
-  Status status = GltfDocument::Read(FLAGS_source, &source_document);
-  if (!status.ok()) return status;
-  GltfCharacter source, target;
-  GltfReadOptions source_options, target_options;
-  source_options.skin = FLAGS_source_skin;
-  target_options.skin = FLAGS_target_skin;
-  status = ReadGltfCharacter(source_document, source_options, &source);
-  if (!status.ok()) return status;
   GltfDocument target_document;
   status = GltfDocument::Read(FLAGS_target, &target_document);
   if (!status.ok()) return status;
+  GltfCharacter target;
+  GltfReadOptions target_options;
+  target_options.skin = FLAGS_target_skin;
   status = ReadGltfCharacter(target_document, target_options, &target);
-  if (!status.ok()) return status;
-  GltfAnimationOptions animation_options;
-  animation_options.animation = FLAGS_source_animation;
-  animation_options.frame_rate = FLAGS_frame_rate;
+  if (!status.ok()) return Status::Error("--target: " + status.message());
+
+  // The source: a skinned glTF (its mesh is tracked unless --source_mesh=false) or any
+  // motion file (the target's mesh is bound to its skeleton).
+  const std::string source_extension = FileExtension(FLAGS_source);
+  const bool gltf_source = source_extension == ".glb" || source_extension == ".gltf";
+  const bool use_source_mesh = gltf_source && FLAGS_source_mesh;
+  GltfCharacter source_character;
+  Skeleton source_skeleton;
   Motion clip;
-  status = ReadGltfAnimation(source_document, source, animation_options, &clip);
-  if (!status.ok()) return status;
+  if (use_source_mesh) {
+    GltfDocument source_document;
+    status = GltfDocument::Read(FLAGS_source, &source_document);
+    if (!status.ok()) return status;
+    GltfReadOptions source_options;
+    source_options.skin = FLAGS_source_skin;
+    status = ReadGltfCharacter(source_document, source_options, &source_character);
+    if (!status.ok()) return status;
+    GltfAnimationOptions animation_options;
+    animation_options.animation = FLAGS_source_animation;
+    animation_options.frame_rate = FLAGS_frame_rate;
+    status = ReadGltfAnimation(source_document, source_character, animation_options, &clip);
+    if (!status.ok()) return status;
+  } else {
+    if (!FLAGS_source_skin.empty()) return Status::Error("--source_skin: applies to a skinned glTF source only");
+    MotionFileOptions motion_options;
+    motion_options.skeleton_path = FLAGS_skeleton;
+    motion_options.amc_frame_rate = FLAGS_amc_fps;
+    motion_options.animation = FLAGS_source_animation;
+    motion_options.sample_rate = FLAGS_frame_rate;
+    status = ReadMotionFile(FLAGS_source, motion_options, &source_skeleton, &clip);
+    if (!status.ok()) return status;
+  }
   if (clip.num_frames() == 0) return Status::Error(FLAGS_source + ": the animation has no frames");
   Motion motion;
   motion.frame_rate = clip.frame_rate;
@@ -153,33 +241,27 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   }
   if (FLAGS_max_frames > 0 && motion.num_frames() > FLAGS_max_frames) motion.frames.resize(FLAGS_max_frames);
 
-  RetargetSetupOptions setup_options;
-  setup_options.subsample.ratio = FLAGS_subsample;
-  if (FLAGS_mapping_normal_weight < 0.0) return Status::Error("--mapping_normal_weight: must be >= 0");
-  setup_options.mapping_normal_weight = FLAGS_mapping_normal_weight;
-  setup_options.transfer_normals = FLAGS_transfer_normals;
-  if (FLAGS_blend_mask != "auto") {
-    status = ReadBlendMask(FLAGS_blend_mask, &setup_options.position_joints);
-    if (!status.ok()) return status;
+  RetargetCharacter source_view;
+  if (use_source_mesh) {
+    source_view = {&source_character.skeleton, &source_character.mesh, source_character.bind_pose,
+                   source_character.rest_pose};
+  } else {
+    source_view.skeleton = &source_skeleton;
   }
-  setup_options.source_world_from_bind = WorldFromBindRotation(source.skeleton, source.bind_pose, source.rest_pose);
-  setup_options.target_world_from_bind = WorldFromBindRotation(target.skeleton, target.bind_pose, target.rest_pose);
-  RetargetSetup setup;
-  status = BuildRetargetSetup(source.mesh, target.skeleton, target.mesh, setup_options, &setup);
+  const RetargetCharacter target_view = {&target.skeleton, &target.mesh, target.bind_pose, target.rest_pose};
+  CharacterRetargetResult retarget;
+  Progress progress("retarget", motion.num_frames(), FLAGS_quiet);
+  status = RetargetMotionOntoCharacter(source_view, motion, target_view, options, &retarget,
+                                       [&](int done, int) { progress.Update(done); });
   if (!status.ok()) return Status::Error(FLAGS_source + " -> " + FLAGS_target + ": " + status.message());
   const double setup_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  for (const std::string& note : setup.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
-
-  RetargetClipOptions options;
-  options.solve = solve;
-  options.contact_height = FLAGS_contact_height;
-  options.start_pose = target.rest_pose;
-  RetargetClipResult result;
-  Progress progress("retarget", motion.num_frames(), FLAGS_quiet);
-  status = RetargetClip(source.skeleton, source.mesh, motion, target.skeleton, target.mesh, setup,
-                        options, &result, [&](int done, int) { progress.Update(done); });
-  if (!status.ok()) return status;
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+      retarget.clip.solve_seconds;
+  const RetargetClipResult& result = retarget.clip;
+  const RetargetSetup& setup = retarget.setup;
+  for (const std::string& note : retarget.notes) {
+    if (!FLAGS_quiet) std::fprintf(stderr, "note: %s\n", note.c_str());
+  }
 
   if (!FLAGS_out.empty()) {
     if (out_bvh) {
@@ -206,23 +288,32 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   const double ms_per_frame = 1e3 * result.solve_seconds / motion.num_frames();
   if (!FLAGS_quiet) {
     std::fprintf(stderr,
-                 "%s -> %s: %d frames, %zu tracked vertices (%d by position), %s: vertex error "
+                 "%s -> %s (%s): %d frames, %zu tracked vertices (%d by position), %s: vertex error "
                  "%.4f of height (max %.4f), normal error %.2f deg, foot skating %.4f -> %.4f "
-                 "heights/s, %.3f ms/frame\n",
-                 FLAGS_source.c_str(), FLAGS_target.c_str(), motion.num_frames(), setup.tracked.size(),
-                 positions, RetargetSolverName(solve.solver), result.mean_position_error,
-                 result.max_position_error, result.mean_normal_error_deg,
-                 result.source_foot_skating, result.result_foot_skating, ms_per_frame);
+                 "heights/s; foot joints in contact: skating %.2f -> %.2f cm/s (%zu planted); %.3f ms/frame\n",
+                 FLAGS_source.c_str(), FLAGS_target.c_str(), retarget.skeleton_only ? "skeleton only" : "mesh",
+                 motion.num_frames(), setup.tracked.size(), positions, RetargetSolverName(solve.solver),
+                 result.mean_position_error, result.max_position_error, result.mean_normal_error_deg,
+                 result.source_foot_skating, result.result_foot_skating, retarget.source_plant_skating_cm_s,
+                 retarget.result_plant_skating_cm_s, retarget.plant_joints.size(), ms_per_frame);
   }
   JsonObject report;
-  std::vector<JsonValue> position_error, normal_error;
+  std::vector<JsonValue> position_error, normal_error, plant_joints;
   for (const RetargetFrameFigures& f : result.frames) {
     position_error.push_back(f.position_error);
     normal_error.push_back(f.normal_error_deg);
   }
+  for (const std::string& joint : retarget.plant_joints) plant_joints.push_back(joint);
+  const Skeleton& source_joints = use_source_mesh ? source_character.skeleton : source_skeleton;
+  JsonObject joint_map;
+  for (int j = 0; j < source_joints.num_joints(); ++j) {
+    const int t = retarget.joint_map.target_of_source[j];
+    if (t >= 0) joint_map.Add(source_joints.name(j), target.skeleton.name(t));
+  }
   report.Add("command", "retarget")
       .Add("source", FLAGS_source)
       .Add("source_animation", FLAGS_source_animation)
+      .Add("source_kind", retarget.skeleton_only ? "skeleton" : "mesh")
       .Add("target", FLAGS_target)
       .Add("solver", RetargetSolverName(solve.solver))
       .Add("frames", motion.num_frames())
@@ -230,10 +321,13 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
       .Add("iterations", solve.iterations)
       .Add("lambda", solve.lambda)
       .Add("subsample", FLAGS_subsample)
-      .Add("source_vertices", source.mesh.num_vertices())
+      .Add("source_vertices", use_source_mesh ? source_character.mesh.num_vertices() : 0)
       .Add("target_vertices", target.mesh.num_vertices())
-      .Add("source_joints", source.skeleton.num_joints())
+      .Add("source_joints", source_joints.num_joints())
       .Add("target_joints", target.skeleton.num_joints())
+      .Add("mapped_joints", retarget.joint_map.num_mapped())
+      .Add("joint_map", joint_map)
+      .Add("rest_alignment_mean_bone_angle_deg", retarget.mean_bone_angle_deg)
       .Add("tracked_vertices", static_cast<int>(setup.tracked.size()))
       .Add("position_tracked", positions)
       .Add("height_ratio", setup.scale)
@@ -246,6 +340,12 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
       .Add("foot_contact_pairs", result.contact_pairs)
       .Add("source_foot_skating_heights_per_s", result.source_foot_skating)
       .Add("result_foot_skating_heights_per_s", result.result_foot_skating)
+      .Add("plant_joints", plant_joints)
+      .Add("plant_weight", options.plant_feet ? solve.plant_weight : 0.0)
+      .Add("contact_samples", retarget.contact_samples)
+      .Add("plant_contact_pairs", retarget.plant_pairs)
+      .Add("source_plant_skating_cm_per_s", retarget.source_plant_skating_cm_s)
+      .Add("result_plant_skating_cm_per_s", retarget.result_plant_skating_cm_s)
       .Add("setup_seconds", setup_seconds)
       .Add("solve_seconds", result.solve_seconds)
       .Add("ms_per_frame", ms_per_frame)
@@ -258,17 +358,20 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
 }  // namespace
 
 extern const Command kRetargetCommand = {
-    "retarget", "transfer a glTF animation between characters by their meshes (thesis ch. 4)",
-    "mocapsolve retarget --source=SRC.glb [--source_animation=NAME] --target=TGT.glb "
+    "retarget", "transfer a motion (glTF, BVH, AMC, FBX) onto a glTF character by meshes (thesis ch. 4)",
+    "mocapsolve retarget --source=SRC.glb|.bvh|.amc|.fbx [--skeleton=X.asf] [--source_animation=NAME] --target=TGT.glb "
     "--out=OUT.glb|.gltf|.bvh [--out_bvh=OUT.bvh] [--animation_name=NAME] [--solver=dls|dls_generic|ceres] [--subsample=128] "
     "[--iterations=10] [--lambda=5] [--blend_mask=auto|FILE.json] [--report=r.json]\n\n"
     "Subsamples the source mesh (farthest points, normal check, >= 3 per joint), maps the samples\n"
     "to the nearest target vertices in a height-normalized rest frame, and solves each frame's\n"
     "target pose (root translation and joint rotations) so that the target vertices track the\n"
     "source's: hands, feet and head by position, the rest by normals. The skeletons may differ.\n"
+    "A skeleton-only source (BVH, AMC, FBX; or --source_mesh=false) gets the target's mesh bound\n"
+    "to its skeleton after aligning the rest poses (joints mapped by name, --joint_map overrides).\n"
+    "Feet are planted where the source's foot joints are in contact (--plant_feet).\n"
     "A .glb/.gltf --out is the target file with the result added as a new animation.\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
-    __FILE__, RunRetarget, "target,out,report,quiet,solver,max_frames,limit_weight"};
+    __FILE__, RunRetarget, "target,out,report,quiet,solver,max_frames,limit_weight,skeleton,amc_fps,foot_joints"};
 
 }  // namespace mocapsolve

@@ -13,9 +13,13 @@
 // 0.8-scaled copy, and glTF pairs from MOCAPSOLVE_DATA (default ../shared/data; skipped
 // with an error without it): Soldier "Walk" -> Xbot (49 -> 65 joints) and CesiumMan ->
 // RiggedFigure (19 -> 19 joints, different names and proportions).
+// BM_RetargetSkeletonOnly: a whole skeleton-only clip through RetargetMotionOntoCharacter
+// (retarget_character.h): CMU 16_15 (BVH, cm; 120 frames) onto Xbot, feet planted (1) or
+// not (0); one benchmark iteration = one call (binding, setup and the frame loop).
 // BM_RetargetStages: the share of FK, skinning, Jacobian (normal-equation assembly) and
 // the linear solve in one DLS iteration (thesis Table 3), from RetargetSolveOptions::
 // time_stages.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -27,7 +31,9 @@
 #include <benchmark/benchmark.h>
 
 #include "io/gltf_reader.h"
+#include "io/motion_file.h"
 #include "kinematics/demo_character.h"
+#include "problems/retarget/retarget_character.h"
 #include "problems/retarget/retarget_clip.h"
 #include "problems/retarget/retarget_frame_solver.h"
 #include "problems/retarget/retarget_setup.h"
@@ -188,6 +194,32 @@ void RatiosAndSolvers(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_RetargetSynthetic)->Apply(RatiosAndSolvers);
 BENCHMARK(BM_RetargetSoldierToXbot)->Apply(RatiosAndSolvers);
 BENCHMARK(BM_RetargetCesiumManToRiggedFigure)->Apply(RatiosAndSolvers);
+
+void BM_RetargetSkeletonOnly(benchmark::State& state) {
+  Skeleton source;
+  Motion motion;
+  Status status = ReadMotionFile(GltfFile("../bvh/16_15.bvh"), MotionFileOptions(), &source, &motion);
+  GltfCharacter xbot;
+  if (status.ok()) status = ReadGltfCharacter(GltfFile("Xbot.glb"), GltfReadOptions(), &xbot);
+  if (!status.ok()) return state.SkipWithError(status.message().c_str());
+  motion.frames.resize(std::min(motion.num_frames(), 120));
+  RetargetCharacter source_view;
+  source_view.skeleton = &source;
+  const RetargetCharacter target_view = {&xbot.skeleton, &xbot.mesh, xbot.bind_pose, xbot.rest_pose};
+  CharacterRetargetOptions options;
+  options.plant_feet = state.range(0) != 0;
+  CharacterRetargetResult result;
+  for (auto _ : state) {
+    status = RetargetMotionOntoCharacter(source_view, motion, target_view, options, &result);
+    if (!status.ok()) return state.SkipWithError(status.message().c_str());
+  }
+  state.counters["solve_ms_per_frame"] = 1e3 * result.clip.solve_seconds / motion.num_frames();
+  state.counters["setup_ms"] = 1e3 * result.setup_seconds;
+  state.counters["vertex_error"] = result.clip.mean_position_error;
+  state.counters["skating_cm_s_source"] = result.source_plant_skating_cm_s;
+  state.counters["skating_cm_s_result"] = result.result_plant_skating_cm_s;
+}
+BENCHMARK(BM_RetargetSkeletonOnly)->Arg(0)->Arg(1)->ArgName("plant")->Unit(benchmark::kMillisecond)->MinTime(0.3);
 
 // Thesis Table 3: stage shares of one DLS iteration at 128:1.
 void BM_RetargetStages(benchmark::State& state) {

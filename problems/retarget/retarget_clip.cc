@@ -96,12 +96,46 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
     return Status::Error("retarget: the start pose does not match the target skeleton");
   }
   pose = RecenteredStartPose(target_skeleton, target_mesh, setup, goals.positions[0], pose);
+  const int np = static_cast<int>(options.solve.plant_joints.size());
+  if (static_cast<int>(options.plant_contacts.size()) != np) {
+    return Status::Error("retarget: plant contacts given for " + std::to_string(options.plant_contacts.size()) +
+                         " joints, plant joints " + std::to_string(np));
+  }
+  for (const std::vector<char>& contacts : options.plant_contacts) {
+    if (static_cast<int>(contacts.size()) != nf) {
+      return Status::Error("retarget: plant contacts do not cover the clip's frames");
+    }
+  }
+  for (int k : options.solve.plant_joints) {
+    if (k < 0 || k >= target_skeleton.num_joints()) return Status::Error("retarget: plant joint out of range");
+  }
+  Eigen::Matrix3Xd anchors = Eigen::Matrix3Xd::Zero(3, np);
+  std::vector<char> anchored(np, 0), active(np, 0);
+  FkData plant_fk(target_skeleton);
   RetargetFrameSolver solver(target_skeleton, target_mesh, setup, goals.sigma, options.solve);
   const auto start = std::chrono::steady_clock::now();
   for (int f = 0; f < nf; ++f) {
     RetargetFrameReport report;
-    const Status status = solver.Solve(goals.positions[f], goals.normals[f], &pose, &report);
-    if (!status.ok()) return Status::Error(status.message() + " (frame " + std::to_string(f) + ")");
+    bool anchor_needed = false;
+    for (int p = 0; p < np; ++p) {
+      if (!options.plant_contacts[p][f]) anchored[p] = 0;
+      active[p] = anchored[p];
+      anchor_needed |= options.plant_contacts[p][f] && !anchored[p];
+    }
+    if (np > 0) solver.SetPlants(anchors, active);
+    for (int repeat = 0; repeat < (f == 0 ? std::max(1, options.first_frame_solves) : 1); ++repeat) {
+      const Status status = solver.Solve(goals.positions[f], goals.normals[f], &pose, &report);
+      if (!status.ok()) return Status::Error(status.message() + " (frame " + std::to_string(f) + ")");
+    }
+    if (anchor_needed) {
+      ForwardKinematics(target_skeleton, pose, &plant_fk);
+      for (int p = 0; p < np; ++p) {
+        if (options.plant_contacts[p][f] && !anchored[p]) {
+          anchors.col(p) = plant_fk.world_positions[options.solve.plant_joints[p]];
+          anchored[p] = 1;
+        }
+      }
+    }
     out.motion.frames.push_back(pose);
     RetargetFrameFigures figures;
     figures.position_error = report.mean_position_error / height;

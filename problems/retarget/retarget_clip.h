@@ -8,6 +8,7 @@
 // centroid of the tracked target vertices lands on the centroid of the frame's position
 // goals; the root translation is then solved with everything else (it is not copied
 // from the source, whose skeleton may be unrelated).
+// Foot plants (options.plant_contacts): see RetargetClipOptions.
 // The output motion has the source's frame rate; non-root translations are the target's
 // rest offsets.
 //
@@ -40,6 +41,16 @@ struct RetargetClipOptions {
   double contact_height = 0.02;  // Fraction of the target height above its rest floor.
   Pose start_pose;  // Warm start of frame 0 (its root translation is re-centred); empty:
                     // RestPose(target skeleton).
+  // Foot plants: per solve.plant_joints entry p, plant_contacts[p][f] = the joint is
+  // planted at frame f (e.g. from the source's DetectFootContacts, edit_propagation/
+  // foot_contacts.h). The first frame of a contact run is solved without its plant and
+  // the joint's solved position becomes the anchor; the following frames of the run hold
+  // it there (FootPlantResidual, weight solve.plant_weight / sigma).
+  std::vector<std::vector<char>> plant_contacts;
+  // Frame 0 is solved this many times in a row (each warm-started from the last): its
+  // start pose may be far from the source's (another facing, a T-pose against a walk),
+  // and every later frame starts from it.
+  int first_frame_solves = 1;
 };
 
 struct RetargetFrameFigures {

@@ -17,6 +17,7 @@
 #include "problems/marker_solve/joint_limit_residual.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/pose_prior_residual.h"
+#include "problems/retarget/foot_plant_residual.h"
 #include "problems/retarget/tracked_vertex_residual.h"
 #include "solvers/block_sparse_cholesky.h"
 #include "solvers/dls_solver.h"
@@ -86,8 +87,8 @@ bool RetargetSolveOptions::IsValid(std::string* error) const {
   if (!(position_weight > 0.0) || !(normal_weight >= 0.0)) {
     return *error = "position weight must be > 0 and normal weight >= 0", false;
   }
-  if (!(smoothness_weight >= 0.0) || !(limit_weight >= 0.0)) {
-    return *error = "smoothness and limit weights must be >= 0", false;
+  if (!(smoothness_weight >= 0.0) || !(limit_weight >= 0.0) || !(plant_weight >= 0.0)) {
+    return *error = "smoothness, limit and plant weights must be >= 0", false;
   }
   if (solver == RetargetSolverKind::kCeres && !ceres.IsValid(error)) return false;
   return true;
@@ -133,9 +134,11 @@ class RetargetFrameSolver::Impl {
     CHECK_GT(sigma, 0.0);
     const int nj = skeleton.num_joints();
     const int nt = static_cast<int>(setup.tracked.size());
+    const int np = static_cast<int>(options.plant_joints.size());
     rotations_.assign(4 * nj, 0.0);
     reference_rotations_.assign(4 * nj, 0.0);
-    goals_.resize(nt);
+    goals_.assign(nt + np, Eigen::Vector3d::Zero());
+    plant_scales_.assign(np, 0.0);
     column_.assign(nj, -1);
     std::vector<bool> solved(nj, false);
     for (int s = 0; s < nt; ++s) {
@@ -145,6 +148,12 @@ class RetargetFrameSolver::Impl {
       residuals_.emplace_back(
           new TrackedVertexResidual(&skeleton, &mesh, t.target_vertex, t.track_position, &goals_[s], scale));
       for (int j : residuals_.back()->joints()) solved[j] = true;
+    }
+    for (int p = 0; p < np; ++p) {
+      const int k = options.plant_joints[p];
+      CHECK(k >= 0 && k < nj) << "plant joint " << k;
+      plant_residuals_.emplace_back(new FootPlantResidual(&skeleton, k, &goals_[nt + p], &plant_scales_[p]));
+      for (int j : plant_residuals_.back()->joints()) solved[j] = true;
     }
     int n = 3;
     for (int j = 0; j < nj; ++j) {
@@ -196,9 +205,23 @@ class RetargetFrameSolver::Impl {
       }
       rows_.push_back(std::move(row));
     }
-    jacobian_ = Eigen::MatrixXd::Zero(3 * nt + extra_rows, n);
+    // Plants: a position row of weight 1 on the foot joint at zero offset (its scale is
+    // switched by SetPlants).
+    for (int p = 0; p < np; ++p) {
+      Row row;
+      row.track_position = true;
+      row.scale = 0.0;
+      row.chain = plant_residuals_[p]->joints();
+      row.joints = {plant_residuals_[p]->joint()};
+      row.weights = {1.0};
+      row.locals = {Eigen::Vector3d::Zero()};
+      row.total_weight = 1.0;
+      rows_.push_back(std::move(row));
+    }
+    const int nr = nt + np;
+    jacobian_ = Eigen::MatrixXd::Zero(3 * nr + extra_rows, n);
     if (jacobian_.rows() >= n) BuildNormalPattern();
-    residual_.resize(3 * nt + extra_rows);
+    residual_.resize(3 * nr + extra_rows);
     world_rotations_.resize(nj);
     world_positions_.resize(nj);
 
@@ -206,9 +229,21 @@ class RetargetFrameSolver::Impl {
     if (options.solver == RetargetSolverKind::kDlsGeneric) BuildDls();
   }
 
+  void SetPlants(const Eigen::Matrix3Xd& anchors, const std::vector<char>& active) {
+    const int nt = static_cast<int>(setup_.tracked.size());
+    const int np = static_cast<int>(plant_scales_.size());
+    CHECK_EQ(anchors.cols(), np);
+    CHECK_EQ(static_cast<int>(active.size()), np);
+    for (int p = 0; p < np; ++p) {
+      goals_[nt + p] = anchors.col(p);
+      plant_scales_[p] = active[p] ? options_.plant_weight / sigma_ : 0.0;
+      rows_[nt + p].scale = plant_scales_[p];
+    }
+  }
+
   Status Solve(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
                Pose* pose, RetargetFrameReport* report) {
-    const int nt = static_cast<int>(goals_.size());
+    const int nt = static_cast<int>(setup_.tracked.size());
     if (goal_positions.cols() != nt || goal_normals.cols() != nt) {
       return Status::Error("retarget: goal count differs from the tracked vertex count");
     }
@@ -265,7 +300,7 @@ class RetargetFrameSolver::Impl {
     reference_translation_ = translation_;
     Fk();
     SkinAndLinearize(true);
-    const int nt = static_cast<int>(goals_.size());
+    const int nt = static_cast<int>(rows_.size());  // Tracked vertices, then plants.
     *residual = residual_.head(3 * nt);
     jacobian->setZero(3 * nt, PoseTangentColumns());
     jacobian->leftCols<3>() = jacobian_.topLeftCorner(3 * nt, 3) / sigma_;  // Back to units.
@@ -317,7 +352,7 @@ class RetargetFrameSolver::Impl {
   int PoseTangentColumns() const { return 3 + 3 * skeleton_.num_joints(); }
 
   void SetGoals(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals) {
-    for (size_t s = 0; s < goals_.size(); ++s) {
+    for (size_t s = 0; s < setup_.tracked.size(); ++s) {
       goals_[s] = setup_.tracked[s].track_position ? goal_positions.col(s) : goal_normals.col(s);
     }
   }
@@ -611,6 +646,7 @@ class RetargetFrameSolver::Impl {
     const int nt = static_cast<int>(rows_.size());
     for (int s = 0; s < nt; ++s) {
       const Row& row = rows_[s];
+      if (row.scale == 0.0) continue;  // A plant that is off: no rows.
       const Eigen::Vector3d* terms = &terms_[row.term_offset];
       const Eigen::Vector3d r = residual_.segment<3>(3 * s);
       const Eigen::Vector3d x = r / row.scale + goals_[s];  // Skinned point or normal.
@@ -801,6 +837,11 @@ class RetargetFrameSolver::Impl {
       for (int j : residual->joints()) blocks.push_back(&rotations_[4 * j]);
       ceres_problem_->AddResidualBlock(residual.get(), nullptr, blocks);
     }
+    for (const auto& residual : plant_residuals_) {
+      std::vector<double*> blocks = {translation_.data()};
+      for (int j : residual->joints()) blocks.push_back(&rotations_[4 * j]);
+      ceres_problem_->AddResidualBlock(residual.get(), nullptr, blocks);
+    }
     if (translation_prior_) {
       ceres_problem_->AddResidualBlock(translation_prior_.get(), nullptr, translation_.data());
     }
@@ -814,6 +855,11 @@ class RetargetFrameSolver::Impl {
     std::vector<int> block(skeleton_.num_joints(), -1);
     for (int j : solved_joints_) block[j] = dls_problem_.AddParameterBlock(&rotations_[4 * j], 4, &manifold_);
     for (const auto& residual : residuals_) {
+      std::vector<int> blocks = {translation};
+      for (int j : residual->joints()) blocks.push_back(block[j]);
+      dls_problem_.AddResidualBlock(residual.get(), nullptr, blocks);
+    }
+    for (const auto& residual : plant_residuals_) {
       std::vector<int> blocks = {translation};
       for (int j : residual->joints()) blocks.push_back(block[j]);
       dls_problem_.AddResidualBlock(residual.get(), nullptr, blocks);
@@ -836,6 +882,8 @@ class RetargetFrameSolver::Impl {
   std::vector<double> reference_rotations_;
   std::vector<Eigen::Vector3d> goals_;
   std::vector<std::unique_ptr<TrackedVertexResidual>> residuals_;
+  std::vector<std::unique_ptr<FootPlantResidual>> plant_residuals_;
+  std::vector<double> plant_scales_;  // plant_weight / sigma while planted, else 0.
   std::unique_ptr<ceres::CostFunction> translation_prior_;
   std::vector<Extra> extras_;
   std::vector<int> solved_joints_;
@@ -879,6 +927,10 @@ Status RetargetFrameSolver::Solve(const Eigen::Matrix3Xd& goal_positions,
                                   const Eigen::Matrix3Xd& goal_normals, Pose* pose,
                                   RetargetFrameReport* report) {
   return impl_->Solve(goal_positions, goal_normals, pose, report);
+}
+
+void RetargetFrameSolver::SetPlants(const Eigen::Matrix3Xd& anchors, const std::vector<char>& active) {
+  impl_->SetPlants(anchors, active);
 }
 
 const RetargetStageTimes& RetargetFrameSolver::stage_times() const { return impl_->times; }

@@ -13,6 +13,9 @@
 //   optional temporal smoothness toward the previous frame's solution (the warm start):
 //     RotationPriorResidual per solved joint (smoothness_weight per radian) and
 //     TranslationPriorResidual for the root (smoothness_weight / sigma per unit);
+//   optional foot plants: FootPlantResidual per options.plant_joints entry, 3 rows,
+//     scale plant_weight / sigma while planted (SetPlants), 0 otherwise (the rows stay,
+//     so the problem's shape does not change from frame to frame);
 //   optional soft joint limits (JointLimitResidual, limit_weight per radian) where the
 //     target skeleton has limits (problems/marker_solve/, reused as they are).
 //
@@ -67,6 +70,10 @@ struct RetargetSolveOptions {
   double smoothness_weight = 0.0;  // Per radian toward the previous frame; 0 = off.
   double limit_weight = 0.0;       // Per radian outside joint limits; 0 = off.
   bool time_stages = false;        // Accumulate RetargetStageTimes (kDls only).
+  // Foot plants (FootPlantResidual, foot_plant_residual.h): target joints that may be held
+  // at an anchor (SetPlants), each weighted plant_weight / sigma while planted.
+  std::vector<int> plant_joints;
+  double plant_weight = 10.0;
   ceres::Solver::Options ceres;    // kCeres; max_num_iterations is set from iterations.
 
   bool IsValid(std::string* error) const;
@@ -108,10 +115,14 @@ class RetargetFrameSolver {
   Status Solve(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
                Pose* pose, RetargetFrameReport* report);
 
+  // Anchors (3 x #plant_joints, target units) and which plants are on for the next Solve
+  // calls (default: all off).
+  void SetPlants(const Eigen::Matrix3Xd& anchors, const std::vector<char>& active);
+
   const RetargetStageTimes& stage_times() const;
   void ResetStageTimes();
 
-  // The lean kernel's residual (3 #tracked) and tangent Jacobian in the pose tangent layout
+  // The lean kernel's residual (3 #tracked, then 3 per plant joint) and tangent Jacobian in the pose tangent layout
   // of kinematic_jacobians.h (3 + 3 #J columns; unsolved joints' columns zero), at `pose`
   // with the given goals. For tests.
   void Linearize(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,

@@ -2,6 +2,8 @@
 // data): CesiumMan's walk onto RiggedFigure (different names and proportions) by both
 // solvers, the report's figures, and the bad inputs (missing file, unknown solver and
 // animation, bad blend-mask file, output over an input) as one-line errors with exit 1.
+// Skeleton-only sources: a CMU BVH walk onto Xbot, and their bad inputs (a target without
+// a skin, a joint map naming an unknown joint, a source that cannot be aligned).
 #include <algorithm>
 #include <fstream>
 #include <string>
@@ -103,6 +105,94 @@ TEST(RetargetCli, BadInputsFailWithOneLine) {
       {base + "--out=" + out + " --subsample=0", "--subsample"},
       {base + "--out=" + testing::TempPath("out.fbx"), "expected .glb"},
       {"retarget --source=" + source + " --target=" + target, "--out"},
+  };
+  for (const Case& c : cases) {
+    std::string output;
+    EXPECT_EQ(testing::RunCli(c.arguments, &output), 1) << c.arguments << "\n" << output;
+    EXPECT_THAT(output, HasSubstr(c.message)) << c.arguments;
+    EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  }
+  EXPECT_FALSE(testing::FileExists(out));
+}
+
+TEST(RetargetCli, CmuBvhWalkOntoXbot) {
+  MOCAPSOLVE_DATA_FILE(source, "bvh/16_15.bvh");
+  MOCAPSOLVE_DATA_FILE(target, "gltf/Xbot.glb");
+  const std::string out = testing::TempPath("walk.bvh");
+  const std::string report = testing::TempPath("walk.json");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("retarget --quiet --source=" + source + " --target=" + target + " --out=" + out +
+                                " --max_frames=60 --report=" + report,
+                            &output),
+            0)
+      << output;
+  Skeleton skeleton;
+  Motion motion;
+  ASSERT_TRUE(ReadBvh(out, &skeleton, &motion).ok());
+  EXPECT_EQ(motion.num_frames(), 60);
+  EXPECT_EQ(skeleton.num_joints(), 65);
+  JsonNode root;
+  ASSERT_TRUE(ReadJsonFile(report, &root).ok());
+  ASSERT_NE(root.Find("source_kind"), nullptr);
+  EXPECT_EQ(root.Find("source_kind")->string, "skeleton");
+  EXPECT_GE(root.Find("mapped_joints")->number, 15);
+  EXPECT_LT(root.Find("mean_position_error_fraction_of_height")->number, 0.05);
+  EXPECT_LE(root.Find("result_plant_skating_cm_per_s")->number,
+            root.Find("source_plant_skating_cm_per_s")->number + 0.5);
+}
+
+// Names that match nothing (CesiumMan's) through a joint map file.
+TEST(RetargetCli, JointMapFileMapsUnrelatedNames) {
+  MOCAPSOLVE_DATA_FILE(cesium, "gltf/CesiumMan.glb");
+  MOCAPSOLVE_DATA_FILE(target, "gltf/Xbot.glb");
+  const std::string bvh = testing::TempPath("cesium.bvh");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("convert --quiet " + cesium + " " + bvh, &output), 0) << output;
+  const std::string map = testing::TempPath("map.json");
+  {
+    std::ofstream file(map);
+    file << "{\"joints\": {\"Skeleton_torso_joint_1\": \"mixamorig:Hips\", "
+            "\"Skeleton_torso_joint_2\": \"mixamorig:Spine1\", \"torso_joint_3\": \"mixamorig:Spine2\", "
+            "\"Skeleton_neck_joint_2\": \"mixamorig:Head\", "
+            "\"leg_joint_L_1\": \"mixamorig:LeftUpLeg\", \"leg_joint_L_2\": \"mixamorig:LeftLeg\", "
+            "\"leg_joint_L_3\": \"mixamorig:LeftFoot\", \"leg_joint_R_1\": \"mixamorig:RightUpLeg\", "
+            "\"leg_joint_R_2\": \"mixamorig:RightLeg\", \"leg_joint_R_3\": \"mixamorig:RightFoot\"}}";
+  }
+  const std::string out = testing::TempPath("out.bvh");
+  const std::string report = testing::TempPath("report.json");
+  const std::string base = "retarget --quiet --source=" + bvh + " --target=" + target + " --max_frames=10 --out=" + out;
+  EXPECT_EQ(testing::RunCli(base, &output), 1);  // Without the map: nothing to align by.
+  EXPECT_THAT(output, HasSubstr("cannot align the skeletons"));
+  ASSERT_EQ(testing::RunCli(base + " --joint_map=" + map + " --report=" + report, &output), 0) << output;
+  JsonNode root;
+  ASSERT_TRUE(ReadJsonFile(report, &root).ok());
+  EXPECT_EQ(root.Find("mapped_joints")->number, 10);
+  EXPECT_LT(root.Find("mean_position_error_fraction_of_height")->number, 0.05);
+}
+
+TEST(RetargetCli, SkeletonSourceBadInputsFailWithOneLine) {
+  MOCAPSOLVE_DATA_FILE(source, "bvh/16_15.bvh");
+  MOCAPSOLVE_DATA_FILE(target, "gltf/Xbot.glb");
+  MOCAPSOLVE_DATA_FILE(unrelated, "gltf/RiggedFigure.glb");  // torso_joint_1, leg_joint_L_1, ...
+  const std::string out = testing::TempPath("out.glb");
+  const std::string unknown = testing::TempPath("unknown.json");
+  const std::string skinless = testing::TempPath("skinless.gltf");
+  {
+    std::ofstream(unknown) << "{\"joints\": {\"lfemur\": \"mixamorig:NoSuchLeg\"}}";
+    std::ofstream(skinless) << "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [{\"name\": \"a\"}], "
+                               "\"scenes\": [{\"nodes\": [0]}]}";
+  }
+  const std::string base = "retarget --quiet --source=" + source + " --max_frames=3 --out=" + out + " ";
+  struct Case {
+    std::string arguments;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {base + "--target=" + skinless, "has no skin"},
+      {base + "--target=" + target + " --joint_map=" + unknown, "no joint 'mixamorig:NoSuchLeg'"},
+      {base + "--target=" + target + " --joint_map=" + testing::TempPath("missing.json"), "missing.json"},
+      {base + "--target=" + target + " --foot_joints=NoFoot", "NoFoot"},
+      {base + "--target=" + unrelated, "cannot align the skeletons: 0 joints map by name"},
   };
   for (const Case& c : cases) {
     std::string output;

@@ -1,0 +1,164 @@
+#include "problems/retarget/retarget_character.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "kinematics/forward_kinematics.h"
+#include "problems/edit_propagation/foot_contacts.h"
+#include "problems/retarget/skeleton_binding.h"
+
+namespace mocapsolve {
+namespace {
+
+std::string Format(const char* format, double a, double b = 0.0, double c = 0.0) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, format, a, b, c);
+  return buffer;
+}
+
+}  // namespace
+
+bool CharacterRetargetOptions::IsValid(std::string* error) const {
+  if (!clip.solve.IsValid(error)) return false;
+  if (!(contact_height > 0.0) || !(contact_speed > 0.0)) {
+    return *error = "contact height and speed must be > 0", false;
+  }
+  if (!(clip.contact_height > 0.0)) return *error = "skating contact height must be > 0", false;
+  if (setup.subsample.ratio < 1) return *error = "subsample ratio must be >= 1", false;
+  if (first_frame_solves < 1) return *error = "first frame solves must be >= 1", false;
+  return true;
+}
+
+Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion& source_motion,
+                                   const RetargetCharacter& target, const CharacterRetargetOptions& options,
+                                   CharacterRetargetResult* result, const RetargetProgressCallback& progress) {
+  std::string error;
+  if (!options.IsValid(&error)) return Status::Error("retarget options: " + error);
+  if (source.skeleton == nullptr || target.skeleton == nullptr || target.mesh == nullptr) {
+    return Status::Error("retarget: the source needs a skeleton, the target a skeleton and a skinned mesh");
+  }
+  if (source_motion.num_frames() == 0) return Status::Error("retarget: the source motion has no frames");
+  for (const Pose& pose : source_motion.frames) {
+    if (static_cast<int>(pose.rotations.size()) != source.skeleton->num_joints()) {
+      return Status::Error("retarget: the source motion does not fit its skeleton");
+    }
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const Skeleton& target_skeleton = *target.skeleton;
+  const Pose target_bind = target.bind_pose.rotations.empty() ? RestPose(target_skeleton) : target.bind_pose;
+  const Pose target_rest = target.rest_pose.rotations.empty() ? target_bind : target.rest_pose;
+  CharacterRetargetResult out;
+  out.skeleton_only = source.mesh == nullptr;
+
+  Status map_status = BuildJointMap(*source.skeleton, target_skeleton, options.joint_map, &out.joint_map);
+  if (!map_status.ok()) return map_status;
+
+  RetargetSetupOptions setup_options = options.setup;
+  setup_options.target_world_from_bind = WorldFromBindRotation(target_skeleton, target_bind, target_rest);
+  Motion motion;
+  const SkinnedMesh* source_mesh = source.mesh;
+  SkeletonBinding binding;
+  double source_height = 0.0;
+  if (out.skeleton_only) {
+    Status status = BindTargetMeshToSource(*source.skeleton, source_motion, target_skeleton, *target.mesh,
+                                           target_bind, setup_options.target_world_from_bind, out.joint_map,
+                                           &binding);
+    if (!status.ok()) return status;
+    motion = RotateMotionWorld(*source.skeleton, source_motion, binding.up);
+    source_mesh = &binding.mesh;
+    setup_options.source_world_from_bind = Eigen::Matrix3d::Identity();
+    source_height = binding.source_height;
+    out.mean_bone_angle_deg = binding.mean_bone_angle_deg;
+    out.notes = binding.notes;
+    out.notes.push_back(std::to_string(out.joint_map.num_mapped()) + " joints mapped (names, joint map); rest poses aligned: " +
+                        Format("mean bone angle %.1f deg, worst %.1f deg (", binding.mean_bone_angle_deg,
+                               binding.max_bone_angle_deg) +
+                        binding.worst_bone + ")");
+  } else {
+    const Pose bind = source.bind_pose.rotations.empty() ? RestPose(*source.skeleton) : source.bind_pose;
+    setup_options.source_world_from_bind =
+        WorldFromBindRotation(*source.skeleton, bind, source.rest_pose.rotations.empty() ? bind : source.rest_pose);
+    motion = source_motion;
+  }
+  Status status = BuildRetargetSetup(*source_mesh, target_skeleton, *target.mesh, setup_options, &out.setup);
+  if (!status.ok()) return status;
+  for (const std::string& note : out.setup.notes) out.notes.push_back(note);
+  out.height_ratio = out.setup.scale;
+  if (!out.skeleton_only) source_height = out.setup.source_frame.height;
+
+  RetargetClipOptions clip = options.clip;
+  if (clip.start_pose.rotations.empty()) clip.start_pose = target_rest;
+  clip.first_frame_solves = options.first_frame_solves;
+  clip.solve.plant_joints.clear();
+  clip.plant_contacts.clear();
+  FootContacts contacts;
+  std::vector<int> plant_source_joints;
+  std::vector<int> contact_targets;  // Target joint of each contact joint.
+  {
+    FootContactOptions contact_options;
+    for (const std::string& name : options.foot_joints) {
+      const int j = source.skeleton->FindJoint(name);
+      if (j < 0) return Status::Error("retarget: foot joint '" + name + "' is not a source joint");
+      contact_options.joints.push_back(j);
+    }
+    if (contact_options.joints.empty()) contact_options.joints = AutoFootJoints(*source.skeleton);
+    std::vector<int> mapped;
+    for (int j : contact_options.joints) {
+      if (out.joint_map.target_of_source[j] >= 0) mapped.push_back(j);
+    }
+    contact_options.joints = mapped;
+    contact_options.height_threshold = options.contact_height * source_height;
+    contact_options.speed_threshold = options.contact_speed * source_height;
+    contact_options.up_axis = 1;
+    if (mapped.empty()) {
+      out.notes.push_back("no foot contacts: no source foot joint maps to a target joint");
+    } else if (!(motion.frame_rate > 0.0)) {
+      out.notes.push_back("no foot contacts: the source has no frame rate");
+    } else {
+      status = DetectFootContacts(*source.skeleton, motion, contact_options, &contacts);
+      if (!status.ok()) return Status::Error("retarget: foot contacts: " + status.message());
+      for (size_t k = 0; k < contacts.joints.size(); ++k) {
+        const int t = out.joint_map.target_of_source[contacts.joints[k]];
+        contact_targets.push_back(t);
+        if (!options.plant_feet) continue;  // Contacts for the skating figures only.
+        clip.solve.plant_joints.push_back(t);
+        clip.plant_contacts.push_back(contacts.in_contact[k]);
+        out.plant_joints.push_back(target_skeleton.name(t));
+      }
+      out.contact_samples = contacts.ContactSamples();
+    }
+  }
+  out.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  status = RetargetClip(*source.skeleton, *source_mesh, motion, target_skeleton, *target.mesh, out.setup, clip,
+                        &out.clip, progress);
+  if (!status.ok()) return status;
+
+  // Skating of the plant joints while the source's are in contact.
+  if (!contacts.joints.empty()) {
+    const double cm = target_skeleton.unit().known() ? 100.0 * target_skeleton.unit().metres_per_unit : 1.0;
+    const std::vector<Vector3dVector> result_positions = ClipJointPositions(target_skeleton, out.clip.motion);
+    double source_sum = 0.0, result_sum = 0.0;
+    int pairs = 0;
+    for (size_t k = 0; k < contacts.joints.size(); ++k) {
+      const int t = contact_targets[k];
+      for (int f = 1; f < motion.num_frames(); ++f) {
+        if (!contacts.in_contact[k][f - 1] || !contacts.in_contact[k][f]) continue;
+        const Eigen::Vector3d a = contacts.positions[k][f] - contacts.positions[k][f - 1];
+        const Eigen::Vector3d b = result_positions[f][t] - result_positions[f - 1][t];
+        source_sum += std::hypot(a.x(), a.z()) * out.height_ratio;
+        result_sum += std::hypot(b.x(), b.z());
+        ++pairs;
+      }
+    }
+    out.plant_pairs = pairs;
+    if (pairs > 0) {
+      out.source_plant_skating_cm_s = source_sum / pairs * motion.frame_rate * cm;
+      out.result_plant_skating_cm_s = result_sum / pairs * motion.frame_rate * cm;
+    }
+  }
+  *result = std::move(out);
+  return Status::Ok();
+}
+
+}  // namespace mocapsolve
