@@ -10,6 +10,7 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "apps/progress.h"
+#include "apps/retarget_flags.h"
 #include "apps/solver_flags.h"
 #include "io/bvh_writer.h"
 #include "io/gltf_reader.h"
@@ -19,47 +20,21 @@
 #include "io/motion_file.h"
 #include "problems/retarget/retarget_character.h"
 
-// Shared with other commands: --solver (apps/solver_flags.cc; here dls | dls_generic |
-// ceres, and dls when not given), --max_frames (apps/solve_command.cc).
+// Shared with other commands: the retarget options (apps/retarget_flags.cc, also read by
+// pipeline), --solver (apps/solver_flags.cc; here dls | dls_generic | ceres, and dls when
+// not given), --max_frames (apps/solve_command.cc).
 DECLARE_int32(max_frames);
-DECLARE_double(limit_weight);  // apps/solver_flags.cc: soft joint limits, where the skeleton has them.
-// apps/propagate_command.cc: here the source joints to plant (default: names with foot, toe, ankle).
-DECLARE_string(foot_joints);
 
 DEFINE_string(source, "", "Source motion: a skinned character (.glb/.gltf) or a skeleton motion (.bvh, "
               ".amc with --skeleton=X.asf, .fbx).");
 DEFINE_bool(source_mesh, true, "Track a skinned glTF source's own mesh; false: treat it as a "
             "skeleton only (the target's mesh is bound to its skeleton, as for BVH/AMC/FBX).");
-DEFINE_string(joint_map, "", "JSON {\"joints\": {\"<source joint>\": \"<target joint>\"}}: overrides "
-              "of the automatic joint map (names; used to bind a skeleton-only source and for the plants).");
-DEFINE_bool(plant_feet, true, "Keep the target's feet planted where the source's foot joints are in "
-            "contact (an IK term in each frame's solve).");
-DEFINE_double(plant_weight, 10.0, "Weight of a planted foot joint (per sigma of position error, as a "
-              "position-tracked vertex has 1); 0 = off.");
-DEFINE_double(plant_height, 0.03, "Foot contact: source foot joint at most this high above its lowest "
-              "point (fraction of the source height).");
-DEFINE_double(plant_speed, 0.15, "Foot contact: source foot joint slower than this (source heights/s).");
 DEFINE_string(source_animation, "", "Animation of the source, by name or index (default: the first).");
 DEFINE_string(source_skin, "", "Skin of the source file (name or index; default: skin 0).");
 DEFINE_string(target_skin, "", "Skin of the target file (name or index; default: skin 0).");
 DEFINE_string(out_bvh, "", "Also write the result as BVH (target skeleton, metres).");
 DEFINE_string(animation_name, "", "Name of the new animation in --out (.glb/.gltf); default: "
               "'retargeted from <source animation or file>'.");
-DEFINE_int32(subsample, 128, "Subsampling ratio #V : #tracked vertices of the source mesh.");
-DEFINE_int32(iterations, 10, "Solver iterations per frame.");
-DEFINE_double(lambda, 5.0, "DLS damping (thesis eq. 18).");
-DEFINE_string(blend_mask, "auto", "auto (hands, feet, toes, head by position; the rest by normals) "
-              "or a JSON file {\"position_joints\": [target joint names]}.");
-DEFINE_double(mapping_normal_weight, 0.0, "Normals in the mesh mapping's nearest-neighbour distance "
-              "(heights per unit normal difference); 0 = positions only (thesis eq. 11).");
-DEFINE_bool(transfer_normals, true, "Normal goals: the target vertex's rest normal turned by the "
-            "source vertex's skinning (true) or the source's skinned normal itself (false, eq. 16).");
-DEFINE_double(normal_weight, 1.0, "Weight of the normal residuals (positions: 1 per sigma).");
-DEFINE_double(smoothness, 0.0, "Weight of a pull toward the previous frame (per radian); 0 = off.");
-DEFINE_double(contact_height, 0.02, "Foot contact: height above the rest floor, fraction of the "
-              "target height (for the foot-skating figures).");
-DEFINE_double(ceres_trust_radius, 1.0, "Ceres' initial trust region radius (its default is 1e4; ~1 "
-              "converges better within a few iterations on the cross-character cases).");
 DEFINE_double(frame_rate, 0.0, "Sampling rate of the source animation; 0 = its key rate.");
 DEFINE_int32(loop, 1, "Repeat the source clip N times (timing long clips).");
 DEFINE_bool(stage_times, false, "Time FK, skinning, Jacobian and solve separately (dls only; "
@@ -67,24 +42,6 @@ DEFINE_bool(stage_times, false, "Time FK, skinning, Jacobian and solve separatel
 
 namespace mocapsolve {
 namespace {
-
-Status ReadBlendMask(const std::string& path, std::vector<std::string>* joints) {
-  JsonNode root;
-  Status status = ReadJsonFile(path, &root);
-  if (!status.ok()) return status;
-  const JsonNode* list = root.Find("position_joints");
-  if (list == nullptr || !list->is_array()) {
-    return Status::Error(root.Where(path) + ": expected an object with an array \"position_joints\"");
-  }
-  for (const JsonNode& item : list->items) {
-    if (!item.is_string() || item.string.empty()) {
-      return Status::Error(item.Where(path) + ": position_joints: expected a joint name");
-    }
-    joints->push_back(item.string);
-  }
-  if (joints->empty()) return Status::Error(list->Where(path) + ": position_joints is empty");
-  return Status::Ok();
-}
 
 JsonObject Stages(const RetargetStageTimes& stages) {
   const double total = stages.total();
@@ -98,25 +55,6 @@ JsonObject Stages(const RetargetStageTimes& stages) {
       .Add("update_percent", share(stages.update))
       .Add("us_per_iteration", stages.iterations > 0 ? 1e6 * total / stages.iterations : 0.0);
   return out;
-}
-
-// {"joints": {"<source joint>": "<target joint>", ...}}.
-Status ReadJointMap(const std::string& path, std::vector<std::pair<std::string, std::string>>* pairs) {
-  JsonNode root;
-  Status status = ReadJsonFile(path, &root);
-  if (!status.ok()) return status;
-  const JsonNode* joints = root.Find("joints");
-  if (joints == nullptr || !joints->is_object()) {
-    return Status::Error(root.Where(path) + ": expected an object with an object \"joints\" "
-                         "{\"<source joint>\": \"<target joint>\"}");
-  }
-  for (const auto& [source, target] : joints->members) {
-    if (!target.is_string() || target.string.empty()) {
-      return Status::Error(target.Where(path) + ": joints: '" + source + "': expected a target joint name");
-    }
-    pairs->push_back({source, target.string});
-  }
-  return Status::Ok();
 }
 
 bool HasExtension(const std::string& path, const std::string& extension) {
@@ -141,56 +79,12 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
     return Status::Error("--out: " + FLAGS_out + ": expected .glb, .gltf or .bvh");
   }
   CharacterRetargetOptions options;
-  RetargetSolveOptions& solve = options.clip.solve;
-  const std::string solver_name =
-      gflags::GetCommandLineFlagInfoOrDie("solver").is_default ? "dls" : FLAGS_solver;
-  if (!ParseRetargetSolverKind(solver_name, &solve.solver)) {
-    return Status::Error("--solver: unknown solver '" + FLAGS_solver + "' (dls, dls_generic, ceres)");
-  }
-  if (FLAGS_subsample < 1) return Status::Error("--subsample: must be >= 1");
+  Status status = RetargetOptionsFromFlags(&options);
+  if (!status.ok()) return status;
   if (FLAGS_loop < 1) return Status::Error("--loop: must be >= 1");
   if (FLAGS_max_frames < 0) return Status::Error("--max_frames: must be >= 0");
-  if (!(FLAGS_contact_height > 0.0)) return Status::Error("--contact_height: must be > 0");
-  if (FLAGS_mapping_normal_weight < 0.0) return Status::Error("--mapping_normal_weight: must be >= 0");
-  if (!(FLAGS_plant_weight >= 0.0)) return Status::Error("--plant_weight: must be >= 0");
-  if (!(FLAGS_plant_height > 0.0) || !(FLAGS_plant_speed > 0.0)) {
-    return Status::Error("--plant_height and --plant_speed: must be > 0");
-  }
-  solve.iterations = FLAGS_iterations;
-  solve.lambda = FLAGS_lambda;
-  solve.normal_weight = FLAGS_normal_weight;
-  solve.smoothness_weight = FLAGS_smoothness;
-  solve.limit_weight = FLAGS_limit_weight;
-  solve.time_stages = FLAGS_stage_times;
-  solve.plant_weight = FLAGS_plant_weight;
-  solve.ceres = DefaultRetargetCeresOptions();
-  solve.ceres.initial_trust_region_radius = FLAGS_ceres_trust_radius;
-  options.clip.contact_height = FLAGS_contact_height;
-  options.setup.subsample.ratio = FLAGS_subsample;
-  options.setup.mapping_normal_weight = FLAGS_mapping_normal_weight;
-  options.setup.transfer_normals = FLAGS_transfer_normals;
-  options.plant_feet = FLAGS_plant_feet && FLAGS_plant_weight > 0.0;
-  options.contact_height = FLAGS_plant_height;
-  options.contact_speed = FLAGS_plant_speed;
-  if (!FLAGS_foot_joints.empty()) {
-    size_t begin = 0;
-    while (begin <= FLAGS_foot_joints.size()) {
-      const size_t comma = std::min(FLAGS_foot_joints.find(',', begin), FLAGS_foot_joints.size());
-      if (comma > begin) options.foot_joints.push_back(FLAGS_foot_joints.substr(begin, comma - begin));
-      begin = comma + 1;
-    }
-  }
-  std::string error;
-  if (!options.IsValid(&error)) return Status::Error("retarget options: " + error);
-  Status status = Status::Ok();
-  if (FLAGS_blend_mask != "auto") {
-    status = ReadBlendMask(FLAGS_blend_mask, &options.setup.position_joints);
-    if (!status.ok()) return status;
-  }
-  if (!FLAGS_joint_map.empty()) {
-    status = ReadJointMap(FLAGS_joint_map, &options.joint_map);
-    if (!status.ok()) return status;
-  }
+  options.clip.solve.time_stages = FLAGS_stage_times;
+  const RetargetSolveOptions& solve = options.clip.solve;
 
   const auto start = std::chrono::steady_clock::now();
   GltfDocument target_document;
@@ -355,6 +249,9 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   return WriteReport(report);
 }
 
+const std::string kRetargetFlags = std::string("target,out,report,quiet,solver,max_frames,limit_weight,skeleton,amc_fps,") +
+                                   kRetargetOptionFlagNames;
+
 }  // namespace
 
 extern const Command kRetargetCommand = {
@@ -372,6 +269,6 @@ extern const Command kRetargetCommand = {
     "A .glb/.gltf --out is the target file with the result added as a new animation.\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
-    __FILE__, RunRetarget, "target,out,report,quiet,solver,max_frames,limit_weight,skeleton,amc_fps,foot_joints"};
+    __FILE__, RunRetarget, kRetargetFlags.c_str()};
 
 }  // namespace mocapsolve

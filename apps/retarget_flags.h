@@ -1,0 +1,25 @@
+// The retargeting knobs `retarget` and `pipeline` share (gflags, defined here), turned
+// into CharacterRetargetOptions in one place.
+#ifndef MOCAPSOLVE_APPS_RETARGET_FLAGS_H_
+#define MOCAPSOLVE_APPS_RETARGET_FLAGS_H_
+
+#include <gflags/gflags.h>
+
+#include "kinematics/status.h"
+#include "problems/retarget/retarget_character.h"
+
+DECLARE_string(joint_map);
+DECLARE_int32(subsample);
+
+namespace mocapsolve {
+
+// Comma-separated names of the retarget option flags (Command::shared_flags style).
+extern const char* const kRetargetOptionFlagNames;
+
+// From the flags above, --solver (dls | dls_generic | ceres; dls when not given) and
+// --limit_weight; reads the --blend_mask and --joint_map files.
+Status RetargetOptionsFromFlags(CharacterRetargetOptions* options);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_APPS_RETARGET_FLAGS_H_
