@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "kinematics/forward_kinematics.h"
+#include "problems/marker_solve/subject_checks.h"
 
 namespace mocapsolve {
 namespace {
@@ -206,6 +207,22 @@ Status CalibrateMarkers(const Skeleton& skeleton, const Motion& motion,
       std::vector<Eigen::Vector3d> means(candidates.size());
       for (size_t c = 0; c < candidates.size(); ++c) {
         LocalMeanAndSpread(matched, trajectories, m, frames, candidates[c], &means[c], &spread[c]);
+      }
+      if (options.max_bone_distance > 0.0) {
+        // Plausible joints only: the marker's mean local position within the skin
+        // distance of the joint's bone (a toe marker does not ride on a hip). When no
+        // joint qualifies, the one whose bone is nearest.
+        std::vector<double> distance(candidates.size());
+        bool any = false;
+        for (size_t c = 0; c < candidates.size(); ++c) {
+          distance[c] = DistanceToBone(skeleton, candidates[c], means[c]);
+          any |= distance[c] <= options.max_bone_distance;
+        }
+        const size_t nearest = std::min_element(distance.begin(), distance.end()) - distance.begin();
+        for (size_t c = 0; c < candidates.size(); ++c) {
+          const bool allowed = any ? distance[c] <= options.max_bone_distance : c == nearest;
+          if (!allowed) spread[c] = std::numeric_limits<double>::infinity();
+        }
       }
       const double best = *std::min_element(spread.begin(), spread.end());
       const double tie = best * (1.0 + options.tie_tolerance) + 1e-18 * scale * scale;
