@@ -33,6 +33,8 @@ DEFINE_int32(fit_max_frames, 0, "Fit on the first N frames only (0 = all).");
 DEFINE_double(max_skin_cm, 12.0, "Markers stay within this distance of their bone (fit and attach); 0: off.");
 DEFINE_double(min_bone_scale, 0.8, "Bone lengths no shorter than this times the template's.");
 DEFINE_double(max_bone_scale, 1.25, "Bone lengths no longer than this times the template's.");
+DEFINE_double(offset_prior, 0.0, "Weight of the prior that keeps marker offsets near the template's in the "
+              "first fit, per frame, relative to a marker residual; 0: off.");
 DEFINE_string(check, "fail", "The subject checks (marker within 15 cm of its bone, torso direction within "
               "15 degrees of the markers', left/right within 5 %): fail (exit 1, nothing written), warn, off.");
 
@@ -100,6 +102,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   if (FLAGS_attach_rounds < -1 || FLAGS_attach_rounds > 20) return Status::Error("--attach_rounds: -1..20");
   if (FLAGS_fit_frame_step < 1) return Status::Error("--fit_frame_step: >= 1");
   if (FLAGS_fit_max_frames < 0) return Status::Error("--fit_max_frames: >= 0");
+  if (!(FLAGS_offset_prior >= 0.0)) return Status::Error("--offset_prior: >= 0");
   if (!(FLAGS_max_skin_cm >= 0.0)) return Status::Error("--max_skin_cm: >= 0");
   if (!(FLAGS_min_bone_scale > 0.0 && FLAGS_min_bone_scale <= 1.0 && FLAGS_max_bone_scale >= 1.0)) {
     return Status::Error("--min_bone_scale in (0, 1] and --max_bone_scale >= 1");
@@ -174,6 +177,17 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   SkeletonFitReport report;
   std::vector<JsonObject> round_json;
   std::vector<double> scales(skeleton.num_joints(), 1.0);
+  // The best round with every marker attached (rounds >= 1), by marker RMS: re-attaching
+  // can also make a round worse.
+  struct Best {
+    int round = -1;
+    double rms = 0.0;
+    Skeleton skeleton;
+    MarkerSet markers;
+    Motion motion;
+    SkeletonFitReport report;
+    std::vector<std::vector<Eigen::Vector3d>> observed;
+  } best;
   for (int round = 0; round <= rounds; ++round) {
     std::vector<std::vector<Eigen::Vector3d>> observed = take.observed;
     MarkerSet round_markers = fitted_markers;
@@ -199,6 +213,9 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
       observed.resize(frames);
     }
     options.iterations = round == 0 ? FLAGS_fit_iterations : FLAGS_attach_iterations;
+    // The template's offsets are a prior worth keeping; an attach round's are estimates
+    // from a motion that is itself being fitted.
+    options.offset_prior_weight = round == 0 ? FLAGS_offset_prior : 0.0;
     options.initial_scales = scales;
     if (!FLAGS_quiet) {
       std::fprintf(stderr, "fit_skeleton: round %d/%d: %d markers, %d frames, %d iterations (%.0f s so far)\n", round,
@@ -223,11 +240,19 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
     round_json.push_back(o);
     std::printf("round %d: %d markers, marker RMS %.2f -> %.2f %s\n", round, fitted_markers.num_markers(),
                 report.rms.front() * mm, report.rms.back() * mm, unit);
-    if (round == rounds) {
-      // The checks see the final model against the observations it was fitted to.
-      take.observed = std::move(observed);
+    if (round <= 1 || report.rms.back() < best.rms) {
+      best = {round, report.rms.back(), fitted, fitted_markers, motion, report, observed};
     }
   }
+  if (rounds > 0 && best.round != rounds && !FLAGS_quiet) {
+    std::fprintf(stderr, "fit_skeleton: keeping round %d (marker RMS %.2f %s)\n", best.round, best.rms * mm, unit);
+  }
+  // The checks see the kept model against the observations it was fitted to.
+  fitted = std::move(best.skeleton);
+  fitted_markers = std::move(best.markers);
+  motion = std::move(best.motion);
+  report = std::move(best.report);
+  take.observed = std::move(best.observed);
   motion.frame_rate = take.trajectories.frame_rate;
   const SubjectChecks checks = CheckSubjectFit(fitted, fitted_markers, take.observed, motion);
   const double seconds = Seconds(start);
@@ -249,7 +274,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
               unit, seconds);
   JsonObject json;
   json.Add("markers", FLAGS_markers).Add("template", from_subject ? FLAGS_template_subject : FLAGS_skeleton)
-      .Add("frames", frames).Add("attach_rounds", rounds).Add("seconds", seconds)
+      .Add("frames", frames).Add("attach_rounds", rounds).Add("kept_round", best.round).Add("seconds", seconds)
       .Add(skeleton.unit().known() ? "rms_mm" : "rms", report.rms.back() * mm)
       .Add("rounds", round_json).Add("bone_scales", scale_json).Add("checks", ChecksJson(checks));
   if (!checks.ok() && FLAGS_check != "off") {

@@ -208,11 +208,14 @@ Status CalibrateMarkers(const Skeleton& skeleton, const Motion& motion,
       for (size_t c = 0; c < candidates.size(); ++c) {
         LocalMeanAndSpread(matched, trajectories, m, frames, candidates[c], &means[c], &spread[c]);
       }
+      // With max_bone_distance, plausible joints only: the marker's mean local position
+      // within the skin distance of the joint's bone (a toe marker does not ride on a
+      // hip); when none qualifies, the joint with the nearest bone. Joints tied on the
+      // spread (moving together in this motion, e.g. a forearm no marker has moved yet
+      // and its upper arm) are told apart by the nearest bone, not the lowest index.
+      std::vector<double> distance;
       if (options.max_bone_distance > 0.0) {
-        // Plausible joints only: the marker's mean local position within the skin
-        // distance of the joint's bone (a toe marker does not ride on a hip). When no
-        // joint qualifies, the one whose bone is nearest.
-        std::vector<double> distance(candidates.size());
+        distance.assign(candidates.size(), 0.0);
         bool any = false;
         for (size_t c = 0; c < candidates.size(); ++c) {
           distance[c] = DistanceToBone(skeleton, candidates[c], means[c]);
@@ -231,7 +234,7 @@ Status CalibrateMarkers(const Skeleton& skeleton, const Motion& motion,
       double second_spread = std::numeric_limits<double>::infinity();
       for (size_t c = 0; c < candidates.size(); ++c) {
         if (spread[c] <= tie) {
-          if (chosen == candidates.size()) chosen = c;  // Lowest index among the tied.
+          if (chosen == candidates.size() || (!distance.empty() && distance[c] < distance[chosen])) chosen = c;
         } else if (spread[c] < second_spread) {
           second_spread = spread[c];
           second = candidates[c];

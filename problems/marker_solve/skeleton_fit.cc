@@ -45,8 +45,8 @@ std::vector<int> ScaleColumns(const Skeleton& skeleton, bool symmetric) {
 // converges linearly and slowly where lengths and offsets trade off).
 Status FitLengthsAndOffsets(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
                             const Motion& motion, const SkeletonFitOptions& options, double damping,
-                            const std::vector<double>& total_scale, std::vector<double>* scales,
-                            std::vector<MarkerSpec>* specs) {
+                            const std::vector<double>& total_scale, const MarkerSet& prior_markers,
+                            std::vector<double>* scales, std::vector<MarkerSpec>* specs) {
   const int joints = skeleton.num_joints();
   const std::vector<int> scale_column = ScaleColumns(skeleton, options.symmetric);
   std::vector<int> z_column(markers.num_markers());
@@ -69,12 +69,14 @@ Status FitLengthsAndOffsets(const Skeleton& skeleton, const MarkerSet& markers, 
   Eigen::VectorXd r;
   PoseJacobian point_jacobian(3, PoseTangentSize(skeleton));
   std::vector<BlendTerm> terms;
+  int frames_used = 0;
   for (size_t f = 0; f < observed.size(); f += std::max(1, options.frame_step)) {
     std::vector<int> seen;
     for (int m = 0; m < markers.num_markers(); ++m) {
       if (observed[f][m].allFinite()) seen.push_back(m);
     }
     if (seen.size() < 2) continue;
+    ++frames_used;
     ForwardKinematics(skeleton, motion.frames[f], &fk);
     a.setZero(3 * seen.size(), unknowns);
     b.resize(3 * seen.size(), pose_columns);
@@ -108,6 +110,19 @@ Status FitLengthsAndOffsets(const Skeleton& skeleton, const MarkerSet& markers, 
   // and Levenberg-Marquardt damping on everything.
   const double ridge = options.scale_ridge * std::max(1e-12, normal.diagonal().head(joints).maxCoeff());
   for (int c = 0; c < joints; ++c) normal(c, c) += ridge;
+  // Offsets pulled toward the fit's starting ones: w * frames * |z - z_prior|^2.
+  if (options.offset_prior_weight > 0.0) {
+    const double weight = options.offset_prior_weight * frames_used;
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      const MarkerSpec& spec = markers.marker(m);
+      const MarkerSpec& prior = prior_markers.marker(m);
+      for (size_t k = 0; k < spec.attachments.size() && k < prior.attachments.size(); ++k) {
+        const int column = z_column[m] + 3 * static_cast<int>(k);
+        normal.block<3, 3>(column, column).diagonal().array() += weight;
+        gradient.segment<3>(column) += weight * (spec.attachments[k].offset - prior.attachments[k].offset);
+      }
+    }
+  }
   for (int c = 0; c < unknowns; ++c) normal(c, c) += damping * normal(c, c) + 1e-12 * std::max(1.0, normal(c, c));
   const Eigen::VectorXd step = normal.ldlt().solve(-gradient);
   if (!step.allFinite()) return Status::Error("skeleton fit: the length/offset system is singular");
@@ -175,7 +190,7 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
     std::vector<double> scales;
     std::vector<MarkerSpec> specs;
     status = FitLengthsAndOffsets(current, current_markers, observed, *motion, options, damping, total_scale,
-                                  &scales, &specs);
+                                  markers, &scales, &specs);
     if (!status.ok()) return status;
     Skeleton next;
     status = ScaledSkeleton(current, scales, &next);

@@ -59,6 +59,11 @@ struct SkeletonFitOptions {
   // The first frame's root pose from the markers' geometry (sequence_solver.h), not the
   // 24 axis orientations.
   bool root_from_markers = false;
+  // A prior on the marker offsets toward the ones the fit starts from (the template's,
+  // or a fresh attachment's): offset_prior_weight * (frames used) * |z - z_start|^2 in the
+  // length/offset step, so a marker's offset and its bones' lengths do not trade freely
+  // (a knee marker stays at the knee, the knee between thigh and shin). 0: off.
+  double offset_prior_weight = 0.0;
 };
 
 // Called after each pose solve of an iteration: (iteration, marker RMS of that solve).

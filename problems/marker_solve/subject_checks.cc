@@ -197,7 +197,7 @@ SubjectChecks CheckSubjectFit(const Skeleton& skeleton, const MarkerSet& markers
     const int twin = MirrorJoint(skeleton, j);
     if (twin < j) continue;
     const double a = skeleton.offset(j).norm(), b = skeleton.offset(twin).norm();
-    if (std::max(a, b) <= 0.0) continue;
+    if (std::max(a, b) * cm < options.min_symmetry_bone_cm) continue;
     const double asymmetry = std::abs(a - b) / std::max(a, b);
     if (asymmetry > checks.max_asymmetry) {
       checks.max_asymmetry = asymmetry;

@@ -19,7 +19,8 @@
 //     are skipped. The mean angle is checked; the max is reported.
 //  3. Symmetry. Each left/right pair of joints (names that differ only in a leading l/r
 //     or Left/Right, SideFreeName) has bone lengths |t_j| within `max_asymmetry`
-//     (relative to the longer).
+//     (relative to the longer); pairs shorter than min_symmetry_bone_cm (fingers: a template's
+//     own few-millimetre differences are large relative to them) are not compared.
 // Lengths are in skeleton units in the structs; *_cm fields convert with the skeleton's
 // unit (which must be known for the centimetre thresholds).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SUBJECT_CHECKS_H_
@@ -53,6 +54,7 @@ struct SubjectCheckOptions {
   double max_marker_bone_distance_cm = 15.0;
   double max_torso_error_deg = 15.0;
   double max_asymmetry = 0.05;
+  double min_symmetry_bone_cm = 5.0;  // Shorter pairs (fingers, thumbs) are not compared.
 };
 
 struct MarkerDistance {

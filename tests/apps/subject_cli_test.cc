@@ -47,5 +47,39 @@ TEST(SubjectCli, SolveWithSubjectEqualsExplicitFlags) {
   EXPECT_THAT(output, HasSubstr("--subject and --skeleton"));
 }
 
+// fit_skeleton from a template subject on a take without a skeleton (a few frames and
+// iterations: a smoke test of the flow; the measured fit is in the README): it prints the
+// checks, writes them in its report, and its subject solves the take with --subject alone.
+TEST(SubjectCli, FitSkeletonFromTemplateSubject) {
+  MOCAPSOLVE_DATA_FILE(asf, "amc/02.asf");
+  MOCAPSOLVE_DATA_FILE(amc, "amc/02_01.amc");
+  MOCAPSOLVE_DATA_FILE(c3d, "c3d/02_01.c3d");
+  MOCAPSOLVE_DATA_FILE(squat, "c3d/squat.c3d");
+  const std::string templ = testing::TempPath("S02.json");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("calibrate --quiet --motion=" + amc + " --skeleton=" + asf + " --markers=" + c3d +
+                                " --axes=y,z,x --out=" + testing::TempPath("02.json") + " --out_subject=" + templ,
+                            &output),
+            0)
+      << output;
+  const std::string subject = testing::TempPath("squat.json"), report = testing::TempPath("fit.json");
+  ASSERT_EQ(testing::RunCli("fit_skeleton --quiet --solver=dls --template_subject=" + templ + " --markers=" + squat +
+                                " --fit_max_frames=40 --fit_iterations=2 --attach_rounds=1 --attach_iterations=1"
+                                " --check=warn --out_subject=" + subject + " --report=" + report, &output),
+            0)
+      << output;
+  EXPECT_THAT(output, HasSubstr("checks: max marker-to-bone"));
+  EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"torso_error_mean_deg\""));
+  ASSERT_EQ(testing::RunCli("solve --quiet --solver=dls --max_frames=20 --subject=" + subject + " --markers=" + squat +
+                                " --out=" + testing::TempPath("squat.bvh"), &output),
+            0)
+      << output;
+  // The template subject holds the skeleton: --skeleton beside it is an error.
+  EXPECT_EQ(testing::RunCli("fit_skeleton --template_subject=" + templ + " --skeleton=" + asf + " --markers=" + squat +
+                                " --out_subject=" + testing::TempPath("x.json"), &output),
+            1);
+  EXPECT_THAT(output, HasSubstr("--template_subject and --skeleton"));
+}
+
 }  // namespace
 }  // namespace mocapsolve
