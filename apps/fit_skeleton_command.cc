@@ -23,7 +23,8 @@ DEFINE_string(template_subject, "", "Template subject (.json): skeleton and mark
               "(e.g. CMU subject 2 calibrated on 02_01); replaces --skeleton/--markerset. --axes and "
               "--marker_scale then describe the take's marker file.");
 DEFINE_string(out_markerset, "", "The fitted marker set (.json), in the skeleton's units.");
-DEFINE_int32(fit_iterations, 6, "Alternations of pose solve and length/offset fit (on the template's markers).");
+DEFINE_int32(fit_iterations, -1, "Alternations of pose solve and length/offset fit on the template's markers; "
+             "-1: 15 with --template_subject, else 6.");
 DEFINE_int32(attach_rounds, -1, "Rounds of attaching every marker of the take to the fitted skeleton (auto: "
              "the joint it moves least with, among joints whose bone is within --max_skin_cm) and fitting "
              "again; -1: 3 with --template_subject, else 0.");
@@ -36,7 +37,8 @@ DEFINE_double(max_bone_scale, 1.25, "Bone lengths no longer than this times the 
 DEFINE_double(offset_prior, 0.0, "Weight of the prior that keeps marker offsets near the template's in the "
               "first fit, per frame, relative to a marker residual; 0: off.");
 DEFINE_string(check, "fail", "The subject checks (marker within 15 cm of its bone, torso direction within "
-              "15 degrees of the markers', left/right within 5 %): fail (exit 1, nothing written), warn, off.");
+              "15 degrees of the markers', left/right within 5 %, marker RMS within 25 mm): fail (exit 1, "
+              "nothing written but the report), warn, off.");
 
 namespace mocapsolve {
 namespace {
@@ -54,7 +56,7 @@ JsonObject ChecksJson(const SubjectChecks& checks) {
     markers.push_back(o);
   }
   JsonObject json;
-  json.Add("passed", checks.ok()).Add("failures", failures)
+  json.Add("passed", checks.ok()).Add("failures", failures).Add("rms_mm", checks.rms_mm)
       .Add("max_marker_bone_distance_cm", checks.max_bone_distance_cm)
       .Add("max_marker_joint_distance_cm", checks.max_joint_distance_cm)
       .Add("farthest_marker", checks.farthest_marker)
@@ -97,7 +99,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
       if (outputs[a] == outputs[b]) return Status::Error(outputs[a] + ": named by two output flags");
     }
   }
-  if (FLAGS_fit_iterations < 0 || FLAGS_fit_iterations > 100) return Status::Error("--fit_iterations: 0..100");
+  if (FLAGS_fit_iterations < -1 || FLAGS_fit_iterations > 100) return Status::Error("--fit_iterations: -1..100");
   if (FLAGS_attach_iterations < 0 || FLAGS_attach_iterations > 100) return Status::Error("--attach_iterations: 0..100");
   if (FLAGS_attach_rounds < -1 || FLAGS_attach_rounds > 20) return Status::Error("--attach_rounds: -1..20");
   if (FLAGS_fit_frame_step < 1) return Status::Error("--fit_frame_step: >= 1");
@@ -191,8 +193,16 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   for (int round = 0; round <= rounds; ++round) {
     std::vector<std::vector<Eigen::Vector3d>> observed = take.observed;
     MarkerSet round_markers = fitted_markers;
+    if (round >= 2 && best.round >= 1) {
+      // Each round starts from the best so far: a worse round must not feed the next.
+      fitted = best.skeleton;
+      fitted_markers = best.markers;
+      motion = best.motion;
+      scales = best.report.bone_scales;
+    }
     if (round > 0) {
-      // Attach every marker of the take to the skeleton as last fitted.
+      // Attach every marker of the take to the skeleton as fitted; markers the template
+      // knows keep its joints (and their fitted offsets): they anchor the skeleton.
       CalibrationOptions calibration;
       calibration.max_bone_distance = options.max_bone_distance;
       CalibrationResult attached;
@@ -201,6 +211,8 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
       std::vector<MarkerSpec> specs;
       for (int m = 0; m < attached.marker_set.num_markers(); ++m) {
         MarkerSpec spec = attached.marker_set.marker(m);
+        const int known = fitted_markers.FindMarker(spec.label);
+        if (known >= 0 && take_mapping.markers.FindMarker(spec.label) >= 0) spec = fitted_markers.marker(known);
         for (MarkerAttachment& a : spec.attachments) {
           if (options.max_bone_distance > 0.0) a.offset = ClampToBone(fitted, a.joint, a.offset, options.max_bone_distance);
         }
@@ -212,7 +224,8 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
       if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
       observed.resize(frames);
     }
-    options.iterations = round == 0 ? FLAGS_fit_iterations : FLAGS_attach_iterations;
+    options.iterations = round > 0 ? FLAGS_attach_iterations
+                                   : FLAGS_fit_iterations >= 0 ? FLAGS_fit_iterations : (from_subject ? 15 : 6);
     // The template's offsets are a prior worth keeping; an attach round's are estimates
     // from a motion that is itself being fitted.
     options.offset_prior_weight = round == 0 ? FLAGS_offset_prior : 0.0;
@@ -256,9 +269,9 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   motion.frame_rate = take.trajectories.frame_rate;
   const SubjectChecks checks = CheckSubjectFit(fitted, fitted_markers, take.observed, motion);
   const double seconds = Seconds(start);
-  std::printf("checks: max marker-to-bone %.1f cm (%s), max marker-to-joint %.1f cm, torso direction error "
+  std::printf("checks: marker RMS %.1f mm, max marker-to-bone %.1f cm (%s), max marker-to-joint %.1f cm, torso direction error "
               "mean %.1f max %.1f deg over %d frames, left/right asymmetry %.1f %%%s%s\n",
-              checks.max_bone_distance_cm, checks.farthest_marker.c_str(), checks.max_joint_distance_cm,
+              checks.rms_mm, checks.max_bone_distance_cm, checks.farthest_marker.c_str(), checks.max_joint_distance_cm,
               checks.torso_error_mean_deg, checks.torso_error_max_deg, checks.torso_frames, 100.0 * checks.max_asymmetry,
               checks.least_symmetric_pair.empty() ? "" : (" (" + checks.least_symmetric_pair + ")").c_str(),
               checks.ok() ? ", passed" : "");
@@ -333,7 +346,8 @@ extern const Command kFitSkeletonCommand = {
     "--max_bone_scale] of the template, left = right, offsets within --max_skin_cm of their\n"
     "bone. Then the checks, which do not trust the residual: every marker within 15 cm of\n"
     "its bone, the solved pelvis-to-head direction within 15 degrees (mean) of the markers'\n"
-    "own, left/right bone lengths within 5 %; --check=fail (default) exits 1 when one fails.\n"
+    "own, left/right bone lengths within 5 %, and the marker RMS within 25 mm;\n"
+    "--check=fail (default) exits 1 when one fails.\n"
     "Writes the subject (skeleton inline), and optionally the solved motion and marker set.",
     __FILE__, RunFitSkeleton, kFitFlags.c_str()};
 

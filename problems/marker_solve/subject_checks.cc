@@ -192,6 +192,26 @@ SubjectChecks CheckSubjectFit(const Skeleton& skeleton, const MarkerSet& markers
       checks.failures.push_back(line);
     }
   }
+  // 4. Residual.
+  {
+    FkData fk(skeleton);
+    double sum = 0.0;
+    const size_t frames = std::min(observed.size(), motion.frames.size());
+    for (size_t f = 0; f < frames; ++f) {
+      ForwardKinematics(skeleton, motion.frames[f], &fk);
+      for (int m = 0; m < markers.num_markers() && m < static_cast<int>(observed[f].size()); ++m) {
+        if (!observed[f][m].allFinite()) continue;
+        sum += (markers.Position(m, fk) - observed[f][m]).squaredNorm();
+        ++checks.samples;
+      }
+    }
+    checks.rms_mm = checks.samples > 0 ? std::sqrt(sum / checks.samples) * cm * 10.0 : 0.0;
+    if (checks.rms_mm > options.max_rms_mm) {
+      std::snprintf(line, sizeof line, "marker RMS %.1f mm (limit %.0f mm): the model does not explain the markers",
+                    checks.rms_mm, options.max_rms_mm);
+      checks.failures.push_back(line);
+    }
+  }
   // 3. Symmetry.
   for (int j = 1; j < skeleton.num_joints(); ++j) {
     const int twin = MirrorJoint(skeleton, j);

@@ -21,6 +21,8 @@
 //     or Left/Right, SideFreeName) has bone lengths |t_j| within `max_asymmetry`
 //     (relative to the longer); pairs shorter than min_symmetry_bone_cm (fingers: a template's
 //     own few-millimetre differences are large relative to them) are not compared.
+//  4. Residual. The marker RMS of the motion on the model, over every observed sample,
+//     within max_rms_mm: plausible geometry that does not explain the markers also fails.
 // Lengths are in skeleton units in the structs; *_cm fields convert with the skeleton's
 // unit (which must be known for the centimetre thresholds).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SUBJECT_CHECKS_H_
@@ -55,6 +57,7 @@ struct SubjectCheckOptions {
   double max_torso_error_deg = 15.0;
   double max_asymmetry = 0.05;
   double min_symmetry_bone_cm = 5.0;  // Shorter pairs (fingers, thumbs) are not compared.
+  double max_rms_mm = 25.0;           // 4. The model must also explain the markers.
 };
 
 struct MarkerDistance {
@@ -64,6 +67,8 @@ struct MarkerDistance {
 };
 
 struct SubjectChecks {
+  double rms_mm = 0.0;                   // Marker RMS of the solved motion (check 4).
+  int samples = 0;
   std::vector<MarkerDistance> markers;   // Per marker (its farthest attachment).
   double max_bone_distance_cm = 0.0;
   double max_joint_distance_cm = 0.0;

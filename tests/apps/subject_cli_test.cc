@@ -68,7 +68,7 @@ TEST(SubjectCli, FitSkeletonFromTemplateSubject) {
                                 " --check=warn --out_subject=" + subject + " --report=" + report, &output),
             0)
       << output;
-  EXPECT_THAT(output, HasSubstr("checks: max marker-to-bone"));
+  EXPECT_THAT(output, HasSubstr("checks: marker RMS"));
   EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"torso_error_mean_deg\""));
   ASSERT_EQ(testing::RunCli("solve --quiet --solver=dls --max_frames=20 --subject=" + subject + " --markers=" + squat +
                                 " --out=" + testing::TempPath("squat.bvh"), &output),

@@ -146,6 +146,12 @@ TEST(SubjectChecks, PassOnTheTruthFailOnWrongFits) {
   SubjectChecks truth = CheckSubjectFit(skeleton, markers, observed, motion, options);
   ASSERT_TRUE(truth.ok()) << truth.failures[0];
   EXPECT_LT(truth.torso_error_max_deg, 10.0);
+  EXPECT_LT(truth.rms_mm, 1e-9);
+
+  // The wrong fits below also miss the markers; the residual check (4) is tested last,
+  // so the others are seen alone.
+  const double max_rms_mm = options.max_rms_mm;
+  options.max_rms_mm = 1e9;
 
   // A marker 60 cm from its joint (a toe marker on the hip).
   std::vector<MarkerSpec> specs;
@@ -174,6 +180,17 @@ TEST(SubjectChecks, PassOnTheTruthFailOnWrongFits) {
   checks = CheckSubjectFit(uneven, markers, observed, motion, options);
   ASSERT_EQ(checks.failures.size(), 1u);
   EXPECT_NE(checks.failures[0].find("LeftLeg/RightLeg"), std::string::npos) << checks.failures[0];
+
+  // Plausible geometry that does not explain the markers: every observation 3 cm off.
+  options.max_rms_mm = max_rms_mm;
+  Observations shifted = observed;
+  for (auto& frame : shifted) {
+    for (Eigen::Vector3d& x : frame) x += Eigen::Vector3d(0, 0, 3);
+  }
+  checks = CheckSubjectFit(skeleton, markers, shifted, motion, options);
+  EXPECT_NEAR(checks.rms_mm, 30.0, 1e-6);
+  ASSERT_FALSE(checks.ok());
+  EXPECT_NE(checks.failures.back().find("marker RMS 30.0 mm"), std::string::npos) << checks.failures.back();
 }
 
 TEST(SubjectChecks, BoneSegmentsFollowRigidChildren) {
