@@ -27,7 +27,7 @@ DEFINE_int32(fit_iterations, -1, "Alternations of pose solve and length/offset f
              "-1: 15 with --template_subject, else 6.");
 DEFINE_int32(attach_rounds, -1, "Rounds of attaching every marker of the take to the fitted skeleton (auto: "
              "the joint it moves least with, among joints whose bone is within --max_skin_cm) and fitting "
-             "again; -1: 3 with --template_subject, else 0.");
+             "again (stopping early when a round does not improve); -1: 6 with --template_subject, else 0.");
 DEFINE_int32(attach_iterations, 6, "Fit iterations in each attach round.");
 DEFINE_int32(fit_frame_step, 4, "Use every N-th frame in the length/offset fit.");
 DEFINE_int32(fit_max_frames, 0, "Fit on the first N frames only (0 = all).");
@@ -112,7 +112,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   if (FLAGS_check != "fail" && FLAGS_check != "warn" && FLAGS_check != "off") {
     return Status::Error("--check: expected fail, warn or off");
   }
-  const int rounds = FLAGS_attach_rounds >= 0 ? FLAGS_attach_rounds : (from_subject ? 3 : 0);
+  const int rounds = FLAGS_attach_rounds >= 0 ? FLAGS_attach_rounds : (from_subject ? 6 : 0);
 
   // The template.
   Subject templ;
@@ -255,6 +255,10 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
                 report.rms.front() * mm, report.rms.back() * mm, unit);
     if (round <= 1 || report.rms.back() < best.rms) {
       best = {round, report.rms.back(), fitted, fitted_markers, motion, report, observed};
+    } else if (round >= 2) {
+      // The next round would start from the same best state and attach alike.
+      if (!FLAGS_quiet) std::fprintf(stderr, "fit_skeleton: round %d did not improve; stopping\n", round);
+      break;
     }
   }
   if (rounds > 0 && best.round != rounds && !FLAGS_quiet) {
@@ -333,7 +337,7 @@ const std::string kFitFlags =
 extern const Command kFitSkeletonCommand = {
     "fit_skeleton", "fit a subject (bone lengths, marker attachments and offsets) to a take's markers",
     "mocapsolve fit_skeleton --template_subject=T.json --markers=IN.c3d|.trc --out_subject=S.json\n"
-    "          [--out=FITTED.bvh] [--out_markerset=S.json] [--axes=x,y,z] [--attach_rounds=3]\n"
+    "          [--out=FITTED.bvh] [--out_markerset=S.json] [--axes=x,y,z] [--attach_rounds=6]\n"
     "          [--check=fail|warn|off] [--report=r.json]\n"
     "   or: --skeleton=TEMPLATE.bvh|.asf --markerset=J.json instead of --template_subject\n\n"
     "For captures without a skeleton. Starts from a template subject (skeleton + marker set;\n"

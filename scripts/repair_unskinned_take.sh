@@ -5,7 +5,8 @@
 # 1. The template subject: CMU subject 2 (02.asf) with its marker set calibrated on 02_01.
 # 2. fit_skeleton: bone lengths and offsets fitted on the markers the take shares with the
 #    template by name, then every marker of the take attached and fitted again (the
-#    attach rounds run inside the command), checked (exit 1 if the fit is implausible).
+#    attach rounds run inside the command), on the first 600 frames (FIT_FLAGS), checked:
+#    exit 1 if the fit is implausible (FIT_FLAGS="--fit_max_frames=600 --check=warn" to go on).
 # 3. repair with the fitted subject.
 set -euo pipefail
 take=${1:?usage: $0 TAKE.c3d OUTDIR [DATA_DIR]}
@@ -19,7 +20,7 @@ $ms calibrate --quiet --motion="$data/amc/02_01.amc" --skeleton="$data/amc/02.as
 echo "== $name: fit the template subject to the take (attach rounds inside)"
 $ms fit_skeleton --solver=dls --template_subject="$out/S02.json" --markers="$take" \
   --out_subject="$out/${name}_subject.json" --out="$out/${name}_fit.bvh" --report="$out/${name}_fit.json" \
-  ${FIT_FLAGS:-}
+  ${FIT_FLAGS:---fit_max_frames=600}
 echo "== $name: repair"
 $ms repair --quiet --subject="$out/${name}_subject.json" --markers="$take" \
   --out_markers="$out/${name}_repaired.c3d" --out_motion="$out/${name}_repaired.bvh" --report="$out/${name}_repair.json"
