@@ -10,12 +10,15 @@
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
 #include "kinematics/marker_trajectories.h"
+#include "pipeline/subject.h"
 #include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/marker_observations.h"
 
 DEFINE_string(attach, "auto", "auto: each marker rides on the joint in whose frame it moves least; "
               "or a marker set .json whose joints are kept (only offsets re-estimated).");
 DEFINE_int32(frame_offset, 0, "Marker frame index = motion frame index + this (CMU 02_01 C3D vs AMC: 0).");
+DEFINE_string(out_subject, "", "Also write a subject file (.json: skeleton, marker set, axes, units) "
+              "that solve/repair/evaluate take as --subject.");
 DEFINE_int32(min_valid_frames, 2, "Markers valid in fewer matched frames are left out.");
 
 namespace mocapsolve {
@@ -33,11 +36,18 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
     return Status::Error("--attach='" + FLAGS_attach + "': expected auto or a marker set .json");
   }
   if (FLAGS_min_valid_frames < 1) return Status::Error("--min_valid_frames must be >= 1");
-  for (const std::string& input :
-       {FLAGS_motion, FLAGS_skeleton, FLAGS_markers, auto_attach ? std::string() : FLAGS_attach}) {
-    if (input.empty()) continue;
-    Status status = CheckNotAnInput(FLAGS_out, input);
-    if (!status.ok()) return status;
+  if (!FLAGS_out_subject.empty() && FileExtension(FLAGS_out_subject) != ".json") {
+    return Status::Error(FLAGS_out_subject + ": expected a .json subject file");
+  }
+  if (FLAGS_out_subject == FLAGS_out) return Status::Error("--out and --out_subject name the same file");
+  for (const std::string& output : {FLAGS_out, FLAGS_out_subject}) {
+    if (output.empty()) continue;
+    for (const std::string& input :
+         {FLAGS_motion, FLAGS_skeleton, FLAGS_markers, auto_attach ? std::string() : FLAGS_attach}) {
+      if (input.empty()) continue;
+      Status status = CheckNotAnInput(output, input);
+      if (!status.ok()) return status;
+    }
   }
 
   Skeleton skeleton;
@@ -91,6 +101,19 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
   status = WriteMarkerSet(FLAGS_out, skeleton, result.marker_set,
                           FLAGS_skeleton.empty() ? FLAGS_motion : FLAGS_skeleton);
   if (!status.ok()) return status;
+  if (!FLAGS_out_subject.empty()) {
+    Subject subject;
+    subject.skeleton = skeleton;
+    subject.skeleton_path = FLAGS_skeleton.empty() ? FLAGS_motion : FLAGS_skeleton;
+    subject.markers = result.marker_set;
+    subject.axes = AxesName(transform.rotation);
+    subject.marker_scale = FLAGS_marker_scale;
+    if (trajectories.subject_prefixes.size() == 1) subject.label_prefix = trajectories.subject_prefixes[0];
+    subject.amc_fps = FLAGS_amc_fps;
+    status = WriteSubject(FLAGS_out_subject, subject);
+    if (!status.ok()) return status;
+    std::printf("wrote subject %s\n", FLAGS_out_subject.c_str());
+  }
 
   // mm per skeleton unit when known, for a figure people can read.
   const double mm = skeleton.unit().known() ? skeleton.unit().metres_per_unit * 1000.0 : 0.0;
@@ -161,7 +184,7 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
 extern const Command kCalibrateCommand = {
     "calibrate", "fit each marker's joint and offset from a solved motion and its markers",
     "mocapsolve calibrate --motion=FILE.bvh|FILE.amc [--skeleton=X.asf] --markers=FILE.c3d|.trc\n"
-    "          --out=markerset.json [--attach=auto|SET.json] [--axes=x,y,z|auto]\n"
+    "          --out=markerset.json [--out_subject=S.json] [--attach=auto|SET.json] [--axes=x,y,z|auto]\n"
     "          [--marker_scale=0] [--skeleton_units=cm] [--frame_offset=0] [--report=r.json]\n\n"
     "Marker frame k + frame_offset is matched to motion frame k. Marker samples are taken\n"
     "into the model's frame as x_model = marker_scale * A x_file, with A from --axes\n"

@@ -13,6 +13,7 @@
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
+#include "pipeline/subject.h"
 #include "problems/marker_solve/marker_observations.h"
 
 DECLARE_bool(quiet);
@@ -29,6 +30,7 @@ DECLARE_string(markerset);
 DECLARE_string(target);
 DECLARE_string(axes);
 DECLARE_double(marker_scale);
+DECLARE_string(subject);
 
 namespace mocapsolve {
 
@@ -47,15 +49,15 @@ Status LoadObservations(const std::string& path, const Skeleton& skeleton, const
                         MarkerTrajectories* trajectories, MarkerFileToModel* transform,
                         std::vector<std::vector<Eigen::Vector3d>>* observed);
 
-// A take of markers with its model, from --skeleton (whose unit must be known: repair
-// thresholds are in cm), --markerset and --markers (LoadObservations).
-struct MarkerTake {
-  Skeleton skeleton;
-  MarkerSet markers;
-  MarkerTrajectories trajectories;  // The file as read.
-  MarkerFileToModel transform;      // File to skeleton frame.
-  std::vector<std::vector<Eigen::Vector3d>> observed;  // [frame][marker], skeleton units.
-};
+// The one place the take flags become a model: --subject=S.json (pipeline/subject.h),
+// or a subject assembled from --skeleton (whose unit must be known: repair thresholds
+// are in cm), --skeleton_units, --markerset, --axes, --marker_scale and --amc_fps.
+// Giving --subject and any of those mapping flags is an error naming both.
+Status LoadSubjectFromFlags(Subject* subject);
+// Checks that the flags name a take (--markers and --subject, or --markers, --skeleton
+// and --markerset) and lists its input files (for CheckNotAnInput).
+Status MarkerTakeInputs(std::vector<std::string>* inputs);
+// LoadSubjectFromFlags, then LoadTakeForSubject on --markers.
 Status LoadMarkerTake(MarkerTake* take);
 
 // Writes the report to --report if set (atomically).

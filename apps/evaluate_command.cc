@@ -23,12 +23,12 @@ constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
 Status RunEvaluate(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_skeleton.empty() || FLAGS_markers.empty() || FLAGS_markerset.empty()) {
-    return Status::Error("--skeleton, --markers (clean) and --markerset are required");
-  }
+  std::vector<std::string> inputs;
+  Status checked = MarkerTakeInputs(&inputs);
+  if (!checked.ok()) return checked;
   if (FLAGS_trials < 1 || FLAGS_trials > 1000) return Status::Error("--trials: expected 1..1000");
   if (!FLAGS_table_csv.empty()) {
-    for (const std::string& in : {FLAGS_skeleton, FLAGS_markers, FLAGS_markerset}) {
+    for (const std::string& in : inputs) {
       Status status = CheckNotAnInput(FLAGS_table_csv, in);
       if (!status.ok()) return status;
     }
@@ -143,7 +143,7 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
   return WriteReport(report);
 }
 
-const std::string kEvaluateFlags = std::string("skeleton,skeleton_units,markers,markerset,axes,marker_scale,"
+const std::string kEvaluateFlags = std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,"
                                                "report,quiet,") +
                                    kCorruptionFlagNames + "," + kRepairFlagNames + "," + kSolverFlagNames;
 
@@ -151,7 +151,7 @@ const std::string kEvaluateFlags = std::string("skeleton,skeleton_units,markers,
 
 extern const Command kEvaluateCommand = {
     "evaluate", "score marker repair against linear, polynomial, PCA and reference-only fills",
-    "mocapsolve evaluate --skeleton=S --markers=CLEAN.c3d|.trc --markerset=J.json [--trials=N] "
+    "mocapsolve evaluate (--skeleton=S --markerset=J.json | --subject=S.json) --markers=CLEAN.c3d|.trc [--trials=N] "
     "[--corrupt_seed=1 --gaps=10 ...] [--table_csv=t.csv] [--report=r.json]\n\n"
     "Damages the clean markers (as `corrupt` does, in the skeleton's frame), runs every method\n"
     "on the same damage and prints the analogue of the thesis' Table 1: mean global joint\n"

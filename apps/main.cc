@@ -97,6 +97,9 @@ DEFINE_string(axes, "x,y,z", "Marker file axes to skeleton axes: 'y,z,x' means (
               "(y, z, x)_file; CMU C3D (Z-up) onto CMU ASF/AMC (Y-up) is y,z,x.");
 DEFINE_double(marker_scale, 0.0, "Marker file units to skeleton units; 0 = from the files' "
               "declared units (C3D POINT:UNITS, TRC Units, ASF :units).");
+DEFINE_string(subject, "", "Subject file (.json, written by calibrate/fit_skeleton --out_subject): "
+              "skeleton, marker set, axes and units in one; replaces --skeleton, --skeleton_units, "
+              "--markerset, --axes and --marker_scale.");
 
 namespace mocapsolve {
 
@@ -137,33 +140,79 @@ Status LoadSkeleton(const std::string& path, Skeleton* skeleton) {
   return status.ok() ? ApplySkeletonUnits(skeleton) : status;
 }
 
-Status LoadMarkerTake(MarkerTake* take) {
-  Status status = LoadSkeleton(FLAGS_skeleton, &take->skeleton);
+namespace {
+
+// The mapping flags a subject file replaces, and whether each was given.
+std::vector<std::string> GivenMappingFlags() {
+  std::vector<std::string> given;
+  for (const char* name : {"skeleton", "skeleton_units", "markerset", "axes", "marker_scale"}) {
+    gflags::CommandLineFlagInfo info;
+    if (gflags::GetCommandLineFlagInfo(name, &info) && !info.is_default) given.push_back(name);
+  }
+  return given;
+}
+
+}  // namespace
+
+Status LoadSubjectFromFlags(Subject* subject) {
+  if (!FLAGS_subject.empty()) {
+    const std::vector<std::string> given = GivenMappingFlags();
+    if (!given.empty()) {
+      return Status::Error("--subject and --" + given[0] + " both given: the subject file holds the skeleton, "
+                           "marker set, axes and units (give one or the other)");
+    }
+    return ReadSubject(FLAGS_subject, subject);
+  }
+  Subject result;
+  Status status = LoadSkeleton(FLAGS_skeleton, &result.skeleton);
   if (!status.ok()) return status;
-  if (!take->skeleton.unit().known()) {
+  if (!result.skeleton.unit().known()) {
     return Status::Error(FLAGS_skeleton + ": the skeleton's unit is unknown; give --skeleton_units");
   }
-  status = ReadMarkerSet(FLAGS_markerset, take->skeleton, &take->markers);
+  result.skeleton_path = FLAGS_skeleton;
+  status = ReadMarkerSet(FLAGS_markerset, result.skeleton, &result.markers);
   if (!status.ok()) return status;
-  return LoadObservations(FLAGS_markers, take->skeleton, take->markers, &take->trajectories, &take->transform,
-                          &take->observed);
+  result.axes = FLAGS_axes;
+  result.marker_scale = FLAGS_marker_scale;
+  result.amc_fps = FLAGS_amc_fps;
+  *subject = std::move(result);
+  return Status::Ok();
+}
+
+Status MarkerTakeInputs(std::vector<std::string>* inputs) {
+  if (!FLAGS_subject.empty()) {
+    if (FLAGS_markers.empty()) return Status::Error("--markers is required (with --subject)");
+    *inputs = {FLAGS_subject, FLAGS_markers};
+    return Status::Ok();
+  }
+  if (FLAGS_skeleton.empty() || FLAGS_markers.empty() || FLAGS_markerset.empty()) {
+    return Status::Error("--markers and either --subject or --skeleton and --markerset are required");
+  }
+  *inputs = {FLAGS_skeleton, FLAGS_markers, FLAGS_markerset};
+  return Status::Ok();
+}
+
+Status LoadMarkerTake(MarkerTake* take) {
+  Subject subject;
+  Status status = LoadSubjectFromFlags(&subject);
+  if (!status.ok()) return status;
+  return LoadTakeForSubject(subject, FLAGS_markers, take);
 }
 
 Status LoadObservations(const std::string& path, const Skeleton& skeleton, const MarkerSet& markers,
                         MarkerTrajectories* trajectories, MarkerFileToModel* transform,
                         std::vector<std::vector<Eigen::Vector3d>>* observed) {
-  Status status = ReadMarkerFile(path, trajectories);
+  Subject subject;
+  subject.skeleton = skeleton;
+  subject.markers = markers;
+  subject.axes = FLAGS_axes;
+  subject.marker_scale = FLAGS_marker_scale;
+  MarkerTake take;
+  Status status = LoadTakeForSubject(subject, path, &take);
   if (!status.ok()) return status;
-  status = ParseAxes(FLAGS_axes, &transform->rotation);
-  if (!status.ok()) return status;
-  if (FLAGS_marker_scale > 0.0) {
-    transform->scale = FLAGS_marker_scale;
-  } else {
-    status = UnitScale(trajectories->unit, skeleton.unit(), &transform->scale);
-    if (!status.ok()) return Status::Error(path + ": " + status.message());
-  }
-  status = GatherObservations(markers, *trajectories, *transform, observed);
-  if (!status.ok()) return Status::Error(path + ": " + status.message());
+  *trajectories = std::move(take.trajectories);
+  *transform = take.transform;
+  *observed = std::move(take.observed);
   return Status::Ok();
 }
 

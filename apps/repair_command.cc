@@ -20,12 +20,13 @@ namespace {
 
 Status RunRepair(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_skeleton.empty() || FLAGS_markers.empty() || FLAGS_markerset.empty() || FLAGS_out_markers.empty()) {
-    return Status::Error("--skeleton, --markers, --markerset and --out_markers are required");
-  }
+  std::vector<std::string> inputs;
+  Status checked = MarkerTakeInputs(&inputs);
+  if (!checked.ok()) return checked;
+  if (FLAGS_out_markers.empty()) return Status::Error("--out_markers is required");
   for (const std::string& out : {FLAGS_out_markers, FLAGS_out_motion}) {
     if (out.empty()) continue;
-    for (const std::string& in : {FLAGS_skeleton, FLAGS_markers, FLAGS_markerset}) {
+    for (const std::string& in : inputs) {
       Status status = CheckNotAnInput(out, in);
       if (!status.ok()) return status;
     }
@@ -108,14 +109,14 @@ Status RunRepair(const std::vector<std::string>& arguments) {
 }
 
 const std::string kRepairFlags =
-    std::string("skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet,") +
+    std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet,") +
     kRepairFlagNames + "," + kSolverFlagNames;
 
 }  // namespace
 
 extern const Command kRepairCommand = {
     "repair", "find broken marker intervals against a robust reference and refill them",
-    "mocapsolve repair --skeleton=S --markers=IN.c3d|.trc --markerset=J.json "
+    "mocapsolve repair (--skeleton=S --markerset=J.json | --subject=S.json) --markers=IN.c3d|.trc "
     "--out_markers=OUT.c3d|.trc [--out_motion=OUT.bvh] [--report=r.json]\n\n"
     "Thesis chapter 3: a naive per-frame solve and a robust reference (--reference: a robust\n"
     "tracker or the whole-clip solve; Cauchy loss); marker paths rebuilt from the\n"

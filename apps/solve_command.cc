@@ -22,20 +22,26 @@ namespace {
 
 Status RunSolve(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_skeleton.empty() || FLAGS_markers.empty() || FLAGS_markerset.empty() || FLAGS_out.empty()) {
-    return Status::Error("--skeleton, --markers, --markerset and --out are required");
-  }
+  std::vector<std::string> inputs;
+  Status checked = MarkerTakeInputs(&inputs);
+  if (!checked.ok()) return checked;
+  if (FLAGS_out.empty()) return Status::Error("--out is required");
   if (FileExtension(FLAGS_out) != ".bvh") return Status::Error(FLAGS_out + ": expected a .bvh output");
-  for (const std::string& input : {FLAGS_skeleton, FLAGS_markers, FLAGS_markerset}) {
+  for (const std::string& input : inputs) {
     Status status = CheckNotAnInput(FLAGS_out, input);
     if (!status.ok()) return status;
   }
   if (FLAGS_mode != "frame" && FLAGS_mode != "clip") {
     return Status::Error("--mode: unknown '" + FLAGS_mode + "' (frame, clip)");
   }
-  Skeleton skeleton;
-  Status status = LoadSkeleton(FLAGS_skeleton, &skeleton);
+  MarkerTake take;
+  Status status = LoadMarkerTake(&take);
   if (!status.ok()) return status;
+  const Skeleton& skeleton = take.skeleton;
+  const MarkerSet& markers = take.markers;
+  const MarkerTrajectories& trajectories = take.trajectories;
+  const MarkerFileToModel& transform = take.transform;
+  std::vector<std::vector<Eigen::Vector3d>>& observed = take.observed;
   MarkerSolveOptions frame_options;
   status = MarkerSolveOptionsFromFlags(skeleton.unit(), &frame_options);
   if (!status.ok()) return status;
@@ -44,14 +50,6 @@ Status RunSolve(const std::vector<std::string>& arguments) {
     status = ClipSolveOptionsFromFlags(&clip_options);
     if (!status.ok()) return status;
   }
-  MarkerSet markers;
-  status = ReadMarkerSet(FLAGS_markerset, skeleton, &markers);
-  if (!status.ok()) return status;
-  MarkerTrajectories trajectories;
-  MarkerFileToModel transform;
-  std::vector<std::vector<Eigen::Vector3d>> observed;
-  status = LoadObservations(FLAGS_markers, skeleton, markers, &trajectories, &transform, &observed);
-  if (!status.ok()) return status;
   if (FLAGS_max_frames > 0 && static_cast<int>(observed.size()) > FLAGS_max_frames) {
     observed.resize(FLAGS_max_frames);
   }
@@ -74,8 +72,12 @@ Status RunSolve(const std::vector<std::string>& arguments) {
               sequence.max_frame_rms * to_output, sequence.unsolved_frames,
               sequence.unconverged_frames);
   JsonObject report;
-  report.Add("skeleton", FLAGS_skeleton).Add("markers", FLAGS_markers)
-      .Add("markerset", FLAGS_markerset).Add("out", FLAGS_out).Add("solver", FLAGS_solver)
+  if (FLAGS_subject.empty()) {
+    report.Add("skeleton", FLAGS_skeleton).Add("markerset", FLAGS_markerset);
+  } else {
+    report.Add("subject", FLAGS_subject);
+  }
+  report.Add("markers", FLAGS_markers).Add("out", FLAGS_out).Add("solver", FLAGS_solver)
       .Add("mode", FLAGS_mode).Add("frames", sequence.frames)
       .Add("marker_to_skeleton_scale", transform.scale).Add("residual_unit", unit);
   JsonObject frame_json;
@@ -121,13 +123,13 @@ Status RunSolve(const std::vector<std::string>& arguments) {
 }
 
 const std::string kSolveFlags =
-    std::string("skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,plot,max_frames,") + kSolverFlagNames;
+    std::string("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,plot,max_frames,") + kSolverFlagNames;
 
 }  // namespace
 
 extern const Command kSolveCommand = {
     "solve", "joint angles from markers (C3D/TRC) onto a BVH or ASF skeleton, Ceres or DLS",
-    "mocapsolve solve --skeleton=S.asf|S.bvh --markers=M.c3d|M.trc --markerset=J.json "
+    "mocapsolve solve (--skeleton=S.asf|S.bvh --markerset=J.json | --subject=S.json) --markers=M.c3d|M.trc "
     "--out=O.bvh [--solver=ceres|dls] [--mode=frame|clip] [--axes=y,z,x] [--report=r.json]\n\n"
     "Solves the root translation and joint rotations per frame (warm-started from the\n"
     "previous frame; the first frame tries 24 root orientations), and with --mode=clip\n"

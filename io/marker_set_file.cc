@@ -188,6 +188,11 @@ Status ParseMarkerSet(std::string_view text, const std::string& file_name,
   return Interpreter(file_name, skeleton).Run(root, marker_set);
 }
 
+Status InterpretMarkerSet(const JsonNode& root, const std::string& file_name, const Skeleton& skeleton,
+                          MarkerSet* marker_set) {
+  return Interpreter(file_name, skeleton).Run(root, marker_set);
+}
+
 Status ReadMarkerSet(const std::string& path, const Skeleton& skeleton, MarkerSet* marker_set) {
   std::string text;
   Status status = ReadFileToString(path, &text);

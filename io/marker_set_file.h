@@ -49,6 +49,12 @@ Status ReadMarkerSet(const std::string& path, const Skeleton& skeleton, MarkerSe
 Status ParseMarkerSet(std::string_view text, const std::string& file_name,
                       const Skeleton& skeleton, MarkerSet* marker_set);
 
+// Interprets an already parsed marker set object (e.g. one held inline in a subject
+// file, pipeline/subject.h); errors name file_name and the node's line:column.
+class JsonNode;
+Status InterpretMarkerSet(const JsonNode& root, const std::string& file_name, const Skeleton& skeleton,
+                          MarkerSet* marker_set);
+
 // Writes through WriteFileAtomically. skeleton_description goes into the informative
 // "skeleton" field (omitted when empty). Offsets are printed round-trip exact.
 Status WriteMarkerSet(const std::string& path, const Skeleton& skeleton,

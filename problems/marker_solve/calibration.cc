@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "kinematics/forward_kinematics.h"
+#include "problems/marker_solve/subject_checks.h"
 
 namespace mocapsolve {
 namespace {
@@ -207,6 +208,25 @@ Status CalibrateMarkers(const Skeleton& skeleton, const Motion& motion,
       for (size_t c = 0; c < candidates.size(); ++c) {
         LocalMeanAndSpread(matched, trajectories, m, frames, candidates[c], &means[c], &spread[c]);
       }
+      // With max_bone_distance, plausible joints only: the marker's mean local position
+      // within the skin distance of the joint's bone (a toe marker does not ride on a
+      // hip); when none qualifies, the joint with the nearest bone. Joints tied on the
+      // spread (moving together in this motion, e.g. a forearm no marker has moved yet
+      // and its upper arm) are told apart by the nearest bone, not the lowest index.
+      std::vector<double> distance;
+      if (options.max_bone_distance > 0.0) {
+        distance.assign(candidates.size(), 0.0);
+        bool any = false;
+        for (size_t c = 0; c < candidates.size(); ++c) {
+          distance[c] = DistanceToBone(skeleton, candidates[c], means[c]);
+          any |= distance[c] <= options.max_bone_distance;
+        }
+        const size_t nearest = std::min_element(distance.begin(), distance.end()) - distance.begin();
+        for (size_t c = 0; c < candidates.size(); ++c) {
+          const bool allowed = any ? distance[c] <= options.max_bone_distance : c == nearest;
+          if (!allowed) spread[c] = std::numeric_limits<double>::infinity();
+        }
+      }
       const double best = *std::min_element(spread.begin(), spread.end());
       const double tie = best * (1.0 + options.tie_tolerance) + 1e-18 * scale * scale;
       size_t chosen = candidates.size();
@@ -214,7 +234,7 @@ Status CalibrateMarkers(const Skeleton& skeleton, const Motion& motion,
       double second_spread = std::numeric_limits<double>::infinity();
       for (size_t c = 0; c < candidates.size(); ++c) {
         if (spread[c] <= tie) {
-          if (chosen == candidates.size()) chosen = c;  // Lowest index among the tied.
+          if (chosen == candidates.size() || (!distance.empty() && distance[c] < distance[chosen])) chosen = c;
         } else if (spread[c] < second_spread) {
           second_spread = spread[c];
           second = candidates[c];

@@ -68,6 +68,11 @@ struct CalibrationOptions {
   int min_valid_frames = 2;    // Markers valid in fewer matched frames are skipped.
   std::vector<int> candidate_joints;  // Auto attach: joints allowed (empty: all).
   double tie_tolerance = 1e-6;        // Relative, on rms^2 (see the header comment).
+  // Auto attach: only joints whose bone (subject_checks.h, BoneSegments) the marker's mean
+  // local position lies within this distance of (skeleton units; 0: any joint). When no
+  // joint qualifies, the joint with the nearest bone. Joints tied on the spread (moving
+  // together in this motion) are told apart by the nearest bone, not the lowest index.
+  double max_bone_distance = 0.0;
 };
 
 struct CalibratedMarker {

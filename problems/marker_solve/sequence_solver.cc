@@ -4,14 +4,58 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Geometry>
+
 #include "kinematics/forward_kinematics.h"
 #include "problems/marker_solve/marker_observations.h"
 
 namespace mocapsolve {
 
+Status RootPoseFromMarkers(const Skeleton& skeleton, const MarkerSet& markers,
+                           const std::vector<Eigen::Vector3d>& observed, Pose* pose) {
+  FkData fk(skeleton);
+  Pose start = *pose;
+  start.rotations[0].setIdentity();
+  start.translations[0].setZero();
+  ForwardKinematics(skeleton, start, &fk);
+  std::vector<int> seen;
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    if (observed[m].allFinite()) seen.push_back(m);
+  }
+  if (seen.size() < 3) return Status::Error("fewer than 3 markers observed in the first frame");
+  Eigen::Matrix3Xd model(3, seen.size()), world(3, seen.size());
+  for (size_t i = 0; i < seen.size(); ++i) {
+    model.col(i) = markers.Position(seen[i], fk);
+    world.col(i) = observed[seen[i]];
+  }
+  const Eigen::Matrix4d world_from_model = Eigen::umeyama(model, world, false);
+  if (!world_from_model.allFinite()) return Status::Error("the first frame's markers are degenerate");
+  // Markers at rotation R of the root: p = t + R_rest R R_rest^T q (q as placed at R = I,
+  // t = 0), so the aligning rotation Q gives R = R_rest^T Q R_rest.
+  const Eigen::Quaterniond rest = skeleton.rest_rotation(0);
+  const Eigen::Quaterniond q(Eigen::Matrix3d(world_from_model.topLeftCorner<3, 3>()));
+  pose->rotations[0] = (rest.conjugate() * q * rest).normalized();
+  pose->translations[0] = world_from_model.topRightCorner<3, 1>();
+  return Status::Ok();
+}
+
 Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
                    const std::vector<Eigen::Vector3d>& observed, const MarkerSolveOptions& options,
-                   Pose* pose) {
+                   Pose* pose, bool root_from_markers) {
+  if (root_from_markers && skeleton.num_rotation_dofs(0) == 3) {
+    Pose start = *pose;
+    Status status = RootPoseFromMarkers(skeleton, markers, observed, &start);
+    if (status.ok()) {
+      MarkerSolveOptions search = options;
+      search.prior_rotation_weight = search.prior_translation_weight = 0.0;
+      MarkerFrameSolver solver(skeleton, markers, search);
+      FrameSolveReport report;
+      if (solver.Solve(observed, &start, &report).ok()) {
+        *pose = start;
+        return Status::Ok();
+      }
+    }
+  }
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   int n = 0;
   for (const auto& x : observed) {
@@ -57,7 +101,7 @@ Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
                      const std::vector<std::vector<Eigen::Vector3d>>& observed,
                      const MarkerSolveOptions& options, const Pose& initial, Motion* motion,
                      SequenceSolveReport* report,
-                     const std::function<void(int frames_done)>& progress) {
+                     const std::function<void(int frames_done)>& progress, bool root_from_markers) {
   std::string error;
   if (!options.IsValid(&error)) return Status::Error(error);
   *report = SequenceSolveReport();
@@ -74,7 +118,7 @@ Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
     ++first;
   }
   if (first == observed.size()) return Status::Error("no marker observed in any frame");
-  Status status = InitialPose(skeleton, markers, observed[first], options, &pose);
+  Status status = InitialPose(skeleton, markers, observed[first], options, &pose, root_from_markers);
   if (!status.ok()) return status;
 
   MarkerFrameSolver solver(skeleton, markers, options);

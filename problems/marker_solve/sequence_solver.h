@@ -1,6 +1,6 @@
 // Frame-by-frame solving of a whole take: each frame is warm-started from the previous
 // frame's solution (and, with a prior, pulled toward it). The first frame starts from a
-// coarse search: the root is placed at the markers' centroid and tried in the 24
+// coarse search (or, with root_from_markers, from the markers' geometry): the root is placed at the markers' centroid and tried in the 24
 // axis-aligned orientations (when it has three rotation dofs), and the best solve is
 // kept, so a take need not start near the skeleton's rest orientation.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SEQUENCE_SOLVER_H_
@@ -31,12 +31,23 @@ Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
                      const std::vector<std::vector<Eigen::Vector3d>>& observed,
                      const MarkerSolveOptions& options, const Pose& initial, Motion* motion,
                      SequenceSolveReport* report,
-                     const std::function<void(int frames_done)>& progress = nullptr);
+                     const std::function<void(int frames_done)>& progress = nullptr,
+                     bool root_from_markers = false);
 
-// The first frame's start: best of 24 root orientations, root at the marker centroid.
+// The first frame's start: best of 24 root orientations, root at the marker centroid;
+// with root_from_markers, only the root pose from the markers' own geometry
+// (RootPoseFromMarkers), which cannot lock onto a wrong axis orientation that a free
+// fit of offsets happens to match better.
 Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
                    const std::vector<Eigen::Vector3d>& observed, const MarkerSolveOptions& options,
-                   Pose* pose);
+                   Pose* pose, bool root_from_markers = false);
+
+// The root rotation and translation that rigidly align the markers as *pose places them
+// to the observed ones (least squares, Kabsch/Umeyama without scale, over the markers
+// observed; at least 3 not collinear): the person's facing and tilt from the markers'
+// geometry (pelvis, spine and limbs together). Other joints are left as they are.
+Status RootPoseFromMarkers(const Skeleton& skeleton, const MarkerSet& markers,
+                           const std::vector<Eigen::Vector3d>& observed, Pose* pose);
 
 }  // namespace mocapsolve
 

@@ -9,23 +9,12 @@
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/kinematic_jacobians.h"
 #include "problems/marker_solve/sequence_solver.h"
+#include "problems/marker_solve/subject_checks.h"
 
 namespace mocapsolve {
 namespace {
 
 using Observations = std::vector<std::vector<Eigen::Vector3d>>;
-
-// The side-free name of a joint: "lfemur" -> "femur", "RightUpLeg" -> "upleg".
-std::string SideFreeName(const std::string& name) {
-  std::string lower;
-  for (char c : name) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  for (const char* prefix : {"left", "right"}) {
-    const std::string p = prefix;
-    if (lower.compare(0, p.size(), p) == 0 && lower.size() > p.size()) return lower.substr(p.size());
-  }
-  if (lower.size() > 1 && (lower[0] == 'l' || lower[0] == 'r')) return lower.substr(1);
-  return lower;
-}
 
 // Column of each joint's scale: its own, or its left/right twin's.
 std::vector<int> ScaleColumns(const Skeleton& skeleton, bool symmetric) {
@@ -56,6 +45,7 @@ std::vector<int> ScaleColumns(const Skeleton& skeleton, bool symmetric) {
 // converges linearly and slowly where lengths and offsets trade off).
 Status FitLengthsAndOffsets(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
                             const Motion& motion, const SkeletonFitOptions& options, double damping,
+                            const std::vector<double>& total_scale, const MarkerSet& prior_markers,
                             std::vector<double>* scales, std::vector<MarkerSpec>* specs) {
   const int joints = skeleton.num_joints();
   const std::vector<int> scale_column = ScaleColumns(skeleton, options.symmetric);
@@ -79,12 +69,14 @@ Status FitLengthsAndOffsets(const Skeleton& skeleton, const MarkerSet& markers, 
   Eigen::VectorXd r;
   PoseJacobian point_jacobian(3, PoseTangentSize(skeleton));
   std::vector<BlendTerm> terms;
+  int frames_used = 0;
   for (size_t f = 0; f < observed.size(); f += std::max(1, options.frame_step)) {
     std::vector<int> seen;
     for (int m = 0; m < markers.num_markers(); ++m) {
       if (observed[f][m].allFinite()) seen.push_back(m);
     }
     if (seen.size() < 2) continue;
+    ++frames_used;
     ForwardKinematics(skeleton, motion.frames[f], &fk);
     a.setZero(3 * seen.size(), unknowns);
     b.resize(3 * seen.size(), pose_columns);
@@ -118,12 +110,27 @@ Status FitLengthsAndOffsets(const Skeleton& skeleton, const MarkerSet& markers, 
   // and Levenberg-Marquardt damping on everything.
   const double ridge = options.scale_ridge * std::max(1e-12, normal.diagonal().head(joints).maxCoeff());
   for (int c = 0; c < joints; ++c) normal(c, c) += ridge;
+  // Offsets pulled toward the fit's starting ones: w * frames * |z - z_prior|^2.
+  if (options.offset_prior_weight > 0.0) {
+    const double weight = options.offset_prior_weight * frames_used;
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      const MarkerSpec& spec = markers.marker(m);
+      const MarkerSpec& prior = prior_markers.marker(m);
+      for (size_t k = 0; k < spec.attachments.size() && k < prior.attachments.size(); ++k) {
+        const int column = z_column[m] + 3 * static_cast<int>(k);
+        normal.block<3, 3>(column, column).diagonal().array() += weight;
+        gradient.segment<3>(column) += weight * (spec.attachments[k].offset - prior.attachments[k].offset);
+      }
+    }
+  }
   for (int c = 0; c < unknowns; ++c) normal(c, c) += damping * normal(c, c) + 1e-12 * std::max(1.0, normal(c, c));
   const Eigen::VectorXd step = normal.ldlt().solve(-gradient);
   if (!step.allFinite()) return Status::Error("skeleton fit: the length/offset system is singular");
   scales->assign(joints, 1.0);
   for (int joint = 1; joint < joints; ++joint) {
-    (*scales)[joint] = std::clamp(1.0 + step(scale_column[joint]), options.min_scale, options.max_scale);
+    // Bounded relative to the template: total_scale * step in [min_scale, max_scale].
+    (*scales)[joint] = std::clamp(1.0 + step(scale_column[joint]), options.min_scale / total_scale[joint],
+                                  options.max_scale / total_scale[joint]);
   }
   specs->clear();
   for (int m = 0; m < markers.num_markers(); ++m) {
@@ -159,7 +166,7 @@ Status ScaledSkeleton(const Skeleton& skeleton, const std::vector<double>& scale
 Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
                             const MarkerSolveOptions& solve_options, const SkeletonFitOptions& options,
                             Skeleton* fitted_skeleton, MarkerSet* fitted_markers, Motion* motion,
-                            SkeletonFitReport* report) {
+                            SkeletonFitReport* report, const SkeletonFitProgress& progress) {
   *report = SkeletonFitReport();
   if (options.iterations < 0 || options.frame_step < 1 || !(options.min_scale > 0.0) ||
       !(options.max_scale >= options.min_scale)) {
@@ -167,9 +174,12 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
   }
   Skeleton current = skeleton;
   MarkerSet current_markers = markers;
-  std::vector<double> total_scale(skeleton.num_joints(), 1.0);
+  std::vector<double> total_scale = options.initial_scales;
+  if (total_scale.empty()) total_scale.assign(skeleton.num_joints(), 1.0);
+  if (static_cast<int>(total_scale.size()) != skeleton.num_joints()) return Status::Error("skeleton fit: bad options");
   SequenceSolveReport solve;
-  Status status = SolveSequence(current, current_markers, observed, solve_options, RestPose(current), motion, &solve);
+  Status status = SolveSequence(current, current_markers, observed, solve_options, RestPose(current), motion, &solve,
+                                nullptr, options.root_from_markers);
   if (!status.ok()) return status;
   double rms = solve.rms_marker_error;
   report->rms.push_back(rms);
@@ -179,16 +189,26 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     std::vector<double> scales;
     std::vector<MarkerSpec> specs;
-    status = FitLengthsAndOffsets(current, current_markers, observed, *motion, options, damping, &scales, &specs);
+    status = FitLengthsAndOffsets(current, current_markers, observed, *motion, options, damping, total_scale,
+                                  markers, &scales, &specs);
     if (!status.ok()) return status;
     Skeleton next;
     status = ScaledSkeleton(current, scales, &next);
     if (!status.ok()) return status;
+    if (options.max_bone_distance > 0.0) {
+      for (MarkerSpec& spec : specs) {
+        for (MarkerAttachment& a : spec.attachments) {
+          a.offset = ClampToBone(next, a.joint, a.offset, options.max_bone_distance);
+        }
+      }
+    }
     MarkerSet next_markers;
     status = MarkerSet::Create(next, std::move(specs), &next_markers);
     if (!status.ok()) return status;
     Motion next_motion;
-    status = SolveSequence(next, next_markers, observed, solve_options, RestPose(next), &next_motion, &solve);
+    status = SolveSequence(next, next_markers, observed, solve_options, RestPose(next), &next_motion, &solve, nullptr,
+                           options.root_from_markers);
+    if (progress) progress(iteration + 1, solve.rms_marker_error);
     if (!status.ok()) return status;
     if (solve.rms_marker_error < rms) {
       current = std::move(next);

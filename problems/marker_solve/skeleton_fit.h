@@ -20,9 +20,16 @@
 // halves the unknowns and keeps a limb from growing to make up for its marker offsets.
 // End sites are scaled with their joint's bone (the mean scale of the joint's children,
 // else its own). Frames are subsampled (every `frame_step`-th) for step 2.
+// Constraints (a low residual bought with absurd offsets is a failed fit): each bone's
+// total scale relative to the template stays in [min_scale, max_scale] (default 0.8 ..
+// 1.25), left and right share a scale, the rest pose (bone directions, rest rotations)
+// is the template's, and with max_bone_distance every marker stays within that skin
+// distance of its bone. subject_checks.h measures the result without trusting the
+// residual.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SKELETON_FIT_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SKELETON_FIT_H_
 
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -40,12 +47,32 @@ struct SkeletonFitOptions {
   int frame_step = 4;
   double scale_ridge = 1e-3;  // Relative to the largest diagonal entry of the scales' block.
   bool symmetric = true;
-  double min_scale = 0.5, max_scale = 2.0;
+  // Bone-length scales relative to the template (anthropometric range): every bone's
+  // total scale stays in [min_scale, max_scale].
+  double min_scale = 0.8, max_scale = 1.25;
+  // The scales the given skeleton already carries relative to the template (one per
+  // joint; empty: all 1), so rounds of fitting keep one bound.
+  std::vector<double> initial_scales;
+  // Skin distance: after each step every marker offset is moved onto the tube of this
+  // radius around its joint's bone (subject_checks.h, ClampToBone); skeleton units, 0: off.
+  double max_bone_distance = 0.0;
+  // The first frame's root pose from the markers' geometry (sequence_solver.h), not the
+  // 24 axis orientations.
+  bool root_from_markers = false;
+  // A prior on the marker offsets toward the ones the fit starts from (the template's,
+  // or a fresh attachment's): offset_prior_weight * (frames used) * |z - z_start|^2 in the
+  // length/offset step, so a marker's offset and its bones' lengths do not trade freely
+  // (a knee marker stays at the knee, the knee between thigh and shin). 0: off.
+  double offset_prior_weight = 0.0;
 };
+
+// Called after each pose solve of an iteration: (iteration, marker RMS of that solve).
+using SkeletonFitProgress = std::function<void(int iteration, double rms)>;
 
 struct SkeletonFitReport {
   std::vector<double> rms;          // Marker RMS before and after each iteration (skeleton units).
-  std::vector<double> bone_scales;  // Per joint: its offset's overall scale (1 for the root).
+  std::vector<double> bone_scales;  // Per joint: its offset's overall scale relative to the
+                                    // template (initial_scales times this fit's; 1 for the root).
 };
 
 // observed[f][m] in skeleton units (marker_observations.h). Writes the fitted skeleton
@@ -54,7 +81,7 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers,
                             const std::vector<std::vector<Eigen::Vector3d>>& observed,
                             const MarkerSolveOptions& solve_options, const SkeletonFitOptions& options,
                             Skeleton* fitted_skeleton, MarkerSet* fitted_markers, Motion* motion,
-                            SkeletonFitReport* report);
+                            SkeletonFitReport* report, const SkeletonFitProgress& progress = nullptr);
 
 }  // namespace mocapsolve
 

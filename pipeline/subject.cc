@@ -1,0 +1,238 @@
+#include "pipeline/subject.h"
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <utility>
+
+#include "io/atomic_file.h"
+#include "io/json_reader.h"
+#include "io/json_writer.h"
+#include "io/marker_file.h"
+#include "io/marker_set_file.h"
+#include "io/motion_file.h"
+#include "io/skeleton_json.h"
+
+namespace mocapsolve {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kFormat = "mocapsolve.subject";
+
+std::string Folder(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  return parent.empty() ? std::string(".") : parent.string();
+}
+
+// The skeleton named by a path in the subject file, with its unit made known.
+Status LoadSkeletonPath(const std::string& path, const JsonNode& node, const JsonNode* units_node,
+                        Subject* subject) {
+  const fs::path given(node.string);
+  const std::string resolved = given.is_absolute() ? given.string() : (fs::path(Folder(path)) / given).string();
+  Skeleton skeleton;
+  Status status = ReadSkeletonFile(resolved, &skeleton);
+  if (!status.ok()) return Status::Error(node.Where(path) + ": skeleton: " + status.message());
+  if (units_node != nullptr) {
+    if (!units_node->is_string()) return Status::Error(units_node->Where(path) + ": skeleton_units: expected a string");
+    const std::string& name = units_node->string;
+    if (skeleton.unit().known()) {
+      if (name != skeleton.unit().name) {
+        const LengthUnit unit = LengthUnitFromName(name);
+        if (!unit.known() || std::abs(unit.metres_per_unit / skeleton.unit().metres_per_unit - 1.0) > 1e-12) {
+          return Status::Error(units_node->Where(path) + ": skeleton_units: '" + name + "', but " + resolved +
+                               " states '" + skeleton.unit().name + "'");
+        }
+      }
+    } else {
+      const LengthUnit unit = LengthUnitFromName(name);
+      if (!unit.known()) {
+        return Status::Error(units_node->Where(path) + ": skeleton_units: '" + name + "': expected mm, cm, m or in");
+      }
+      std::vector<JointSpec> joints;
+      for (int j = 0; j < skeleton.num_joints(); ++j) joints.push_back(skeleton.joint(j));
+      Skeleton with_unit;
+      status = Skeleton::Create(std::move(joints), skeleton.end_sites(), unit, &with_unit);
+      if (!status.ok()) return Status::Error(node.Where(path) + ": skeleton: " + status.message());
+      skeleton = std::move(with_unit);
+    }
+  }
+  if (!skeleton.unit().known()) {
+    return Status::Error(node.Where(path) + ": skeleton: " + resolved +
+                         " states no length unit; add \"skeleton_units\" (mm, cm, m or in)");
+  }
+  subject->skeleton = std::move(skeleton);
+  subject->skeleton_path = resolved;
+  return Status::Ok();
+}
+
+Status Interpret(const std::string& path, const JsonNode& root, Subject* subject) {
+  const auto error = [&](const JsonNode& node, const std::string& message) {
+    return Status::Error(node.Where(path) + ": " + message);
+  };
+  if (!root.is_object()) return error(root, "expected a subject object");
+  const std::set<std::string> keys = {"format", "version", "name", "skeleton", "skeleton_units",
+                                      "markerset", "marker_files", "amc_fps"};
+  if (const auto* member = FindUnknownKey(root, keys)) {
+    return error(member->second, "unknown key '" + member->first + "' (known: " + KeyList(keys) + ")");
+  }
+  const JsonNode* format = root.Find("format");
+  if (format == nullptr || !format->is_string() || format->string != kFormat) {
+    return error(format ? *format : root, "format: expected \"" + std::string(kFormat) + "\"");
+  }
+  const JsonNode* version = root.Find("version");
+  if (version == nullptr || !version->is_number() || version->number != 1.0) {
+    return error(version ? *version : root, "version: expected 1 (the only version this build reads)");
+  }
+  Subject result;
+  if (const JsonNode* name = root.Find("name")) {
+    if (!name->is_string()) return error(*name, "name: expected a string");
+    result.name = name->string;
+  }
+  const JsonNode* skeleton = root.Find("skeleton");
+  if (skeleton == nullptr) return error(root, "missing \"skeleton\" (a skeleton file path or an inline skeleton)");
+  const JsonNode* units = root.Find("skeleton_units");
+  Status status = Status::Ok();
+  if (skeleton->is_string()) {
+    if (skeleton->string.empty()) return error(*skeleton, "skeleton: empty path");
+    status = LoadSkeletonPath(path, *skeleton, units, &result);
+    if (!status.ok()) return status;
+  } else if (skeleton->is_object()) {
+    if (units != nullptr) return error(*units, "skeleton_units: only with a skeleton path (an inline skeleton states its unit)");
+    status = InterpretSkeletonJson(*skeleton, path, "skeleton", &result.skeleton);
+    if (!status.ok()) return status;
+    if (!result.skeleton.unit().known()) return error(*skeleton, "skeleton: metres_per_unit: the unit must be known");
+  } else {
+    return error(*skeleton, "skeleton: expected a file path or an inline skeleton object");
+  }
+  const JsonNode* markerset = root.Find("markerset");
+  if (markerset == nullptr) return error(root, "missing \"markerset\" (the calibrated marker set, inline)");
+  status = InterpretMarkerSet(*markerset, path, result.skeleton, &result.markers);
+  if (!status.ok()) {
+    // Name the field: "S.json:7:5: markerset: markers[3]: ...".
+    const std::string& message = status.message();
+    const std::string where = path + ":";
+    size_t cut = std::string::npos;
+    if (message.compare(0, where.size(), where) == 0) cut = message.find(": ", where.size());
+    if (cut == std::string::npos) return Status::Error("markerset: " + message);
+    return Status::Error(message.substr(0, cut) + ": markerset: " + message.substr(cut + 2));
+  }
+  if (const JsonNode* files = root.Find("marker_files")) {
+    if (!files->is_object()) return error(*files, "marker_files: expected an object");
+    const std::set<std::string> file_keys = {"axes", "scale", "label_prefix"};
+    if (const auto* member = FindUnknownKey(*files, file_keys)) {
+      return error(member->second, "marker_files: unknown key '" + member->first + "' (known: " +
+                                       KeyList(file_keys) + ")");
+    }
+    if (const JsonNode* axes = files->Find("axes")) {
+      if (!axes->is_string()) return error(*axes, "marker_files.axes: expected a string such as \"y,z,x\"");
+      Eigen::Matrix3d rotation;
+      status = ParseAxes(axes->string, &rotation);
+      if (!status.ok()) return error(*axes, "marker_files.axes: " + status.message());
+      result.axes = axes->string;
+    }
+    if (const JsonNode* scale = files->Find("scale")) {
+      if (!scale->is_number() || !(scale->number >= 0.0)) {
+        return error(*scale, "marker_files.scale: expected a number >= 0 (0: from the units)");
+      }
+      result.marker_scale = scale->number;
+    }
+    if (const JsonNode* prefix = files->Find("label_prefix")) {
+      if (!prefix->is_string()) return error(*prefix, "marker_files.label_prefix: expected a string");
+      result.label_prefix = prefix->string;
+    }
+  }
+  if (const JsonNode* fps = root.Find("amc_fps")) {
+    if (!fps->is_number() || !(fps->number > 0.0)) return error(*fps, "amc_fps: expected a number > 0");
+    result.amc_fps = fps->number;
+  }
+  *subject = std::move(result);
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ReadSubject(const std::string& path, Subject* subject) {
+  JsonNode root;
+  Status status = ReadJsonFile(path, &root);
+  if (!status.ok()) return status;
+  return Interpret(path, root, subject);
+}
+
+std::string FormatSubject(const std::string& path, const Subject& subject) {
+  std::string out = "{\n  \"format\": \"" + std::string(kFormat) + "\",\n  \"version\": 1,\n";
+  if (!subject.name.empty()) out += "  \"name\": " + JsonQuote(subject.name) + ",\n";
+  if (!subject.skeleton_path.empty()) {
+    std::error_code error;
+    const fs::path target = fs::weakly_canonical(fs::absolute(subject.skeleton_path, error), error);
+    const fs::path base = fs::weakly_canonical(fs::absolute(Folder(path), error), error);
+    std::string relative = target.lexically_relative(base).string();
+    if (relative.empty() || error) relative = fs::absolute(subject.skeleton_path).string();
+    out += "  \"skeleton\": " + JsonQuote(relative) + ",\n";
+    out += "  \"skeleton_units\": " + JsonQuote(subject.skeleton.unit().name) + ",\n";
+  } else {
+    out += "  \"skeleton\": " + FormatSkeletonJson(subject.skeleton, 2) + ",\n";
+  }
+  out += "  \"marker_files\": {\"axes\": " + JsonQuote(subject.axes) + ", \"scale\": " +
+         JsonValue(subject.marker_scale).text() + ", \"label_prefix\": " + JsonQuote(subject.label_prefix) + "},\n";
+  out += "  \"amc_fps\": " + JsonValue(subject.amc_fps).text() + ",\n";
+  // The marker set as its own file writes it, indented one level.
+  std::string markers = FormatMarkerSet(subject.skeleton, subject.markers);
+  while (!markers.empty() && markers.back() == '\n') markers.pop_back();
+  std::string indented;
+  for (char c : markers) {
+    indented += c;
+    if (c == '\n') indented += "  ";
+  }
+  out += "  \"markerset\": " + indented + "\n}\n";
+  return out;
+}
+
+Status WriteSubject(const std::string& path, const Subject& subject) {
+  if (!subject.skeleton.unit().known()) return Status::Error(path + ": the subject's skeleton unit is unknown");
+  Eigen::Matrix3d rotation;
+  Status status = ParseAxes(subject.axes, &rotation);
+  if (!status.ok()) return Status::Error(path + ": axes: " + status.message());
+  for (int m = 0; m < subject.markers.num_markers(); ++m) {
+    for (const MarkerAttachment& a : subject.markers.marker(m).attachments) {
+      if (a.joint < 0 || a.joint >= subject.skeleton.num_joints()) {
+        return Status::Error(path + ": marker '" + subject.markers.label(m) + "' names joint index " +
+                             std::to_string(a.joint) + ", not in the skeleton");
+      }
+    }
+  }
+  return WriteFileAtomically(path, FormatSubject(path, subject));
+}
+
+Status LoadTakeForSubject(const Subject& subject, const std::string& markers_path, MarkerTake* take) {
+  MarkerTake result;
+  result.skeleton = subject.skeleton;
+  result.markers = subject.markers;
+  Status status = ReadMarkerFile(markers_path, &result.trajectories);
+  if (!status.ok()) return status;
+  MarkerTrajectories matched = result.trajectories;
+  if (!subject.label_prefix.empty()) {
+    const std::string& prefix = subject.label_prefix;
+    for (int m = 0; m < matched.num_markers(); ++m) {
+      if (matched.label(m).compare(0, prefix.size(), prefix) == 0) {
+        matched.set_label(m, matched.label(m).substr(prefix.size()));
+      }
+    }
+  }
+  status = ParseAxes(subject.axes, &result.transform.rotation);
+  if (!status.ok()) return Status::Error("axes: " + status.message());
+  if (subject.marker_scale > 0.0) {
+    result.transform.scale = subject.marker_scale;
+  } else if (subject.marker_scale < 0.0 || !std::isfinite(subject.marker_scale)) {
+    return Status::Error("marker scale must be positive (or 0: from the units)");
+  } else {
+    status = UnitScale(result.trajectories.unit, result.skeleton.unit(), &result.transform.scale);
+    if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
+  }
+  status = GatherObservations(result.markers, matched, result.transform, &result.observed);
+  if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
+  *take = std::move(result);
+  return Status::Ok();
+}
+
+}  // namespace mocapsolve

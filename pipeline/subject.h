@@ -1,0 +1,78 @@
+// Subject files: one actor in one marker set, calibrated once and reused for every take.
+//
+// A subject holds what every command on that actor's takes needs and would otherwise
+// take as flags (--skeleton, --skeleton_units, --markerset, --axes, --marker_scale):
+//   - the skeleton: a file (ASF/BVH/glTF, path relative to the subject file) or, for a
+//     fitted skeleton that exists nowhere else, the Skeleton inline (io/skeleton_json.h);
+//   - the calibrated marker set, inline (io/marker_set_file.h's format);
+//   - how marker files map onto the skeleton: axes (as --axes spells them), the marker
+//     unit -> skeleton unit scale (0: from the files' declared units), and an optional
+//     label prefix ("Subject1:") stripped from file labels;
+//   - frame-rate assumptions (amc_fps for AMC motions, which do not store it).
+//
+// Format (version 1; unknown keys are errors, so typos surface):
+//   {
+//     "format": "mocapsolve.subject", "version": 1,
+//     "name": "cmu02",                          optional
+//     "skeleton": "../amc/02.asf",              a path relative to this file, or an inline
+//                                               skeleton object (io/skeleton_json.h)
+//     "skeleton_units": "cm",                   optional, with a path: the unit of a file
+//                                               that states none (BVH)
+//     "markerset": {"format": "mocapsolve.markerset", ...},   inline, required
+//     "marker_files": {"axes": "y,z,x", "scale": 0, "label_prefix": ""},   optional
+//     "amc_fps": 120                            optional
+//   }
+// Errors are one line naming the file, line:column and field, e.g.
+//   S.json:7:5: markerset: markers[3]: 'RTOE': attachments[0].joint: unknown joint 'rtoes'
+#ifndef MOCAPSOLVE_PIPELINE_SUBJECT_H_
+#define MOCAPSOLVE_PIPELINE_SUBJECT_H_
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinematics/marker_set.h"
+#include "kinematics/marker_trajectories.h"
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+#include "problems/marker_solve/marker_observations.h"
+
+namespace mocapsolve {
+
+struct Subject {
+  std::string name;
+  Skeleton skeleton;           // As loaded (the file's, or the inline one); unit known.
+  std::string skeleton_path;   // As resolved on read (empty: inline). WriteSubject writes it
+                               // relative to the subject file, else the skeleton inline.
+  MarkerSet markers;
+  std::string axes = "x,y,z";  // Marker file axes -> skeleton axes (ParseAxes).
+  double marker_scale = 0.0;   // Marker file units -> skeleton units; 0: from the units.
+  std::string label_prefix;    // Stripped from marker file labels ("" = none).
+  double amc_fps = 120.0;      // Frame rate of AMC motions.
+};
+
+// Reads and validates a subject file (skeleton file paths resolved against its folder).
+Status ReadSubject(const std::string& path, Subject* subject);
+// Writes atomically; a skeleton_path is written relative to the subject file's folder.
+Status WriteSubject(const std::string& path, const Subject& subject);
+// The file text WriteSubject writes to `path` (path only resolves skeleton_path).
+std::string FormatSubject(const std::string& path, const Subject& subject);
+
+// A take of markers with its model.
+struct MarkerTake {
+  Skeleton skeleton;
+  MarkerSet markers;
+  MarkerTrajectories trajectories;  // The file as read (labels as the file spells them).
+  MarkerFileToModel transform;      // File to skeleton frame.
+  std::vector<std::vector<Eigen::Vector3d>> observed;  // [frame][marker], skeleton units.
+};
+
+// Reads the marker file at markers_path and maps it onto the subject: the label prefix
+// stripped, axes and scale applied, observed[f][m] gathered for every marker of the set
+// (an error names the ones the file lacks).
+Status LoadTakeForSubject(const Subject& subject, const std::string& markers_path, MarkerTake* take);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PIPELINE_SUBJECT_H_

@@ -1,0 +1,182 @@
+// Subject files (pipeline/subject.h): a round trip with the skeleton inline and by path,
+// and bad files whose one-line errors name the file and the field.
+#include "pipeline/subject.h"
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "io/bvh_writer.h"
+#include "kinematics/demo_character.h"
+#include "problems/marker_solve/synthetic_marker_set.h"
+#include "tests/test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+// A demo skeleton with ASF-like extras (dof subsets, limits, a rest rotation).
+Skeleton RichSkeleton() {
+  const Skeleton demo = MakeDemoSkeleton();
+  std::vector<JointSpec> joints;
+  for (int j = 0; j < demo.num_joints(); ++j) joints.push_back(demo.joint(j));
+  joints[1].rotation_axes = std::vector<int>{2, 0};
+  joints[1].rotation_limits = {{-1.5, 0.25}, {-std::numeric_limits<double>::infinity(), 0.5}};
+  joints[2].rotation_axes = std::vector<int>{};
+  joints[3].rest_rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
+  joints[4].offset *= 1.0 / 3.0;  // Not a short decimal.
+  Skeleton skeleton;
+  EXPECT_TRUE(Skeleton::Create(joints, demo.end_sites(), demo.unit(), &skeleton).ok());
+  return skeleton;
+}
+
+void ExpectSameSkeleton(const Skeleton& a, const Skeleton& b) {
+  ASSERT_EQ(a.num_joints(), b.num_joints());
+  EXPECT_EQ(a.unit().name, b.unit().name);
+  EXPECT_EQ(a.unit().metres_per_unit, b.unit().metres_per_unit);
+  for (int j = 0; j < a.num_joints(); ++j) {
+    EXPECT_EQ(a.name(j), b.name(j));
+    EXPECT_EQ(a.parent(j), b.parent(j));
+    EXPECT_EQ(a.offset(j), b.offset(j)) << a.name(j);  // Round-trip exact.
+    EXPECT_EQ(a.rest_rotation(j).coeffs(), b.rest_rotation(j).coeffs()) << a.name(j);
+    EXPECT_EQ(a.rotation_axes(j), b.rotation_axes(j)) << a.name(j);
+    EXPECT_EQ(a.rotation_limits(j), b.rotation_limits(j)) << a.name(j);
+    EXPECT_EQ(a.joint(j).channels, b.joint(j).channels) << a.name(j);
+  }
+  ASSERT_EQ(a.end_sites().size(), b.end_sites().size());
+  for (size_t e = 0; e < a.end_sites().size(); ++e) {
+    EXPECT_EQ(a.end_sites()[e].name, b.end_sites()[e].name);
+    EXPECT_EQ(a.end_sites()[e].offset, b.end_sites()[e].offset);
+  }
+}
+
+void ExpectSameMarkers(const MarkerSet& a, const MarkerSet& b) {
+  ASSERT_EQ(a.num_markers(), b.num_markers());
+  for (int m = 0; m < a.num_markers(); ++m) {
+    EXPECT_EQ(a.label(m), b.label(m));
+    ASSERT_EQ(a.marker(m).attachments.size(), b.marker(m).attachments.size());
+    for (size_t k = 0; k < a.marker(m).attachments.size(); ++k) {
+      EXPECT_EQ(a.marker(m).attachments[k].joint, b.marker(m).attachments[k].joint);
+      EXPECT_EQ(a.marker(m).attachments[k].weight, b.marker(m).attachments[k].weight);
+      EXPECT_EQ(a.marker(m).attachments[k].offset, b.marker(m).attachments[k].offset);
+    }
+  }
+}
+
+Subject MakeSubject() {
+  Subject subject;
+  subject.name = "demo";
+  subject.skeleton = RichSkeleton();
+  subject.markers = MakeSyntheticMarkerSet(subject.skeleton, 2, 5);
+  subject.axes = "y,z,x";
+  subject.marker_scale = 0.1;
+  subject.label_prefix = "Subject1:";
+  subject.amc_fps = 60.0;
+  return subject;
+}
+
+TEST(Subject, InlineSkeletonRoundTrip) {
+  const Subject subject = MakeSubject();
+  const std::string path = testing::TempPath("s.json");
+  ASSERT_TRUE(WriteSubject(path, subject).ok());
+  Subject read;
+  const Status status = ReadSubject(path, &read);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(read.name, "demo");
+  EXPECT_EQ(read.axes, "y,z,x");
+  EXPECT_EQ(read.marker_scale, 0.1);
+  EXPECT_EQ(read.label_prefix, "Subject1:");
+  EXPECT_EQ(read.amc_fps, 60.0);
+  EXPECT_TRUE(read.skeleton_path.empty());
+  ExpectSameSkeleton(subject.skeleton, read.skeleton);
+  ExpectSameMarkers(subject.markers, read.markers);
+  // Written again, byte for byte the same.
+  const std::string again = testing::TempPath("s2.json");
+  ASSERT_TRUE(WriteSubject(again, read).ok());
+  EXPECT_EQ(testing::ReadTextFile(path), testing::ReadTextFile(again));
+}
+
+// The subject text with `from` replaced by `to` (which must occur).
+std::string Edited(const std::string& text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at == std::string::npos) return text;
+  return text.substr(0, at) + to + text.substr(at + from.size());
+}
+
+TEST(Subject, SkeletonPathRelativeToTheSubjectFile) {
+  Subject subject = MakeSubject();
+  subject.skeleton = MakeDemoSkeleton();
+  subject.markers = MakeSyntheticMarkerSet(subject.skeleton, 2, 5);
+  const std::string bvh = testing::TempPath("skel/walk.bvh");
+  std::filesystem::create_directories(std::filesystem::path(bvh).parent_path());
+  Motion motion = MakeDemoWalk(subject.skeleton, 2, 30.0);
+  ASSERT_TRUE(WriteBvh(bvh, subject.skeleton, motion, BvhWriteOptions()).ok());
+  subject.skeleton_path = bvh;
+  const std::string path = testing::TempPath("subjects/s.json");
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  ASSERT_TRUE(WriteSubject(path, subject).ok());
+  const std::string text = testing::ReadTextFile(path);
+  EXPECT_THAT(text, HasSubstr("\"skeleton\": \"../skel/walk.bvh\""));
+  EXPECT_THAT(text, HasSubstr("\"skeleton_units\": \"cm\""));  // A BVH states none.
+  Subject read;
+  const Status status = ReadSubject(path, &read);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(read.skeleton.unit().metres_per_unit, 0.01);
+  ASSERT_EQ(read.skeleton.num_joints(), subject.skeleton.num_joints());
+  for (int j = 0; j < read.skeleton.num_joints(); ++j) {
+    EXPECT_LT((read.skeleton.offset(j) - subject.skeleton.offset(j)).norm(), 1e-5);  // BVH: 6 digits.
+  }
+  ExpectSameMarkers(subject.markers, read.markers);
+
+  // The skeleton file gone: the error names the subject file, the field and the path.
+  const std::string moved = Edited(text, "../skel/walk.bvh", "../skel/nowhere.bvh");
+  const std::string bad = testing::TempPath("subjects/moved.json");
+  std::ofstream(bad) << moved;
+  const Status missing = ReadSubject(bad, &read);
+  ASSERT_FALSE(missing.ok());
+  EXPECT_THAT(missing.message(), StartsWith(bad + ":"));
+  EXPECT_THAT(missing.message(), HasSubstr("skeleton: "));
+  EXPECT_THAT(missing.message(), HasSubstr("nowhere.bvh"));
+}
+
+std::string ReadEdited(const std::string& text, const std::string& name) {
+  const std::string path = testing::TempPath(name);
+  std::ofstream(path) << text;
+  Subject subject;
+  const Status status = ReadSubject(path, &subject);
+  EXPECT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), StartsWith(path + ":"));
+  EXPECT_EQ(status.message().find('\n'), std::string::npos) << status.message();
+  return status.message();
+}
+
+TEST(Subject, BadFilesNameTheFileAndField) {
+  const Subject subject = MakeSubject();
+  const std::string good = FormatSubject(testing::TempPath("good.json"), subject);
+  const std::string first_joint = subject.skeleton.name(subject.markers.marker(0).attachments[0].joint);
+
+  EXPECT_THAT(ReadEdited(Edited(good, "\"amc_fps\"", "\"amc_fsp\""), "typo.json"),
+              HasSubstr("unknown key 'amc_fsp'"));
+  EXPECT_THAT(ReadEdited(Edited(good, "\"joint\": \"" + first_joint + "\"", "\"joint\": \"nojoint\""),
+                         "bad_joint.json"),
+              HasSubstr("markerset: markers[0]: '" + subject.markers.label(0) +
+                        "': attachments[0].joint: unknown joint 'nojoint'"));
+  EXPECT_THAT(ReadEdited(Edited(good, "\"axes\": \"y,z,x\"", "\"axes\": \"y,z\""), "axes.json"),
+              HasSubstr("marker_files.axes"));
+  EXPECT_THAT(ReadEdited(Edited(good, "\"parent\": null", "\"parent\": \"elsewhere\""), "parent.json"),
+              HasSubstr("skeleton.joints[0]"));
+  std::string no_skeleton = good;
+  const size_t begin = no_skeleton.find("  \"skeleton\": {");
+  const size_t end = no_skeleton.find("  \"marker_files\"");
+  no_skeleton.erase(begin, end - begin);
+  EXPECT_THAT(ReadEdited(no_skeleton, "no_skeleton.json"), HasSubstr("missing \"skeleton\""));
+}
+
+}  // namespace
+}  // namespace mocapsolve
