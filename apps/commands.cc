@@ -21,9 +21,10 @@ extern const Command kFitSkeletonCommand;
 extern const Command kDistanceCommand;
 extern const Command kPropagateCommand;
 extern const Command kRetargetCommand;
+extern const Command kPipelineCommand;
 
 const std::vector<Command>& AllCommands() {
-  static const std::vector<Command> commands = {kInfoCommand, kConvertCommand, kFkCommand,
+  static const std::vector<Command> commands = {kPipelineCommand, kInfoCommand, kConvertCommand, kFkCommand,
                                                 kGenerateCommand, kBenchCommand,
                                                 kSolveCommand, kRepairCommand, kCorruptCommand,
                                                 kEvaluateCommand,

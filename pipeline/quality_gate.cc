@@ -16,7 +16,7 @@ std::string Number(double value) {
 
 bool QualityGate::IsValid(std::string* error) const {
   for (double value : {max_naive_rms_mm, max_repaired_rms_mm, max_repaired_share, max_iteration_limit_share,
-                       max_marker_offset_cm}) {
+                       max_marker_offset_cm, max_torso_error_deg}) {
     if (!std::isfinite(value)) {
       *error = "quality gate: thresholds must be finite";
       return false;
@@ -27,7 +27,8 @@ bool QualityGate::IsValid(std::string* error) const {
 
 QualityVerdict CheckQuality(const QualityGate& gate, const QualityFigures& figures) {
   QualityVerdict verdict;
-  auto check = [&](bool on, double value, double limit, const char* what, const char* unit, double shown = 1.0) {
+  auto check = [&](bool on, double value, double limit, const std::string& what, const char* unit,
+                   double shown = 1.0) {
     if (!on || !(value > limit)) {
       // NaN figures fail: a figure that could not be measured cannot pass.
       if (!on || !std::isnan(value)) return;
@@ -44,7 +45,10 @@ QualityVerdict CheckQuality(const QualityGate& gate, const QualityFigures& figur
   check(gate.max_iteration_limit_share > 0 && gate.max_iteration_limit_share < 1, figures.iteration_limit_share,
         gate.max_iteration_limit_share, "frames at the iteration limit", " %", 100.0);
   check(gate.max_marker_offset_cm > 0, figures.max_marker_offset_cm, gate.max_marker_offset_cm,
-        "largest marker offset", " cm");
+        "largest marker-bone distance (" + figures.farthest_marker + ")", " cm");
+  // Not measured (no head or pelvis markers): nothing to check.
+  check(gate.max_torso_error_deg > 0 && !std::isnan(figures.torso_error_deg), figures.torso_error_deg,
+        gate.max_torso_error_deg, "torso direction error", " deg");
   return verdict;
 }
 

@@ -10,8 +10,13 @@
 //   repaired share        repaired samples / all samples of the subject's markers: a
 //                         repair that rewrites much of the take is rebuilding, not cleaning;
 //   iteration-limit share frames whose solve stopped at the iteration limit;
-//   max marker offset     the subject's largest marker-to-joint distance (cm): a fit that
-//                         bought its residual with absurd offsets.
+//   marker-bone distance  the subject's largest marker-to-bone distance (cm; skin
+//                         distance, problems/marker_solve/subject_checks.h): a fit that
+//                         bought its residual with absurd offsets;
+//   torso direction       the solved pelvis-to-head direction against the markers' own
+//                         (mean angle over the take, degrees): a skeleton solved tilted or
+//                         upside down while the markers stand upright. Takes without
+//                         head and pelvis markers by their usual labels are not checked.
 // A threshold <= 0 (or, for shares, >= 1) turns that check off.
 #ifndef MOCAPSOLVE_PIPELINE_QUALITY_GATE_H_
 #define MOCAPSOLVE_PIPELINE_QUALITY_GATE_H_
@@ -26,7 +31,8 @@ struct QualityGate {
   double max_repaired_rms_mm = 20.0;
   double max_repaired_share = 0.25;
   double max_iteration_limit_share = 0.2;
-  double max_marker_offset_cm = 20.0;
+  double max_marker_offset_cm = 25.0;
+  double max_torso_error_deg = 15.0;
 
   bool IsValid(std::string* error) const;
 };
@@ -37,6 +43,8 @@ struct QualityFigures {
   double repaired_share = 0.0;
   double iteration_limit_share = 0.0;
   double max_marker_offset_cm = 0.0;
+  double torso_error_deg = 0.0;  // NaN: not measured (no head or pelvis markers).
+  std::string farthest_marker;   // "LFIN on lhand": where max_marker_offset_cm was measured.
 };
 
 struct QualityVerdict {

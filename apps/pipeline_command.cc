@@ -1,0 +1,185 @@
+// mocapsolve pipeline: one take from markers to animated characters
+// (pipeline/take_pipeline.h): repair and solve, optional filtering, retargeting onto each
+// character, the quality gate; outputs in --out_dir.
+#include <sys/stat.h>
+
+#include <cstdio>
+#include <string>
+
+#include "apps/command.h"
+#include "apps/common_flags.h"
+#include "apps/config_flags.h"
+#include "apps/progress.h"
+#include "apps/pyramid_flags.h"
+#include "apps/repair_flags.h"
+#include "apps/retarget_flags.h"
+#include "apps/solver_flags.h"
+#include "io/marker_file.h"
+#include "io/motion_file.h"
+#include "pipeline/take_pipeline.h"
+
+DECLARE_string(subject);  // apps/main.cc
+
+DEFINE_string(character, "", "Characters (.glb/.gltf), comma-separated: the take is retargeted onto "
+              "each and written as DIR/<name>.glb with the take as a new animation. Empty: stop "
+              "after the solve.");
+DEFINE_string(out_dir, "", "Folder of the take's outputs (created if missing; nothing is written "
+              "there when the take fails).");
+DEFINE_string(config, "", "JSON file of options: keys are this command's flag names (see "
+              "--print_config); flags given on the command line override it.");
+DEFINE_bool(print_config, false, "Print every option of the pipeline with its value (the defaults, "
+            "or --config's) as a JSON config file, and exit.");
+DEFINE_string(take_name, "", "The take's name: the characters' new animation (default: the marker "
+              "file's name without extension).");
+DEFINE_int32(filter_levels, 0, "Filter the solved motion: drop the N finest bands of its Laplacian "
+             "pyramid (as `filter --levels=N`); 0 = no filtering.");
+DEFINE_double(gate_naive_rms_mm, 30.0, "Quality gate: the plain solve's marker RMS (mm) at most this "
+              "(a marker set that does not fit the actor shows here); 0 = no check.");
+DEFINE_double(gate_repaired_rms_mm, 20.0, "Quality gate: the repaired solve's marker RMS (mm) at most "
+              "this; 0 = no check.");
+DEFINE_double(gate_repaired_share, 0.25, "Quality gate: at most this share of the subject's marker "
+              "samples repaired; 0 = no check.");
+DEFINE_double(gate_iteration_limit_share, 0.2, "Quality gate: at most this share of frames whose "
+              "solve stopped at --max_iterations; 0 = no check.");
+DEFINE_double(gate_marker_offset_cm, 25.0, "Quality gate: no marker of the subject farther than this "
+              "(cm) from its bone (skin distance; CMU subject 2's own calibration puts RBAC 20.7 cm from upperback); 0 = no check.");
+DEFINE_double(gate_torso_deg, 15.0, "Quality gate: the solved pelvis-to-head direction within this "
+              "(degrees, mean over the take) of the head and pelvis markers' own; 0 = no check.");
+
+namespace mocapsolve {
+namespace {
+
+const std::string kPipelineOptionFlags =
+    std::string("take_name,filter_levels,kernel_a,tension,gate_naive_rms_mm,gate_repaired_rms_mm,"
+                "gate_repaired_share,gate_iteration_limit_share,gate_marker_offset_cm,gate_torso_deg,") +
+    kRepairFlagNames + "," + kSolverFlagNames + "," + kRetargetOptionFlagNames;
+
+std::string BaseName(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const size_t dot = name.find_last_of('.');
+  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+}
+
+// mkdir -p.
+Status MakeFolder(const std::string& path) {
+  for (size_t i = 1; i <= path.size(); ++i) {
+    if (i < path.size() && path[i] != '/') continue;
+    const std::string prefix = path.substr(0, i);
+    struct stat st;
+    if (::stat(prefix.c_str(), &st) == 0) {
+      if (!S_ISDIR(st.st_mode)) return Status::Error(path + ": " + prefix + " is not a folder");
+      continue;
+    }
+    if (::mkdir(prefix.c_str(), 0777) != 0) return Status::Error(path + ": cannot create the folder");
+  }
+  return Status::Ok();
+}
+
+Status RunPipeline(const std::vector<std::string>& arguments) {
+  if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  if (!FLAGS_config.empty()) {
+    Status status = ApplyConfigFile(FLAGS_config, kPipelineOptionFlags);
+    if (!status.ok()) return status;
+  }
+  if (FLAGS_print_config) {
+    std::printf("%s\n", ConfigJson(kPipelineOptionFlags).c_str());
+    return Status::Ok();
+  }
+  if (FLAGS_subject.empty() || FLAGS_markers.empty() || FLAGS_out_dir.empty()) {
+    return Status::Error("--subject, --markers and --out_dir are required");
+  }
+  if (!IsMarkerFile(FLAGS_markers)) return Status::Error(FLAGS_markers + ": expected a .c3d or .trc");
+  Subject subject;
+  Status status = ReadSubject(FLAGS_subject, &subject);
+  if (!status.ok()) return status;
+
+  TakePipelineOptions options;
+  status = RepairOptionsFromFlags(subject.skeleton, &options.repair);
+  if (status.ok()) status = RetargetOptionsFromFlags(&options.retarget);
+  if (!status.ok()) return status;
+  options.filter_levels = FLAGS_filter_levels;
+  options.filter = PyramidOptionsFromFlags(FLAGS_filter_levels);
+  options.gate.max_naive_rms_mm = FLAGS_gate_naive_rms_mm;
+  options.gate.max_repaired_rms_mm = FLAGS_gate_repaired_rms_mm;
+  options.gate.max_repaired_share = FLAGS_gate_repaired_share;
+  options.gate.max_iteration_limit_share = FLAGS_gate_iteration_limit_share;
+  options.gate.max_marker_offset_cm = FLAGS_gate_marker_offset_cm;
+  options.gate.max_torso_error_deg = FLAGS_gate_torso_deg;
+  std::string error;
+  if (!options.IsValid(&error)) return Status::Error(error);
+
+  TakeInputs inputs;
+  inputs.name = FLAGS_take_name.empty() ? BaseName(FLAGS_markers) : FLAGS_take_name;
+  inputs.subject = &subject;
+  inputs.markers_path = FLAGS_markers;
+  inputs.character_paths = SplitFlagNames(FLAGS_character);
+
+  TakeResult result;
+  std::unique_ptr<Progress> progress;
+  std::string shown;
+  status = RunTakePipeline(inputs, options, &result, [&](const std::string& stage, int done, int total) {
+    if (stage != shown) {
+      progress = std::make_unique<Progress>("pipeline: " + stage, total, FLAGS_quiet);
+      shown = stage;
+    }
+    progress->Update(done);
+  });
+  if (!status.ok()) return status;
+
+  JsonObject report = TakeReport(inputs, result);
+  report.Add("command", "pipeline").Add("version", Version()).Add("subject", FLAGS_subject).Add("config", FLAGS_config)
+      .Add("options", JsonValue::Raw(ConfigJson(kPipelineOptionFlags)));
+  status = MakeFolder(FLAGS_out_dir);
+  if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report);
+  if (status.ok()) status = WriteReport(report);
+  if (!status.ok()) return status;
+
+  const int frames = static_cast<int>(result.take.observed.size());
+  std::printf("pipeline %s: %d frames in %.2f s (%.0f frames/s)\n", inputs.name.c_str(), frames, result.seconds,
+              result.seconds > 0 ? frames / result.seconds : 0.0);
+  for (const StageTime& t : result.timings) std::printf("  %-32s %8.3f s\n", t.stage.c_str(), t.seconds);
+  std::printf("  marker RMS naive %.2f mm, repaired %.2f mm; %d of %d samples repaired (%.2f %%)\n",
+              result.figures.naive_rms_mm, result.figures.repaired_rms_mm, result.repaired_samples, result.samples,
+              100.0 * result.figures.repaired_share);
+  for (const CharacterOutput& c : result.characters) {
+    const RetargetClipResult& r = c.result.clip;
+    std::printf("  %s: vertex error %.4f of height, foot skating %.2f -> %.2f cm/s\n", c.name.c_str(),
+                r.mean_position_error, c.result.source_plant_skating_cm_s, c.result.result_plant_skating_cm_s);
+  }
+  std::printf("wrote %s (repaired markers, solved.bvh, %zu character file%s, report.json)\n",
+              FLAGS_out_dir.c_str(), result.characters.size(), result.characters.size() == 1 ? "" : "s");
+  if (!result.verdict.pass) {
+    std::string failures;
+    for (const std::string& f : result.verdict.failures) failures += (failures.empty() ? "" : "; ") + f;
+    std::fprintf(stderr, "mocapsolve pipeline: %s: quality gate failed: %s\n", inputs.name.c_str(),
+                 failures.c_str());
+    SetExitCodeOnSuccess(3);
+  } else {
+    std::printf("quality gate: pass\n");
+  }
+  return Status::Ok();
+}
+
+const std::string kPipelineFlags =
+    "subject,markers,character,out_dir,config,print_config,report,quiet," + kPipelineOptionFlags;
+
+}  // namespace
+
+extern const Command kPipelineCommand = {
+    "pipeline", "one take end to end: markers -> repair and solve -> filter -> characters",
+    "mocapsolve pipeline --subject=S.json --markers=TAKE.c3d|.trc [--character=C.glb[,C2.glb]] "
+    "--out_dir=DIR [--config=pipeline.json] [--report=r.json]\n"
+    "       mocapsolve pipeline --print_config [--config=pipeline.json]\n\n"
+    "Runs the take through repair (thesis ch. 3: robust reference, gap detection and Hermite\n"
+    "refill, re-solve), optional multiresolution filtering (--filter_levels), and retargeting\n"
+    "onto each character (thesis ch. 4, the character's own mesh bound to the subject's\n"
+    "skeleton), then checks the quality gate. Writes DIR/repaired.c3d (or .trc),\n"
+    "DIR/solved.bvh, DIR/<character>.glb (the character file plus the take as a new\n"
+    "animation) and DIR/report.json (stage timings, marker residuals, repaired intervals,\n"
+    "retarget error, foot skating, the gate's verdict), all together or none.\n"
+    "Exit code: 0 done, 1 bad input or a failed stage (nothing written), 3 the take failed\n"
+    "the quality gate (outputs written, the report says why).",
+    __FILE__, RunPipeline, kPipelineFlags.c_str()};
+
+}  // namespace mocapsolve

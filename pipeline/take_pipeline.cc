@@ -1,0 +1,267 @@
+#include "pipeline/take_pipeline.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "io/atomic_file.h"
+#include "io/bvh_writer.h"
+#include "io/gltf_writer.h"
+#include "io/marker_file.h"
+#include "io/motion_file.h"
+#include "problems/marker_solve/subject_checks.h"
+#include "signal/motion_pyramid.h"
+
+namespace mocapsolve {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string BaseName(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const size_t dot = name.find_last_of('.');
+  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+}
+
+std::string InFolder(const std::string& out_dir, const std::string& name) {
+  if (out_dir.empty()) return name;
+  return out_dir.back() == '/' ? out_dir + name : out_dir + "/" + name;
+}
+
+}  // namespace
+
+bool TakePipelineOptions::IsValid(std::string* error) const {
+  if (filter_levels < 0 || filter_levels > 30) {
+    *error = "filter_levels: must be in [0, 30]";
+    return false;
+  }
+  if (filter_levels > 0) {
+    const Status status = filter.Validate();
+    if (!status.ok()) {
+      *error = "filter: " + status.message();
+      return false;
+    }
+  }
+  return gate.IsValid(error) && retarget.IsValid(error);
+}
+
+std::string RepairedMarkersPath(const std::string& out_dir, const std::string& markers_path) {
+  return InFolder(out_dir, "repaired" + FileExtension(markers_path));
+}
+
+std::string SolvedMotionPath(const std::string& out_dir) { return InFolder(out_dir, "solved.bvh"); }
+
+std::string CharacterOutputPath(const std::string& out_dir, const std::string& character_name,
+                                const std::string& character_path) {
+  const std::string extension = FileExtension(character_path) == ".gltf" ? ".gltf" : ".glb";
+  return InFolder(out_dir, character_name + extension);
+}
+
+Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
+                       const PipelineProgress& progress) {
+  if (inputs.subject == nullptr) return Status::Error("pipeline: no subject");
+  std::string error;
+  if (!options.IsValid(&error)) return Status::Error("pipeline options: " + error);
+  const Subject& subject = *inputs.subject;
+  const Clock::time_point start = Clock::now();
+  auto lap = [&](const std::string& stage, Clock::time_point since) {
+    result->timings.push_back({stage, SecondsSince(since)});
+  };
+
+  // Read: the markers through the subject's mapping; the characters.
+  Clock::time_point stage_start = Clock::now();
+  Status status = LoadTakeForSubject(subject, inputs.markers_path, &result->take);
+  if (!status.ok()) return Status::Error("read: " + status.message());
+  const MarkerTake& take = result->take;
+  const int frames = static_cast<int>(take.observed.size());
+  if (frames == 0) return Status::Error("read: " + inputs.markers_path + ": the take has no frames");
+  for (const std::string& path : inputs.character_paths) {
+    CharacterOutput output;
+    output.path = path;
+    output.name = BaseName(path);
+    status = GltfDocument::Read(path, &output.document);
+    if (status.ok()) status = ReadGltfCharacter(output.document, GltfReadOptions(), &output.character);
+    if (!status.ok()) return Status::Error("read: " + status.message());
+    for (const std::string& existing : output.character.animation_names) {
+      if (existing == inputs.name) {
+        return Status::Error("read: " + path + ": already has an animation named '" + inputs.name +
+                             "' (the take's name)");
+      }
+    }
+    for (const CharacterOutput& other : result->characters) {
+      if (other.name == output.name) {
+        return Status::Error("read: " + path + ": two characters named '" + output.name + "'");
+      }
+    }
+    result->characters.push_back(std::move(output));
+  }
+  lap("read", stage_start);
+
+  // 1. Repair, whose re-solve is the take's solve.
+  stage_start = Clock::now();
+  if (progress) progress("repair", 0, frames);
+  std::vector<std::vector<Eigen::Vector3d>> repaired;
+  status = RepairMarkers(take.skeleton, take.markers, take.observed, options.repair, &repaired, &result->solved,
+                         &result->repair);
+  if (!status.ok()) return Status::Error("repair: " + inputs.markers_path + ": " + status.message());
+  result->solved.frame_rate = take.trajectories.frame_rate;
+  if (progress) progress("repair", frames, frames);
+  result->repaired_file = take.trajectories;
+  for (int m = 0; m < take.markers.num_markers(); ++m) {
+    const int column = take.trajectories.FindMarker(take.markers.label(m));
+    for (int f = 0; f < frames; ++f) {
+      ++result->samples;
+      const bool same = take.observed[f][m].allFinite() && repaired[f][m] == take.observed[f][m];
+      if (same) continue;
+      ++result->repaired_samples;
+      result->repaired_file.SetSample(f, column, take.transform.Invert(repaired[f][m]));
+    }
+  }
+  lap("repair and solve", stage_start);
+
+  // 2. Filter.
+  if (options.filter_levels > 0) {
+    stage_start = Clock::now();
+    PyramidOptions pyramid = options.filter;
+    pyramid.levels = options.filter_levels;
+    Motion filtered;
+    status = FilterMotion(result->solved, pyramid, DropFinestBands(pyramid.levels, pyramid.levels), &filtered);
+    if (!status.ok()) return Status::Error("filter: " + status.message());
+    result->solved = std::move(filtered);
+    lap("filter", stage_start);
+  }
+
+  // 3. Retarget onto each character.
+  for (CharacterOutput& output : result->characters) {
+    stage_start = Clock::now();
+    const std::string stage = "retarget onto " + output.name;
+    RetargetCharacter source;  // Skeleton only: the character's mesh is bound to it.
+    source.skeleton = &take.skeleton;
+    RetargetCharacter target;
+    target.skeleton = &output.character.skeleton;
+    target.mesh = &output.character.mesh;
+    target.bind_pose = output.character.bind_pose;
+    target.rest_pose = output.character.rest_pose;
+    status = RetargetMotionOntoCharacter(source, result->solved, target, options.retarget, &output.result,
+                                         [&](int done, int total) {
+                                           if (progress) progress(stage, done, total);
+                                         });
+    if (!status.ok()) return Status::Error("retarget: " + output.path + ": " + status.message());
+    lap(stage, stage_start);
+  }
+
+  // 4. The quality gate.
+  const double mm = take.skeleton.unit().metres_per_unit * 1000.0;
+  QualityFigures& figures = result->figures;
+  figures.naive_rms_mm = result->repair.naive_rms * mm;
+  figures.repaired_rms_mm = result->repair.repaired_rms * mm;
+  figures.repaired_share = result->samples > 0 ? double(result->repaired_samples) / result->samples : 0.0;
+  figures.iteration_limit_share = double(result->repair.naive_unconverged_frames) / frames;
+  // The checks of a fitted subject, on this take: skin distance and torso direction.
+  const SubjectChecks checks = CheckSubjectFit(take.skeleton, take.markers, take.observed, result->solved);
+  figures.max_marker_offset_cm = checks.max_bone_distance_cm;
+  figures.farthest_marker = checks.farthest_marker;
+  figures.torso_error_deg = checks.torso_frames > 0 ? checks.torso_error_mean_deg : std::nan("");
+  result->verdict = CheckQuality(options.gate, figures);
+  result->seconds = SecondsSince(start);
+  return Status::Ok();
+}
+
+JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
+  const MarkerTake& take = result.take;
+  const int frames = static_cast<int>(take.observed.size());
+  const double mm = take.skeleton.unit().metres_per_unit * 1000.0;
+  std::vector<JsonObject> timings;
+  for (const StageTime& t : result.timings) {
+    JsonObject o;
+    o.Add("stage", t.stage).Add("seconds", t.seconds);
+    timings.push_back(o);
+  }
+  std::vector<JsonObject> repair_timings;
+  for (const RepairStageTime& t : result.repair.timings) {
+    JsonObject o;
+    o.Add("stage", t.stage).Add("seconds", t.seconds);
+    repair_timings.push_back(o);
+  }
+  std::vector<JsonObject> filled;
+  for (const RepairInterval& i : result.repair.filled) {
+    JsonObject o;
+    o.Add("marker", take.markers.label(i.marker)).Add("first_frame", i.first).Add("last_frame", i.last)
+        .Add("what", i.what);
+    filled.push_back(o);
+  }
+  JsonObject repair;
+  repair.Add("detected_intervals", static_cast<int>(result.repair.detected.size()))
+      .Add("filled_intervals", filled)
+      .Add("repaired_samples", result.repaired_samples)
+      .Add("samples", result.samples)
+      .Add("rms_naive_mm", result.repair.naive_rms * mm)
+      .Add("rms_reference_mm", result.repair.reference_rms * mm)
+      .Add("rms_repaired_mm", result.repair.repaired_rms * mm)
+      .Add("naive_frames_at_iteration_limit", result.repair.naive_unconverged_frames)
+      .Add("resolved_frames", result.repair.resolved_frames)
+      .Add("timings", repair_timings);
+  std::vector<JsonObject> characters;
+  for (const CharacterOutput& c : result.characters) {
+    const RetargetClipResult& r = c.result.clip;
+    JsonObject o;
+    o.Add("character", c.name)
+        .Add("file", c.path)
+        .Add("joints", c.character.skeleton.num_joints())
+        .Add("mean_vertex_error_fraction_of_height", r.mean_position_error)
+        .Add("max_vertex_error_fraction_of_height", r.max_position_error)
+        .Add("mean_normal_error_deg", r.mean_normal_error_deg)
+        .Add("planted_joints", static_cast<int>(c.result.plant_joints.size()))
+        .Add("contact_samples", c.result.contact_samples)
+        .Add("source_foot_skating_cm_per_s", c.result.source_plant_skating_cm_s)
+        .Add("result_foot_skating_cm_per_s", c.result.result_plant_skating_cm_s)
+        .Add("mean_bone_angle_deg", c.result.mean_bone_angle_deg)
+        .Add("setup_seconds", c.result.setup_seconds)
+        .Add("solve_seconds", r.solve_seconds);
+    characters.push_back(o);
+  }
+  std::vector<JsonValue> failures;
+  for (const std::string& f : result.verdict.failures) failures.push_back(f);
+  JsonObject gate;
+  gate.Add("pass", result.verdict.pass)
+      .Add("failures", failures)
+      .Add("naive_rms_mm", result.figures.naive_rms_mm)
+      .Add("repaired_rms_mm", result.figures.repaired_rms_mm)
+      .Add("repaired_share", result.figures.repaired_share)
+      .Add("iteration_limit_share", result.figures.iteration_limit_share)
+      .Add("max_marker_bone_distance_cm", result.figures.max_marker_offset_cm)
+      .Add("farthest_marker", result.figures.farthest_marker)
+      .Add("torso_error_deg", result.figures.torso_error_deg);
+  JsonObject report;
+  report.Add("take", inputs.name)
+      .Add("markers", inputs.markers_path)
+      .Add("frames", frames)
+      .Add("frame_rate", take.trajectories.frame_rate)
+      .Add("subject_markers", take.markers.num_markers())
+      .Add("seconds", result.seconds)
+      .Add("frames_per_second", result.seconds > 0 ? frames / result.seconds : 0.0)
+      .Add("timings", timings)
+      .Add("quality_gate", gate)
+      .Add("repair", repair)
+      .Add("characters", characters);
+  return report;
+}
+
+Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
+                        const JsonObject& report) {
+  Status status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
+  if (status.ok()) status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved, BvhWriteOptions());
+  for (const CharacterOutput& c : result.characters) {
+    if (!status.ok()) break;
+    status = WriteGltfWithAnimation(c.document, c.character, c.result.clip.motion, inputs.name,
+                                    CharacterOutputPath(out_dir, c.name, c.path));
+  }
+  if (status.ok()) status = WriteFileAtomically(InFolder(out_dir, "report.json"), report.ToString() + "\n");
+  return status.ok() ? status : Status::Error("write: " + status.message());
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,106 @@
+// One take end to end (the thesis' pipeline: marker solving, cleanup, retargeting,
+// delivery, with no person in between):
+//
+//   markers --(subject: skeleton, marker set, file mapping)--> observations
+//     1. repair (thesis ch. 3): naive solve, robust reference, gap detection and refill,
+//        re-solve; its re-solved motion is the take's solve;
+//     2. filter (optional): multiresolution low-pass of the solved motion (Huang et al.);
+//     3. retarget (thesis ch. 4) onto each character, the skeleton-only source bound to
+//        the character's own mesh (problems/retarget/retarget_character.h);
+//     4. the quality gate (quality_gate.h) on the figures of 1.
+//
+// Everything is computed in memory first; WriteTakeOutputs then writes
+//   DIR/repaired.c3d (or .trc, as the input)  the input file with the repaired samples,
+//   DIR/solved.bvh                            the (filtered) solve on the subject's skeleton,
+//   DIR/<character>.glb                       each character's file plus the take as a new
+//                                             animation named after the take,
+//   DIR/report.json                           every stage's timings and quality figures,
+// each atomically (inside the command's FileTransaction, all together). Errors name the
+// stage and the file. Knows nothing of flags or processes.
+#ifndef MOCAPSOLVE_PIPELINE_TAKE_PIPELINE_H_
+#define MOCAPSOLVE_PIPELINE_TAKE_PIPELINE_H_
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "io/gltf_reader.h"
+#include "io/json_writer.h"
+#include "kinematics/marker_trajectories.h"
+#include "kinematics/motion.h"
+#include "kinematics/status.h"
+#include "pipeline/quality_gate.h"
+#include "pipeline/subject.h"
+#include "problems/marker_repair/marker_repair.h"
+#include "problems/retarget/retarget_character.h"
+#include "signal/laplacian_pyramid.h"
+
+namespace mocapsolve {
+
+struct TakePipelineOptions {
+  RepairOptions repair;             // In the subject skeleton's units.
+  int filter_levels = 0;            // 0 = no filtering; N drops the N finest bands.
+  PyramidOptions filter;            // Kernel and tension of the filter.
+  CharacterRetargetOptions retarget;
+  QualityGate gate;
+
+  bool IsValid(std::string* error) const;
+};
+
+struct TakeInputs {
+  std::string name;             // The take's name: the characters' new animation.
+  const Subject* subject = nullptr;
+  std::string markers_path;     // .c3d or .trc.
+  std::vector<std::string> character_paths;  // .glb / .gltf; empty: stop after the solve.
+};
+
+struct StageTime {
+  std::string stage;
+  double seconds = 0.0;
+};
+
+struct CharacterOutput {
+  std::string name;             // File name without folder and extension.
+  std::string path;             // The character file read.
+  GltfDocument document;
+  GltfCharacter character;
+  CharacterRetargetResult result;
+};
+
+struct TakeResult {
+  MarkerTake take;                    // The markers as read, with their mapping.
+  MarkerTrajectories repaired_file;   // The input file with the repaired samples.
+  Motion solved;                      // On the subject's skeleton (filtered if asked).
+  RepairReport repair;
+  int repaired_samples = 0;           // Samples of the subject's markers that were rewritten.
+  int samples = 0;                    // All samples of the subject's markers.
+  std::vector<CharacterOutput> characters;
+  QualityFigures figures;
+  QualityVerdict verdict;
+  std::vector<StageTime> timings;
+  double seconds = 0.0;               // The whole take (reading included, writing not).
+};
+
+// (stage, done, total) while a stage runs, for progress display.
+using PipelineProgress = std::function<void(const std::string& stage, int done, int total)>;
+
+Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
+                       const PipelineProgress& progress = nullptr);
+
+// Output file names in `out_dir` ("" for the working directory).
+std::string RepairedMarkersPath(const std::string& out_dir, const std::string& markers_path);
+std::string SolvedMotionPath(const std::string& out_dir);
+std::string CharacterOutputPath(const std::string& out_dir, const std::string& character_name,
+                                const std::string& character_path);
+
+// The take's report (stage timings, quality figures, gate verdict, per character the
+// retarget's vertex/normal error and foot skating).
+JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result);
+
+// Writes the outputs above and DIR/report.json (plus `extra` members in the report).
+Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
+                        const JsonObject& report);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PIPELINE_TAKE_PIPELINE_H_
