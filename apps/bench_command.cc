@@ -18,6 +18,8 @@ DEFINE_string(bench_markers, "", "Marker file (.c3d/.trc) of a real-marker probl
 DEFINE_string(bench_markerset, "", "Marker set (.json) of a real-marker problem.");
 DEFINE_int32(bench_frames, 0, "Use only the first N frames (0 = all).");
 DEFINE_double(bench_noise_mm, 0.0, "Gaussian noise (mm) added to synthesized markers.");
+DEFINE_string(bench_subject, "", "Subject file (.json) of the pipeline problem (with --bench_markers).");
+DEFINE_string(bench_character, "", "Characters (.glb), comma-separated, of the pipeline problem.");
 
 namespace mocapsolve {
 namespace {
@@ -53,6 +55,8 @@ Status RunBench(const std::vector<std::string>& arguments) {
   settings.markerset_path = FLAGS_bench_markerset;
   settings.max_frames = FLAGS_bench_frames;
   settings.noise_mm = FLAGS_bench_noise_mm;
+  settings.subject_path = FLAGS_bench_subject;
+  settings.character_paths = SplitCommas(FLAGS_bench_character);
   std::vector<JsonObject> records;
   std::printf("%-14s %-8s %10s %12s %14s %10s %14s  %s\n", "problem", "solver", "frames",
               "seconds", "frames/s", "iters", "final_cost", "error");

@@ -36,6 +36,9 @@ struct BenchSettings {
   std::string skeleton_path, markers_path, markerset_path;
   int max_frames = 0;       // 0 = all.
   double noise_mm = 0.0;    // Gaussian noise on synthesized markers (needs a known unit).
+  // The pipeline problem: a subject file, its take (markers_path) and the characters.
+  std::string subject_path;
+  std::vector<std::string> character_paths;
 };
 
 struct BenchProblem {

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# The main job on the bundled default: generate the project's own demo clip, then
-# inspect it, convert it, run forward kinematics and time the kinematic core.
+# The bundled default through every capability: generate the project's own demo clip,
+# inspect it, convert it, run forward kinematics, solve and repair its markers, filter,
+# edit and retarget; then the main job, `mocapsolve pipeline`: one take from markers to an
+# animated character (on the demo take, and on CMU 02_05 onto Xbot when ../shared/data is there).
 # Outputs go to out/demo/ (override with MOCAPSOLVE_DEMO_OUT).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -83,6 +85,24 @@ if [ -f "$gltf_dir/CesiumMan.glb" ] && [ -f "$gltf_dir/RiggedFigure.glb" ]; then
     --out="$out/riggedfigure_walk.glb" --out_bvh="$out/riggedfigure_walk.bvh" --report="$out/retarget.json" 2>&1 | tail -1
 else
   echo "(skipped: no $gltf_dir/CesiumMan.glb; set MOCAPSOLVE_DATA to the shared data folder)"
+fi
+
+echo; echo "== 15. pipeline: the main job, one take end to end (subject, repair and solve, characters)"
+$ms calibrate --quiet --motion="$out/walk.bvh" --skeleton_units=cm --markers="$out/walk_markers.c3d" \
+  --attach=auto --out="$out/walk_subject_markerset.json" --out_subject="$out/walk_subject.json" | tail -1
+characters=()
+[ -f "$gltf_dir/Xbot.glb" ] && characters=(--character="$gltf_dir/Xbot.glb")
+$ms pipeline --quiet --subject="$out/walk_subject.json" --markers="$out/walk_markers_damaged.c3d" \
+  "${characters[@]}" --out_dir="$out/pipeline_walk"
+data_dir="${MOCAPSOLVE_DATA:-../shared/data}"
+if [ -f "$data_dir/c3d/cmu_02_05.c3d" ] && [ -f "$data_dir/gltf/Xbot.glb" ]; then
+  echo "-- CMU 02_05 onto Xbot, with the subject calibrated once on 02_01"
+  $ms calibrate --quiet --motion="$data_dir/amc/02_01.amc" --skeleton="$data_dir/amc/02.asf" \
+    --markers="$data_dir/c3d/02_01.c3d" --axes=y,z,x --out="$out/cmu02_markerset.json" \
+    --out_subject="$out/cmu02_subject.json" | tail -1
+  $ms pipeline --quiet --subject="$out/cmu02_subject.json" --markers="$data_dir/c3d/cmu_02_05.c3d" \
+    --character="$data_dir/gltf/Xbot.glb" --out_dir="$out/pipeline_02_05"
+  echo "outputs: $out/pipeline_02_05/ (repaired.c3d, solved.bvh, Xbot.glb with the take as animation 'cmu_02_05', report.json)"
 fi
 
 echo
