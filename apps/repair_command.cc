@@ -54,16 +54,8 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
   motion.frame_rate = trajectories.frame_rate;
 
-  // Output: the input file with the repaired samples of the marker set's markers, mapped
-  // back to the file's axes and units; every other sample as it was read.
-  MarkerTrajectories out = trajectories;
-  for (int m = 0; m < markers.num_markers(); ++m) {
-    const int column = trajectories.FindMarker(markers.label(m));
-    for (int f = 0; f < out.num_frames(); ++f) {
-      const bool same = observed[f][m].allFinite() && repaired[f][m] == observed[f][m];
-      if (!same) out.SetSample(f, column, take.transform.Invert(repaired[f][m]));
-    }
-  }
+  // Output: the input file with the repaired samples, in its own axes and units.
+  const MarkerTrajectories out = WithRepairedSamples(take, repaired);
   status = WriteMarkerFile(FLAGS_out_markers, out);
   if (!status.ok()) return status;
   if (!FLAGS_out_motion.empty()) {

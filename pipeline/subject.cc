@@ -235,4 +235,23 @@ Status LoadTakeForSubject(const Subject& subject, const std::string& markers_pat
   return Status::Ok();
 }
 
+MarkerTrajectories WithRepairedSamples(const MarkerTake& take,
+                                       const std::vector<std::vector<Eigen::Vector3d>>& repaired,
+                                       int* rewritten) {
+  MarkerTrajectories out = take.trajectories;
+  int count = 0;
+  for (int m = 0; m < take.markers.num_markers(); ++m) {
+    const int column = take.trajectories.FindMarker(take.markers.label(m));
+    if (column < 0) continue;  // LoadTakeForSubject found every marker; defensive.
+    for (int f = 0; f < out.num_frames() && f < static_cast<int>(repaired.size()); ++f) {
+      const bool same = take.observed[f][m].allFinite() && repaired[f][m] == take.observed[f][m];
+      if (same) continue;
+      out.SetSample(f, column, take.transform.Invert(repaired[f][m]));
+      ++count;
+    }
+  }
+  if (rewritten != nullptr) *rewritten = count;
+  return out;
+}
+
 }  // namespace mocapsolve

@@ -73,6 +73,14 @@ struct MarkerTake {
 // (an error names the ones the file lacks).
 Status LoadTakeForSubject(const Subject& subject, const std::string& markers_path, MarkerTake* take);
 
+// The inverse for outputs: the take's file as read, with every sample of the set's
+// markers that differs from the observation (repaired[f][m], skeleton frame and units)
+// mapped back to the file's axes and units; every other sample as it was read.
+// *rewritten (optional) counts the samples replaced.
+MarkerTrajectories WithRepairedSamples(const MarkerTake& take,
+                                       const std::vector<std::vector<Eigen::Vector3d>>& repaired,
+                                       int* rewritten = nullptr);
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_PIPELINE_SUBJECT_H_

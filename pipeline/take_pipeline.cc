@@ -110,17 +110,8 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   if (!status.ok()) return Status::Error("repair: " + inputs.markers_path + ": " + status.message());
   result->solved.frame_rate = take.trajectories.frame_rate;
   if (progress) progress("repair", frames, frames);
-  result->repaired_file = take.trajectories;
-  for (int m = 0; m < take.markers.num_markers(); ++m) {
-    const int column = take.trajectories.FindMarker(take.markers.label(m));
-    for (int f = 0; f < frames; ++f) {
-      ++result->samples;
-      const bool same = take.observed[f][m].allFinite() && repaired[f][m] == take.observed[f][m];
-      if (same) continue;
-      ++result->repaired_samples;
-      result->repaired_file.SetSample(f, column, take.transform.Invert(repaired[f][m]));
-    }
-  }
+  result->repaired_file = WithRepairedSamples(take, repaired, &result->repaired_samples);
+  result->samples = frames * take.markers.num_markers();
   lap("repair and solve", stage_start);
 
   // 2. Filter.
