@@ -1,4 +1,5 @@
 #include "io/gltf_scene.h"
+#include "kinematics/quote_token.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +15,7 @@ namespace {
 
 std::string NodeLabel(const tinygltf::Model& model, int n) {
   std::string label = "node " + std::to_string(n);
-  if (!model.nodes[n].name.empty()) label += " '" + model.nodes[n].name + "'";
+  if (!model.nodes[n].name.empty()) label += " " + QuoteToken(model.nodes[n].name);
   return label;
 }
 

@@ -1,4 +1,5 @@
 #include "kinematics/marker_set.h"
+#include "kinematics/quote_token.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +12,7 @@ Status MarkerSet::Create(const Skeleton& skeleton, std::vector<MarkerSpec> marke
   MarkerSet result;
   std::set<std::string> labels;
   for (MarkerSpec& spec : markers) {
-    const std::string where = "marker '" + spec.label + "'";
+    const std::string where = "marker " + QuoteToken(spec.label);
     if (spec.label.empty()) return Status::Error("marker with an empty label");
     if (!labels.insert(spec.label).second) return Status::Error(where + ": duplicate label");
     if (spec.attachments.empty()) return Status::Error(where + ": no attachment");

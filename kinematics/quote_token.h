@@ -1,7 +1,10 @@
-// A token of a file for a one-line error message: at most 40 bytes, control and non-ASCII
-// bytes escaped as \xNN, so that even a binary file gives a printable single line.
-#ifndef MOCAPSOLVE_IO_QUOTE_TOKEN_H_
-#define MOCAPSOLVE_IO_QUOTE_TOKEN_H_
+// A token of a file, or a name read from one, for a one-line error message: quoted, at
+// most 64 bytes shown (then "..."), control and non-ASCII bytes escaped as \xNN, so that
+// even a binary file, a 20 MB marker label or a name with an embedded newline gives a
+// short printable single line. The one helper for echoing input in messages (io/,
+// kinematics/ and problems/ use it).
+#ifndef MOCAPSOLVE_KINEMATICS_QUOTE_TOKEN_H_
+#define MOCAPSOLVE_KINEMATICS_QUOTE_TOKEN_H_
 
 #include <string>
 #include <string_view>
@@ -9,7 +12,7 @@
 namespace mocapsolve {
 
 inline std::string QuoteToken(std::string_view token) {
-  constexpr size_t kMaxShown = 40;
+  constexpr size_t kMaxShown = 64;
   std::string out = "'";
   for (size_t i = 0; i < token.size() && i < kMaxShown; ++i) {
     const unsigned char c = static_cast<unsigned char>(token[i]);
@@ -28,4 +31,4 @@ inline std::string QuoteToken(std::string_view token) {
 
 }  // namespace mocapsolve
 
-#endif  // MOCAPSOLVE_IO_QUOTE_TOKEN_H_
+#endif  // MOCAPSOLVE_KINEMATICS_QUOTE_TOKEN_H_
