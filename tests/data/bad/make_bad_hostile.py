@@ -72,3 +72,39 @@ def markerset(joint):
                       indent=1) + '\n'
 write('bad_markerset_newline_name.json', markerset('Hips\nSpine'))
 write('bad_markerset_long_name.json', markerset('J' * 20000))
+
+# An ASCII FBX whose AnimationStack and AnimationLayer share the object id 3000: assimp
+# leaks the first object (found by the fbx fuzzer; suppressed in fuzz/lsan.supp) and the
+# clip ends up without an animation, which the reader reports.
+fbx = """; FBX 7.4.0 project file
+FBXHeaderExtension:  {
+\tFBXHeaderVersion: 1003
+\tFBXVersion: 7400
+}
+Objects:  {
+\tModel: 1000, "Model::Hips", "LimbNode" {
+\t\tVersion: 232
+\t}
+\tAnimationStack: 3000, "AnimStack::Take", "" {
+\t}
+\tAnimationLayer: 3000, "AnimLayer::Base", "" {
+\t}
+\tAnimationCurveNode: 3002, "AnimCurveNode::R", "" {
+\t}
+\tAnimationCurve: 3004, "AnimCurve::", "" {
+\t\tKeyTime: *2 {
+\t\t\ta: 0,1539538600
+\t\t}
+\t\tKeyValueFloat: *2 {
+\t\t\ta: 0,10
+\t\t}
+\t}
+}
+Connections:  {
+\tC: "OO",1000,0
+\tC: "OO",3002,3000
+\tC: "OP",3002,1000, "Lcl Rotation"
+\tC: "OP",3004,3002, "d|X"
+}
+"""
+write('bad_fbx_duplicate_object_id.fbx', fbx)
