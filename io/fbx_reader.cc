@@ -455,6 +455,11 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
     rate = spacing > 0.0 ? ticks_per_second / spacing : 30.0;
     if (std::abs(rate - std::round(rate)) < 1e-3) rate = std::round(rate);
   }
+  if (!(rate > 0.0 && rate <= gltf_internal::kMaxSampleRate)) {  // As in gltf_reader.cc.
+    return Status::Error(where + ": frame rate " + gltf_internal::ShortNumber(rate) + " (from " +
+                         (options.frame_rate > 0.0 ? "the options" : "the key spacing") +
+                         ") is not in (0, 1e6] fps");
+  }
   const double seconds = (t1 - t0) / ticks_per_second;
   if (!(seconds * rate * rig.joint_nodes.size() < 1e7)) {  // As in gltf_reader.cc.
     return Status::Error(where + ": over 1e7 joint-frames");

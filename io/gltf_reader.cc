@@ -23,6 +23,8 @@ using gltf_internal::NodeGraph;
 using gltf_internal::ReadAccessor;
 using gltf_internal::Rig;
 using gltf_internal::Similarity;
+using gltf_internal::kMaxSampleRate;
+using gltf_internal::ShortNumber;
 
 // Images are kept as they are (bytes in their buffer view, or their URI); never decoded.
 bool KeepImageUndecoded(tinygltf::Image*, const int, std::string*, std::string*, int, int,
@@ -748,6 +750,12 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
     const double spacing = gltf_internal::KeySpacing(spacings);
     rate = spacing > 0.0 ? 1.0 / spacing : 30.0;
     if (std::abs(rate - std::round(rate)) < 1e-3) rate = std::round(rate);
+  }
+  // Key times 1e-39 s apart would give 1e39 fps (and no int frame count).
+  if (!(rate > 0.0 && rate <= kMaxSampleRate)) {
+    return Status::Error(where + ": frame rate " + ShortNumber(rate) + " (from " +
+                         (options.frame_rate > 0.0 ? "the options" : "the key spacing") +
+                         ") is not in (0, 1e6] fps");
   }
   const double span_frames = (t1 - t0) * rate;
   // At most 1e7 joint-frames (about 0.6 GB of poses; a 10-minute 120 fps take of 65

@@ -1,14 +1,16 @@
 #include "io/gltf_scene.h"
-#include "kinematics/quote_token.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
 #include <Eigen/SVD>
 #include <tiny_gltf.h>
+
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve::gltf_internal {
 namespace {
@@ -484,6 +486,12 @@ void EvaluateRig(const Rig& rig, const std::vector<Similarity>& locals, Pose* po
     pose->translations[j] = parent_scale * c.translation;
     pose->rotations[j] = (rig.rest_rotations[j].conjugate() * c.rotation).normalized();
   }
+}
+
+std::string ShortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
 }
 
 }  // namespace mocapsolve::gltf_internal

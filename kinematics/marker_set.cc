@@ -1,9 +1,10 @@
 #include "kinematics/marker_set.h"
-#include "kinematics/quote_token.h"
 
 #include <algorithm>
 #include <cmath>
 #include <set>
+
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 

@@ -1,8 +1,9 @@
 #include "problems/marker_solve/marker_observations.h"
-#include "kinematics/quote_token.h"
 
 #include <cmath>
 #include <sstream>
+
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 

@@ -44,6 +44,19 @@ TEST(HostileInput, GlbWithExtrasNested30000Deep) {
                      "glTF JSON nested more than");
 }
 
+// Found by the gltf fuzzer: keys 1e-39 s apart made the key rate 1e39 fps and the frame
+// count overflow int (UBSan). Sampling rates above 1e6 fps are refused.
+TEST(HostileInput, GltfKeysADenormalApart) {
+  const std::string path = Bad("bad_gltf_key_rate.gltf");
+  GltfDocument document;
+  ASSERT_TRUE(GltfDocument::Read(path, &document).ok());
+  GltfCharacter character;
+  ASSERT_TRUE(ReadGltfCharacter(document, GltfReadOptions(), &character).ok());
+  Motion motion;
+  ExpectOneLineError(ReadGltfAnimation(document, character, GltfAnimationOptions(), &motion), path,
+                     "frame rate 1e+39 (from the key spacing) is not in (0, 1e6] fps");
+}
+
 TEST(HostileInput, AsciiFbxWith30000NestedBraces) {
   const std::string path = Bad("bad_fbx_deep_braces.fbx");
   Skeleton skeleton;

@@ -108,3 +108,18 @@ Connections:  {
 }
 """
 write('bad_fbx_duplicate_object_id.fbx', fbx)
+
+# glTF whose animation keys are 1e-39 s apart (found by the gltf fuzzer): the key rate
+# came out 1e39 fps and the frame count overflowed int (UBSan). The seed character of
+# fuzz/make_seeds.py with its second key time replaced.
+import base64, subprocess, tempfile
+with tempfile.TemporaryDirectory() as tmp:
+    subprocess.check_call([sys.executable, os.path.join(B, '..', '..', '..', 'fuzz', 'make_seeds.py'), tmp])
+    doc = json.load(open(os.path.join(tmp, 'gltf', 'skinned.gltf')))
+prefix = 'data:application/octet-stream;base64,'
+b = bytearray(base64.b64decode(doc['buffers'][0]['uri'][len(prefix):]))
+times_offset = doc['bufferViews'][doc['accessors'][4]['bufferView']]['byteOffset']
+struct.pack_into('<f', b, times_offset + 4, 1e-39)
+doc['buffers'][0]['uri'] = prefix + base64.b64encode(bytes(b)).decode()
+doc['accessors'][4]['max'] = [1e-39]
+write('bad_gltf_key_rate.gltf', json.dumps(doc) + '\n')
