@@ -235,6 +235,9 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
   if (FLAGS_edit.empty() == FLAGS_ik_target.empty()) {
     return Status::Error("give exactly one of --edit=EDIT.json and --ik_target=JOINT:x,y,z");
   }
+  if (FLAGS_frame < -1) {  // -1 = not given.
+    return Status::Error("--frame: expected a frame index >= 0, got " + std::to_string(FLAGS_frame));
+  }
   if (FileExtension(FLAGS_out) != ".bvh") return Status::Error(FLAGS_out + ": expected a .bvh");
   Status status = CheckNotAnInput(FLAGS_out, FLAGS_motion);
   if (status.ok() && !FLAGS_edit.empty()) status = CheckNotAnInput(FLAGS_out, FLAGS_edit);

@@ -79,9 +79,8 @@ Status RepairOptionsFromFlags(const Skeleton& skeleton, RepairOptions* options) 
   if (!options->reference.IsValid(&error) || !options->tracker.IsValid(&error)) {
     return Status::Error(error);
   }
-  if (!(options->dp_max > 0.0) || !(options->dr_max_rad > 0.0) || !(options->outlier_distance > 0.0)) {
-    return Status::Error("--dp_max_cm, --dr_max_deg and --outlier_cm must be positive");
-  }
+  if (!(options->outlier_distance > 0.0)) return Status::Error("--outlier_cm must be positive");
+  if (!options->IsValid(&error)) return Status::Error(error);
   return Status::Ok();
 }
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
-#include "io/quote_token.h"
+#include "kinematics/quote_token.h"
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
@@ -167,20 +167,20 @@ Status ParseAmc(const std::string& text, const std::string& name_for_errors,
     const int s = found->second;
     const Slot& slot = slots[s];
     if (seen_line[s] != 0) {
-      return error(line, "bone '" + slot.name + "' repeated in frame " +
+      return error(line, "bone " + QuoteToken(slot.name) + " repeated in frame " +
                              std::to_string(frame_number) + " (first at line " +
                              std::to_string(seen_line[s]) + ")");
     }
     seen_line[s] = line + 1;
     const std::vector<AsfDof>& dofs = *slot.dofs;
     if (tokens.size() - 1 != dofs.size()) {
-      return error(line, "bone '" + slot.name + "' has " + std::to_string(dofs.size()) +
+      return error(line, "bone " + QuoteToken(slot.name) + " has " + std::to_string(dofs.size()) +
                              " dofs, got " + std::to_string(tokens.size() - 1) + " values");
     }
     values.resize(dofs.size());
     for (size_t k = 0; k < dofs.size(); ++k) {
       if (!ParseFinite(tokens[k + 1], &values[k])) {
-        return error(line, "bad number " + QuoteToken(tokens[k + 1]) + " for '" + slot.name + "' " +
+        return error(line, "bad number " + QuoteToken(tokens[k + 1]) + " for " + QuoteToken(slot.name) + " " +
                                AcclaimDofName(dofs[k].dof));
       }
     }

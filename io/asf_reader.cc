@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "io/atomic_file.h"
-#include "io/quote_token.h"
+#include "kinematics/quote_token.h"
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
@@ -328,13 +328,13 @@ Status AsfParser::ParseRoot(size_t section_line) {
       root_axis_ = Upper(tokens[1]);
     } else if (key == "position" || key == "orientation") {
       bool& seen = key == "position" ? has_position : has_orientation;
-      if (seen) return Error(line, "repeated '" + key + "'");
+      if (seen) return Error(line, "repeated " + QuoteToken(key));
       seen = true;
       Eigen::Vector3d& v = key == "position" ? root_position_ : root_orientation_;
       if (tokens.size() != 4) return Error(line, "expected '" + key + " x y z'");
       for (int k = 0; k < 3; ++k) {
         if (!ParseFinite(tokens[k + 1], &v[k])) {
-          return Error(line, "bad number " + QuoteToken(tokens[k + 1]) + " in '" + key + "'");
+          return Error(line, "bad number " + QuoteToken(tokens[k + 1]) + " in " + QuoteToken(key));
         }
       }
     } else {
@@ -489,7 +489,7 @@ Status AsfParser::ParseBone(size_t begin_line) {
                                              : nullptr;
   if (missing != nullptr) {
     return Error(begin_line, "bone " + (raw.has_name ? QuoteToken(raw.bone.name) + " " : "") +
-                                 "has no '" + missing + "'");
+                                 "has no " + QuoteToken(missing));
   }
   const double norm = raw.bone.direction.norm();
   if (norm == 0.0 && raw.bone.length > 0.0) {

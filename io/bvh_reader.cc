@@ -14,11 +14,13 @@
 #include <vector>
 
 #include "io/atomic_file.h"
-#include "io/quote_token.h"
+#include "kinematics/quote_token.h"
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
 namespace {
+
+constexpr double kMinFrameTime = 1e-6;  // Seconds; 1 MHz.
 
 // Whitespace within a line; '\n' ends a line and is handled separately so that line
 // numbers stay right. '\r' is plain whitespace, which makes CRLF files read like LF ones.
@@ -180,7 +182,7 @@ class BvhParser {
     if (token.text != keyword) return Expected(std::string("'") + keyword + "'", token);
     return Status::Ok();
   }
-  std::string JointWhere(int joint) const { return "joint '" + joints_[joint].name + "'"; }
+  std::string JointWhere(int joint) const { return "joint " + QuoteToken(joints_[joint].name); }
 
   const char* const begin_;
   const char* p_;
@@ -285,6 +287,11 @@ Status BvhParser::ParseJointHeader(const Token& keyword, int parent) {
     return Error(keyword.line, "expected a joint name after " + std::string(keyword.text) +
                                    ", got end of line");
   }
+  // Refused here, with the line, rather than later by Skeleton::Create.
+  if (open_.size() > static_cast<size_t>(kMaxSkeletonDepth)) {
+    return Error(keyword.line, "expected joints nested at most " +
+                                   std::to_string(kMaxSkeletonDepth) + " deep, got deeper");
+  }
   std::string joint_name(name);
   const auto [it, inserted] = joint_name_line_.emplace(joint_name, keyword.line);
   if (!inserted) {
@@ -363,8 +370,10 @@ Status BvhParser::ParseMotion(Motion* motion) {
   if (Status s = ExpectKeyword("Time:"); !s.ok()) return s;
   const Token time_token = Next();
   double frame_time = 0.0;
-  if (!ParseFiniteDouble(time_token.text, &frame_time) || frame_time <= 0.0) {
-    return Expected("a positive frame time in seconds", time_token);
+  // Below a microsecond (1e-320 parses as a finite denormal) the frame rate would be
+  // absurd or infinite.
+  if (!ParseFiniteDouble(time_token.text, &frame_time) || !(frame_time >= kMinFrameTime)) {
+    return Expected("a frame time of at least 1e-6 seconds", time_token);
   }
   {
     const std::string_view rest = RestOfLine();
@@ -517,7 +526,7 @@ std::string BvhParser::ColumnWhere(int column) const {
   for (const JointSpec& spec : joints_) {
     const int n = static_cast<int>(spec.channels.size());
     if (column < n) {
-      return "joint '" + spec.name + "' " + kChannelNames[static_cast<int>(spec.channels[column])];
+      return "joint " + QuoteToken(spec.name) + " " + kChannelNames[static_cast<int>(spec.channels[column])];
     }
     column -= n;
   }

@@ -21,7 +21,8 @@
 // - End sites become EndSite entries named "<joint>_End" ("<joint>_End2", ... if a joint
 //   has several).
 // - Each joint's quaternion series is made sign-continuous (MakeSignContinuous).
-// - Frame rate = 1 / "Frame Time:".
+// - Frame rate = 1 / "Frame Time:" (at least 1e-6 s: a smaller or denormal time is an
+//   error, not an infinite rate). A skeleton nested deeper than kMaxSkeletonDepth is an error.
 //
 // Input: LF or CRLF line endings, spaces or tabs, a UTF-8 byte-order mark, numbers in
 // fixed or scientific notation with an optional '+'. Keywords (HIERARCHY, ROOT, JOINT,
@@ -31,7 +32,7 @@
 // blank lines are skipped.
 //
 // Errors: anything malformed (truncated file, wrong value count, non-numeric or
-// non-finite values, unknown channel names, non-positive frame time, duplicate joint
+// non-finite values, unknown channel names, a frame time below 1e-6 s, duplicate joint
 // names, a repeated channel, unbalanced braces, ...) returns Status::Error with one
 // line "NAME:LINE: expected X, got 'Y'". The reader never allocates more frames than the
 // data present can hold, whatever "Frames:" declares, and refuses files whose motion

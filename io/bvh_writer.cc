@@ -194,7 +194,9 @@ class HierarchyWriter {
   }
 
  private:
-  void Indent(int depth) { out_->append(static_cast<size_t>(depth), '\t'); }
+  // Indentation stops growing 32 levels deep, so that the text stays linear in the joint
+  // count even for a skeleton nested kMaxSkeletonDepth deep (indentation is cosmetic).
+  void Indent(int depth) { out_->append(static_cast<size_t>(std::min(depth, 32)), '\t'); }
   void AppendVector(const Eigen::Vector3d& v) {
     for (int i = 0; i < 3; ++i) {
       *out_ += ' ';

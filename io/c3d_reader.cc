@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -134,17 +135,17 @@ Status C3dParser::ParseParameters(std::uint64_t section_offset) {
     if (group_id < 0) {
       groups.emplace_back(-group_id, name);
     } else if (group_id > 0) {
-      if (body + 2 > size) return Error(where, "parameter '" + shown + "' runs past the end of the file");
+      if (body + 2 > size) return Error(where, "parameter " + QuoteToken(shown) + " runs past the end of the file");
       Parameter parameter;
       parameter.name = name;
       parameter.record_offset = p;
       parameter.type = static_cast<std::int8_t>(bytes_[body]);
       const int num_dims = static_cast<unsigned char>(bytes_[body + 1]);
       if (parameter.type != -1 && parameter.type != 1 && parameter.type != 2 && parameter.type != 4) {
-        return Error(where, "parameter '" + shown + "' has data type " +
+        return Error(where, "parameter " + QuoteToken(shown) + " has data type " +
                                 std::to_string(parameter.type) + ", expected -1, 1, 2 or 4");
       }
-      if (body + 2 + num_dims > size) return Error(where, "parameter '" + shown + "' runs past the end of the file");
+      if (body + 2 + num_dims > size) return Error(where, "parameter " + QuoteToken(shown) + " runs past the end of the file");
       parameter.count = 1;
       for (int d = 0; d < num_dims; ++d) {
         const int dim = static_cast<unsigned char>(bytes_[body + 2 + d]);
@@ -155,7 +156,7 @@ Status C3dParser::ParseParameters(std::uint64_t section_offset) {
       parameter.data_offset = body + 2 + num_dims;
       const std::uint64_t data_bytes = parameter.count * std::abs(parameter.type);
       if (parameter.count > size || parameter.data_offset + data_bytes > size) {
-        return Error(where, "parameter '" + shown + "' values run past the end of the file");
+        return Error(where, "parameter " + QuoteToken(shown) + " values run past the end of the file");
       }
       parameters_.push_back(std::move(parameter));
       group_ids.push_back(group_id);
@@ -255,10 +256,16 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
   }
   const bool float_storage = scale < 0.0;
   const double abs_scale = std::abs(scale);
+  // The frame rate: POINT:RATE when present (it must then be valid itself: NaN, 0 or
+  // -120 is an error naming it, not a silent fallback), else header words 11-12.
   double rate = decoder_.F32(20);
-  if (Number(Find("POINT", "RATE"), false, &value) && value > 0.0) rate = value;
+  std::string rate_field = "header words 11-12 (frame rate)";
+  if (const Parameter* point_rate = Find("POINT", "RATE"); point_rate != nullptr) {
+    rate = Number(point_rate, false, &value) ? value : std::nan("");  // Number: finite only.
+    rate_field = "POINT:RATE";
+  }
   if (!(rate > 0.0) || !std::isfinite(rate)) {
-    return Error("POINT:RATE", "frame rate " + std::to_string(rate) + " is not positive");
+    return Error(rate_field, "frame rate " + std::to_string(rate) + " is not a positive number");
   }
 
   // Data start.
@@ -339,6 +346,9 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
     if (labels[m].empty()) labels[m] = "*" + std::to_string(m + 1);
   }
 
+  if (Status status = MarkerTrajectories::CheckLabels(labels); !status.ok()) {
+    return Error("POINT:LABELS", status.message());
+  }
   MarkerTrajectories out(std::move(labels), static_cast<int>(num_frames));
   out.frame_rate = rate;
   out.first_frame = static_cast<int>(std::min<std::int64_t>(first, INT_MAX));
@@ -380,6 +390,12 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
       if (residual_word < 0 || !position.allFinite()) {
         ++found.negative_residual_samples;
         continue;  // Already missing.
+      }
+      if (position.cwiseAbs().maxCoeff() > MarkerTrajectories::kMaxCoordinate) {
+        return Error("POINT data", "frame " + std::to_string(f + 1) + ", marker " +
+                                       QuoteToken(out.label(m)) + ": coordinate " +
+                                       std::to_string(position.cwiseAbs().maxCoeff()) +
+                                       " beyond +-1e9");
       }
       if (options_.zero_position_is_missing && (position.array() == 0.0).all()) {
         ++found.zero_position_samples;

@@ -5,6 +5,7 @@
 
 #include "io/atomic_file.h"
 #include "io/json_reader.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -69,7 +70,7 @@ class Interpreter {
       for (const auto& [name, value] : joints->members) {
         const std::string field = prefix + "joints." + name;
         const int joint = skeleton_.FindJoint(name);
-        if (joint < 0) return Error(value, prefix + "joints", "unknown joint '" + name + "'");
+        if (joint < 0) return Error(value, prefix + "joints", "unknown joint " + QuoteToken(name));
         if (!value.is_object()) {
           return Error(value, field, std::string("expected an object, got ") + JsonTypeName(value.type));
         }
@@ -81,7 +82,7 @@ class Interpreter {
         status = Vector3(*offset, field + ".rotation_offset_deg", &degrees);
         if (!status.ok()) return status;
         if (skeleton_.num_rotation_dofs(joint) == 0) {
-          return Error(value, field, "joint '" + name + "' has no rotation channels");
+          return Error(value, field, "joint " + QuoteToken(name) + " has no rotation channels");
         }
         edit->rotation_offsets_rad.emplace_back(joint, degrees * kPiOver180);
         changes = true;

@@ -2,9 +2,16 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <map>
 #include <utility>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
@@ -12,6 +19,8 @@
 
 #include "io/atomic_file.h"
 #include "io/gltf_scene.h"
+#include "io/input_limits.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -19,15 +28,126 @@ namespace {
 using gltf_internal::Rig;
 using gltf_internal::Similarity;
 
+// Deepest node hierarchy accepted (real skeletons nest < 40 deep).
+constexpr int kMaxFbxDepth = 1000;
+
+// assimp's messages may span lines.
+std::string OneLine(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  return text;
+}
+
 struct FlatNode {
   const aiNode* node;
   int parent;
 };
 
-void Flatten(const aiNode* node, int parent, std::vector<FlatNode>* out) {
-  const int index = static_cast<int>(out->size());
-  out->push_back({node, parent});
-  for (unsigned c = 0; c < node->mNumChildren; ++c) Flatten(node->mChildren[c], index, out);
+// Preorder DFS, children in file order, with an explicit stack (the hierarchy's depth
+// comes from the file's Connections and must not drive the recursion depth).
+Status Flatten(const aiNode* root, const std::string& name, std::vector<FlatNode>* out) {
+  std::vector<std::pair<const aiNode*, int>> stack = {{root, -1}};
+  std::vector<int> depth_of;
+  while (!stack.empty()) {
+    const auto [node, parent] = stack.back();
+    stack.pop_back();
+    const int depth = parent < 0 ? 0 : depth_of[parent] + 1;
+    if (depth > kMaxFbxDepth) {
+      return Status::Error(name + ": node hierarchy deeper than " + std::to_string(kMaxFbxDepth) +
+                           " levels");
+    }
+    const int index = static_cast<int>(out->size());
+    out->push_back({node, parent});
+    depth_of.push_back(depth);
+    for (unsigned c = node->mNumChildren; c-- > 0;) stack.push_back({node->mChildren[c], index});
+  }
+  return Status::Ok();
+}
+
+// assimp's FBX importer cannot be trusted on hostile input: Debian's build double-frees
+// in aiScene::~aiScene on duplicate model names, and recurses once per nesting level of
+// the node graph. So it first parses the bytes in a forked child; a child that dies
+// (signal, sanitizer abort, the 60 s alarm) becomes a one-line error here. Only bytes
+// the child parsed and freed cleanly are parsed again in this process. Exit codes: 0 =
+// parsed, kChildParseError = assimp's own error (message on the pipe), else a crash.
+constexpr int kChildParseError = 97;
+constexpr unsigned kChildSeconds = 60;
+
+void ImportInto(Assimp::Importer* importer, std::string_view bytes, const aiScene** scene,
+                std::string* error) {
+  importer->SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
+  importer->SetPropertyBool(AI_CONFIG_IMPORT_FBX_READ_ANIMATIONS, true);
+  *scene = nullptr;
+  try {
+    *scene = importer->ReadFileFromMemory(bytes.data(), bytes.size(), 0, "fbx");
+  } catch (const std::exception& e) {
+    *error = e.what();
+    return;
+  }
+  if (*scene == nullptr || (*scene)->mRootNode == nullptr) {
+    *error = importer->GetErrorString();
+    if (error->empty()) *error = "cannot read the file";
+  }
+}
+
+Status AssimpSurvives(std::string_view bytes, const std::string& name) {
+  int fds[2];
+  if (pipe(fds) != 0) return Status::Error(name + ": pipe: " + std::strerror(errno));
+  std::fflush(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    return Status::Error(name + ": fork: " + std::strerror(errno));
+  }
+  if (pid == 0) {  // Child: parse, free, report; _exit skips atexit handlers (and LSan).
+    close(fds[0]);
+    alarm(kChildSeconds);
+    std::string error;
+    {
+      Assimp::Importer importer;
+      const aiScene* scene = nullptr;
+      ImportInto(&importer, bytes, &scene, &error);
+    }
+    if (!error.empty()) {
+      size_t done = 0;
+      while (done < error.size()) {
+        const ssize_t n = write(fds[1], error.data() + done, error.size() - done);
+        if (n <= 0) break;
+        done += static_cast<size_t>(n);
+      }
+    }
+    _exit(error.empty() ? 0 : kChildParseError);
+  }
+  close(fds[1]);
+  std::string message;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = read(fds[0], buffer, sizeof(buffer));
+    if (n > 0) {
+      if (message.size() < 4096) message.append(buffer, static_cast<size_t>(n));
+    } else if (n == 0 || errno != EINTR) {
+      break;
+    }
+  }
+  close(fds[0]);
+  int wstatus = 0;
+  while (waitpid(pid, &wstatus, 0) < 0) {
+    if (errno != EINTR) return Status::Error(name + ": waitpid: " + std::strerror(errno));
+  }
+  if (WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0) return Status::Ok();
+  if (WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == kChildParseError) {
+    return Status::Error(name + ": assimp: " + OneLine(message));
+  }
+  if (WIFSIGNALED(wstatus) && WTERMSIG(wstatus) == SIGALRM) {
+    return Status::Error(name + ": assimp did not finish parsing within " +
+                         std::to_string(kChildSeconds) + " s");
+  }
+  const std::string how = WIFSIGNALED(wstatus)
+                              ? std::string("signal ") + std::to_string(WTERMSIG(wstatus)) + ", " +
+                                    strsignal(WTERMSIG(wstatus))
+                              : "exit code " + std::to_string(WEXITSTATUS(wstatus));
+  return Status::Error(name + ": assimp crashed parsing the file (" + how + ")");
 }
 
 Eigen::Matrix4d ToEigen(const aiMatrix4x4& m) {
@@ -84,28 +204,26 @@ Eigen::Quaterniond SampleRotation(const aiQuatKey* keys, unsigned n, double tick
 
 }  // namespace
 
-Status ReadFbx(const std::string& path, const FbxReadOptions& options, Skeleton* skeleton,
-               Motion* motion, FbxInfo* info) {
+Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOptions& options,
+                Skeleton* skeleton, Motion* motion, FbxInfo* info) {
   if (!(options.frame_rate >= 0.0) || !std::isfinite(options.frame_rate)) {
     return Status::Error(path + ": frame rate must be positive (or 0 for the key rate)");
   }
-  std::string bytes;
-  Status status = ReadFileToString(path, &bytes);
-  if (!status.ok()) return status;
+  // assimp's ASCII FBX parser recurses once per brace: bound the depth first.
+  constexpr std::string_view kBinaryMagic = "Kaydara FBX Binary";
+  if (bytes.substr(0, kBinaryMagic.size()) != kBinaryMagic &&
+      FbxBraceDepth(bytes) > kMaxThirdPartyNesting) {
+    return Status::Error(path + ": ASCII FBX nested more than " +
+                         std::to_string(kMaxThirdPartyNesting) + " braces deep");
+  }
+  if (Status status = AssimpSurvives(bytes, path); !status.ok()) return status;
   Assimp::Importer importer;
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_READ_ANIMATIONS, true);
   const aiScene* scene = nullptr;
-  try {
-    scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, "fbx");
-  } catch (const std::exception& e) {
-    return Status::Error(path + ": assimp: " + e.what());
-  }
-  if (scene == nullptr || scene->mRootNode == nullptr) {
-    std::string message = importer.GetErrorString();
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    return Status::Error(path + ": assimp: " + (message.empty() ? "cannot read the file" : message));
-  }
+  std::string error;
+  ImportInto(&importer, bytes, &scene, &error);
+  if (!error.empty()) return Status::Error(path + ": assimp: " + OneLine(error));
+  std::vector<FlatNode> nodes;
+  if (Status status = Flatten(scene->mRootNode, path, &nodes); !status.ok()) return status;
   FbxInfo out_info;
   if (scene->mMetaData != nullptr) {
     double factor = 0.0;
@@ -127,27 +245,25 @@ Status ReadFbx(const std::string& path, const FbxReadOptions& options, Skeleton*
     std::string names;
     for (unsigned a = 0; a < scene->mNumAnimations; ++a) {
       if (out_info.animation_names[a] == options.animation) anim_index = static_cast<int>(a);
-      names += (a ? ", " : "") + std::to_string(a) + " '" + out_info.animation_names[a] + "'";
+      names += (a ? ", " : "") + std::to_string(a) + " " + QuoteToken(out_info.animation_names[a]);
     }
     int i = 0;
     if (anim_index < 0 && ParseIndex(options.animation, &i) && i < static_cast<int>(scene->mNumAnimations)) {
       anim_index = i;
     }
     if (anim_index < 0) {
-      return Status::Error(path + ": animation '" + options.animation + "' not found (animations: " + names + ")");
+      return Status::Error(path + ": animation " + QuoteToken(options.animation) + " not found (animations: " + names + ")");
     }
   }
   const aiAnimation* anim = scene->mAnimations[anim_index];
   const std::string where = path + ": animation " + std::to_string(anim_index);
 
-  std::vector<FlatNode> nodes;
-  Flatten(scene->mRootNode, -1, &nodes);
   const int nn = static_cast<int>(nodes.size());
   std::vector<Similarity> locals(nn);
   for (int i = 0; i < nn; ++i) {
     bool exact = true;
     const Eigen::Matrix4d m = ToEigen(nodes[i].node->mTransformation);
-    if (!m.allFinite()) return Status::Error(path + ": node '" + nodes[i].node->mName.C_Str() + "': non-finite transform");
+    if (!m.allFinite()) return Status::Error(path + ": node " + QuoteToken(nodes[i].node->mName.C_Str()) + ": non-finite transform");
     locals[i] = gltf_internal::SimilarityFromMatrix(m, &exact);
     if (!exact) {
       out_info.warnings.push_back(path + ": node '" + std::string(nodes[i].node->mName.C_Str()) +
@@ -269,7 +385,7 @@ Status ReadFbx(const std::string& path, const FbxReadOptions& options, Skeleton*
     unit = {name, out_info.unit_scale_factor / 100.0};
   }
   Skeleton out_skeleton;
-  status = Skeleton::Create(std::move(specs), std::move(end_sites), unit, &out_skeleton);
+  Status status = Skeleton::Create(std::move(specs), std::move(end_sites), unit, &out_skeleton);
   if (!status.ok()) return Status::Error(path + ": " + status.message());
 
   // Sampling.
@@ -339,6 +455,11 @@ Status ReadFbx(const std::string& path, const FbxReadOptions& options, Skeleton*
     rate = spacing > 0.0 ? ticks_per_second / spacing : 30.0;
     if (std::abs(rate - std::round(rate)) < 1e-3) rate = std::round(rate);
   }
+  if (!(rate > 0.0 && rate <= gltf_internal::kMaxSampleRate)) {  // As in gltf_reader.cc.
+    return Status::Error(where + ": frame rate " + gltf_internal::ShortNumber(rate) + " (from " +
+                         (options.frame_rate > 0.0 ? "the options" : "the key spacing") +
+                         ") is not in (0, 1e6] fps");
+  }
   const double seconds = (t1 - t0) / ticks_per_second;
   if (!(seconds * rate * rig.joint_nodes.size() < 1e7)) {  // As in gltf_reader.cc.
     return Status::Error(where + ": over 1e7 joint-frames");
@@ -370,4 +491,12 @@ Status ReadFbx(const std::string& path, const FbxReadOptions& options, Skeleton*
   return Status::Ok();
 }
 
+Status ReadFbx(const std::string& path, const FbxReadOptions& options, Skeleton* skeleton,
+               Motion* motion, FbxInfo* info) {
+  std::string bytes;
+  if (Status status = ReadFileToString(path, &bytes); !status.ok()) return status;
+  return ParseFbx(bytes, path, options, skeleton, motion, info);
+}
+
 }  // namespace mocapsolve
+

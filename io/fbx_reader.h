@@ -33,10 +33,18 @@
 //
 // Errors: Status with one line naming the file ("run.fbx: assimp: ..." for parse errors,
 // "run.fbx: animation 'X' not found (animations: ...)").
+//
+// Hostile input: an ASCII FBX nested more than kMaxThirdPartyNesting braces deep is
+// refused before assimp sees it (io/input_limits.h); then assimp parses the bytes once in
+// a forked child process, and a child that crashes (e.g. Debian's assimp double-frees on
+// duplicate model names) or runs past 60 s becomes an error ("run.fbx: assimp crashed
+// parsing the file (signal 6, Aborted)"); only then are the bytes parsed in this process.
+// So every FBX is parsed twice. A node hierarchy deeper than 1000 levels is an error.
 #ifndef MOCAPSOLVE_IO_FBX_READER_H_
 #define MOCAPSOLVE_IO_FBX_READER_H_
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "kinematics/motion.h"
@@ -58,6 +66,10 @@ struct FbxInfo {
 
 Status ReadFbx(const std::string& path, const FbxReadOptions& options, Skeleton* skeleton,
                Motion* motion, FbxInfo* info = nullptr);
+// The bytes of an FBX file held in memory; error messages name `name_for_errors`.
+Status ParseFbx(std::string_view bytes, const std::string& name_for_errors,
+                const FbxReadOptions& options, Skeleton* skeleton, Motion* motion,
+                FbxInfo* info = nullptr);
 
 }  // namespace mocapsolve
 

@@ -12,7 +12,9 @@
 
 #include "io/atomic_file.h"
 #include "io/gltf_scene.h"
+#include "io/input_limits.h"
 #include "kinematics/forward_kinematics.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -21,6 +23,8 @@ using gltf_internal::NodeGraph;
 using gltf_internal::ReadAccessor;
 using gltf_internal::Rig;
 using gltf_internal::Similarity;
+using gltf_internal::kMaxSampleRate;
+using gltf_internal::ShortNumber;
 
 // Images are kept as they are (bytes in their buffer view, or their URI); never decoded.
 bool KeepImageUndecoded(tinygltf::Image*, const int, std::string*, std::string*, int, int,
@@ -89,7 +93,7 @@ Status FindSkin(const tinygltf::Model& model, const std::string& file, const std
     }
     names += (k ? ", '" : "'") + model.skins[k].name + "'";
   }
-  return Status::Error(file + ": no skin named '" + selector + "' (skins: " + names + ")");
+  return Status::Error(file + ": no skin named " + QuoteToken(selector) + " (skins: " + names + ")");
 }
 
 // Per skin joint: inverse(IBM) as (k, Q, p), and IBM itself.
@@ -310,6 +314,18 @@ Status GltfDocument::Parse(const std::string& bytes, const std::string& name_for
                            (declared > bytes.size() ? " (truncated)" : ""));
     }
   }
+  // tinygltf recurses once per JSON nesting level (ParseJsonAsValue for `extras`): bound
+  // the depth of the JSON text (the GLB's first chunk) before handing it over.
+  std::string_view json(bytes);
+  if (binary) {
+    uint32_t chunk_length = 0;
+    if (bytes.size() >= 20) std::memcpy(&chunk_length, bytes.data() + 12, 4);
+    json = std::string_view(bytes).substr(std::min<size_t>(20, bytes.size()), chunk_length);
+  }
+  if (JsonNestingDepth(json) > kMaxThirdPartyNesting) {
+    return Status::Error(name_for_errors + ": glTF JSON nested more than " +
+                         std::to_string(kMaxThirdPartyNesting) + " levels deep");
+  }
   try {
     if (binary) {
       ok = loader.LoadBinaryFromMemory(model.get(), &err, &warn,
@@ -520,7 +536,7 @@ Status FindGltfAnimation(const GltfDocument& document, const std::string& select
       *index = static_cast<int>(k);
       return Status::Ok();
     }
-    names += (k ? ", " : "") + std::to_string(k) + " '" + model.animations[k].name + "'";
+    names += (k ? ", " : "") + std::to_string(k) + " " + QuoteToken(model.animations[k].name);
   }
   if (ParseIndex(selector, &i)) {
     if (i < static_cast<int>(model.animations.size())) {
@@ -528,7 +544,7 @@ Status FindGltfAnimation(const GltfDocument& document, const std::string& select
       return Status::Ok();
     }
   }
-  return Status::Error(file + ": no animation '" + selector + "' (animations: " + names + ")");
+  return Status::Error(file + ": no animation " + QuoteToken(selector) + " (animations: " + names + ")");
 }
 
 namespace {
@@ -657,7 +673,7 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
     } else if (ch.target_path == "weights") {
       continue;  // Morph target weights: not skeletal.
     } else {
-      return Status::Error(cw + ": unknown target path '" + ch.target_path + "'");
+      return Status::Error(cw + ": unknown target path " + QuoteToken(ch.target_path));
     }
     if (!relevant[ch.target_node]) continue;
     const tinygltf::AnimationSampler& sampler = anim.samplers[ch.sampler];
@@ -669,7 +685,7 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
     } else if (sampler.interpolation == "CUBICSPLINE") {
       track.interpolation = Interpolation::kCubic;
     } else {
-      return Status::Error(file + ": " + sw + ": unknown interpolation '" + sampler.interpolation + "'");
+      return Status::Error(file + ": " + sw + ": unknown interpolation " + QuoteToken(sampler.interpolation));
     }
     size_t num_keys = 0, num_values = 0;
     status = ReadAccessor(model, sampler.input, 1, kFloat, file, sw + ": input", &track.times, &num_keys);
@@ -743,6 +759,12 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
     const double spacing = gltf_internal::KeySpacing(spacings);
     rate = spacing > 0.0 ? 1.0 / spacing : 30.0;
     if (std::abs(rate - std::round(rate)) < 1e-3) rate = std::round(rate);
+  }
+  // Key times 1e-39 s apart would give 1e39 fps (and no int frame count).
+  if (!(rate > 0.0 && rate <= kMaxSampleRate)) {
+    return Status::Error(where + ": frame rate " + ShortNumber(rate) + " (from " +
+                         (options.frame_rate > 0.0 ? "the options" : "the key spacing") +
+                         ") is not in (0, 1e6] fps");
   }
   const double span_frames = (t1 - t0) * rate;
   // At most 1e7 joint-frames (about 0.6 GB of poses; a 10-minute 120 fps take of 65

@@ -3,18 +3,21 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
 #include <Eigen/SVD>
 #include <tiny_gltf.h>
 
+#include "kinematics/quote_token.h"
+
 namespace mocapsolve::gltf_internal {
 namespace {
 
 std::string NodeLabel(const tinygltf::Model& model, int n) {
   std::string label = "node " + std::to_string(n);
-  if (!model.nodes[n].name.empty()) label += " '" + model.nodes[n].name + "'";
+  if (!model.nodes[n].name.empty()) label += " " + QuoteToken(model.nodes[n].name);
   return label;
 }
 
@@ -483,6 +486,12 @@ void EvaluateRig(const Rig& rig, const std::vector<Similarity>& locals, Pose* po
     pose->translations[j] = parent_scale * c.translation;
     pose->rotations[j] = (rig.rest_rotations[j].conjugate() * c.rotation).normalized();
   }
+}
+
+std::string ShortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
 }
 
 }  // namespace mocapsolve::gltf_internal

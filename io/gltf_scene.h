@@ -59,6 +59,13 @@ double UniformScale(const Eigen::Vector3d& scale, bool* exact);
 // else 0 (no common key rate).
 double KeySpacing(const std::vector<double>& spacings);
 
+// Highest frame rate a glTF or FBX animation is sampled at (the BVH reader's 1e-6 s
+// frame time): keys a denormal apart must not become 1e39 fps.
+constexpr double kMaxSampleRate = 1e6;
+
+// A number for a message: "%.6g" ("1e+39", not to_string's 40 digits).
+std::string ShortNumber(double value);
+
 // Reads accessor `index` as doubles, `components` values per element (1 SCALAR, 3 VEC3,
 // 4 VEC4, 16 MAT4), with the given allowed component types (TINYGLTF_COMPONENT_TYPE_*),
 // normalized integers mapped per the glTF spec, sparse substitution applied, all bounds

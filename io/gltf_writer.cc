@@ -12,6 +12,7 @@
 #include "io/atomic_file.h"
 #include "io/gltf_scene.h"
 #include "io/motion_file.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -70,15 +71,15 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
   if (animation_name.empty()) return Status::Error(file + ": the new animation needs a name");
   for (const tinygltf::Animation& a : source.model().animations) {
     if (a.name == animation_name) {
-      return Status::Error(file + ": already has an animation named '" + animation_name + "'");
+      return Status::Error(file + ": already has an animation named " + QuoteToken(animation_name));
     }
   }
   if (!(motion.frame_rate > 0.0) || !std::isfinite(motion.frame_rate)) {
-    return Status::Error(file + ": animation '" + animation_name + "': frame rate must be positive");
+    return Status::Error(file + ": animation " + QuoteToken(animation_name) + ": frame rate must be positive");
   }
-  if (motion.frames.empty()) return Status::Error(file + ": animation '" + animation_name + "' has no frames");
+  if (motion.frames.empty()) return Status::Error(file + ": animation " + QuoteToken(animation_name) + " has no frames");
   Status status = ValidateMotion(skeleton, motion);
-  if (!status.ok()) return Status::Error(file + ": animation '" + animation_name + "': " + status.message());
+  if (!status.ok()) return Status::Error(file + ": animation " + QuoteToken(animation_name) + ": " + status.message());
 
   tinygltf::Model model = source.model();
   gltf_internal::NodeGraph graph;
@@ -199,7 +200,7 @@ Status MotionForCharacter(const Skeleton& source, const Motion& motion, const Gl
     const bool synthetic = !character.joint_nodes.empty() && character.joint_nodes[j] < 0;
     if (from[j] < 0) {
       if (synthetic) continue;
-      return Status::Error("joint '" + target.name(j) + "' of the character is missing from the motion's skeleton");
+      return Status::Error("joint " + QuoteToken(target.name(j)) + " of the character is missing from the motion's skeleton");
     }
     const int p = target.parent(j);
     const int sp = source.parent(from[j]);
@@ -207,11 +208,11 @@ Status MotionForCharacter(const Skeleton& source, const Motion& motion, const Gl
     std::string source_parent = sp >= 0 ? source.name(sp) : "";
     if (p >= 0 && from[p] < 0 && sp < 0) source_parent = target_parent;  // Below a missing gltf_root.
     if (target_parent != source_parent) {
-      return Status::Error("joint '" + target.name(j) + "': parent '" + source_parent + "' in the motion, '" +
+      return Status::Error("joint " + QuoteToken(target.name(j)) + ": parent " + QuoteToken(source_parent) + " in the motion, '" +
                            target_parent + "' in the character");
     }
     if (p >= 0 && (scale * source.offset(from[j]) - target.offset(j)).norm() > 1e-3 * size) {
-      return Status::Error("joint '" + target.name(j) + "': offset differs from the character's by more than "
+      return Status::Error("joint " + QuoteToken(target.name(j)) + ": offset differs from the character's by more than "
                            "1e-3 of its size (a different skeleton or unit?)");
     }
   }

@@ -6,6 +6,7 @@
 #include <unordered_set>
 
 #include "io/atomic_file.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -76,7 +77,7 @@ class Parser {
         shown += static_cast<char>(c);
       }
     }
-    return "'" + shown + "'";
+    return QuoteToken(shown);
   }
 
   Status Expected(const std::string& what) const {

@@ -5,6 +5,7 @@
 #include "io/motion_file.h"
 #include "io/trc_reader.h"
 #include "io/trc_writer.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 
@@ -17,14 +18,14 @@ Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories)
   const std::string ext = FileExtension(path);
   if (ext == ".c3d") return ReadC3d(path, trajectories);
   if (ext == ".trc") return ReadTrc(path, trajectories);
-  return Status::Error(path + ": unknown marker format '" + ext + "' (expected .c3d or .trc)");
+  return Status::Error(path + ": unknown marker format " + QuoteToken(ext) + " (expected .c3d or .trc)");
 }
 
 Status WriteMarkerFile(const std::string& path, const MarkerTrajectories& trajectories) {
   const std::string ext = FileExtension(path);
   if (ext == ".c3d") return WriteC3d(path, trajectories);
   if (ext == ".trc") return WriteTrc(path, trajectories);
-  return Status::Error(path + ": unknown marker format '" + ext + "' (expected .c3d or .trc)");
+  return Status::Error(path + ": unknown marker format " + QuoteToken(ext) + " (expected .c3d or .trc)");
 }
 
 }  // namespace mocapsolve

@@ -9,6 +9,7 @@
 #include "io/json_reader.h"
 #include "io/json_writer.h"
 #include "kinematics/marker_trajectories.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -48,7 +49,7 @@ class Interpreter {
   Status CheckKeys(const JsonNode& object, const std::set<std::string>& allowed,
                    const std::string& prefix) const {
     if (const auto* member = FindUnknownKey(object, allowed)) {
-      return Error(member->second, prefix + "unknown key '" + member->first + "' (known: " + KeyList(allowed) + ")");
+      return Error(member->second, prefix + "unknown key " + QuoteToken(member->first) + " (known: " + KeyList(allowed) + ")");
     }
     return Status::Ok();
   }
@@ -105,7 +106,7 @@ class Interpreter {
     if (units.string == skeleton_unit.name || !skeleton_unit.known()) return Status::Ok();
     const LengthUnit file_unit = ResolveUnit(units.string, skeleton_);
     if (!file_unit.known()) {
-      return Error(units, "units: '" + units.string + "' is not a known length unit and not the skeleton's ('" +
+      return Error(units, "units: " + QuoteToken(units.string) + " is not a known length unit and not the skeleton's ('" +
                               skeleton_unit.name + "')");
     }
     factor_ = file_unit.metres_per_unit / skeleton_unit.metres_per_unit;
@@ -120,7 +121,7 @@ class Interpreter {
     status = CheckType(*label, JsonNode::Type::kString, "label");
     if (!status.ok()) return status;
     if (label->string.empty()) return Error(*label, "label: empty");
-    context_ += "'" + label->string + "': ";
+    context_ += QuoteToken(label->string) + ": ";
     if (!labels->insert(label->string).second) return Error(*label, "label: duplicate");
     status = CheckKeys(node, {"label", "attachments"}, "");
     if (!status.ok()) return status;
@@ -144,7 +145,7 @@ class Interpreter {
       status = CheckType(*joint, JsonNode::Type::kString, field + ".joint");
       if (!status.ok()) return status;
       attachment.joint = skeleton_.FindJoint(joint->string);
-      if (attachment.joint < 0) return Error(*joint, field + ".joint: unknown joint '" + joint->string + "'");
+      if (attachment.joint < 0) return Error(*joint, field + ".joint: unknown joint " + QuoteToken(joint->string));
       if (const JsonNode* weight = a.Find("weight")) {
         status = CheckType(*weight, JsonNode::Type::kNumber, field + ".weight");
         if (!status.ok()) return status;
@@ -229,7 +230,7 @@ Status WriteMarkerSet(const std::string& path, const Skeleton& skeleton,
   for (int m = 0; m < marker_set.num_markers(); ++m) {
     for (const MarkerAttachment& a : marker_set.marker(m).attachments) {
       if (a.joint < 0 || a.joint >= skeleton.num_joints()) {
-        return Status::Error(path + ": marker '" + marker_set.label(m) + "' names joint index " +
+        return Status::Error(path + ": marker " + QuoteToken(marker_set.label(m)) + " names joint index " +
                              std::to_string(a.joint) + ", not in the skeleton");
       }
     }

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
-#include "io/quote_token.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -166,6 +166,9 @@ Status ParseTrc(std::string_view text, const std::string& file_name,
                      std::to_string(num_frames));
   }
 
+  if (Status status = MarkerTrajectories::CheckLabels(labels); !status.ok()) {
+    return error(4, status.message());
+  }
   MarkerTrajectories out(std::move(labels), num_frames);
   out.frame_rate = rate;
   out.unit = unit;
@@ -200,8 +203,13 @@ Status ParseTrc(std::string_view text, const std::string& file_name,
         if (cells[c].empty() || IsNan(cells[c])) {
           present = false;
         } else if (!ParseNumber(cells[c], &position[k])) {
-          return error(line, "column " + std::to_string(c + 1) + " (" + "XYZ"[k] + " of '" +
-                                 out.label(m) + "') " + QuoteToken(cells[c]) + " is not a number");
+          return error(line, "column " + std::to_string(c + 1) + " (" + "XYZ"[k] + " of " +
+                                 QuoteToken(out.label(m)) + ") " + QuoteToken(cells[c]) +
+                                 " is not a number");
+        } else if (!(std::abs(position[k]) <= MarkerTrajectories::kMaxCoordinate)) {
+          return error(line, "column " + std::to_string(c + 1) + " (" + "XYZ"[k] + " of " +
+                                 QuoteToken(out.label(m)) + ") " + QuoteToken(cells[c]) +
+                                 " is beyond +-1e9");
         }
       }
       if (!present || !position.allFinite()) continue;  // Stays missing.

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "io/atomic_file.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -45,7 +46,7 @@ Status FormatTrc(const MarkerTrajectories& trajectories, const std::string& file
                  std::string* text) {
   const auto error = [&](const std::string& what) { return Status::Error(file_name + ": " + what); };
   if (!trajectories.unit.known()) {
-    return error("unit '" + trajectories.unit.name + "' is unknown; TRC needs Units (mm, cm or m)");
+    return error("unit " + QuoteToken(trajectories.unit.name) + " is unknown; TRC needs Units (mm, cm or m)");
   }
   if (!(trajectories.frame_rate > 0.0) || !std::isfinite(trajectories.frame_rate)) {
     return error("frame rate " + std::to_string(trajectories.frame_rate) + " is not positive");

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <set>
 
+#include "kinematics/quote_token.h"
+
 namespace mocapsolve {
 
 Status MarkerSet::Create(const Skeleton& skeleton, std::vector<MarkerSpec> markers,
@@ -11,7 +13,7 @@ Status MarkerSet::Create(const Skeleton& skeleton, std::vector<MarkerSpec> marke
   MarkerSet result;
   std::set<std::string> labels;
   for (MarkerSpec& spec : markers) {
-    const std::string where = "marker '" + spec.label + "'";
+    const std::string where = "marker " + QuoteToken(spec.label);
     if (spec.label.empty()) return Status::Error("marker with an empty label");
     if (!labels.insert(spec.label).second) return Status::Error(where + ": duplicate label");
     if (spec.attachments.empty()) return Status::Error(where + ": no attachment");

@@ -4,8 +4,24 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <string_view>
+#include <unordered_map>
+
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
+
+Status MarkerTrajectories::CheckLabels(const std::vector<std::string>& labels) {
+  std::unordered_map<std::string_view, int> first;
+  for (int m = 0; m < static_cast<int>(labels.size()); ++m) {
+    const auto [it, inserted] = first.emplace(labels[m], m);
+    if (!inserted) {
+      return Status::Error("marker label " + QuoteToken(labels[m]) + " is used twice (markers " +
+                           std::to_string(it->second + 1) + " and " + std::to_string(m + 1) + ")");
+    }
+  }
+  return Status::Ok();
+}
 
 MarkerTrajectories::MarkerTrajectories(std::vector<std::string> labels, int num_frames)
     : num_frames_(std::max(num_frames, 0)), labels_(std::move(labels)) {

@@ -43,6 +43,14 @@ class MarkerTrajectories {
   int first_frame = 1;      // File frame number of frame index 0.
   std::vector<std::string> subject_prefixes;  // "TakeoMonday:", ...; may be empty.
 
+  // Largest |coordinate| a reader accepts, in file units: 1e9 mm is 1000 km. Beyond it
+  // squares and sums overflow or lose all precision (a TRC value of 1e308 became
+  // "rms change nan"), so readers reject such a sample with an error.
+  static constexpr double kMaxCoordinate = 1e9;
+  // Labels a reader may build trajectories from: no label repeated (a repeated label
+  // would make FindMarker ambiguous). The error names the first repeat, quoted.
+  static Status CheckLabels(const std::vector<std::string>& labels);
+
   MarkerTrajectories() = default;
   // #F frames of the labelled markers, every sample missing.
   MarkerTrajectories(std::vector<std::string> labels, int num_frames);

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <set>
+#include <vector>
+
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 
@@ -9,15 +12,20 @@ Status Skeleton::Create(std::vector<JointSpec> joints, std::vector<EndSite> end_
                         LengthUnit unit, Skeleton* skeleton) {
   if (joints.empty()) return Status::Error("skeleton has no joints");
   std::set<std::string> names;
+  std::vector<int> depth(joints.size(), 0);
   for (int j = 0; j < static_cast<int>(joints.size()); ++j) {
     const JointSpec& spec = joints[j];
-    const std::string where = "joint " + std::to_string(j) + " '" + spec.name + "'";
+    const std::string where = "joint " + std::to_string(j) + " " + QuoteToken(spec.name);
     if (spec.name.empty()) return Status::Error(where + ": empty name");
     if (!names.insert(spec.name).second) return Status::Error(where + ": duplicate name");
     if (j == 0 && spec.parent != -1) return Status::Error(where + ": the root has a parent");
     if (j > 0 && (spec.parent < 0 || spec.parent >= j)) {
       return Status::Error(where + ": parent index " + std::to_string(spec.parent) +
                            " is not an earlier joint (joints must be in preorder)");
+    }
+    if (j > 0 && (depth[j] = depth[spec.parent] + 1) > kMaxSkeletonDepth) {
+      return Status::Error(where + ": nested deeper than " + std::to_string(kMaxSkeletonDepth) +
+                           " joints below the root");
     }
     if (!spec.offset.allFinite()) return Status::Error(where + ": offset is not finite");
     if (!spec.rest_rotation.coeffs().allFinite() ||
@@ -49,7 +57,7 @@ Status Skeleton::Create(std::vector<JointSpec> joints, std::vector<EndSite> end_
   for (const EndSite& site : end_sites) {
     if (site.parent < 0 || site.parent >= static_cast<int>(joints.size()) ||
         !site.offset.allFinite()) {
-      return Status::Error("end site '" + site.name + "': bad parent or offset");
+      return Status::Error("end site " + QuoteToken(site.name) + ": bad parent or offset");
     }
   }
 

@@ -51,12 +51,18 @@ struct EndSite {
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // In the parent joint's frame.
 };
 
+// Deepest joint chain a skeleton may have. Real ones nest < 40 deep; chain kinematics,
+// writers and solvers walk a joint's ancestors, so a file nesting 100,000 joints would
+// make them quadratic: every reader refuses it through Skeleton::Create.
+constexpr int kMaxSkeletonDepth = 1000;
+
 class Skeleton {
  public:
   Skeleton() = default;
 
   // Validates the specs (one root at index 0, parent(j) < j, unique non-empty names,
-  // finite offsets, unit rest rotations, at most one channel of each kind per joint).
+  // finite offsets, unit rest rotations, at most one channel of each kind per joint, at
+  // most kMaxSkeletonDepth joints between a joint and the root).
   static Status Create(std::vector<JointSpec> joints, std::vector<EndSite> end_sites,
                        LengthUnit unit, Skeleton* skeleton);
 

@@ -8,6 +8,14 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libsuitesparse-dev
           libgoogle-glog-dev libgflags-dev libgtest-dev libgmock-dev libbenchmark-dev
           libtinygltf-dev libassimp-dev libnanoflann-dev libspectra-dev)
+# Opt-in: `setup.sh --fuzz` also installs what scripts/fuzz.sh needs (clang, libFuzzer)
+# and then only installs (the fuzz build is scripts/fuzz.sh's own, in build-fuzz/).
+fuzz_packages=(clang libclang-rt-14-dev libfuzzer-14-dev ccache)
+only_install=0
+if [ "${1:-}" = "--fuzz" ]; then
+  packages+=("${fuzz_packages[@]}")
+  only_install=1
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -22,6 +30,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+
+[ "$only_install" -eq 0 ] || exit 0
 
 build_type=${MOCAPSOLVE_BUILD_TYPE:-Release}
 if [ ! -f build/CMakeCache.txt ]; then

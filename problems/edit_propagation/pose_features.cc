@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kinematics/quote_token.h"
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
@@ -31,7 +32,7 @@ Status PoseFeatures(const Skeleton& skeleton, const Motion& motion,
   } else {
     for (const std::string& name : options.joints) {
       const int j = skeleton.FindJoint(name);
-      if (j < 0) return Status::Error("features.joints: no joint named '" + name + "'");
+      if (j < 0) return Status::Error("features.joints: no joint named " + QuoteToken(name));
       joints.push_back(j);
     }
   }

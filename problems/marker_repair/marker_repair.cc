@@ -171,9 +171,31 @@ Observations TrajectoryObservations(const MarkerTrajectories& trajectories) {
   return out;
 }
 
+bool RepairOptions::IsValid(std::string* error) const {
+  if (!naive.IsValid(error)) return false;
+  if (reference_kind == ReferenceKind::kClip && !reference.IsValid(error)) return false;
+  if (reference_kind == ReferenceKind::kTracker && !tracker.IsValid(error)) return false;
+  for (const double v : {dp_max, dr_max_rad}) {
+    if (!(v > 0.0) || !std::isfinite(v)) {
+      return *error = "dp_max and dr_max must be positive and finite", false;
+    }
+  }
+  // <= 0 selects a default for these; NaN or inf selects nothing.
+  for (const double v : {resync_tolerance, outlier_distance, velocity_clamp}) {
+    if (!std::isfinite(v)) {
+      return *error = "resync tolerance, outlier distance and velocity clamp must be finite", false;
+    }
+  }
+  if (trim_max < 0 || small_track < 0 || small_gap < 0) {
+    return *error = "trim_max, small_track and small_gap must be >= 0 frames", false;
+  }
+  return true;
+}
+
 Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
                      const RepairOptions& options, Observations* repaired, Motion* motion,
                      RepairReport* report, RepairIntermediates* intermediates) {
+  if (std::string error; !options.IsValid(&error)) return Status::Error(error);
   *report = RepairReport();
   StageClock clock(report);
   // 1. Naive solve and 2. robust reference (the tracker needs no naive solve, so with two

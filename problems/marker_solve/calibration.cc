@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "kinematics/forward_kinematics.h"
+#include "kinematics/quote_token.h"
 #include "problems/marker_solve/subject_checks.h"
 
 namespace mocapsolve {
@@ -188,7 +189,7 @@ Status CalibrateMarkers(const Skeleton& skeleton, const Motion& motion,
         continue;
       }
       if (names.count(name) != 0) {
-        out.skipped.push_back(trajectories.label(m) + ": label '" + name + "' repeats (several subjects?)");
+        out.skipped.push_back(trajectories.label(m) + ": label " + QuoteToken(name) + " repeats (several subjects?)");
         continue;
       }
       const std::vector<int> frames = ValidFrames(matched, trajectories, m);

@@ -13,10 +13,16 @@
 namespace mocapsolve {
 
 bool ClipSolveOptions::IsValid(std::string* error) const {
-  if (!(marker_weight > 0.0)) return *error = "marker weight must be positive", false;
-  if (!(loss_scale > 0.0)) return *error = "loss scale must be positive", false;
-  if (rotation_smoothness < 0.0 || translation_smoothness < 0.0) {
-    return *error = "smoothness weights must be >= 0", false;
+  if (!(marker_weight > 0.0) || !std::isfinite(marker_weight)) {
+    return *error = "marker weight must be positive and finite", false;
+  }
+  if (!(loss_scale > 0.0) || !std::isfinite(loss_scale)) {
+    return *error = "loss scale must be positive and finite", false;
+  }
+  for (const double w : {rotation_smoothness, translation_smoothness}) {
+    if (!(w >= 0.0) || !std::isfinite(w)) {
+      return *error = "smoothness weights must be finite and >= 0", false;
+    }
   }
   std::unique_ptr<ceres::LossFunction> loss_function;
   const Status status = MakeLoss(loss, loss_scale, &loss_function);

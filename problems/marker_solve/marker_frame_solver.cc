@@ -5,6 +5,7 @@
 #include <ceres/problem.h>
 
 #include "kinematics/forward_kinematics.h"
+#include "kinematics/quote_token.h"
 #include "problems/marker_solve/joint_limit_residual.h"
 #include "problems/marker_solve/marker_residual.h"
 #include "problems/marker_solve/pose_prior_residual.h"
@@ -13,10 +14,17 @@
 namespace mocapsolve {
 
 bool MarkerSolveOptions::IsValid(std::string* error) const {
-  if (!(marker_weight > 0.0)) return *error = "marker weight must be positive", false;
-  if (!(loss_scale > 0.0)) return *error = "loss scale must be positive", false;
-  if (prior_rotation_weight < 0.0 || prior_translation_weight < 0.0 || limit_weight < 0.0) {
-    return *error = "prior and limit weights must be >= 0", false;
+  // Every weight finite (NaN or inf would reach Ceres, which then logs and fails).
+  if (!(marker_weight > 0.0) || !std::isfinite(marker_weight)) {
+    return *error = "marker weight must be positive and finite", false;
+  }
+  if (!(loss_scale > 0.0) || !std::isfinite(loss_scale)) {
+    return *error = "loss scale must be positive and finite", false;
+  }
+  for (const double w : {prior_rotation_weight, prior_translation_weight, limit_weight}) {
+    if (!(w >= 0.0) || !std::isfinite(w)) {
+      return *error = "prior and limit weights must be finite and >= 0", false;
+    }
   }
   if (solver == SolverKind::kDls && !dls.IsValid(error)) return false;
   if (solver == SolverKind::kCeres && !ceres.IsValid(error)) return false;
@@ -46,7 +54,7 @@ Status MakeLoss(const std::string& name, double scale, std::unique_ptr<ceres::Lo
   } else if (name == "cauchy") {
     loss->reset(new ceres::CauchyLoss(scale));
   } else {
-    return Status::Error("--loss: unknown loss '" + name + "' (none, huber, cauchy)");
+    return Status::Error("--loss: unknown loss " + QuoteToken(name) + " (none, huber, cauchy)");
   }
   return Status::Ok();
 }

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "kinematics/quote_token.h"
+
 namespace mocapsolve {
 
 Status ParseAxes(const std::string& text, Eigen::Matrix3d* rotation) {
@@ -19,14 +21,14 @@ Status ParseAxes(const std::string& text, Eigen::Matrix3d* rotation) {
     }
     const int axis = part == "x" ? 0 : part == "y" ? 1 : part == "z" ? 2 : -1;
     if (row >= 3 || axis < 0 || used[axis]) {
-      return Status::Error("--axes: '" + text + "' is not a signed permutation of x,y,z (e.g. x,z,-y)");
+      return Status::Error("--axes: " + QuoteToken(text) + " is not a signed permutation of x,y,z (e.g. x,z,-y)");
     }
     used[axis] = true;
     r(row++, axis) = sign;
   }
-  if (row != 3) return Status::Error("--axes: '" + text + "' must name three axes (e.g. x,z,-y)");
+  if (row != 3) return Status::Error("--axes: " + QuoteToken(text) + " must name three axes (e.g. x,z,-y)");
   if (r.determinant() < 0.0) {
-    return Status::Error("--axes: '" + text + "' is a reflection, not a rotation (flip one sign)");
+    return Status::Error("--axes: " + QuoteToken(text) + " is a reflection, not a rotation (flip one sign)");
   }
   *rotation = r;
   return Status::Ok();
@@ -59,7 +61,7 @@ std::vector<Eigen::Matrix3d> AllAxisRotations() {
 
 Status UnitScale(const LengthUnit& file_unit, const LengthUnit& model_unit, double* scale) {
   if (!file_unit.known() || !model_unit.known()) {
-    return Status::Error("cannot convert marker units '" + file_unit.name + "' to skeleton units '" +
+    return Status::Error("cannot convert marker units " + QuoteToken(file_unit.name) + " to skeleton units '" +
                          model_unit.name + "': give --marker_scale");
   }
   *scale = file_unit.metres_per_unit / model_unit.metres_per_unit;

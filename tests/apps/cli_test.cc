@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <sstream>
 
@@ -116,6 +117,26 @@ TEST_F(Cli, BenchHarness) {
   EXPECT_THAT(output, HasSubstr("known: fk"));
 }
 
+// Issue 15: the commands that ran on the deep BVH, and the flags that took NaN or
+// negative values, now refuse them with one line.
+TEST_F(Cli, HostileFilesAndFlags) {
+  std::string output;
+  const std::string deep = testing::SourcePath("tests/data/bad/bad_deep_nesting.bvh");
+  EXPECT_EQ(testing::RunCli("convert " + deep + " " + testing::TempPath("deep_out.bvh"), &output), 1);
+  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_THAT(output, HasSubstr("bad_deep_nesting.bvh"));
+  EXPECT_FALSE(testing::FileExists(testing::TempPath("deep_out.bvh")));
+  const std::string huge = testing::SourcePath("tests/data/bad/bad_huge_coordinate.trc");
+  EXPECT_EQ(testing::RunCli("filter --markers=" + huge + " --out=" + testing::TempPath("f.trc"), &output), 1);
+  EXPECT_THAT(output, HasSubstr("beyond +-1e9"));
+  EXPECT_EQ(testing::RunCli("propagate --motion=" + demo_ + " --out=" + testing::TempPath("p.bvh") +
+                                " --ik_target=Hips:0,0,0 --frame=-5",
+                            &output),
+            1);
+  EXPECT_THAT(output, HasSubstr("--frame"));
+  EXPECT_EQ(CountLines(output), 1) << output;
+}
+
 // Every file in tests/data/bad: exit 1, one line naming the file, no output written.
 TEST(CliBadInput, EveryBadFileGetsAOneLineError) {
   const std::string dir = testing::SourcePath("tests/data/bad");
@@ -158,7 +179,13 @@ TEST(CliBadInput, EveryBadFileGetsAOneLineError) {
       command = "info " + path;
     }
     std::string output;
+    const auto start = std::chrono::steady_clock::now();
     EXPECT_EQ(testing::RunCli(command, &output), 1) << name << ": " << output;
+    // Hostile files (make_bad_hostile.py) must be cheap to refuse: a generous bound, far
+    // below the minutes (or crash) they took before issue 15.
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0)
+        << name;
+    EXPECT_LT(output.size(), 1000u) << name << ": names in messages are cut";
     EXPECT_EQ(CountLines(output), 1) << name << ": " << output;
     EXPECT_THAT(output, HasSubstr(name)) << command;
     EXPECT_FALSE(testing::FileExists(testing::TempPath(name + ".csv"))) << name << ": partial output";

@@ -335,7 +335,7 @@ std::vector<BadInput> BadInputs() {
       {"missing Frame Time:", WithMotion("MOTION\nFrames: 1\n0 0 0 0 0 0 0 0 0\n"), 18,
        "expected 'Frame', got '0'"},
       {"zero frame time", WithMotion("MOTION\nFrames: 1\nFrame Time: 0\n"), 18,
-       "expected a positive frame time in seconds, got '0'"},
+       "expected a frame time of at least 1e-6 seconds, got '0'"},
       {"negative frame time", WithMotion("MOTION\nFrames: 1\nFrame Time: -0.01\n"), 18,
        "got '-0.01'"},
       {"inf frame time", WithMotion("MOTION\nFrames: 1\nFrame Time: inf\n"), 18, "got 'inf'"},

@@ -4,6 +4,10 @@
 // untouched.
 #include "problems/marker_repair/marker_repair.h"
 
+#include <cmath>
+#include <limits>
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "kinematics/forward_kinematics.h"
@@ -122,6 +126,29 @@ TEST(MarkerRepair, UndoesASwapAndFillsGapsAtTheEndsAndOfOneFrame) {
   EXPECT_LT(worst, 1.0);  // cm: back on their own paths, not the swapped ones.
   for (int f : {0, 5, 7, 112, 119}) EXPECT_LT((repaired[f][ends] - clean[f][ends]).norm(), 1.0) << f;
   EXPECT_LT((repaired[30][one] - clean[30][one]).norm(), 0.5);
+}
+
+// Issue 15: NaN, inf and negative values are refused in one place, the options' IsValid.
+TEST(MarkerRepair, OptionsRejectNonFiniteAndNegativeValues) {
+  std::string error;
+  RepairOptions options = testing::DemoRepairOptions(ReferenceKind::kTracker);
+  ASSERT_TRUE(options.IsValid(&error)) << error;
+  const double nan = std::nan("");
+  auto invalid = [&](auto change) {
+    RepairOptions o = testing::DemoRepairOptions(ReferenceKind::kTracker);
+    change(&o);
+    return !o.IsValid(&error) && !error.empty();
+  };
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->velocity_clamp = nan; }));
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->small_gap = -1; }));
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->trim_max = -1; }));
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->dp_max = nan; }));
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->naive.prior_rotation_weight = nan; }));
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->tracker.limit_weight = nan; }));
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->naive.marker_weight = std::numeric_limits<double>::infinity(); }));
+  ClipSolveOptions clip;
+  clip.rotation_smoothness = nan;
+  EXPECT_FALSE(clip.IsValid(&error));
 }
 
 }  // namespace

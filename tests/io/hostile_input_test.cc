@@ -1,0 +1,185 @@
+// Hostile input (issue 15): the files of tests/data/bad/make_bad_hostile.py and their
+// in-memory variants give one-line errors naming the file and the cause, cheaply.
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "io/atomic_file.h"
+#include "io/bvh_reader.h"
+#include "io/bvh_writer.h"
+#include "io/c3d_reader.h"
+#include "io/c3d_writer.h"
+#include "io/fbx_reader.h"
+#include "io/gltf_reader.h"
+#include "io/marker_set_file.h"
+#include "io/trc_reader.h"
+#include "kinematics/quote_token.h"
+#include "tests/test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+std::string Bad(const std::string& name) { return testing::SourcePath("tests/data/bad/" + name); }
+
+void ExpectOneLineError(const Status& status, const std::string& file, const std::string& part) {
+  ASSERT_FALSE(status.ok()) << file;
+  EXPECT_EQ(status.message().find('\n'), std::string::npos) << status.message();
+  EXPECT_EQ(status.message().rfind(file, 0), 0u) << status.message();
+  EXPECT_NE(status.message().find(part), std::string::npos)
+      << "expected '" << part << "' in: " << status.message();
+  EXPECT_LT(status.message().size(), 400u) << status.message();
+}
+
+TEST(HostileInput, GlbWithExtrasNested30000Deep) {
+  const std::string path = Bad("bad_gltf_deep_extras.glb");
+  GltfDocument document;
+  ExpectOneLineError(GltfDocument::Read(path, &document), path, "nested more than 128 levels deep");
+  // The same nesting as .gltf JSON text.
+  const std::string json = "{\"asset\":{\"version\":\"2.0\",\"extras\":" + std::string(30000, '[') +
+                           std::string(30000, ']') + "}}";
+  ExpectOneLineError(GltfDocument::Parse(json, "deep.gltf", "", &document), "deep.gltf",
+                     "glTF JSON nested more than");
+}
+
+// Found by the gltf fuzzer: keys 1e-39 s apart made the key rate 1e39 fps and the frame
+// count overflow int (UBSan). Sampling rates above 1e6 fps are refused.
+TEST(HostileInput, GltfKeysADenormalApart) {
+  const std::string path = Bad("bad_gltf_key_rate.gltf");
+  GltfDocument document;
+  ASSERT_TRUE(GltfDocument::Read(path, &document).ok());
+  GltfCharacter character;
+  ASSERT_TRUE(ReadGltfCharacter(document, GltfReadOptions(), &character).ok());
+  Motion motion;
+  ExpectOneLineError(ReadGltfAnimation(document, character, GltfAnimationOptions(), &motion), path,
+                     "frame rate 1e+39 (from the key spacing) is not in (0, 1e6] fps");
+}
+
+TEST(HostileInput, AsciiFbxWith30000NestedBraces) {
+  const std::string path = Bad("bad_fbx_deep_braces.fbx");
+  Skeleton skeleton;
+  Motion motion;
+  ExpectOneLineError(ReadFbx(path, {}, &skeleton, &motion), path, "nested more than 128 braces");
+}
+
+// An FBX whose Connections chain 12,000 models: no deep braces, but assimp's converter
+// recurses once per level and overflows the stack (SIGSEGV in Debian's assimp 5.2.5).
+// The forked child dies, this process reports it. 10,000 models already crash it; 5,000
+// do not, and are refused by our own depth bound instead.
+std::string FbxChain(int n) {
+  std::string text = "; FBX 7.4.0 project file\nFBXHeaderExtension: {\nFBXVersion: 7400\n}\nObjects: {\n";
+  for (int i = 1; i <= n; ++i) text += "Model: " + std::to_string(i) + ",\"Model::" + std::to_string(i) + "\",\"Null\"{\n}\n";
+  text += "}\nConnections: {\nC: \"OO\",1,0\n";
+  for (int i = 2; i <= n; ++i) text += "C: \"OO\"," + std::to_string(i) + "," + std::to_string(i - 1) + "\n";
+  return text + "}\n";
+}
+
+TEST(HostileInput, FbxThatCrashesAssimpBecomesAnError) {
+  Skeleton skeleton;
+  Motion motion;
+  const auto start = std::chrono::steady_clock::now();
+  const Status status = ParseFbx(FbxChain(12000), "chain.fbx", {}, &skeleton, &motion);
+  ExpectOneLineError(status, "chain.fbx", "assimp crashed parsing the file");
+  std::printf("%s (%.2f s)\n", status.message().c_str(),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  ExpectOneLineError(ParseFbx(FbxChain(2000), "chain.fbx", {}, &skeleton, &motion), "chain.fbx",
+                     "node hierarchy deeper than 1000 levels");
+}
+
+TEST(HostileInput, BvhFrameTimeDenormal) {
+  const std::string path = Bad("bad_frame_time_tiny.bvh");
+  Skeleton skeleton;
+  Motion motion;
+  ExpectOneLineError(ReadBvh(path, &skeleton, &motion), path, "frame time of at least 1e-6");
+}
+
+TEST(HostileInput, BvhNested2000Deep) {
+  const std::string path = Bad("bad_deep_nesting.bvh");
+  Skeleton skeleton;
+  Motion motion;
+  ExpectOneLineError(ReadBvh(path, &skeleton, &motion), path, "nested at most 1000 deep");
+}
+
+// The cause of the `convert` hang: depth-many tabs per line. A chain at the depth limit
+// now writes text linear in the joint count.
+TEST(HostileInput, BvhWriterIsLinearInTheDepth) {
+  std::vector<JointSpec> joints(kMaxSkeletonDepth + 1);
+  for (int j = 0; j <= kMaxSkeletonDepth; ++j) {
+    joints[j].name = "j" + std::to_string(j);
+    joints[j].parent = j - 1;
+    joints[j].offset = Eigen::Vector3d(0, 1, 0);
+    joints[j].channels = {Channel::kZrotation, Channel::kXrotation, Channel::kYrotation};
+  }
+  Skeleton skeleton;
+  ASSERT_TRUE(Skeleton::Create(joints, {}, LengthUnit(), &skeleton).ok());
+  Motion motion;
+  motion.frame_rate = 30;
+  motion.frames.push_back(RestPose(skeleton));
+  const std::string text = FormatBvh(skeleton, motion);
+  EXPECT_LT(text.size(), 400u * joints.size()) << text.size() << " bytes";
+  Skeleton back;
+  Motion back_motion;
+  ASSERT_TRUE(ParseBvh(text, "deep.bvh", &back, &back_motion).ok());
+  EXPECT_EQ(back.num_joints(), skeleton.num_joints());
+  // One joint more is refused.
+  joints.push_back(joints.back());
+  joints.back().name = "one_too_deep";
+  joints.back().parent = kMaxSkeletonDepth;
+  const Status status = Skeleton::Create(joints, {}, LengthUnit(), &skeleton);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("nested deeper than 1000"), std::string::npos) << status.message();
+}
+
+TEST(HostileInput, TrcCoordinateBeyondSaneMagnitude) {
+  const std::string path = Bad("bad_huge_coordinate.trc");
+  MarkerTrajectories trajectories;
+  ExpectOneLineError(ReadTrc(path, &trajectories), path, "column 4 (Y of 'LASI') '1e308' is beyond +-1e9");
+}
+
+TEST(HostileInput, DuplicateMarkerLabels) {
+  MarkerTrajectories trajectories;
+  const std::string trc = Bad("bad_duplicate_labels.trc");
+  ExpectOneLineError(ReadTrc(trc, &trajectories), trc, "marker label 'LBWT' is used twice (markers 1 and 3)");
+  const std::string c3d = Bad("bad_c3d_duplicate_labels.c3d");
+  ExpectOneLineError(ReadC3d(c3d, &trajectories), c3d, "marker label 'LBWT' is used twice");
+}
+
+TEST(HostileInput, C3dPointRateNanZeroNegative) {
+  for (const char* name : {"bad_c3d_rate_nan.c3d", "bad_c3d_rate_zero.c3d", "bad_c3d_rate_negative.c3d"}) {
+    const std::string path = Bad(name);
+    MarkerTrajectories trajectories;
+    ExpectOneLineError(ReadC3d(path, &trajectories), path, "POINT:RATE");
+  }
+}
+
+TEST(HostileInput, C3dCoordinateBeyondSaneMagnitude) {
+  MarkerTrajectories trajectories({"A"}, 1);
+  trajectories.frame_rate = 100;
+  trajectories.unit = LengthUnitFromName("mm");
+  trajectories.SetSample(0, 0, Eigen::Vector3d(1e30, 0, 0));
+  std::string bytes;
+  ASSERT_TRUE(EncodeC3d(trajectories, "huge.c3d", &bytes).ok());
+  MarkerTrajectories back;
+  ExpectOneLineError(ParseC3d(bytes, "huge.c3d", &back), "huge.c3d", "beyond +-1e9");
+}
+
+TEST(HostileInput, NamesInMessagesAreEscapedAndCut) {
+  Skeleton skeleton;
+  Motion motion;
+  EXPECT_EQ(QuoteToken("a\nb"), "'a\\x0ab'");
+  EXPECT_EQ(QuoteToken(std::string(20 << 20, 'J')), "'" + std::string(64, 'J') + "...'");
+  for (const char* name : {"bad_markerset_newline_name.json", "bad_markerset_long_name.json"}) {
+    const std::string path = Bad(name);
+    std::string bvh =
+        "HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 0\nCHANNELS 3 Xposition Yposition Zposition\nEnd Site\n{\n"
+        "OFFSET 0 1 0\n}\n}\nMOTION\nFrames: 1\nFrame Time: 0.01\n0 0 0\n";
+    ASSERT_TRUE(ParseBvh(bvh, "tiny.bvh", &skeleton, &motion).ok());
+    MarkerSet markers;
+    ExpectOneLineError(ReadMarkerSet(path, skeleton, &markers), path, "unknown joint '");
+  }
+}
+
+}  // namespace
+}  // namespace mocapsolve
