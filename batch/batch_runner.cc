@@ -162,7 +162,7 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
       }
     }
     state.config_path = temp_folder + "/" + take.name + ".json";
-    s = WriteText(state.config_path, OptionsJson(take.options) + "\n");
+    s = WriteText(state.config_path, state.key.given_json + "\n");
     if (!s.ok()) {
       finish(i, failed_record(i, s.message()), true);
       own += Since(t0);
@@ -193,6 +193,7 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
     record.program_version = options.version;
     record.inputs = state.key.inputs;
     record.options_json = state.key.options_json;
+    record.given_json = state.key.given_json;
     record.exit = worker.ExitName();
     record.exit_code = worker.exit_code;
     record.wall_seconds = worker.seconds;

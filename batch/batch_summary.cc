@@ -1,5 +1,9 @@
 #include "batch/batch_summary.h"
 
+#include <dirent.h>
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -73,9 +77,73 @@ std::string FormatSummaryCsv(const BatchResult& result) {
   return csv;
 }
 
-Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version) {
-  Status status = WriteFileAtomically(out_dir + "/summary.json", FormatSummaryJson(result, version));
-  return status.ok() ? WriteFileAtomically(out_dir + "/summary.csv", FormatSummaryCsv(result)) : status;
+Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version,
+                         const std::string& base) {
+  Status status = WriteFileAtomically(out_dir + "/" + base + ".json", FormatSummaryJson(result, version));
+  return status.ok() ? WriteFileAtomically(out_dir + "/" + base + ".csv", FormatSummaryCsv(result)) : status;
+}
+
+Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest, BatchResult* result) {
+  std::vector<std::string> names;
+  if (manifest != nullptr) {
+    for (const BatchTake& take : manifest->takes) names.push_back(take.name);
+  } else {
+    DIR* dir = ::opendir(out_dir.c_str());
+    if (dir == nullptr) return Status::Error(out_dir + ": cannot read the folder");
+    while (const dirent* entry = ::readdir(dir)) {
+      const std::string name = entry->d_name;
+      if (name[0] == '.') continue;
+      struct stat st;
+      if (::stat(RecordPath(out_dir + "/" + name).c_str(), &st) == 0) names.push_back(name);
+    }
+    ::closedir(dir);
+    std::sort(names.begin(), names.end());
+    if (names.empty()) return Status::Error(out_dir + ": no take records (*/record.json) to merge");
+  }
+  BatchResult out;
+  for (const std::string& name : names) {
+    TakeOutcome outcome;
+    TakeRecord& r = outcome.record;
+    const std::string path = RecordPath(out_dir + "/" + name);
+    struct stat st;
+    if (::stat(path.c_str(), &st) != 0) {
+      r.take = name;
+      r.status = "missing";
+      r.exit = "not run";
+      r.exit_code = -1;
+      r.error = "no record: the take has not run (or its shard was killed)";
+    } else {
+      Status status = ReadTakeRecord(path, &r);
+      if (!status.ok()) return status;
+    }
+    (r.status == "done" ? out.done : out.failed) += 1;
+    ++out.skipped;
+    out.takes.push_back(std::move(outcome));
+  }
+  *result = std::move(out);
+  return Status::Ok();
+}
+
+Status ParseShard(const std::string& text, int* index, int* count) {
+  *index = 0;
+  *count = 1;
+  if (text.empty()) return Status::Ok();
+  int i = -1, n = -1;
+  char rest = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &i, &n, &rest) != 2 || n < 1 || i < 0 || i >= n) {
+    return Status::Error("--shard=" + text + ": expected i/n with 0 <= i < n");
+  }
+  *index = i;
+  *count = n;
+  return Status::Ok();
+}
+
+void KeepShard(int index, int count, BatchManifest* manifest) {
+  std::vector<BatchTake> kept;
+  for (size_t p = 0; p < manifest->takes.size(); ++p) {
+    if (static_cast<int>(p % count) == index) kept.push_back(std::move(manifest->takes[p]));
+  }
+  manifest->takes = std::move(kept);
 }
 
 }  // namespace mocapsolve

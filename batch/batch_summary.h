@@ -19,8 +19,19 @@ namespace mocapsolve {
 std::string FormatSummaryJson(const BatchResult& result, const std::string& version);
 std::string FormatSummaryCsv(const BatchResult& result);
 
-// Both files, atomically.
-Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version);
+// Both files, atomically: DIR/<base>.json and DIR/<base>.csv.
+Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version,
+                         const std::string& base = "summary");
+
+// The result of the takes' records alone (batch --merge, after the shards of a batch ran
+// apart): with a manifest, its takes in order, a take without a record listed as
+// "missing"; without one (nullptr), every DIR/*/record.json in name order.
+Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest, BatchResult* result);
+
+// Shard `index` of `count` (0 <= index < count): the takes whose manifest position p has
+// p % count == index. "i/n" parsed by ParseShard; "" = the whole batch (0/1).
+Status ParseShard(const std::string& text, int* index, int* count);
+void KeepShard(int index, int count, BatchManifest* manifest);
 
 }  // namespace mocapsolve
 

@@ -110,9 +110,10 @@ Status FinishTake(const BatchOptions& pipeline_options, const BatchOptions& defa
   for (const auto& [field, path] : files) {
     if (::access(path.c_str(), R_OK) != 0) return Status::Error(where + ": " + field + ": " + path + ": cannot read the file");
   }
+  take->given = defaults;
+  for (const auto& [key, value] : take->overrides) SetOption(&take->given, key, value);
   take->options = pipeline_options;
-  for (const auto& [key, value] : defaults) SetOption(&take->options, key, value);
-  for (const auto& [key, value] : take->overrides) SetOption(&take->options, key, value);
+  for (const auto& [key, value] : take->given) SetOption(&take->options, key, value);
   return Status::Ok();
 }
 

@@ -38,7 +38,13 @@ struct BatchTake {
   std::string subject;
   std::vector<std::string> characters;
   BatchOptions overrides;               // The options the take itself gives.
-  BatchOptions options;                 // Every pipeline option, resolved.
+  BatchOptions given;                   // The manifest's defaults with the take's overrides: what the
+                                        // worker's --config holds. (A config file sets flags, and the
+                                        // pipeline treats some set flags unlike their defaults:
+                                        // --solver given means that solver for repair and retarget,
+                                        // not given means DLS; so only given options are passed on.)
+  BatchOptions options;                 // Every pipeline option, resolved (the pipeline's defaults
+                                        // under the given ones), for the record.
 };
 
 struct BatchManifest {

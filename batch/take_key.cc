@@ -68,6 +68,7 @@ Status ComputeTakeKey(const BatchTake& take, const std::string& version, TakeKey
   if (!skeleton.empty()) result.inputs.push_back({"skeleton", skeleton});
   for (const std::string& c : take.characters) result.inputs.push_back({"character", c});
   result.options_json = OptionsJson(take.options);
+  result.given_json = OptionsJson(take.given);
   result.version = version;
   Fnv1a64 fnv;
   fnv.Update("mocapsolve.batch_key 1");
@@ -75,6 +76,8 @@ Status ComputeTakeKey(const BatchTake& take, const std::string& version, TakeKey
   fnv.Update(version);
   fnv.Update(std::string_view("\0", 1));
   fnv.Update(result.options_json);
+  fnv.Update(std::string_view("\0", 1));
+  fnv.Update(result.given_json);
   for (KeyInput& input : result.inputs) {
     Status status = HashFile(input.path, &input.hash);
     if (!status.ok()) return Status::Error(input.role + ": " + status.message());

@@ -1,8 +1,8 @@
 // A take's key: what decides whether a finished take must be redone.
 //
 //   key = FNV-1a 64 over ("mocapsolve.batch_key 1", the program version, the resolved
-//         options as their config-file JSON text, and for each input in order its role
-//         and the FNV-1a 64 hash of its bytes)
+//         options and the given ones (BatchTake::given) as their config-file JSON text,
+//         and for each input in order its role and the FNV-1a 64 hash of its bytes)
 // with the inputs: the marker file, the subject file, the subject's skeleton file when
 // the subject names one (resolved against the subject's folder), and each character file.
 // Paths do not enter the key, only contents, so moving the data does not redo a take.
@@ -46,6 +46,7 @@ struct KeyInput {
 struct TakeKey {
   std::vector<KeyInput> inputs;
   std::string options_json;  // OptionsJson(take.options).
+  std::string given_json;    // OptionsJson(take.given): the worker's config.
   std::string version;
   uint64_t key = 0;
 };

@@ -65,6 +65,7 @@ std::string FormatTakeRecord(const TakeRecord& r) {
   o.Add("format", "mocapsolve.batch_record").Add("version", 1).Add("take", r.take).Add("key", r.key)
       .Add("program_version", r.program_version).Add("inputs", inputs)
       .Add("options", JsonValue::Raw(r.options_json.empty() ? "{}" : r.options_json))
+      .Add("given_options", JsonValue::Raw(r.given_json.empty() ? "{}" : r.given_json))
       .Add("status", r.status).Add("exit", r.exit).Add("exit_code", r.exit_code).Add("error", r.error)
       .Add("frames", f.frames).Add("wall_seconds", r.wall_seconds).Add("timings", timings)
       .Add("naive_rms_mm", f.naive_rms_mm).Add("repaired_rms_mm", f.repaired_rms_mm)

@@ -4,7 +4,7 @@
 //   {"format": "mocapsolve.batch_record", "version": 1, "take": "02_05",
 //    "key": "<16 hex>", "program_version": "0.1.0",
 //    "inputs": [{"role": "markers", "path": "...", "hash": "<16 hex>"}, ...],
-//    "options": {...the resolved pipeline options...},
+//    "options": {...the resolved pipeline options...}, "given_options": {...the worker's config...},
 //    "status": "done" | "failed", "exit": "0" | "1" | "3" | "SIGABRT" | "timeout" | ...,
 //    "exit_code": 0, "error": "the worker's last stderr line",
 //    "frames": 60, "wall_seconds": 1.2, "timings": [{"stage": "...", "seconds": 0.1}, ...],
@@ -46,6 +46,7 @@ struct TakeRecord {
   std::string program_version;
   std::vector<KeyInput> inputs;
   std::string options_json;
+  std::string given_json;
   std::string status;                // "done" or "failed".
   std::string exit;                  // "0", "3", "1", a signal name, "timeout".
   int exit_code = 0;                 // The worker's exit code; 128 + signal for a signal; -1 not run.

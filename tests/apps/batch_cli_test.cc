@@ -245,6 +245,38 @@ TEST_F(BatchCli, TimeoutAndKilledBatch) {
   EXPECT_THAT(output, HasSubstr("(" + std::to_string(4 - recorded) + " ran, " + std::to_string(recorded) + " skipped"));
 }
 
+TEST_F(BatchCli, ShardsAndMerge) {
+  const std::string manifest = Manifest("{\"markers\": \"t1.c3d\"}, {\"markers\": \"t2.c3d\"}, "
+                                        "{\"markers\": \"t3.c3d\"}");
+  const std::string out = testing::TempPath("shards");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("batch --quiet --shard=1/2 --manifest=" + manifest + " --out_dir=" + out, &output), 0)
+      << output;
+  EXPECT_THAT(output, HasSubstr("1 done, 0 failed"));
+  EXPECT_TRUE(testing::FileExists(out + "/summary.shard1of2.json"));
+  EXPECT_TRUE(testing::FileExists(out + "/t2/record.json"));
+  EXPECT_FALSE(testing::FileExists(out + "/t1"));
+  // Merged before shard 0 ran: t1 and t3 missing.
+  EXPECT_EQ(testing::RunCli("batch --merge --manifest=" + manifest + " --out_dir=" + out, &output), 2) << output;
+  EXPECT_EQ(Summary(out)["t1"].status, "missing");
+  // The Slurm job array's variables pick the shard.
+  ::setenv("SLURM_ARRAY_TASK_ID", "0", 1);
+  ::setenv("SLURM_ARRAY_TASK_COUNT", "2", 1);
+  const int code = testing::RunCli("batch --quiet --manifest=" + manifest + " --out_dir=" + out, &output);
+  ::unsetenv("SLURM_ARRAY_TASK_ID");
+  ::unsetenv("SLURM_ARRAY_TASK_COUNT");
+  ASSERT_EQ(code, 0) << output;
+  EXPECT_THAT(output, HasSubstr("2 done, 0 failed"));
+  EXPECT_TRUE(testing::FileExists(out + "/summary.shard0of2.json"));
+  ASSERT_EQ(testing::RunCli("batch --merge --out_dir=" + out, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("merged 3 take records: 3 done, 0 failed"));
+  const auto rows = Summary(out);
+  ASSERT_EQ(rows.size(), 3u);
+  for (const auto& [name, row] : rows) EXPECT_EQ(row.status, "done") << name;
+  EXPECT_EQ(testing::RunCli("batch --shard=2/2 --manifest=" + manifest + " --out_dir=" + out, &output), 1);
+  EXPECT_THAT(output, HasSubstr("--shard=2/2"));
+}
+
 TEST_F(BatchCli, BadManifestsNameFileAndField) {
   const std::string out = testing::TempPath("bad");
   std::string output;

@@ -69,6 +69,10 @@ TEST_F(ManifestTest, DefaultsOverridesAndRelativePaths) {
   EXPECT_EQ(Option(b, "filter_levels")->number, 2);
   EXPECT_EQ(Option(b, "reference")->string, "plain");
   EXPECT_THAT(OptionsJson(b.options), HasSubstr("\"reference\": \"plain\""));
+  // The worker's config holds the given options only (the pipeline treats a set flag
+  // unlike its default in places: --solver).
+  EXPECT_EQ(OptionsJson(a.given), "{\"filter_levels\": 1}");
+  EXPECT_EQ(OptionsJson(b.given), "{\"filter_levels\": 2, \"reference\": \"plain\"}");
   // Written out and read back: the same takes.
   WriteFile(dir_ + "/M2.json", FormatManifest(manifest, pipeline_));
   BatchManifest again;
