@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 
 #include <dirent.h>
 
@@ -84,6 +85,7 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
   out.takes.resize(n);
   std::vector<TakeState> states(n);
   std::vector<WorkerJob> work(n);
+  std::map<std::string, uint64_t> hash_cache;  // Shared files (subject, characters) hashed once.
   double own = 0.0;
   double ran_seconds = 0.0;
   int ran_ended = 0, running = 0;
@@ -133,7 +135,7 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
     const BatchTake& take = manifest.takes[i];
     const std::string dir = take_dir(i);
     TakeState& state = states[i];
-    Status s = ComputeTakeKey(take, options.version, &state.key);
+    Status s = ComputeTakeKey(take, options.version, &state.key, &hash_cache);
     if (!s.ok()) {
       // An unreadable input: failed before any worker; no record (nothing to resume).
       finish(i, failed_record(i, s.message()), true);

@@ -60,7 +60,8 @@ std::string SubjectSkeletonPath(const std::string& subject_path) {
 
 }  // namespace
 
-Status ComputeTakeKey(const BatchTake& take, const std::string& version, TakeKey* key) {
+Status ComputeTakeKey(const BatchTake& take, const std::string& version, TakeKey* key,
+                      std::map<std::string, uint64_t>* cache) {
   TakeKey result;
   result.inputs.push_back({"markers", take.markers});
   result.inputs.push_back({"subject", take.subject});
@@ -79,8 +80,14 @@ Status ComputeTakeKey(const BatchTake& take, const std::string& version, TakeKey
   fnv.Update(std::string_view("\0", 1));
   fnv.Update(result.given_json);
   for (KeyInput& input : result.inputs) {
-    Status status = HashFile(input.path, &input.hash);
-    if (!status.ok()) return Status::Error(input.role + ": " + status.message());
+    const auto cached = cache != nullptr ? cache->find(input.path) : std::map<std::string, uint64_t>::iterator();
+    if (cache != nullptr && cached != cache->end()) {
+      input.hash = cached->second;
+    } else {
+      Status status = HashFile(input.path, &input.hash);
+      if (!status.ok()) return Status::Error(input.role + ": " + status.message());
+      if (cache != nullptr) (*cache)[input.path] = input.hash;
+    }
     fnv.Update(std::string_view("\0", 1));
     fnv.Update(input.role);
     fnv.Update(HexHash(input.hash));

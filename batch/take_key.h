@@ -13,6 +13,7 @@
 #define MOCAPSOLVE_BATCH_TAKE_KEY_H_
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,7 +52,10 @@ struct TakeKey {
   uint64_t key = 0;
 };
 
-Status ComputeTakeKey(const BatchTake& take, const std::string& version, TakeKey* key);
+// `cache` (optional) maps a path to its hash for the length of one batch run: the
+// subject and character files every take shares are read once.
+Status ComputeTakeKey(const BatchTake& take, const std::string& version, TakeKey* key,
+                      std::map<std::string, uint64_t>* cache = nullptr);
 
 }  // namespace mocapsolve
 
