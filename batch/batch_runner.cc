@@ -1,6 +1,7 @@
 #include "batch/batch_runner.h"
 
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -24,14 +25,18 @@ bool FileExists(const std::string& path) {
   return ::stat(path.c_str(), &st) == 0;
 }
 
-// The files of a take folder besides the record, sorted.
-std::vector<std::string> FolderFiles(const std::string& folder) {
+// The files of a take folder besides the record modified at or after `since` (seconds
+// since the epoch; files an earlier, unrecorded run left are not the take's), sorted.
+std::vector<std::string> FolderFiles(const std::string& folder, double since) {
   std::vector<std::string> names;
   DIR* dir = ::opendir(folder.c_str());
   if (dir == nullptr) return names;
   while (const dirent* entry = ::readdir(dir)) {
     const std::string name = entry->d_name;
     if (name == "." || name == ".." || name == "record.json") continue;
+    struct stat st;
+    if (::stat((folder + "/" + name).c_str(), &st) != 0) continue;
+    if (st.st_mtim.tv_sec + 1e-9 * st.st_mtim.tv_nsec < since) continue;
     names.push_back(name);
   }
   ::closedir(dir);
@@ -49,7 +54,14 @@ Status WriteText(const std::string& path, const std::string& text) {
 struct TakeState {
   TakeKey key;
   std::string config_path;
+  double started = 0.0;  // Seconds since the epoch.
 };
+
+double Now() {
+  struct timespec now;
+  ::clock_gettime(CLOCK_REALTIME, &now);
+  return now.tv_sec + 1e-9 * now.tv_nsec;
+}
 
 }  // namespace
 
@@ -179,6 +191,7 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
       for (const std::string& c : take.characters) list += (list.empty() ? "" : ",") + c;
       argv.push_back("--character=" + list);
     }
+    state.started = Now();
     ++running;
     own += Since(t0);
     return true;
@@ -216,7 +229,8 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
         record.status = "failed";
         record.error = s.message();
       }
-      record.outputs = FolderFiles(dir);
+      // Less a second: file systems with coarse timestamps.
+      record.outputs = FolderFiles(dir, state.started - 1.0);
     }
     // A worker that produced nothing: its folder is made for the record alone.
     Status s = MakeFolders(dir);

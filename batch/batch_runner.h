@@ -12,7 +12,8 @@
 //      --out_dir=DIR/<take> --config=CONFIG`; the pipeline publishes its outputs
 //      together (or none);
 //   4. when it ends, its figures are read from DIR/<take>/report.json and the record is
-//      written, last, atomically.
+//      written, last, atomically, listing the outputs the worker wrote (the folder's
+//      files modified since it started).
 // So killing the batch at any moment loses at most the takes in flight (their workers
 // die with it) and leaves no partial output: a take's folder has a record matching its
 // outputs, or no record (it is redone).

@@ -142,8 +142,13 @@ TEST_F(BatchCli, RunsResumesRedoesChangedAndForced) {
   ASSERT_EQ(std::remove((out + "/t1/solved.bvh").c_str()), 0);
   ASSERT_EQ(testing::RunCli(run, &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("(1 ran, 3 skipped"));
+  // A file an earlier run left (older than the take's run) is not listed as its output.
+  WriteFile(out + "/t3/stale.glb", "old");
+  ASSERT_EQ(std::system(("touch -d @1000000000 " + out + "/t3/stale.glb").c_str()), 0);
   ASSERT_EQ(testing::RunCli(run + " --force", &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("(4 ran, 0 skipped"));
+  const std::string record = testing::ReadTextFile(out + "/t3/record.json");
+  EXPECT_THAT(record, HasSubstr("\"outputs\": [\"repaired.c3d\", \"report.json\", \"solved.bvh\"]"));
 }
 
 TEST_F(BatchCli, FaultsFailOnlyTheirTake) {
