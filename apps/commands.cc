@@ -22,9 +22,10 @@ extern const Command kDistanceCommand;
 extern const Command kPropagateCommand;
 extern const Command kRetargetCommand;
 extern const Command kPipelineCommand;
+extern const Command kBatchCommand;
 
 const std::vector<Command>& AllCommands() {
-  static const std::vector<Command> commands = {kPipelineCommand, kInfoCommand, kConvertCommand, kFkCommand,
+  static const std::vector<Command> commands = {kPipelineCommand, kBatchCommand, kInfoCommand, kConvertCommand, kFkCommand,
                                                 kGenerateCommand, kBenchCommand,
                                                 kSolveCommand, kRepairCommand, kCorruptCommand,
                                                 kEvaluateCommand,

@@ -1,0 +1,199 @@
+// mocapsolve batch: `pipeline` over many takes, each in its own worker process, resumable
+// (batch/batch_runner.h); the summary of every take in DIR/summary.json and .csv.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <cstdlib>
+#include <thread>
+
+#include <gflags/gflags.h>
+
+#include "apps/command.h"
+#include "apps/common_flags.h"
+#include "apps/config_flags.h"
+#include "batch/batch_runner.h"
+#include "batch/batch_summary.h"
+#include "batch/manifest.h"
+#include "io/atomic_file.h"
+
+DECLARE_string(subject);    // apps/main.cc
+DECLARE_string(character);  // apps/pipeline_command.cc
+DECLARE_string(out_dir);    // apps/pipeline_command.cc
+
+DEFINE_string(manifest, "", "Batch manifest (.json): {\"defaults\": {...}, \"takes\": [{\"name\", \"markers\", "
+              "\"subject\", \"characters\", ...options}]}; relative paths are relative to it.");
+DEFINE_string(markers_glob, "", "Instead of --manifest: one take per marker file matching this pattern "
+              "(quote it), all with --subject and --character.");
+DEFINE_string(write_manifest, "", "Write the batch's manifest (e.g. the one --markers_glob built) to this "
+              "file.");
+DEFINE_int32(jobs, 0, "Takes run at the same time, each in its own process; 0 = the number of cores.");
+DEFINE_double(take_timeout, 0.0, "A take running longer than this (seconds) is killed and listed as "
+              "failed ('timeout'); 0 = no limit.");
+DEFINE_int32(take_memory_mb, 0, "Address-space limit of each take's process (MB, RLIMIT_AS); a take "
+             "exceeding it fails; 0 = no limit.");
+DEFINE_bool(force, false, "Redo every take, finished or not.");
+DEFINE_string(shard, "", "Run shard i/n of the batch only (0 <= i < n): the takes at manifest positions p "
+              "with p % n == i; its summary is DIR/summary.shard<i>of<n>.json/.csv (then `batch --merge`). "
+              "Default under a Slurm job array: SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN / "
+              "SLURM_ARRAY_TASK_COUNT.");
+DEFINE_bool(merge, false, "Build DIR/summary.json/.csv from the takes' records alone (after the shards "
+            "ran): the manifest's takes (a take without a record is 'missing'), or without --manifest every "
+            "DIR/*/record.json.");
+DEFINE_bool(retry_failed, false, "Redo the takes that failed in an earlier run (otherwise they are "
+            "skipped and stay listed as failed).");
+
+namespace mocapsolve {
+namespace {
+
+// --shard, or the Slurm job array's task.
+Status ShardFromFlagOrSlurm(int* index, int* count) {
+  std::string text = FLAGS_shard;
+  const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+  const char* tasks = std::getenv("SLURM_ARRAY_TASK_COUNT");
+  if (text.empty() && id != nullptr && tasks != nullptr) {
+    const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+    text = std::to_string(std::atoi(id) - (min != nullptr ? std::atoi(min) : 0)) + "/" + tasks;
+  }
+  return ParseShard(text, index, count);
+}
+
+void PrintFailures(const BatchResult& result) {
+  for (const TakeOutcome& t : result.takes) {
+    if (t.record.status == "done") continue;
+    std::printf("  %s: %s (exit %s): %s\n", t.record.take.c_str(), t.record.status.c_str(), t.record.exit.c_str(),
+                t.record.error.c_str());
+  }
+}
+
+Status RunBatchCommand(const std::vector<std::string>& arguments) {
+  if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  if (FLAGS_merge && FLAGS_manifest.empty()) {
+    if (FLAGS_out_dir.empty()) return Status::Error("--merge needs --out_dir");
+    BatchResult result;
+    Status status = CollectRecords(FLAGS_out_dir, nullptr, &result);
+    if (status.ok()) status = WriteBatchSummary(FLAGS_out_dir, result, Version());
+    if (!status.ok()) return status;
+    std::printf("merged %zu take records: %d done, %d failed\n", result.takes.size(), result.done, result.failed);
+    PrintFailures(result);
+    if (result.failed > 0) SetExitCodeOnSuccess(2);
+    return Status::Ok();
+  }
+  if (FLAGS_manifest.empty() == FLAGS_markers_glob.empty()) {
+    return Status::Error("give either --manifest or --markers_glob (with --subject)");
+  }
+  if (FLAGS_out_dir.empty() && FLAGS_write_manifest.empty()) return Status::Error("--out_dir is required");
+  if (FLAGS_take_timeout < 0 || FLAGS_take_memory_mb < 0 || FLAGS_jobs < 0) {
+    return Status::Error("--jobs, --take_timeout and --take_memory_mb must not be negative");
+  }
+  BatchRunOptions options;
+  options.executable = SelfExecutable();
+  options.version = Version();
+  // The pipeline's own options and defaults: the keys a manifest may hold.
+  std::string config;
+  Status status = RunAndCapture({options.executable, "pipeline", "--print_config"}, &config);
+  BatchOptions pipeline_options;
+  if (status.ok()) status = ParsePipelineOptions(config, &pipeline_options);
+  if (!status.ok()) return status;
+
+  BatchManifest manifest;
+  if (!FLAGS_manifest.empty()) {
+    if (!FLAGS_subject.empty() || !FLAGS_character.empty()) {
+      return Status::Error("--subject and --character go with --markers_glob; a manifest names its own");
+    }
+    status = ReadManifest(FLAGS_manifest, pipeline_options, &manifest);
+  } else {
+    status = ManifestFromGlob(FLAGS_markers_glob, FLAGS_subject, SplitFlagNames(FLAGS_character), pipeline_options,
+                              &manifest);
+  }
+  if (!status.ok()) return status;
+  if (FLAGS_merge) {
+    if (FLAGS_out_dir.empty()) return Status::Error("--merge needs --out_dir");
+    BatchResult result;
+    status = CollectRecords(FLAGS_out_dir, &manifest, &result);
+    if (status.ok()) status = WriteBatchSummary(FLAGS_out_dir, result, Version());
+    if (!status.ok()) return status;
+    std::printf("merged %zu takes: %d done, %d failed or missing\n", result.takes.size(), result.done,
+                result.failed);
+    PrintFailures(result);
+    if (result.failed > 0) SetExitCodeOnSuccess(2);
+    return Status::Ok();
+  }
+  if (!FLAGS_write_manifest.empty()) {
+    status = WriteFileAtomically(FLAGS_write_manifest, FormatManifest(manifest, pipeline_options));
+    if (!status.ok()) return status;
+    if (FLAGS_out_dir.empty()) {
+      std::printf("wrote %s (%zu takes)\n", FLAGS_write_manifest.c_str(), manifest.takes.size());
+      return Status::Ok();
+    }
+  }
+
+  int shard = 0, shards = 1;
+  status = ShardFromFlagOrSlurm(&shard, &shards);
+  if (!status.ok()) return status;
+  KeepShard(shard, shards, &manifest);
+  const std::string summary_base =
+      shards == 1 ? "summary" : "summary.shard" + std::to_string(shard) + "of" + std::to_string(shards);
+  if (manifest.takes.empty()) {
+    std::printf("batch: shard %d/%d has no takes\n", shard, shards);
+    return Status::Ok();
+  }
+  options.out_dir = FLAGS_out_dir;
+  options.jobs = FLAGS_jobs > 0 ? FLAGS_jobs : std::max(1u, std::thread::hardware_concurrency());
+  options.limits.timeout_seconds = FLAGS_take_timeout;
+  options.limits.memory_mb = FLAGS_take_memory_mb;
+  options.force = FLAGS_force;
+  options.retry_failed = FLAGS_retry_failed;
+  const bool quiet = FLAGS_quiet;
+  BatchResult result;
+  auto shown = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  bool shown_last = false;
+  status = RunBatch(manifest, options, [quiet, &shown, &shown_last](const BatchProgress& p) {
+    const auto now = std::chrono::steady_clock::now();
+    const bool last = p.done + p.failed == p.takes && p.running == 0;
+    if (quiet || shown_last || (!last && now - shown < std::chrono::milliseconds(200))) return;
+    shown = now;
+    shown_last = last;
+    std::fprintf(stderr, "\rbatch: %d/%d takes: %d done, %d failed, %d running, %d skipped; %.0f frames/s, "
+                 "ETA %.0f s   ", p.done + p.failed, p.takes, p.done, p.failed, p.running, p.skipped,
+                 p.seconds > 0 ? p.frames / p.seconds : 0.0, p.eta_seconds);
+  }, &result);
+  if (!quiet) std::fprintf(stderr, "\n");
+  if (!status.ok()) return status;
+  status = WriteBatchSummary(options.out_dir, result, Version(), summary_base);
+  if (!status.ok()) return status;
+
+  std::printf("batch: %zu takes in %.2f s: %d done, %d failed (%d ran, %d skipped as unchanged); batch's own "
+              "work %.1f ms\n", result.takes.size(), result.seconds, result.done, result.failed, result.ran,
+              result.skipped, 1000.0 * result.own_seconds);
+  PrintFailures(result);
+  std::printf("wrote %s/%s.json and .csv\n", options.out_dir.c_str(), summary_base.c_str());
+  if (result.failed > 0) SetExitCodeOnSuccess(2);
+  return Status::Ok();
+}
+
+}  // namespace
+
+extern const Command kBatchCommand = {
+    "batch", "many takes through pipeline, each in its own process, resumable",
+    "mocapsolve batch --manifest=M.json --out_dir=DIR [--jobs=N] [--take_timeout=S] [--take_memory_mb=MB]\n"
+    "                 [--force | --retry_failed] [--shard=i/n]\n"
+    "       mocapsolve batch --merge --out_dir=DIR [--manifest=M.json]\n"
+    "       mocapsolve batch --markers_glob='takes/*.c3d' --subject=S.json [--character=C.glb] --out_dir=DIR\n"
+    "                 [--write_manifest=M.json]\n\n"
+    "Runs `mocapsolve pipeline` on every take of the manifest, each in its own worker process\n"
+    "(a crash, timeout or out-of-memory in one take does not stop the others), into\n"
+    "DIR/<take>/. A finished take's DIR/<take>/record.json keeps a key of its input files'\n"
+    "contents, options and program version: a re-run skips the takes whose key matches\n"
+    "(and whose outputs exist), redoes the changed ones, and redoes failed ones only with\n"
+    "--retry_failed. DIR/summary.json and DIR/summary.csv list every take (status, exit,\n"
+    "error line, frames, timings, marker RMS, repaired share, gate, retarget error, foot\n"
+    "skating). Killing the batch loses at most the takes in flight.\n"
+    "A batch split over machines (--shard=i/n, by default from a Slurm job array; see\n"
+    "scripts/slurm/submit.sh) writes DIR/summary.shard<i>of<n>.json; --merge then builds\n"
+    "DIR/summary.json from the takes' records.\n"
+    "Exit code: 0 every take done, 2 some failed (a failed quality gate counts), 1 bad\n"
+    "manifest or flags.",
+    __FILE__, RunBatchCommand, "subject,character,out_dir,quiet"};
+
+}  // namespace mocapsolve

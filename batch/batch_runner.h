@@ -1,0 +1,73 @@
+// A batch: every take of a manifest through `mocapsolve pipeline`, each in its own worker
+// process (worker_process.h), at most `jobs` at a time, resumable.
+//
+// For each take, in manifest order, when a worker slot is free:
+//   1. its key (take_key.h) is computed: input file contents, resolved options, version;
+//   2. with DIR/<take>/record.json holding the same key, the take is skipped when the
+//      record says "done" and its outputs exist, or says "failed" (unless retry_failed:
+//      then it is redone); force redoes every take;
+//   3. otherwise the old record (first) and the outputs it lists are removed, the take's
+//      options are written as a config file in a private temporary folder, and the
+//      worker runs `EXE pipeline --quiet --subject=S --markers=M [--character=C,...]
+//      --out_dir=DIR/<take> --config=CONFIG`; the pipeline publishes its outputs
+//      together (or none);
+//   4. when it ends, its figures are read from DIR/<take>/report.json and the record is
+//      written, last, atomically, listing the outputs the worker wrote (the folder's
+//      files modified since it started).
+// So killing the batch at any moment loses at most the takes in flight (their workers
+// die with it) and leaves no partial output: a take's folder has a record matching its
+// outputs, or no record (it is redone).
+// A take is "done" when the worker exited 0; "failed" otherwise, including exit 3 (its
+// quality gate failed; its outputs are kept).
+#ifndef MOCAPSOLVE_BATCH_BATCH_RUNNER_H_
+#define MOCAPSOLVE_BATCH_BATCH_RUNNER_H_
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "batch/manifest.h"
+#include "batch/take_record.h"
+#include "batch/worker_process.h"
+#include "kinematics/status.h"
+
+namespace mocapsolve {
+
+struct BatchRunOptions {
+  std::string out_dir;
+  int jobs = 1;
+  WorkerLimits limits;
+  bool force = false;
+  bool retry_failed = false;
+  std::string executable;   // The mocapsolve binary the workers run.
+  std::string version;      // The program version (part of every key).
+};
+
+struct TakeOutcome {
+  TakeRecord record;
+  bool ran = false;         // False: skipped, the record is the earlier run's.
+};
+
+struct BatchProgress {
+  int takes = 0, done = 0, failed = 0, skipped = 0, running = 0;
+  long frames = 0;          // Frames of the takes that ran and ended.
+  double seconds = 0.0;     // Since the batch started.
+  double eta_seconds = 0.0; // From the mean wall time of the takes that ran.
+};
+
+struct BatchResult {
+  std::vector<TakeOutcome> takes;   // In manifest order.
+  int done = 0, failed = 0, ran = 0, skipped = 0;
+  double seconds = 0.0;
+  double own_seconds = 0.0;         // The batch's own work: keys, records, configs, starts.
+};
+
+Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
+                const std::function<void(const BatchProgress&)>& progress, BatchResult* result);
+
+// mkdir -p.
+Status MakeFolders(const std::string& path);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_BATCH_BATCH_RUNNER_H_

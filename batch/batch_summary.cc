@@ -1,0 +1,149 @@
+#include "batch/batch_summary.h"
+
+#include <dirent.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "io/atomic_file.h"
+#include "io/json_writer.h"
+
+namespace mocapsolve {
+namespace {
+
+std::string CsvCell(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
+  return quoted + "\"";
+}
+
+std::string CsvNumber(double value) {
+  if (std::isnan(value)) return "";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.6g", value);
+  return text;
+}
+
+}  // namespace
+
+std::string FormatSummaryJson(const BatchResult& result, const std::string& version) {
+  std::vector<JsonObject> takes;
+  for (const TakeOutcome& outcome : result.takes) {
+    const TakeRecord& r = outcome.record;
+    const TakeFigures& f = r.figures;
+    std::vector<JsonObject> timings;
+    for (const StageTime& t : f.timings) {
+      JsonObject o;
+      o.Add("stage", t.stage).Add("seconds", t.seconds);
+      timings.push_back(o);
+    }
+    JsonObject o;
+    o.Add("take", r.take).Add("status", r.status).Add("ran", outcome.ran).Add("exit", r.exit)
+        .Add("exit_code", r.exit_code).Add("error", r.error).Add("frames", f.frames)
+        .Add("wall_seconds", r.wall_seconds).Add("timings", timings).Add("naive_rms_mm", f.naive_rms_mm)
+        .Add("repaired_rms_mm", f.repaired_rms_mm).Add("repaired_share", f.repaired_share)
+        .Add("gate_pass", f.gate_pass < 0 ? JsonValue() : JsonValue(f.gate_pass == 1))
+        .Add("vertex_error", f.vertex_error).Add("foot_skating_cm_per_s", f.foot_skating_cm_s)
+        .Add("key", r.key);
+    takes.push_back(o);
+  }
+  JsonObject root;
+  root.Add("format", "mocapsolve.batch_summary").Add("version", 1).Add("program_version", version)
+      .Add("takes_total", static_cast<int>(result.takes.size())).Add("done", result.done)
+      .Add("failed", result.failed).Add("ran", result.ran).Add("skipped", result.skipped)
+      .Add("seconds", result.seconds).Add("batch_own_seconds", result.own_seconds).Add("takes", takes);
+  return root.ToString() + "\n";
+}
+
+std::string FormatSummaryCsv(const BatchResult& result) {
+  std::string csv =
+      "take,status,ran,exit,exit_code,error,frames,wall_seconds,stage_seconds,naive_rms_mm,repaired_rms_mm,"
+      "repaired_share,gate_pass,vertex_error,foot_skating_cm_per_s\n";
+  for (const TakeOutcome& outcome : result.takes) {
+    const TakeRecord& r = outcome.record;
+    const TakeFigures& f = r.figures;
+    std::string stages;
+    for (const StageTime& t : f.timings) stages += (stages.empty() ? "" : ";") + t.stage + "=" + CsvNumber(t.seconds);
+    csv += CsvCell(r.take) + "," + r.status + "," + (outcome.ran ? "1" : "0") + "," + CsvCell(r.exit) + "," +
+           std::to_string(r.exit_code) + "," + CsvCell(r.error) + "," + std::to_string(f.frames) + "," +
+           CsvNumber(r.wall_seconds) + "," + CsvCell(stages) + "," + CsvNumber(f.naive_rms_mm) + "," +
+           CsvNumber(f.repaired_rms_mm) + "," + CsvNumber(f.repaired_share) + "," +
+           (f.gate_pass < 0 ? "" : f.gate_pass ? "1" : "0") + "," + CsvNumber(f.vertex_error) + "," +
+           CsvNumber(f.foot_skating_cm_s) + "\n";
+  }
+  return csv;
+}
+
+Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version,
+                         const std::string& base) {
+  Status status = WriteFileAtomically(out_dir + "/" + base + ".json", FormatSummaryJson(result, version));
+  return status.ok() ? WriteFileAtomically(out_dir + "/" + base + ".csv", FormatSummaryCsv(result)) : status;
+}
+
+Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest, BatchResult* result) {
+  std::vector<std::string> names;
+  if (manifest != nullptr) {
+    for (const BatchTake& take : manifest->takes) names.push_back(take.name);
+  } else {
+    DIR* dir = ::opendir(out_dir.c_str());
+    if (dir == nullptr) return Status::Error(out_dir + ": cannot read the folder");
+    while (const dirent* entry = ::readdir(dir)) {
+      const std::string name = entry->d_name;
+      if (name[0] == '.') continue;
+      struct stat st;
+      if (::stat(RecordPath(out_dir + "/" + name).c_str(), &st) == 0) names.push_back(name);
+    }
+    ::closedir(dir);
+    std::sort(names.begin(), names.end());
+    if (names.empty()) return Status::Error(out_dir + ": no take records (*/record.json) to merge");
+  }
+  BatchResult out;
+  for (const std::string& name : names) {
+    TakeOutcome outcome;
+    TakeRecord& r = outcome.record;
+    const std::string path = RecordPath(out_dir + "/" + name);
+    struct stat st;
+    if (::stat(path.c_str(), &st) != 0) {
+      r.take = name;
+      r.status = "missing";
+      r.exit = "not run";
+      r.exit_code = -1;
+      r.error = "no record: the take has not run (or its shard was killed)";
+    } else {
+      Status status = ReadTakeRecord(path, &r);
+      if (!status.ok()) return status;
+    }
+    (r.status == "done" ? out.done : out.failed) += 1;
+    ++out.skipped;
+    out.takes.push_back(std::move(outcome));
+  }
+  *result = std::move(out);
+  return Status::Ok();
+}
+
+Status ParseShard(const std::string& text, int* index, int* count) {
+  *index = 0;
+  *count = 1;
+  if (text.empty()) return Status::Ok();
+  int i = -1, n = -1;
+  char rest = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &i, &n, &rest) != 2 || n < 1 || i < 0 || i >= n) {
+    return Status::Error("--shard=" + text + ": expected i/n with 0 <= i < n");
+  }
+  *index = i;
+  *count = n;
+  return Status::Ok();
+}
+
+void KeepShard(int index, int count, BatchManifest* manifest) {
+  std::vector<BatchTake> kept;
+  for (size_t p = 0; p < manifest->takes.size(); ++p) {
+    if (static_cast<int>(p % count) == index) kept.push_back(std::move(manifest->takes[p]));
+  }
+  manifest->takes = std::move(kept);
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,304 @@
+// `mocapsolve batch` on small takes the project makes (the demo walk, 40 frames, markers
+// synthesized from it, a subject calibrated on it): a resumable batch, its faults (a
+// truncated file, a subject that does not fit, a crashing worker, a timeout, an
+// unwritable folder, a killed batch) and bad manifests.
+#include <dirent.h>
+#include <sys/stat.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "io/json_reader.h"
+#include "tests/test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+using ::testing::HasSubstr;
+
+void WriteFile(const std::string& path, const std::string& text) {
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  ASSERT_NE(file, nullptr) << path;
+  std::fputs(text.c_str(), file);
+  std::fclose(file);
+}
+
+std::vector<std::string> FolderFiles(const std::string& folder) {
+  std::vector<std::string> names;
+  DIR* dir = ::opendir(folder.c_str());
+  if (dir == nullptr) return names;
+  while (const dirent* entry = ::readdir(dir)) {
+    const std::string name = entry->d_name;
+    if (name != "." && name != "..") names.push_back(name);
+  }
+  ::closedir(dir);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// summary.json's takes by name: status, ran, exit, error.
+struct Row {
+  std::string status, exit, error;
+  bool ran = false;
+  int frames = 0;
+};
+std::map<std::string, Row> Summary(const std::string& dir) {
+  std::map<std::string, Row> rows;
+  JsonNode root;
+  const Status status = ReadJsonFile(dir + "/summary.json", &root);
+  EXPECT_TRUE(status.ok()) << status.message();
+  if (!status.ok()) return rows;
+  for (const JsonNode& take : root.Find("takes")->items) {
+    Row& row = rows[take.Find("take")->string];
+    row.status = take.Find("status")->string;
+    row.exit = take.Find("exit")->string;
+    row.error = take.Find("error")->string;
+    row.ran = take.Find("ran")->boolean;
+    row.frames = static_cast<int>(take.Find("frames")->number);
+  }
+  return rows;
+}
+
+class BatchCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = testing::TempPath("takes");
+    ASSERT_EQ(std::system(("mkdir -p " + dir_).c_str()), 0);
+    const std::string demo = dir_ + "/walk.bvh", markers = dir_ + "/walk.c3d";
+    std::string output;
+    ASSERT_EQ(testing::RunCli("generate --demo_out=" + demo + " --frames=40 --fps=30", &output), 0) << output;
+    ASSERT_EQ(testing::RunCli("markers --motion=" + demo + " --skeleton_units=cm --markerset=auto:3 --noise_mm=0.5 "
+                              "--seed=3 --out=" + markers, &output), 0) << output;
+    ASSERT_EQ(testing::RunCli("calibrate --quiet --motion=" + demo + " --skeleton_units=cm --markers=" + markers +
+                              " --attach=auto --out=" + dir_ + "/calibrated.json --out_subject=" + dir_ + "/S.json",
+                              &output), 0) << output;
+    for (const char* name : {"t1", "t2", "t3", "t4"}) {
+      ASSERT_EQ(std::system(("cp " + markers + " " + dir_ + "/" + name + ".c3d").c_str()), 0);
+    }
+  }
+  std::string Manifest(const std::string& takes) {
+    const std::string path = dir_ + "/M.json";
+    WriteFile(path, "{\"defaults\": {\"subject\": \"S.json\"},\n \"takes\": [" + takes + "]}\n");
+    return path;
+  }
+  std::string dir_;
+};
+
+TEST_F(BatchCli, RunsResumesRedoesChangedAndForced) {
+  const std::string out = testing::TempPath("out");
+  const std::string manifest = dir_ + "/M.json";
+  std::string output;
+  // The glob form writes the manifest; then the manifest form runs it.
+  ASSERT_EQ(testing::RunCli("batch --markers_glob='" + dir_ + "/t*.c3d' --subject=" + dir_ + "/S.json "
+                            "--write_manifest=" + manifest, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("4 takes"));
+  const std::string run = "batch --quiet --manifest=" + manifest + " --out_dir=" + out + " --jobs=2";
+  ASSERT_EQ(testing::RunCli(run, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("4 done, 0 failed (4 ran, 0 skipped"));
+  auto rows = Summary(out);
+  ASSERT_EQ(rows.size(), 4u);
+  for (const auto& [name, row] : rows) {
+    EXPECT_EQ(row.status, "done") << name << ": " << row.error;
+    EXPECT_EQ(row.frames, 40) << name;
+    EXPECT_TRUE(testing::FileExists(out + "/" + name + "/solved.bvh")) << name;
+    EXPECT_TRUE(testing::FileExists(out + "/" + name + "/record.json")) << name;
+  }
+  EXPECT_THAT(testing::ReadTextFile(out + "/summary.csv"), HasSubstr("t3,done,1,0,0,,40,"));
+  // Nothing to do.
+  ASSERT_EQ(testing::RunCli(run, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("4 done, 0 failed (0 ran, 4 skipped"));
+  // One input changed (a byte after the C3D's data): only that take again.
+  {
+    std::FILE* file = std::fopen((dir_ + "/t2.c3d").c_str(), "a");
+    std::fputc('\n', file);
+    std::fclose(file);
+  }
+  ASSERT_EQ(testing::RunCli(run, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("(1 ran, 3 skipped"));
+  rows = Summary(out);
+  EXPECT_TRUE(rows["t2"].ran);
+  EXPECT_FALSE(rows["t1"].ran);
+  // An option of one take changed: only that take.
+  {
+    std::string text = testing::ReadTextFile(manifest);
+    const size_t at = text.find("\"markers\": \"" + dir_ + "/t4.c3d\"");
+    ASSERT_NE(at, std::string::npos) << text;
+    text.insert(at, "\"filter_levels\": 1, ");
+    WriteFile(manifest, text);
+  }
+  ASSERT_EQ(testing::RunCli(run, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("(1 ran, 3 skipped"));
+  EXPECT_TRUE(Summary(out)["t4"].ran);
+  // A lost output: that take again.
+  ASSERT_EQ(std::remove((out + "/t1/solved.bvh").c_str()), 0);
+  ASSERT_EQ(testing::RunCli(run, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("(1 ran, 3 skipped"));
+  // A file an earlier run left (older than the take's run) is not listed as its output.
+  WriteFile(out + "/t3/stale.glb", "old");
+  ASSERT_EQ(std::system(("touch -d @1000000000 " + out + "/t3/stale.glb").c_str()), 0);
+  ASSERT_EQ(testing::RunCli(run + " --force", &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("(4 ran, 0 skipped"));
+  const std::string record = testing::ReadTextFile(out + "/t3/record.json");
+  EXPECT_THAT(record, HasSubstr("\"outputs\": [\"repaired.c3d\", \"report.json\", \"solved.bvh\"]"));
+}
+
+TEST_F(BatchCli, FaultsFailOnlyTheirTake) {
+  // A truncated C3D; a marker file whose labels the subject does not have; a worker that
+  // aborts; an output folder that is a file.
+  {
+    const std::string text = testing::ReadTextFile(dir_ + "/t1.c3d");
+    WriteFile(dir_ + "/truncated.c3d", text.substr(0, 3000));
+  }
+  WriteFile(dir_ + "/other.trc",
+            "PathFileType\t4\t(X/Y/Z)\tother.trc\n"
+            "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\tOrigDataRate\tOrigDataStartFrame\tOrigNumFrames\n"
+            "30\t30\t2\t1\tmm\t30\t1\t2\n"
+            "Frame#\tTime\tNOPE\t\t\n"
+            "\t\tX1\tY1\tZ1\n"
+            "1\t0\t1\t2\t3\n"
+            "2\t0.0333\t1\t2\t3\n");
+  const std::string out = testing::TempPath("faults");
+  ASSERT_EQ(std::system(("mkdir -p " + out).c_str()), 0);
+  WriteFile(out + "/unwritable", "a file where the take's folder should be");
+  const std::string manifest = Manifest(
+      "{\"name\": \"ok\", \"markers\": \"t1.c3d\"}, {\"name\": \"truncated\", \"markers\": \"truncated.c3d\"},\n"
+      "{\"name\": \"mismatch\", \"markers\": \"other.trc\"}, {\"name\": \"crash\", \"markers\": \"t2.c3d\"},\n"
+      "{\"name\": \"unwritable\", \"markers\": \"t3.c3d\"}, {\"name\": \"gate\", \"markers\": \"t4.c3d\", "
+      "\"gate_repaired_rms_mm\": 0.0001}");
+  std::string output;
+  ::setenv("MOCAPSOLVE_TEST_CRASH_TAKE", "crash", 1);
+  const int code = testing::RunCli("batch --quiet --manifest=" + manifest + " --out_dir=" + out + " --jobs=2", &output);
+  ::unsetenv("MOCAPSOLVE_TEST_CRASH_TAKE");
+  EXPECT_EQ(code, 2) << output;
+  auto rows = Summary(out);
+  ASSERT_EQ(rows.size(), 6u);
+  EXPECT_EQ(rows["ok"].status, "done");
+  EXPECT_EQ(rows["truncated"].exit, "1");
+  EXPECT_THAT(rows["truncated"].error, HasSubstr("truncated.c3d"));
+  EXPECT_EQ(rows["mismatch"].exit, "1");
+  EXPECT_THAT(rows["mismatch"].error, HasSubstr("other.trc"));
+  EXPECT_EQ(rows["crash"].exit, "SIGABRT");
+  EXPECT_EQ(rows["unwritable"].exit, "1");
+  EXPECT_THAT(rows["unwritable"].error, HasSubstr("not a folder"));
+  EXPECT_EQ(rows["gate"].exit, "3");
+  EXPECT_THAT(rows["gate"].error, HasSubstr("quality gate failed"));
+  for (const auto& [name, row] : rows) {
+    if (name != "ok") {
+      EXPECT_EQ(row.status, "failed") << name;
+    }
+    EXPECT_EQ(row.error.find('\n'), std::string::npos) << name;
+  }
+  // Nothing partial: a failed take's folder holds its record alone (a failed gate keeps
+  // its outputs, as the pipeline does).
+  for (const char* name : {"truncated", "mismatch", "crash"}) {
+    EXPECT_EQ(FolderFiles(out + "/" + name), std::vector<std::string>{"record.json"}) << name;
+  }
+  EXPECT_EQ(FolderFiles(out + "/ok"),
+            (std::vector<std::string>{"record.json", "repaired.c3d", "report.json", "solved.bvh"}));
+  EXPECT_EQ(FolderFiles(out), (std::vector<std::string>{"crash", "gate", "mismatch", "ok", "summary.csv",
+                                                         "summary.json", "truncated", "unwritable"}));
+  // Failed takes stay failed on a re-run, and are redone with --retry_failed.
+  EXPECT_EQ(testing::RunCli("batch --quiet --manifest=" + manifest + " --out_dir=" + out, &output), 2) << output;
+  EXPECT_THAT(output, HasSubstr("1 done, 5 failed (1 ran, 5 skipped"));  // unwritable has no record.
+  EXPECT_EQ(testing::RunCli("batch --quiet --retry_failed --manifest=" + manifest + " --out_dir=" + out, &output),
+            2) << output;
+  rows = Summary(out);
+  EXPECT_EQ(rows["crash"].status, "done");
+  EXPECT_EQ(rows["truncated"].status, "failed");
+}
+
+TEST_F(BatchCli, TimeoutAndKilledBatch) {
+  const std::string manifest = Manifest("{\"markers\": \"t1.c3d\"}, {\"markers\": \"t2.c3d\"}, "
+                                        "{\"markers\": \"t3.c3d\"}, {\"markers\": \"t4.c3d\"}");
+  const std::string out = testing::TempPath("timeout");
+  std::string output;
+  EXPECT_EQ(testing::RunCli("batch --quiet --take_timeout=0.01 --manifest=" + manifest + " --out_dir=" + out,
+                            &output), 2) << output;
+  for (const auto& [name, row] : Summary(out)) {
+    EXPECT_EQ(row.exit, "timeout") << name;
+    EXPECT_THAT(row.error, HasSubstr("timed out after 0.01 s"));
+    EXPECT_EQ(FolderFiles(out + "/" + name), std::vector<std::string>{"record.json"}) << name;
+  }
+  // A batch killed (SIGKILL) while takes run: every take folder has a record with its
+  // outputs, or no record; no temporary files; the next run finishes the rest.
+  const std::string killed = testing::TempPath("killed");
+  const std::string command = std::string(MOCAPSOLVE_CLI) + " batch --quiet --jobs=2 --manifest=" + manifest +
+                              " --out_dir=" + killed + " >/dev/null 2>&1 & pid=$!; sleep 0.45; kill -9 $pid; wait $pid";
+  std::system(command.c_str());
+  ::usleep(200000);  // The workers die with the batch (PR_SET_PDEATHSIG).
+  int recorded = 0;
+  for (const std::string& take : FolderFiles(killed)) {
+    const std::vector<std::string> files = FolderFiles(killed + "/" + take);
+    for (const std::string& file : files) EXPECT_EQ(file.find("tmp"), std::string::npos) << take << "/" << file;
+    if (std::find(files.begin(), files.end(), "record.json") != files.end()) {
+      ++recorded;
+      EXPECT_EQ(files.size(), 4u) << take;
+    }
+  }
+  EXPECT_FALSE(testing::FileExists(killed + "/summary.json"));
+  ASSERT_EQ(testing::RunCli("batch --quiet --jobs=2 --manifest=" + manifest + " --out_dir=" + killed, &output), 0)
+      << output;
+  EXPECT_THAT(output, HasSubstr("(" + std::to_string(4 - recorded) + " ran, " + std::to_string(recorded) + " skipped"));
+}
+
+TEST_F(BatchCli, ShardsAndMerge) {
+  const std::string manifest = Manifest("{\"markers\": \"t1.c3d\"}, {\"markers\": \"t2.c3d\"}, "
+                                        "{\"markers\": \"t3.c3d\"}");
+  const std::string out = testing::TempPath("shards");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("batch --quiet --shard=1/2 --manifest=" + manifest + " --out_dir=" + out, &output), 0)
+      << output;
+  EXPECT_THAT(output, HasSubstr("1 done, 0 failed"));
+  EXPECT_TRUE(testing::FileExists(out + "/summary.shard1of2.json"));
+  EXPECT_TRUE(testing::FileExists(out + "/t2/record.json"));
+  EXPECT_FALSE(testing::FileExists(out + "/t1"));
+  // Merged before shard 0 ran: t1 and t3 missing.
+  EXPECT_EQ(testing::RunCli("batch --merge --manifest=" + manifest + " --out_dir=" + out, &output), 2) << output;
+  EXPECT_EQ(Summary(out)["t1"].status, "missing");
+  // The Slurm job array's variables pick the shard.
+  ::setenv("SLURM_ARRAY_TASK_ID", "0", 1);
+  ::setenv("SLURM_ARRAY_TASK_COUNT", "2", 1);
+  const int code = testing::RunCli("batch --quiet --manifest=" + manifest + " --out_dir=" + out, &output);
+  ::unsetenv("SLURM_ARRAY_TASK_ID");
+  ::unsetenv("SLURM_ARRAY_TASK_COUNT");
+  ASSERT_EQ(code, 0) << output;
+  EXPECT_THAT(output, HasSubstr("2 done, 0 failed"));
+  EXPECT_TRUE(testing::FileExists(out + "/summary.shard0of2.json"));
+  ASSERT_EQ(testing::RunCli("batch --merge --out_dir=" + out, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("merged 3 take records: 3 done, 0 failed"));
+  const auto rows = Summary(out);
+  ASSERT_EQ(rows.size(), 3u);
+  for (const auto& [name, row] : rows) EXPECT_EQ(row.status, "done") << name;
+  EXPECT_EQ(testing::RunCli("batch --shard=2/2 --manifest=" + manifest + " --out_dir=" + out, &output), 1);
+  EXPECT_THAT(output, HasSubstr("--shard=2/2"));
+}
+
+TEST_F(BatchCli, BadManifestsNameFileAndField) {
+  const std::string out = testing::TempPath("bad");
+  std::string output;
+  std::string manifest = Manifest("{\"markers\": \"t1.c3d\", \"filter_level\": 1}");
+  EXPECT_EQ(testing::RunCli("batch --manifest=" + manifest + " --out_dir=" + out, &output), 1) << output;
+  EXPECT_THAT(output, HasSubstr("M.json:2:"));
+  EXPECT_THAT(output, HasSubstr("unknown key 'filter_level'"));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  manifest = Manifest("{\"markers\": \"t1.c3d\"}, {\"markers\": \"no_such.c3d\"}");
+  EXPECT_EQ(testing::RunCli("batch --manifest=" + manifest + " --out_dir=" + out, &output), 1) << output;
+  EXPECT_THAT(output, HasSubstr("takes[1]: markers:"));
+  EXPECT_THAT(output, HasSubstr("no_such.c3d"));
+  EXPECT_EQ(testing::RunCli("batch --manifest=" + dir_ + "/none.json --out_dir=" + out, &output), 1) << output;
+  EXPECT_THAT(output, HasSubstr("none.json"));
+  struct stat st;
+  EXPECT_NE(::stat(out.c_str(), &st), 0);  // Nothing written.
+}
+
+}  // namespace
+}  // namespace mocapsolve
