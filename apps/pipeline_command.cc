@@ -78,6 +78,12 @@ Status MakeFolder(const std::string& path) {
 
 Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  // The pipeline solves with DLS unless told otherwise (as repair and retarget do): make
+  // that the default, so --print_config shows it and a printed config read back with
+  // --config changes nothing.
+  if (gflags::GetCommandLineFlagInfoOrDie("solver").is_default) {
+    gflags::SetCommandLineOptionWithMode("solver", "dls", gflags::SET_FLAGS_DEFAULT);
+  }
   if (!FLAGS_config.empty()) {
     Status status = ApplyConfigFile(FLAGS_config, kPipelineOptionFlags);
     if (!status.ok()) return status;

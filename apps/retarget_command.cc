@@ -81,7 +81,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   CharacterRetargetOptions options;
   Status status = RetargetOptionsFromFlags(&options);
   if (!status.ok()) return status;
-  if (FLAGS_loop < 1) return Status::Error("--loop: must be >= 1");
+  if (FLAGS_loop < 1 || FLAGS_loop > 1000) return Status::Error("--loop: must be in [1, 1000]");
   if (FLAGS_max_frames < 0) return Status::Error("--max_frames: must be >= 0");
   options.clip.solve.time_stages = FLAGS_stage_times;
   const RetargetSolveOptions& solve = options.clip.solve;

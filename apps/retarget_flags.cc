@@ -93,6 +93,7 @@ Status RetargetOptionsFromFlags(CharacterRetargetOptions* options_out) {
     return Status::Error("--solver: unknown solver '" + FLAGS_solver + "' (dls, dls_generic, ceres)");
   }
   if (FLAGS_subsample < 1) return Status::Error("--subsample: must be >= 1");
+  if (FLAGS_iterations < 1 || FLAGS_iterations > 1000) return Status::Error("--iterations: must be in [1, 1000]");
   if (!(FLAGS_contact_height > 0.0)) return Status::Error("--contact_height: must be > 0");
   if (FLAGS_mapping_normal_weight < 0.0) return Status::Error("--mapping_normal_weight: must be >= 0");
   if (!(FLAGS_plant_weight >= 0.0)) return Status::Error("--plant_weight: must be >= 0");

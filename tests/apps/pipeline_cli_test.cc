@@ -82,6 +82,18 @@ TEST_F(PipelineCli, ConfigFileAndFlagsAndPrintConfig) {
   EXPECT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + dir + " --config=" + config, &output), 3) << output;
   EXPECT_THAT(output, HasSubstr("quality gate failed: naive marker RMS"));
   EXPECT_THAT(testing::ReadTextFile(dir + "/report.json"), HasSubstr("\"pass\": false"));
+  // A printed config read back changes nothing (the solver included: dls by default).
+  ASSERT_EQ(testing::RunCli("pipeline --print_config", &output), 0);
+  EXPECT_THAT(output, HasSubstr("\"solver\": \"dls\""));
+  const std::string printed = testing::TempPath("printed.json");
+  {
+    std::FILE* file = std::fopen(printed.c_str(), "w");
+    std::fputs(output.c_str(), file);
+    std::fclose(file);
+  }
+  std::string again;
+  ASSERT_EQ(testing::RunCli("pipeline --print_config --config=" + printed, &again), 0) << again;
+  EXPECT_EQ(again, output);
   // Unknown keys are errors naming the file and key.
   {
     std::FILE* file = std::fopen(config.c_str(), "w");
