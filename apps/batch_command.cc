@@ -103,7 +103,7 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
     }
     status = ReadManifest(FLAGS_manifest, pipeline_options, &manifest);
   } else {
-    status = ManifestFromGlob(FLAGS_markers_glob, FLAGS_subject, SplitFlagNames(FLAGS_character), pipeline_options,
+    status = ManifestFromGlob(FLAGS_markers_glob, FLAGS_subject, SplitCommaList(FLAGS_character), pipeline_options,
                               &manifest);
   }
   if (!status.ok()) return status;

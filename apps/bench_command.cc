@@ -5,6 +5,7 @@
 #include "apps/bench_problems.h"
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/config_flags.h"
 #include "apps/solver_flags.h"
 #include "io/atomic_file.h"
 
@@ -24,16 +25,6 @@ DEFINE_string(bench_character, "", "Characters (.glb), comma-separated, of the p
 namespace mocapsolve {
 namespace {
 
-std::vector<std::string> SplitCommas(const std::string& text) {
-  std::vector<std::string> parts;
-  std::stringstream ss(text);
-  std::string part;
-  while (std::getline(ss, part, ',')) {
-    if (!part.empty()) parts.push_back(part);
-  }
-  return parts;
-}
-
 Status RunBench(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   const BenchProblem* problem = nullptr;
@@ -45,7 +36,7 @@ Status RunBench(const std::vector<std::string>& arguments) {
   if (problem == nullptr) {
     return Status::Error("--problem: unknown problem '" + FLAGS_problem + "' (known: " + known + ")");
   }
-  std::vector<std::string> solvers = SplitCommas(FLAGS_solvers);
+  std::vector<std::string> solvers = SplitCommaList(FLAGS_solvers);
   if (solvers.empty()) solvers = problem->solvers;
   BenchSettings settings;
   settings.motion_path = FLAGS_bench_motion;
@@ -56,7 +47,7 @@ Status RunBench(const std::vector<std::string>& arguments) {
   settings.max_frames = FLAGS_bench_frames;
   settings.noise_mm = FLAGS_bench_noise_mm;
   settings.subject_path = FLAGS_bench_subject;
-  settings.character_paths = SplitCommas(FLAGS_bench_character);
+  settings.character_paths = SplitCommaList(FLAGS_bench_character);
   std::vector<JsonObject> records;
   std::printf("%-14s %-8s %10s %12s %14s %10s %14s  %s\n", "problem", "solver", "frames",
               "seconds", "frames/s", "iters", "final_cost", "error");

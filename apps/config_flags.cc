@@ -12,7 +12,7 @@
 
 namespace mocapsolve {
 
-std::vector<std::string> SplitFlagNames(const std::string& flags) {
+std::vector<std::string> SplitCommaList(const std::string& flags) {
   std::vector<std::string> names;
   std::stringstream stream(flags);
   std::string name;
@@ -27,7 +27,7 @@ Status ApplyConfigFile(const std::string& path, const std::string& flags) {
   Status status = ReadJsonFile(path, &root);
   if (!status.ok()) return status;
   if (!root.is_object()) return Status::Error(root.Where(path) + ": expected an object of options");
-  const std::vector<std::string> names = SplitFlagNames(flags);
+  const std::vector<std::string> names = SplitCommaList(flags);
   const std::set<std::string> allowed(names.begin(), names.end());
   if (const auto* unknown = FindUnknownKey(root, allowed)) {
     return Status::Error(unknown->second.Where(path) + ": unknown option '" + unknown->first + "'");
@@ -65,7 +65,7 @@ Status ApplyConfigFile(const std::string& path, const std::string& flags) {
 
 std::string ConfigJson(const std::string& flags) {
   JsonObject config;
-  for (const std::string& name : SplitFlagNames(flags)) {
+  for (const std::string& name : SplitCommaList(flags)) {
     gflags::CommandLineFlagInfo info;
     if (!gflags::GetCommandLineFlagInfo(name.c_str(), &info)) continue;
     if (info.type == "bool") {

@@ -20,8 +20,8 @@ Status ApplyConfigFile(const std::string& path, const std::string& flags);
 // booleans as JSON values, the rest as strings): what --print_config shows.
 std::string ConfigJson(const std::string& flags);
 
-// Splits "a,b,c".
-std::vector<std::string> SplitFlagNames(const std::string& flags);
+// Splits "a,b,c" (empty items dropped).
+std::vector<std::string> SplitCommaList(const std::string& flags);
 
 }  // namespace mocapsolve
 

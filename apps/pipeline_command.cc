@@ -14,6 +14,7 @@
 #include "apps/repair_flags.h"
 #include "apps/retarget_flags.h"
 #include "apps/solver_flags.h"
+#include "io/atomic_file.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "pipeline/take_pipeline.h"
@@ -53,28 +54,6 @@ const std::string kPipelineOptionFlags =
     std::string("take_name,filter_levels,kernel_a,tension,gate_naive_rms_mm,gate_repaired_rms_mm,"
                 "gate_repaired_share,gate_iteration_limit_share,gate_marker_offset_cm,gate_torso_deg,") +
     kRepairFlagNames + "," + kSolverFlagNames + "," + kRetargetOptionFlagNames;
-
-std::string BaseName(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const size_t dot = name.find_last_of('.');
-  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
-}
-
-// mkdir -p.
-Status MakeFolder(const std::string& path) {
-  for (size_t i = 1; i <= path.size(); ++i) {
-    if (i < path.size() && path[i] != '/') continue;
-    const std::string prefix = path.substr(0, i);
-    struct stat st;
-    if (::stat(prefix.c_str(), &st) == 0) {
-      if (!S_ISDIR(st.st_mode)) return Status::Error(path + ": " + prefix + " is not a folder");
-      continue;
-    }
-    if (::mkdir(prefix.c_str(), 0777) != 0) return Status::Error(path + ": cannot create the folder");
-  }
-  return Status::Ok();
-}
 
 Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
@@ -116,10 +95,10 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!options.IsValid(&error)) return Status::Error(error);
 
   TakeInputs inputs;
-  inputs.name = FLAGS_take_name.empty() ? BaseName(FLAGS_markers) : FLAGS_take_name;
+  inputs.name = FLAGS_take_name.empty() ? FileStem(FLAGS_markers) : FLAGS_take_name;
   inputs.subject = &subject;
   inputs.markers_path = FLAGS_markers;
-  inputs.character_paths = SplitFlagNames(FLAGS_character);
+  inputs.character_paths = SplitCommaList(FLAGS_character);
 
   TakeResult result;
   std::unique_ptr<Progress> progress;
@@ -136,7 +115,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   JsonObject report = TakeReport(inputs, result);
   report.Add("command", "pipeline").Add("version", Version()).Add("subject", FLAGS_subject).Add("config", FLAGS_config)
       .Add("options", JsonValue::Raw(ConfigJson(kPipelineOptionFlags)));
-  status = MakeFolder(FLAGS_out_dir);
+  status = MakeFolders(FLAGS_out_dir);
   if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report);
   if (status.ok()) status = WriteReport(report);
   if (!status.ok()) return status;

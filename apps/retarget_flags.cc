@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "apps/config_flags.h"
 #include "apps/solver_flags.h"
 #include "io/json_reader.h"
 
@@ -115,14 +116,8 @@ Status RetargetOptionsFromFlags(CharacterRetargetOptions* options_out) {
   options.plant_feet = FLAGS_plant_feet && FLAGS_plant_weight > 0.0;
   options.contact_height = FLAGS_plant_height;
   options.contact_speed = FLAGS_plant_speed;
-  if (!FLAGS_foot_joints.empty()) {
-    size_t begin = 0;
-    while (begin <= FLAGS_foot_joints.size()) {
-      const size_t comma = std::min(FLAGS_foot_joints.find(',', begin), FLAGS_foot_joints.size());
-      if (comma > begin) options.foot_joints.push_back(FLAGS_foot_joints.substr(begin, comma - begin));
-      begin = comma + 1;
-    }
-  }
+  options.foot_joints = SplitCommaList(FLAGS_foot_joints);
+
   std::string error;
   if (!options.IsValid(&error)) return Status::Error("retarget options: " + error);
   Status status = Status::Ok();

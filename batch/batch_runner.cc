@@ -13,6 +13,8 @@
 
 #include <dirent.h>
 
+#include "io/atomic_file.h"
+
 namespace mocapsolve {
 namespace {
 
@@ -65,21 +67,6 @@ double Now() {
 
 }  // namespace
 
-Status MakeFolders(const std::string& path) {
-  for (size_t i = 1; i <= path.size(); ++i) {
-    if (i < path.size() && path[i] != '/') continue;
-    const std::string prefix = path.substr(0, i);
-    struct stat st;
-    if (::stat(prefix.c_str(), &st) == 0) {
-      if (!S_ISDIR(st.st_mode)) return Status::Error(path + ": " + prefix + " is not a folder");
-      continue;
-    }
-    if (::mkdir(prefix.c_str(), 0777) != 0 && errno != EEXIST) {
-      return Status::Error(path + ": cannot create the folder");
-    }
-  }
-  return Status::Ok();
-}
 
 Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
                 const std::function<void(const BatchProgress&)>& progress, BatchResult* result) {

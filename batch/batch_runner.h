@@ -65,8 +65,6 @@ struct BatchResult {
 Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
                 const std::function<void(const BatchProgress&)>& progress, BatchResult* result);
 
-// mkdir -p.
-Status MakeFolders(const std::string& path);
 
 }  // namespace mocapsolve
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <set>
 
+#include "io/motion_file.h"
 #include "io/json_writer.h"
 
 namespace mocapsolve {
@@ -15,13 +16,6 @@ namespace {
 std::string Folder(const std::string& path) {
   const size_t slash = path.find_last_of('/');
   return slash == std::string::npos ? "" : path.substr(0, slash + 1);
-}
-
-std::string BaseName(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const size_t dot = name.find_last_of('.');
-  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
 }
 
 std::string Resolve(const std::string& folder, const std::string& path) {
@@ -99,7 +93,7 @@ Status FinishTake(const BatchOptions& pipeline_options, const BatchOptions& defa
                   BatchTake* take) {
   if (take->markers.empty()) return Status::Error(where + ": missing 'markers'");
   if (take->subject.empty()) return Status::Error(where + ": missing 'subject' (in the take or in defaults)");
-  if (take->name.empty()) take->name = BaseName(take->markers);
+  if (take->name.empty()) take->name = FileStem(take->markers);
   const std::string& name = take->name;
   if (name == "." || name == ".." || name[0] == '.' || name.find('/') != std::string::npos ||
       name == "summary.json" || name == "summary.csv") {

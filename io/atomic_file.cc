@@ -178,6 +178,22 @@ void NoteInputFile(const std::string& path) {
   if (FileTransaction* transaction = FileTransaction::Current()) transaction->RecordInput(path);
 }
 
+Status MakeFolders(const std::string& path) {
+  for (size_t i = 1; i <= path.size(); ++i) {
+    if (i < path.size() && path[i] != '/') continue;
+    const std::string prefix = path.substr(0, i);
+    struct stat st;
+    if (::stat(prefix.c_str(), &st) == 0) {
+      if (!S_ISDIR(st.st_mode)) return Status::Error(path + ": " + prefix + " is not a folder");
+      continue;
+    }
+    if (::mkdir(prefix.c_str(), 0777) != 0 && errno != EEXIST) {
+      return Status::Error(path + ": cannot create the folder");
+    }
+  }
+  return Status::Ok();
+}
+
 bool SameFile(const std::string& a, const std::string& b) {
   struct stat sa, sb;
   if (::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;

@@ -26,6 +26,10 @@ Status ReadFileToString(const std::string& path, std::string* contents);
 // as an input of the open FileTransaction, if any.
 void NoteInputFile(const std::string& path);
 
+// mkdir -p: creates the folder and its missing parents; an error names a part that is
+// not a folder or cannot be created.
+Status MakeFolders(const std::string& path);
+
 // True if both paths name the same existing file (used to refuse overwriting an input).
 bool SameFile(const std::string& a, const std::string& b);
 

@@ -19,6 +19,13 @@ std::string FileExtension(const std::string& path) {
   return ext;
 }
 
+std::string FileStem(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const size_t dot = name.find_last_of('.');
+  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+}
+
 Status ReadAnimationNames(const std::string& path, std::vector<std::string>* names) {
   const std::string ext = FileExtension(path);
   names->clear();

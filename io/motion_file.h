@@ -41,6 +41,8 @@ Status ReadAnimationNames(const std::string& path, std::vector<std::string>* nam
 
 // Lower-case extension with the dot (".bvh"), or "".
 std::string FileExtension(const std::string& path);
+// The file name without folder and extension: "takes/02_05.c3d" -> "02_05".
+std::string FileStem(const std::string& path);
 
 }  // namespace mocapsolve
 

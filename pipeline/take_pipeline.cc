@@ -20,13 +20,6 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-std::string BaseName(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  const size_t dot = name.find_last_of('.');
-  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
-}
-
 std::string InFolder(const std::string& out_dir, const std::string& name) {
   if (out_dir.empty()) return name;
   return out_dir.back() == '/' ? out_dir + name : out_dir + "/" + name;
@@ -82,7 +75,7 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   for (const std::string& path : inputs.character_paths) {
     CharacterOutput output;
     output.path = path;
-    output.name = BaseName(path);
+    output.name = FileStem(path);
     status = GltfDocument::Read(path, &output.document);
     if (status.ok()) status = ReadGltfCharacter(output.document, GltfReadOptions(), &output.character);
     if (!status.ok()) return Status::Error("read: " + status.message());
