@@ -1,8 +1,6 @@
 // mocapsolve pipeline: one take from markers to animated characters
 // (pipeline/take_pipeline.h): repair and solve, optional filtering, retargeting onto each
 // character, the quality gate; outputs in --out_dir.
-#include <sys/stat.h>
-
 #include <cstdio>
 #include <string>
 

@@ -63,13 +63,13 @@ Status StagedFile::Create(const std::string& path, const std::string& contents, 
   // The unnamed file can only be named later through /proc/self/fd.
   if (::access("/proc/self/fd", X_OK) == 0) {
     staged->fd_ = ::open(folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
-  }
-  if (staged->fd_ < 0) {
-    if (errno != EOPNOTSUPP && errno != EISDIR && errno != EINVAL && errno != ENOENT &&
-        errno != 0) {
+    // A real refusal (no permission, read-only, full) is final; an unsupported O_TMPFILE
+    // or a missing folder goes on to the named attempt, which says which.
+    if (staged->fd_ < 0 && errno != EOPNOTSUPP && errno != EISDIR && errno != EINVAL && errno != ENOENT) {
       return Status::Error(path + ": cannot write (" + Reason() + ")");
     }
-    // No O_TMPFILE here (or the folder is missing: the named attempt says so).
+  }
+  if (staged->fd_ < 0) {
     staged->named_temp_ = TemporaryName(path);
     staged->fd_ = ::open(staged->named_temp_.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0666);
     if (staged->fd_ < 0) {

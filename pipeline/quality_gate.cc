@@ -29,10 +29,8 @@ QualityVerdict CheckQuality(const QualityGate& gate, const QualityFigures& figur
   QualityVerdict verdict;
   auto check = [&](bool on, double value, double limit, const std::string& what, const char* unit,
                    double shown = 1.0) {
-    if (!on || !(value > limit)) {
-      // NaN figures fail: a figure that could not be measured cannot pass.
-      if (!on || !std::isnan(value)) return;
-    }
+    // A NaN figure fails (NaN <= limit is false): a figure that could not be measured cannot pass.
+    if (!on || value <= limit) return;
     verdict.pass = false;
     verdict.failures.push_back(std::string(what) + " " + Number(value * shown) + unit + " > " +
                                Number(limit * shown) + unit);

@@ -97,7 +97,7 @@ std::string CharacterOutputPath(const std::string& out_dir, const std::string& c
 // retarget's vertex/normal error and foot skating).
 JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result);
 
-// Writes the outputs above and DIR/report.json (plus `extra` members in the report).
+// Writes the outputs above, and `report` (TakeReport plus what the caller adds) as DIR/report.json.
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
                         const JsonObject& report);
 
