@@ -32,6 +32,8 @@ DEFINE_double(take_timeout, 0.0, "A take running longer than this (seconds) is k
               "failed ('timeout'); 0 = no limit.");
 DEFINE_int32(take_memory_mb, 0, "Address-space limit of each take's process (MB, RLIMIT_AS); a take "
              "exceeding it fails; 0 = no limit.");
+DEFINE_int32(take_threads, 0, "Threads of each take (the pipeline's --num_threads, unless the manifest gives "
+             "it); 0 = the cores over --jobs, at least 1. Speed only: results and keys do not depend on it.");
 DEFINE_bool(force, false, "Redo every take, finished or not.");
 DEFINE_string(shard, "", "Run shard i/n of the batch only (0 <= i < n): the takes at manifest positions p "
               "with p % n == i; its summary is DIR/summary.shard<i>of<n>.json/.csv (then `batch --merge`). "
@@ -83,8 +85,8 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
     return Status::Error("give either --manifest or --markers_glob (with --subject)");
   }
   if (FLAGS_out_dir.empty() && FLAGS_write_manifest.empty()) return Status::Error("--out_dir is required");
-  if (FLAGS_take_timeout < 0 || FLAGS_take_memory_mb < 0 || FLAGS_jobs < 0) {
-    return Status::Error("--jobs, --take_timeout and --take_memory_mb must not be negative");
+  if (FLAGS_take_timeout < 0 || FLAGS_take_memory_mb < 0 || FLAGS_jobs < 0 || FLAGS_take_threads < 0) {
+    return Status::Error("--jobs, --take_threads, --take_timeout and --take_memory_mb must not be negative");
   }
   BatchRunOptions options;
   options.executable = SelfExecutable();
@@ -139,7 +141,9 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
     return Status::Ok();
   }
   options.out_dir = FLAGS_out_dir;
-  options.jobs = FLAGS_jobs > 0 ? FLAGS_jobs : std::max(1u, std::thread::hardware_concurrency());
+  const int cores = std::max(1u, std::thread::hardware_concurrency());
+  options.jobs = FLAGS_jobs > 0 ? FLAGS_jobs : cores;
+  options.take_threads = FLAGS_take_threads > 0 ? FLAGS_take_threads : std::max(1, cores / options.jobs);
   options.limits.timeout_seconds = FLAGS_take_timeout;
   options.limits.memory_mb = FLAGS_take_memory_mb;
   options.force = FLAGS_force;
@@ -177,7 +181,7 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
 extern const Command kBatchCommand = {
     "batch", "many takes through pipeline, each in its own process, resumable",
     "mocapsolve batch --manifest=M.json --out_dir=DIR [--jobs=N] [--take_timeout=S] [--take_memory_mb=MB]\n"
-    "                 [--force | --retry_failed] [--shard=i/n]\n"
+    "                 [--take_threads=T] [--force | --retry_failed] [--shard=i/n]\n"
     "       mocapsolve batch --merge --out_dir=DIR [--manifest=M.json]\n"
     "       mocapsolve batch --markers_glob='takes/*.c3d' --subject=S.json [--character=C.glb] --out_dir=DIR\n"
     "                 [--write_manifest=M.json]\n\n"

@@ -61,6 +61,8 @@ Status RepairOptionsFromFlags(const Skeleton& skeleton, RepairOptions* options) 
   }
   options->reference.loss = FLAGS_reference_loss;
   options->reference.loss_scale = FLAGS_reference_loss_cm * units_per_cm;
+  // Threads change the speed only, never the result (a batch runs takes side by side, one each).
+  options->parallel = FLAGS_num_threads >= 2;
   options->tracker = options->naive;
   options->tracker.loss = FLAGS_reference_loss;
   options->tracker.loss_scale = FLAGS_reference_loss_cm * units_per_cm;

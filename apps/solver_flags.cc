@@ -14,7 +14,8 @@ DEFINE_int32(max_iterations, 50, "Iteration limit per solve (both solvers).");
 DEFINE_double(function_tolerance, 1e-6, "Stop when the relative cost change is below this (Ceres' default).");
 DEFINE_double(gradient_tolerance, 1e-10, "Stop when the max gradient entry is below this.");
 DEFINE_double(parameter_tolerance, 1e-8, "Stop when the relative step is below this.");
-DEFINE_int32(num_threads, 2, "Ceres threads for the clip solve (per-frame solves use 1).");
+DEFINE_int32(num_threads, 2, "Threads: Ceres threads of the clip solve (per-frame solves use 1); repair runs its "
+             "solves on two threads when >= 2. Speed only: a per-frame solve's result does not depend on it.");
 DEFINE_string(loss, "none", "Robust loss on marker residuals: none | huber | cauchy.");
 DEFINE_double(loss_scale, 1.0, "Where the loss bends, in skeleton length units.");
 DEFINE_double(marker_weight, 1.0, "Weight of each marker residual.");

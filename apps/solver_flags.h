@@ -11,6 +11,7 @@
 
 DECLARE_string(solver);
 DECLARE_string(mode);
+DECLARE_int32(num_threads);
 
 namespace mocapsolve {
 

@@ -14,6 +14,7 @@
 #include <dirent.h>
 
 #include "io/atomic_file.h"
+#include "io/file_transaction.h"
 
 namespace mocapsolve {
 namespace {
@@ -106,11 +107,20 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
     p.eta_seconds = mean * left / std::max(1, options.jobs);
     progress(p);
   };
-  auto finish = [&](int i, TakeRecord record, bool ran) {
+  // A take's record, once on disk, is read back for the summary at the end instead of being
+  // kept: the batch then holds nothing per finished take, and stays flat in memory over
+  // thousands of takes.
+  std::vector<char> reread(n, 0);
+  auto finish = [&](int i, TakeRecord record, bool ran, bool on_disk) {
     (record.status == "done" ? out.done : out.failed) += 1;
     (ran ? out.ran : out.skipped) += 1;
-    out.takes[i].record = std::move(record);
     out.takes[i].ran = ran;
+    reread[i] = on_disk;
+    if (!on_disk) out.takes[i].record = std::move(record);
+    // Free the take's key (swapped out: assigning empty strings would keep their capacity).
+    TakeState released;
+    std::swap(states[i], released);
+    work[i].argv = std::vector<std::string>();
   };
   auto failed_record = [&](int i, const std::string& error) {
     TakeRecord record;
@@ -129,7 +139,10 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
   }
 
   WorkerCallbacks callbacks;
+  // The takes' files (subject, records, reports) are read by every take: not recorded as the
+  // batch's inputs (the workers guard their own), so the batch stays flat in memory.
   callbacks.on_start = [&](int i) -> bool {
+    FileTransaction::UntrackedReads untracked;
     const auto t0 = Clock::now();
     const BatchTake& take = manifest.takes[i];
     const std::string dir = take_dir(i);
@@ -137,7 +150,7 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
     Status s = ComputeTakeKey(take, options.version, &state.key, &hash_cache);
     if (!s.ok()) {
       // An unreadable input: failed before any worker; no record (nothing to resume).
-      finish(i, failed_record(i, s.message()), true);
+      finish(i, failed_record(i, s.message()), true, false);
       own += Since(t0);
       report();
       return false;
@@ -149,7 +162,7 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
       bool outputs = old.status == "done";
       for (const std::string& file : old.outputs) outputs = outputs && FileExists(dir + "/" + file);
       if ((old.status == "done" && outputs) || (old.status == "failed" && !options.retry_failed)) {
-        finish(i, std::move(old), false);
+        finish(i, std::move(old), false, true);
         own += Since(t0);
         report();
         return false;
@@ -165,7 +178,7 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
     state.config_path = temp_folder + "/" + take.name + ".json";
     s = WriteText(state.config_path, state.key.given_json + "\n");
     if (!s.ok()) {
-      finish(i, failed_record(i, s.message()), true);
+      finish(i, failed_record(i, s.message()), true, false);
       own += Since(t0);
       report();
       return false;
@@ -173,6 +186,11 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
     std::vector<std::string>& argv = work[i].argv;
     argv = {options.executable, "pipeline", "--quiet", "--subject=" + take.subject, "--markers=" + take.markers,
             "--out_dir=" + dir, "--config=" + state.config_path};
+    const bool threads_given = std::any_of(take.given.begin(), take.given.end(),
+                                           [](const auto& option) { return option.first == "num_threads"; });
+    if (options.take_threads > 0 && !threads_given) {
+      argv.push_back("--num_threads=" + std::to_string(options.take_threads));
+    }
     if (!take.characters.empty()) {
       std::string list;
       for (const std::string& c : take.characters) list += (list.empty() ? "" : ",") + c;
@@ -184,6 +202,7 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
     return true;
   };
   callbacks.on_done = [&](int i, const WorkerResult& worker) {
+    FileTransaction::UntrackedReads untracked;
     const auto t0 = Clock::now();
     --running;
     const std::string dir = take_dir(i);
@@ -229,13 +248,21 @@ Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
     frames += record.figures.frames;
     ran_seconds += worker.seconds;
     ++ran_ended;
-    finish(i, std::move(record), true);
+    finish(i, std::move(record), true, s.ok());
     own += Since(t0);
     report();
   };
   callbacks.on_tick = report;
   RunWorkers(work, options.jobs, options.limits, callbacks);
   ::rmdir(temp_folder.c_str());
+  FileTransaction::UntrackedReads untracked;
+  for (int i = 0; i < n; ++i) {
+    if (!reread[i]) continue;
+    TakeRecord& record = out.takes[i].record;
+    if (!ReadTakeRecord(RecordPath(take_dir(i)), &record).ok()) {
+      record = failed_record(i, RecordPath(take_dir(i)) + ": the take's record vanished during the batch");
+    }
+  }
   out.seconds = Since(start);
   out.own_seconds = own;
   report();

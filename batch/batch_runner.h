@@ -41,6 +41,8 @@ struct BatchRunOptions {
   bool retry_failed = false;
   std::string executable;   // The mocapsolve binary the workers run.
   std::string version;      // The program version (part of every key).
+  int take_threads = 0;     // Each worker's --num_threads unless its options give it (0: the
+                            // pipeline's default). Speed only: not part of the key.
 };
 
 struct TakeOutcome {

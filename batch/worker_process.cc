@@ -12,6 +12,9 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <sstream>
+#include <string>
 
 namespace mocapsolve {
 namespace {
@@ -79,7 +82,7 @@ void ReadAvailable(Running* r) {
 }
 
 // Forks and execs; the child's stderr goes to *fd. Returns the pid or -1.
-pid_t Spawn(const WorkerJob& job, const WorkerLimits& limits, bool crash, int* fd, int stdout_fd) {
+pid_t Spawn(const WorkerJob& job, const WorkerLimits& limits, int crash_signal, int* fd, int stdout_fd) {
   std::vector<char*> argv;
   for (const std::string& a : job.argv) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -106,10 +109,11 @@ pid_t Spawn(const WorkerJob& job, const WorkerLimits& limits, bool crash, int* f
       limit.rlim_cur = limit.rlim_max = static_cast<rlim_t>(limits.memory_mb) * 1024 * 1024;
       ::setrlimit(RLIMIT_AS, &limit);
     }
-    if (crash) {
-      static const char kMessage[] = "MOCAPSOLVE_TEST_CRASH_TAKE: aborting the worker\n";
+    if (crash_signal != 0) {
+      static const char kMessage[] = "MOCAPSOLVE_TEST_CRASH_TAKE: crashing the worker\n";
       (void)!::write(2, kMessage, sizeof(kMessage) - 1);
-      ::abort();
+      ::raise(crash_signal);
+      ::_exit(127);
     }
     ::execv(argv[0], argv.data());
     static const char kMessage[] = "cannot execute the mocapsolve binary\n";
@@ -134,8 +138,17 @@ std::string WorkerResult::ExitName() const {
 
 void RunWorkers(const std::vector<WorkerJob>& work, int jobs, const WorkerLimits& limits,
                 const WorkerCallbacks& callbacks) {
-  const char* crash_env = std::getenv("MOCAPSOLVE_TEST_CRASH_TAKE");
-  const std::string crash_label = crash_env == nullptr ? "" : crash_env;
+  // Tests crash chosen takes' workers: MOCAPSOLVE_TEST_CRASH_TAKE=label[:KILL],... (SIGABRT
+  // unless :KILL, as the kernel's out-of-memory killer or an operator would).
+  std::map<std::string, int> crash_signals;
+  if (const char* crash_env = std::getenv("MOCAPSOLVE_TEST_CRASH_TAKE")) {
+    std::stringstream list(crash_env);
+    for (std::string item; std::getline(list, item, ',');) {
+      const size_t colon = item.find(':');
+      crash_signals[item.substr(0, colon)] =
+          colon != std::string::npos && item.substr(colon + 1) == "KILL" ? SIGKILL : SIGABRT;
+    }
+  }
   if (jobs < 1) jobs = 1;
   std::vector<Running> running;
   size_t next = 0;
@@ -147,7 +160,8 @@ void RunWorkers(const std::vector<WorkerJob>& work, int jobs, const WorkerLimits
       Running r;
       r.index = index;
       r.start = Clock::now();
-      r.pid = Spawn(work[index], limits, !crash_label.empty() && crash_label == work[index].label, &r.fd, -1);
+      const auto crash = crash_signals.find(work[index].label);
+      r.pid = Spawn(work[index], limits, crash == crash_signals.end() ? 0 : crash->second, &r.fd, -1);
       if (r.pid < 0) {
         WorkerResult result;
         result.last_line = "cannot start a worker process: " + std::string(std::strerror(errno));
@@ -210,7 +224,7 @@ Status RunAndCapture(const std::vector<std::string>& argv, std::string* output) 
   if (::pipe2(out_pipe, O_CLOEXEC) != 0) return Status::Error("cannot create a pipe");
   WorkerJob job{"", argv};
   int err_fd = -1;
-  const pid_t pid = Spawn(job, WorkerLimits(), false, &err_fd, out_pipe[1]);
+  const pid_t pid = Spawn(job, WorkerLimits(), 0, &err_fd, out_pipe[1]);
   ::close(out_pipe[1]);
   if (pid < 0) {
     ::close(out_pipe[0]);

@@ -8,8 +8,8 @@
 //     takes in flight), and RLIMIT_AS = memory_mb when > 0;
 //   - a worker running longer than timeout_seconds (> 0) gets SIGKILL (its group);
 //   - the result: exit code, or the signal, or "timeout".
-// Test hook: with MOCAPSOLVE_TEST_CRASH_TAKE=<label> in the environment, the worker of
-// that label calls abort() instead of exec (a crashing worker, for the tests).
+// Test hook: with MOCAPSOLVE_TEST_CRASH_TAKE=<label>[:KILL],... in the environment, the
+// worker of each label raises SIGABRT (or SIGKILL) instead of exec (crashing workers).
 #ifndef MOCAPSOLVE_BATCH_WORKER_PROCESS_H_
 #define MOCAPSOLVE_BATCH_WORKER_PROCESS_H_
 

@@ -16,6 +16,7 @@ namespace mocapsolve {
 namespace {
 
 FileTransaction* current_transaction = nullptr;
+thread_local int untracked_reads = 0;  // Live UntrackedReads scopes of this thread.
 
 // The file a path names, as far as it can be told before it exists: the folder's real
 // path plus the file name ("" when the folder does not exist).
@@ -88,7 +89,11 @@ FileTransaction::~FileTransaction() {
 
 FileTransaction* FileTransaction::Current() { return current_transaction; }
 
+FileTransaction::UntrackedReads::UntrackedReads() { ++untracked_reads; }
+FileTransaction::UntrackedReads::~UntrackedReads() { --untracked_reads; }
+
 void FileTransaction::RecordInput(const std::string& path) {
+  if (untracked_reads > 0) return;
   FileIdentity id = Identify(path);
   std::lock_guard<std::mutex> lock(state_->mutex);
   state_->inputs.push_back(std::move(id));

@@ -51,6 +51,17 @@ class FileTransaction {
   // True if `path` names a file recorded as an input (by name or device/inode).
   bool NamesAnInput(const std::string& path) const;
 
+  // While one exists, reads are not recorded: for a command reading back what its own
+  // workers wrote (the batch and its takes' reports and records), files that are neither
+  // its inputs nor its outputs; a batch of thousands of takes then stays flat in memory.
+  class UntrackedReads {
+   public:
+    UntrackedReads();
+    ~UntrackedReads();
+    UntrackedReads(const UntrackedReads&) = delete;
+    UntrackedReads& operator=(const UntrackedReads&) = delete;
+  };
+
  private:
   struct State;
   std::unique_ptr<State> state_;

@@ -113,23 +113,28 @@ int ResolveChangedRange(const Skeleton& skeleton, const MarkerSet& markers, cons
   return resolved;
 }
 
-// With two threads the clip is solved in two halves; the second starts from naive's pose
-// before its first frame, as if the frames before it had rejoined naive.
+// The clip is solved in two halves, the second starting from naive's pose before its
+// first frame, as if the frames before it had rejoined naive; with `parallel` the halves
+// run on two threads. The halves are the same either way, so the result does not depend
+// on the thread count (a batch runs its takes single-threaded side by side).
 Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
                             const Observations& repaired, const Motion& naive,
                             const MarkerSolveOptions& options, double tolerance, bool parallel, Motion* motion,
                             int* resolved) {
   *motion = naive;
-  const size_t n = repaired.size(), half = parallel && n >= 64 ? n / 2 : n;
+  const size_t n = repaired.size(), half = n >= 64 ? n / 2 : n;
   int second = 0;
+  auto solve_second = [&] {
+    second = ResolveChangedRange(skeleton, markers, observed, repaired, naive, options, tolerance, half, n, motion);
+  };
   std::thread worker;
-  if (half < n) {
-    worker = std::thread([&] {
-      second = ResolveChangedRange(skeleton, markers, observed, repaired, naive, options, tolerance, half, n, motion);
-    });
-  }
+  if (half < n && parallel) worker = std::thread(solve_second);
   *resolved = ResolveChangedRange(skeleton, markers, observed, repaired, naive, options, tolerance, 0, half, motion);
-  if (worker.joinable()) worker.join();
+  if (worker.joinable()) {
+    worker.join();
+  } else if (half < n) {
+    solve_second();
+  }
   *resolved += second;
   MakeSignContinuous(motion);
   return Status::Ok();

@@ -173,20 +173,21 @@ TEST_F(BatchCli, FaultsFailOnlyTheirTake) {
       "{\"name\": \"ok\", \"markers\": \"t1.c3d\"}, {\"name\": \"truncated\", \"markers\": \"truncated.c3d\"},\n"
       "{\"name\": \"mismatch\", \"markers\": \"other.trc\"}, {\"name\": \"crash\", \"markers\": \"t2.c3d\"},\n"
       "{\"name\": \"unwritable\", \"markers\": \"t3.c3d\"}, {\"name\": \"gate\", \"markers\": \"t4.c3d\", "
-      "\"gate_repaired_rms_mm\": 0.0001}");
+      "\"gate_repaired_rms_mm\": 0.0001}, {\"name\": \"killed\", \"markers\": \"t3.c3d\"}");
   std::string output;
-  ::setenv("MOCAPSOLVE_TEST_CRASH_TAKE", "crash", 1);
+  ::setenv("MOCAPSOLVE_TEST_CRASH_TAKE", "crash,killed:KILL", 1);
   const int code = testing::RunCli("batch --quiet --manifest=" + manifest + " --out_dir=" + out + " --jobs=2", &output);
   ::unsetenv("MOCAPSOLVE_TEST_CRASH_TAKE");
   EXPECT_EQ(code, 2) << output;
   auto rows = Summary(out);
-  ASSERT_EQ(rows.size(), 6u);
+  ASSERT_EQ(rows.size(), 7u);
   EXPECT_EQ(rows["ok"].status, "done");
   EXPECT_EQ(rows["truncated"].exit, "1");
   EXPECT_THAT(rows["truncated"].error, HasSubstr("truncated.c3d"));
   EXPECT_EQ(rows["mismatch"].exit, "1");
   EXPECT_THAT(rows["mismatch"].error, HasSubstr("other.trc"));
   EXPECT_EQ(rows["crash"].exit, "SIGABRT");
+  EXPECT_EQ(rows["killed"].exit, "SIGKILL");
   EXPECT_EQ(rows["unwritable"].exit, "1");
   EXPECT_THAT(rows["unwritable"].error, HasSubstr("not a folder"));
   EXPECT_EQ(rows["gate"].exit, "3");
@@ -199,21 +200,30 @@ TEST_F(BatchCli, FaultsFailOnlyTheirTake) {
   }
   // Nothing partial: a failed take's folder holds its record alone (a failed gate keeps
   // its outputs, as the pipeline does).
-  for (const char* name : {"truncated", "mismatch", "crash"}) {
+  for (const char* name : {"truncated", "mismatch", "crash", "killed"}) {
     EXPECT_EQ(FolderFiles(out + "/" + name), std::vector<std::string>{"record.json"}) << name;
   }
   EXPECT_EQ(FolderFiles(out + "/ok"),
             (std::vector<std::string>{"record.json", "repaired.c3d", "report.json", "solved.bvh"}));
-  EXPECT_EQ(FolderFiles(out), (std::vector<std::string>{"crash", "gate", "mismatch", "ok", "summary.csv",
+  EXPECT_EQ(FolderFiles(out), (std::vector<std::string>{"crash", "gate", "killed", "mismatch", "ok", "summary.csv",
                                                          "summary.json", "truncated", "unwritable"}));
   // Failed takes stay failed on a re-run, and are redone with --retry_failed.
   EXPECT_EQ(testing::RunCli("batch --quiet --manifest=" + manifest + " --out_dir=" + out, &output), 2) << output;
-  EXPECT_THAT(output, HasSubstr("1 done, 5 failed (1 ran, 5 skipped"));  // unwritable has no record.
+  EXPECT_THAT(output, HasSubstr("1 done, 6 failed (1 ran, 6 skipped"));  // unwritable has no record.
   EXPECT_EQ(testing::RunCli("batch --quiet --retry_failed --manifest=" + manifest + " --out_dir=" + out, &output),
             2) << output;
   rows = Summary(out);
   EXPECT_EQ(rows["crash"].status, "done");
+  EXPECT_EQ(rows["killed"].status, "done");
   EXPECT_EQ(rows["truncated"].status, "failed");
+  // A take over its memory limit fails alone, with nothing partial.
+  const std::string limited = testing::TempPath("memory_limit");
+  EXPECT_EQ(testing::RunCli("batch --quiet --take_memory_mb=16 --manifest=" + manifest + " --out_dir=" + limited,
+                            &output), 2) << output;
+  rows = Summary(limited);
+  EXPECT_NE(rows["ok"].exit, "0");
+  EXPECT_EQ(rows["ok"].status, "failed");
+  EXPECT_EQ(FolderFiles(limited + "/ok"), std::vector<std::string>{"record.json"});
 }
 
 TEST_F(BatchCli, TimeoutAndKilledBatch) {

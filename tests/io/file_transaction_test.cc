@@ -82,6 +82,23 @@ TEST(FileTransaction, RefusesToOverwriteAnInput) {
   EXPECT_EQ(testing::ReadTextFile(input), "{\"markers\": []}");
 }
 
+TEST(FileTransaction, UntrackedReadsAreNotInputs) {
+  // The batch reads back its takes' reports and records: neither inputs nor outputs.
+  const std::string read_back = testing::TempPath("record.json");
+  const std::string input = testing::TempPath("input.json");
+  WriteNow(read_back, "{}");
+  WriteNow(input, "{}");
+  FileTransaction files;
+  std::string text;
+  {
+    FileTransaction::UntrackedReads untracked;
+    ASSERT_TRUE(ReadFileToString(read_back, &text).ok());
+  }
+  ASSERT_TRUE(ReadFileToString(input, &text).ok());
+  EXPECT_FALSE(files.NamesAnInput(read_back));
+  EXPECT_TRUE(files.NamesAnInput(input));
+}
+
 TEST(FileTransaction, RefusesInputsUnderOtherNames) {
   const std::string input = testing::TempPath("take.c3d");
   WriteNow(input, "bytes");

@@ -128,6 +128,33 @@ TEST(MarkerRepair, UndoesASwapAndFillsGapsAtTheEndsAndOfOneFrame) {
   EXPECT_LT((repaired[30][one] - clean[30][one]).norm(), 0.5);
 }
 
+// Threads change the speed only: one thread gives the same markers and motion, bit for
+// bit, as two (a batch runs its takes single-threaded, side by side).
+TEST(MarkerRepair, ResultDoesNotDependOnThreads) {
+  const testing::DemoTake take = testing::MakeDemoTake(120, 60.0, 5);
+  auto corrupted = take.clean;
+  const int marker = take.markers.FindMarker("LeftForeArm_1");
+  ASSERT_GE(marker, 0);
+  for (int f = 20; f < 100; f += 3) corrupted[f][marker] += Eigen::Vector3d(0, 10, 0);  // Outliers across both halves.
+  std::vector<std::vector<Eigen::Vector3d>> repaired[2];
+  Motion motion[2];
+  for (int threads = 1; threads <= 2; ++threads) {
+    RepairOptions options = testing::DemoRepairOptions(ReferenceKind::kTracker);
+    options.parallel = threads == 2;
+    RepairReport report;
+    ASSERT_TRUE(RepairMarkers(take.skeleton, take.markers, corrupted, options, &repaired[threads - 1],
+                              &motion[threads - 1], &report).ok());
+    EXPECT_GT(report.resolved_frames, 60);  // Both halves re-solved.
+  }
+  for (int f = 0; f < motion[0].num_frames(); ++f) {
+    for (int j = 0; j < take.skeleton.num_joints(); ++j) {
+      EXPECT_EQ(motion[0].frames[f].rotations[j].coeffs(), motion[1].frames[f].rotations[j].coeffs()) << f << " " << j;
+      EXPECT_EQ(motion[0].frames[f].translations[j], motion[1].frames[f].translations[j]) << f << " " << j;
+    }
+  }
+  EXPECT_EQ(repaired[0], repaired[1]);
+}
+
 // Issue 15: NaN, inf and negative values are refused in one place, the options' IsValid.
 TEST(MarkerRepair, OptionsRejectNonFiniteAndNegativeValues) {
   std::string error;
