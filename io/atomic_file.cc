@@ -8,8 +8,6 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <utility>
 
 #include "io/file_transaction.h"
@@ -158,6 +156,14 @@ Status WriteFileAtomically(const std::string& path, const std::string& contents)
   return status.ok() ? staged.Publish() : status;
 }
 
+namespace {
+void (*read_chunk_observer)(const std::string&, size_t) = nullptr;
+}  // namespace
+
+void SetReadChunkObserverForTesting(void (*observer)(const std::string& path, size_t bytes_so_far)) {
+  read_chunk_observer = observer;
+}
+
 Status ReadFileToString(const std::string& path, std::string* contents) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) {
@@ -165,12 +171,37 @@ Status ReadFileToString(const std::string& path, std::string* contents) {
   }
   if (S_ISDIR(st.st_mode)) return Status::Error(path + ": is a directory");
   NoteInputFile(path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) return Status::Error(path + ": read failed");
-  *contents = buffer.str();
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
+  struct stat before;
+  const bool regular = ::fstat(fd, &before) == 0 && S_ISREG(before.st_mode);
+  std::string text;
+  if (regular) text.reserve(static_cast<size_t>(before.st_size));
+  char buffer[1 << 16];
+  while (true) {
+    const ssize_t n = ::read(fd, buffer, sizeof(buffer));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const std::string reason = std::strerror(errno);
+      ::close(fd);
+      return Status::Error(path + ": read failed (" + reason + ")");
+    }
+    if (n == 0) break;
+    text.append(buffer, static_cast<size_t>(n));
+    if (read_chunk_observer != nullptr) read_chunk_observer(path, text.size());
+  }
+  struct stat after;
+  const bool changed = regular && (::fstat(fd, &after) != 0 || after.st_size != before.st_size ||
+                                   after.st_mtim.tv_sec != before.st_mtim.tv_sec ||
+                                   after.st_mtim.tv_nsec != before.st_mtim.tv_nsec ||
+                                   // (/proc files say 0 bytes and have more.)
+                                   (before.st_size > 0 && text.size() != static_cast<size_t>(before.st_size)));
+  ::close(fd);
+  if (changed) {
+    return Status::Error(path + ": the file changed while it was read (" + std::to_string(before.st_size) +
+                         " bytes, then " + std::to_string(text.size()) + " read); read it again once it is complete");
+  }
+  *contents = std::move(text);
   return Status::Ok();
 }
 

@@ -19,8 +19,13 @@ namespace mocapsolve {
 Status WriteFileAtomically(const std::string& path, const std::string& contents);
 
 // Reads a whole file; the error names the path. Inside a FileTransaction the file is
-// recorded as an input.
+// recorded as an input. A regular file that changes while it is read (its size or
+// modification time differs after the read, or fewer bytes came than it had: another
+// program writing or truncating it) is an error, not a silently shorter file.
 Status ReadFileToString(const std::string& path, std::string* contents);
+// Test seam: called after each chunk ReadFileToString reads (nullptr: none), so a test
+// can change the file in the middle of a read.
+void SetReadChunkObserverForTesting(void (*observer)(const std::string& path, size_t bytes_so_far));
 
 // Records a file that a third-party library reads by itself (a glTF's external buffers)
 // as an input of the open FileTransaction, if any.

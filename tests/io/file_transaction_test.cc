@@ -229,3 +229,41 @@ TEST(FileTransaction, ConcurrentWritersOneWinsWhole) {
 
 }  // namespace
 }  // namespace mocapsolve
+
+namespace mocapsolve {
+namespace {
+
+// An input that another program truncates or rewrites while we read it: an error naming
+// the file, not a shorter file parsed as if whole (a truncated BVH can parse as a shorter
+// motion). The seam truncates the file after the first 64 KiB chunk.
+void TruncateAfterFirstChunk(const std::string& path, size_t bytes_so_far) {
+  if (bytes_so_far <= 65536) ASSERT_EQ(::truncate(path.c_str(), 1000), 0);
+}
+void AppendAfterFirstChunk(const std::string& path, size_t bytes_so_far) {
+  if (bytes_so_far > 65536) return;
+  FILE* file = std::fopen(path.c_str(), "a");
+  ASSERT_NE(file, nullptr);
+  std::fputs("more\n", file);
+  std::fclose(file);
+}
+
+TEST(ReadFileToString, AnInputChangedDuringTheReadIsAnError) {
+  const std::string path = testing::TempPath("growing.bvh");
+  const std::string text(300000, 'x');
+  std::string read;
+  for (auto observer : {TruncateAfterFirstChunk, AppendAfterFirstChunk}) {
+    WriteNow(path, text);
+    SetReadChunkObserverForTesting(observer);
+    const Status status = ReadFileToString(path, &read);
+    SetReadChunkObserverForTesting(nullptr);
+    ASSERT_FALSE(status.ok());
+    EXPECT_THAT(status.message(), HasSubstr(path + ": the file changed while it was read"));
+    EXPECT_EQ(status.message().find('\n'), std::string::npos);
+  }
+  WriteNow(path, text);  // Unchanged: read whole.
+  ASSERT_TRUE(ReadFileToString(path, &read).ok());
+  EXPECT_EQ(read, text);
+}
+
+}  // namespace
+}  // namespace mocapsolve

@@ -1,5 +1,6 @@
 #include "kinematics/skinning.h"
 
+#include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -69,6 +70,11 @@ TEST(Skinning, RejectsBadSkins) {
   EXPECT_FALSE(SkinnedMesh::Create(s, spec, &mesh).ok());  // Bad joint.
   spec.influences = {{{0, 1.0}}, {{1, -0.5}}};
   EXPECT_FALSE(SkinnedMesh::Create(s, spec, &mesh).ok());  // Negative weight.
+  spec.influences = {{{0, 1.0}}, {{1, std::nan("")}}};
+  EXPECT_FALSE(SkinnedMesh::Create(s, spec, &mesh).ok());  // NaN weight.
+  spec.influences = {{{0, 1.0}}, {{1, 1.0}}};
+  spec.rest_positions(1, 1) = std::nan("");
+  EXPECT_FALSE(SkinnedMesh::Create(s, spec, &mesh).ok());  // NaN vertex.
 }
 
 }  // namespace
