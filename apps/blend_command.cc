@@ -143,6 +143,6 @@ extern const Command kBlendCommand = {
     "(B's sign matched to A's at START) and renormalized (nlerp). Prints the largest\n"
     "velocity jump near the window and in each input.",
     __FILE__, RunBlend,
-    "out,kernel_a,tension,skeleton,skeleton_units,amc_fps,report,quiet"};
+    "out,kernel_a,tension,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet"};
 
 }  // namespace mocapsolve

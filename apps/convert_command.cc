@@ -104,6 +104,6 @@ extern const Command kConvertCommand = {
     "the BVH rotation channels. With a .glb/.gltf OUT, the motion (whose skeleton must have\n"
     "the character's joints, e.g. a BVH converted from it) is added as a new animation to a\n"
     "copy of --target (default IN). OUT is written atomically and may not be an input.",
-    __FILE__, RunConvert, "skeleton,amc_fps,animation,sample_fps,target,report"};
+    __FILE__, RunConvert, "skeleton,skeleton_units,amc_fps,animation,sample_fps,target,report,quiet"};
 
 }  // namespace mocapsolve

@@ -288,7 +288,7 @@ extern const Command kDistanceCommand = {
     "distance curves (1 - weight) of every method and --sweep sigma as SVG.",
     __FILE__, RunDistance,
     // The falloff flags are kFalloffFlagNames (apps/falloff_flags.h).
-    "motion,out,plot,method,skeleton,skeleton_units,amc_fps,report,quiet,sigma,sigma_scale,"
+    "motion,out,plot,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet,sigma,sigma_scale,"
     "eigenpairs,region,diffusion_steps,knn,isomap_knn,falloff_kernel,feature_joints,joint_weights,"
     "temporal_weight"};
 

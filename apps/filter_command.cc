@@ -104,6 +104,6 @@ extern const Command kFilterCommand = {
     "Thalmann, section 5). Rotations are filtered as sign-continuous quaternions and\n"
     "renormalized, positions and markers per channel; missing marker samples stay missing. A\n"
     "motion is written as BVH, markers as C3D or TRC (by --out's extension).",
-    __FILE__, RunFilter, "motion,markers,out,skeleton,skeleton_units,amc_fps,report,quiet"};
+    __FILE__, RunFilter, "motion,markers,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet"};
 
 }  // namespace mocapsolve

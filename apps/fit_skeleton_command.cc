@@ -78,7 +78,6 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
                          (!FLAGS_skeleton.empty() ? "skeleton" : !FLAGS_markerset.empty() ? "markerset" : "skeleton_units") +
                          " both given: the template subject holds the skeleton and marker set");
   }
-  if (!FLAGS_subject.empty()) return Status::Error("--subject: fit_skeleton starts from --template_subject");
   if (FLAGS_markers.empty() || (!from_subject && (FLAGS_skeleton.empty() || FLAGS_markerset.empty()))) {
     return Status::Error("--markers and either --template_subject or --skeleton and --markerset are required");
   }
@@ -329,7 +328,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
 }
 
 const std::string kFitFlags =
-    std::string("template_subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,out,out_subject,report,quiet,") +
+    std::string("template_subject,skeleton,skeleton_units,amc_fps,markers,markerset,axes,marker_scale,out,out_subject,report,quiet,") +
     kSolverFlagNames;
 
 }  // namespace

@@ -107,6 +107,6 @@ extern const Command kInfoCommand = {
     "Motions: joint and end-site counts, frame count and rate, duration, the file's length\n"
     "unit (BVH does not state one) and the bounding box of the root's path. Markers:\n"
     "labels, frames, rate, unit, missing samples and gap runs.",
-    __FILE__, RunInfo, "skeleton,amc_fps,animation,sample_fps,report"};
+    __FILE__, RunInfo, "skeleton,skeleton_units,amc_fps,animation,sample_fps,report"};
 
 }  // namespace mocapsolve

@@ -52,21 +52,42 @@ std::string ShownDefault(const gflags::CommandLineFlagInfo& flag) {
   return text;
 }
 
+// The flags a command reads: those defined in its own file, and the shared ones (main.cc,
+// solver_flags.cc, ...) it lists. Its --help shows exactly these, and main refuses any other
+// of ours (glog's and gflags' own, such as --v, stay accepted everywhere).
+bool CommandReadsFlag(const Command& command, const gflags::CommandLineFlagInfo& flag) {
+  const bool own = EndsWith(flag.filename, command.source) || EndsWith(command.source, flag.filename);
+  const bool common =
+      command.shared_flags == nullptr
+          ? EndsWith(flag.filename, "apps/main.cc")
+          : ("," + std::string(command.shared_flags) + ",").find("," + flag.name + ",") != std::string::npos;
+  return own || common;
+}
+
+bool IsOurFlag(const gflags::CommandLineFlagInfo& flag) {
+  return flag.filename.find("apps/") != std::string::npos;
+}
+
+// A flag given on the command line that the command does not read is an error, not a
+// silent no-op (`info --solver=foo`).
+Status CheckGivenFlags(const Command& command) {
+  std::vector<gflags::CommandLineFlagInfo> flags;
+  gflags::GetAllFlags(&flags);
+  for (const auto& flag : flags) {
+    if (flag.is_default || !IsOurFlag(flag) || CommandReadsFlag(command, flag)) continue;
+    return Status::Error("--" + flag.name + ": not a flag of `" + command.name + "` (mocapsolve " + command.name +
+                         " --help lists its flags)");
+  }
+  return Status::Ok();
+}
+
 void PrintCommandHelp(const Command& command) {
   std::printf("usage: %s\n\n", command.usage);
   std::vector<gflags::CommandLineFlagInfo> flags;
   gflags::GetAllFlags(&flags);
   bool header = false;
   for (const auto& flag : flags) {
-    const bool own = EndsWith(flag.filename, command.source) ||
-                     EndsWith(command.source, flag.filename);
-    // Flags defined elsewhere (main.cc, solver_flags.cc) that the command lists.
-    const bool common =
-        command.shared_flags == nullptr
-            ? EndsWith(flag.filename, "apps/main.cc")
-            : ("," + std::string(command.shared_flags) + ",").find("," + flag.name + ",") !=
-                  std::string::npos;
-    if (!own && !common) continue;
+    if (!CommandReadsFlag(command, flag)) continue;
     if (!header) std::printf("flags:\n"), header = true;
     std::printf("  --%s (%s) default: %s\n      %s\n", flag.name.c_str(), flag.type.c_str(),
                 ShownDefault(flag).c_str(), flag.description.c_str());
@@ -317,7 +338,8 @@ int main(int argc, char** argv) {
   // Every file the command reads is an input no output may overwrite; its outputs are
   // published together when it succeeds, and none of them when it fails.
   mocapsolve::FileTransaction files;
-  mocapsolve::Status status = mocapsolve::CheckReportPaths(positional);
+  mocapsolve::Status status = mocapsolve::CheckGivenFlags(*command);
+  if (status.ok()) status = mocapsolve::CheckReportPaths(positional);
   if (status.ok()) status = command->run(positional);
   if (status.ok()) status = files.Commit();
   if (!status.ok()) mocapsolve::WriteFailureReport(command->name, status.message(), positional, files);

@@ -39,7 +39,7 @@ json.dump({"defaults": {"subject": "small_subject.json"},
           open(f"{work}/small.json", "w"), indent=1)
 PY
 # Small takes: a generated 30-frame walk, its markers and its calibrated subject.
-"$ms" generate --quiet --demo_out="$work/small.bvh" --frames=30 --fps=60 >/dev/null
+"$ms" generate --demo_out="$work/small.bvh" --frames=30 --fps=60 >/dev/null
 "$ms" markers --quiet --motion="$work/small.bvh" --skeleton_units=cm --markerset=auto:3 \
   --write_markerset="$work/small_markerset.json" --noise_mm=1 --seed=7 --out="$work/small.c3d" >/dev/null
 "$ms" calibrate --quiet --motion="$work/small.bvh" --skeleton_units=cm --markers="$work/small.c3d" \

@@ -102,14 +102,14 @@ say "Slurm up (slurmctld + slurmd on localhost, $cpus CPUs)"
 # --- 3. the batch ------------------------------------------------------------------------
 # 20 generated takes of different lengths (no shared data needed), one subject.
 takes="$tmp/takes"; mkdir -p "$takes"
-"$ms" generate --quiet --demo_out="$takes/base.bvh" --frames=600 --fps=60 >/dev/null
+"$ms" generate --demo_out="$takes/base.bvh" --frames=600 --fps=60 >/dev/null
 "$ms" markers --quiet --motion="$takes/base.bvh" --skeleton_units=cm --markerset=auto:3 \
   --write_markerset="$takes/markerset.json" --noise_mm=1 --seed=1 --out="$takes/base.c3d" >/dev/null
 "$ms" calibrate --quiet --motion="$takes/base.bvh" --skeleton_units=cm --markers="$takes/base.c3d" \
   --attach=auto --out="$takes/calibrated.json" --out_subject="$takes/subject.json" >/dev/null
 entries=()
 for i in $(seq -w 0 19); do
-  "$ms" generate --quiet --demo_out="$takes/t$i.bvh" --frames=$((400 + 10 * 10#$i)) --fps=60 >/dev/null
+  "$ms" generate --demo_out="$takes/t$i.bvh" --frames=$((400 + 10 * 10#$i)) --fps=60 >/dev/null
   "$ms" markers --quiet --motion="$takes/t$i.bvh" --skeleton_units=cm --markerset="$takes/markerset.json" \
     --noise_mm=1 --seed=$((10#$i + 2)) --out="$takes/t$i.c3d" >/dev/null
   entries+=("{\"name\": \"take$i\", \"markers\": \"takes/t$i.c3d\"}")

@@ -1,0 +1,83 @@
+// Every command refuses the flags it does not read (issue 17: `info --solver=foo` used to
+// exit 0), and its --help lists the ones it accepts: one rule in apps/main.cc decides both.
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+using ::testing::HasSubstr;
+
+// The commands `mocapsolve --help` lists.
+std::vector<std::string> Commands() {
+  std::string output;
+  testing::RunCli("--help", &output);
+  std::vector<std::string> names;
+  std::istringstream lines(output);
+  bool in_list = false;
+  for (std::string line; std::getline(lines, line);) {
+    if (line == "commands:") {
+      in_list = true;
+      continue;
+    }
+    if (in_list && line.empty()) break;
+    if (in_list && line.size() > 2 && line[0] == ' ') names.push_back(line.substr(2, line.find(' ', 2) - 2));
+  }
+  return names;
+}
+
+// The flags a command's --help lists.
+std::set<std::string> HelpFlags(const std::string& command) {
+  std::string output;
+  EXPECT_EQ(testing::RunCli(command + " --help", &output), 0) << command;
+  std::set<std::string> flags;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  --", 0) == 0) flags.insert(line.substr(4, line.find(' ', 4) - 4));
+  }
+  return flags;
+}
+
+TEST(CommandFlags, AFlagACommandDoesNotReadIsRefused) {
+  const std::vector<std::string> commands = Commands();
+  ASSERT_GE(commands.size(), 20u);
+  std::map<std::string, std::set<std::string>> listed;
+  std::set<std::string> all;
+  for (const std::string& command : commands) {
+    listed[command] = HelpFlags(command);
+    all.insert(listed[command].begin(), listed[command].end());
+  }
+  for (const std::string& command : commands) {
+    // A flag another command reads and this one does not: refused, naming both.
+    std::string foreign;
+    for (const std::string& flag : all) {
+      if (!listed[command].count(flag)) {
+        foreign = flag;
+        break;
+      }
+    }
+    ASSERT_FALSE(foreign.empty()) << command;
+    std::string output;
+    EXPECT_EQ(testing::RunCli(command + " --" + foreign + "=1", &output), 1) << command << " --" << foreign;
+    EXPECT_THAT(output, HasSubstr("--" + foreign + ": not a flag of `" + command + "`")) << output;
+    EXPECT_EQ(output.find('\n'), output.size() - 1) << output;
+  }
+  // The observed cases.
+  std::string output;
+  EXPECT_EQ(testing::RunCli("info --solver=foo --loop=7 x.bvh", &output), 1);
+  EXPECT_THAT(output, HasSubstr("not a flag of `info`"));
+  EXPECT_EQ(testing::RunCli("repair --out=x.c3d", &output), 1);
+  EXPECT_THAT(output, HasSubstr("--out: not a flag of `repair`"));
+  // glog's own flags stay accepted everywhere.
+  EXPECT_EQ(testing::RunCli("generate --v=0 --demo_out=" + testing::TempPath("walk.bvh"), &output), 0) << output;
+}
+
+}  // namespace
+}  // namespace mocapsolve
