@@ -5,7 +5,7 @@ and installs python/mocapsolve with the compiled mocapsolve/_core module.
 
 CMake finds Python through the interpreter running this build; CMAKE_ARGS (environment)
 adds configure arguments (e.g. -DCMAKE_CXX_COMPILER_LAUNCHER=ccache), CMAKE_BUILD_PARALLEL_LEVEL
-the jobs (default 2).
+the jobs (default 2), MOCAPSOLVE_CMAKE_BUILD_DIR the CMake build folder (default build-pip/).
 """
 import glob
 import os
@@ -27,7 +27,8 @@ class CMakeExtension(Extension):
 
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
-        build = os.path.abspath(os.path.join(self.build_temp, "cmake"))
+        # At the depth of build/, so that ccache (CCACHE_BASEDIR) shares the objects.
+        build = os.environ.get("MOCAPSOLVE_CMAKE_BUILD_DIR", os.path.join(ROOT, "build-pip"))
         configure = ["cmake", "-S", ROOT, "-B", build, "-DCMAKE_BUILD_TYPE=Release",
                      "-DPython3_EXECUTABLE=" + sys.executable, "-DMOCAPSOLVE_PYTHON=ON",
                      "-DMOCAPSOLVE_BUILD_TESTS=OFF", "-DMOCAPSOLVE_BUILD_BENCHMARKS=OFF"]
