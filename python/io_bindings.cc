@@ -1,5 +1,7 @@
 // io: markers (C3D/TRC), motions (BVH, ASF/AMC, glTF, FBX), skeletons, subjects.
 #include "io/bvh_writer.h"
+#include "io/gltf_reader.h"
+#include "io/gltf_writer.h"
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
@@ -137,6 +139,20 @@ void BindIo(py::module_& m) {
       }, py::arg("path"), py::arg("skeleton"), py::arg("motion"), py::arg("precision") = 6,
       py::arg("scale") = 1.0,
       "Writes a .bvh (atomically): precision significant digits, lengths times scale.");
+
+  m.def("write_gltf", [](const std::string& path, const std::string& target, const Motion& motion,
+                         const std::string& clip_name) {
+        RequireReadable(target);
+        py::gil_scoped_release release;
+        GltfDocument document;
+        Status status = GltfDocument::Read(target, &document);
+        GltfCharacter character;
+        if (status.ok()) status = ReadGltfCharacter(document, GltfReadOptions(), &character);
+        if (status.ok()) status = WriteGltfWithAnimation(document, character, motion, clip_name, path);
+        ThrowIfError(status);
+      }, py::arg("path"), py::arg("target"), py::arg("motion"), py::arg("clip_name") = "mocapsolve",
+      "Writes the character file `target` (.glb/.gltf) plus `motion` (on its skeleton, e.g. from\n"
+      "read_motion(target) or retarget()) as a new animation clip_name, to path (.glb/.gltf).");
 
   py::class_<Subject, SubjectPtr>(m, "Subject",
       "One actor: skeleton, calibrated marker set and how marker files map onto it.")

@@ -1,5 +1,7 @@
 // Marker repair (thesis chapter 3): the repair settings (the CLI's flags) and repair().
+#include "pipeline/corruption_settings.h"
 #include "pipeline/repair_settings.h"
+#include "problems/marker_repair/repair_evaluation.h"
 #include "problems/marker_repair/marker_repair.h"
 #include "python/bindings.h"
 #include "python/solve_bindings.h"
@@ -112,6 +114,100 @@ own axes and unit: what --out_markers writes), the motion solved from them, and 
 report as a dict ('detected' and 'filled' lists of {marker, first_frame, last_frame,
 what}, 'timings', 'rms_*_mm', 'repaired_observed' (frames, set markers, 3) in skeleton
 units). Releases the GIL while repairing.)doc");
+
+  py::class_<CorruptionSettings> damage(m, "CorruptionSettings",
+      "The synthetic damage's options, one per flag of `mocapsolve corrupt`/`evaluate` (same\n"
+      "names and defaults; distances in mm).");
+  damage.def(py::init<>());
+#define MOCAPSOLVE_FIELD(name) damage.def_readwrite(#name, &CorruptionSettings::name)
+  MOCAPSOLVE_FIELD(corrupt_seed); MOCAPSOLVE_FIELD(gaps); MOCAPSOLVE_FIELD(gap_min); MOCAPSOLVE_FIELD(gap_max);
+  MOCAPSOLVE_FIELD(cluster_gaps); MOCAPSOLVE_FIELD(cluster_radius_mm); MOCAPSOLVE_FIELD(fly_off_frames);
+  MOCAPSOLVE_FIELD(fly_off_mm); MOCAPSOLVE_FIELD(swaps); MOCAPSOLVE_FIELD(swap_length);
+  MOCAPSOLVE_FIELD(swap_radius_mm); MOCAPSOLVE_FIELD(noisy_markers); MOCAPSOLVE_FIELD(noise_length);
+  MOCAPSOLVE_FIELD(noise_sigma_mm);
+#undef MOCAPSOLVE_FIELD
+  m.attr("CORRUPTION_OPTION_NAMES") = std::string(kCorruptionSettingNames);
+
+  m.def("corrupt", [](MarkerTrajectories& markers, const py::kwargs& keywords) {
+        CorruptionSettings settings;
+        ApplyKeywords(keywords, {py::cast(&settings, py::return_value_policy::reference)}, kCorruptionSettingNames);
+        CorruptionOptions options;
+        ThrowIfError(CorruptionOptionsFromSettings(settings, markers.unit, &options));
+        SyncMask(&markers);
+        auto damaged = std::make_shared<MarkerTrajectories>(markers);
+        CorruptionMask mask;
+        {
+          py::gil_scoped_release release;
+          CorruptMarkers(options, damaged.get(), &mask);
+        }
+        py::array_t<std::int8_t> kinds({py::ssize_t{damaged->num_frames()}, py::ssize_t{damaged->num_markers()}});
+        for (int f = 0; f < damaged->num_frames(); ++f) {
+          for (int k = 0; k < damaged->num_markers(); ++k) {
+            kinds.mutable_at(f, k) = static_cast<std::int8_t>(mask.empty() ? 0 : mask[f][k]);
+          }
+        }
+        return py::make_tuple(damaged, kinds);
+      }, py::arg("markers"),
+      "Damages markers as `mocapsolve corrupt` (gaps, clustered occlusions, fly-offs, swaps,\n"
+      "noise; keywords: the CorruptionSettings). Returns (damaged markers, (frames, markers)\n"
+      "int8 mask of the damage kind per sample, 0 = untouched; signal/marker_corruption.h).");
+
+  m.def("evaluate", [](SubjectPtr subject, py::object markers, int trials, const py::kwargs& keywords) {
+        RepairSettings repair_settings;
+        SolverSettings solver_settings;
+        solver_settings.solver = kRepairDefaultSolver;
+        CorruptionSettings damage_settings;
+        ApplyKeywords(keywords,
+                      {py::cast(&repair_settings, py::return_value_policy::reference),
+                       py::cast(&solver_settings, py::return_value_policy::reference),
+                       py::cast(&damage_settings, py::return_value_policy::reference)},
+                      RepairOptionNames() + "," + kCorruptionSettingNames);
+        if (trials < 1 || trials > 1000) throw py::value_error("--trials: expected 1..1000");
+        const Skeleton& skeleton = subject->skeleton;
+        RepairOptions options;
+        ThrowIfError(RepairOptionsFromSettings(repair_settings, solver_settings, skeleton, &options));
+        CorruptionOptions damage;
+        ThrowIfError(CorruptionOptionsFromSettings(damage_settings, skeleton.unit(), &damage));
+        const MarkerTakePtr take = TakeArgument(*subject, markers);
+        const double cm = skeleton.unit().metres_per_unit * 100.0, mm = cm * 10.0;
+        py::list out;
+        for (int trial = 0; trial < trials; ++trial) {
+          damage.seed = static_cast<uint32_t>(damage_settings.corrupt_seed + trial);
+          std::vector<RepairEvaluationRow> rows;
+          Status status = Status::Ok();
+          {
+            py::gil_scoped_release release;
+            status = EvaluateRepairTrial(skeleton, subject->markers, take->observed, damage, options, &rows);
+          }
+          ThrowIfError(status);
+          for (const RepairEvaluationRow& r : rows) {
+            py::dict d;
+            d["trial"] = trial;
+            d["seed"] = damage.seed;
+            d["method"] = r.method;
+            d["joint_position_cm"] = r.joint_position_error * cm;
+            d["joint_rotation_deg"] = r.joint_rotation_error * 180.0 / 3.14159265358979323846;
+            d["marker_mean_mm"] = r.marker_error_mean * mm;
+            d["marker_rms_mm"] = r.marker_error_rms * mm;
+            d["marker_max_mm"] = r.marker_error_max * mm;
+            d["damaged_samples"] = r.damaged_samples;
+            d["covered_samples"] = r.covered_samples;
+            d["velocity_jump_mm_per_frame"] = r.velocity_jump * mm;
+            d["seconds"] = r.seconds;
+            d["gap_mean_mm"] = r.kind_error[0] * mm;
+            d["fly_off_mean_mm"] = r.kind_error[1] * mm;
+            d["swap_mean_mm"] = r.kind_error[2] * mm;
+            d["noise_mean_mm"] = r.kind_error[3] * mm;
+            out.append(d);
+          }
+        }
+        return out;
+      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("trials") = 1,
+      R"doc(The thesis' Table 1 on synthetic damage, as `mocapsolve evaluate`: per trial (seeds
+corrupt_seed, corrupt_seed + 1, ...) the clean markers are damaged and refilled by every
+method (original, polynomial, linear, PCA, reference only, ours). Keywords: the repair,
+solver and corruption options. Returns one dict per trial and method, the columns of
+evaluate's --table_csv (errors against the solve of the clean markers).)doc");
 }
 
 }  // namespace mocapsolve::python

@@ -113,3 +113,15 @@ def test_bad_file_raises_value_error_naming_it(tmp_path):
     with pytest.raises(ValueError) as error:
         mocapsolve.read_motion(str(bad))
     assert str(error.value) in output
+
+
+def test_gltf_animation_round_trip(tmp_path):
+    glb = data_file("gltf/CesiumMan.glb")
+    skeleton, motion = mocapsolve.read_motion(glb)
+    out = str(tmp_path / "with_clip.glb")
+    mocapsolve.write_gltf(out, glb, motion, "again")
+    skeleton2, motion2 = mocapsolve.read_motion(out, animation="again")
+    assert skeleton2.joint_names == skeleton.joint_names
+    a = mocapsolve.forward_kinematics(skeleton, motion)
+    b = mocapsolve.forward_kinematics(skeleton2, motion2)
+    assert a.shape == b.shape and np.abs(a - b).max() < 1e-5  # Metres; floats in the file.
