@@ -31,6 +31,10 @@ void BindPropagate(py::module_& m) {
   MOCAPSOLVE_FIELD(isomap_knn); MOCAPSOLVE_FIELD(falloff_kernel); MOCAPSOLVE_FIELD(feature_joints);
   MOCAPSOLVE_FIELD(joint_weights); MOCAPSOLVE_FIELD(temporal_weight);
 #undef MOCAPSOLVE_FIELD
+  settings.def("validate", [](const FalloffSettings& s, int num_frames) {
+        FalloffOptions options;
+        ThrowIfError(FalloffOptionsFromSettings(s, num_frames, &options));
+      }, py::arg("num_frames"), "Raises ValueError (the CLI's message) if a value is invalid for a clip this long.");
   m.attr("FALLOFF_OPTION_NAMES") = std::string(kFalloffSettingNames);
 
   m.def("falloff", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& method,

@@ -41,6 +41,15 @@ void BindRepair(py::module_& m) {
   MOCAPSOLVE_FIELD(reference_loss_cm); MOCAPSOLVE_FIELD(tracker_prior_weight);
   MOCAPSOLVE_FIELD(tracker_translation_prior); MOCAPSOLVE_FIELD(tracker_function_tolerance);
 #undef MOCAPSOLVE_FIELD
+  settings.def("validate", [](const RepairSettings& s, const SolverSettings& solver, const std::string& units) {
+        JointSpec root;
+        root.name = "root";
+        Skeleton skeleton;
+        ThrowIfError(Skeleton::Create({root}, {}, LengthUnitFromName(units), &skeleton));
+        RepairOptions options;
+        ThrowIfError(RepairOptionsFromSettings(s, solver, skeleton, &options));
+      }, py::arg("solver") = SolverSettings(), py::arg("skeleton_units") = "cm",
+      "Raises ValueError (the CLI's message) if a value, or one of the solver's, is invalid.");
   m.attr("REPAIR_OPTION_NAMES") = std::string(kRepairSettingNames);
 
   m.def("repair", [](SubjectPtr subject, py::object markers, const py::kwargs& keywords) {
@@ -126,6 +135,10 @@ units). Releases the GIL while repairing.)doc");
   MOCAPSOLVE_FIELD(swap_radius_mm); MOCAPSOLVE_FIELD(noisy_markers); MOCAPSOLVE_FIELD(noise_length);
   MOCAPSOLVE_FIELD(noise_sigma_mm);
 #undef MOCAPSOLVE_FIELD
+  damage.def("validate", [](const CorruptionSettings& s, const std::string& units) {
+        CorruptionOptions options;
+        ThrowIfError(CorruptionOptionsFromSettings(s, LengthUnitFromName(units), &options));
+      }, py::arg("units") = "mm", "Raises ValueError (the CLI's message) if a value is invalid.");
   m.attr("CORRUPTION_OPTION_NAMES") = std::string(kCorruptionSettingNames);
 
   m.def("corrupt", [](MarkerTrajectories& markers, const py::kwargs& keywords) {

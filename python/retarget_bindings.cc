@@ -24,6 +24,10 @@ void BindRetarget(py::module_& m) {
   MOCAPSOLVE_FIELD(normal_weight); MOCAPSOLVE_FIELD(smoothness); MOCAPSOLVE_FIELD(contact_height);
   MOCAPSOLVE_FIELD(ceres_trust_radius);
 #undef MOCAPSOLVE_FIELD
+  settings.def("validate", [](const RetargetSettings& s) {
+        CharacterRetargetOptions options;
+        ThrowIfError(RetargetOptionsFromSettings(s, &options));
+      }, "Raises ValueError (the CLI's message) if a value is invalid.");
   m.attr("RETARGET_OPTION_NAMES") = std::string("solver,limit_weight,") + kRetargetSettingNames;
 
   m.def("retarget", [](const std::string& source, const std::string& target, py::object skeleton,
