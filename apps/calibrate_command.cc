@@ -11,6 +11,7 @@
 #include "io/motion_file.h"
 #include "kinematics/marker_trajectories.h"
 #include "pipeline/subject.h"
+#include "pipeline/subject_calibration.h"
 #include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/marker_observations.h"
 
@@ -35,7 +36,6 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
   if (!auto_attach && FileExtension(FLAGS_attach) != ".json") {
     return Status::Error("--attach='" + FLAGS_attach + "': expected auto or a marker set .json");
   }
-  if (FLAGS_min_valid_frames < 1) return Status::Error("--min_valid_frames must be >= 1");
   if (!FLAGS_out_subject.empty() && FileExtension(FLAGS_out_subject) != ".json") {
     return Status::Error(FLAGS_out_subject + ": expected a .json subject file");
   }
@@ -63,54 +63,30 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
     if (!status.ok()) return status;
   }
 
-  // Marker file -> model frame: scale, then axes (given or searched).
-  MarkerFileToModel transform;
-  if (FLAGS_marker_scale > 0.0 && std::isfinite(FLAGS_marker_scale)) {
-    transform.scale = FLAGS_marker_scale;
-  } else if (FLAGS_marker_scale != 0.0) {
-    return Status::Error("--marker_scale must be positive (or 0: from the units)");
-  } else {
-    status = UnitScale(trajectories.unit, skeleton.unit(), &transform.scale);
-    if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message() + " (or --skeleton_units)");
-  }
-  CalibrationOptions options;
-  options.frame_offset = FLAGS_frame_offset;
-  options.min_valid_frames = FLAGS_min_valid_frames;
-  const MarkerSet* fixed = auto_attach ? nullptr : &attachments;
-  std::vector<double> axis_rms;
-  if (FLAGS_axes == "auto") {
-    MarkerTrajectories scaled = trajectories;
-    MarkerFileToModel scale_only;
-    scale_only.scale = transform.scale;
-    TransformMarkers(scale_only, skeleton.unit(), &scaled);
-    status = FindMarkerAxes(skeleton, motion, scaled, options, fixed, &transform.rotation, &axis_rms);
-    if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
-  } else {
-    status = ParseAxes(FLAGS_axes, &transform.rotation);
-    if (!status.ok()) return status;
-  }
   if (!FLAGS_quiet && trajectories.frame_rate > 0.0 && motion.frame_rate > 0.0 &&
       std::abs(trajectories.frame_rate / motion.frame_rate - 1.0) > 1e-6) {
     std::fprintf(stderr, "warning: marker rate %g fps differs from the motion's %g fps (frames are "
                  "matched by index)\n", trajectories.frame_rate, motion.frame_rate);
   }
-  TransformMarkers(transform, skeleton.unit(), &trajectories);
-  CalibrationResult result;
-  status = CalibrateMarkers(skeleton, motion, trajectories, options, fixed, &result);
-  if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
-  status = WriteMarkerSet(FLAGS_out, skeleton, result.marker_set,
-                          FLAGS_skeleton.empty() ? FLAGS_motion : FLAGS_skeleton);
+  SubjectCalibrationOptions options;
+  options.axes = FLAGS_axes;
+  options.marker_scale = FLAGS_marker_scale;
+  options.frame_offset = FLAGS_frame_offset;
+  options.min_valid_frames = FLAGS_min_valid_frames;
+  options.attachments = auto_attach ? nullptr : &attachments;
+  options.skeleton_path = FLAGS_skeleton.empty() ? FLAGS_motion : FLAGS_skeleton;
+  options.amc_fps = FLAGS_amc_fps;
+  options.markers_name = FLAGS_markers;
+  SubjectCalibration calibration;
+  status = CalibrateSubject(skeleton, motion, trajectories, options, &calibration);
+  if (!status.ok()) return status;
+  const CalibrationResult& result = calibration.result;
+  const MarkerFileToModel& transform = calibration.transform;
+  const std::vector<double>& axis_rms = calibration.axis_rms;
+  status = WriteMarkerSet(FLAGS_out, skeleton, result.marker_set, options.skeleton_path);
   if (!status.ok()) return status;
   if (!FLAGS_out_subject.empty()) {
-    Subject subject;
-    subject.skeleton = skeleton;
-    subject.skeleton_path = FLAGS_skeleton.empty() ? FLAGS_motion : FLAGS_skeleton;
-    subject.markers = result.marker_set;
-    subject.axes = AxesName(transform.rotation);
-    subject.marker_scale = FLAGS_marker_scale;
-    if (trajectories.subject_prefixes.size() == 1) subject.label_prefix = trajectories.subject_prefixes[0];
-    subject.amc_fps = FLAGS_amc_fps;
-    status = WriteSubject(FLAGS_out_subject, subject);
+    status = WriteSubject(FLAGS_out_subject, calibration.subject);
     if (!status.ok()) return status;
     std::printf("wrote subject %s\n", FLAGS_out_subject.c_str());
   }

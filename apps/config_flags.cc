@@ -12,16 +12,6 @@
 
 namespace mocapsolve {
 
-std::vector<std::string> SplitCommaList(const std::string& flags) {
-  std::vector<std::string> names;
-  std::stringstream stream(flags);
-  std::string name;
-  while (std::getline(stream, name, ',')) {
-    if (!name.empty()) names.push_back(name);
-  }
-  return names;
-}
-
 Status ApplyConfigFile(const std::string& path, const std::string& flags) {
   JsonNode root;
   Status status = ReadJsonFile(path, &root);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "io/comma_list.h"  // SplitCommaList, for the commands.
 #include "kinematics/status.h"
 
 namespace mocapsolve {
@@ -20,8 +21,6 @@ Status ApplyConfigFile(const std::string& path, const std::string& flags);
 // booleans as JSON values, the rest as strings): what --print_config shows.
 std::string ConfigJson(const std::string& flags);
 
-// Splits "a,b,c" (empty items dropped).
-std::vector<std::string> SplitCommaList(const std::string& flags);
 
 }  // namespace mocapsolve
 

@@ -6,13 +6,14 @@
 
 #include "kinematics/status.h"
 #include "kinematics/units.h"
+#include "pipeline/corruption_settings.h"
 #include "signal/marker_corruption.h"
 
 DECLARE_int32(corrupt_seed);
 
 namespace mocapsolve {
 
-extern const char* const kCorruptionFlagNames;
+inline constexpr const char* kCorruptionFlagNames = kCorruptionSettingNames;
 
 // Distances in mm converted to `unit` (which must be known).
 Status CorruptionOptionsFromFlags(const LengthUnit& unit, CorruptionOptions* options);

@@ -52,12 +52,8 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
                     "marker_max_mm,damaged_samples,covered_samples,velocity_jump_mm_per_frame,seconds\n";
   for (int trial = 0; trial < FLAGS_trials; ++trial) {
     damage.seed = static_cast<uint32_t>(FLAGS_corrupt_seed + trial);
-    MarkerTrajectories x = ObservationTrajectories(markers, clean);
-    x.unit = skeleton.unit();
-    CorruptionMask mask;
-    CorruptMarkers(damage, &x, &mask);
     std::vector<RepairEvaluationRow> rows;
-    status = EvaluateRepair(skeleton, markers, clean, TrajectoryObservations(x), mask, options, &rows);
+    status = EvaluateRepairTrial(skeleton, markers, clean, damage, options, &rows);
     if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
     if (mean_rows.empty()) mean_rows.assign(rows.size(), RepairEvaluationRow());
     for (size_t i = 0; i < rows.size(); ++i) {

@@ -6,12 +6,13 @@
 #define MOCAPSOLVE_APPS_FALLOFF_FLAGS_H_
 
 #include "kinematics/status.h"
+#include "pipeline/falloff_settings.h"
 #include "problems/edit_propagation/falloff.h"
 
 namespace mocapsolve {
 
 // The flags' names, comma-separated, for Command::shared_flags.
-extern const char kFalloffFlagNames[];
+inline constexpr const char* kFalloffFlagNames = kFalloffSettingNames;
 
 // Options from the flags; the message names the bad flag. --region is parsed against
 // num_frames ("a:b", either side may be empty; b exclusive).

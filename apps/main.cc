@@ -56,6 +56,7 @@ std::string ShownDefault(const gflags::CommandLineFlagInfo& flag) {
 // solver_flags.cc, ...) it lists. Its --help shows exactly these, and main refuses any other
 // of ours (glog's and gflags' own, such as --v, stay accepted everywhere).
 bool CommandReadsFlag(const Command& command, const gflags::CommandLineFlagInfo& flag) {
+  if (flag.name == "quiet") return true;  // Common to every command (`mocapsolve --help`).
   const bool own = EndsWith(flag.filename, command.source) || EndsWith(command.source, flag.filename);
   const bool common =
       command.shared_flags == nullptr
@@ -137,24 +138,7 @@ Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
   return status.ok() ? ApplySkeletonUnits(skeleton) : status;
 }
 
-Status ApplySkeletonUnits(Skeleton* skeleton) {
-  const std::string& name = FLAGS_skeleton_units;
-  if (name.empty()) return Status::Ok();
-  const LengthUnit unit = LengthUnitFromName(name);
-  if (!unit.known()) return Status::Error("--skeleton_units='" + name + "': expected mm, cm, m or in");
-  if (skeleton->unit().known()) {
-    if (std::abs(skeleton->unit().metres_per_unit / unit.metres_per_unit - 1.0) < 1e-12) return Status::Ok();
-    return Status::Error("--skeleton_units=" + name + ": the skeleton file states its unit ('" +
-                         skeleton->unit().name + "'); the flag is for files that do not");
-  }
-  std::vector<JointSpec> joints;
-  for (int j = 0; j < skeleton->num_joints(); ++j) joints.push_back(skeleton->joint(j));
-  Skeleton with_unit;
-  Status status = Skeleton::Create(std::move(joints), skeleton->end_sites(), unit, &with_unit);
-  if (!status.ok()) return status;
-  *skeleton = std::move(with_unit);
-  return Status::Ok();
-}
+Status ApplySkeletonUnits(Skeleton* skeleton) { return SetSkeletonUnits(FLAGS_skeleton_units, skeleton); }
 
 Status LoadSkeleton(const std::string& path, Skeleton* skeleton) {
   Status status = ReadSkeletonFile(path, skeleton);
@@ -184,20 +168,14 @@ Status LoadSubjectFromFlags(Subject* subject) {
     }
     return ReadSubject(FLAGS_subject, subject);
   }
-  Subject result;
-  Status status = LoadSkeleton(FLAGS_skeleton, &result.skeleton);
-  if (!status.ok()) return status;
-  if (!result.skeleton.unit().known()) {
-    return Status::Error(FLAGS_skeleton + ": the skeleton's unit is unknown; give --skeleton_units");
-  }
-  result.skeleton_path = FLAGS_skeleton;
-  status = ReadMarkerSet(FLAGS_markerset, result.skeleton, &result.markers);
-  if (!status.ok()) return status;
-  result.axes = FLAGS_axes;
-  result.marker_scale = FLAGS_marker_scale;
-  result.amc_fps = FLAGS_amc_fps;
-  *subject = std::move(result);
-  return Status::Ok();
+  SubjectFiles files;
+  files.skeleton_path = FLAGS_skeleton;
+  files.skeleton_units = FLAGS_skeleton_units;
+  files.markerset_path = FLAGS_markerset;
+  files.axes = FLAGS_axes;
+  files.marker_scale = FLAGS_marker_scale;
+  files.amc_fps = FLAGS_amc_fps;
+  return LoadSubjectFromFiles(files, subject);
 }
 
 Status MarkerTakeInputs(std::vector<std::string>* inputs) {

@@ -7,6 +7,7 @@
 
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
+#include "pipeline/repair_settings.h"
 #include "problems/marker_repair/marker_repair.h"
 
 DECLARE_string(reference);
@@ -14,7 +15,10 @@ DECLARE_string(reference);
 namespace mocapsolve {
 
 // Comma-separated names of the repair flags, for Command::shared_flags style help.
-extern const char* const kRepairFlagNames;
+inline constexpr const char* kRepairFlagNames = kRepairSettingNames;
+
+// The flags as settings (pipeline/repair_settings.h).
+RepairSettings RepairSettingsFromFlags();
 
 // Thresholds in cm and degrees are converted with the skeleton's unit (which must be
 // known). The naive solve takes the solver flags (--solver defaults to dls here).

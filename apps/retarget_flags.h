@@ -6,6 +6,7 @@
 #include <gflags/gflags.h>
 
 #include "kinematics/status.h"
+#include "pipeline/retarget_settings.h"
 #include "problems/retarget/retarget_character.h"
 
 DECLARE_string(joint_map);
@@ -14,7 +15,7 @@ DECLARE_int32(subsample);
 namespace mocapsolve {
 
 // Comma-separated names of the retarget option flags (Command::shared_flags style).
-extern const char* const kRetargetOptionFlagNames;
+inline constexpr const char* kRetargetOptionFlagNames = kRetargetSettingNames;
 
 // From the flags above, --solver (dls | dls_generic | ceres; dls when not given) and
 // --limit_weight; reads the --blend_mask and --joint_map files.

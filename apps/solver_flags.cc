@@ -1,144 +1,87 @@
 #include "apps/solver_flags.h"
 
-#include <ceres/types.h>
 #include <glog/logging.h>
 
-DEFINE_string(solver, "ceres", "ceres | dls: who minimizes the (same) residual blocks.");
-DEFINE_string(mode, "frame", "frame: solve frame by frame, warm-started; clip: then refine all "
+namespace {
+// The flags' defaults are the settings' (pipeline/solver_settings.h): one source.
+const mocapsolve::SolverSettings kDefault;
+}  // namespace
+
+DEFINE_string(solver, kDefault.solver.c_str(), "ceres | dls: who minimizes the (same) residual blocks.");
+DEFINE_string(mode, kDefault.mode.c_str(), "frame: solve frame by frame, warm-started; clip: then refine all "
               "frames as one sparse problem with smoothness (Ceres).");
-DEFINE_string(linear_solver, "", "Ceres linear solver: dense_qr, dense_normal_cholesky, "
+DEFINE_string(linear_solver, kDefault.linear_solver.c_str(), "Ceres linear solver: dense_qr, dense_normal_cholesky, "
               "sparse_normal_cholesky, dense_schur, sparse_schur, iterative_schur, cgnr "
               "(default: dense_qr per frame, sparse_normal_cholesky per clip).");
-DEFINE_string(trust_region, "levenberg_marquardt", "Ceres trust region: levenberg_marquardt | dogleg.");
-DEFINE_int32(max_iterations, 50, "Iteration limit per solve (both solvers).");
-DEFINE_double(function_tolerance, 1e-6, "Stop when the relative cost change is below this (Ceres' default).");
-DEFINE_double(gradient_tolerance, 1e-10, "Stop when the max gradient entry is below this.");
-DEFINE_double(parameter_tolerance, 1e-8, "Stop when the relative step is below this.");
-DEFINE_int32(num_threads, 2, "Threads: Ceres threads of the clip solve (per-frame solves use 1); repair runs its "
-             "solves on two threads when >= 2. Speed only: a per-frame solve's result does not depend on it.");
-DEFINE_string(loss, "none", "Robust loss on marker residuals: none | huber | cauchy.");
-DEFINE_double(loss_scale, 1.0, "Where the loss bends, in skeleton length units.");
-DEFINE_double(marker_weight, 1.0, "Weight of each marker residual.");
-DEFINE_double(prior_weight, 20.0, "Per-frame pull of each joint rotation toward the previous "
+DEFINE_string(trust_region, kDefault.trust_region.c_str(), "Ceres trust region: levenberg_marquardt | dogleg.");
+DEFINE_int32(max_iterations, kDefault.max_iterations, "Iteration limit per solve (both solvers).");
+DEFINE_double(function_tolerance, kDefault.function_tolerance, "Stop when the relative cost change is below this (Ceres' default).");
+DEFINE_double(gradient_tolerance, kDefault.gradient_tolerance, "Stop when the max gradient entry is below this.");
+DEFINE_double(parameter_tolerance, kDefault.parameter_tolerance, "Stop when the relative step is below this.");
+DEFINE_int32(num_threads, kDefault.num_threads, "Threads: Ceres threads of the clip solve (per-frame solves use 1); "
+             "repair runs its solves on two threads when >= 2. Speed only: a per-frame solve's result does not depend on it.");
+DEFINE_string(loss, kDefault.loss.c_str(), "Robust loss on marker residuals: none | huber | cauchy.");
+DEFINE_double(loss_scale, kDefault.loss_scale, "Where the loss bends, in skeleton length units.");
+DEFINE_double(marker_weight, kDefault.marker_weight, "Weight of each marker residual.");
+DEFINE_double(prior_weight, kDefault.prior_weight, "Per-frame pull of each joint rotation toward the previous "
               "frame's: a change of 1 radian costs as much as this many mm of marker error (in "
               "skeleton units when the skeleton's unit is unknown). It makes redundant chains "
               "(three spine joints seen by a few markers) well-posed, which cuts iterations "
               "several-fold at a tiny bias; 0 = off.");
-DEFINE_double(limit_weight, 0.0, "Soft joint limits (ASF 'limits'): 1 radian beyond a limit "
+DEFINE_double(limit_weight, kDefault.limit_weight, "Soft joint limits (ASF 'limits'): 1 radian beyond a limit "
               "costs as much as this many mm of marker error; 0 = off (default: CMU's own solve "
               "of 02_01 leaves its ASF limits in 4.5% of dof samples, by up to 30 degrees).");
-DEFINE_double(prior_translation_weight, 0.0, "Per-frame pull of the root translation toward "
+DEFINE_double(prior_translation_weight, kDefault.prior_translation_weight, "Per-frame pull of the root translation toward "
               "the previous frame's, per skeleton unit (0 = off).");
-DEFINE_string(smooth_order, "velocity", "Clip smoothness: velocity (faster: a block-tridiagonal "
+DEFINE_string(smooth_order, kDefault.smooth_order.c_str(), "Clip smoothness: velocity (faster: a block-tridiagonal "
               "system) | acceleration (keeps speed through the smoothing).");
-DEFINE_string(sparse_library, "eigen_sparse", "Clip solve's sparse Cholesky: eigen_sparse (faster "
+DEFINE_string(sparse_library, kDefault.sparse_library.c_str(), "Clip solve's sparse Cholesky: eigen_sparse (faster "
               "here, and no GPL code) | suite_sparse (CHOLMOD).");
-DEFINE_double(smooth_weight, 1.0, "Clip smoothness weight of joint rotations, per radian of "
+DEFINE_double(smooth_weight, kDefault.smooth_weight, "Clip smoothness weight of joint rotations, per radian of "
               "per-frame difference.");
-DEFINE_double(smooth_translation_weight, 0.1, "Clip smoothness weight of the root translation, "
+DEFINE_double(smooth_translation_weight, kDefault.smooth_translation_weight, "Clip smoothness weight of the root translation, "
               "per skeleton unit of per-frame difference.");
-DEFINE_double(clip_function_tolerance, 1e-6, "Clip solve: stop when the relative cost change "
+DEFINE_double(clip_function_tolerance, kDefault.clip_function_tolerance, "Clip solve: stop when the relative cost change "
               "is below this (the whole-clip problem is large; its tail gains little).");
-DEFINE_double(dls_lambda, 1e-3, "DLS damping: the initial (adaptive) or fixed lambda.");
-DEFINE_string(dls_damping, "adaptive", "DLS damping: adaptive (Levenberg) | fixed (Buss).");
+DEFINE_double(dls_lambda, kDefault.dls_lambda, "DLS damping: the initial (adaptive) or fixed lambda.");
+DEFINE_string(dls_damping, kDefault.dls_damping.c_str(), "DLS damping: adaptive (Levenberg) | fixed (Buss).");
 
 namespace mocapsolve {
 
-const char* const kSolverFlagNames =
-    "solver,mode,linear_solver,trust_region,max_iterations,function_tolerance,"
-    "gradient_tolerance,parameter_tolerance,num_threads,loss,loss_scale,marker_weight,"
-    "prior_weight,prior_translation_weight,limit_weight,smooth_order,smooth_weight,"
-    "smooth_translation_weight,clip_function_tolerance,sparse_library,dls_lambda,dls_damping";
-
-namespace {
-
-Status CeresOptionsFromFlags(ceres::Solver::Options* options) {
-  if (!FLAGS_linear_solver.empty() &&
-      !ceres::StringToLinearSolverType(FLAGS_linear_solver, &options->linear_solver_type)) {
-    return Status::Error("--linear_solver: unknown '" + FLAGS_linear_solver + "'");
-  }
-  if (!ceres::StringToTrustRegionStrategyType(FLAGS_trust_region,
-                                              &options->trust_region_strategy_type)) {
-    return Status::Error("--trust_region: unknown '" + FLAGS_trust_region + "'");
-  }
-  options->max_num_iterations = FLAGS_max_iterations;
-  options->function_tolerance = FLAGS_function_tolerance;
-  options->gradient_tolerance = FLAGS_gradient_tolerance;
-  options->parameter_tolerance = FLAGS_parameter_tolerance;
-  options->num_threads = FLAGS_num_threads;
-  if (FLAGS_v >= 1) {  // --v=1: Ceres prints every iteration (DLS logs through VLOG(1)).
-    options->logging_type = ceres::PER_MINIMIZER_ITERATION;
-    options->minimizer_progress_to_stdout = true;
-  }
-  std::string error;
-  if (!options->IsValid(&error)) return Status::Error("Ceres options: " + error);
-  return Status::Ok();
+SolverSettings SolverSettingsFromFlags() {
+  SolverSettings s;
+  s.solver = FLAGS_solver;
+  s.mode = FLAGS_mode;
+  s.linear_solver = FLAGS_linear_solver;
+  s.trust_region = FLAGS_trust_region;
+  s.max_iterations = FLAGS_max_iterations;
+  s.function_tolerance = FLAGS_function_tolerance;
+  s.gradient_tolerance = FLAGS_gradient_tolerance;
+  s.parameter_tolerance = FLAGS_parameter_tolerance;
+  s.num_threads = FLAGS_num_threads;
+  s.loss = FLAGS_loss;
+  s.loss_scale = FLAGS_loss_scale;
+  s.marker_weight = FLAGS_marker_weight;
+  s.prior_weight = FLAGS_prior_weight;
+  s.prior_translation_weight = FLAGS_prior_translation_weight;
+  s.limit_weight = FLAGS_limit_weight;
+  s.smooth_order = FLAGS_smooth_order;
+  s.smooth_weight = FLAGS_smooth_weight;
+  s.smooth_translation_weight = FLAGS_smooth_translation_weight;
+  s.clip_function_tolerance = FLAGS_clip_function_tolerance;
+  s.sparse_library = FLAGS_sparse_library;
+  s.dls_lambda = FLAGS_dls_lambda;
+  s.dls_damping = FLAGS_dls_damping;
+  s.verbose = FLAGS_v >= 1;
+  return s;
 }
 
-}  // namespace
-
 Status MarkerSolveOptionsFromFlags(const LengthUnit& skeleton_unit, MarkerSolveOptions* options) {
-  if (FLAGS_solver == "ceres") {
-    options->solver = SolverKind::kCeres;
-  } else if (FLAGS_solver == "dls") {
-    options->solver = SolverKind::kDls;
-  } else {
-    return Status::Error("--solver: unknown '" + FLAGS_solver + "' (ceres, dls)");
-  }
-  options->ceres = DefaultFrameCeresOptions();
-  Status status = CeresOptionsFromFlags(&options->ceres);
-  if (!status.ok()) return status;
-  options->ceres.num_threads = 1;  // Small dense problems: threads cost more than they give.
-  options->dls.max_iterations = FLAGS_max_iterations;
-  options->dls.function_tolerance = FLAGS_function_tolerance;
-  options->dls.gradient_tolerance = FLAGS_gradient_tolerance;
-  options->dls.parameter_tolerance = FLAGS_parameter_tolerance;
-  options->dls.lambda = FLAGS_dls_lambda;
-  if (FLAGS_dls_damping != "adaptive" && FLAGS_dls_damping != "fixed") {
-    return Status::Error("--dls_damping: unknown '" + FLAGS_dls_damping + "' (adaptive, fixed)");
-  }
-  options->dls.adaptive_damping = FLAGS_dls_damping == "adaptive";
-  options->marker_weight = FLAGS_marker_weight;
-  options->loss = FLAGS_loss;
-  options->loss_scale = FLAGS_loss_scale;
-  // Marker residuals are in skeleton units: express the prior's mm in them.
-  options->prior_rotation_weight =
-      skeleton_unit.known() ? FLAGS_prior_weight / (1000.0 * skeleton_unit.metres_per_unit)
-                            : FLAGS_prior_weight;
-  options->prior_translation_weight = FLAGS_prior_translation_weight;
-  options->limit_weight = skeleton_unit.known()
-                              ? FLAGS_limit_weight / (1000.0 * skeleton_unit.metres_per_unit)
-                              : FLAGS_limit_weight;
-  std::string error;
-  if (!options->IsValid(&error)) return Status::Error(error);
-  return Status::Ok();
+  return MarkerSolveOptionsFromSettings(SolverSettingsFromFlags(), skeleton_unit, options);
 }
 
 Status ClipSolveOptionsFromFlags(ClipSolveOptions* options) {
-  options->ceres = DefaultClipCeresOptions();
-  Status status = CeresOptionsFromFlags(&options->ceres);
-  if (!status.ok()) return status;
-  options->ceres.num_threads = std::max(FLAGS_num_threads, 1);
-  options->ceres.function_tolerance = FLAGS_clip_function_tolerance;
-  if (!ceres::StringToSparseLinearAlgebraLibraryType(FLAGS_sparse_library,
-                                                     &options->ceres.sparse_linear_algebra_library_type)) {
-    return Status::Error("--sparse_library: unknown '" + FLAGS_sparse_library + "' (eigen_sparse, suite_sparse)");
-  }
-  options->marker_weight = FLAGS_marker_weight;
-  options->loss = FLAGS_loss;
-  options->loss_scale = FLAGS_loss_scale;
-  if (FLAGS_smooth_order == "velocity") {
-    options->smoothness_order = SmoothnessOrder::kVelocity;
-  } else if (FLAGS_smooth_order == "acceleration") {
-    options->smoothness_order = SmoothnessOrder::kAcceleration;
-  } else {
-    return Status::Error("--smooth_order: unknown '" + FLAGS_smooth_order + "' (velocity, acceleration)");
-  }
-  options->rotation_smoothness = FLAGS_smooth_weight;
-  options->translation_smoothness = FLAGS_smooth_translation_weight;
-  std::string error;
-  if (!options->IsValid(&error)) return Status::Error(error);
-  return Status::Ok();
+  return ClipSolveOptionsFromSettings(SolverSettingsFromFlags(), options);
 }
 
 }  // namespace mocapsolve

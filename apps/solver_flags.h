@@ -6,17 +6,20 @@
 #include <gflags/gflags.h>
 
 #include "kinematics/status.h"
+#include "pipeline/solver_settings.h"
 #include "problems/marker_solve/marker_clip_solver.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 
 DECLARE_string(solver);
 DECLARE_string(mode);
-DECLARE_int32(num_threads);
 
 namespace mocapsolve {
 
 // Comma-separated names of the flags below, for Command::shared_flags style help.
-extern const char* const kSolverFlagNames;
+inline constexpr const char* kSolverFlagNames = kSolverSettingNames;
+
+// The flags as settings (pipeline/solver_settings.h), --v=1 as verbose.
+SolverSettings SolverSettingsFromFlags();
 
 // Per-frame options (--solver picks Ceres or DLS); the skeleton's unit converts the
 // prior weight from mm.

@@ -1,6 +1,9 @@
 #include "io/motion_file.h"
 
 #include <cctype>
+#include <cmath>
+
+#include "kinematics/marker_trajectories.h"
 
 #include "io/amc_reader.h"
 #include "io/asf_reader.h"
@@ -136,6 +139,24 @@ Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
   }
   return Status::Error(path + ": unknown motion format '" + ext +
                        "' (expected .bvh, .amc, .glb, .gltf or .fbx)");
+}
+
+Status SetSkeletonUnits(const std::string& name, Skeleton* skeleton) {
+  if (name.empty()) return Status::Ok();
+  const LengthUnit unit = LengthUnitFromName(name);
+  if (!unit.known()) return Status::Error("--skeleton_units='" + name + "': expected mm, cm, m or in");
+  if (skeleton->unit().known()) {
+    if (std::abs(skeleton->unit().metres_per_unit / unit.metres_per_unit - 1.0) < 1e-12) return Status::Ok();
+    return Status::Error("--skeleton_units=" + name + ": the skeleton file states its unit ('" +
+                         skeleton->unit().name + "'); the flag is for files that do not");
+  }
+  std::vector<JointSpec> joints;
+  for (int j = 0; j < skeleton->num_joints(); ++j) joints.push_back(skeleton->joint(j));
+  Skeleton with_unit;
+  Status status = Skeleton::Create(std::move(joints), skeleton->end_sites(), unit, &with_unit);
+  if (!status.ok()) return status;
+  *skeleton = std::move(with_unit);
+  return Status::Ok();
 }
 
 }  // namespace mocapsolve

@@ -39,6 +39,11 @@ Status ReadSkeletonFile(const std::string& path, Skeleton* skeleton, AsfInfo* as
 // empty for the other formats.
 Status ReadAnimationNames(const std::string& path, std::vector<std::string>* names);
 
+// Gives a skeleton whose file states no unit (a BVH) the unit `name` ("mm", "cm", "m",
+// "in"; "" leaves it alone). An error (naming --skeleton_units, as the flag and the Python
+// keyword are called) if the name is unknown or the file states another unit.
+Status SetSkeletonUnits(const std::string& name, Skeleton* skeleton);
+
 // Lower-case extension with the dot (".bvh"), or "".
 std::string FileExtension(const std::string& path);
 // The file name without folder and extension: "takes/02_05.c3d" -> "02_05".

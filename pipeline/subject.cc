@@ -254,4 +254,22 @@ MarkerTrajectories WithRepairedSamples(const MarkerTake& take,
   return out;
 }
 
+Status LoadSubjectFromFiles(const SubjectFiles& files, Subject* subject) {
+  Subject result;
+  Status status = ReadSkeletonFile(files.skeleton_path, &result.skeleton);
+  if (status.ok()) status = SetSkeletonUnits(files.skeleton_units, &result.skeleton);
+  if (!status.ok()) return status;
+  if (!result.skeleton.unit().known()) {
+    return Status::Error(files.skeleton_path + ": the skeleton's unit is unknown; give --skeleton_units");
+  }
+  result.skeleton_path = files.skeleton_path;
+  status = ReadMarkerSet(files.markerset_path, result.skeleton, &result.markers);
+  if (!status.ok()) return status;
+  result.axes = files.axes;
+  result.marker_scale = files.marker_scale;
+  result.amc_fps = files.amc_fps;
+  *subject = std::move(result);
+  return Status::Ok();
+}
+
 }  // namespace mocapsolve

@@ -54,6 +54,19 @@ struct Subject {
 
 // Reads and validates a subject file (skeleton file paths resolved against its folder).
 Status ReadSubject(const std::string& path, Subject* subject);
+// A subject assembled from separate files, as the commands' --skeleton, --skeleton_units,
+// --markerset, --axes, --marker_scale and --amc_fps (and the Python keywords) name them.
+struct SubjectFiles {
+  std::string skeleton_path;   // .asf / .bvh / .glb / .fbx.
+  std::string skeleton_units;  // For a file that states none (BVH): mm, cm, m, in.
+  std::string markerset_path;  // .json (io/marker_set_file.h).
+  std::string axes = "x,y,z";
+  double marker_scale = 0.0;
+  double amc_fps = 120.0;
+};
+// Reads the skeleton (its unit must then be known) and the marker set.
+Status LoadSubjectFromFiles(const SubjectFiles& files, Subject* subject);
+
 // Writes atomically; a skeleton_path is written relative to the subject file's folder.
 Status WriteSubject(const std::string& path, const Subject& subject);
 // The file text WriteSubject writes to `path` (path only resolves skeleton_path).

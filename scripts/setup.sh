@@ -7,7 +7,9 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libsuitesparse-dev
           libgoogle-glog-dev libgflags-dev libgtest-dev libgmock-dev libbenchmark-dev
-          libtinygltf-dev libassimp-dev libnanoflann-dev libspectra-dev)
+          libtinygltf-dev libassimp-dev libnanoflann-dev libspectra-dev
+          python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
+          python3-matplotlib python3-setuptools python3-venv python3-pip)
 # Opt-in: `setup.sh --fuzz` also installs what scripts/fuzz.sh needs (clang, libFuzzer)
 # and then only installs (the fuzz build is scripts/fuzz.sh's own, in build-fuzz/).
 fuzz_packages=(clang libclang-rt-14-dev libfuzzer-14-dev ccache)

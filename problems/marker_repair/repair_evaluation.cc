@@ -157,4 +157,14 @@ Status EvaluateRepair(const Skeleton& skeleton, const MarkerSet& markers, const 
   return Status::Ok();
 }
 
+Status EvaluateRepairTrial(const Skeleton& skeleton, const MarkerSet& markers, const MarkerObservations& clean,
+                           const CorruptionOptions& damage, const RepairOptions& options,
+                           std::vector<RepairEvaluationRow>* rows) {
+  MarkerTrajectories x = ObservationTrajectories(markers, clean);
+  x.unit = skeleton.unit();
+  CorruptionMask mask;
+  CorruptMarkers(damage, &x, &mask);
+  return EvaluateRepair(skeleton, markers, clean, TrajectoryObservations(x), mask, options, rows);
+}
+
 }  // namespace mocapsolve

@@ -54,6 +54,12 @@ Status EvaluateRepair(const Skeleton& skeleton, const MarkerSet& markers,
                       const CorruptionMask& mask, const RepairOptions& options,
                       std::vector<RepairEvaluationRow>* rows);
 
+// One trial: `clean` damaged by CorruptMarkers(damage) (in the skeleton's units), then
+// EvaluateRepair. `evaluate` and the Python module run trials with seeds seed, seed+1, ...
+Status EvaluateRepairTrial(const Skeleton& skeleton, const MarkerSet& markers, const MarkerObservations& clean,
+                           const CorruptionOptions& damage, const RepairOptions& options,
+                           std::vector<RepairEvaluationRow>* rows);
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_REPAIR_EVALUATION_H_

@@ -1,0 +1,15 @@
+// Comma-separated lists as flags, config keys and Python keywords spell them ("a,b,c").
+#ifndef MOCAPSOLVE_IO_COMMA_LIST_H_
+#define MOCAPSOLVE_IO_COMMA_LIST_H_
+
+#include <string>
+#include <vector>
+
+namespace mocapsolve {
+
+// Splits "a,b,c" (empty items dropped).
+std::vector<std::string> SplitCommaList(const std::string& text);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_IO_COMMA_LIST_H_

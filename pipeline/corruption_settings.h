@@ -1,0 +1,42 @@
+// CorruptionSettings: the synthetic damage's knobs as the user names them (one field per
+// flag of `mocapsolve corrupt` / `evaluate`, same names and defaults; distances in mm),
+// and their one conversion into CorruptionOptions (signal/marker_corruption.h) in a
+// length unit. The command line (apps/corruption_flags.cc) and the Python module both
+// call it. Knows nothing of gflags.
+#ifndef MOCAPSOLVE_PIPELINE_CORRUPTION_SETTINGS_H_
+#define MOCAPSOLVE_PIPELINE_CORRUPTION_SETTINGS_H_
+
+#include "kinematics/status.h"
+#include "kinematics/units.h"
+#include "signal/marker_corruption.h"
+
+namespace mocapsolve {
+
+struct CorruptionSettings {
+  int corrupt_seed = 1;
+  int gaps = 10;
+  int gap_min = 10;               // Frames.
+  int gap_max = 60;
+  int cluster_gaps = 2;
+  double cluster_radius_mm = 150.0;
+  int fly_off_frames = 5;
+  double fly_off_mm = 100.0;
+  int swaps = 1;
+  int swap_length = 30;
+  double swap_radius_mm = 200.0;
+  int noisy_markers = 2;
+  int noise_length = 60;
+  double noise_sigma_mm = 5.0;
+};
+
+inline constexpr char kCorruptionSettingNames[] =
+    "corrupt_seed,gaps,gap_min,gap_max,cluster_gaps,cluster_radius_mm,fly_off_frames,fly_off_mm,"
+    "swaps,swap_length,swap_radius_mm,noisy_markers,noise_length,noise_sigma_mm";
+
+// Distances in mm converted to `unit` (which must be known).
+Status CorruptionOptionsFromSettings(const CorruptionSettings& settings, const LengthUnit& unit,
+                                     CorruptionOptions* options);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PIPELINE_CORRUPTION_SETTINGS_H_

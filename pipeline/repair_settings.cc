@@ -1,0 +1,51 @@
+#include "pipeline/repair_settings.h"
+
+#include "kinematics/rotation.h"
+
+namespace mocapsolve {
+
+Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSettings& solver,
+                                 const Skeleton& skeleton, RepairOptions* options) {
+  if (!skeleton.unit().known()) {
+    return Status::Error("the skeleton's unit is unknown; give --skeleton_units");
+  }
+  const double units_per_cm = 0.01 / skeleton.unit().metres_per_unit;
+  const double units_per_mm = 0.1 * units_per_cm;
+  Status status = MarkerSolveOptionsFromSettings(solver, skeleton.unit(), &options->naive);
+  if (status.ok()) status = ClipSolveOptionsFromSettings(solver, &options->reference);
+  if (!status.ok()) return status;
+  if (settings.reference == "tracker") {
+    options->reference_kind = ReferenceKind::kTracker;
+  } else if (settings.reference == "clip") {
+    options->reference_kind = ReferenceKind::kClip;
+  } else {
+    return Status::Error("--reference: unknown '" + settings.reference + "' (tracker, clip)");
+  }
+  options->reference.loss = settings.reference_loss;
+  options->reference.loss_scale = settings.reference_loss_cm * units_per_cm;
+  // Threads change the speed only, never the result (a batch runs takes side by side, one each).
+  options->parallel = solver.num_threads >= 2;
+  options->tracker = options->naive;
+  options->tracker.loss = settings.reference_loss;
+  options->tracker.loss_scale = settings.reference_loss_cm * units_per_cm;
+  options->tracker.prior_rotation_weight = settings.tracker_prior_weight * units_per_mm;
+  options->tracker.prior_translation_weight = settings.tracker_translation_prior;
+  options->tracker.dls.function_tolerance = settings.tracker_function_tolerance;
+  options->tracker.ceres.function_tolerance = settings.tracker_function_tolerance;
+  options->dp_max = settings.dp_max_cm * units_per_cm;
+  options->dr_max_rad = DegToRad(settings.dr_max_deg);
+  options->outlier_distance = settings.outlier_cm * units_per_cm;
+  options->trim_max = settings.trim_max;
+  options->small_track = settings.small_track;
+  options->small_gap = settings.small_gap;
+  options->velocity_clamp = settings.vel_clamp * units_per_cm;
+  std::string error;
+  if (!options->reference.IsValid(&error) || !options->tracker.IsValid(&error)) {
+    return Status::Error(error);
+  }
+  if (!(options->outlier_distance > 0.0)) return Status::Error("--outlier_cm must be positive");
+  if (!options->IsValid(&error)) return Status::Error(error);
+  return Status::Ok();
+}
+
+}  // namespace mocapsolve

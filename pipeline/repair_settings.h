@@ -1,0 +1,48 @@
+// RepairSettings: marker repair's knobs as the user names them (one field per flag of
+// `mocapsolve repair`, same name, same default; thresholds in cm and degrees), and their
+// one conversion into RepairOptions in the skeleton's units. The command line
+// (apps/repair_flags.cc) and the Python module both call RepairOptionsFromSettings, so
+// defaults, validation and messages are one. Knows nothing of gflags.
+#ifndef MOCAPSOLVE_PIPELINE_REPAIR_SETTINGS_H_
+#define MOCAPSOLVE_PIPELINE_REPAIR_SETTINGS_H_
+
+#include <string>
+
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+#include "pipeline/solver_settings.h"
+#include "problems/marker_repair/marker_repair.h"
+
+namespace mocapsolve {
+
+struct RepairSettings {
+  double dp_max_cm = 10.0;           // Joint farther than this from the reference: bad.
+  double dr_max_deg = 30.0;          // Joint turned more than this from the reference: bad.
+  double outlier_cm = 4.0;           // Sample farther than this from its reconstruction: outlier.
+  int trim_max = 120;                // Frames trimmed at most per side of a gap.
+  int small_track = 120;             // Valid runs of at most this many frames are dropped.
+  int small_gap = 5;                 // Gaps of at most this many frames: plain cubic.
+  double vel_clamp = 0.25;           // cm per frame.
+  std::string reference = "tracker";  // tracker | clip.
+  std::string reference_loss = "cauchy";
+  double reference_loss_cm = 1.0;
+  double tracker_prior_weight = 20.0;     // mm per radian.
+  double tracker_translation_prior = 0.0;
+  double tracker_function_tolerance = 1e-4;
+};
+
+inline constexpr char kRepairSettingNames[] =
+    "dp_max_cm,dr_max_deg,outlier_cm,trim_max,small_track,small_gap,vel_clamp,reference,reference_loss,"
+    "reference_loss_cm,tracker_prior_weight,tracker_translation_prior,tracker_function_tolerance";
+
+// Repair solves every frame two or three times: its solver is DLS unless the user chose.
+inline constexpr char kRepairDefaultSolver[] = "dls";
+
+// `solver` holds the naive solve's settings (the caller sets solver.solver to
+// kRepairDefaultSolver when the user did not choose). The skeleton's unit must be known.
+Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSettings& solver,
+                                 const Skeleton& skeleton, RepairOptions* options);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PIPELINE_REPAIR_SETTINGS_H_

@@ -1,0 +1,47 @@
+// RetargetSettings: the retargeting knobs as the user names them (one field per flag of
+// `mocapsolve retarget` / `pipeline`, same names and defaults), and their one conversion
+// into CharacterRetargetOptions (problems/retarget/retarget_character.h), reading the
+// blend mask and joint map files they name. The command line (apps/retarget_flags.cc)
+// and the Python module both call it. Knows nothing of gflags.
+#ifndef MOCAPSOLVE_PIPELINE_RETARGET_SETTINGS_H_
+#define MOCAPSOLVE_PIPELINE_RETARGET_SETTINGS_H_
+
+#include <string>
+
+#include "kinematics/status.h"
+#include "problems/retarget/retarget_character.h"
+
+namespace mocapsolve {
+
+struct RetargetSettings {
+  std::string solver = "dls";   // dls | dls_generic | ceres (--solver; dls unless given).
+  double limit_weight = 0.0;    // Soft joint limits (--limit_weight), per radian.
+  std::string joint_map;        // JSON {"joints": {"<source>": "<target>"}}; "" = automatic.
+  bool plant_feet = true;
+  double plant_weight = 10.0;
+  double plant_height = 0.03;   // Fraction of the source height.
+  double plant_speed = 0.15;    // Source heights per second.
+  std::string foot_joints;      // Comma-separated source joints; "" = names with foot/toe/ankle.
+  int subsample = 128;
+  int iterations = 10;
+  double lambda = 5.0;
+  std::string blend_mask = "auto";  // auto | JSON {"position_joints": [...]}.
+  double mapping_normal_weight = 0.0;
+  bool transfer_normals = true;
+  double normal_weight = 1.0;
+  double smoothness = 0.0;
+  double contact_height = 0.02;
+  double ceres_trust_radius = 1.0;
+};
+
+// The option names (solver and limit_weight belong to the solver's flags).
+inline constexpr char kRetargetSettingNames[] =
+    "joint_map,plant_feet,plant_weight,plant_height,plant_speed,foot_joints,subsample,iterations,lambda,"
+    "blend_mask,mapping_normal_weight,transfer_normals,normal_weight,smoothness,contact_height,"
+    "ceres_trust_radius";
+
+Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRetargetOptions* options);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PIPELINE_RETARGET_SETTINGS_H_

@@ -1,0 +1,49 @@
+// Calibrating a subject: from a solved motion and the markers of the same take, where
+// each marker sits on the skeleton (problems/marker_solve/calibration.h), with the marker
+// file's scale and axes decided first, and the result as a Subject (subject.h) that
+// solve, repair and the pipeline take. `mocapsolve calibrate` and the Python module's
+// calibrate() both call CalibrateSubject. Knows nothing of flags.
+#ifndef MOCAPSOLVE_PIPELINE_SUBJECT_CALIBRATION_H_
+#define MOCAPSOLVE_PIPELINE_SUBJECT_CALIBRATION_H_
+
+#include <string>
+#include <vector>
+
+#include "kinematics/marker_set.h"
+#include "kinematics/marker_trajectories.h"
+#include "kinematics/motion.h"
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+#include "pipeline/subject.h"
+#include "problems/marker_solve/calibration.h"
+#include "problems/marker_solve/marker_observations.h"
+
+namespace mocapsolve {
+
+struct SubjectCalibrationOptions {
+  std::string axes = "x,y,z";   // Marker file -> skeleton axes (ParseAxes), or "auto" (the
+                                // best of the 24 axis-aligned rotations).
+  double marker_scale = 0.0;    // Marker units -> skeleton units; 0: from the units.
+  int frame_offset = 0;         // Marker frame = motion frame + frame_offset.
+  int min_valid_frames = 2;     // Markers valid in fewer matched frames are left out.
+  const MarkerSet* attachments = nullptr;  // Joints to keep (offsets re-estimated); null: auto.
+  std::string skeleton_path;    // Recorded in the subject (the skeleton's file).
+  double amc_fps = 120.0;       // Recorded in the subject.
+  std::string markers_name;     // Names the marker file in errors.
+};
+
+struct SubjectCalibration {
+  Subject subject;
+  CalibrationResult result;
+  MarkerFileToModel transform;   // The file -> skeleton mapping used.
+  std::vector<double> axis_rms;  // With axes "auto": RMS per AllAxisRotations() candidate.
+};
+
+// `trajectories` as read from the file (they are copied and mapped).
+Status CalibrateSubject(const Skeleton& skeleton, const Motion& motion,
+                        const MarkerTrajectories& trajectories,
+                        const SubjectCalibrationOptions& options, SubjectCalibration* out);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PIPELINE_SUBJECT_CALIBRATION_H_

@@ -1,0 +1,199 @@
+// io: markers (C3D/TRC), motions (BVH, ASF/AMC, glTF, FBX), skeletons, subjects.
+#include "io/bvh_writer.h"
+#include "io/gltf_reader.h"
+#include "io/gltf_writer.h"
+#include "io/marker_file.h"
+#include "io/marker_set_file.h"
+#include "io/motion_file.h"
+#include "python/bindings.h"
+
+namespace mocapsolve::python {
+namespace {
+
+// A (frames, markers, 3) writable view on the trajectories' positions, kept alive by `self`.
+py::array PositionsView(py::object self) {
+  MarkerTrajectories& t = self.cast<MarkerTrajectories&>();
+  const py::ssize_t d = sizeof(double);
+  return py::array_t<double>({py::ssize_t{t.num_frames()}, py::ssize_t{t.num_markers()}, py::ssize_t{3}},
+                             {3 * d * t.num_markers(), 3 * d, d},
+                             const_cast<double*>(t.positions().data()), self);
+}
+
+MarkersPtr MakeMarkers(const Array& positions, const std::vector<std::string>& labels, double rate,
+                       const std::string& units) {
+  CheckShape(positions, {-1, static_cast<py::ssize_t>(labels.size()), 3}, "positions");
+  ThrowIfError(MarkerTrajectories::CheckLabels(labels));
+  auto markers = std::make_shared<MarkerTrajectories>(labels, static_cast<int>(positions.shape(0)));
+  markers->frame_rate = rate;
+  markers->unit = LengthUnitFromName(units);
+  if (!units.empty() && !markers->unit.known()) {
+    throw py::value_error("units='" + units + "': expected mm, cm, m or in");
+  }
+  auto p = positions.unchecked<3>();
+  for (int f = 0; f < markers->num_frames(); ++f) {
+    for (int m = 0; m < markers->num_markers(); ++m) {
+      markers->SetSample(f, m, Eigen::Vector3d(p(f, m, 0), p(f, m, 1), p(f, m, 2)));
+    }
+  }
+  return markers;
+}
+
+}  // namespace
+
+void BindIo(py::module_& m) {
+  py::class_<MarkerTrajectories, MarkersPtr>(m, "Markers",
+      "Labelled marker trajectories (C3D/TRC) in the file's axes and unit.\n\n"
+      "positions: (frames, markers, 3) float64, NaN where a sample is missing; a writable\n"
+      "view on the C++ storage (set a sample to NaN to make it missing).")
+      .def(py::init(&MakeMarkers), py::arg("positions"), py::arg("labels"), py::arg("rate"),
+           py::arg("units") = "mm",
+           "Markers from a (frames, markers, 3) array (NaN = missing), labels, rate (Hz) and unit.")
+      .def_property_readonly("positions", &PositionsView)
+      .def_property_readonly("labels", &MarkerTrajectories::labels)
+      .def_readwrite("rate", &MarkerTrajectories::frame_rate, "Frames per second.")
+      .def_property_readonly("units", [](const MarkerTrajectories& t) { return t.unit.name; })
+      .def_property_readonly("metres_per_unit", [](const MarkerTrajectories& t) { return t.unit.metres_per_unit; })
+      .def_readwrite("first_frame", &MarkerTrajectories::first_frame, "File frame number of frame 0.")
+      .def_property_readonly("num_frames", &MarkerTrajectories::num_frames)
+      .def_property_readonly("num_markers", &MarkerTrajectories::num_markers)
+      .def_property_readonly("valid", [](MarkerTrajectories& t) {
+            SyncMask(&t);
+            py::array_t<bool> out({py::ssize_t{t.num_frames()}, py::ssize_t{t.num_markers()}});
+            bool* data = out.mutable_data();
+            for (std::uint8_t v : t.valid_mask()) *data++ = v != 0;
+            return out;
+          }, "(frames, markers) bool: the sample is present (its position is finite).")
+      .def("find_marker", &MarkerTrajectories::FindMarker, py::arg("label"),
+           "Index of the marker (subject prefixes ignored), or -1.")
+      .def("__repr__", [](const MarkerTrajectories& t) {
+        return "<mocapsolve.Markers " + std::to_string(t.num_frames()) + " frames x " +
+               std::to_string(t.num_markers()) + " markers, " + t.unit.name + ">";
+      });
+
+  m.def("read_markers", [](const std::string& path) {
+        RequireReadable(path);
+        auto markers = std::make_shared<MarkerTrajectories>();
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = ReadMarkerFile(path, markers.get());
+        }
+        ThrowIfError(status);
+        return markers;
+      }, py::arg("path"),
+      "Reads a .c3d or .trc file: Markers with .positions (frames, markers, 3; NaN where\n"
+      "missing), .labels, .rate (Hz) and .units (the file's; nothing is rescaled).");
+  m.def("write_markers", [](const std::string& path, MarkerTrajectories& markers) {
+        SyncMask(&markers);
+        py::gil_scoped_release release;
+        ThrowIfError(WriteMarkerFile(path, markers));
+      }, py::arg("path"), py::arg("markers"),
+      "Writes Markers to a .c3d or .trc file (atomically; NaN samples as missing).");
+
+  m.def("read_skeleton", [](const std::string& path, const std::string& skeleton_units) {
+        RequireReadable(path);
+        auto skeleton = std::make_shared<Skeleton>();
+        ThrowIfError(ReadSkeletonFile(path, skeleton.get()));
+        ThrowIfError(SetSkeletonUnits(skeleton_units, skeleton.get()));
+        return SkeletonPtr(skeleton);
+      }, py::arg("path"), py::arg("skeleton_units") = "",
+      "The skeleton of a .bvh, .asf, .glb/.gltf (skin 0) or .fbx file; skeleton_units\n"
+      "(mm, cm, m, in) gives a BVH, which states none, its unit.");
+
+  m.def("read_motion", [](const std::string& path, py::object skeleton, double amc_fps,
+                          const std::string& animation, double sample_fps, const std::string& skeleton_units) {
+        RequireReadable(path);
+        MotionFileOptions options;
+        if (!skeleton.is_none()) {
+          options.skeleton_path = py::str(skeleton);
+          RequireReadable(options.skeleton_path);
+        }
+        options.amc_frame_rate = amc_fps;
+        options.animation = animation;
+        options.sample_rate = sample_fps;
+        auto out_skeleton = std::make_shared<Skeleton>();
+        Motion motion;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = ReadMotionFile(path, options, out_skeleton.get(), &motion);
+          if (status.ok()) status = SetSkeletonUnits(skeleton_units, out_skeleton.get());
+        }
+        ThrowIfError(status);
+        return py::make_tuple(SkeletonPtr(out_skeleton), std::move(motion));
+      }, py::arg("path"), py::arg("skeleton") = py::none(), py::arg("amc_fps") = 120.0,
+      py::arg("animation") = "", py::arg("sample_fps") = 0.0, py::arg("skeleton_units") = "",
+      "Reads a motion: .bvh, .amc (skeleton= its .asf path), .glb/.gltf or .fbx\n"
+      "(animation= a name or index, sample_fps= resampling rate). Returns (skeleton, motion)\n"
+      "with motion.rotations (frames, joints, 4; x, y, z, w) and motion.root_translations\n"
+      "(frames, 3) in the file's units.");
+
+  m.def("write_motion", [](const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                           int precision, double scale) {
+        if (FileExtension(path) != ".bvh") throw py::value_error(path + ": expected a .bvh output");
+        BvhWriteOptions options;
+        options.precision = precision;
+        options.scale = scale;
+        py::gil_scoped_release release;
+        ThrowIfError(WriteBvh(path, skeleton, motion, options));
+      }, py::arg("path"), py::arg("skeleton"), py::arg("motion"), py::arg("precision") = 6,
+      py::arg("scale") = 1.0,
+      "Writes a .bvh (atomically): precision significant digits, lengths times scale.");
+
+  m.def("write_gltf", [](const std::string& path, const std::string& target, const Motion& motion,
+                         const std::string& clip_name) {
+        RequireReadable(target);
+        py::gil_scoped_release release;
+        GltfDocument document;
+        Status status = GltfDocument::Read(target, &document);
+        GltfCharacter character;
+        if (status.ok()) status = ReadGltfCharacter(document, GltfReadOptions(), &character);
+        if (status.ok()) status = WriteGltfWithAnimation(document, character, motion, clip_name, path);
+        ThrowIfError(status);
+      }, py::arg("path"), py::arg("target"), py::arg("motion"), py::arg("clip_name") = "mocapsolve",
+      "Writes the character file `target` (.glb/.gltf) plus `motion` (on its skeleton, e.g. from\n"
+      "read_motion(target) or retarget()) as a new animation clip_name, to path (.glb/.gltf).");
+
+  py::class_<Subject, SubjectPtr>(m, "Subject",
+      "One actor: skeleton, calibrated marker set and how marker files map onto it.")
+      .def_property_readonly("name", [](const Subject& s) { return s.name; })
+      .def_property_readonly("skeleton", [](const Subject& s) { return std::make_shared<Skeleton>(s.skeleton); })
+      .def_property_readonly("marker_labels", [](const Subject& s) {
+        std::vector<std::string> labels;
+        for (int i = 0; i < s.markers.num_markers(); ++i) labels.push_back(s.markers.label(i));
+        return labels;
+      })
+      .def_property_readonly("axes", [](const Subject& s) { return s.axes; })
+      .def_property_readonly("marker_scale", [](const Subject& s) { return s.marker_scale; })
+      .def_property_readonly("amc_fps", [](const Subject& s) { return s.amc_fps; });
+
+  m.def("read_subject", [](const std::string& path) {
+        RequireReadable(path);
+        auto subject = std::make_shared<Subject>();
+        ThrowIfError(ReadSubject(path, subject.get()));
+        return SubjectPtr(subject);
+      }, py::arg("path"), "Reads a subject file (calibrate/fit_skeleton --out_subject).");
+  m.def("subject", [](const std::string& skeleton, const std::string& markerset, const std::string& axes,
+                      double marker_scale, const std::string& skeleton_units, double amc_fps) {
+        RequireReadable(skeleton);
+        RequireReadable(markerset);
+        SubjectFiles files;
+        files.skeleton_path = skeleton;
+        files.markerset_path = markerset;
+        files.axes = axes;
+        files.marker_scale = marker_scale;
+        files.skeleton_units = skeleton_units;
+        files.amc_fps = amc_fps;
+        auto subject = std::make_shared<Subject>();
+        ThrowIfError(LoadSubjectFromFiles(files, subject.get()));
+        return SubjectPtr(subject);
+      }, py::arg("skeleton"), py::arg("markerset"), py::arg("axes") = "x,y,z",
+      py::arg("marker_scale") = 0.0, py::arg("skeleton_units") = "", py::arg("amc_fps") = 120.0,
+      "A subject from files, as the CLI's --skeleton, --markerset, --axes, --marker_scale,\n"
+      "--skeleton_units and --amc_fps assemble it.");
+  m.def("write_subject", [](const std::string& path, const Subject& subject) {
+        ThrowIfError(WriteSubject(path, subject));
+      }, py::arg("path"), py::arg("subject"), "Writes a subject file (atomically).");
+}
+
+}  // namespace mocapsolve::python

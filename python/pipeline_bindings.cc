@@ -1,0 +1,93 @@
+// The pipeline on one take (pipeline/take_pipeline.h): repair and solve, optional
+// filtering, retargeting onto each character, the quality gate; outputs optionally written.
+#include "io/atomic_file.h"
+#include "io/marker_file.h"
+#include "io/motion_file.h"
+#include "pipeline/repair_settings.h"
+#include "pipeline/retarget_settings.h"
+#include "pipeline/take_pipeline.h"
+#include "python/bindings.h"
+
+namespace mocapsolve::python {
+
+void BindPipeline(py::module_& m) {
+  m.def("pipeline", [](SubjectPtr subject, const std::string& markers, const std::vector<std::string>& characters,
+                       const std::string& out_dir, const std::string& take_name, int filter_levels, double kernel_a,
+                       double tension, double gate_naive_rms_mm, double gate_repaired_rms_mm,
+                       double gate_repaired_share, double gate_iteration_limit_share, double gate_marker_offset_cm,
+                       double gate_torso_deg, const py::kwargs& keywords) {
+        RepairSettings repair_settings;
+        SolverSettings solver_settings;
+        solver_settings.solver = kRepairDefaultSolver;  // The pipeline solves with DLS by default.
+        RetargetSettings retarget_settings;
+        ApplyKeywords(keywords,
+                      {py::cast(&repair_settings, py::return_value_policy::reference),
+                       py::cast(&solver_settings, py::return_value_policy::reference),
+                       py::cast(&retarget_settings, py::return_value_policy::reference)},
+                      std::string(kRepairSettingNames) + "," + kSolverSettingNames + "," + kRetargetSettingNames);
+        if (!IsMarkerFile(markers)) throw py::value_error(markers + ": expected a .c3d or .trc");
+        RequireReadable(markers);
+        for (const std::string& path : characters) RequireReadable(path);
+        TakePipelineOptions options;
+        ThrowIfError(RepairOptionsFromSettings(repair_settings, solver_settings, subject->skeleton, &options.repair));
+        retarget_settings.solver = solver_settings.solver;
+        retarget_settings.limit_weight = solver_settings.limit_weight;
+        ThrowIfError(RetargetOptionsFromSettings(retarget_settings, &options.retarget));
+        options.filter_levels = filter_levels;
+        options.filter.kernel.a = kernel_a;
+        options.filter.tension = tension;
+        options.filter.levels = filter_levels;
+        options.gate.max_naive_rms_mm = gate_naive_rms_mm;
+        options.gate.max_repaired_rms_mm = gate_repaired_rms_mm;
+        options.gate.max_repaired_share = gate_repaired_share;
+        options.gate.max_iteration_limit_share = gate_iteration_limit_share;
+        options.gate.max_marker_offset_cm = gate_marker_offset_cm;
+        options.gate.max_torso_error_deg = gate_torso_deg;
+        std::string error;
+        if (!options.IsValid(&error)) throw py::value_error(error);
+        TakeInputs inputs;
+        inputs.name = take_name.empty() ? FileStem(markers) : take_name;
+        inputs.subject = subject.get();
+        inputs.markers_path = markers;
+        inputs.character_paths = characters;
+        auto result = std::make_shared<TakeResult>();
+        std::string report_text;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = RunTakePipeline(inputs, options, result.get());
+          if (status.ok()) {
+            const JsonObject report = TakeReport(inputs, *result);
+            report_text = report.ToString();
+            if (!out_dir.empty()) {
+              status = MakeFolders(out_dir);
+              if (status.ok()) status = WriteTakeOutputs(out_dir, inputs, *result, report);
+            }
+          }
+        }
+        ThrowIfError(status);
+        py::dict out;
+        out["solved"] = result->solved;
+        out["repaired_markers"] = std::make_shared<MarkerTrajectories>(result->repaired_file);
+        py::dict retargeted;
+        for (const CharacterOutput& c : result->characters) retargeted[c.name.c_str()] = c.result.clip.motion;
+        out["characters"] = retargeted;
+        out["passed"] = result->verdict.pass;
+        out["failures"] = result->verdict.failures;
+        out["report"] = py::module_::import("json").attr("loads")(report_text);
+        return out;
+      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("characters") = std::vector<std::string>(),
+      py::arg("out_dir") = "", py::arg("take_name") = "", py::arg("filter_levels") = 0, py::arg("kernel_a") = 0.4,
+      py::arg("tension") = 0.0, py::arg("gate_naive_rms_mm") = 30.0, py::arg("gate_repaired_rms_mm") = 20.0,
+      py::arg("gate_repaired_share") = 0.25, py::arg("gate_iteration_limit_share") = 0.2,
+      py::arg("gate_marker_offset_cm") = 25.0, py::arg("gate_torso_deg") = 15.0,
+      R"doc(One take end to end, as `mocapsolve pipeline`: repair and solve the markers (a .c3d/.trc
+path) of the subject, filter (filter_levels > 0), retarget onto each character (.glb
+paths), check the quality gate (gate_* as the CLI's flags; 0 turns a check off).
+Keywords: the repair, solver (solver='dls' by default) and retarget options.
+out_dir: also write repaired markers, solved.bvh, <character>.glb and report.json there.
+Returns a dict: 'solved' (Motion), 'repaired_markers' (Markers), 'characters' {name:
+Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc");
+}
+
+}  // namespace mocapsolve::python

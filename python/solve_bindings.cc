@@ -1,0 +1,345 @@
+// Marker solving: the solver settings (the CLI's flags), takes, per-frame and whole-clip
+// solves through Ceres or DLS, and a frame-by-frame solver for Python loops.
+#include <chrono>
+#include <cmath>
+
+#include "io/motion_file.h"
+#include "io/marker_file.h"
+#include "io/marker_set_file.h"
+#include "pipeline/solver_settings.h"
+#include "pipeline/subject_calibration.h"
+#include "problems/marker_solve/marker_clip_solver.h"
+#include "problems/marker_solve/marker_frame_solver.h"
+#include "problems/marker_solve/sequence_solver.h"
+#include "python/bindings.h"
+#include "python/solve_bindings.h"
+
+namespace mocapsolve::python {
+
+MarkerTakePtr TakeArgument(const Subject& subject, py::object markers) {
+  if (py::isinstance<MarkerTake>(markers)) return markers.cast<MarkerTakePtr>();
+  const std::string path = py::str(markers);
+  RequireReadable(path);
+  auto take = std::make_shared<MarkerTake>();
+  Status status = Status::Ok();
+  {
+    py::gil_scoped_release release;
+    status = LoadTakeForSubject(subject, path, take.get());
+  }
+  ThrowIfError(status);
+  return take;
+}
+
+SolverSettings SettingsFromKeywords(const py::kwargs& keywords, const char* default_solver) {
+  SolverSettings settings;
+  if (default_solver != nullptr) settings.solver = default_solver;
+  ApplyKeywords(keywords, {py::cast(&settings, py::return_value_policy::reference)}, kSolverSettingNames);
+  return settings;
+}
+
+py::dict SequenceReportDict(const SequenceSolveReport& report, const LengthUnit& unit) {
+  const double mm = unit.known() ? unit.metres_per_unit * 1000.0 : 1.0;
+  py::dict d;
+  d["frames"] = report.frames;
+  d["seconds"] = report.solve_seconds;
+  d["frames_per_second"] = report.solve_seconds > 0 ? report.frames / report.solve_seconds : 0.0;
+  d["iterations"] = report.total_iterations;
+  d["rms_marker_residual"] = report.rms_marker_error * mm;
+  d["max_frame_rms"] = report.max_frame_rms * mm;
+  d["unsolved_frames"] = report.unsolved_frames;
+  d["frames_at_iteration_limit"] = report.unconverged_frames;
+  d["total_final_cost"] = report.total_final_cost;
+  Array rms({static_cast<py::ssize_t>(report.frame_rms.size())});
+  for (size_t f = 0; f < report.frame_rms.size(); ++f) rms.mutable_at(f) = report.frame_rms[f] * mm;
+  d["frame_rms"] = rms;
+  d["residual_unit"] = unit.known() ? "mm" : "skeleton units";
+  return d;
+}
+
+namespace {
+
+py::dict ClipReportDict(const ClipSolveReport& clip, const LengthUnit& unit) {
+  const double mm = unit.known() ? unit.metres_per_unit * 1000.0 : 1.0;
+  py::dict d;
+  d["seconds"] = clip.solve_seconds;
+  d["iterations"] = clip.iterations;
+  d["parameters"] = clip.parameters;
+  d["residual_blocks"] = clip.residual_blocks;
+  d["initial_cost"] = clip.initial_cost;
+  d["final_cost"] = clip.final_cost;
+  d["rms_marker_residual"] = clip.rms_marker_error * mm;
+  d["brief"] = clip.brief;
+  return d;
+}
+
+// The per-frame solver of a subject, for loops in Python (the pose is updated in place).
+class FrameSolver {
+ public:
+  FrameSolver(SubjectPtr subject, const py::kwargs& keywords) : subject_(std::move(subject)) {
+    settings_ = SettingsFromKeywords(keywords, nullptr);
+    ThrowIfError(MarkerSolveOptionsFromSettings(settings_, subject_->skeleton.unit(), &options_));
+    solver_ = std::make_unique<MarkerFrameSolver>(subject_->skeleton, subject_->markers, options_);
+    observed_.resize(subject_->markers.num_markers());
+  }
+
+  FrameSolveReport Solve(const Array& observed, Pose* pose) {
+    CheckShape(observed, {subject_->markers.num_markers(), 3}, "observed");
+    CheckPose(*pose);
+    const double* p = observed.data();
+    for (size_t m = 0; m < observed_.size(); ++m, p += 3) observed_[m] = Eigen::Vector3d(p[0], p[1], p[2]);
+    FrameSolveReport report;
+    Status status = Status::Ok();
+    {
+      py::gil_scoped_release release;
+      status = solver_->Solve(observed_, pose, &report);
+    }
+    ThrowIfError(status);
+    return report;
+  }
+
+  Pose InitialPose(const Array& observed, bool root_from_markers) {
+    CheckShape(observed, {subject_->markers.num_markers(), 3}, "observed");
+    std::vector<Eigen::Vector3d> frame(subject_->markers.num_markers());
+    const double* p = observed.data();
+    for (auto& x : frame) {
+      x = Eigen::Vector3d(p[0], p[1], p[2]);
+      p += 3;
+    }
+    Pose pose = RestPose(subject_->skeleton);
+    Status status = Status::Ok();
+    {
+      py::gil_scoped_release release;
+      status = mocapsolve::InitialPose(subject_->skeleton, subject_->markers, frame, options_, &pose,
+                                       root_from_markers);
+    }
+    ThrowIfError(status);
+    return pose;
+  }
+
+  const SolverSettings& settings() const { return settings_; }
+
+ private:
+  void CheckPose(const Pose& pose) const {
+    if (static_cast<int>(pose.rotations.size()) != subject_->skeleton.num_joints()) {
+      throw py::value_error("pose: expected " + std::to_string(subject_->skeleton.num_joints()) + " joints");
+    }
+  }
+
+  SubjectPtr subject_;
+  SolverSettings settings_;
+  MarkerSolveOptions options_;
+  std::unique_ptr<MarkerFrameSolver> solver_;
+  std::vector<Eigen::Vector3d> observed_;
+};
+
+}  // namespace
+
+void BindSolve(py::module_& m) {
+  py::class_<SolverSettings> settings(m, "SolverSettings",
+      "The marker solver's options, one per flag of `mocapsolve solve` (same names, defaults\n"
+      "and units). Keyword arguments of solve(), FrameSolver(), repair() set these.");
+  settings.def(py::init<>());
+#define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &SolverSettings::name)
+  MOCAPSOLVE_FIELD(solver); MOCAPSOLVE_FIELD(mode); MOCAPSOLVE_FIELD(linear_solver);
+  MOCAPSOLVE_FIELD(trust_region); MOCAPSOLVE_FIELD(max_iterations); MOCAPSOLVE_FIELD(function_tolerance);
+  MOCAPSOLVE_FIELD(gradient_tolerance); MOCAPSOLVE_FIELD(parameter_tolerance); MOCAPSOLVE_FIELD(num_threads);
+  MOCAPSOLVE_FIELD(loss); MOCAPSOLVE_FIELD(loss_scale); MOCAPSOLVE_FIELD(marker_weight);
+  MOCAPSOLVE_FIELD(prior_weight); MOCAPSOLVE_FIELD(prior_translation_weight); MOCAPSOLVE_FIELD(limit_weight);
+  MOCAPSOLVE_FIELD(smooth_order); MOCAPSOLVE_FIELD(smooth_weight); MOCAPSOLVE_FIELD(smooth_translation_weight);
+  MOCAPSOLVE_FIELD(clip_function_tolerance); MOCAPSOLVE_FIELD(sparse_library); MOCAPSOLVE_FIELD(dls_lambda);
+  MOCAPSOLVE_FIELD(dls_damping); MOCAPSOLVE_FIELD(verbose);
+#undef MOCAPSOLVE_FIELD
+  settings.def("validate", [](const SolverSettings& s, const std::string& skeleton_units) {
+        MarkerSolveOptions frame;
+        LengthUnit unit = LengthUnitFromName(skeleton_units);
+        ThrowIfError(MarkerSolveOptionsFromSettings(s, unit, &frame));
+        ClipSolveOptions clip;
+        ThrowIfError(ClipSolveOptionsFromSettings(s, &clip));
+      }, py::arg("skeleton_units") = "cm",
+      "Raises ValueError (the CLI's message) if a value is invalid.");
+  settings.def("as_dict", [](py::object self) {
+        py::dict d;
+        for (const std::string& name : [] {
+               std::vector<std::string> names;
+               std::string all = kSolverSettingNames, item;
+               for (char c : all + ",") {
+                 if (c == ',') { names.push_back(item); item.clear(); } else { item += c; }
+               }
+               return names;
+             }()) {
+          d[name.c_str()] = self.attr(name.c_str());
+        }
+        return d;
+      }, "The settings by flag name (what `mocapsolve solve --print_config`-style files hold).");
+  m.attr("SOLVER_OPTION_NAMES") = std::string(kSolverSettingNames);
+
+  py::class_<MarkerTake, MarkerTakePtr>(m, "Take",
+      "A marker file mapped onto a subject: .observed (frames, set markers, 3) in the skeleton's\n"
+      "frame and units (NaN where missing), .markers (the file as read).")
+      .def_property_readonly("observed", [](const MarkerTake& t) { return ObservationsToArray(t.observed); })
+      .def_property_readonly("markers", [](const MarkerTake& t) { return std::make_shared<MarkerTrajectories>(t.trajectories); })
+      .def_property_readonly("skeleton", [](const MarkerTake& t) { return std::make_shared<Skeleton>(t.skeleton); })
+      .def_property_readonly("labels", [](const MarkerTake& t) {
+        std::vector<std::string> labels;
+        for (int i = 0; i < t.markers.num_markers(); ++i) labels.push_back(t.markers.label(i));
+        return labels;
+      }, "The marker set's labels, the order of observed's second axis.")
+      .def_property_readonly("num_frames", [](const MarkerTake& t) { return static_cast<int>(t.observed.size()); })
+      .def_property_readonly("rate", [](const MarkerTake& t) { return t.trajectories.frame_rate; });
+
+  m.def("load_take", [](SubjectPtr subject, const std::string& path) {
+        return TakeArgument(*subject, py::str(path));
+      }, py::arg("subject"), py::arg("markers"),
+      "Reads a .c3d/.trc and maps it onto the subject (label prefix, axes, scale).");
+
+  m.def("solve", [](SubjectPtr subject, py::object markers, int max_frames, const py::kwargs& keywords) {
+        const SolverSettings settings = SettingsFromKeywords(keywords, nullptr);
+        if (settings.mode != "frame" && settings.mode != "clip") {
+          throw py::value_error("--mode: unknown '" + settings.mode + "' (frame, clip)");
+        }
+        const Skeleton& skeleton = subject->skeleton;
+        MarkerSolveOptions frame_options;
+        ThrowIfError(MarkerSolveOptionsFromSettings(settings, skeleton.unit(), &frame_options));
+        ClipSolveOptions clip_options;
+        if (settings.mode == "clip") ThrowIfError(ClipSolveOptionsFromSettings(settings, &clip_options));
+        if (max_frames < 0) throw py::value_error("--max_frames must be >= 0");
+        const MarkerTakePtr take = TakeArgument(*subject, markers);
+        std::vector<std::vector<Eigen::Vector3d>> cut;
+        const bool shorten = max_frames > 0 && static_cast<int>(take->observed.size()) > max_frames;
+        if (shorten) cut.assign(take->observed.begin(), take->observed.begin() + max_frames);
+        const auto& observed = shorten ? cut : take->observed;
+        Motion motion;
+        motion.frame_rate = take->trajectories.frame_rate;
+        SequenceSolveReport sequence;
+        ClipSolveReport clip;
+        Status status = Status::Ok();
+        double seconds_in_cpp = 0.0;
+        {
+          py::gil_scoped_release release;
+          const auto start = std::chrono::steady_clock::now();
+          status = SolveSequence(skeleton, subject->markers, observed, frame_options, RestPose(skeleton),
+                                 &motion, &sequence);
+          if (status.ok() && settings.mode == "clip") {
+            status = SolveClip(skeleton, subject->markers, observed, clip_options, &motion, &clip);
+          }
+          seconds_in_cpp = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        }
+        if (!status.ok()) {
+          const std::string where = py::isinstance<py::str>(markers) ? std::string(py::str(markers)) + ": " : "";
+          throw py::value_error(where + status.message());
+        }
+        py::dict report;
+        report["solver"] = settings.solver;
+        report["mode"] = settings.mode;
+        report["frames"] = sequence.frames;
+        report["marker_to_skeleton_scale"] = take->transform.scale;
+        report["seconds_in_cpp"] = seconds_in_cpp;  // The solve functions' own time (for overheads).
+        report["per_frame"] = SequenceReportDict(sequence, skeleton.unit());
+        if (settings.mode == "clip") report["clip"] = ClipReportDict(clip, skeleton.unit());
+        return py::make_tuple(std::move(motion), report);
+      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("max_frames") = 0,
+      R"doc(Joint angles from markers, as `mocapsolve solve`.
+
+subject: a Subject (read_subject or subject()); markers: a .c3d/.trc path or a Take.
+max_frames: solve only the first N frames (0 = all).
+Every other keyword is a solver option named like the CLI flag (SolverSettings), e.g.
+  solver='ceres'|'dls', mode='frame'|'clip', linear_solver='dense_qr', max_iterations=50,
+  function_tolerance=1e-6, gradient_tolerance=1e-10, parameter_tolerance=1e-8,
+  num_threads=2 (clip), loss='none'|'huber'|'cauchy', loss_scale=1.0, marker_weight=1.0,
+  prior_weight=20.0 (mm per radian), prior_translation_weight=0, limit_weight=0,
+  smooth_order='velocity'|'acceleration', smooth_weight=1, smooth_translation_weight=0.1,
+  clip_function_tolerance=1e-6, sparse_library='eigen_sparse', dls_lambda=1e-3,
+  dls_damping='adaptive'|'fixed'.
+Returns (motion, report): the motion on the subject's skeleton and a dict with the CLI
+report's figures ('per_frame': seconds, iterations, rms_marker_residual (mm), frame_rms
+(frames,) array in mm, ...; 'clip' with mode='clip'). Releases the GIL while solving.
+A bad option raises ValueError with the CLI's message; an unknown one TypeError.)doc");
+
+  py::class_<FrameSolveReport>(m, "FrameSolveReport", "One frame's solve.")
+      .def_readonly("initial_cost", &FrameSolveReport::initial_cost)
+      .def_readonly("final_cost", &FrameSolveReport::final_cost)
+      .def_readonly("iterations", &FrameSolveReport::iterations)
+      .def_readonly("usable", &FrameSolveReport::usable)
+      .def_readonly("markers_used", &FrameSolveReport::markers_used)
+      .def_readonly("rms_marker_error", &FrameSolveReport::rms_marker_error, "Skeleton units.")
+      .def_readonly("brief", &FrameSolveReport::brief);
+
+  py::class_<FrameSolver>(m, "FrameSolver",
+      "One subject's per-frame marker solver (the one solve() runs over a take), for loops in\n"
+      "Python: solver.solve(observed_frame, pose) updates pose in place.")
+      .def(py::init<SubjectPtr, const py::kwargs&>(), py::arg("subject"),
+           "Keywords: the solver options of solve() (mode and the clip options are ignored).")
+      .def("solve", &FrameSolver::Solve, py::arg("observed"), py::arg("pose"),
+           "observed: (markers, 3) in the skeleton's frame and units (Take.observed[f]), NaN =\n"
+           "missing; pose: the warm start, overwritten with the solution (and, with a prior, the\n"
+           "prior's reference). Returns a FrameSolveReport. Releases the GIL.")
+      .def("initial_pose", &FrameSolver::InitialPose, py::arg("observed"), py::arg("root_from_markers") = false,
+           "The first frame's start: the best of the 24 axis-aligned root orientations (as solve()).")
+      .def_property_readonly("settings", &FrameSolver::settings);
+
+  m.def("calibrate", [](const std::string& motion_path, const std::string& markers_path, py::object skeleton,
+                        const std::string& axes, double marker_scale, int frame_offset, int min_valid_frames,
+                        const std::string& attach, double amc_fps, const std::string& skeleton_units) {
+        RequireReadable(motion_path);
+        RequireReadable(markers_path);
+        MotionFileOptions motion_options;
+        if (!skeleton.is_none()) motion_options.skeleton_path = py::str(skeleton);
+        motion_options.amc_frame_rate = amc_fps;
+        auto out = std::make_shared<SubjectCalibration>();
+        Skeleton model;
+        Motion motion;
+        MarkerTrajectories trajectories;
+        MarkerSet attachments;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = ReadMotionFile(motion_path, motion_options, &model, &motion);
+          if (status.ok()) status = SetSkeletonUnits(skeleton_units, &model);
+          if (status.ok()) status = ReadMarkerFile(markers_path, &trajectories);
+          if (status.ok() && attach != "auto") status = ReadMarkerSet(attach, model, &attachments);
+          if (status.ok()) {
+            SubjectCalibrationOptions options;
+            options.axes = axes;
+            options.marker_scale = marker_scale;
+            options.frame_offset = frame_offset;
+            options.min_valid_frames = min_valid_frames;
+            options.attachments = attach == "auto" ? nullptr : &attachments;
+            options.skeleton_path = motion_options.skeleton_path.empty() ? motion_path : motion_options.skeleton_path;
+            options.amc_fps = amc_fps;
+            options.markers_name = markers_path;
+            status = CalibrateSubject(model, motion, trajectories, options, out.get());
+          }
+        }
+        ThrowIfError(status);
+        const double mm = model.unit().known() ? model.unit().metres_per_unit * 1000.0 : 0.0;
+        py::dict report;
+        report["axes"] = AxesName(out->transform.rotation);
+        report["marker_scale"] = out->transform.scale;
+        report["matched_frames"] = out->result.matched_frames;
+        report["samples"] = out->result.samples;
+        report["rms"] = out->result.rms;
+        if (mm > 0.0) report["rms_mm"] = out->result.rms * mm;
+        py::list per_marker;
+        for (const CalibratedMarker& c : out->result.markers) {
+          py::dict o;
+          o["label"] = c.label;
+          o["frames"] = c.frames;
+          o["rms"] = c.rms;
+          o["max_error"] = c.max_error;
+          per_marker.append(o);
+        }
+        report["per_marker"] = per_marker;
+        report["skipped"] = out->result.skipped;
+        return py::make_tuple(std::make_shared<Subject>(std::move(out->subject)), report);
+      }, py::arg("motion"), py::arg("markers"), py::kw_only(), py::arg("skeleton") = py::none(),
+      py::arg("axes") = "x,y,z", py::arg("marker_scale") = 0.0, py::arg("frame_offset") = 0,
+      py::arg("min_valid_frames") = 2, py::arg("attach") = "auto", py::arg("amc_fps") = 120.0,
+      py::arg("skeleton_units") = "",
+      R"doc(Calibrates a subject as `mocapsolve calibrate --out_subject`: where each marker sits
+on the skeleton, from a solved motion (motion: .bvh, or .amc with skeleton= its .asf) and
+the markers of the same take. axes: marker file -> skeleton axes ('y,z,x' for CMU C3D onto
+ASF) or 'auto'; attach: 'auto' or a marker set .json whose joints are kept.
+Returns (subject, report) with the calibrated RMS and per-marker figures.)doc");
+}
+
+}  // namespace mocapsolve::python

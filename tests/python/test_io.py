@@ -1,0 +1,127 @@
+"""io bindings: markers and motions read and written, against the command line."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import mocapsolve
+from conftest import data_file, run_cli
+
+
+def test_read_markers_shapes_and_missing_samples():
+    markers = mocapsolve.read_markers(data_file("c3d/02_01.c3d"))
+    p = markers.positions
+    assert p.dtype == np.float64 and p.ndim == 3 and p.shape[2] == 3
+    assert p.shape == (markers.num_frames, len(markers.labels), 3)
+    assert p.flags.c_contiguous
+    assert markers.rate == pytest.approx(120.0)
+    assert markers.units == "mm"
+    valid = markers.valid
+    assert valid.shape == p.shape[:2] and valid.dtype == bool
+    # Missing samples are NaN in all three coordinates, present ones finite.
+    assert np.array_equal(np.isnan(p).all(axis=2), ~valid)
+    assert np.isfinite(p[valid]).all()
+
+
+def test_positions_is_a_view_without_copy():
+    markers = mocapsolve.read_markers(data_file("c3d/02_01.c3d"))
+    a = markers.positions
+    b = markers.positions
+    assert np.shares_memory(a, b)
+    a[0, 0, :] = np.nan  # Setting NaN makes the sample missing.
+    assert not markers.valid[0, 0]
+
+
+def test_nan_round_trip_of_missing_markers(tmp_path):
+    markers = mocapsolve.read_markers(data_file("c3d/02_01.c3d"))
+    positions = markers.positions.copy()
+    positions[5:9, 3, :] = np.nan
+    made = mocapsolve.Markers(positions, markers.labels, markers.rate, "mm")
+    for ext in (".c3d", ".trc"):
+        path = str(tmp_path / ("round" + ext))
+        mocapsolve.write_markers(path, made)
+        back = mocapsolve.read_markers(path)
+        assert back.labels == markers.labels
+        assert np.array_equal(np.isnan(back.positions), np.isnan(positions))
+        ok = ~np.isnan(positions)
+        assert np.allclose(back.positions[ok], positions[ok], atol=1e-3)
+
+
+def test_read_motion_amc_and_fk_match_the_cli(tmp_path):
+    asf, amc = data_file("amc/02.asf"), data_file("amc/02_01.amc")
+    skeleton, motion = mocapsolve.read_motion(amc, skeleton=asf)
+    assert len(skeleton.joint_names) == skeleton.num_joints
+    r = motion.rotations
+    assert r.shape == (motion.num_frames, skeleton.num_joints, 4) and r.dtype == np.float64
+    assert np.allclose(np.linalg.norm(r, axis=2), 1.0)
+    assert motion.root_translations.shape == (motion.num_frames, 3)
+    positions = mocapsolve.forward_kinematics(skeleton, motion)
+    assert positions.shape == (motion.num_frames, skeleton.num_joints, 3)
+    assert positions.flags.c_contiguous
+    csv = str(tmp_path / "fk.csv")
+    run_cli("fk", "--motion=" + amc, "--skeleton=" + asf, "--out=" + csv)
+    lines = open(csv).read().splitlines()[1:]
+    assert len(lines) == positions.shape[0] * positions.shape[1]
+    names = skeleton.joint_names
+    for i in range(0, len(lines), 97):  # A sample of the rows; same code path: same digits.
+        f, j = divmod(i, skeleton.num_joints)
+        p = positions[f, j]
+        assert lines[i] == "%d,%s,%.9g,%.9g,%.9g" % (f, names[j], p[0], p[1], p[2])
+
+
+def test_motion_round_trip_through_bvh(tmp_path):
+    skeleton, motion = mocapsolve.read_motion(data_file("bvh/01_01.bvh"))
+    path = str(tmp_path / "out.bvh")
+    mocapsolve.write_motion(path, skeleton, motion, precision=9)
+    skeleton2, motion2 = mocapsolve.read_motion(path)
+    assert skeleton2.joint_names == skeleton.joint_names
+    a = mocapsolve.forward_kinematics(skeleton, motion)
+    b = mocapsolve.forward_kinematics(skeleton2, motion2)
+    assert np.allclose(a, b, atol=1e-5)
+    # The CLI's convert writes the same file.
+    cli = str(tmp_path / "cli.bvh")
+    run_cli("convert", data_file("bvh/01_01.bvh"), cli, "--precision=9")
+    assert open(cli).read() == open(path).read()
+
+
+def test_motion_from_arrays_and_setters():
+    skeleton, motion = mocapsolve.read_motion(data_file("bvh/01_01.bvh"))
+    made = mocapsolve.Motion(skeleton, motion.rotations, motion.translations, motion.rate)
+    assert np.array_equal(mocapsolve.forward_kinematics(skeleton, made),
+                          mocapsolve.forward_kinematics(skeleton, motion))
+    root = motion.root_translations + np.array([1.0, 0.0, 0.0])
+    motion.root_translations = root
+    assert np.array_equal(motion.root_translations, root)
+    with pytest.raises(ValueError, match="rotations: expected shape"):
+        motion.rotations = np.zeros((3, 4))
+
+
+def test_bad_input_raises():
+    with pytest.raises(OSError, match="no_such_file.c3d"):
+        mocapsolve.read_markers("no_such_file.c3d")
+    with pytest.raises(OSError, match="missing.bvh"):
+        mocapsolve.read_motion("missing.bvh")
+
+
+def test_bad_file_raises_value_error_naming_it(tmp_path):
+    bad = tmp_path / "bad.bvh"
+    bad.write_text("HIERARCHY\nROOT Hips\n{\n  OFSET 0 0 0\n")
+    with pytest.raises(ValueError, match="bad.bvh"):
+        mocapsolve.read_motion(str(bad))
+    code, output = run_cli("info", str(bad), expect=1)
+    with pytest.raises(ValueError) as error:
+        mocapsolve.read_motion(str(bad))
+    assert str(error.value) in output
+
+
+def test_gltf_animation_round_trip(tmp_path):
+    glb = data_file("gltf/CesiumMan.glb")
+    skeleton, motion = mocapsolve.read_motion(glb)
+    out = str(tmp_path / "with_clip.glb")
+    mocapsolve.write_gltf(out, glb, motion, "again")
+    skeleton2, motion2 = mocapsolve.read_motion(out, animation="again")
+    assert skeleton2.joint_names == skeleton.joint_names
+    a = mocapsolve.forward_kinematics(skeleton, motion)
+    b = mocapsolve.forward_kinematics(skeleton2, motion2)
+    assert a.shape == b.shape and np.abs(a - b).max() < 1e-5  # Metres; floats in the file.

@@ -1,0 +1,69 @@
+"""Marker repair: the repaired markers, motion and report against the command line."""
+import json
+
+import numpy as np
+import pytest
+
+import mocapsolve
+from conftest import data_file, run_cli
+
+
+def test_repair_is_bit_identical_to_the_cli(cmu02, tmp_path):
+    subject = mocapsolve.read_subject(cmu02["subject"])
+    markers, motion, report = mocapsolve.repair(subject, cmu02["c3d"])
+    cli_markers = str(tmp_path / "cli.c3d")
+    cli_motion = str(tmp_path / "cli.bvh")
+    cli_report = str(tmp_path / "cli.json")
+    run_cli("repair", "--subject=" + cmu02["subject"], "--markers=" + cmu02["c3d"],
+            "--out_markers=" + cli_markers, "--out_motion=" + cli_motion, "--report=" + cli_report)
+    ours = str(tmp_path / "py.c3d")
+    mocapsolve.write_markers(ours, markers)
+    assert open(ours, "rb").read() == open(cli_markers, "rb").read()
+    ours_bvh = str(tmp_path / "py.bvh")
+    mocapsolve.write_motion(ours_bvh, subject.skeleton, motion)
+    assert open(ours_bvh).read() == open(cli_motion).read()
+    expected = json.load(open(cli_report))
+    for key in ("rms_naive_mm", "rms_reference_mm", "rms_repaired_mm", "resolved_frames", "frames"):
+        assert report[key] == pytest.approx(expected[key], rel=1e-12), key
+    simplify = lambda items: [(i["marker"], i["first_frame"], i["last_frame"], i["what"]) for i in items]
+    assert simplify(report["filled"]) == simplify(expected["filled"])
+    assert simplify(report["detected"]) == simplify(expected["detected"])
+    assert markers.positions.shape[1] == len(markers.labels)
+
+
+def test_repair_options_and_errors(cmu02):
+    subject = mocapsolve.read_subject(cmu02["subject"])
+    code, output = run_cli("repair", "--subject=" + cmu02["subject"], "--markers=" + cmu02["c3d"],
+                           "--out_markers=/tmp/never.c3d", "--reference=magic", expect=1)
+    with pytest.raises(ValueError) as error:
+        mocapsolve.repair(subject, cmu02["c3d"], reference="magic")
+    assert str(error.value) in output
+    with pytest.raises(TypeError, match="dp_max"):
+        mocapsolve.repair(subject, cmu02["c3d"], dp_max=3)
+    s = mocapsolve.RepairSettings()
+    assert s.dp_max_cm == 10.0 and s.reference == "tracker" and s.small_gap == 5
+
+
+def test_evaluate_matches_the_cli_table(cmu02, tmp_path):
+    subject = mocapsolve.read_subject(cmu02["subject"])
+    rows = mocapsolve.evaluate(subject, cmu02["c3d"], trials=1, gaps=4)
+    csv = str(tmp_path / "table.csv")
+    run_cli("evaluate", "--subject=" + cmu02["subject"], "--markers=" + cmu02["c3d"], "--trials=1", "--gaps=4",
+            "--table_csv=" + csv)
+    lines = open(csv).read().splitlines()
+    header = lines[0].split(",")
+    assert len(lines) - 1 == len(rows)
+    for line, row in zip(lines[1:], rows):
+        values = dict(zip(header, line.split(",")))
+        assert values["method"] == row["method"]
+        for key in ("joint_position_cm", "marker_rms_mm", "velocity_jump_mm_per_frame"):
+            assert float(values[key]) == float("%.6g" % row[key]), (row["method"], key)
+
+
+def test_corrupt_damages_markers():
+    markers = mocapsolve.read_markers(data_file("c3d/02_01.c3d"))
+    damaged, kinds = mocapsolve.corrupt(markers, gaps=5, corrupt_seed=7)
+    assert kinds.shape == markers.positions.shape[:2] and (kinds != 0).any()
+    assert np.isnan(damaged.positions).sum() > np.isnan(markers.positions).sum()
+    with pytest.raises(ValueError, match="--gap_min/--gap_max"):
+        mocapsolve.corrupt(markers, gap_min=20, gap_max=10)

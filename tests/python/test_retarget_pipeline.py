@@ -1,0 +1,33 @@
+"""Retargeting and the pipeline on one take, against the command line."""
+import json
+import os
+
+import numpy as np
+
+import mocapsolve
+from conftest import data_file, run_cli
+
+
+def test_retarget_matches_the_cli(tmp_path):
+    bvh = data_file("bvh/16_15.bvh")
+    glb = data_file("gltf/Xbot.glb")
+    ours = str(tmp_path / "py.bvh")
+    character, motion, report = mocapsolve.retarget(bvh, glb, max_frames=8, out=ours)
+    assert motion.num_frames == 8 and report["source_kind"] == "skeleton"
+    assert character.num_vertices > 0
+    cli = str(tmp_path / "cli.bvh")
+    run_cli("retarget", "--source=" + bvh, "--target=" + glb, "--max_frames=8", "--out=" + cli)
+    assert open(ours).read() == open(cli).read()
+
+
+def test_pipeline_on_one_take_matches_the_cli(cmu02, tmp_path):
+    subject = mocapsolve.read_subject(cmu02["subject"])
+    out_py = str(tmp_path / "py")
+    result = mocapsolve.pipeline(subject, cmu02["c3d"], out_dir=out_py)
+    assert result["passed"], result["failures"]
+    out_cli = str(tmp_path / "cli")
+    run_cli("pipeline", "--subject=" + cmu02["subject"], "--markers=" + cmu02["c3d"], "--out_dir=" + out_cli)
+    for name in ("solved.bvh", "repaired.c3d"):
+        assert open(os.path.join(out_py, name), "rb").read() == open(os.path.join(out_cli, name), "rb").read(), name
+    expected = json.load(open(os.path.join(out_cli, "report.json")))
+    assert result["report"]["quality_gate"] == expected["quality_gate"]
