@@ -37,6 +37,8 @@
   function start() {
     const THREE = window.MOCAPSOLVE_THREE;
     if (!THREE) throw new Error('three.js runtime missing from the page');
+    const t0 = performance.now();
+    view.timings = {};
     const meta = JSON.parse(document.getElementById('mv-meta').textContent);
     const fps = meta.frame_rate;
     view.stateNames = meta.state_names.slice();
@@ -107,8 +109,26 @@
 
     // ---- scene -------------------------------------------------------------------
     const canvas = document.getElementById('mv-canvas');
-    const renderer = new THREE.WebGLRenderer({ canvas: canvas, antialias: true, preserveDrawingBuffer: true });
-    renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+    // A software WebGL (SwiftShader, llvmpipe: no GPU, or a headless browser) gets no
+    // multisampling, one pixel per CSS pixel and Lambert instead of PBR shading on the
+    // characters: several times the frame rate, for a little less polish.
+    const software = (function () {
+      try {
+        const probe = document.createElement('canvas').getContext('webgl2') ||
+                      document.createElement('canvas').getContext('webgl');
+        const debug = probe && probe.getExtension('WEBGL_debug_renderer_info');
+        const name = debug ? String(probe.getParameter(debug.UNMASKED_RENDERER_WEBGL)) : '';
+        const lose = probe && probe.getExtension('WEBGL_lose_context');
+        if (lose) lose.loseContext();
+        return /swiftshader|llvmpipe|software/i.test(name);
+      } catch (e) {
+        return false;
+      }
+    })();
+    view.softwareRendering = software;
+    view.three = { THREE: THREE };  // renderer, scene, camera, characters: for scripts.
+    const renderer = new THREE.WebGLRenderer({ canvas: canvas, antialias: !software, preserveDrawingBuffer: true });
+    renderer.setPixelRatio(software ? 1 : Math.min(window.devicePixelRatio || 1, 2));
     const scene = new THREE.Scene();
     scene.background = new THREE.Color('#1d2127');
     const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 2000);
@@ -172,8 +192,8 @@
     unitBone.translate(0, 0.5, 0);
     const skeletonObjects = skeletons.map(function (s, index) {
       const color = s.ghost ? GHOST_COLOR : SKELETON_COLORS[index % SKELETON_COLORS.length];
-      const material = new THREE.MeshStandardMaterial({
-        color: color, roughness: 0.6, transparent: s.ghost, opacity: s.ghost ? 0.4 : 1.0, depthWrite: !s.ghost,
+      const material = new THREE.MeshLambertMaterial({
+        color: color, transparent: s.ghost, opacity: s.ghost ? 0.4 : 1.0, depthWrite: !s.ghost,
       });
       const bones = new THREE.InstancedMesh(unitBone, material, Math.max(1, s.joints.length));
       bones.frustumCulled = false;
@@ -243,9 +263,16 @@
         bones.instanceMatrix.needsUpdate = true;
       });
       const t = frame / fps;
-      characters.forEach(function (c) { c.mixer.setTime(Math.min(t, c.clip.duration)); });
+      characters.forEach(function (c) {
+        c.mixer.setTime(Math.min(t, c.clip.duration));
+        if (c.skins.length) {
+          c.root.updateMatrixWorld(true);
+          c.skins.forEach(cpuSkin);
+        }
+      });
     }
 
+    Object.assign(view.three, { renderer: renderer, scene: scene, camera: camera, characters: characters });
     function render() {
       renderer.render(scene, camera);
       view.renders++;
@@ -323,62 +350,83 @@
       info.innerHTML = text;
     }
 
-    function drawTimeline() {
-      const w = timeline.clientWidth, h = timeline.clientHeight;
-      const ratio = window.devicePixelRatio || 1;
-      if (timeline.width !== Math.round(w * ratio) || timeline.height !== Math.round(h * ratio)) {
-        timeline.width = Math.round(w * ratio);
-        timeline.height = Math.round(h * ratio);
-      }
-      const g = timeline.getContext('2d');
+    // The timeline: curves and interval bars drawn once into `background` (again on a
+    // resize, a selection or a change of the frame count), then per frame copied with the
+    // playhead and the curves' current values over it.
+    let background = null, backgroundKey = '';
+    function drawTimelineBackground(w, h, ratio) {
+      const layer = document.createElement('canvas');
+      layer.width = Math.round(w * ratio);
+      layer.height = Math.round(h * ratio);
+      const g = layer.getContext('2d');
       g.setTransform(ratio, 0, 0, ratio, 0, 0);
-      g.clearRect(0, 0, w, h);
-      const n = Math.max(1, view.frames - 1);
-      const left = 70, right = 8, width = Math.max(1, w - left - right);
-      const x = function (f) { return left + width * f / n; };
-      g.font = '11px system-ui, sans-serif';
+      const x = timelineX(w);
       // Curves, each scaled to its own maximum, in the top lane.
-      const lane = curves.length ? 44 : 0;
       curves.forEach(function (c, index) {
         g.strokeStyle = CURVE_COLORS[index % CURVE_COLORS.length];
         g.beginPath();
         let pen = false;
-        const step = Math.max(1, Math.floor(c.values.length / (2 * width)));
+        const step = Math.max(1, Math.floor(c.values.length / (2 * w)));
         for (let f = 0; f < c.values.length; f += step) {
           const v = c.values[f];
           if (!isFinite(v)) { pen = false; continue; }
-          const y = 4 + lane * (1 - Math.abs(v) / c.max);
+          const y = 4 + CURVE_LANE * (1 - Math.abs(v) / c.max);
           if (pen) g.lineTo(x(f), y); else g.moveTo(x(f), y);
           pen = true;
         }
         g.stroke();
-        const now = c.values[Math.min(view.frame, c.values.length - 1)];
-        g.fillStyle = CURVE_COLORS[index % CURVE_COLORS.length];
-        g.fillText(c.name + ' ' + (isFinite(now) ? now.toPrecision(3) : '-') + (c.unit ? ' ' + c.unit : ''),
-                   left + 4 + 170 * index, lane + 16);
       });
       // Repaired intervals: one row per marker, bars in the reason's colour.
-      const top = curves.length ? lane + 22 : 4;
+      const top = curves.length ? CURVE_LANE + 22 : 4;
       const rowHeight = intervalRows.length ? Math.max(2, Math.min(rowPixels, (h - top - 2) / intervalRows.length)) : 0;
       const row = new Map();
       intervalRows.forEach(function (m, r) { row.set(m, r); });
-      if (rowHeight >= 6 || intervalRows.length) {
-        intervalRows.forEach(function (m, r) {
-          if (rowHeight >= 9 && markerSets.length) {
-            g.fillStyle = m === selected ? '#fff' : '#8d99ae';
-            g.font = '9px system-ui, sans-serif';
-            g.fillText(markerSets[0].labels[m] || String(m), 2, top + r * rowHeight + rowHeight);
-          }
-        });
-      }
+      g.font = '9px system-ui, sans-serif';
+      intervalRows.forEach(function (m, r) {
+        if (rowHeight >= 9 && markerSets.length) {
+          g.fillStyle = m === selected ? '#fff' : '#8d99ae';
+          g.fillText(markerSets[0].labels[m] || String(m), 2, top + r * rowHeight + rowHeight);
+        }
+      });
       meta.intervals.forEach(function (i) {
         const r = row.get(i[0]);
         g.fillStyle = STATE_COLORS[i[3]] || STATE_COLORS[2];
         g.fillRect(x(i[1]), top + r * rowHeight, Math.max(1.5, x(i[2] + 1) - x(i[1])), Math.max(1, rowHeight - 1));
       });
-      // Playhead.
-      g.fillStyle = '#ffffff';
-      g.fillRect(x(view.frame) - 0.5, 0, 1.5, h);
+      return layer;
+    }
+    const CURVE_LANE = 44;
+    function timelineX(w) {
+      const n = Math.max(1, view.frames - 1), left = 70, width = Math.max(1, w - left - 8);
+      return function (f) { return left + width * f / n; };
+    }
+    function drawTimeline() {
+      const w = timeline.clientWidth, h = timeline.clientHeight;
+      if (w < 1 || h < 1) return;  // Hidden, or a window of no size.
+      const ratio = window.devicePixelRatio || 1;
+      if (timeline.width !== Math.round(w * ratio) || timeline.height !== Math.round(h * ratio)) {
+        timeline.width = Math.round(w * ratio);
+        timeline.height = Math.round(h * ratio);
+      }
+      const key = [w, h, ratio, view.frames, selected].join(',');
+      if (key !== backgroundKey) {
+        background = drawTimelineBackground(w, h, ratio);
+        backgroundKey = key;
+      }
+      const g = timeline.getContext('2d');
+      g.setTransform(1, 0, 0, 1, 0, 0);
+      g.clearRect(0, 0, timeline.width, timeline.height);
+      g.drawImage(background, 0, 0);
+      g.setTransform(ratio, 0, 0, ratio, 0, 0);
+      g.font = '11px system-ui, sans-serif';
+      curves.forEach(function (c, index) {
+        const now = c.values[Math.min(view.frame, c.values.length - 1)];
+        g.fillStyle = CURVE_COLORS[index % CURVE_COLORS.length];
+        g.fillText(c.name + ' ' + (isFinite(now) ? now.toPrecision(3) : '-') + (c.unit ? ' ' + c.unit : ''),
+                   70 + 4 + 170 * index, CURVE_LANE + 16);
+      });
+      g.fillStyle = '#ffffff';  // Playhead.
+      g.fillRect(timelineX(w)(view.frame) - 0.5, 0, 1.5, h);
     }
 
     function showFrameText() {
@@ -492,6 +540,7 @@
 
     // ---- characters, then the first frame ----------------------------------------
     const loader = new THREE.GLTFLoader();
+    view.timings.data_ms = performance.now() - t0;
     const loads = meta.characters.map(function (c) {
       const bytes = blobBytes(c.glb);
       return loader.parseAsync(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength), '')
@@ -507,12 +556,120 @@
           const mixer = new THREE.AnimationMixer(root);
           mixer.clipAction(clip).play();
           scene.add(root);
-          root.traverse(function (o) { if (o.isMesh) o.frustumCulled = false; });
-          characters.push({ name: c.name, root: root, mixer: mixer, clip: clip });
+          root.traverse(function (o) {
+            if (!o.isMesh) return;
+            o.frustumCulled = false;
+            if (software && o.material && o.material.isMeshStandardMaterial) {
+              const m = o.material;
+              o.material = new THREE.MeshLambertMaterial({ color: m.color, map: m.map, transparent: m.transparent,
+                                                           opacity: m.opacity, side: m.side });
+            }
+          });
+          const skins = [];
+          if (software) {
+            const skinned = [];
+            root.traverse(function (o) { if (o.isSkinnedMesh) skinned.push(o); });
+            skinned.forEach(function (o) { skins.push(makeCpuSkin(o)); });
+          }
+          characters.push({ name: c.name, root: root, mixer: mixer, clip: clip, skins: skins });
         });
     });
 
+    // Skinning on the CPU, for software renderers: SwiftShader runs three.js' skinning
+    // shader (four bone matrices fetched from a texture per vertex) several times slower
+    // than this loop, which writes a plain mesh's positions and normals each frame:
+    //   x = bindMatrix^-1 * sum_k w_k * B_k * bindMatrix * x0,  B_k = bone_k.matrixWorld * boneInverse_k
+    // (three.js' own formula), the plain mesh carrying matrixWorld * bindMatrix^-1.
+    function makeCpuSkin(skinned) {
+      const g = skinned.geometry, position = g.attributes.position, normal = g.attributes.normal;
+      const skinIndex = g.attributes.skinIndex, skinWeight = g.attributes.skinWeight;
+      const n = position.count, bind = skinned.bindMatrix.elements;
+      const rest = new Float32Array(3 * n), restNormal = new Float32Array(3 * n);
+      const index = new Uint16Array(4 * n), weight = new Float32Array(4 * n);
+      for (let i = 0; i < n; ++i) {
+        const x = position.getX(i), y = position.getY(i), z = position.getZ(i);
+        rest[3 * i] = bind[0] * x + bind[4] * y + bind[8] * z + bind[12];
+        rest[3 * i + 1] = bind[1] * x + bind[5] * y + bind[9] * z + bind[13];
+        rest[3 * i + 2] = bind[2] * x + bind[6] * y + bind[10] * z + bind[14];
+        if (normal) {
+          const a = normal.getX(i), b = normal.getY(i), c = normal.getZ(i);
+          restNormal[3 * i] = bind[0] * a + bind[4] * b + bind[8] * c;
+          restNormal[3 * i + 1] = bind[1] * a + bind[5] * b + bind[9] * c;
+          restNormal[3 * i + 2] = bind[2] * a + bind[6] * b + bind[10] * c;
+        }
+        index[4 * i] = skinIndex.getX(i); index[4 * i + 1] = skinIndex.getY(i);
+        index[4 * i + 2] = skinIndex.getZ(i); index[4 * i + 3] = skinIndex.getW(i);
+        weight[4 * i] = skinWeight.getX(i); weight[4 * i + 1] = skinWeight.getY(i);
+        weight[4 * i + 2] = skinWeight.getZ(i); weight[4 * i + 3] = skinWeight.getW(i);
+      }
+      const geometry = new THREE.BufferGeometry();
+      if (g.index) geometry.setIndex(g.index);
+      for (const name in g.attributes) {
+        if (!/^(position|normal|skinIndex|skinWeight)$/.test(name)) geometry.setAttribute(name, g.attributes[name]);
+      }
+      const outPosition = new THREE.BufferAttribute(new Float32Array(3 * n), 3).setUsage(THREE.DynamicDrawUsage);
+      const outNormal = new THREE.BufferAttribute(new Float32Array(3 * n), 3).setUsage(THREE.DynamicDrawUsage);
+      geometry.setAttribute('position', outPosition);
+      if (normal) geometry.setAttribute('normal', outNormal);
+      g.groups.forEach(function (group) { geometry.addGroup(group.start, group.count, group.materialIndex); });
+      const mesh = new THREE.Mesh(geometry, skinned.material);
+      mesh.matrixAutoUpdate = false;
+      mesh.frustumCulled = false;
+      skinned.visible = false;
+      scene.add(mesh);
+      return { skinned: skinned, mesh: mesh, rest: rest, restNormal: normal ? restNormal : null, index: index,
+               weight: weight, position: outPosition, normal: outNormal, count: n };
+    }
+    function cpuSkin(s) {
+      s.skinned.skeleton.update();
+      const B = s.skinned.skeleton.boneMatrices, rest = s.rest, restNormal = s.restNormal;
+      const index = s.index, weight = s.weight, out = s.position.array, outNormal = s.normal.array;
+      const m = new Float32Array(12);
+      for (let i = 0; i < s.count; ++i) {
+        m.fill(0);
+        for (let k = 0; k < 4; ++k) {
+          const w = weight[4 * i + k];
+          if (w === 0) continue;
+          const b = 16 * index[4 * i + k];
+          m[0] += w * B[b]; m[1] += w * B[b + 1]; m[2] += w * B[b + 2];
+          m[3] += w * B[b + 4]; m[4] += w * B[b + 5]; m[5] += w * B[b + 6];
+          m[6] += w * B[b + 8]; m[7] += w * B[b + 9]; m[8] += w * B[b + 10];
+          m[9] += w * B[b + 12]; m[10] += w * B[b + 13]; m[11] += w * B[b + 14];
+        }
+        const x = rest[3 * i], y = rest[3 * i + 1], z = rest[3 * i + 2];
+        out[3 * i] = m[0] * x + m[3] * y + m[6] * z + m[9];
+        out[3 * i + 1] = m[1] * x + m[4] * y + m[7] * z + m[10];
+        out[3 * i + 2] = m[2] * x + m[5] * y + m[8] * z + m[11];
+        if (restNormal) {
+          const a = restNormal[3 * i], b = restNormal[3 * i + 1], c = restNormal[3 * i + 2];
+          outNormal[3 * i] = m[0] * a + m[3] * b + m[6] * c;
+          outNormal[3 * i + 1] = m[1] * a + m[4] * b + m[7] * c;
+          outNormal[3 * i + 2] = m[2] * a + m[5] * b + m[8] * c;
+        }
+      }
+      s.position.needsUpdate = true;
+      s.normal.needsUpdate = true;
+      s.mesh.matrix.multiplyMatrices(s.skinned.matrixWorld, s.skinned.bindMatrixInverse);
+      s.mesh.matrixWorldNeedsUpdate = true;
+    }
+
+    // A character's box from its bones' world positions (skinning every vertex on the CPU
+    // to get the exact box costs seconds for a 28k-vertex mesh in a software renderer),
+    // padded for the flesh around them.
+    function characterBox(root) {
+      root.updateMatrixWorld(true);
+      const b = new THREE.Box3(), p = new THREE.Vector3();
+      root.traverse(function (o) { if (o.isBone) b.expandByPoint(o.getWorldPosition(p)); });
+      if (b.isEmpty()) return new THREE.Box3().setFromObject(root);
+      const pad = 0.1 * Math.max(0.2, b.max.y - b.min.y);
+      b.min.x -= pad; b.min.z -= pad; b.max.x += pad; b.max.z += pad;
+      b.max.y += pad;  // The head above its bone.
+      b.min.y -= 0.2 * pad;  // Soles just below the toe bones.
+      return b;
+    }
+
     Promise.all(loads).then(function () {
+      view.timings.characters_ms = performance.now() - t0;
       // Frames: the longest of the data and of the characters' clips.
       let frames = meta.frames;
       characters.forEach(function (c) { frames = Math.max(frames, Math.round(c.clip.duration * fps) + 1); });
@@ -525,7 +682,7 @@
       characters.forEach(function (c) {
         c.mixer.setTime(0);
         c.root.updateMatrixWorld(true);
-        const own = new THREE.Box3().setFromObject(c.root, true);
+        const own = characterBox(c.root);
         if (own.isEmpty()) own.set(new THREE.Vector3(-0.4, 0, -0.2), new THREE.Vector3(0.4, 1.8, 0.2));
         const center = own.getCenter(new THREE.Vector3());
         const width = own.max.x - own.min.x;
@@ -533,14 +690,15 @@
         c.root.position.z += 0.5 * (source.min.z + source.max.z) - center.z;
         c.root.position.y += (box.isEmpty() ? 0 : floorY) - own.min.y;
         x += width + 0.4;
-        c.root.updateMatrixWorld(true);
-        content.union(new THREE.Box3().setFromObject(c.root, true));
+        // Where it stands at the start, the middle and the end of its clip.
+        [0, 0.5, 1].forEach(function (u) {
+          c.mixer.setTime(u * c.clip.duration);
+          c.root.updateMatrixWorld(true);
+          content.union(characterBox(c.root));
+        });
       });
       if (content.isEmpty()) content.set(new THREE.Vector3(-1, 0, -1), new THREE.Vector3(1, 1.8, 1));
-      // The camera frames the first frame and the characters; the grid covers the take.
-      const framed = first.clone();
-      characters.forEach(function (c) { framed.union(new THREE.Box3().setFromObject(c.root, true)); });
-      if (framed.isEmpty()) framed.copy(content);
+
       // Ground grid: 1 m cells (10 cm for small scenes) under everything, at the lowest point.
       const size = content.getSize(new THREE.Vector3());
       const span = Math.max(size.x, size.z) + 2;
@@ -556,8 +714,10 @@
       meta.notes.push('grid: ' + (cell === 1 ? '1 m' : '10 cm') + ' cells; axes x red, y (up) green, z blue');
       legend();
       resize();
-      frameCamera(framed);
+      frameCamera(content);
+      view.timings.layout_ms = performance.now() - t0;
       setFrame(0);
+      view.timings.first_frame_ms = performance.now() - t0;
       view.ready = true;
     }).catch(fail);
     window.addEventListener('resize', function () { resize(); render(); });

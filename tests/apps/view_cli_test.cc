@@ -209,7 +209,7 @@ TEST(ViewRealData, PipelinePageWithCharacter) {
   ASSERT_TRUE(testing::FileExists(dir + "/view.html"));
   EXPECT_THAT(testing::ReadTextFile(dir + "/report.json"), HasSubstr("\"view\": \"view.html\""));
   MOCAPSOLVE_CHECK_IN_BROWSER("{\"pages\": [{\"path\": \"" + dir + "/view.html\", \"moving\": [0, 200], "
-                              "\"min_share\": 0.03}]}\n");
+                              "\"min_share\": 0.015}]}\n");
 }
 
 }  // namespace
