@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # The viewer's size and speed (issue 13), and the README's screenshots.
-#   bench/view_bench.sh [--screenshots]
+#   bench/view_bench.sh [--screenshots | --screenshots_only]
 # 1. A 10,000-frame take (the demo walk at 120 Hz), 53 markers (3 around each of the demo's
 #    bones but the last 7, 0.5 mm noise), a subject calibrated on it, through `pipeline` onto Xbot
 #    (28,312 vertices; ../shared/data/gltf/Xbot.glb, MOCAPSOLVE_DATA): the page's size,
 #    the time from navigation until window.mocapsolveView.ready, and the frames drawn per
 #    second while playing (requestAnimationFrame), in headless Chromium with software
 #    WebGL (SwiftShader) at 1280x720. Target: <= 20 MB, < 3 s, >= 30 frames/s.
-# 2. With --screenshots: docs/images/view_repair.png (a damaged demo take after `repair`)
+# 2. With --screenshots (--screenshots_only: without 1.): docs/images/view_repair.png (a damaged demo take after `repair`)
 #    and docs/images/view_retarget.png (CMU 02_01 through the pipeline onto Xbot).
 # Prints the figures and one JSON line. Needs build/bin/mocapsolve and the viewer tools.
 set -euo pipefail
@@ -18,6 +18,7 @@ work="$(mktemp -d /tmp/view_bench.XXXXXX)"
 trap 'rm -rf "$work"' EXIT
 cd "$work"
 
+if [[ "${1:-}" != "--screenshots_only" ]]; then
 "$ms" generate --demo_out=walk.bvh --frames=10000 --fps=120 >/dev/null
 # 53 markers: the auto:3 set of the demo's 20 joints (60) without the last 7.
 "$ms" markers --quiet --motion=walk.bvh --skeleton_units=cm --markerset=auto:3 --write_markerset=set60.json \
@@ -46,7 +47,9 @@ printf 'view bench: 10000 frames, %s markers, Xbot; page %.1f MB (target <= 20),
   "$markers" "$(echo "$bytes / 1000000" | bc -l)" "$open_s" "$fps_value" "$median_ms" "$p95_ms" "$pipeline_s"
 echo "{\"benchmark\": \"view\", \"frames\": 10000, \"markers\": $markers, \"page_bytes\": $bytes, \"open_seconds\": $open_s, \"play_fps\": $fps_value, \"median_frame_ms\": $median_ms, \"p95_frame_ms\": $p95_ms}"
 
-if [[ "${1:-}" == "--screenshots" ]]; then
+fi
+
+if [[ "${1:-}" == "--screenshots" || "${1:-}" == "--screenshots_only" ]]; then
   mkdir -p "$root/docs/images"
   "$ms" generate --demo_out=demo.bvh --frames=240 --fps=30 >/dev/null
   "$ms" markers --quiet --motion=demo.bvh --skeleton_units=cm --markerset=auto:3 --write_markerset=demo_set.json \

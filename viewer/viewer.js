@@ -435,10 +435,46 @@
       slider.value = String(view.frame);
     }
 
+    // Follow: the camera keeps its offset from the take's centre (the first skeleton's
+    // root, else the mean of the visible markers), so a long walk stays in view. The
+    // offset is path-independent: a frame looks the same however it was reached.
+    const followBox = document.getElementById('mv-follow');
+    let followed = null;  // The centre the camera was last placed for.
+    function takeCentre(frame) {
+      if (skeletons.length && skeletons[0].frames > 0) {
+        const s = skeletons[0], f = Math.min(frame, s.frames - 1), i = 3 * f * s.joints.length;
+        return new THREE.Vector3(s.xyz[i], 0, s.xyz[i + 2]);
+      }
+      if (markerSets.length && markerSets[0].frames > 0) {
+        const m = markerSets[0], f = Math.min(frame, m.frames - 1), c = new THREE.Vector3();
+        let n = 0;
+        for (let j = 0; j < m.count; ++j) {
+          const i = 3 * (f * m.count + j);
+          if (!m.visible[f * m.count + j]) continue;
+          c.x += m.shown[i]; c.z += m.shown[i + 2]; ++n;
+        }
+        return n ? c.divideScalar(n) : null;
+      }
+      return null;
+    }
+    function follow(frame) {
+      const centre = takeCentre(frame);
+      if (!centre) return;
+      if (followed && followBox.checked) {
+        const delta = centre.clone().sub(followed);
+        camera.position.add(delta);
+        controls.target.add(delta);
+        controls.update();
+      }
+      followed = centre;
+    }
+    followBox.addEventListener('change', function () { followed = takeCentre(view.frame); canvas.focus(); });
+
     function setFrame(i) {
       const frame = Math.max(0, Math.min(view.frames - 1, Math.round(Number(i) || 0)));
       view.frame = frame;
       updateFrame(frame);
+      follow(frame);
       render();
       showFrameText();
       drawTimeline();
@@ -453,6 +489,7 @@
       const frame = (playFrom + Math.floor((now - playStart) * fps / 1000)) % Math.max(1, view.frames);
       view.frame = frame;
       updateFrame(frame);
+      follow(frame);
       render();
       showFrameText();
       drawTimeline();
@@ -483,6 +520,7 @@
       if (e.key === ' ') { view.playing ? view.pause() : view.play(); e.preventDefault(); }
       else if (e.key === 'ArrowLeft') { view.pause(); setFrame(view.frame - (e.shiftKey ? 10 : 1)); }
       else if (e.key === 'ArrowRight') { view.pause(); setFrame(view.frame + (e.shiftKey ? 10 : 1)); }
+      else if (e.key === 'f') { followBox.checked = !followBox.checked; followed = takeCentre(view.frame); }
     });
     function scrub(e) {
       const rect = timeline.getBoundingClientRect();
@@ -714,7 +752,18 @@
       meta.notes.push('grid: ' + (cell === 1 ? '1 m' : '10 cm') + ' cells; axes x red, y (up) green, z blue');
       legend();
       resize();
-      frameCamera(content);
+      // The camera frames the first frame (source and characters, at least 4 m wide) and
+      // follows the take from there; the grid covers the whole take.
+      const start = first.isEmpty() ? content.clone() : first.clone();
+      characters.forEach(function (c) {
+        c.mixer.setTime(0);
+        start.union(characterBox(c.root));
+      });
+      const middle = start.getCenter(new THREE.Vector3());
+      start.expandByPoint(middle.clone().add(new THREE.Vector3(2, 0, 0)));
+      start.expandByPoint(middle.clone().add(new THREE.Vector3(-2, 0, 0)));
+      frameCamera(start);
+      followed = takeCentre(0);
       view.timings.layout_ms = performance.now() - t0;
       setFrame(0);
       view.timings.first_frame_ms = performance.now() - t0;

@@ -212,5 +212,28 @@ TEST(ViewRealData, PipelinePageWithCharacter) {
                               "\"min_share\": 0.015}]}\n");
 }
 
+// --view of retarget (the source skeleton beside the target character) and of propagate
+// (the edited clip over the original, the falloff on the timeline).
+TEST(ViewRealData, RetargetAndPropagatePages) {
+  MOCAPSOLVE_DATA_FILE(source, "gltf/CesiumMan.glb");
+  MOCAPSOLVE_DATA_FILE(target, "gltf/RiggedFigure.glb");
+  MOCAPSOLVE_DATA_FILE(walk, "bvh/16_15.bvh");
+  MOCAPSOLVE_NEED_VIEWER_RUNTIME();
+  const std::string retarget_page = testing::TempPath("retarget.html"), propagate_page = testing::TempPath("edit.html");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("retarget --quiet --source=" + source + " --target=" + target + " --out=" +
+                            testing::TempPath("r.glb") + " --iterations=5 --max_frames=24 --view=" + retarget_page,
+                            &output), 0) << output;
+  const std::string edit = testing::TempPath("hips.json");
+  FILE* file = std::fopen(edit.c_str(), "w");
+  std::fputs("{\"frame\": 200, \"joints\": {\"root\": {\"rotation_offset_deg\": [10, 0, 0]}}}", file);
+  std::fclose(file);
+  ASSERT_EQ(testing::RunCli("propagate --motion=" + walk + " --skeleton_units=cm --edit=" + edit +
+                            " --method=spline --out=" + testing::TempPath("e.bvh") + " --view=" + propagate_page, &output),
+            0) << output;
+  MOCAPSOLVE_CHECK_IN_BROWSER("{\"pages\": [{\"path\": \"" + retarget_page + "\", \"moving\": [0, 20]},\n"
+                              "{\"path\": \"" + propagate_page + "\", \"moving\": [150, 250]}]}\n");
+}
+
 }  // namespace
 }  // namespace mocapsolve
