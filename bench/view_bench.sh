@@ -54,7 +54,7 @@ if [[ "${1:-}" == "--screenshots" || "${1:-}" == "--screenshots_only" ]]; then
   "$ms" generate --demo_out=demo.bvh --frames=240 --fps=30 >/dev/null
   "$ms" markers --quiet --motion=demo.bvh --skeleton_units=cm --markerset=auto:3 --write_markerset=demo_set.json \
     --out=demo.c3d >/dev/null
-  "$ms" corrupt --quiet --markers=demo.c3d --out=damaged.c3d --corrupt_seed=4 >/dev/null
+  "$ms" corrupt --quiet --markers=demo.c3d --out=damaged.c3d --corrupt_seed=4 --gaps=5 --cluster_gaps=1 >/dev/null
   "$ms" repair --quiet --skeleton=demo.bvh --skeleton_units=cm --markerset=demo_set.json --markers=damaged.c3d \
     --out_markers=repaired.c3d --report=repair.json --view=repair.html >/dev/null
   repair_frame=$(node -e 'const r=require("./repair.json");const f=r.filled[0];console.log(Math.round((f.first_frame+f.last_frame)/2))')
@@ -63,7 +63,7 @@ if [[ "${1:-}" == "--screenshots" || "${1:-}" == "--screenshots_only" ]]; then
   "$ms" pipeline --quiet --subject=S02.json --markers="$data/c3d/02_01.c3d" --character="$data/gltf/Xbot.glb" \
     --out_dir=cmu >/dev/null
   cat > shots.json <<JSON
-{"width": 900, "height": 520,
+{"width": 900, "height": 560,
  "pages": [{"path": "$work/repair.html", "screenshot": {"path": "$work/view_repair.png", "frame": $repair_frame}},
            {"path": "$work/cmu/view.html", "screenshot": {"path": "$work/view_retarget.png", "frame": 150}}]}
 JSON

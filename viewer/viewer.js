@@ -752,7 +752,7 @@
       meta.notes.push('grid: ' + (cell === 1 ? '1 m' : '10 cm') + ' cells; axes x red, y (up) green, z blue');
       legend();
       resize();
-      // The camera frames the first frame (source and characters, at least 4 m wide) and
+      // The camera frames the first frame (source and characters, at least 2.4 m wide) and
       // follows the take from there; the grid covers the whole take.
       const start = first.isEmpty() ? content.clone() : first.clone();
       characters.forEach(function (c) {
@@ -760,8 +760,8 @@
         start.union(characterBox(c.root));
       });
       const middle = start.getCenter(new THREE.Vector3());
-      start.expandByPoint(middle.clone().add(new THREE.Vector3(2, 0, 0)));
-      start.expandByPoint(middle.clone().add(new THREE.Vector3(-2, 0, 0)));
+      start.expandByPoint(middle.clone().add(new THREE.Vector3(1.2, 0, 0)));
+      start.expandByPoint(middle.clone().add(new THREE.Vector3(-1.2, 0, 0)));
       frameCamera(start);
       followed = takeCentre(0);
       view.timings.layout_ms = performance.now() - t0;
