@@ -662,27 +662,26 @@
       s.skinned.skeleton.update();
       const B = s.skinned.skeleton.boneMatrices, rest = s.rest, restNormal = s.restNormal;
       const index = s.index, weight = s.weight, out = s.position.array, outNormal = s.normal.array;
-      const m = new Float32Array(12);
       for (let i = 0; i < s.count; ++i) {
-        m.fill(0);
-        for (let k = 0; k < 4; ++k) {
-          const w = weight[4 * i + k];
+        let m0 = 0, m1 = 0, m2 = 0, m3 = 0, m4 = 0, m5 = 0, m6 = 0, m7 = 0, m8 = 0, m9 = 0, m10 = 0, m11 = 0;
+        for (let k = 4 * i; k < 4 * i + 4; ++k) {
+          const w = weight[k];
           if (w === 0) continue;
-          const b = 16 * index[4 * i + k];
-          m[0] += w * B[b]; m[1] += w * B[b + 1]; m[2] += w * B[b + 2];
-          m[3] += w * B[b + 4]; m[4] += w * B[b + 5]; m[5] += w * B[b + 6];
-          m[6] += w * B[b + 8]; m[7] += w * B[b + 9]; m[8] += w * B[b + 10];
-          m[9] += w * B[b + 12]; m[10] += w * B[b + 13]; m[11] += w * B[b + 14];
+          const b = 16 * index[k];
+          m0 += w * B[b]; m1 += w * B[b + 1]; m2 += w * B[b + 2];
+          m3 += w * B[b + 4]; m4 += w * B[b + 5]; m5 += w * B[b + 6];
+          m6 += w * B[b + 8]; m7 += w * B[b + 9]; m8 += w * B[b + 10];
+          m9 += w * B[b + 12]; m10 += w * B[b + 13]; m11 += w * B[b + 14];
         }
         const x = rest[3 * i], y = rest[3 * i + 1], z = rest[3 * i + 2];
-        out[3 * i] = m[0] * x + m[3] * y + m[6] * z + m[9];
-        out[3 * i + 1] = m[1] * x + m[4] * y + m[7] * z + m[10];
-        out[3 * i + 2] = m[2] * x + m[5] * y + m[8] * z + m[11];
+        out[3 * i] = m0 * x + m3 * y + m6 * z + m9;
+        out[3 * i + 1] = m1 * x + m4 * y + m7 * z + m10;
+        out[3 * i + 2] = m2 * x + m5 * y + m8 * z + m11;
         if (restNormal) {
           const a = restNormal[3 * i], b = restNormal[3 * i + 1], c = restNormal[3 * i + 2];
-          outNormal[3 * i] = m[0] * a + m[3] * b + m[6] * c;
-          outNormal[3 * i + 1] = m[1] * a + m[4] * b + m[7] * c;
-          outNormal[3 * i + 2] = m[2] * a + m[5] * b + m[8] * c;
+          outNormal[3 * i] = m0 * a + m3 * b + m6 * c;
+          outNormal[3 * i + 1] = m1 * a + m4 * b + m7 * c;
+          outNormal[3 * i + 2] = m2 * a + m5 * b + m8 * c;
         }
       }
       s.position.needsUpdate = true;
