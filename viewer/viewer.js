@@ -38,7 +38,7 @@
     const THREE = window.MOCAPSOLVE_THREE;
     if (!THREE) throw new Error('three.js runtime missing from the page');
     const t0 = performance.now();
-    view.timings = {};
+    view.timings = { script_start_ms: t0 };  // Since navigation started.
     const meta = JSON.parse(document.getElementById('mv-meta').textContent);
     const fps = meta.frame_rate;
     view.stateNames = meta.state_names.slice();
