@@ -264,7 +264,8 @@
       });
       const t = frame / fps;
       characters.forEach(function (c) {
-        c.mixer.setTime(Math.min(t, c.clip.duration));
+        // Held at its last pose after the clip's end (a looping action would wrap to 0 there).
+        c.mixer.setTime(Math.min(t, c.clip.duration * (1 - 1e-7)));
         if (c.skins.length) {
           c.root.updateMatrixWorld(true);
           c.skins.forEach(cpuSkin);
@@ -729,7 +730,7 @@
         x += width + 0.4;
         // Where it stands at the start, the middle and the end of its clip.
         [0, 0.5, 1].forEach(function (u) {
-          c.mixer.setTime(u * c.clip.duration);
+          c.mixer.setTime(u * c.clip.duration * (1 - 1e-7));
           c.root.updateMatrixWorld(true);
           content.union(characterBox(c.root));
         });

@@ -208,8 +208,12 @@ TEST(ViewRealData, PipelinePageWithCharacter) {
                             " --out_dir=" + dir, &output), 0) << output;
   ASSERT_TRUE(testing::FileExists(dir + "/view.html"));
   EXPECT_THAT(testing::ReadTextFile(dir + "/report.json"), HasSubstr("\"view\": \"view.html\""));
+  // The delivered character alone: its last frame is the clip's last pose, not its first.
+  const std::string characters = testing::TempPath("characters.html");
+  ASSERT_EQ(testing::RunCli("view --quiet --character=" + dir + "/Xbot.glb --out=" + characters, &output), 0) << output;
   MOCAPSOLVE_CHECK_IN_BROWSER("{\"pages\": [{\"path\": \"" + dir + "/view.html\", \"moving\": [0, 200], "
-                              "\"min_share\": 0.015}]}\n");
+                              "\"min_share\": 0.015},\n"
+                              "{\"path\": \"" + characters + "\", \"moving\": [0, 342]}]}\n");
 }
 
 // --view of retarget (the source skeleton beside the target character) and of propagate
