@@ -72,6 +72,17 @@ Status MarkerTransform(const std::string& path, const MarkerTrajectories& t, Vie
   return MakeViewTransform(path, up, t.unit, 0.0, transform);
 }
 
+// LoadMotion, except that --skeleton (which may be the subject's, for the markers) only
+// goes with an .amc: a BVH or glTF motion carries its own skeleton.
+Status LoadViewMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
+  if (FileExtension(path) == ".amc") return LoadMotion(path, skeleton, motion);
+  MotionFileOptions options;
+  options.animation = FLAGS_animation;
+  options.sample_rate = FLAGS_sample_fps;
+  Status status = ReadMotionFile(path, options, skeleton, motion);
+  return status.ok() ? ApplySkeletonUnits(skeleton) : status;
+}
+
 bool HaveSubject() { return !FLAGS_subject.empty() || !FLAGS_markerset.empty(); }
 
 Status AddCharacters(ViewScene* scene) {
@@ -149,7 +160,7 @@ Status RunView(const std::vector<std::string>& arguments) {
   Motion motion;
   ViewTransform motion_transform;
   if (!FLAGS_motion.empty()) {
-    status = LoadMotion(FLAGS_motion, &skeleton, &motion);
+    status = LoadViewMotion(FLAGS_motion, &skeleton, &motion);
     if (!status.ok()) return status;
     names.push_back(FileStem(FLAGS_motion));
   }
@@ -217,7 +228,7 @@ Status RunView(const std::vector<std::string>& arguments) {
   if (!FLAGS_compare.empty() && !compare_markers) {
     Skeleton other_skeleton;
     Motion other;
-    status = LoadMotion(FLAGS_compare, &other_skeleton, &other);
+    status = LoadViewMotion(FLAGS_compare, &other_skeleton, &other);
     if (!status.ok()) return status;
     ViewTransform transform;
     status = MotionTransform(FLAGS_compare, other_skeleton, other, &transform);

@@ -179,6 +179,11 @@ TEST_F(ViewCli, PagesDrawInTheBrowser) {
   const std::string solve_page = testing::TempPath("solve.html");
   ASSERT_EQ(testing::RunCli("solve --quiet " + Take() + " --out=" + testing::TempPath("solved.bvh") + " --view=" +
                             solve_page, &output), 0) << output;
+  // The take mapped onto its skeleton (--skeleton is the subject's; the BVH motion carries
+  // its own), with the solve's residual and the repaired take ghosted.
+  const std::string take_page = testing::TempPath("take.html");
+  ASSERT_EQ(testing::RunCli("view --quiet " + Take() + " --motion=" + testing::TempPath("solved.bvh") +
+                            " --compare=" + repaired + " --out=" + take_page, &output), 0) << output;
   const std::string motion_page = testing::TempPath("motion.html");
   ASSERT_EQ(testing::RunCli("view --quiet --motion=" + demo_ + " --out=" + motion_page, &output), 0) << output;
 
@@ -188,6 +193,7 @@ TEST_F(ViewCli, PagesDrawInTheBrowser) {
                               "{\"path\": \"" + repair_page + "\", \"moving\": [0, 60], \"repaired\": " + repaired_check + "},\n"
                               "{\"path\": \"" + view_page + "\", \"moving\": [5, 70], \"repaired\": " + repaired_check + "},\n"
                               "{\"path\": \"" + solve_page + "\", \"moving\": [0, 45]},\n"
+                              "{\"path\": \"" + take_page + "\", \"moving\": [0, 45]},\n"
                               "{\"path\": \"" + motion_page + "\", \"moving\": [10, 80]}]}\n");
 }
 
