@@ -17,6 +17,7 @@
 #include "io/motion_file.h"
 #include "kinematics/forward_kinematics.h"
 #include "pipeline/take_view.h"
+#include "problems/marker_repair/marker_repair.h"
 #include "viewer/repair_intervals.h"
 #include "viewer/view_page.h"
 
@@ -45,14 +46,6 @@ Status UpAxisFromFlag(const std::vector<std::vector<Eigen::Vector3d>>& points, i
   return Status::Ok();
 }
 
-std::vector<std::vector<Eigen::Vector3d>> TrajectoryPoints(const MarkerTrajectories& t) {
-  std::vector<std::vector<Eigen::Vector3d>> points(t.num_frames());
-  for (int f = 0; f < t.num_frames(); ++f) {
-    for (int m = 0; m < t.num_markers(); ++m) points[f].push_back(t.position(f, m));
-  }
-  return points;
-}
-
 // A motion file in its own world (--up, its unit or a guess).
 Status MotionTransform(const std::string& path, const Skeleton& skeleton, const Motion& motion,
                        ViewTransform* transform) {
@@ -65,7 +58,7 @@ Status MotionTransform(const std::string& path, const Skeleton& skeleton, const 
 }
 
 Status MarkerTransform(const std::string& path, const MarkerTrajectories& t, ViewTransform* transform) {
-  const std::vector<std::vector<Eigen::Vector3d>> points = TrajectoryPoints(t);
+  const std::vector<std::vector<Eigen::Vector3d>> points = TrajectoryObservations(t);
   int up = 1;
   Status status = UpAxisFromFlag(points, &up);
   if (!status.ok()) return status;

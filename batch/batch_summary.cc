@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "io/atomic_file.h"
+#include "io/html_escape.h"
 #include "io/json_writer.h"
 
 namespace mocapsolve {
@@ -29,18 +30,6 @@ std::string CsvNumber(double value) {
 
 // The take's page relative to the batch folder ("02_05/view.html"), or "".
 std::string ViewLink(const TakeRecord& r) { return r.figures.view.empty() ? "" : r.take + "/" + r.figures.view; }
-
-std::string HtmlText(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    if (c == '&') out += "&amp;";
-    else if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
 
 std::string HtmlNumber(double value, const char* format) {
   if (std::isnan(value)) return "";
@@ -112,12 +101,12 @@ std::string FormatSummaryHtml(const BatchResult& result) {
     const TakeRecord& r = outcome.record;
     const TakeFigures& f = r.figures;
     const std::string link = ViewLink(r);
-    html += "<tr class=\"" + HtmlText(r.status) + "\"><td>" + HtmlText(r.take) + "</td><td>" + HtmlText(r.status) +
+    html += "<tr class=\"" + HtmlEscape(r.status) + "\"><td>" + HtmlEscape(r.take) + "</td><td>" + HtmlEscape(r.status) +
             "</td><td class=\"n\">" + std::to_string(f.frames) + "</td><td class=\"n\">" +
             HtmlNumber(f.repaired_rms_mm, "%.2f") + "</td><td class=\"n\">" +
             HtmlNumber(100.0 * f.repaired_share, "%.2f %%") + "</td><td>" +
             (f.gate_pass < 0 ? "" : f.gate_pass ? "pass" : "fail") + "</td><td>" +
-            (link.empty() ? "" : "<a href=\"" + HtmlText(link) + "\">view</a>") + "</td><td>" + HtmlText(r.error) +
+            (link.empty() ? "" : "<a href=\"" + HtmlEscape(link) + "\">view</a>") + "</td><td>" + HtmlEscape(r.error) +
             "</td></tr>\n";
   }
   return html + "</table>\n</body></html>\n";

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/html_escape.h"
 #include "io/json_writer.h"
 
 namespace mocapsolve {
@@ -87,20 +88,6 @@ std::string ScriptSafe(std::string text) {
     text.replace(at, 2, "<\\/");
   }
   return text;
-}
-
-std::string HtmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 // Replaces each marker of the template by its text, in the template's order, each
