@@ -18,7 +18,7 @@
 #include "io/atomic_file.h"
 
 DECLARE_string(subject);    // apps/main.cc
-DECLARE_string(character);  // apps/pipeline_command.cc
+DECLARE_string(character);  // apps/main.cc
 DECLARE_string(out_dir);    // apps/pipeline_command.cc
 
 DEFINE_string(manifest, "", "Batch manifest (.json): {\"defaults\": {...}, \"takes\": [{\"name\", \"markers\", "
@@ -192,7 +192,8 @@ extern const Command kBatchCommand = {
     "(and whose outputs exist), redoes the changed ones, and redoes failed ones only with\n"
     "--retry_failed. DIR/summary.json and DIR/summary.csv list every take (status, exit,\n"
     "error line, frames, timings, marker RMS, repaired share, gate, retarget error, foot\n"
-    "skating). Killing the batch loses at most the takes in flight.\n"
+    "skating, the take's view.html); DIR/summary.html links every take's page. Killing the\n"
+    "batch loses at most the takes in flight.\n"
     "A batch split over machines (--shard=i/n, by default from a Slurm job array; see\n"
     "scripts/slurm/submit.sh) writes DIR/summary.shard<i>of<n>.json; --merge then builds\n"
     "DIR/summary.json from the takes' records.\n"

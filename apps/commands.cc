@@ -23,6 +23,7 @@ extern const Command kPropagateCommand;
 extern const Command kRetargetCommand;
 extern const Command kPipelineCommand;
 extern const Command kBatchCommand;
+extern const Command kViewCommand;
 
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kPipelineCommand, kBatchCommand, kInfoCommand, kConvertCommand, kFkCommand,
@@ -31,7 +32,8 @@ const std::vector<Command>& AllCommands() {
                                                 kEvaluateCommand,
                                                 kMarkersCommand, kCalibrateCommand, kFitSkeletonCommand,
                                                 kFilterCommand, kBandsCommand, kBlendCommand,
-                                                kRetargetCommand, kDistanceCommand, kPropagateCommand};
+                                                kRetargetCommand, kDistanceCommand, kPropagateCommand,
+                                                kViewCommand};
   return commands;
 }
 

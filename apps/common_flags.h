@@ -27,6 +27,7 @@ DECLARE_string(motion);
 DECLARE_string(out);
 DECLARE_string(markers);
 DECLARE_string(markerset);
+DECLARE_string(character);
 DECLARE_string(target);
 DECLARE_string(axes);
 DECLARE_double(marker_scale);

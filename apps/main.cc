@@ -114,6 +114,9 @@ DEFINE_string(markers, "", "Marker file: .c3d or .trc.");
 DEFINE_string(target, "", "Target character (.glb/.gltf): where retarget puts the motion; for convert, "
               "the character a motion is written into as a new animation (default: IN when IN is glTF; "
               "the motion's skeleton must have the character's joints).");
+DEFINE_string(character, "", "Characters (.glb/.gltf), comma-separated. pipeline: the take is retargeted "
+              "onto each and written as DIR/<name>.glb with the take as a new animation (empty: stop "
+              "after the solve); view: .glb files played beside the source (--character_animation).");
 DEFINE_string(markerset, "", "Marker set file (.json): which joint each marker rides on, with offsets.");
 DEFINE_string(axes, "x,y,z", "Marker file axes to skeleton axes: 'y,z,x' means (x, y, z)_skeleton = "
               "(y, z, x)_file; CMU C3D (Z-up) onto CMU ASF/AMC (Y-up) is y,z,x.");

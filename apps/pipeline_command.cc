@@ -16,12 +16,10 @@
 #include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "pipeline/take_pipeline.h"
+#include "viewer/view_page.h"
 
 DECLARE_string(subject);  // apps/main.cc
 
-DEFINE_string(character, "", "Characters (.glb/.gltf), comma-separated: the take is retargeted onto "
-              "each and written as DIR/<name>.glb with the take as a new animation. Empty: stop "
-              "after the solve.");
 DEFINE_string(out_dir, "", "Folder of the take's outputs (created if missing; nothing is written "
               "there when the take fails).");
 DEFINE_string(config, "", "JSON file of options: keys are this command's flag names (see "
@@ -113,8 +111,13 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   JsonObject report = TakeReport(inputs, result);
   report.Add("command", "pipeline").Add("version", Version()).Add("subject", FLAGS_subject).Add("config", FLAGS_config)
       .Add("options", JsonValue::Raw(ConfigJson(kPipelineOptionFlags)));
+  // DIR/view.html when the viewer's runtime is installed; otherwise say why not.
+  std::string runtime;
+  const Status view_runtime = FindViewerRuntime(&runtime);
+  report.Add("view", view_runtime.ok() ? JsonValue("view.html") : JsonValue());
+  if (!view_runtime.ok()) std::fprintf(stderr, "warning: pipeline: no view.html: %s\n", view_runtime.message().c_str());
   status = MakeFolders(FLAGS_out_dir);
-  if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report);
+  if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report, view_runtime.ok());
   if (status.ok()) status = WriteReport(report);
   if (!status.ok()) return status;
 
@@ -130,8 +133,9 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
     std::printf("  %s: vertex error %.4f of height, foot skating %.2f -> %.2f cm/s\n", c.name.c_str(),
                 r.mean_position_error, c.result.source_plant_skating_cm_s, c.result.result_plant_skating_cm_s);
   }
-  std::printf("wrote %s (repaired markers, solved.bvh, %zu character file%s, report.json)\n",
-              FLAGS_out_dir.c_str(), result.characters.size(), result.characters.size() == 1 ? "" : "s");
+  std::printf("wrote %s (repaired markers, solved.bvh, %zu character file%s, report.json%s)\n",
+              FLAGS_out_dir.c_str(), result.characters.size(), result.characters.size() == 1 ? "" : "s",
+              view_runtime.ok() ? ", view.html" : "");
   if (!result.verdict.pass) {
     std::string failures;
     for (const std::string& f : result.verdict.failures) failures += (failures.empty() ? "" : "; ") + f;

@@ -22,6 +22,7 @@
 #include "apps/common_flags.h"
 #include "apps/falloff_flags.h"
 #include "apps/solver_flags.h"
+#include "apps/view_flags.h"
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
 #include "io/edit_file.h"
@@ -241,6 +242,7 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
   if (FileExtension(FLAGS_out) != ".bvh") return Status::Error(FLAGS_out + ": expected a .bvh");
   Status status = CheckNotAnInput(FLAGS_out, FLAGS_motion);
   if (status.ok() && !FLAGS_edit.empty()) status = CheckNotAnInput(FLAGS_out, FLAGS_edit);
+  if (status.ok()) status = CheckViewFlag({FLAGS_motion, FLAGS_edit});
   if (!status.ok()) return status;
   const std::string method =
       gflags::GetCommandLineFlagInfoOrDie("method").is_default ? "green" : FLAGS_method;
@@ -395,6 +397,27 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
     status = WriteWeightsCsv(FLAGS_weights_csv, frames, chosen.weights);
     if (!status.ok()) return status;
   }
+  // --view: the propagated clip over the original (ghosted), and each edit's falloff.
+  status = WriteViewFlag([&](ViewScene* scene) {
+    ViewTransform transform;
+    Status made = MakeMotionViewTransform(FLAGS_motion, skeleton, motion, -1, &transform);
+    if (!made.ok()) return made;
+    scene->title = "propagate: " + FileStem(FLAGS_motion);
+    scene->frame_rate = motion.frame_rate > 0 ? motion.frame_rate : 30.0;
+    scene->notes.push_back(transform.note);
+    scene->skeletons.push_back(MakeViewSkeleton("propagated", skeleton, propagated, transform));
+    ViewSkeleton original = MakeViewSkeleton("original", skeleton, motion, transform);
+    original.ghost = true;
+    scene->skeletons.push_back(std::move(original));
+    for (size_t e = 0; e < chosen.weights.size(); ++e) {
+      ViewCurve curve;
+      curve.name = "falloff (edit at " + std::to_string(frames[e]) + ")";
+      for (int f = 0; f < chosen.weights[e].size(); ++f) curve.values.push_back(static_cast<float>(chosen.weights[e][f]));
+      scene->curves.push_back(std::move(curve));
+    }
+    return Status::Ok();
+  });
+  if (!status.ok()) return status;
   std::printf("wrote %s: %d frames, %zu edit(s) at frame %d%s, %s falloff over %d:%d\n",
               FLAGS_out.c_str(), num_frames, edits.size(), frames[0], edits.size() > 1 ? " ..." : "",
               method.c_str(), region_begin, region_end);
@@ -414,7 +437,7 @@ extern const Command kPropagateCommand = {
     "propagate", "propagate a pose edit through a clip (Green's function, harmonic or spline falloff)",
     "mocapsolve propagate --motion=IN.bvh --frame=I --edit=EDIT.json|--ik_target=JOINT:x,y,z\n"
     "    [--method=green|harmonic|spline] [--sigma=S] [--region=a:b] [--keep_contacts]\n"
-    "    --out=OUT.bvh [--weights_csv=w.csv] [--report=r.json]\n\n"
+    "    --out=OUT.bvh [--weights_csv=w.csv] [--report=r.json] [--view=PAGE.html]\n\n"
     "Applies the edit of frame I (an edit file's rotation offsets and root translation offset,\n"
     "or an IK solve moving a joint to a point) to every frame f of the region as\n"
     "p'_f = exp(log p_f + w(f) delta) per joint (Dean, Lewis & Chalmers 2018, eqs. 4-5), with\n"
@@ -428,6 +451,6 @@ extern const Command kPropagateCommand = {
     __FILE__, RunPropagate,
     "motion,out,report,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,quiet,sigma,sigma_scale,eigenpairs,region,"
     "knn,falloff_kernel,feature_joints,joint_weights,temporal_weight,solver,prior_weight,"
-    "max_iterations,marker_weight,dls_lambda,dls_damping,frame,sparse_library"};
+    "max_iterations,marker_weight,dls_lambda,dls_damping,frame,sparse_library,view"};
 
 }  // namespace mocapsolve

@@ -6,10 +6,12 @@
 #include "apps/common_flags.h"
 #include "apps/repair_flags.h"
 #include "apps/solver_flags.h"
+#include "apps/view_flags.h"
 #include "io/bvh_writer.h"
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
+#include "pipeline/take_view.h"
 #include "problems/marker_repair/marker_repair.h"
 
 DEFINE_string(out_markers, "", "Repaired markers (.c3d or .trc), in the input file's axes and units.");
@@ -31,6 +33,8 @@ Status RunRepair(const std::vector<std::string>& arguments) {
       if (!status.ok()) return status;
     }
   }
+  checked = CheckViewFlag(inputs);
+  if (!checked.ok()) return checked;
   if (!IsMarkerFile(FLAGS_out_markers)) return Status::Error(FLAGS_out_markers + ": expected .c3d or .trc");
   if (!FLAGS_out_motion.empty() && FileExtension(FLAGS_out_motion) != ".bvh") {
     return Status::Error(FLAGS_out_motion + ": expected a .bvh");
@@ -97,11 +101,24 @@ Status RunRepair(const std::vector<std::string>& arguments) {
       .Add("timings", timings).Add("rms_naive_mm", report.naive_rms * mm)
       .Add("rms_reference_mm", report.reference_rms * mm).Add("rms_repaired_mm", report.repaired_rms * mm)
       .Add("resolved_frames", report.resolved_frames).Add("reference", FLAGS_reference);
+  status = WriteViewFlag([&](ViewScene* scene) {
+    TakeViewInputs view;
+    view.title = "repair: " + FileStem(FLAGS_markers);
+    view.skeleton = &skeleton;
+    view.markers = &markers;
+    view.observed = &observed;
+    view.repaired = &repaired;
+    view.intervals = RepairViewIntervals(report);
+    view.motion = &motion;
+    view.frame_rate = motion.frame_rate > 0 ? motion.frame_rate : 30.0;
+    return MakeTakeViewScene(view, scene);
+  });
+  if (!status.ok()) return status;
   return WriteReport(json);
 }
 
 const std::string kRepairFlags =
-    std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet,") +
+    std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet,view,") +
     kRepairFlagNames + "," + kSolverFlagNames;
 
 }  // namespace
@@ -109,7 +126,7 @@ const std::string kRepairFlags =
 extern const Command kRepairCommand = {
     "repair", "find broken marker intervals against a robust reference and refill them",
     "mocapsolve repair (--skeleton=S --markerset=J.json | --subject=S.json) --markers=IN.c3d|.trc "
-    "--out_markers=OUT.c3d|.trc [--out_motion=OUT.bvh] [--report=r.json]\n\n"
+    "--out_markers=OUT.c3d|.trc [--out_motion=OUT.bvh] [--report=r.json] [--view=PAGE.html]\n\n"
     "Thesis chapter 3: a naive per-frame solve and a robust reference (--reference: a robust\n"
     "tracker or the whole-clip solve; Cauchy loss); marker paths rebuilt from the\n"
     "reference; gaps = missing samples, outliers and joints that differ from the reference (--dp_max_cm, --dr_max_deg);\n"

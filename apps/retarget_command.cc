@@ -12,6 +12,7 @@
 #include "apps/progress.h"
 #include "apps/retarget_flags.h"
 #include "apps/solver_flags.h"
+#include "apps/view_flags.h"
 #include "io/bvh_writer.h"
 #include "io/gltf_reader.h"
 #include "io/gltf_writer.h"
@@ -78,8 +79,10 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   if (!FLAGS_out.empty() && !out_bvh && !HasExtension(FLAGS_out, ".glb") && !HasExtension(FLAGS_out, ".gltf")) {
     return Status::Error("--out: " + FLAGS_out + ": expected .glb, .gltf or .bvh");
   }
+  Status status = CheckViewFlag({FLAGS_source, FLAGS_target, FLAGS_skeleton, FLAGS_joint_map});
+  if (!status.ok()) return status;
   CharacterRetargetOptions options;
-  Status status = RetargetOptionsFromFlags(&options);
+  status = RetargetOptionsFromFlags(&options);
   if (!status.ok()) return status;
   if (FLAGS_loop < 1 || FLAGS_loop > 1000) return Status::Error("--loop: must be in [1, 1000]");
   if (FLAGS_max_frames < 0) return Status::Error("--max_frames: must be >= 0");
@@ -157,22 +160,41 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
     if (!FLAGS_quiet) std::fprintf(stderr, "note: %s\n", note.c_str());
   }
 
+  std::string name = FLAGS_animation_name;
+  if (name.empty()) {
+    std::string from = FLAGS_source_animation;
+    if (from.empty()) {
+      from = FLAGS_source.substr(FLAGS_source.find_last_of('/') + 1);
+    }
+    name = "retargeted from " + from;
+  }
   if (!FLAGS_out.empty()) {
     if (out_bvh) {
       status = WriteBvh(FLAGS_out, target.skeleton, result.motion);
     } else {
-      std::string name = FLAGS_animation_name;
-      if (name.empty()) {
-        std::string from = FLAGS_source_animation;
-        if (from.empty()) {
-          from = FLAGS_source.substr(FLAGS_source.find_last_of('/') + 1);
-        }
-        name = "retargeted from " + from;
-      }
       status = WriteGltfWithAnimation(target_document, target, result.motion, name, FLAGS_out);
     }
     if (!status.ok()) return status;
   }
+  // --view: the source's skeleton beside the target character playing the result.
+  status = WriteViewFlag([&](ViewScene* scene) {
+    const Skeleton& skeleton = use_source_mesh ? source_character.skeleton : source_skeleton;
+    ViewTransform transform;
+    Status made = MakeMotionViewTransform(FLAGS_source, skeleton, motion, -1, &transform);
+    if (!made.ok()) return made;
+    scene->title = "retarget: " + FileStem(FLAGS_source) + " -> " + FileStem(FLAGS_target);
+    scene->frame_rate = motion.frame_rate > 0 ? motion.frame_rate : 30.0;
+    scene->notes.push_back(transform.note);
+    scene->skeletons.push_back(MakeViewSkeleton("source: " + FileStem(FLAGS_source), skeleton, motion, transform));
+    ViewCharacter character;
+    character.name = FileStem(FLAGS_target);
+    character.animation = name;
+    made = SerializeGltfWithAnimation(target_document, target, result.motion, name, /*binary=*/true, &character.glb,
+                                      /*int16_rotations=*/true);
+    if (made.ok()) scene->characters.push_back(std::move(character));
+    return made;
+  });
+  if (!status.ok()) return status;
   if (!FLAGS_out_bvh.empty()) {
     status = WriteBvh(FLAGS_out_bvh, target.skeleton, result.motion);
     if (!status.ok()) return status;
@@ -249,7 +271,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   return WriteReport(report);
 }
 
-const std::string kRetargetFlags = std::string("target,out,report,quiet,solver,max_frames,limit_weight,skeleton,amc_fps,") +
+const std::string kRetargetFlags = std::string("target,out,report,quiet,solver,max_frames,limit_weight,skeleton,amc_fps,view,") +
                                    kRetargetOptionFlagNames;
 
 }  // namespace
@@ -258,7 +280,7 @@ extern const Command kRetargetCommand = {
     "retarget", "transfer a motion (glTF, BVH, AMC, FBX) onto a glTF character by meshes (thesis ch. 4)",
     "mocapsolve retarget --source=SRC.glb|.bvh|.amc|.fbx [--skeleton=X.asf] [--source_animation=NAME] --target=TGT.glb "
     "--out=OUT.glb|.gltf|.bvh [--out_bvh=OUT.bvh] [--animation_name=NAME] [--solver=dls|dls_generic|ceres] [--subsample=128] "
-    "[--iterations=10] [--lambda=5] [--blend_mask=auto|FILE.json] [--report=r.json]\n\n"
+    "[--iterations=10] [--lambda=5] [--blend_mask=auto|FILE.json] [--report=r.json] [--view=PAGE.html]\n\n"
     "Subsamples the source mesh (farthest points, normal check, >= 3 per joint), maps the samples\n"
     "to the nearest target vertices in a height-normalized rest frame, and solves each frame's\n"
     "target pose (root translation and joint rotations) so that the target vertices track the\n"

@@ -5,6 +5,7 @@
 #include "apps/common_flags.h"
 #include "apps/progress.h"
 #include "apps/solver_flags.h"
+#include "apps/view_flags.h"
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
 #include "io/svg_plot.h"
@@ -12,6 +13,7 @@
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
 #include "problems/marker_solve/marker_observations.h"
+#include "pipeline/take_view.h"
 #include "problems/marker_solve/sequence_solver.h"
 
 DEFINE_int32(max_frames, 0, "Solve only the first N frames (0 = all).");
@@ -31,6 +33,8 @@ Status RunSolve(const std::vector<std::string>& arguments) {
     Status status = CheckNotAnInput(FLAGS_out, input);
     if (!status.ok()) return status;
   }
+  checked = CheckViewFlag(inputs);
+  if (!checked.ok()) return checked;
   if (FLAGS_mode != "frame" && FLAGS_mode != "clip") {
     return Status::Error("--mode: unknown '" + FLAGS_mode + "' (frame, clip)");
   }
@@ -119,18 +123,29 @@ Status RunSolve(const std::vector<std::string>& arguments) {
     if (!status.ok()) return status;
     std::printf("wrote %s\n", FLAGS_plot.c_str());
   }
+  status = WriteViewFlag([&](ViewScene* scene) {
+    TakeViewInputs view;
+    view.title = "solve: " + FileStem(FLAGS_markers);
+    view.skeleton = &skeleton;
+    view.markers = &markers;
+    view.observed = &observed;
+    view.motion = &motion;
+    view.frame_rate = motion.frame_rate > 0 ? motion.frame_rate : 30.0;
+    return MakeTakeViewScene(view, scene);
+  });
+  if (!status.ok()) return status;
   return WriteReport(report);
 }
 
 const std::string kSolveFlags =
-    std::string("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,plot,max_frames,") + kSolverFlagNames;
+    std::string("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,plot,max_frames,view,") + kSolverFlagNames;
 
 }  // namespace
 
 extern const Command kSolveCommand = {
     "solve", "joint angles from markers (C3D/TRC) onto a BVH or ASF skeleton, Ceres or DLS",
     "mocapsolve solve (--skeleton=S.asf|S.bvh --markerset=J.json | --subject=S.json) --markers=M.c3d|M.trc "
-    "--out=O.bvh [--solver=ceres|dls] [--mode=frame|clip] [--axes=y,z,x] [--report=r.json]\n\n"
+    "--out=O.bvh [--solver=ceres|dls] [--mode=frame|clip] [--axes=y,z,x] [--report=r.json] [--view=PAGE.html]\n\n"
     "Solves the root translation and joint rotations per frame (warm-started from the\n"
     "previous frame; the first frame tries 24 root orientations), and with --mode=clip\n"
     "refines all frames as one sparse problem with smoothness. Missing markers are simply\n"

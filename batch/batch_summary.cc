@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "io/atomic_file.h"
+#include "io/html_escape.h"
 #include "io/json_writer.h"
 
 namespace mocapsolve {
@@ -24,6 +25,16 @@ std::string CsvNumber(double value) {
   if (std::isnan(value)) return "";
   char text[32];
   std::snprintf(text, sizeof(text), "%.6g", value);
+  return text;
+}
+
+// The take's page relative to the batch folder ("02_05/view.html"), or "".
+std::string ViewLink(const TakeRecord& r) { return r.figures.view.empty() ? "" : r.take + "/" + r.figures.view; }
+
+std::string HtmlNumber(double value, const char* format) {
+  if (std::isnan(value)) return "";
+  char text[32];
+  std::snprintf(text, sizeof(text), format, value);
   return text;
 }
 
@@ -47,7 +58,7 @@ std::string FormatSummaryJson(const BatchResult& result, const std::string& vers
         .Add("repaired_rms_mm", f.repaired_rms_mm).Add("repaired_share", f.repaired_share)
         .Add("gate_pass", f.gate_pass < 0 ? JsonValue() : JsonValue(f.gate_pass == 1))
         .Add("vertex_error", f.vertex_error).Add("foot_skating_cm_per_s", f.foot_skating_cm_s)
-        .Add("key", r.key);
+        .Add("view", ViewLink(r).empty() ? JsonValue() : JsonValue(ViewLink(r))).Add("key", r.key);
     takes.push_back(o);
   }
   JsonObject root;
@@ -61,7 +72,7 @@ std::string FormatSummaryJson(const BatchResult& result, const std::string& vers
 std::string FormatSummaryCsv(const BatchResult& result) {
   std::string csv =
       "take,status,ran,exit,exit_code,error,frames,wall_seconds,stage_seconds,naive_rms_mm,repaired_rms_mm,"
-      "repaired_share,gate_pass,vertex_error,foot_skating_cm_per_s\n";
+      "repaired_share,gate_pass,vertex_error,foot_skating_cm_per_s,view\n";
   for (const TakeOutcome& outcome : result.takes) {
     const TakeRecord& r = outcome.record;
     const TakeFigures& f = r.figures;
@@ -72,15 +83,40 @@ std::string FormatSummaryCsv(const BatchResult& result) {
            CsvNumber(r.wall_seconds) + "," + CsvCell(stages) + "," + CsvNumber(f.naive_rms_mm) + "," +
            CsvNumber(f.repaired_rms_mm) + "," + CsvNumber(f.repaired_share) + "," +
            (f.gate_pass < 0 ? "" : f.gate_pass ? "1" : "0") + "," + CsvNumber(f.vertex_error) + "," +
-           CsvNumber(f.foot_skating_cm_s) + "\n";
+           CsvNumber(f.foot_skating_cm_s) + "," + CsvCell(ViewLink(r)) + "\n";
   }
   return csv;
+}
+
+std::string FormatSummaryHtml(const BatchResult& result) {
+  std::string html =
+      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>mocapsolve batch</title>\n"
+      "<style>body{font:14px system-ui,sans-serif;margin:1.5em}table{border-collapse:collapse}"
+      "td,th{padding:3px 10px;border-bottom:1px solid #ddd;text-align:left}td.n{text-align:right}"
+      ".failed{color:#b00}</style></head><body>\n<h1>mocapsolve batch</h1>\n<p>" +
+      std::to_string(result.done) + " done, " + std::to_string(result.failed) + " failed of " +
+      std::to_string(result.takes.size()) + " takes.</p>\n<table>\n<tr><th>take</th><th>status</th><th>frames</th>"
+      "<th>marker RMS repaired (mm)</th><th>repaired share</th><th>gate</th><th>page</th><th>error</th></tr>\n";
+  for (const TakeOutcome& outcome : result.takes) {
+    const TakeRecord& r = outcome.record;
+    const TakeFigures& f = r.figures;
+    const std::string link = ViewLink(r);
+    html += "<tr class=\"" + HtmlEscape(r.status) + "\"><td>" + HtmlEscape(r.take) + "</td><td>" + HtmlEscape(r.status) +
+            "</td><td class=\"n\">" + std::to_string(f.frames) + "</td><td class=\"n\">" +
+            HtmlNumber(f.repaired_rms_mm, "%.2f") + "</td><td class=\"n\">" +
+            HtmlNumber(100.0 * f.repaired_share, "%.2f %%") + "</td><td>" +
+            (f.gate_pass < 0 ? "" : f.gate_pass ? "pass" : "fail") + "</td><td>" +
+            (link.empty() ? "" : "<a href=\"" + HtmlEscape(link) + "\">view</a>") + "</td><td>" + HtmlEscape(r.error) +
+            "</td></tr>\n";
+  }
+  return html + "</table>\n</body></html>\n";
 }
 
 Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version,
                          const std::string& base) {
   Status status = WriteFileAtomically(out_dir + "/" + base + ".json", FormatSummaryJson(result, version));
-  return status.ok() ? WriteFileAtomically(out_dir + "/" + base + ".csv", FormatSummaryCsv(result)) : status;
+  if (status.ok()) status = WriteFileAtomically(out_dir + "/" + base + ".csv", FormatSummaryCsv(result));
+  return status.ok() ? WriteFileAtomically(out_dir + "/" + base + ".html", FormatSummaryHtml(result)) : status;
 }
 
 Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest, BatchResult* result) {

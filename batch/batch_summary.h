@@ -4,7 +4,9 @@
 // error, frames, wall time, per-stage seconds, marker RMS (naive / repaired, mm), repaired
 // samples share, quality gate pass, retarget vertex error (fraction of height) and foot
 // skating (cm/s). The CSV has one row per take with the stages as "stage=seconds;..." in
-// one column; empty cells for figures a take did not produce.
+// one column; empty cells for figures a take did not produce. Each take's page
+// ("<take>/view.html", when the pipeline wrote one) is a field of both, and
+// DIR/summary.html is an index: one table row per take with a link to its page.
 #ifndef MOCAPSOLVE_BATCH_BATCH_SUMMARY_H_
 #define MOCAPSOLVE_BATCH_BATCH_SUMMARY_H_
 
@@ -18,8 +20,9 @@ namespace mocapsolve {
 
 std::string FormatSummaryJson(const BatchResult& result, const std::string& version);
 std::string FormatSummaryCsv(const BatchResult& result);
+std::string FormatSummaryHtml(const BatchResult& result);
 
-// Both files, atomically: DIR/<base>.json and DIR/<base>.csv.
+// The three files, atomically: DIR/<base>.json, DIR/<base>.csv and DIR/<base>.html.
 Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version,
                          const std::string& base = "summary");
 

@@ -40,6 +40,7 @@ Status TakeFiguresFromReport(const std::string& report_path, TakeFigures* figure
     f.vertex_error = error / characters->items.size();
     f.foot_skating_cm_s = skating / characters->items.size();
   }
+  f.view = String(root.Find("view"));
   *figures = std::move(f);
   return Status::Ok();
 }
@@ -72,7 +73,7 @@ std::string FormatTakeRecord(const TakeRecord& r) {
       .Add("repaired_share", f.repaired_share)
       .Add("gate_pass", f.gate_pass < 0 ? JsonValue() : JsonValue(f.gate_pass == 1))
       .Add("vertex_error", f.vertex_error).Add("foot_skating_cm_per_s", f.foot_skating_cm_s)
-      .Add("outputs", outputs);
+      .Add("view", f.view.empty() ? JsonValue() : JsonValue(f.view)).Add("outputs", outputs);
   return o.ToString() + "\n";
 }
 
@@ -121,6 +122,7 @@ Status ReadTakeRecord(const std::string& path, TakeRecord* record) {
   if (const JsonNode* pass = root.Find("gate_pass"); pass != nullptr && pass->is_bool()) f.gate_pass = pass->boolean;
   f.vertex_error = Number(root.Find("vertex_error"));
   f.foot_skating_cm_s = Number(root.Find("foot_skating_cm_per_s"));
+  f.view = String(root.Find("view"));
   if (const JsonNode* outputs = root.Find("outputs"); outputs != nullptr && outputs->is_array()) {
     for (const JsonNode& o : outputs->items) r.outputs.push_back(String(&o));
   }

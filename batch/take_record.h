@@ -38,6 +38,7 @@ struct TakeFigures {
   int gate_pass = -1;  // -1 unknown, 0 failed, 1 passed.
   double vertex_error = kNone;
   double foot_skating_cm_s = kNone;
+  std::string view;    // The take's page, relative to its folder ("view.html"); "" = none.
 };
 
 struct TakeRecord {

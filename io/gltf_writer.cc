@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <sstream>
 #include <utility>
@@ -60,11 +61,39 @@ int AppendFloatAccessor(tinygltf::Model* model, const std::vector<float>& values
   return static_cast<int>(model->accessors.size()) - 1;
 }
 
+// Appends unit-quaternion components as normalized int16 (glTF 2.0 allows SHORT normalized
+// rotation outputs: c = q / 32767); returns the accessor index.
+int AppendNormalizedShortAccessor(tinygltf::Model* model, const std::vector<float>& values, int type, size_t count) {
+  tinygltf::Buffer& buffer = model->buffers[0];
+  while (buffer.data.size() % 4 != 0) buffer.data.push_back(0);
+  std::vector<std::int16_t> shorts(values.size());
+  for (size_t i = 0; i < values.size(); ++i) {
+    shorts[i] = static_cast<std::int16_t>(std::lround(std::clamp(values[i], -1.0f, 1.0f) * 32767.0f));
+  }
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buffer.data.size();
+  view.byteLength = shorts.size() * sizeof(std::int16_t);
+  const size_t old = buffer.data.size();
+  buffer.data.resize(old + view.byteLength);
+  if (!shorts.empty()) std::memcpy(buffer.data.data() + old, shorts.data(), view.byteLength);
+  model->bufferViews.push_back(view);
+  tinygltf::Accessor accessor;
+  accessor.bufferView = static_cast<int>(model->bufferViews.size()) - 1;
+  accessor.byteOffset = 0;
+  accessor.componentType = TINYGLTF_COMPONENT_TYPE_SHORT;
+  accessor.count = count;
+  accessor.type = type;
+  accessor.normalized = true;
+  model->accessors.push_back(accessor);
+  return static_cast<int>(model->accessors.size()) - 1;
+}
+
 }  // namespace
 
 Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
                                   const Motion& motion, const std::string& animation_name,
-                                  bool binary, std::string* bytes) {
+                                  bool binary, std::string* bytes, bool int16_rotations) {
   if (!source.loaded()) return Status::Error("glTF writer: source document not loaded");
   const std::string& file = source.name();
   const Skeleton& skeleton = character.skeleton;
@@ -105,7 +134,9 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
   auto add_channel = [&](int node, const char* path, const std::vector<float>& values, int type) {
     tinygltf::AnimationSampler sampler;
     sampler.input = time_accessor;
-    sampler.output = AppendFloatAccessor(&model, values, type, nf, false);
+    sampler.output = int16_rotations && type == TINYGLTF_TYPE_VEC4
+                         ? AppendNormalizedShortAccessor(&model, values, type, nf)
+                         : AppendFloatAccessor(&model, values, type, nf, false);
     sampler.interpolation = "LINEAR";
     animation.samplers.push_back(sampler);
     tinygltf::AnimationChannel channel;

@@ -39,10 +39,13 @@ Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& c
                               const Motion& motion, const std::string& animation_name,
                               const std::string& path);
 
-// The same, into memory: .glb bytes if `binary`, else .gltf JSON text.
+// The same, into memory: .glb bytes if `binary`, else .gltf JSON text. int16_rotations
+// writes the new animation's rotations as normalized SHORT VEC4 (allowed by glTF 2.0 for
+// rotation outputs; 3e-5 per component) instead of float: half their bytes (the viewer's
+// pages use it; the files commands deliver keep float).
 Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
                                   const Motion& motion, const std::string& animation_name,
-                                  bool binary, std::string* bytes);
+                                  bool binary, std::string* bytes, bool int16_rotations = false);
 
 // Re-expresses a motion of another skeleton that has the character's joints (same names
 // and parents, e.g. a BVH converted from the character and edited) in the character's

@@ -8,8 +8,10 @@
 #include "io/gltf_writer.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
+#include "pipeline/take_view.h"
 #include "problems/marker_solve/subject_checks.h"
 #include "signal/motion_pyramid.h"
+#include "viewer/view_page.h"
 
 namespace mocapsolve {
 namespace {
@@ -104,6 +106,7 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   result->solved.frame_rate = take.trajectories.frame_rate;
   if (progress) progress("repair", frames, frames);
   result->repaired_file = WithRepairedSamples(take, repaired, &result->repaired_samples);
+  result->repaired = std::move(repaired);
   result->samples = frames * take.markers.num_markers();
   lap("repair and solve", stage_start);
 
@@ -235,8 +238,32 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
   return report;
 }
 
+std::string ViewPagePath(const std::string& out_dir) { return InFolder(out_dir, "view.html"); }
+
+Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, ViewScene* scene) {
+  TakeViewInputs view;
+  view.title = inputs.name;
+  view.skeleton = &result.take.skeleton;
+  view.markers = &result.take.markers;
+  view.observed = &result.take.observed;
+  view.repaired = &result.repaired;
+  view.intervals = RepairViewIntervals(result.repair);
+  view.motion = &result.solved;
+  view.frame_rate = result.solved.frame_rate > 0 ? result.solved.frame_rate : 30.0;
+  for (const CharacterOutput& c : result.characters) {
+    ViewCharacter character;
+    character.name = c.name;
+    character.animation = inputs.name;
+    Status status = SerializeGltfWithAnimation(c.document, c.character, c.result.clip.motion, inputs.name,
+                                               /*binary=*/true, &character.glb, /*int16_rotations=*/true);
+    if (!status.ok()) return status;
+    view.characters.push_back(std::move(character));
+  }
+  return MakeTakeViewScene(view, scene);
+}
+
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
-                        const JsonObject& report) {
+                        const JsonObject& report, bool write_view) {
   Status status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
   if (status.ok()) status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved, BvhWriteOptions());
   for (const CharacterOutput& c : result.characters) {
@@ -245,6 +272,11 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
                                     CharacterOutputPath(out_dir, c.name, c.path));
   }
   if (status.ok()) status = WriteFileAtomically(InFolder(out_dir, "report.json"), report.ToString() + "\n");
+  if (status.ok() && write_view) {
+    ViewScene scene;
+    status = MakeTakeResultView(inputs, result, &scene);
+    if (status.ok()) status = WriteViewPage(ViewPagePath(out_dir), scene);
+  }
   return status.ok() ? status : Status::Error("write: " + status.message());
 }
 

@@ -15,6 +15,7 @@
 //   DIR/<character>.glb                       each character's file plus the take as a new
 //                                             animation named after the take,
 //   DIR/report.json                           every stage's timings and quality figures,
+//   DIR/view.html                             the take's browser page (when asked),
 // each atomically (inside the command's FileTransaction, all together). Errors name the
 // stage and the file. Knows nothing of flags or processes.
 #ifndef MOCAPSOLVE_PIPELINE_TAKE_PIPELINE_H_
@@ -34,6 +35,7 @@
 #include "problems/marker_repair/marker_repair.h"
 #include "problems/retarget/retarget_character.h"
 #include "signal/laplacian_pyramid.h"
+#include "viewer/view_scene.h"
 
 namespace mocapsolve {
 
@@ -70,6 +72,7 @@ struct CharacterOutput {
 struct TakeResult {
   MarkerTake take;                    // The markers as read, with their mapping.
   MarkerTrajectories repaired_file;   // The input file with the repaired samples.
+  std::vector<std::vector<Eigen::Vector3d>> repaired;  // [frame][marker], skeleton frame (NaN = missing).
   Motion solved;                      // On the subject's skeleton (filtered if asked).
   RepairReport repair;
   int repaired_samples = 0;           // Samples of the subject's markers that were rewritten.
@@ -97,9 +100,16 @@ std::string CharacterOutputPath(const std::string& out_dir, const std::string& c
 // retarget's vertex/normal error and foot skating).
 JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result);
 
-// Writes the outputs above, and `report` (TakeReport plus what the caller adds) as DIR/report.json.
+// Writes the outputs above, and `report` (TakeReport plus what the caller adds) as
+// DIR/report.json; with write_view also DIR/view.html, the take's page (pipeline/take_view.h:
+// the repaired markers coloured by reason, the solve, the residual curve, each character
+// playing the take beside it), which needs the viewer's runtime (viewer/view_page.h).
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
-                        const JsonObject& report);
+                        const JsonObject& report, bool write_view = false);
+// DIR/view.html.
+std::string ViewPagePath(const std::string& out_dir);
+// The page WriteTakeOutputs writes.
+Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, ViewScene* scene);
 
 }  // namespace mocapsolve
 

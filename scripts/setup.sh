@@ -9,7 +9,9 @@ packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libsuitesp
           libgoogle-glog-dev libgflags-dev libgtest-dev libgmock-dev libbenchmark-dev
           libtinygltf-dev libassimp-dev libnanoflann-dev libspectra-dev
           python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
-          python3-matplotlib python3-setuptools python3-venv python3-pip)
+          python3-matplotlib python3-setuptools python3-venv python3-pip chromium)
+# node and npm (for scripts/viewer_tools.sh and validate_gltf.sh) are taken as found: this
+# machine's come from NodeSource, whose nodejs bundles npm and conflicts with Debian's npm.
 # Opt-in: `setup.sh --fuzz` also installs what scripts/fuzz.sh needs (clang, libFuzzer)
 # and then only installs (the fuzz build is scripts/fuzz.sh's own, in build-fuzz/).
 fuzz_packages=(clang libclang-rt-14-dev libfuzzer-14-dev ccache)
@@ -46,3 +48,9 @@ if ! cmake --build build -j2 >build/build.log 2>&1; then
   exit 1
 fi
 grep -i 'warning' build/build.log | head -20 || true
+# The viewer's runtime (three.js bundle) and its browser test's driver, from npm into
+# build/tools/viewer. Without network `mocapsolve view` says how to retry, and the browser
+# tests skip.
+if ! scripts/viewer_tools.sh >/dev/null; then
+  echo "setup: warning: the viewer's npm packages could not be installed (scripts/viewer_tools.sh)" >&2
+fi

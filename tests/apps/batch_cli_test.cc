@@ -19,6 +19,7 @@
 
 #include "io/json_reader.h"
 #include "tests/test_support.h"
+#include "viewer/view_page.h"
 
 namespace mocapsolve {
 namespace {
@@ -148,7 +149,10 @@ TEST_F(BatchCli, RunsResumesRedoesChangedAndForced) {
   ASSERT_EQ(testing::RunCli(run + " --force", &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("(4 ran, 0 skipped"));
   const std::string record = testing::ReadTextFile(out + "/t3/record.json");
-  EXPECT_THAT(record, HasSubstr("\"outputs\": [\"repaired.c3d\", \"report.json\", \"solved.bvh\"]"));
+  std::string runtime;  // view.html when the viewer's runtime is installed.
+  EXPECT_THAT(record, HasSubstr(FindViewerRuntime(&runtime).ok()
+                                    ? "\"outputs\": [\"repaired.c3d\", \"report.json\", \"solved.bvh\", \"view.html\"]"
+                                    : "\"outputs\": [\"repaired.c3d\", \"report.json\", \"solved.bvh\"]"));
 }
 
 TEST_F(BatchCli, FaultsFailOnlyTheirTake) {
@@ -203,9 +207,13 @@ TEST_F(BatchCli, FaultsFailOnlyTheirTake) {
   for (const char* name : {"truncated", "mismatch", "crash", "killed"}) {
     EXPECT_EQ(FolderFiles(out + "/" + name), std::vector<std::string>{"record.json"}) << name;
   }
-  EXPECT_EQ(FolderFiles(out + "/ok"),
-            (std::vector<std::string>{"record.json", "repaired.c3d", "report.json", "solved.bvh"}));
+  // view.html when the viewer's runtime is installed (scripts/viewer_tools.sh).
+  std::string runtime;
+  std::vector<std::string> ok_files = {"record.json", "repaired.c3d", "report.json", "solved.bvh"};
+  if (FindViewerRuntime(&runtime).ok()) ok_files.push_back("view.html");
+  EXPECT_EQ(FolderFiles(out + "/ok"), ok_files);
   EXPECT_EQ(FolderFiles(out), (std::vector<std::string>{"crash", "gate", "killed", "mismatch", "ok", "summary.csv",
+                                                         "summary.html",
                                                          "summary.json", "truncated", "unwritable"}));
   // Failed takes stay failed on a re-run, and are redone with --retry_failed.
   EXPECT_EQ(testing::RunCli("batch --quiet --manifest=" + manifest + " --out_dir=" + out, &output), 2) << output;

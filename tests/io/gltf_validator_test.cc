@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "io/atomic_file.h"
 #include "io/gltf_reader.h"
 #include "io/gltf_writer.h"
 #include "kinematics/rotation.h"
@@ -35,9 +36,14 @@ TEST(GltfValidator, WrittenFilesHaveNoErrors) {
   const std::string gltf = testing::TempPath("validated.gltf");
   ASSERT_TRUE(WriteGltfWithAnimation(doc, c, motion, "validated", glb).ok());
   ASSERT_TRUE(WriteGltfWithAnimation(doc, c, motion, "validated", gltf).ok());
+  // The viewer pages' variant: rotations as normalized int16.
+  const std::string quantized = testing::TempPath("validated_int16.glb");
+  std::string bytes;
+  ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "validated", true, &bytes, /*int16_rotations=*/true).ok());
+  ASSERT_TRUE(WriteFileAtomically(quantized, bytes).ok());
   const std::string log = testing::TempPath("validator.log");
-  const std::string command = testing::SourcePath("scripts/validate_gltf.sh") + " " + glb + " " + gltf +
-                              " > " + log + " 2>&1";
+  const std::string command = testing::SourcePath("scripts/validate_gltf.sh") + " " + glb + " " + gltf + " " +
+                              quantized + " > " + log + " 2>&1";
   const int raw = std::system(command.c_str());
   const int code = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   const std::string output = testing::ReadTextFile(log);
@@ -46,6 +52,7 @@ TEST(GltfValidator, WrittenFilesHaveNoErrors) {
   EXPECT_EQ(code, 0) << output;
   EXPECT_NE(output.find("validated.glb: 0 errors"), std::string::npos) << output;
   EXPECT_NE(output.find("validated.gltf: 0 errors"), std::string::npos) << output;
+  EXPECT_NE(output.find("validated_int16.glb: 0 errors"), std::string::npos) << output;
 }
 
 }  // namespace

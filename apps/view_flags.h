@@ -1,0 +1,36 @@
+// --view=PAGE.html: the one flag (defined in apps/view_flags.cc) with which repair, solve,
+// retarget and propagate also write a `mocapsolve view` page of what they computed,
+// through the command's FileTransaction like their other outputs.
+#ifndef MOCAPSOLVE_APPS_VIEW_FLAGS_H_
+#define MOCAPSOLVE_APPS_VIEW_FLAGS_H_
+
+#include <string>
+#include <vector>
+
+#include <gflags/gflags.h>
+
+#include "kinematics/status.h"
+#include "viewer/view_page.h"
+#include "viewer/view_scene.h"
+
+DECLARE_string(view);
+
+namespace mocapsolve {
+
+// Checks --view before any work: it must end in .html (case-insensitive) and must not
+// name one of `inputs`.
+Status CheckViewFlag(const std::vector<std::string>& inputs);
+
+// Writes --view (if given) from the scene the make() callback builds (only called then).
+template <typename MakeScene>
+Status WriteViewFlag(MakeScene make) {
+  if (FLAGS_view.empty()) return Status::Ok();
+  ViewScene scene;
+  Status status = make(&scene);
+  if (!status.ok()) return Status::Error("--view=" + FLAGS_view + ": " + status.message());
+  return WriteViewPage(FLAGS_view, scene);
+}
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_APPS_VIEW_FLAGS_H_
