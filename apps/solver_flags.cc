@@ -3,7 +3,8 @@
 #include <ceres/types.h>
 #include <glog/logging.h>
 
-DEFINE_string(solver, "ceres", "ceres | dls: who minimizes the (same) residual blocks.");
+DEFINE_string(solver, "ceres", "ceres | dls | dls_generic: who minimizes the (same) residual blocks "
+              "(dls: the lean tree kernel; dls_generic: the generic DLS solver, a reference).");
 DEFINE_string(mode, "frame", "frame: solve frame by frame, warm-started; clip: then refine all "
               "frames as one sparse problem with smoothness (Ceres).");
 DEFINE_string(linear_solver, "", "Ceres linear solver: dense_qr, dense_normal_cholesky, "
@@ -77,12 +78,8 @@ Status CeresOptionsFromFlags(ceres::Solver::Options* options) {
 }  // namespace
 
 Status MarkerSolveOptionsFromFlags(const LengthUnit& skeleton_unit, MarkerSolveOptions* options) {
-  if (FLAGS_solver == "ceres") {
-    options->solver = SolverKind::kCeres;
-  } else if (FLAGS_solver == "dls") {
-    options->solver = SolverKind::kDls;
-  } else {
-    return Status::Error("--solver: unknown '" + FLAGS_solver + "' (ceres, dls)");
+  if (!ParseSolverKind(FLAGS_solver, &options->solver)) {
+    return Status::Error("--solver: unknown '" + FLAGS_solver + "' (ceres, dls, dls_generic)");
   }
   options->ceres = DefaultFrameCeresOptions();
   Status status = CeresOptionsFromFlags(&options->ceres);
