@@ -16,12 +16,27 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+const Eigen::Matrix3d kIdentity = Eigen::Matrix3d::Identity();
+
 double SecondsSince(Clock::time_point* t0) {
   const Clock::time_point t1 = Clock::now();
   const double seconds = std::chrono::duration<double>(t1 - *t0).count();
   *t0 = t1;
   return seconds;
 }
+
+// out = E_a(:, 0:A)^T x E_b(:, 0:B) in the top-left A x B corner, zeros elsewhere: a block
+// of J^T J in the tangent coordinates of two joints of A and B dofs.
+template <int A, int B>
+void Transform(const Eigen::Matrix3d& ea, const Eigen::Matrix3d& x, const Eigen::Matrix3d& eb, Eigen::Matrix3d* out) {
+  out->setZero();
+  out->topLeftCorner<A, B>().noalias() = ea.leftCols<A>().transpose() * (x * eb.leftCols<B>());
+}
+using TransformKernel = void (*)(const Eigen::Matrix3d&, const Eigen::Matrix3d&, const Eigen::Matrix3d&,
+                                 Eigen::Matrix3d*);
+constexpr TransformKernel kTransforms[3][3] = {{Transform<1, 1>, Transform<1, 2>, Transform<1, 3>},
+                                               {Transform<2, 1>, Transform<2, 2>, Transform<2, 3>},
+                                               {Transform<3, 1>, Transform<3, 2>, Transform<3, 3>}};
 
 }  // namespace
 
@@ -197,7 +212,9 @@ void TreeDlsSolver::Analyze() {
     pair_slot_[id] = static_cast<int>(lower.size());
     lower.push_back({nb - 1 - a, nb - 1 - b});
   }
-  cholesky_.Analyze(nb, lower);
+  std::vector<int> sizes(nb);
+  for (int b = 0; b < nb; ++b) sizes[nb - 1 - b] = tangent_size_[b];
+  cholesky_.Analyze(nb, lower, sizes);
 
   world_rotations_.resize(nj);
   world_positions_.resize(nj);
@@ -320,17 +337,27 @@ bool TreeDlsSolver::EvaluateBlockCosts(bool linearize, double* cost) {
     if (!std::isfinite(squared)) return false;
     *cost += 0.5 * squared;
     if (!linearize) continue;
+    // J^T J and J^T r in the block's tangent coordinates (world-frame joints are rotated
+    // once per block in Assemble).
     const int block = c.joint < 0 ? 0 : block_of_joint_[c.joint];
-    Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 16, 3> tangent(nr, 3);
+    Eigen::Matrix3d& jtj = current_.extra_blocks[block];
+    Eigen::Vector3d& jtr = current_.extra_gradient[block];
     if (c.joint < 0) {
-      tangent = translation_scale_ * Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(ambient, nr, 3);
+      const auto ambient_t = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(ambient, nr, 3);
+      jtj.noalias() += (translation_scale_ * translation_scale_) * ambient_t.transpose() * ambient_t;
+      jtr.noalias() += translation_scale_ * ambient_t.transpose() * r;
+    } else if (nr == 4) {  // A rotation prior: fixed sizes.
+      const Eigen::Matrix<double, 4, 3> tangent =
+          Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(ambient) * plus_jacobians_[block];
+      jtj.noalias() += tangent.transpose() * tangent;
+      jtr.noalias() += tangent.transpose() * Eigen::Map<const Eigen::Vector4d>(residual);
     } else {
-      tangent.noalias() = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor>>(ambient, nr, 4) *
-                          plus_jacobians_[block];
-      if (world_frame_[block]) tangent = tangent * world_rotations_[c.joint].transpose();
+      const Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 16, 3> tangent =
+          Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor>>(ambient, nr, 4) *
+          plus_jacobians_[block];
+      jtj.noalias() += tangent.transpose() * tangent;
+      jtr.noalias() += tangent.transpose() * r;
     }
-    current_.extra_blocks[block].noalias() += tangent.transpose() * tangent;
-    current_.extra_gradient[block].noalias() += tangent.transpose() * r;
   }
   return true;
 }
@@ -369,16 +396,32 @@ void TreeDlsSolver::Assemble() {
   for (size_t id = 0; id < pairs_.size(); ++id) {
     const auto [a, b] = pairs_[id];
     Eigen::Matrix3d& block = current_.blocks[id];
-    block = accumulators_[id];
-    if (a > 0 && !world_frame_[a]) block = bases_[a].transpose() * block;
-    if (b > 0 && !world_frame_[b]) block = block * bases_[b];
-    if (a == b) block += current_.extra_blocks[a];
+    const bool left = a > 0 && !world_frame_[a], right = b > 0 && !world_frame_[b];
+    if (!left && !right) {
+      block = accumulators_[id];
+    } else {
+      kTransforms[tangent_size_[a] - 1][tangent_size_[b] - 1](left ? bases_[a] : kIdentity, accumulators_[id],
+                                                               right ? bases_[b] : kIdentity, &block);
+    }
+    if (a == b) {
+      if (a > 0 && world_frame_[a]) {  // delta = R^T omega.
+        const Eigen::Matrix3d& r = world_rotations_[joint_of_block_[a]];
+        block.noalias() += r * current_.extra_blocks[a] * r.transpose();
+      } else {
+        block += current_.extra_blocks[a];
+      }
+    }
   }
   double max_gradient = 0.0;
   for (int b = 0; b < nb; ++b) {
     Eigen::Vector3d g = gradient_world_[b];
-    if (b > 0 && !world_frame_[b]) g = bases_[b].transpose() * g;
-    g += current_.extra_gradient[b];
+    if (b > 0 && !world_frame_[b]) {
+      g = bases_[b].transpose() * g + current_.extra_gradient[b];
+    } else if (b > 0) {
+      g.noalias() += world_rotations_[joint_of_block_[b]] * current_.extra_gradient[b];
+    } else {
+      g += current_.extra_gradient[b];
+    }
     current_.gradient.segment<3>(3 * b) = g;
     current_.frames[b] = b > 0 ? world_rotations_[joint_of_block_[b]] : Eigen::Matrix3d::Identity();
     // The stopping rule reads the gradient in the tangent coordinates (delta, not omega).
