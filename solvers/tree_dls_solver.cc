@@ -114,12 +114,14 @@ void TreeDlsSolver::Analyze() {
   joint_of_block_.assign(1, -1);
   tangent_size_.assign(1, 3);
   world_frame_.assign(1, 0);
+  dof_manifolds_.assign(1, nullptr);
   for (int j = 0; j < nj; ++j) {
     if (manifolds_[j] == nullptr) continue;
     block_of_joint_[j] = static_cast<int>(joint_of_block_.size());
     joint_of_block_.push_back(j);
     tangent_size_.push_back(manifolds_[j]->TangentSize());
     world_frame_.push_back(dynamic_cast<const RightQuaternionManifold*>(manifolds_[j]) != nullptr);
+    dof_manifolds_.push_back(dynamic_cast<const DofQuaternionManifold*>(manifolds_[j]));
   }
   const int nb = static_cast<int>(joint_of_block_.size());
   num_columns_ = 0;
@@ -454,7 +456,8 @@ bool TreeDlsSolver::Evaluate(bool linearize, double* cost) {
       }
       const int k = tangent_size_[b];
       double plus[12];
-      manifolds_[j]->PlusJacobian(q, plus);
+      const DofQuaternionManifold* dof = dof_manifolds_[b];
+      if (dof == nullptr || !dof->PlusJacobianOnSet(q, plus)) manifolds_[j]->PlusJacobian(q, plus);
       plus_jacobians_[b].setZero();
       for (int r = 0; r < 4; ++r) {
         for (int c = 0; c < k; ++c) plus_jacobians_[b](r, c) = plus[r * k + c];

@@ -56,6 +56,8 @@
 
 namespace mocapsolve {
 
+class DofQuaternionManifold;
+
 struct TreeAttachment {
   int joint = 0;
   double weight = 1.0;
@@ -170,6 +172,7 @@ class TreeDlsSolver : private DlsModel {
   std::vector<int> joint_of_block_;   // -1 for block 0.
   std::vector<int> tangent_size_;     // Per block (3 for the translation).
   std::vector<char> world_frame_;     // Per block: a free joint solved in world increments.
+  std::vector<const DofQuaternionManifold*> dof_manifolds_;  // Per block: an ASF joint's, or null.
   std::vector<int> solved_parent_;    // Per block: the nearest solved ancestor's block, 0 if none.
   std::vector<int> fk_joints_;        // Joints some row depends on, ascending.
   std::vector<int> chain_joints_;     // Joints on some row's chain (held or not), for |x|.
