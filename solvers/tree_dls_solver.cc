@@ -428,7 +428,7 @@ void TreeDlsSolver::Assemble() {
     current_.frames[b] = b > 0 ? world_rotations_[joint_of_block_[b]] : Eigen::Matrix3d::Identity();
     // The stopping rule reads the gradient in the tangent coordinates (delta, not omega).
     const Eigen::Vector3d tangent = b > 0 && world_frame_[b] ? Eigen::Vector3d(current_.frames[b].transpose() * g) : g;
-    max_gradient = std::max(max_gradient, tangent.head(tangent_size_[b]).cwiseAbs().maxCoeff());
+    for (int i = 0; i < tangent_size_[b]; ++i) max_gradient = std::max(max_gradient, std::abs(tangent[i]));
   }
   current_.max_gradient = max_gradient;
 }
