@@ -60,6 +60,7 @@ Status RunBench(const std::vector<std::string>& arguments) {
     std::printf("%-14s %-8s %10d %12.6f %14.1f %10d %14.6g  %s %.6g\n", record.problem.c_str(),
                 record.solver.c_str(), record.frames, record.seconds, record.frames_per_second(),
                 record.iterations, record.final_cost, record.error_name.c_str(), record.error);
+    for (const auto& [name, value] : record.figures) std::printf("  %s %.6g\n", name.c_str(), value);
     // One machine-readable line per record.
     std::printf("JSON %s\n", record.ToJson().ToString(false).c_str());
     records.push_back(record.ToJson());

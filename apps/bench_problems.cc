@@ -22,6 +22,8 @@
 #include "problems/marker_solve/synthetic_marker_set.h"
 #include "kinematics/demo_character.h"
 #include "kinematics/forward_kinematics.h"
+#include "kinematics/kinematic_jacobians.h"
+#include "kinematics/rotation.h"
 #include "signal/laplacian_pyramid.h"
 
 namespace mocapsolve {
@@ -34,6 +36,7 @@ JsonObject BenchRecord::ToJson() const {
       .Add("seconds", seconds).Add("frames_per_second", frames_per_second())
       .Add("iterations", iterations).Add("final_cost", final_cost)
       .Add(error_name.empty() ? "error" : error_name, error).Add("notes", notes);
+  for (const auto& [name, value] : figures) json.Add(name, value);
   return json;
 }
 
@@ -80,6 +83,44 @@ Status RunFkProblem(const std::string& solver, const BenchSettings& settings, Be
   record->error_name = "checksum";  // Keeps the work observable; not an accuracy figure.
   record->error = checksum;
   return Status::Ok();
+}
+
+// Seconds per frame of FK plus the full dense Jacobian of every marker (3 #markers x
+// (3 + 3 #J), pose tangent layout of kinematics/kinematic_jacobians.h): the unit in which
+// issue 18 states the per-frame IK's cost. The lean way: ForwardKinematics, each joint's
+// rotation matrix once, J zeroed once and each marker's blocks w [o_j - p]x R_j written
+// along its chain (the formula of AccumulateBlendedPointJacobian, which fills one 3-row
+// matrix at a time). Over the clip's poses, repeated to >= 20,000 frames.
+double FkAndMarkerJacobianSeconds(const Skeleton& skeleton, const MarkerSet& markers, const Motion& motion) {
+  FkData fk(skeleton);
+  const int nm = markers.num_markers();
+  const int nj = skeleton.num_joints();
+  Eigen::MatrixXd jacobian(3 * nm, PoseTangentSize(skeleton));
+  std::vector<Eigen::Matrix3d> rotations(nj);
+  double checksum = 0.0;
+  const int passes = std::max(1, 20000 / std::max(1, motion.num_frames()));
+  const auto start = std::chrono::steady_clock::now();
+  for (int pass = 0; pass < passes; ++pass) {
+    for (const Pose& pose : motion.frames) {
+      ForwardKinematics(skeleton, pose, &fk);
+      for (int j = 0; j < nj; ++j) rotations[j] = fk.world_rotations[j].toRotationMatrix();
+      jacobian.setZero();
+      for (int m = 0; m < nm; ++m) {
+        for (const MarkerAttachment& a : markers.marker(m).attachments) {
+          const Eigen::Vector3d p = fk.world_positions[a.joint] + rotations[a.joint] * a.offset;
+          jacobian.block<3, 3>(3 * m, 0).diagonal().array() += a.weight;
+          for (int j = a.joint; j >= 0; j = skeleton.parent(j)) {
+            jacobian.block<3, 3>(3 * m, RotationColumn(j)).noalias() +=
+                a.weight * SkewSymmetric(fk.world_positions[j] - p) * rotations[j];
+          }
+        }
+      }
+      checksum += jacobian(3 * nm - 1, 3);
+    }
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (checksum == 12345.678) std::printf(" ");  // Keeps the work observable.
+  return seconds / (static_cast<double>(passes) * std::max(1, motion.num_frames()));
 }
 
 // The marker problem of a benchmark: real files, or markers synthesized from a clip.
@@ -139,7 +180,8 @@ Status LoadMarkerProblem(const BenchSettings& settings, Skeleton* skeleton_out, 
 // first frame's orientation search is not timed.
 Status RunMarkerSolveProblem(const std::string& solver, const BenchSettings& settings,
                              BenchRecord* record) {
-  if (solver != "ceres" && solver != "dls") return Status::Error("marker_solve solvers: ceres, dls");
+  SolverKind kind;
+  if (!ParseSolverKind(solver, &kind)) return Status::Error("marker_solve solvers: ceres, dls, dls_generic");
   Skeleton skeleton;
   MarkerSet markers;
   std::vector<std::vector<Eigen::Vector3d>> observed;
@@ -150,16 +192,20 @@ Status RunMarkerSolveProblem(const std::string& solver, const BenchSettings& set
   MarkerSolveOptions options;
   Status status = MarkerSolveOptionsFromFlags(skeleton.unit(), &options);
   if (!status.ok()) return status;
-  options.solver = solver == "ceres" ? SolverKind::kCeres : SolverKind::kDls;
+  options.solver = kind;
   Motion solved;
   SequenceSolveReport report;
-  std::vector<double> times;
+  std::vector<double> times, reference_times;
   for (int r = 0; r < std::max(1, settings.repeats); ++r) {
     status = SolveSequence(skeleton, markers, observed, options, RestPose(skeleton), &solved, &report);
     if (!status.ok()) return status;
     times.push_back(report.solve_seconds);
+    // The reference, interleaved with the solves: one FK plus the full marker Jacobian
+    // (3 #markers x (3 + 3 #joints), kinematics/kinematic_jacobians.h) per frame.
+    reference_times.push_back(FkAndMarkerJacobianSeconds(skeleton, markers, solved));
   }
   std::sort(times.begin(), times.end());
+  std::sort(reference_times.begin(), reference_times.end());
   record->seconds = times[times.size() / 2];
   record->frames = report.frames;
   record->iterations = static_cast<int>(report.total_iterations);
@@ -169,6 +215,11 @@ Status RunMarkerSolveProblem(const std::string& solver, const BenchSettings& set
   record->notes = std::to_string(markers.num_markers()) + " markers; unsolved frames " +
                   std::to_string(report.unsolved_frames) + ", at iteration limit " +
                   std::to_string(report.unconverged_frames);
+  const double per_frame = record->seconds / std::max(1, record->frames);
+  const double reference = reference_times[reference_times.size() / 2];
+  record->figures = {{"us_per_frame", 1e6 * per_frame},
+                     {"fk_jacobian_us", 1e6 * reference},
+                     {"ratio_to_fk_jacobian", per_frame / reference}};
   return Status::Ok();
 }
 
@@ -359,7 +410,7 @@ const std::vector<BenchProblem>& AllBenchProblems() {
        {"ceres"}, RunMarkerClipProblem},
       {"marker_solve", "per-frame marker solving of a take (--bench_markers/--bench_skeleton/"
        "--bench_markerset, or markers synthesized from --bench_motion)",
-       {"ceres", "dls"}, RunMarkerSolveProblem},
+       {"dls", "dls_generic", "ceres"}, RunMarkerSolveProblem},
       {"marker_repair", "marker repair of a damaged take (markers as for marker_solve; damage from "
        "the corrupt flags; repair flags as for repair); solvers = reference kinds",
        {"tracker", "clip"}, RunMarkerRepairProblem},

@@ -6,6 +6,7 @@
 #define MOCAPSOLVE_APPS_BENCH_PROBLEMS_H_
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/json_writer.h"
@@ -24,6 +25,9 @@ struct BenchRecord {
   double error = 0.0;           // The problem's accuracy figure, named by error_name.
   std::string error_name;
   std::string notes;            // Anything a reader of the figures must know.
+  // Further named figures of the problem (e.g. a time per frame as a ratio to a reference
+  // measured in the same run), printed and written to the JSON in this order.
+  std::vector<std::pair<std::string, double>> figures;
 
   double frames_per_second() const { return seconds > 0.0 ? frames / seconds : 0.0; }
   JsonObject ToJson() const;

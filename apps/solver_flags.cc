@@ -7,7 +7,8 @@ namespace {
 const mocapsolve::SolverSettings kDefault;
 }  // namespace
 
-DEFINE_string(solver, kDefault.solver.c_str(), "ceres | dls: who minimizes the (same) residual blocks.");
+DEFINE_string(solver, kDefault.solver.c_str(), "ceres | dls | dls_generic: who minimizes the (same) residual blocks "
+              "(dls: the lean tree kernel; dls_generic: the generic DLS solver, a reference).");
 DEFINE_string(mode, kDefault.mode.c_str(), "frame: solve frame by frame, warm-started; clip: then refine all "
               "frames as one sparse problem with smoothness (Ceres).");
 DEFINE_string(linear_solver, kDefault.linear_solver.c_str(), "Ceres linear solver: dense_qr, dense_normal_cholesky, "

@@ -35,12 +35,8 @@ Status CeresOptionsFromSettings(const SolverSettings& settings, ceres::Solver::O
 
 Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const LengthUnit& skeleton_unit,
                                       MarkerSolveOptions* options) {
-  if (settings.solver == "ceres") {
-    options->solver = SolverKind::kCeres;
-  } else if (settings.solver == "dls") {
-    options->solver = SolverKind::kDls;
-  } else {
-    return Status::Error("--solver: unknown '" + settings.solver + "' (ceres, dls)");
+  if (!ParseSolverKind(settings.solver, &options->solver)) {
+    return Status::Error("--solver: unknown '" + settings.solver + "' (ceres, dls, dls_generic)");
   }
   options->ceres = DefaultFrameCeresOptions();
   Status status = CeresOptionsFromSettings(settings, &options->ceres);

@@ -12,6 +12,13 @@
 // Usage: Analyze(n, pairs); per solve: SetZero(), fill Block(slot) (slot = index of the
 // pair given to Analyze; the lower triangle of a diagonal block is read, the upper
 // ignored) and Diagonal(i), Factorize(), Solve(b, &x).
+//
+// Smaller blocks (an ASF joint with one or two dofs): Analyze's `sizes` gives each block's
+// size s (1-3, default 3); the block then lives in the top-left s x s (s x s_other) part of
+// its 3 x 3 storage, and the caller keeps the rest of its diagonal block identity and of
+// its off-diagonal blocks zero (its unknowns then come out 0). The products run on the
+// blocks' true sizes (fixed-size kernels per size triple), so a hinge costs 1/27 of a
+// full block update.
 #ifndef MOCAPSOLVE_SOLVERS_BLOCK_SPARSE_CHOLESKY_H_
 #define MOCAPSOLVE_SOLVERS_BLOCK_SPARSE_CHOLESKY_H_
 
@@ -26,7 +33,8 @@ class BlockSparseCholesky {
  public:
   // `pairs` (i, j), i > j, are the off-diagonal non-zero blocks of the lower triangle
   // (duplicates allowed); every diagonal block is implied.
-  void Analyze(int num_blocks, const std::vector<std::pair<int, int>>& pairs);
+  void Analyze(int num_blocks, const std::vector<std::pair<int, int>>& pairs,
+               const std::vector<int>& sizes = {});
 
   int num_blocks() const { return static_cast<int>(diagonal_.size()); }
   void SetZero();
@@ -45,6 +53,8 @@ class BlockSparseCholesky {
   std::vector<std::vector<int>> rows_;                // Per column: rows below, sorted.
   std::vector<std::vector<Eigen::Matrix3d>> values_;  // Per column: A, then L, blocks.
   std::vector<Eigen::Matrix3d> diagonal_;             // A_kk, then L_kk.
+  std::vector<Eigen::Matrix3d> inverse_;              // L_kk^-1.
+  std::vector<int> sizes_;                            // Per block, 1-3.
   std::vector<int> column_of_slot_, entry_of_slot_;
   // Per column k, for each pair (a >= b) of its entries: where L_a L_b^T is subtracted
   // (column index and entry, entry -1 = the diagonal block), flattened.

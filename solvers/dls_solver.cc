@@ -37,36 +37,6 @@ constexpr TangentKernel kTangentKernels[3] = {QuaternionTangent<1>, QuaternionTa
 
 }  // namespace
 
-bool DlsOptions::IsValid(std::string* error) const {
-  auto fail = [error](const char* message) {
-    if (error != nullptr) *error = message;
-    return false;
-  };
-  if (max_iterations < 0) return fail("max_iterations must be >= 0");
-  if (!(lambda >= 0.0)) return fail("lambda must be >= 0");
-  if (!adaptive_damping && !(lambda > 0.0)) return fail("fixed damping needs lambda > 0");
-  if (!(lambda_increase > 1.0)) return fail("lambda_increase must be > 1");
-  if (!(lambda_decrease > 0.0 && lambda_decrease < 1.0)) return fail("lambda_decrease must be in (0, 1)");
-  if (!(min_lambda > 0.0 && max_lambda > min_lambda)) return fail("need 0 < min_lambda < max_lambda");
-  if (function_tolerance < 0 || gradient_tolerance < 0 || parameter_tolerance < 0 ||
-      absolute_cost_tolerance < 0) {
-    return fail("tolerances must be >= 0");
-  }
-  return true;
-}
-
-std::string DlsSummary::BriefReport() const {
-  static const char* kNames[] = {"FUNCTION_TOLERANCE", "GRADIENT_TOLERANCE",
-                                 "PARAMETER_TOLERANCE", "ABSOLUTE_COST", "NO_CONVERGENCE",
-                                 "FAILURE"};
-  char buffer[256];
-  std::snprintf(buffer, sizeof buffer,
-                "DLS: cost %.6e -> %.6e, %d iterations (%d accepted), lambda %.2e, %s",
-                initial_cost, final_cost, iterations, accepted_steps, final_lambda,
-                kNames[static_cast<int>(termination)]);
-  return buffer;
-}
-
 int DlsProblem::AddParameterBlock(double* values, int size, const ceres::Manifold* manifold) {
   Parameter p;
   p.values = values;
@@ -89,7 +59,9 @@ void DlsProblem::Clear() {
   residuals_.clear();
 }
 
-bool DlsSolver::Evaluate(DlsProblem* problem, bool linearize, bool dense_j, double* cost) {
+bool DlsSolver::Evaluate(bool linearize, double* cost) {
+  DlsProblem* problem = problem_;
+  const bool dense_j = dense_j_;
   if (linearize) {
     jtr_.setZero(num_cols_);
     if (dense_j) {
@@ -213,37 +185,30 @@ bool DlsSolver::Evaluate(DlsProblem* problem, bool linearize, bool dense_j, doub
 }
 
 // Swaps, not copies: the next Evaluate rebuilds jtr_/jtj_ from zero anyway.
-void DlsSolver::SaveLinearization() {
-  jtr_.swap(saved_jtr_);
-  jtj_.swap(saved_jtj_);
-  jacobian_.swap(saved_jacobian_);
-  residual_.swap(saved_residual_);
-}
-
-void DlsSolver::RestoreLinearization() {
-  jtr_.swap(saved_jtr_);
-  jtj_.swap(saved_jtj_);
-  jacobian_.swap(saved_jacobian_);
-  residual_.swap(saved_residual_);
-}
-
-void DlsSolver::SaveParameters(const DlsProblem& problem) {
+void DlsSolver::Save() {
   saved_.clear();
-  for (const auto& p : problem.parameters_) saved_.insert(saved_.end(), p.values, p.values + p.size);
+  for (const auto& p : problem_->parameters_) saved_.insert(saved_.end(), p.values, p.values + p.size);
+  jtr_.swap(saved_jtr_);
+  jtj_.swap(saved_jtj_);
+  jacobian_.swap(saved_jacobian_);
+  residual_.swap(saved_residual_);
 }
 
-void DlsSolver::RestoreParameters(DlsProblem* problem) const {
+void DlsSolver::Restore() {
   size_t i = 0;
-  for (auto& p : problem->parameters_) {
+  for (auto& p : problem_->parameters_) {
     for (int k = 0; k < p.size; ++k) p.values[k] = saved_[i++];
   }
+  jtr_.swap(saved_jtr_);
+  jtj_.swap(saved_jtj_);
+  jacobian_.swap(saved_jacobian_);
+  residual_.swap(saved_residual_);
 }
 
-bool DlsSolver::ApplyStep(DlsProblem* problem, const Eigen::VectorXd& delta, double* step_norm,
-                          double* x_norm) {
+bool DlsSolver::ApplyStep(const Eigen::VectorXd& delta, double* step_norm, double* x_norm) {
   *step_norm = delta.norm();
   double x_sq = 0.0;
-  for (auto& p : problem->parameters_) {
+  for (auto& p : problem_->parameters_) {
     for (int k = 0; k < p.size; ++k) x_sq += p.values[k] * p.values[k];
     if (p.constant) continue;
     const double* d = delta.data() + p.tangent_offset;
@@ -259,8 +224,24 @@ bool DlsSolver::ApplyStep(DlsProblem* problem, const Eigen::VectorXd& delta, dou
   return true;
 }
 
+double DlsSolver::MaxGradient() const { return jtr_.cwiseAbs().maxCoeff(); }
+
+bool DlsSolver::ComputeStep(double lambda, Eigen::VectorXd* delta) {
+  if (dense_j_) {
+    system_.noalias() = jacobian_ * jacobian_.transpose();
+    system_.diagonal().array() += lambda;
+    Eigen::LLT<Eigen::MatrixXd> llt(system_);  // SPD: lambda > 0.
+    delta->noalias() = jacobian_.transpose() * llt.solve(-residual_);
+  } else {
+    system_ = jtj_.selfadjointView<Eigen::Upper>();
+    system_.diagonal().array() += lambda;
+    Eigen::LLT<Eigen::MatrixXd> llt(system_);  // SPD: J^T J + lambda I, lambda > 0.
+    *delta = llt.solve(-jtr_);
+  }
+  return true;  // A failed factorization shows as a non-finite step (as it always has).
+}
+
 void DlsSolver::Solve(const DlsOptions& options, DlsProblem* problem, DlsSummary* summary) {
-  *summary = DlsSummary();
   num_cols_ = 0;
   for (auto& p : problem->parameters_) {
     p.tangent_offset = p.constant ? -1 : num_cols_;
@@ -269,84 +250,10 @@ void DlsSolver::Solve(const DlsOptions& options, DlsProblem* problem, DlsSummary
   num_rows_ = 0;
   for (const auto& r : problem->residuals_) num_rows_ += r.cost->num_residuals();
   // Eq. 4 as written (m x m system) when there are fewer residuals than unknowns.
-  const bool dense_j = num_rows_ < num_cols_;
-
-  double cost = 0.0;
-  if (!Evaluate(problem, true, dense_j, &cost)) {
-    summary->termination = DlsTermination::kFailure;
-    return;
-  }
-  summary->initial_cost = summary->final_cost = cost;
-  double lambda = options.adaptive_damping ? std::max(options.lambda, options.min_lambda) : options.lambda;
-  Eigen::VectorXd delta(num_cols_);
-  Eigen::MatrixXd system;
-  summary->termination = DlsTermination::kNoConvergence;
-  while (summary->iterations < options.max_iterations) {
-    if (cost <= options.absolute_cost_tolerance) {
-      summary->termination = DlsTermination::kAbsoluteCost;
-      break;
-    }
-    if (num_cols_ == 0 || jtr_.cwiseAbs().maxCoeff() <= options.gradient_tolerance) {
-      summary->termination = DlsTermination::kGradientTolerance;
-      break;
-    }
-    if (dense_j) {
-      system.noalias() = jacobian_ * jacobian_.transpose();
-      system.diagonal().array() += lambda;
-      Eigen::LLT<Eigen::MatrixXd> llt(system);  // SPD: lambda > 0.
-      delta.noalias() = jacobian_.transpose() * llt.solve(-residual_);
-    } else {
-      system = jtj_.selfadjointView<Eigen::Upper>();
-      system.diagonal().array() += lambda;
-      Eigen::LLT<Eigen::MatrixXd> llt(system);  // SPD: J^T J + lambda I, lambda > 0.
-      delta = llt.solve(-jtr_);
-    }
-    ++summary->iterations;
-    if (!delta.allFinite()) {
-      summary->termination = DlsTermination::kFailure;
-      break;
-    }
-    SaveParameters(*problem);
-    SaveLinearization();
-    double step_norm = 0.0, x_norm = 0.0, new_cost = 0.0;
-    // Linearize at the trial point right away: accepted steps (the common case) then need
-    // one evaluation instead of two; a rejected one restores the old linearization.
-    const bool evaluated = ApplyStep(problem, delta, &step_norm, &x_norm) &&
-                           Evaluate(problem, true, dense_j, &new_cost);
-    const bool accept = evaluated && (!options.adaptive_damping || new_cost < cost);
-    if (!accept) {
-      VLOG(1) << "DLS iteration " << summary->iterations << ": rejected (cost " << new_cost
-              << " >= " << cost << "), lambda " << lambda << " -> " << lambda * options.lambda_increase;
-      RestoreParameters(problem);
-      RestoreLinearization();
-      if (!options.adaptive_damping) {
-        summary->termination = DlsTermination::kFailure;
-        break;
-      }
-      lambda *= options.lambda_increase;
-      if (lambda > options.max_lambda) {
-        summary->termination = DlsTermination::kFunctionTolerance;  // No step lowers the cost.
-        break;
-      }
-      continue;
-    }
-    VLOG(1) << "DLS iteration " << summary->iterations << ": cost " << cost << " -> " << new_cost
-            << ", lambda " << lambda << ", |step| " << step_norm;
-    ++summary->accepted_steps;
-    const double old_cost = cost;
-    cost = new_cost;
-    if (options.adaptive_damping) lambda = std::max(options.min_lambda, lambda * options.lambda_decrease);
-    if (std::abs(old_cost - cost) <= options.function_tolerance * old_cost) {
-      summary->termination = DlsTermination::kFunctionTolerance;
-      break;
-    }
-    if (step_norm <= options.parameter_tolerance * (x_norm + options.parameter_tolerance)) {
-      summary->termination = DlsTermination::kParameterTolerance;
-      break;
-    }
-  }
-  summary->final_cost = cost;
-  summary->final_lambda = lambda;
+  dense_j_ = num_rows_ < num_cols_;
+  problem_ = problem;
+  RunDlsIterations(options, this, summary);
+  problem_ = nullptr;
 }
 
 }  // namespace mocapsolve

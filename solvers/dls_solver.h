@@ -14,16 +14,8 @@
 // residual and Jacobian are scaled by sqrt(rho'(s)), s = |r|^2 (Ceres adds a second-order
 // correction that this path omits).
 //
-// Damping: fixed (lambda stays options.lambda; every step is taken, as in Buss' DLS) or
-// adaptive (Levenberg: a step that lowers the cost is taken and lambda *= lambda_decrease,
-// otherwise it is rejected and lambda *= lambda_increase).
-//
-// Stopping rules, checked after each iteration:
-//   |cost_old - cost_new| <= function_tolerance * cost_old      (FUNCTION_TOLERANCE)
-//   max_k |(J^T r)_k| <= gradient_tolerance                      (GRADIENT_TOLERANCE)
-//   |delta| <= parameter_tolerance * (|x| + parameter_tolerance) (PARAMETER_TOLERANCE)
-//   iterations == max_iterations                                  (NO_CONVERGENCE)
-//   cost <= absolute_cost_tolerance                               (already converged)
+// Damping and stopping rules: solvers/dls_iterations.h (RunDlsIterations), shared with
+// the tree kernel (solvers/tree_dls_solver.h).
 #ifndef MOCAPSOLVE_SOLVERS_DLS_SOLVER_H_
 #define MOCAPSOLVE_SOLVERS_DLS_SOLVER_H_
 
@@ -35,44 +27,9 @@
 #include <ceres/manifold.h>
 #include <Eigen/Core>
 
+#include "solvers/dls_iterations.h"
+
 namespace mocapsolve {
-
-struct DlsOptions {
-  int max_iterations = 50;
-  bool adaptive_damping = true;    // false: fixed lambda, every step taken (Buss).
-  double lambda = 1e-3;            // Initial (adaptive) or fixed damping.
-  double lambda_increase = 10.0;
-  double lambda_decrease = 0.3;
-  double min_lambda = 1e-12;
-  double max_lambda = 1e12;
-  double function_tolerance = 1e-10;
-  double gradient_tolerance = 1e-12;
-  double parameter_tolerance = 1e-10;
-  double absolute_cost_tolerance = 0.0;
-
-  bool IsValid(std::string* error) const;
-};
-
-enum class DlsTermination {
-  kFunctionTolerance,
-  kGradientTolerance,
-  kParameterTolerance,
-  kAbsoluteCost,
-  kNoConvergence,
-  kFailure,  // A cost function returned false, or the linear solve failed.
-};
-
-struct DlsSummary {
-  double initial_cost = 0.0;  // 1/2 sum rho(|r|^2), as Ceres reports cost.
-  double final_cost = 0.0;
-  int iterations = 0;          // Linear solves.
-  int accepted_steps = 0;
-  DlsTermination termination = DlsTermination::kNoConvergence;
-  double final_lambda = 0.0;
-
-  bool IsSolutionUsable() const { return termination != DlsTermination::kFailure; }
-  std::string BriefReport() const;
-};
 
 // The problem: parameter blocks the caller owns, residual blocks that point at them.
 // Nothing is owned: cost functions, losses and manifolds must outlive the problem.
@@ -109,21 +66,24 @@ class DlsProblem {
 };
 
 // Holds the workspace between solves, so per-frame use allocates once.
-class DlsSolver {
+class DlsSolver : private DlsModel {
  public:
   void Solve(const DlsOptions& options, DlsProblem* problem, DlsSummary* summary);
 
  private:
-  // Evaluates cost, and if `linearize`, the gradient J^T r and either J^T J (normal form)
-  // or the dense J. Returns false if a cost function fails.
-  bool Evaluate(DlsProblem* problem, bool linearize, bool dense_j, double* cost);
-  void SaveParameters(const DlsProblem& problem);
-  void SaveLinearization();
-  void RestoreLinearization();
-  void RestoreParameters(DlsProblem* problem) const;
-  bool ApplyStep(DlsProblem* problem, const Eigen::VectorXd& delta, double* step_norm,
-                 double* x_norm);
+  // DlsModel on problem_: the cost, and if `linearize`, the gradient J^T r and either J^T J
+  // (normal form) or the dense J (dense_j_). False if a cost function fails.
+  bool Evaluate(bool linearize, double* cost) override;
+  int num_columns() const override { return num_cols_; }
+  double MaxGradient() const override;
+  bool ComputeStep(double lambda, Eigen::VectorXd* delta) override;
+  void Save() override;
+  void Restore() override;
+  bool ApplyStep(const Eigen::VectorXd& delta, double* step_norm, double* x_norm) override;
 
+  DlsProblem* problem_ = nullptr;
+  bool dense_j_ = false;
+  Eigen::MatrixXd system_;
   int num_rows_ = 0;
   int num_cols_ = 0;
   Eigen::MatrixXd jtj_;

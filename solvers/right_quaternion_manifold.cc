@@ -86,6 +86,36 @@ bool DofQuaternionManifold::PlusJacobian(const double* x, double* jacobian) cons
   return true;
 }
 
+bool DofQuaternionManifold::PlusJacobianOnSet(const double* x, double* jacobian) const {
+  const Eigen::Map<const Eigen::Quaterniond> q(x);
+  const int k = TangentSize();
+  if (k == 1) {
+    const int a = axes_[0];
+    if (std::abs(q.vec()[(a + 1) % 3]) + std::abs(q.vec()[(a + 2) % 3]) > 1e-12) return false;
+  } else {
+    const int a0 = axes_[0], a1 = axes_[1], c = 3 - a0 - a1;
+    const double eps = a1 == (a0 + 1) % 3 ? 1.0 : -1.0;  // e_a0 x e_a1 = eps e_c.
+    if (std::abs(q.w() * q.vec()[c] - eps * q.vec()[a0] * q.vec()[a1]) > 1e-12) return false;
+    // Angles puts the second angle in [-pi/2, pi/2] (an Euler decomposition's middle
+    // angle): beyond it (sin^2(t1/2) = v_a1^2 + v_c^2 >= cos^2(t1/2) = w^2 + v_a0^2) the
+    // projection is another point of the set, so leave it to PlusJacobian.
+    const double s1 = q.vec()[a1] * q.vec()[a1] + q.vec()[c] * q.vec()[c];
+    if (s1 >= q.w() * q.w() + q.vec()[a0] * q.vec()[a0] - 1e-9) return false;
+  }
+  // The projection Compose(Angles(q)) has w = prod cos(t_i / 2) >= 0 (angles in (-pi, pi]):
+  // it is q or -q.
+  if (std::abs(q.w()) <= 1e-12) return false;
+  Eigen::Quaterniond on_set = q;
+  if (q.w() < 0.0) on_set.coeffs() = -on_set.coeffs();
+  for (int i = 0; i < k; ++i) {
+    Eigen::Quaterniond axis(0.0, 0.0, 0.0, 0.0);
+    axis.vec()[axes_[i]] = 0.5;
+    const Eigen::Quaterniond column = (i == 0 && k == 2) ? axis * on_set : on_set * axis;
+    for (int r = 0; r < 4; ++r) jacobian[r * k + i] = column.coeffs()[r];
+  }
+  return true;
+}
+
 bool DofQuaternionManifold::Minus(const double* y, const double* x, double* y_minus_x) const {
   double ay[2], ax[2];
   Angles(y, ay);

@@ -58,6 +58,17 @@ class DofQuaternionManifold : public ceres::Manifold {
   void Angles(const double* q, double* angles) const;
   void Compose(const double* angles, double* q) const;
 
+  // PlusJacobian at a unit q already on the set (as every Plus leaves it), without the
+  // Angles/Compose round trip (atan2, sin, cos) that projects it: the projection is q or -q
+  // (its w is >= 0), so the same columns from q, negated when q's w < 0. False, with
+  // `jacobian` untouched, if q is off the set by more than 1e-12 (one axis: the other vector
+  // components; two: w v_c - eps v_a0 v_a1, which vanishes exactly on it), if |w| <= 1e-12,
+  // or, for two axes, if the second angle is beyond pi/2 (where Angles' Euler decomposition
+  // projects q onto another point of the set: Plus(q, 0) != +-q there).
+  // (That sign: for a stored q with w < 0, Plus(q, 0) = -q, and these columns then pair
+  // with the ambient Jacobian at -q, not at q; see the report of issue 18.)
+  bool PlusJacobianOnSet(const double* x, double* jacobian) const;
+
  private:
   std::vector<int> axes_;
 };

@@ -10,8 +10,25 @@
 #include "problems/marker_solve/marker_residual.h"
 #include "problems/marker_solve/pose_prior_residual.h"
 #include "solvers/right_quaternion_manifold.h"
+#include "solvers/tree_dls_solver.h"
 
 namespace mocapsolve {
+
+bool ParseSolverKind(const std::string& name, SolverKind* kind) {
+  if (name == "ceres") return *kind = SolverKind::kCeres, true;
+  if (name == "dls") return *kind = SolverKind::kDls, true;
+  if (name == "dls_generic") return *kind = SolverKind::kDlsGeneric, true;
+  return false;
+}
+
+const char* SolverKindName(SolverKind kind) {
+  switch (kind) {
+    case SolverKind::kCeres: return "ceres";
+    case SolverKind::kDls: return "dls";
+    case SolverKind::kDlsGeneric: return "dls_generic";
+  }
+  return "?";
+}
 
 bool MarkerSolveOptions::IsValid(std::string* error) const {
   // Every weight finite (NaN or inf would reach Ceres, which then logs and fails).
@@ -26,7 +43,7 @@ bool MarkerSolveOptions::IsValid(std::string* error) const {
       return *error = "prior and limit weights must be finite and >= 0", false;
     }
   }
-  if (solver == SolverKind::kDls && !dls.IsValid(error)) return false;
+  if (solver != SolverKind::kCeres && !dls.IsValid(error)) return false;
   if (solver == SolverKind::kCeres && !ceres.IsValid(error)) return false;
   std::unique_ptr<ceres::LossFunction> loss_function;
   const Status status = MakeLoss(loss, loss_scale, &loss_function);
@@ -145,15 +162,19 @@ class MarkerFrameSolver::Impl {
       report->iterations = static_cast<int>(summary.iterations.size()) - 1;
       report->usable = summary.IsSolutionUsable();
       report->brief = summary.BriefReport();
-    } else {
+    } else if (options_.solver == SolverKind::kDlsGeneric) {
       if (visible != dls_visible_ || dls_problem_.num_parameter_blocks() == 0) BuildDlsProblem(visible);
       DlsSummary summary;
       dls_solver_.Solve(options_.dls, &dls_problem_, &summary);
-      report->initial_cost = summary.initial_cost;
-      report->final_cost = summary.final_cost;
-      report->iterations = summary.iterations;
-      report->usable = summary.IsSolutionUsable();
-      report->brief = summary.BriefReport();
+      ReportDls(summary, report);
+    } else {
+      if (tree_ == nullptr) BuildTreeSolver();
+      for (int m = 0; m < markers_.num_markers(); ++m) {
+        tree_->SetRowScale(m, visible[m] ? options_.marker_weight : 0.0);
+      }
+      DlsSummary summary;
+      tree_->Solve(options_.dls, &summary);
+      ReportDls(summary, report);
     }
     if (!report->usable) return Status::Error("solver failed: " + report->brief);
     for (int i = 0; i < 3; ++i) pose->translations[0][i] = translation_[i];
@@ -167,6 +188,32 @@ class MarkerFrameSolver::Impl {
   }
 
  private:
+  static void ReportDls(const DlsSummary& summary, FrameSolveReport* report) {
+    report->initial_cost = summary.initial_cost;
+    report->final_cost = summary.final_cost;
+    report->iterations = summary.iterations;
+    report->usable = summary.IsSolutionUsable();
+    report->brief = summary.BriefReport();
+  }
+
+  // The lean kernel on the same unknowns and residuals: one point row per marker (its
+  // attachments; off while the marker is missing), the priors and limits as block costs.
+  void BuildTreeSolver() {
+    tree_.reset(new TreeDlsSolver(&skeleton_, translation_, rotations_.data()));
+    for (int j : chain_joints_) tree_->SetJointManifold(j, RotationManifold(skeleton_.rotation_axes(j)));
+    for (int m = 0; m < markers_.num_markers(); ++m) {
+      std::vector<TreeAttachment> attachments;
+      for (const MarkerAttachment& a : markers_.marker(m).attachments) {
+        attachments.push_back({a.joint, a.weight, a.offset});
+      }
+      tree_->AddPointRow(std::move(attachments), &observed_[m], options_.marker_weight);
+    }
+    tree_->set_loss(loss_.get());
+    for (size_t k = 0; k < rotation_priors_.size(); ++k) tree_->AddBlockCost(solved_joints_[k], rotation_priors_[k].get());
+    for (size_t k = 0; k < limits_.size(); ++k) tree_->AddBlockCost(limit_joints_[k], limits_[k].get());
+    if (translation_prior_) tree_->AddBlockCost(-1, translation_prior_.get());
+  }
+
   void BuildCeresProblem(const std::vector<bool>& visible) {
     ceres::Problem::Options problem_options;
     problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -243,6 +290,7 @@ class MarkerFrameSolver::Impl {
   DlsProblem dls_problem_;
   DlsSolver dls_solver_;
   std::vector<bool> dls_visible_;
+  std::unique_ptr<TreeDlsSolver> tree_;
 };
 
 MarkerFrameSolver::MarkerFrameSolver(const Skeleton& skeleton, const MarkerSet& markers,

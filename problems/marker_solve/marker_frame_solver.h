@@ -1,5 +1,9 @@
-// MarkerFrameSolver: joint angles of one frame from its observed markers, through Ceres
-// or through the DLS path, on the same residual blocks.
+// MarkerFrameSolver: joint angles of one frame from its observed markers, through the lean
+// DLS kernel (kDls: solvers/tree_dls_solver.h, the markers as point rows on the skeleton's
+// tree), or, as references on the same residual blocks, through the generic DLS solver
+// (kDlsGeneric: solvers/dls_solver.h) or Ceres (kCeres). Both DLS paths run the same
+// iterations (solvers/dls_iterations.h): same damping, same stopping rules, same steps to
+// round-off.
 //
 // Unknowns: the root translation (3) and the local rotation of every joint that moves
 // some marker (quaternion blocks on RightQuaternionManifold); other joints keep the
@@ -30,7 +34,11 @@
 
 namespace mocapsolve {
 
-enum class SolverKind { kCeres, kDls };
+enum class SolverKind { kCeres, kDls, kDlsGeneric };
+
+// "ceres", "dls", "dls_generic"; false on an unknown name.
+bool ParseSolverKind(const std::string& name, SolverKind* kind);
+const char* SolverKindName(SolverKind kind);
 
 struct MarkerSolveOptions {
   SolverKind solver = SolverKind::kCeres;
@@ -41,7 +49,7 @@ struct MarkerSolveOptions {
   double prior_translation_weight = 0.0;  // Per skeleton unit.
   double limit_weight = 0.0;     // Per radian outside a joint's limits (ASF); 0 = off.
   ceres::Solver::Options ceres;  // Used when solver == kCeres.
-  DlsOptions dls;                // Used when solver == kDls.
+  DlsOptions dls;                // Used when solver == kDls or kDlsGeneric.
 
   bool IsValid(std::string* error) const;
 };

@@ -20,19 +20,17 @@
 //     target skeleton has limits (problems/marker_solve/, reused as they are).
 //
 // DLS (kDls, kDlsGeneric): a fixed number of iterations, every step taken (Buss), with
-//   delta = J^T (J J^T + lambda I)^-1 e   (eq. 18; m < n)   or   (J^T J + lambda I)^-1 J^T e,
+//   delta = J^T (J J^T + lambda I)^-1 e   (eq. 18)   =   (J^T J + lambda I)^-1 J^T e,
 // e = -r, J the tangent Jacobian (3 #tracked (+ prior rows) by 3 + 3 #solved joints).
 // The root translation's tangent is in units of sigma (t <- t + sigma delta_t, for every
 // solver), so that its columns are on the scale of the normalized rotation columns and
 // the fixed lambda damps both alike (thesis 4.3.3 divides GP_t by sigma).
-// The lean kernel (kDls) does FK over the skeleton once per iteration, skins only the
-// tracked vertices and, when m >= n, assembles J^T J and J^T r directly from the 3 x 3
-// tangent blocks (the same formulas as TrackedVertexResidual; J is never formed): rows
-// that share the joints above their influences' common ancestor are summed as moments,
-// the world rotations are applied once per block, and the block-sparse system (non-zero
-// only for joints on a common chain) is factored by solvers/block_sparse_cholesky.h,
-// leaves first, with its fill analysed once. When m < n it forms the dense J and solves eq. 18 as written. The
-// test checks both against DlsSolver on the residual blocks (kDlsGeneric) step for step.
+// kDls is the lean tree kernel (solvers/tree_dls_solver.h): each tracked vertex a point or
+// direction row blended over its influences, each plant a point row on the foot joint,
+// priors and limits as block costs; FK once per iteration, J^T J assembled from moments
+// summed up the tree and factored leaves first (J is never formed). kDlsGeneric is
+// DlsSolver on the residual blocks; both run solvers/dls_iterations.h, so the test checks
+// them step for step.
 // Ceres (kCeres): the blocks in a ceres::Problem, Levenberg-Marquardt,
 // max_num_iterations = iterations.
 //
@@ -84,10 +82,10 @@ struct RetargetSolveOptions {
 // cross-character glTF cases, see the retarget command's --ceres_trust_radius).
 ceres::Solver::Options DefaultRetargetCeresOptions();
 
-// Seconds spent in each stage of the lean DLS iterations (thesis Table 3): FK; skinning
-// of the tracked vertices (and their residuals); "jacobian": the levers and the assembly
-// of J^T J and J^T r (or of the dense J when m < n); "solve": factorization and solve;
-// "update": the retraction.
+// Seconds spent in each stage of the lean DLS iterations (thesis Table 3), from the tree
+// kernel's TreeDlsStageTimes: FK; "skinning": the tracked vertices' points, residuals and
+// row moments (and the prior/limit rows); "jacobian": the moments expanded into the blocks
+// of J^T J and J^T r; "solve": damping, factorization and solve; "update": the retraction.
 struct RetargetStageTimes {
   double fk = 0.0, skinning = 0.0, jacobian = 0.0, solve = 0.0, update = 0.0;
   int iterations = 0;
@@ -122,9 +120,9 @@ class RetargetFrameSolver {
   const RetargetStageTimes& stage_times() const;
   void ResetStageTimes();
 
-  // The lean kernel's residual (3 #tracked, then 3 per plant joint) and tangent Jacobian in the pose tangent layout
-  // of kinematic_jacobians.h (3 + 3 #J columns; unsolved joints' columns zero), at `pose`
-  // with the given goals. For tests.
+  // The lean kernel's residual (3 #tracked, then 3 per plant joint) and tangent Jacobian in
+  // the pose tangent layout of kinematic_jacobians.h (3 + 3 #J columns; unsolved joints'
+  // columns zero), at `pose` with the given goals (TreeDlsSolver::Linearize). For tests.
   void Linearize(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
                  const Pose& pose, Eigen::VectorXd* residual, Eigen::MatrixXd* jacobian);
 

@@ -70,9 +70,69 @@ TEST_P(MarkerFrameSolverTest, MissingMarkersAreSkipped) {
   EXPECT_LT(report.rms_marker_error, 1e-6);
 }
 
-INSTANTIATE_TEST_SUITE_P(BothSolvers, MarkerFrameSolverTest,
-                         ::testing::Values(SolverKind::kCeres, SolverKind::kDls),
-                         [](const auto& info) { return info.param == SolverKind::kCeres ? "Ceres" : "Dls"; });
+INSTANTIATE_TEST_SUITE_P(AllSolvers, MarkerFrameSolverTest,
+                         ::testing::Values(SolverKind::kCeres, SolverKind::kDls, SolverKind::kDlsGeneric),
+                         [](const auto& info) { return std::string(SolverKindName(info.param)); });
+
+// The demo skeleton with ASF-like dofs: hinges (one axis), two-axis joints, a joint
+// without dofs, and free ones.
+Skeleton DemoSkeletonWithDofs() {
+  const Skeleton demo = MakeDemoSkeleton();
+  std::vector<JointSpec> joints;
+  for (int j = 0; j < demo.num_joints(); ++j) {
+    joints.push_back(demo.joint(j));
+    const std::string& name = joints.back().name;
+    if (name == "LeftLeg" || name == "RightLeg" || name == "LeftForeArm") joints.back().rotation_axes = std::vector<int>{0};
+    if (name == "LeftFoot" || name == "RightForeArm") joints.back().rotation_axes = std::vector<int>{0, 2};
+    if (name == "Neck") joints.back().rotation_axes = std::vector<int>{};
+  }
+  Skeleton skeleton;
+  EXPECT_TRUE(Skeleton::Create(joints, demo.end_sites(), demo.unit(), &skeleton).ok());
+  return skeleton;
+}
+
+// The lean kernel and the generic DLS solver run the same iterations (shared loop, same
+// stopping rules) on the same residuals: same iteration counts, costs and poses to
+// round-off, frame by frame, with priors, limits, a robust loss and missing markers.
+TEST(MarkerFrameSolver, LeanAndGenericDlsTakeTheSameSteps) {
+  for (bool dofs : {false, true}) {
+    SCOPED_TRACE(dofs ? "ASF-like dofs" : "free joints");
+    const Skeleton skeleton = dofs ? DemoSkeletonWithDofs() : MakeDemoSkeleton();
+    std::mt19937 rng(4);
+    const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, rng());
+    const Motion truth = MakeDemoWalk(MakeDemoSkeleton(), 12, 30.0);
+    std::normal_distribution<double> noise(0.0, 0.3);
+    for (const char* loss : {"none", "cauchy"}) {
+      MarkerSolveOptions options;
+      options.dls.function_tolerance = 1e-6;
+      options.prior_rotation_weight = 2.0;
+      options.prior_translation_weight = 0.1;
+      options.loss = loss;
+      options.loss_scale = 1.0;
+      options.solver = SolverKind::kDls;
+      MarkerFrameSolver lean(skeleton, markers, options);
+      options.solver = SolverKind::kDlsGeneric;
+      MarkerFrameSolver generic(skeleton, markers, options);
+      Pose a = RestPose(skeleton), b = RestPose(skeleton);
+      a.translations[0] = b.translations[0] = truth.frames[0].translations[0];
+      for (int f = 0; f < truth.num_frames(); ++f) {
+        std::vector<Eigen::Vector3d> observed = Observe(skeleton, markers, truth.frames[f]);
+        for (auto& x : observed) x += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+        if (f % 3 == 1) observed[f % markers.num_markers()] = Eigen::Vector3d::Constant(std::nan(""));
+        FrameSolveReport ra, rb;
+        ASSERT_TRUE(lean.Solve(observed, &a, &ra).ok()) << ra.brief;
+        ASSERT_TRUE(generic.Solve(observed, &b, &rb).ok()) << rb.brief;
+        EXPECT_EQ(ra.iterations, rb.iterations) << f << "\n" << ra.brief << "\n" << rb.brief;
+        // The same linear algebra in another order: round-off, amplified by a few steps.
+        EXPECT_NEAR(ra.final_cost, rb.final_cost, 1e-9 * (1.0 + rb.final_cost)) << f << " " << loss;
+        EXPECT_LT((a.translations[0] - b.translations[0]).norm(), 1e-7) << f;
+        for (int j = 0; j < skeleton.num_joints(); ++j) {
+          EXPECT_LT(AngularDistance(a.rotations[j], b.rotations[j]), 1e-8) << f << " joint " << j;
+        }
+      }
+    }
+  }
+}
 
 TEST(MarkerFrameSolver, SolversAgreeOnFinalCostWithNoise) {
   const Skeleton skeleton = MakeDemoSkeleton();

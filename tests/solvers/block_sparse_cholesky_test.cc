@@ -57,6 +57,51 @@ TEST(BlockSparseCholesky, SolvesLikeADenseCholesky) {
   }
 }
 
+// Blocks of sizes 1-3 (ASF joints) padded in 3 x 3 storage: the same solution as a dense
+// Cholesky of the unpadded matrix, and zeros in the padding.
+TEST(BlockSparseCholesky, SolvesWithSmallerBlocks) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  const int n = 9;
+  const std::vector<int> sizes = {1, 3, 2, 1, 3, 2, 2, 1, 3};
+  std::vector<int> offset(n + 1, 0);
+  for (int b = 0; b < n; ++b) offset[b + 1] = offset[b] + sizes[b];
+  const int m = offset[n];
+  std::vector<std::pair<int, int>> pairs = {{1, 0}, {3, 1}, {4, 3}, {5, 3}, {8, 0}, {8, 4}, {7, 2}, {6, 5}, {8, 6}};
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(4 * m, m);
+  for (int r = 0; r < j.rows(); ++r) {
+    const auto& [a, b] = pairs[r % pairs.size()];
+    for (int c = offset[a]; c < offset[a + 1]; ++c) j(r, c) = normal(rng);
+    for (int c = offset[b]; c < offset[b + 1]; ++c) j(r, c) = normal(rng);
+  }
+  Eigen::MatrixXd dense = j.transpose() * j;
+  dense.diagonal().array() += 0.1;
+  BlockSparseCholesky cholesky;
+  cholesky.Analyze(n, pairs, sizes);
+  cholesky.SetZero();
+  for (int b = 0; b < n; ++b) {
+    Eigen::Matrix3d& d = cholesky.Diagonal(b);
+    d.setIdentity();  // The padding.
+    d.topLeftCorner(sizes[b], sizes[b]) = dense.block(offset[b], offset[b], sizes[b], sizes[b]);
+  }
+  for (size_t s = 0; s < pairs.size(); ++s) {
+    const auto& [a, b] = pairs[s];
+    cholesky.Block(static_cast<int>(s)).topLeftCorner(sizes[a], sizes[b]) =
+        dense.block(offset[a], offset[b], sizes[a], sizes[b]);
+  }
+  ASSERT_TRUE(cholesky.Factorize());
+  const Eigen::VectorXd rhs = Eigen::VectorXd::Random(m);
+  Eigen::VectorXd padded = Eigen::VectorXd::Zero(3 * n), x;
+  for (int b = 0; b < n; ++b) padded.segment(3 * b, sizes[b]) = rhs.segment(offset[b], sizes[b]);
+  cholesky.Solve(padded, &x);
+  const Eigen::VectorXd expected = dense.llt().solve(rhs);
+  for (int b = 0; b < n; ++b) {
+    // Same factorization in another order: round-off.
+    EXPECT_LT((x.segment(3 * b, sizes[b]) - expected.segment(offset[b], sizes[b])).norm(), 1e-9) << "block " << b;
+    EXPECT_EQ(x.segment(3 * b + sizes[b], 3 - sizes[b]).norm(), 0.0) << "block " << b;
+  }
+}
+
 TEST(BlockSparseCholesky, RejectsAnIndefiniteMatrix) {
   BlockSparseCholesky cholesky;
   cholesky.Analyze(2, {{1, 0}});

@@ -70,6 +70,34 @@ TEST(DofQuaternionManifold, InvariantsHoldOnItsSet) {
   }
 }
 
+// On the set, PlusJacobianOnSet equals PlusJacobian (which projects first); off it, it
+// declines.
+TEST(DofQuaternionManifold, PlusJacobianOnSetMatchesOnTheSet) {
+  const std::vector<std::vector<int>> axis_lists = {{0}, {1}, {2}, {0, 1}, {1, 0}, {0, 2}, {2, 0}, {1, 2}, {2, 1}};
+  for (const auto& axes : axis_lists) {
+    DofQuaternionManifold manifold(axes);
+    const int k = manifold.TangentSize();
+    for (double t : {0.0, 0.4, -2.9, 3.1}) {
+      const double angles[2] = {t, 0.3 * (0.7 - t)};  // Some with w < 0; |t1| < pi/2.
+      Eigen::Vector4d q;
+      manifold.Compose(angles, q.data());
+      double expected[8], got[8];
+      manifold.PlusJacobian(q.data(), expected);
+      ASSERT_TRUE(manifold.PlusJacobianOnSet(q.data(), got)) << axes.size() << " axes, t " << t;
+      for (int i = 0; i < 4 * k; ++i) EXPECT_NEAR(got[i], expected[i], 1e-15);  // Round-off.
+    }
+    const Eigen::Vector4d off = Eigen::Quaterniond(ExpMap(Eigen::Vector3d(0.3, 0.2, 0.1))).coeffs();
+    double unused[8];
+    EXPECT_FALSE(manifold.PlusJacobianOnSet(off.data(), unused));
+    if (k == 2) {  // Second angle beyond pi/2: left to PlusJacobian.
+      const double far[2] = {0.2, 2.0};
+      Eigen::Vector4d q;
+      manifold.Compose(far, q.data());
+      EXPECT_FALSE(manifold.PlusJacobianOnSet(q.data(), unused));
+    }
+  }
+}
+
 TEST(DofQuaternionManifold, StaysOnTheEulerSetOfItsAxes) {
   // Knee (one axis) and a two-dof joint (Rz Rx, as an ASF "dof rx rz"): after many
   // steps the rotation still has exactly the form R_a0(t0) R_a1(t1).
