@@ -1,4 +1,5 @@
-// mocapsolve convert IN OUT: motion files to BVH, or into a glTF character.
+// mocapsolve convert IN OUT: motion files to BVH, or into a glTF character; marker files
+// between C3D and TRC.
 #include <cstdio>
 
 #include "apps/command.h"
@@ -6,8 +7,10 @@
 #include "io/bvh_writer.h"
 #include "io/gltf_reader.h"
 #include "io/gltf_writer.h"
+#include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "kinematics/rotation.h"
+#include "problems/marker_solve/marker_observations.h"
 
 DEFINE_double(scale, 1.0, "Multiply every length (offsets, translations) by this factor, e.g. "
               "5.6444 to turn CMU ASF units into cm.");
@@ -15,6 +18,10 @@ DEFINE_string(euler_order, "", "Write every joint's rotation channels in this or
               "YXZ, YZX, ZXY, ZYX); default: keep each joint's order from the input.");
 DEFINE_int32(precision, 6, "Significant digits of the written channel values.");
 DEFINE_string(clip_name, "mocapsolve", "glTF output: name of the added animation.");
+DEFINE_string(out_units, "", "Marker files: write OUT in this unit (mm, cm, m, in), the coordinates "
+              "converted; default: IN's unit.");
+
+DECLARE_string(axes);  // apps/main.cc
 
 namespace mocapsolve {
 namespace {
@@ -54,11 +61,60 @@ Status ConvertToGltf(const std::string& in, const std::string& out) {
   return WriteReport(report);
 }
 
+// IN and OUT both marker files (C3D or TRC): the samples, labels, rate and first frame as
+// they are, in --out_units and with OUT's axes (x, y, z) = IN's --axes (as for solving: y,z,x
+// turns a Z-up file Y-up).
+Status ConvertMarkers(const std::string& in, const std::string& out) {
+  if (FLAGS_scale != 1.0 || !FLAGS_euler_order.empty() || !FLAGS_target.empty()) {
+    return Status::Error("--scale, --euler_order and --target are for motions; marker files take --out_units and --axes");
+  }
+  Status status = CheckNotAnInput(out, in);
+  if (!status.ok()) return status;
+  Eigen::Matrix3d out_from_in;
+  status = ParseAxes(FLAGS_axes, &out_from_in);
+  if (!status.ok()) return Status::Error("--axes: " + status.message());
+  MarkerTrajectories markers;
+  status = ReadMarkerFile(in, &markers);
+  if (!status.ok()) return status;
+  if (!FLAGS_out_units.empty()) {
+    const LengthUnit unit = LengthUnitFromName(FLAGS_out_units);
+    if (!unit.known()) return Status::Error("--out_units='" + FLAGS_out_units + "': expected mm, cm, m or in");
+    if (!markers.unit.known()) return Status::Error(in + ": the file states no unit, so --out_units cannot convert it");
+    markers.ScaleLengths(markers.unit.metres_per_unit / unit.metres_per_unit);
+    markers.unit = unit;
+  }
+  if (!out_from_in.isIdentity()) {
+    for (int f = 0; f < markers.num_frames(); ++f) {
+      for (int m = 0; m < markers.num_markers(); ++m) {
+        if (!markers.valid(f, m)) continue;
+        markers.SetSample(f, m, out_from_in * markers.position(f, m), markers.residual(f, m),
+                          markers.camera_mask(f, m));
+      }
+    }
+  }
+  status = WriteMarkerFile(out, markers);
+  if (!status.ok()) return status;
+  std::printf("wrote %s: %d markers x %d frames at %.6g fps (%s, axes %s of %s)\n", out.c_str(),
+              markers.num_markers(), markers.num_frames(), markers.frame_rate, markers.unit.name.c_str(),
+              FLAGS_axes.c_str(), in.c_str());
+  JsonObject report;
+  report.Add("input", in).Add("output", out).Add("markers", markers.num_markers())
+      .Add("frames", markers.num_frames()).Add("unit", markers.unit.name).Add("axes", FLAGS_axes);
+  return WriteReport(report);
+}
+
 Status RunConvert(const std::vector<std::string>& arguments) {
   if (arguments.size() != 2) return Status::Error("expected IN OUT (mocapsolve convert IN OUT)");
   const std::string& in = arguments[0];
   const std::string& out = arguments[1];
   const std::string out_ext = FileExtension(out);
+  if (IsMarkerFile(in) || IsMarkerFile(out)) {
+    if (!IsMarkerFile(in) || !IsMarkerFile(out)) {
+      return Status::Error("marker files convert to marker files (.c3d, .trc): " + in + " -> " + out);
+    }
+    return ConvertMarkers(in, out);
+  }
+  if (!FLAGS_out_units.empty()) return Status::Error("--out_units is for marker files (.c3d, .trc)");
   if (out_ext == ".glb" || out_ext == ".gltf") return ConvertToGltf(in, out);
   if (out_ext != ".bvh") return Status::Error(out + ": output must be .bvh, .glb or .gltf");
   Status status = CheckNotAnInput(out, in);
@@ -99,11 +155,14 @@ extern const Command kConvertCommand = {
     "convert", "BVH, ASF/AMC, glTF/GLB or FBX in; BVH out, or a new clip of a glTF character",
     "mocapsolve convert IN.bvh|IN.amc|IN.glb|IN.gltf|IN.fbx OUT.bvh [--skeleton=X.asf] "
     "[--animation=NAME] [--scale=S] [--euler_order=ZXY]\n"
-    "       mocapsolve convert IN OUT.glb|OUT.gltf [--target=CHARACTER.glb] [--clip_name=NAME]\n\n"
+    "       mocapsolve convert IN OUT.glb|OUT.gltf [--target=CHARACTER.glb] [--clip_name=NAME]\n"
+    "       mocapsolve convert IN.c3d|IN.trc OUT.c3d|OUT.trc [--out_units=mm] [--axes=y,z,x]\n\n"
     "Reads a motion and writes it as BVH. Rest rotations of ASF skeletons are folded into\n"
     "the BVH rotation channels. With a .glb/.gltf OUT, the motion (whose skeleton must have\n"
     "the character's joints, e.g. a BVH converted from it) is added as a new animation to a\n"
-    "copy of --target (default IN). OUT is written atomically and may not be an input.",
-    __FILE__, RunConvert, "skeleton,skeleton_units,amc_fps,animation,sample_fps,target,report,quiet"};
+    "copy of --target (default IN). Marker files convert between C3D and TRC: labels, rate,\n"
+    "first frame and missing samples kept, in --out_units, OUT's axes being IN's --axes.\n"
+    "OUT is written atomically and may not be an input.",
+    __FILE__, RunConvert, "skeleton,skeleton_units,amc_fps,animation,sample_fps,target,axes,report,quiet"};
 
 }  // namespace mocapsolve
