@@ -28,6 +28,16 @@ std::string ReadTextFile(const std::string& path) {
   return text.str();
 }
 
+void WriteTextFile(const std::string& path, const std::string& text) {
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (file == nullptr) {
+    ADD_FAILURE() << path << ": cannot write";
+    return;
+  }
+  if (std::fwrite(text.data(), 1, text.size(), file) != text.size()) ADD_FAILURE() << path << ": short write";
+  std::fclose(file);
+}
+
 std::string DataRoot() {
   const char* env = std::getenv("MOCAPSOLVE_DATA");
   if (env != nullptr && *env != '\0') return env;

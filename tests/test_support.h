@@ -35,6 +35,7 @@ bool DataRequired();  // MOCAPSOLVE_REQUIRE_DATA=1
 std::string SourcePath(const std::string& relative);  // Under the repository root.
 bool FileExists(const std::string& path);
 std::string ReadTextFile(const std::string& path);     // "" if it cannot be read.
+void WriteTextFile(const std::string& path, const std::string& text);  // Every byte; a failure fails the test.
 std::string TempPath(const std::string& name);        // A fresh path in a per-test dir.
 
 // Golden tables: tests/data/golden/<name>.csv, a header line then rows of numbers.

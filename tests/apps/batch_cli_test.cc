@@ -26,12 +26,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-void WriteFile(const std::string& path, const std::string& text) {
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  ASSERT_NE(file, nullptr) << path;
-  std::fputs(text.c_str(), file);
-  std::fclose(file);
-}
 
 std::vector<std::string> FolderFiles(const std::string& folder) {
   std::vector<std::string> names;
@@ -88,7 +82,7 @@ class BatchCli : public ::testing::Test {
   }
   std::string Manifest(const std::string& takes) {
     const std::string path = dir_ + "/M.json";
-    WriteFile(path, "{\"defaults\": {\"subject\": \"S.json\"},\n \"takes\": [" + takes + "]}\n");
+    testing::WriteTextFile(path, "{\"defaults\": {\"subject\": \"S.json\"},\n \"takes\": [" + takes + "]}\n");
     return path;
   }
   std::string dir_;
@@ -134,7 +128,7 @@ TEST_F(BatchCli, RunsResumesRedoesChangedAndForced) {
     const size_t at = text.find("\"markers\": \"" + dir_ + "/t4.c3d\"");
     ASSERT_NE(at, std::string::npos) << text;
     text.insert(at, "\"filter_levels\": 1, ");
-    WriteFile(manifest, text);
+    testing::WriteTextFile(manifest, text);
   }
   ASSERT_EQ(testing::RunCli(run, &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("(1 ran, 3 skipped"));
@@ -144,7 +138,7 @@ TEST_F(BatchCli, RunsResumesRedoesChangedAndForced) {
   ASSERT_EQ(testing::RunCli(run, &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("(1 ran, 3 skipped"));
   // A file an earlier run left (older than the take's run) is not listed as its output.
-  WriteFile(out + "/t3/stale.glb", "old");
+  testing::WriteTextFile(out + "/t3/stale.glb", "old");
   ASSERT_EQ(std::system(("touch -d @1000000000 " + out + "/t3/stale.glb").c_str()), 0);
   ASSERT_EQ(testing::RunCli(run + " --force", &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("(4 ran, 0 skipped"));
@@ -160,9 +154,9 @@ TEST_F(BatchCli, FaultsFailOnlyTheirTake) {
   // aborts; an output folder that is a file.
   {
     const std::string text = testing::ReadTextFile(dir_ + "/t1.c3d");
-    WriteFile(dir_ + "/truncated.c3d", text.substr(0, 3000));
+    testing::WriteTextFile(dir_ + "/truncated.c3d", text.substr(0, 3000));
   }
-  WriteFile(dir_ + "/other.trc",
+  testing::WriteTextFile(dir_ + "/other.trc",
             "PathFileType\t4\t(X/Y/Z)\tother.trc\n"
             "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\tOrigDataRate\tOrigDataStartFrame\tOrigNumFrames\n"
             "30\t30\t2\t1\tmm\t30\t1\t2\n"
@@ -172,7 +166,7 @@ TEST_F(BatchCli, FaultsFailOnlyTheirTake) {
             "2\t0.0333\t1\t2\t3\n");
   const std::string out = testing::TempPath("faults");
   ASSERT_EQ(std::system(("mkdir -p " + out).c_str()), 0);
-  WriteFile(out + "/unwritable", "a file where the take's folder should be");
+  testing::WriteTextFile(out + "/unwritable", "a file where the take's folder should be");
   const std::string manifest = Manifest(
       "{\"name\": \"ok\", \"markers\": \"t1.c3d\"}, {\"name\": \"truncated\", \"markers\": \"truncated.c3d\"},\n"
       "{\"name\": \"mismatch\", \"markers\": \"other.trc\"}, {\"name\": \"crash\", \"markers\": \"t2.c3d\"},\n"

@@ -58,12 +58,6 @@ void Replace(std::string* text, const std::string& from, const std::string& to) 
   text->replace(at, from.size(), to);
 }
 
-void WriteText(const std::string& path, const std::string& text) {
-  FILE* file = std::fopen(path.c_str(), "w");
-  ASSERT_NE(file, nullptr) << path;
-  std::fwrite(text.data(), 1, text.size(), file);
-  std::fclose(file);
-}
 
 class NumericalFaults : public ::testing::Test {
  protected:
@@ -99,7 +93,7 @@ TEST_F(NumericalFaults, FramesWithEveryMarkerMissing) {
     text += line + "\n";
   }
   const std::string markers = testing::TempPath("holes.trc");
-  WriteText(markers, text);
+  testing::WriteTextFile(markers, text);
   const std::string solve = "solve --skeleton=" + walk_ + " --skeleton_units=cm --markers=" + markers +
                             " --markerset=" + set_;
   for (const std::string solver : {"dls", "ceres"}) {
@@ -140,7 +134,7 @@ TEST_F(NumericalFaults, MarkersThatCoincide) {
     set.insert(begin, twin + "\n    ");
   }
   const std::string twin_set = testing::TempPath("twins.json"), markers = testing::TempPath("twins.c3d");
-  WriteText(twin_set, set);
+  testing::WriteTextFile(twin_set, set);
   ASSERT_EQ(Run("markers --motion=" + walk_ + " --skeleton_units=cm --markerset=" + twin_set + " --out=" + markers), 0)
       << output_;
   const std::string solved = testing::TempPath("twins.bvh");
@@ -162,7 +156,7 @@ TEST_F(NumericalFaults, ZeroLengthBones) {
   Replace(&bvh, "OFFSET 0 15 0", "OFFSET 0 0 0");  // The first spine segment.
   const std::string zero = testing::TempPath("zero.bvh"), set = testing::TempPath("zero_set.json"),
                     markers = testing::TempPath("zero.c3d");
-  WriteText(zero, bvh);
+  testing::WriteTextFile(zero, bvh);
   ASSERT_EQ(Run("markers --motion=" + zero + " --skeleton_units=cm --markerset=auto:3 --write_markerset=" + set +
                 " --out=" + markers),
             0) << output_;
@@ -192,7 +186,7 @@ TEST_F(NumericalFaults, ClipOfIdenticalFrames) {
   std::string still = bvh.substr(0, first);
   for (int f = 0; f < 40; ++f) still += frame;
   const std::string clip = testing::TempPath("still.bvh");
-  WriteText(clip, still);
+  testing::WriteTextFile(clip, still);
   for (const std::string method : {"green", "diffusion"}) {
     EXPECT_EQ(Run("distance --motion=" + clip + " --frame=10 --method=" + method + " --out=" +
                   testing::TempPath("no.csv")),
@@ -205,7 +199,7 @@ TEST_F(NumericalFaults, ClipOfIdenticalFrames) {
   ASSERT_EQ(Run("distance --motion=" + clip + " --frame=10 --method=green --sigma=1 --out=" + falloff), 0) << output_;
   ExpectFiniteFile(falloff);
   const std::string edit = testing::TempPath("edit.json");
-  WriteText(edit, "{\"frame\": 10, \"joints\": {\"LeftArm\": {\"rotation_offset_deg\": [0, 0, 30]}}}\n");
+  testing::WriteTextFile(edit, "{\"frame\": 10, \"joints\": {\"LeftArm\": {\"rotation_offset_deg\": [0, 0, 30]}}}\n");
   for (const std::string method : {"green", "harmonic"}) {
     EXPECT_EQ(Run("propagate --motion=" + clip + " --edit=" + edit + " --method=" + method + " --out=" +
                   testing::TempPath("no.bvh")),

@@ -15,12 +15,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-void WriteFile(const std::string& path, const std::string& text) {
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  ASSERT_NE(file, nullptr) << path;
-  std::fputs(text.c_str(), file);
-  std::fclose(file);
-}
 
 const JsonNode* Option(const BatchTake& take, const std::string& key) {
   for (const auto& [name, value] : take.options) {
@@ -36,10 +30,10 @@ class ManifestTest : public ::testing::Test {
                                      &pipeline_).ok());
     dir_ = testing::TempPath("m");
     ASSERT_EQ(std::system(("mkdir -p " + dir_ + "/takes").c_str()), 0);
-    for (const char* name : {"takes/a.c3d", "takes/b.c3d", "S.json", "C.glb"}) WriteFile(dir_ + "/" + name, "x");
+    for (const char* name : {"takes/a.c3d", "takes/b.c3d", "S.json", "C.glb"}) testing::WriteTextFile(dir_ + "/" + name, "x");
   }
   Status Read(const std::string& text, BatchManifest* manifest) {
-    WriteFile(dir_ + "/M.json", text);
+    testing::WriteTextFile(dir_ + "/M.json", text);
     return ReadManifest(dir_ + "/M.json", pipeline_, manifest);
   }
   BatchOptions pipeline_;
@@ -74,7 +68,7 @@ TEST_F(ManifestTest, DefaultsOverridesAndRelativePaths) {
   EXPECT_EQ(OptionsJson(a.given), "{\"filter_levels\": 1}");
   EXPECT_EQ(OptionsJson(b.given), "{\"filter_levels\": 2, \"reference\": \"plain\"}");
   // Written out and read back: the same takes.
-  WriteFile(dir_ + "/M2.json", FormatManifest(manifest, pipeline_));
+  testing::WriteTextFile(dir_ + "/M2.json", FormatManifest(manifest, pipeline_));
   BatchManifest again;
   ASSERT_TRUE(ReadManifest(dir_ + "/M2.json", pipeline_, &again).ok());
   ASSERT_EQ(again.takes.size(), 2u);

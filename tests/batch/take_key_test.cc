@@ -12,12 +12,6 @@
 namespace mocapsolve {
 namespace {
 
-void WriteFile(const std::string& path, const std::string& text) {
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  ASSERT_NE(file, nullptr) << path;
-  std::fputs(text.c_str(), file);
-  std::fclose(file);
-}
 
 TEST(Fnv1a64, PublishedVectors) {
   // Fowler/Noll/Vo test vectors (64-bit FNV-1a).
@@ -34,7 +28,7 @@ TEST(Fnv1a64, PublishedVectors) {
 
 TEST(HashFile, MatchesTheBytesAndNamesAMissingFile) {
   const std::string path = testing::TempPath("bytes.bin");
-  WriteFile(path, "foobar");
+  testing::WriteTextFile(path, "foobar");
   uint64_t hash = 0;
   ASSERT_TRUE(HashFile(path, &hash).ok());
   EXPECT_EQ(HexHash(hash), "85944171f73967e8");
@@ -47,9 +41,9 @@ TEST(TakeKey, ChangesWithContentsOptionsAndVersionOnly) {
   const std::string dir = testing::TempPath("key");
   ASSERT_EQ(std::system(("mkdir -p " + dir + "/a " + dir + "/b").c_str()), 0);
   for (const std::string& folder : {dir + "/a/", dir + "/b/"}) {
-    WriteFile(folder + "take.c3d", "markers");
-    WriteFile(folder + "skeleton.bvh", "skeleton");
-    WriteFile(folder + "S.json", "{\"skeleton\": \"skeleton.bvh\"}");
+    testing::WriteTextFile(folder + "take.c3d", "markers");
+    testing::WriteTextFile(folder + "skeleton.bvh", "skeleton");
+    testing::WriteTextFile(folder + "S.json", "{\"skeleton\": \"skeleton.bvh\"}");
   }
   BatchTake take;
   take.markers = dir + "/a/take.c3d";
@@ -76,7 +70,7 @@ TEST(TakeKey, ChangesWithContentsOptionsAndVersionOnly) {
   changed.options[0].second.number = 2;
   ASSERT_TRUE(ComputeTakeKey(changed, "1.0", &other).ok());
   EXPECT_NE(other.key, key.key);
-  WriteFile(dir + "/b/skeleton.bvh", "skeleton2");
+  testing::WriteTextFile(dir + "/b/skeleton.bvh", "skeleton2");
   ASSERT_TRUE(ComputeTakeKey(moved, "1.0", &other).ok());
   EXPECT_NE(other.key, key.key);
 }
