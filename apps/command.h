@@ -12,6 +12,16 @@
 
 namespace mocapsolve {
 
+// A shared flag whose default or meaning differs for one command (--solver is dls for
+// repair and retarget, --method is green for distance): main.cc makes `default_value` the
+// flag's default before parsing, so the run and --help agree, and --help shows
+// `description` (when not empty) in place of the shared text.
+struct FlagOverride {
+  std::string name;
+  std::string default_value;
+  std::string description;
+};
+
 struct Command {
   const char* name;
   const char* summary;  // One line for `mocapsolve --help`.
@@ -22,6 +32,7 @@ struct Command {
   // The shared flags (defined in apps/main.cc) the command reads, comma-separated, for
   // its --help; nullptr lists them all.
   const char* shared_flags = nullptr;
+  std::vector<FlagOverride> flag_overrides = {};
 };
 
 // Every command, in the order `--help` lists them.

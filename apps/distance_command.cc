@@ -68,10 +68,7 @@ Status RunDistance(const std::vector<std::string>& arguments) {
     status = CheckNotAnInput(FLAGS_plot, FLAGS_motion);
     if (!status.ok()) return status;
   }
-  // --method is shared with `blend`, whose default (multires) means "not given" here.
-  gflags::CommandLineFlagInfo method_flag;
-  gflags::GetCommandLineFlagInfo("method", &method_flag);
-  const std::string method_text = method_flag.is_default ? "green" : FLAGS_method;
+  const std::string method_text = FLAGS_method;
   std::vector<FalloffMethod> methods;
   for (const std::string& name : Split(method_text)) {
     FalloffMethod m;
@@ -284,12 +281,15 @@ extern const Command kDistanceCommand = {
     "distance. Several methods: the first fills distance,weight, the others add columns.\n"
     "Prints the clip's period (if periodic), the weight at the same and opposite phase of the\n"
     "other cycles, the second difference at the edit and where the weight drops below 0.5/0.05.\n"
-    "Here --method defaults to green (the flag is shared with blend) and --plot writes the\n"
-    "distance curves (1 - weight) of every method and --sweep sigma as SVG.",
+    "--plot writes the distance curves (1 - weight) of every method and --sweep sigma as SVG.",
     __FILE__, RunDistance,
     // The falloff flags are kFalloffFlagNames (apps/falloff_flags.h).
     "motion,out,plot,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet,sigma,sigma_scale,"
     "eigenpairs,region,diffusion_steps,knn,isomap_knn,falloff_kernel,feature_joints,joint_weights,"
-    "temporal_weight"};
+    "temporal_weight",
+    {{"method", "green",
+      "green | diffusion | isomap, comma-separated for several: the distances to compute (the first fills "
+      "distance,weight; the others add columns)."},
+     {"plot", "", "Write the distance curves (1 - weight) of every method and of --sweep as SVG."}}};
 
 }  // namespace mocapsolve

@@ -82,6 +82,22 @@ Status CheckGivenFlags(const Command& command) {
   return Status::Ok();
 }
 
+// The command's own defaults for the shared flags it overrides; an explicit flag still wins.
+void ApplyFlagOverrides(const Command& command) {
+  for (const FlagOverride& o : command.flag_overrides) {
+    CHECK(!gflags::SetCommandLineOptionWithMode(o.name.c_str(), o.default_value.c_str(), gflags::SET_FLAGS_DEFAULT)
+               .empty())
+        << command.name << ": bad override of --" << o.name;
+  }
+}
+
+std::string FlagDescription(const Command& command, const gflags::CommandLineFlagInfo& flag) {
+  for (const FlagOverride& o : command.flag_overrides) {
+    if (o.name == flag.name && !o.description.empty()) return o.description;
+  }
+  return flag.description;
+}
+
 void PrintCommandHelp(const Command& command) {
   std::printf("usage: %s\n\n", command.usage);
   std::vector<gflags::CommandLineFlagInfo> flags;
@@ -91,7 +107,7 @@ void PrintCommandHelp(const Command& command) {
     if (!CommandReadsFlag(command, flag)) continue;
     if (!header) std::printf("flags:\n"), header = true;
     std::printf("  --%s (%s) default: %s\n      %s\n", flag.name.c_str(), flag.type.c_str(),
-                ShownDefault(flag).c_str(), flag.description.c_str());
+                ShownDefault(flag).c_str(), FlagDescription(command, flag).c_str());
   }
 }
 
@@ -294,6 +310,7 @@ int main(int argc, char** argv) {
                  argv[1]);
     return 1;
   }
+  mocapsolve::ApplyFlagOverrides(*command);
   for (int i = 2; i < argc; ++i) {
     if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0 ||
         std::strcmp(argv[i], "--helpshort") == 0) {

@@ -53,12 +53,6 @@ const std::string kPipelineOptionFlags =
 
 Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  // The pipeline solves with DLS unless told otherwise (as repair and retarget do): make
-  // that the default, so --print_config shows it and a printed config read back with
-  // --config changes nothing.
-  if (gflags::GetCommandLineFlagInfoOrDie("solver").is_default) {
-    gflags::SetCommandLineOptionWithMode("solver", "dls", gflags::SET_FLAGS_DEFAULT);
-  }
   if (!FLAGS_config.empty()) {
     Status status = ApplyConfigFile(FLAGS_config, kPipelineOptionFlags);
     if (!status.ok()) return status;
@@ -167,6 +161,10 @@ extern const Command kPipelineCommand = {
     "retarget error, foot skating, the gate's verdict), all together or none.\n"
     "Exit code: 0 done, 1 bad input or a failed stage (nothing written), 3 the take failed\n"
     "the quality gate (outputs written, the report says why).",
-    __FILE__, RunPipeline, kPipelineFlags.c_str()};
+    __FILE__, RunPipeline, kPipelineFlags.c_str(),
+    // DLS unless told otherwise, as repair and retarget do; --print_config shows it and a
+    // printed config read back with --config changes nothing.
+    {{"solver", kRepairDefaultSolver,
+      "dls | dls_generic | ceres: who solves the per-frame problems of the repair and the retargets."}}};
 
 }  // namespace mocapsolve

@@ -244,8 +244,7 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
   if (status.ok() && !FLAGS_edit.empty()) status = CheckNotAnInput(FLAGS_out, FLAGS_edit);
   if (status.ok()) status = CheckViewFlag({FLAGS_motion, FLAGS_edit});
   if (!status.ok()) return status;
-  const std::string method =
-      gflags::GetCommandLineFlagInfoOrDie("method").is_default ? "green" : FLAGS_method;
+  const std::string method = FLAGS_method;
   if (method != "green" && method != "harmonic" && method != "spline") {
     return Status::Error("--method: expected green, harmonic or spline, got '" + method + "'");
   }
@@ -445,12 +444,13 @@ extern const Command kPropagateCommand = {
     "harmonic function on the kNN pose graph, 1 at the edit, 0 at other edits and at a ground\n"
     "node (--harmonic_ground) and at the ends of --region; Zhu et al. 2003) or spline (a cubic\n"
     "bump of half-width --spline_width frames).\n"
-    "Here --method defaults to green (the flag is shared with blend, whose default it shows).\n"
+
     "Reports the largest drift of feet planted in the source; --keep_contacts re-solves those\n"
     "frames so the feet stay put.",
     __FILE__, RunPropagate,
     "motion,out,report,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,quiet,sigma,sigma_scale,eigenpairs,region,"
     "knn,falloff_kernel,feature_joints,joint_weights,temporal_weight,solver,prior_weight,"
-    "max_iterations,marker_weight,dls_lambda,dls_damping,frame,sparse_library,view"};
+    "max_iterations,marker_weight,dls_lambda,dls_damping,frame,sparse_library,view",
+    {{"method", "green", "green | harmonic | spline: the falloff that carries the edit to the other frames."}}};
 
 }  // namespace mocapsolve

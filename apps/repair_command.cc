@@ -132,6 +132,9 @@ extern const Command kRepairCommand = {
     "reference; gaps = missing samples, outliers and joints that differ from the reference (--dp_max_cm, --dr_max_deg);\n"
     "trimming, small tracks and small gaps; Hermite refill from the reference; re-solve.\n"
     "Samples never marked bad are written as they were read. Prints per-stage timings.",
-    __FILE__, RunRepair, kRepairFlags.c_str()};
+    __FILE__, RunRepair, kRepairFlags.c_str(),
+    {{"solver", kRepairDefaultSolver,
+      "dls | dls_generic | ceres: who solves the per-frame steps (the naive solve Y and the re-solve); "
+      "dls, the lean tree kernel, is the default here."}}};
 
 }  // namespace mocapsolve

@@ -19,6 +19,7 @@
 #include "io/json_reader.h"
 #include "kinematics/rotation.h"
 #include "io/motion_file.h"
+#include "pipeline/retarget_settings.h"
 #include "problems/retarget/retarget_character.h"
 
 // Shared with other commands: the retarget options (apps/retarget_flags.cc, also read by
@@ -291,6 +292,11 @@ extern const Command kRetargetCommand = {
     "A .glb/.gltf --out is the target file with the result added as a new animation.\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
-    __FILE__, RunRetarget, kRetargetFlags.c_str()};
+    __FILE__, RunRetarget, kRetargetFlags.c_str(),
+    {{"solver", RetargetSettings().solver,
+      "dls | dls_generic | ceres: who minimizes each frame's vertex residuals (dls: the lean kernel, eq. 18)."},
+     {"limit_weight", "0",
+      "Soft joint limits of the source skeleton's joints as they map to the target (ASF 'limits'): the "
+      "weight of 1 radian beyond a limit against vertex residuals of 1 per sigma; 0 = off."}}};
 
 }  // namespace mocapsolve
