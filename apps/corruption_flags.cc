@@ -21,6 +21,15 @@ DEFINE_double(swap_radius_mm, kDefault.swap_radius_mm, "Only neighbours this clo
 DEFINE_int32(noisy_markers, kDefault.noisy_markers, "Markers that get high-frequency noise over an interval.");
 DEFINE_int32(noise_length, kDefault.noise_length, "Frames of that interval.");
 DEFINE_double(noise_sigma_mm, kDefault.noise_sigma_mm, "Noise per axis (mm).");
+DEFINE_int32(swaps_in_gaps, kDefault.swaps_in_gaps, "Swaps that begin inside a gap of one of the two markers (a gap "
+             "of --gap_min..--gap_max frames, then --swap_length frames swapped from a frame inside it).");
+DEFINE_int32(jitter_markers, kDefault.jitter_markers, "Markers displaced by --jitter_mm x U(0.5, 1.5) in a random "
+             "direction every frame of an interval: errors below a fixed outlier distance.");
+DEFINE_int32(jitter_length, kDefault.jitter_length, "Frames of each jitter interval.");
+DEFINE_double(jitter_mm, kDefault.jitter_mm, "Typical jitter displacement (mm): 20 gives 10-30 mm.");
+DEFINE_int32(ghosts, kDefault.ghosts, "Runs in which a marker's label sits on a ghost reflection near it.");
+DEFINE_int32(ghost_length, kDefault.ghost_length, "Frames of each ghost run.");
+DEFINE_double(ghost_mm, kDefault.ghost_mm, "Distance of the ghost from the marker (mm), constant over its run.");
 
 namespace mocapsolve {
 
@@ -40,6 +49,13 @@ Status CorruptionOptionsFromFlags(const LengthUnit& unit, CorruptionOptions* opt
   s.noisy_markers = FLAGS_noisy_markers;
   s.noise_length = FLAGS_noise_length;
   s.noise_sigma_mm = FLAGS_noise_sigma_mm;
+  s.swaps_in_gaps = FLAGS_swaps_in_gaps;
+  s.jitter_markers = FLAGS_jitter_markers;
+  s.jitter_length = FLAGS_jitter_length;
+  s.jitter_mm = FLAGS_jitter_mm;
+  s.ghosts = FLAGS_ghosts;
+  s.ghost_length = FLAGS_ghost_length;
+  s.ghost_mm = FLAGS_ghost_mm;
   return CorruptionOptionsFromSettings(s, unit, options);
 }
 

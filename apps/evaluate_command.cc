@@ -7,25 +7,94 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "apps/corruption_flags.h"
+#include "apps/progress.h"
 #include "apps/repair_flags.h"
 #include "apps/solver_flags.h"
 #include "io/atomic_file.h"
 #include "io/marker_set_file.h"
 #include "problems/marker_repair/repair_evaluation.h"
+#include "problems/marker_solve/leave_one_out.h"
 
 DEFINE_int32(trials, 1, "Damage draws to average over (seeds --corrupt_seed, +1, ...).");
-DEFINE_string(table_csv, "", "Also write the table as CSV (one row per method and trial).");
+DEFINE_string(table_csv, "", "Also write the table as CSV (repair: one row per method and trial; leave_one_out: one "
+              "row per marker).");
+DECLARE_string(method);  // apps/blend_command.cc; here repair | leave_one_out (kEvaluateCommand's default).
+DECLARE_int32(num_threads);
 
 namespace mocapsolve {
 namespace {
 
 constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
+// --method=leave_one_out: every marker predicted by the solve of the others
+// (problems/marker_solve/leave_one_out.h); no damage, no ground truth needed.
+Status RunLeaveOneOut(const MarkerTake& take) {
+  const Skeleton& skeleton = take.skeleton;
+  const MarkerSet& markers = take.markers;
+  LeaveOneOutOptions options;
+  Status status = MarkerSolveOptionsFromFlags(skeleton.unit(), &options.frame);
+  if (!status.ok()) return status;
+  if (FLAGS_mode != "frame" && FLAGS_mode != "clip") {
+    return Status::Error("--mode: unknown '" + FLAGS_mode + "' (frame, clip)");
+  }
+  options.clip = FLAGS_mode == "clip";
+  if (options.clip) {
+    status = ClipSolveOptionsFromFlags(&options.clip_options);
+    if (!status.ok()) return status;
+    options.clip_options.ceres.num_threads = 1;  // The markers are the parallel work.
+  }
+  options.num_threads = FLAGS_num_threads;
+  LeaveOneOutReport result;
+  Progress progress("leave one out (" + FLAGS_solver + ", " + FLAGS_mode + ")", markers.num_markers(), FLAGS_quiet,
+                    "markers");
+  status = LeaveOneMarkerOut(skeleton, markers, take.observed, options, &result,
+                             [&](int done) { progress.Update(done); });
+  if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
+
+  const bool known = skeleton.unit().known();
+  const double mm = known ? skeleton.unit().metres_per_unit * 1000.0 : 1.0;
+  const char* unit = known ? "mm" : "skeleton units";
+  std::printf("%d frames, %d markers; each marker predicted by the %s solve of the others (%s), in %s\n",
+              static_cast<int>(take.observed.size()), markers.num_markers(), FLAGS_mode.c_str(), FLAGS_solver.c_str(),
+              unit);
+  std::printf("| marker | samples | mean | median | 95th pct | max |\n|---|---|---|---|---|---|\n");
+  std::string csv = "marker,samples,mean,median,p95,max,unit\n";
+  std::vector<JsonObject> rows;
+  auto row = [&](const std::string& label, const PredictionErrorSummary& e) {
+    std::printf("| %s | %d | %.2f | %.2f | %.2f | %.2f |\n", label.c_str(), e.samples, e.mean * mm, e.median * mm,
+                e.p95 * mm, e.max * mm);
+    char line[256];
+    std::snprintf(line, sizeof(line), "%s,%d,%.6g,%.6g,%.6g,%.6g,%s\n", label.c_str(), e.samples, e.mean * mm,
+                  e.median * mm, e.p95 * mm, e.max * mm, unit);
+    csv += line;
+    JsonObject o;
+    o.Add("marker", label).Add("samples", e.samples).Add("mean", e.mean * mm).Add("median", e.median * mm)
+        .Add("p95", e.p95 * mm).Add("max", e.max * mm);
+    return o;
+  };
+  for (int m = 0; m < markers.num_markers(); ++m) rows.push_back(row(markers.label(m), result.markers[m]));
+  JsonObject all = row("all", result.all);
+  std::printf("prediction error over every sample: median %.2f %s, mean %.2f, 95th percentile %.2f (%.1f s)\n",
+              result.all.median * mm, unit, result.all.mean * mm, result.all.p95 * mm, result.seconds);
+  if (!FLAGS_table_csv.empty()) {
+    status = WriteFileAtomically(FLAGS_table_csv, csv);
+    if (!status.ok()) return status;
+  }
+  JsonObject report;
+  report.Add("markers", FLAGS_markers).Add("method", "leave_one_out").Add("mode", FLAGS_mode)
+      .Add("solver", FLAGS_solver).Add("frames", static_cast<int>(take.observed.size())).Add("unit", unit)
+      .Add("seconds", result.seconds).Add("all", all).Add("per_marker", rows);
+  return WriteReport(report);
+}
+
 Status RunEvaluate(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   std::vector<std::string> inputs;
   Status checked = MarkerTakeInputs(&inputs);
   if (!checked.ok()) return checked;
+  if (FLAGS_method != "repair" && FLAGS_method != "leave_one_out") {
+    return Status::Error("--method: expected repair or leave_one_out, got '" + FLAGS_method + "'");
+  }
   if (FLAGS_trials < 1 || FLAGS_trials > 1000) return Status::Error("--trials: expected 1..1000");
   if (!FLAGS_table_csv.empty()) {
     for (const std::string& in : inputs) {
@@ -36,6 +105,7 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
   MarkerTake take;
   Status status = LoadMarkerTake(&take);
   if (!status.ok()) return status;
+  if (FLAGS_method == "leave_one_out") return RunLeaveOneOut(take);
   const Skeleton& skeleton = take.skeleton;
   const MarkerSet& markers = take.markers;
   const MarkerObservations& clean = take.observed;
@@ -69,7 +139,13 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
       m.damaged_samples += r.damaged_samples;
       m.covered_samples += r.covered_samples;
       m.velocity_jump += w * r.velocity_jump;
-      for (int k = 0; k < 4; ++k) m.kind_error[k] += w * r.kind_error[k];
+      for (int k = 0; k < kNumDamageKinds; ++k) {
+        m.kind_error[k] += w * r.kind_error[k];
+        m.kind_samples[k] += r.kind_samples[k];
+        m.kind_detected[k] += r.kind_detected[k];
+      }
+      m.changed_samples += r.changed_samples;
+      m.changed_undamaged_samples += r.changed_undamaged_samples;
       m.seconds += w * r.seconds;
       char line[512];
       std::snprintf(line, sizeof(line), "%d,%u,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g,%.4g\n", trial, damage.seed,
@@ -99,16 +175,31 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
         .Add("marker_mean_mm", r.marker_error_mean * mm).Add("marker_rms_mm", r.marker_error_rms * mm)
         .Add("marker_max_mm", r.marker_error_max * mm).Add("damaged_samples", r.damaged_samples)
         .Add("covered_samples", r.covered_samples).Add("velocity_jump_mm_per_frame", r.velocity_jump * mm)
-        .Add("seconds", r.seconds).Add("gap_mean_mm", r.kind_error[0] * mm)
-        .Add("fly_off_mean_mm", r.kind_error[1] * mm).Add("swap_mean_mm", r.kind_error[2] * mm)
-        .Add("noise_mean_mm", r.kind_error[3] * mm);
+        .Add("seconds", r.seconds).Add("precision", r.Precision());
+    for (int k = 0; k < kNumDamageKinds; ++k) {
+      const std::string kind = kDamageKindNames[k];
+      o.Add(kind + "_mean_mm", r.kind_error[k] * mm).Add(kind + "_samples", r.kind_samples[k])
+          .Add(kind + "_recall", r.Recall(k));
+    }
     json_rows.push_back(o);
   }
-  std::printf("damaged-marker mean error by kind (mm): gap / fly-off / swap / noise\n");
+  // Per damage kind present: each method's mean error on it, and the share it detected
+  // (changed; for gaps, filled), then the precision of all it changed.
+  std::string kinds;
+  for (int k = 0; k < kNumDamageKinds; ++k) {
+    if (mean_rows.empty() || mean_rows.back().kind_samples[k] == 0) continue;
+    kinds += std::string(kinds.empty() ? "" : " | ") + kDamageKindNames[k];
+  }
+  std::printf("damaged-marker mean error (mm) and recall by kind: %s; precision of all changed samples\n",
+              kinds.c_str());
   for (const RepairEvaluationRow& r : mean_rows) {
     if (r.method == "clean") continue;
-    std::printf("  %-15s %7.2f / %7.2f / %7.2f / %7.2f\n", r.method.c_str(), r.kind_error[0] * mm,
-                r.kind_error[1] * mm, r.kind_error[2] * mm, r.kind_error[3] * mm);
+    std::printf("  %-15s", r.method.c_str());
+    for (int k = 0; k < kNumDamageKinds; ++k) {
+      if (r.kind_samples[k] == 0) continue;
+      std::printf(" %7.2f %5.1f%%", r.kind_error[k] * mm, 100.0 * r.Recall(k));
+    }
+    std::printf("   precision %.1f%% (%d changed)\n", 100.0 * r.Precision(), r.changed_samples);
   }
   auto find = [&](const char* name) -> const RepairEvaluationRow* {
     for (const RepairEvaluationRow& r : mean_rows) {
@@ -140,7 +231,7 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
 }
 
 const std::string kEvaluateFlags = std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,"
-                                               "report,quiet,") +
+                                               "report,quiet,method,") +
                                    kCorruptionFlagNames + "," + kRepairFlagNames + "," + kSolverFlagNames;
 
 }  // namespace
@@ -148,14 +239,27 @@ const std::string kEvaluateFlags = std::string("subject,skeleton,skeleton_units,
 extern const Command kEvaluateCommand = {
     "evaluate", "score marker repair against linear, polynomial, PCA and reference-only fills",
     "mocapsolve evaluate (--skeleton=S --markerset=J.json | --subject=S.json) --markers=CLEAN.c3d|.trc [--trials=N] "
-    "[--corrupt_seed=1 --gaps=10 ...] [--table_csv=t.csv] [--report=r.json]\n\n"
+    "[--corrupt_seed=1 --gaps=10 ...] [--table_csv=t.csv] [--report=r.json]\n"
+    "       mocapsolve evaluate --method=leave_one_out (--subject=S.json | ...) --markers=TAKE.c3d|.trc "
+    "[--mode=frame|clip] [--table_csv=t.csv]\n\n"
     "Damages the clean markers (as `corrupt` does, in the skeleton's frame), runs every method\n"
     "on the same damage and prints the analogue of the thesis' Table 1: mean global joint\n"
     "position (cm) and rotation (deg) error of the per-frame solve after each method against\n"
     "the solve of the clean markers, the marker error over the damaged samples, and the\n"
     "velocity jump at the edges of damaged runs (the 'clean' row: the natural one).\n"
     "Clean markers from a BVH: mocapsolve markers --motion=X.bvh --markerset=auto:3\n"
-    "--out=clean.c3d --write_markerset=set.json, then evaluate with --skeleton=X.bvh.",
-    __FILE__, RunEvaluate, kEvaluateFlags.c_str()};
+    "--out=clean.c3d --write_markerset=set.json, then evaluate with --skeleton=X.bvh.\n"
+    "--method=leave_one_out measures a real take without ground truth: for each marker, the take\n"
+    "is solved without it (per frame, and with --mode=clip also as a whole clip) and the marker\n"
+    "is predicted from the solution; prints the prediction error per marker and over all samples\n"
+    "(mean, median, 95th percentile, max).",
+    __FILE__, RunEvaluate, kEvaluateFlags.c_str(),
+    {{"method", "repair",
+      "repair: damage the markers and score repair against the usual fills (Table 1); leave_one_out: "
+      "predict each marker from the solve of the others, on the take as it is."},
+     {"solver", kRepairDefaultSolver, ""},
+     {"num_threads", "2",
+      "Threads: leave_one_out solves this many markers at once; repair runs its solves on two threads when "
+      ">= 2. Speed only: the results do not depend on it."}}};
 
 }  // namespace mocapsolve

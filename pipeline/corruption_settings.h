@@ -27,11 +27,19 @@ struct CorruptionSettings {
   int noisy_markers = 2;
   int noise_length = 60;
   double noise_sigma_mm = 5.0;
+  int swaps_in_gaps = 0;          // The kinds below are off unless asked for.
+  int jitter_markers = 0;
+  int jitter_length = 60;
+  double jitter_mm = 20.0;
+  int ghosts = 0;
+  int ghost_length = 20;
+  double ghost_mm = 30.0;
 };
 
 inline constexpr char kCorruptionSettingNames[] =
     "corrupt_seed,gaps,gap_min,gap_max,cluster_gaps,cluster_radius_mm,fly_off_frames,fly_off_mm,"
-    "swaps,swap_length,swap_radius_mm,noisy_markers,noise_length,noise_sigma_mm";
+    "swaps,swap_length,swap_radius_mm,noisy_markers,noise_length,noise_sigma_mm,swaps_in_gaps,jitter_markers,"
+    "jitter_length,jitter_mm,ghosts,ghost_length,ghost_mm";
 
 // Distances in mm converted to `unit` (which must be known).
 Status CorruptionOptionsFromSettings(const CorruptionSettings& settings, const LengthUnit& unit,

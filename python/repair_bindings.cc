@@ -133,7 +133,9 @@ units). Releases the GIL while repairing.)doc");
   MOCAPSOLVE_FIELD(cluster_gaps); MOCAPSOLVE_FIELD(cluster_radius_mm); MOCAPSOLVE_FIELD(fly_off_frames);
   MOCAPSOLVE_FIELD(fly_off_mm); MOCAPSOLVE_FIELD(swaps); MOCAPSOLVE_FIELD(swap_length);
   MOCAPSOLVE_FIELD(swap_radius_mm); MOCAPSOLVE_FIELD(noisy_markers); MOCAPSOLVE_FIELD(noise_length);
-  MOCAPSOLVE_FIELD(noise_sigma_mm);
+  MOCAPSOLVE_FIELD(noise_sigma_mm); MOCAPSOLVE_FIELD(swaps_in_gaps); MOCAPSOLVE_FIELD(jitter_markers);
+  MOCAPSOLVE_FIELD(jitter_length); MOCAPSOLVE_FIELD(jitter_mm); MOCAPSOLVE_FIELD(ghosts);
+  MOCAPSOLVE_FIELD(ghost_length); MOCAPSOLVE_FIELD(ghost_mm);
 #undef MOCAPSOLVE_FIELD
   damage.def("validate", [](const CorruptionSettings& s, const std::string& units) {
         CorruptionOptions options;
@@ -207,10 +209,13 @@ units). Releases the GIL while repairing.)doc");
             d["covered_samples"] = r.covered_samples;
             d["velocity_jump_mm_per_frame"] = r.velocity_jump * mm;
             d["seconds"] = r.seconds;
-            d["gap_mean_mm"] = r.kind_error[0] * mm;
-            d["fly_off_mean_mm"] = r.kind_error[1] * mm;
-            d["swap_mean_mm"] = r.kind_error[2] * mm;
-            d["noise_mean_mm"] = r.kind_error[3] * mm;
+            for (int k = 0; k < kNumDamageKinds; ++k) {
+              const std::string kind = kDamageKindNames[k];
+              d[(kind + "_mean_mm").c_str()] = r.kind_error[k] * mm;
+              d[(kind + "_samples").c_str()] = r.kind_samples[k];
+              d[(kind + "_recall").c_str()] = r.Recall(k);
+            }
+            d["precision"] = r.Precision();
             out.append(d);
           }
         }

@@ -18,7 +18,37 @@ void MakeGap(int m, int first, int length, MarkerTrajectories* markers, Corrupti
   }
 }
 
+// The marker nearest to `a` at frame f (within radius) observed there, -1 if none.
+int NearestMarker(const MarkerTrajectories& markers, int f, int a, double radius) {
+  int b = -1;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    if (m == a || !markers.valid(f, m)) continue;
+    const double d = (markers.position(f, m) - markers.position(f, a)).norm();
+    if (d < nearest && d <= radius) nearest = d, b = m;
+  }
+  return b;
+}
+
+// Markers a and b exchange samples over [first, first + length) where both are observed.
+void Swap(int a, int b, int first, int length, MarkerTrajectories* markers, CorruptionMask* mask) {
+  for (int f = first; f < std::min(markers->num_frames(), first + length); ++f) {
+    if (!markers->valid(f, a) || !markers->valid(f, b)) continue;
+    const Eigen::Vector3d pa = markers->position(f, a), pb = markers->position(f, b);
+    markers->SetSample(f, a, pb);
+    markers->SetSample(f, b, pa);
+    (*mask)[f][a] = (*mask)[f][b] = 's';
+  }
+}
+
 }  // namespace
+
+int DamageKindIndex(char letter) {
+  for (int k = 0; k < kNumDamageKinds; ++k) {
+    if (letter != 0 && kDamageKinds[k] == letter) return k;
+  }
+  return -1;
+}
 
 void CorruptMarkers(const CorruptionOptions& o, MarkerTrajectories* markers, CorruptionMask* mask) {
   const int nf = markers->num_frames(), nm = markers->num_markers();
@@ -60,21 +90,8 @@ void CorruptMarkers(const CorruptionOptions& o, MarkerTrajectories* markers, Cor
     const int first = Uniform(&rng, 0, std::max(0, nf - o.swap_length));
     const int a = Uniform(&rng, 0, nm - 1);
     if (!markers->valid(first, a)) continue;
-    int b = -1;
-    double nearest = std::numeric_limits<double>::infinity();
-    for (int m = 0; m < nm; ++m) {
-      if (m == a || !markers->valid(first, m)) continue;
-      const double d = (markers->position(first, m) - markers->position(first, a)).norm();
-      if (d < nearest && d <= o.swap_radius) nearest = d, b = m;
-    }
-    if (b < 0) continue;
-    for (int f = first; f < std::min(nf, first + o.swap_length); ++f) {
-      if (!markers->valid(f, a) || !markers->valid(f, b)) continue;
-      const Eigen::Vector3d pa = markers->position(f, a), pb = markers->position(f, b);
-      markers->SetSample(f, a, pb);
-      markers->SetSample(f, b, pa);
-      (*mask)[f][a] = (*mask)[f][b] = 's';
-    }
+    const int b = NearestMarker(*markers, first, a, o.swap_radius);
+    if (b >= 0) Swap(a, b, first, o.swap_length, markers, mask);
   }
   for (int n = 0; n < o.noisy_markers && o.noise_sigma > 0.0; ++n) {
     const int m = Uniform(&rng, 0, nm - 1);
@@ -84,6 +101,39 @@ void CorruptMarkers(const CorruptionOptions& o, MarkerTrajectories* markers, Cor
       markers->SetSample(f, m, markers->position(f, m) +
                                    o.noise_sigma * Eigen::Vector3d(normal(rng), normal(rng), normal(rng)));
       (*mask)[f][m] = 'n';
+    }
+  }
+  for (int s = 0; s < o.swaps_in_gaps; ++s) {
+    const int length = Uniform(&rng, o.gap_min, o.gap_max);
+    const int first = Uniform(&rng, 0, std::max(0, nf - length - o.swap_length));
+    const int a = Uniform(&rng, 0, nm - 1);
+    const int swap_first = first + Uniform(&rng, 1, std::max(1, length - 1));
+    if (!markers->valid(first, a)) continue;
+    const int b = NearestMarker(*markers, first, a, o.swap_radius);
+    if (b < 0) continue;
+    MakeGap(a, first, length, markers, mask);
+    Swap(a, b, swap_first, o.swap_length, markers, mask);
+  }
+  auto random_direction = [&] { return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized(); };
+  for (int j = 0; j < o.jitter_markers && o.jitter_distance > 0.0; ++j) {
+    const int m = Uniform(&rng, 0, nm - 1);
+    const int first = Uniform(&rng, 0, std::max(0, nf - o.jitter_length));
+    for (int f = first; f < std::min(nf, first + o.jitter_length); ++f) {
+      const double size = o.jitter_distance * std::uniform_real_distribution<double>(0.5, 1.5)(rng);
+      const Eigen::Vector3d direction = random_direction();
+      if (!markers->valid(f, m) || (*mask)[f][m]) continue;
+      markers->SetSample(f, m, markers->position(f, m) + size * direction);
+      (*mask)[f][m] = 'j';
+    }
+  }
+  for (int g = 0; g < o.ghosts && o.ghost_distance > 0.0; ++g) {
+    const int m = Uniform(&rng, 0, nm - 1);
+    const int first = Uniform(&rng, 0, std::max(0, nf - o.ghost_length));
+    const Eigen::Vector3d offset = o.ghost_distance * random_direction();
+    for (int f = first; f < std::min(nf, first + o.ghost_length); ++f) {
+      if (!markers->valid(f, m) || (*mask)[f][m]) continue;
+      markers->SetSample(f, m, markers->position(f, m) + offset);
+      (*mask)[f][m] = 'h';
     }
   }
 }

@@ -10,10 +10,21 @@
 //   swaps         `swaps` times a marker and its nearest neighbour (within swap_radius)
 //                 exchange positions for swap_length frames;
 //   noise         `noisy_markers` markers get Gaussian noise of noise_sigma per axis over
-//                 a random interval of noise_length frames.
+//                 a random interval of noise_length frames;
+// and the damage real cleanup meets that stays near the marker (issue 16; off by default):
+//   swaps in gaps `swaps_in_gaps` times a marker goes missing (a gap of gap_min..gap_max
+//                 frames) and, from a frame inside that gap, it and its nearest neighbour
+//                 exchange positions for swap_length frames: the swap begins unseen;
+//   jitter        `jitter_markers` markers are displaced, every frame of a random
+//                 interval of jitter_length frames, by jitter_distance x U(0.5, 1.5) in a
+//                 random direction (1-3 cm for 2 cm): errors under a fixed outlier distance;
+//   ghosts        `ghosts` times a marker's label sits on a ghost reflection for
+//                 ghost_length frames: the sample is offset by ghost_distance in one random
+//                 direction, constant over the run.
 // Lengths are in the trajectories' units. Every draw comes from one std::mt19937 seeded
-// with `seed`. The mask (frames x markers) says what was done to each sample:
-// 0 clean, 'g' gap, 'f' fly-off, 's' swap, 'n' noise.
+// with `seed`, the kinds drawn in the order above, so adding a later kind leaves the
+// earlier damage of a seed as it was. The mask (frames x markers) says what was done to
+// each sample: 0 clean, or the kind's letter in kDamageKinds.
 #ifndef MOCAPSOLVE_SIGNAL_MARKER_CORRUPTION_H_
 #define MOCAPSOLVE_SIGNAL_MARKER_CORRUPTION_H_
 
@@ -38,7 +49,23 @@ struct CorruptionOptions {
   int noisy_markers = 2;
   int noise_length = 60;
   double noise_sigma = 0.0;
+  int swaps_in_gaps = 0;
+  int jitter_markers = 0;
+  int jitter_length = 60;
+  double jitter_distance = 0.0;
+  int ghosts = 0;
+  int ghost_length = 20;
+  double ghost_distance = 0.0;
 };
+
+// The mask's letters and the kinds' names, in the same order: gap, fly-off, swap, noise,
+// jitter, ghost (a swap that begins in a gap is 'g' there and 's' after).
+inline constexpr int kNumDamageKinds = 6;
+inline constexpr char kDamageKinds[kNumDamageKinds + 1] = "gfsnjh";
+inline constexpr const char* kDamageKindNames[kNumDamageKinds] = {"gap", "fly_off", "swap", "noise", "jitter",
+                                                                   "ghost"};
+// The index of a mask letter in kDamageKinds, -1 for 0 or an unknown letter.
+int DamageKindIndex(char letter);
 
 using CorruptionMask = std::vector<std::vector<char>>;
 

@@ -36,8 +36,8 @@ void ScoreJoints(const Skeleton& skeleton, const Motion& truth, const Motion& mo
 // Marker errors over the damaged samples, and velocity jumps at the edges of damaged runs.
 void ScoreMarkers(const MarkerObservations& clean, const MarkerObservations& x, const CorruptionMask& mask,
                   RepairEvaluationRow* row) {
-  double sum = 0.0, sum_sq = 0.0, kind_sum[4] = {0.0, 0.0, 0.0, 0.0};
-  int kind_count[4] = {0, 0, 0, 0};
+  double sum = 0.0, sum_sq = 0.0, kind_sum[kNumDamageKinds] = {};
+  int kind_count[kNumDamageKinds] = {};
   const int frames = static_cast<int>(clean.size());
   const int markers = frames > 0 ? static_cast<int>(clean[0].size()) : 0;
   for (int f = 0; f < frames; ++f) {
@@ -50,13 +50,13 @@ void ScoreMarkers(const MarkerObservations& clean, const MarkerObservations& x, 
       sum += e;
       sum_sq += e * e;
       row->marker_error_max = std::max(row->marker_error_max, e);
-      const char kind = mask[f][m];
-      const int k = kind == 'g' ? 0 : kind == 'f' ? 1 : kind == 's' ? 2 : 3;
+      const int k = DamageKindIndex(mask[f][m]);
+      if (k < 0) continue;
       kind_sum[k] += e;
       ++kind_count[k];
     }
   }
-  for (int k = 0; k < 4; ++k) row->kind_error[k] = kind_count[k] > 0 ? kind_sum[k] / kind_count[k] : 0.0;
+  for (int k = 0; k < kNumDamageKinds; ++k) row->kind_error[k] = kind_count[k] > 0 ? kind_sum[k] / kind_count[k] : 0.0;
   if (row->covered_samples > 0) {
     row->marker_error_mean = sum / row->covered_samples;
     row->marker_error_rms = std::sqrt(sum_sq / row->covered_samples);
@@ -82,6 +82,31 @@ void ScoreMarkers(const MarkerObservations& clean, const MarkerObservations& x, 
     }
   }
   row->velocity_jump = edges > 0 ? jumps / edges : 0.0;
+}
+
+// Which samples of the corrupted markers x0 the method's markers x changed, against the mask.
+void ScoreDetection(const MarkerObservations& x0, const MarkerObservations& x, const CorruptionMask& mask,
+                    RepairEvaluationRow* row) {
+  for (size_t f = 0; f < x0.size(); ++f) {
+    for (size_t m = 0; m < x0[f].size(); ++m) {
+      const int k = DamageKindIndex(mask[f][m]);
+      if (!x0[f][m].allFinite()) {  // Missing in X: detected when filled.
+        if (k < 0) continue;
+        ++row->kind_samples[k];
+        if (x[f][m].allFinite()) ++row->kind_detected[k];
+        continue;
+      }
+      const bool changed = !(x[f][m].array() == x0[f][m].array()).all();
+      if (k >= 0) ++row->kind_samples[k];
+      if (!changed) continue;
+      ++row->changed_samples;
+      if (k >= 0) {
+        ++row->kind_detected[k];
+      } else {
+        ++row->changed_undamaged_samples;
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -123,6 +148,7 @@ Status EvaluateRepair(const Skeleton& skeleton, const MarkerSet& markers, const 
     r.seconds = Seconds(start);
     ScoreJoints(skeleton, truth, motion, &r);
     ScoreMarkers(clean, filled, mask, &r);
+    ScoreDetection(corrupted, filled, mask, &r);
     rows->push_back(r);
     return Status::Ok();
   };
@@ -147,12 +173,14 @@ Status EvaluateRepair(const Skeleton& skeleton, const MarkerSet& markers, const 
   }
   ScoreJoints(skeleton, truth, intermediates.reference, &reference);
   ScoreMarkers(clean, intermediates.reconstructed, mask, &reference);
+  ScoreDetection(corrupted, intermediates.reconstructed, mask, &reference);
   rows->push_back(reference);
   RepairEvaluationRow ours;
   ours.method = "ours";
   ours.seconds = repair_seconds;
   ScoreJoints(skeleton, truth, motion, &ours);
   ScoreMarkers(clean, repaired, mask, &ours);
+  ScoreDetection(corrupted, repaired, mask, &ours);
   rows->push_back(ours);
   return Status::Ok();
 }

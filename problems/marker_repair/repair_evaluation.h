@@ -16,7 +16,12 @@
 //                          (mean, RMS, max; skeleton units), and how many it covers;
 //   velocity_jump          mean over the edges of damaged runs of |v_in - v_out|, the
 //                          change of per-frame velocity across the edge (units/frame);
-//                          the "clean" row gives the same figure on C, the natural one.
+//                          the "clean" row gives the same figure on C, the natural one;
+//   detection              which samples the method changed, against the mask: a sample
+//                          observed in X is "detected" when the method's marker differs
+//                          from it (repair returns unflagged samples bit for bit); recall
+//                          per damage kind (for gaps: the share filled), and precision =
+//                          damaged / all changed observed samples.
 // All methods solve with options.naive, so the differences come from the markers.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_REPAIR_EVALUATION_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_REPAIR_EVALUATION_H_
@@ -38,10 +43,22 @@ struct RepairEvaluationRow {
   double joint_rotation_error = 0.0;  // Radians.
   double marker_error_mean = 0.0, marker_error_rms = 0.0, marker_error_max = 0.0;
   int damaged_samples = 0, covered_samples = 0;
-  // Mean marker error per kind of damage: gap, fly-off, swap, noise (0 where none covered).
-  double kind_error[4] = {0.0, 0.0, 0.0, 0.0};
+  // Per kind of damage (kDamageKinds' order): the mean marker error (0 where none
+  // covered), the damaged samples, and those the method detected (see above).
+  double kind_error[kNumDamageKinds] = {};
+  int kind_samples[kNumDamageKinds] = {};
+  int kind_detected[kNumDamageKinds] = {};
+  int changed_samples = 0;          // Observed samples of X the method changed...
+  int changed_undamaged_samples = 0;  // ...of which undamaged: false detections.
   double velocity_jump = 0.0;  // Skeleton units per frame.
   double seconds = 0.0;        // Fill + solve.
+
+  double Recall(int kind) const {
+    return kind_samples[kind] > 0 ? static_cast<double>(kind_detected[kind]) / kind_samples[kind] : 1.0;
+  }
+  double Precision() const {
+    return changed_samples > 0 ? 1.0 - static_cast<double>(changed_undamaged_samples) / changed_samples : 1.0;
+  }
 };
 
 using MarkerObservations = std::vector<std::vector<Eigen::Vector3d>>;  // [frame][marker]

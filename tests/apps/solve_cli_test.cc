@@ -162,6 +162,27 @@ TEST_F(SolveCli, EvaluatePrintsTheTableAndTheReport) {
   EXPECT_THAT(output, HasSubstr("--reference"));
 }
 
+TEST_F(SolveCli, EvaluateLeaveOneOutPredictsEveryMarker) {
+  const std::string report = testing::TempPath("loo.json"), csv = testing::TempPath("loo.csv");
+  std::string output;
+  for (const char* mode : {"frame", "clip"}) {
+    ASSERT_EQ(testing::RunCli(std::string("evaluate --quiet --method=leave_one_out --mode=") + mode +
+                              " --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + markers_ +
+                              " --markerset=" + set_ + " --report=" + report + " --table_csv=" + csv, &output), 0)
+        << output;
+    EXPECT_THAT(output, HasSubstr("| marker | samples | mean | median | 95th pct | max |"));
+    EXPECT_THAT(output, HasSubstr("| all |"));
+    const std::string json = testing::ReadTextFile(report);
+    EXPECT_THAT(json, HasSubstr("\"method\": \"leave_one_out\""));
+    EXPECT_THAT(json, HasSubstr(std::string("\"mode\": \"") + mode + "\""));
+    EXPECT_THAT(json, HasSubstr("\"per_marker\""));
+    EXPECT_THAT(testing::ReadTextFile(csv), HasSubstr("marker,samples,mean,median,p95,max,unit"));
+  }
+  EXPECT_EQ(testing::RunCli("evaluate --method=guess --skeleton=" + demo_ + " --skeleton_units=cm --markers=" +
+                            markers_ + " --markerset=" + set_, &output), 1);
+  EXPECT_THAT(output, HasSubstr("--method: expected repair or leave_one_out"));
+}
+
 TEST_F(SolveCli, FitSkeletonWritesTheSkeletonAndTheMarkerSet) {
   const std::string bvh = testing::TempPath("fitted.bvh"), set = testing::TempPath("fitted.json");
   std::string output;

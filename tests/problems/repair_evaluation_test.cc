@@ -56,6 +56,29 @@ TEST(RepairEvaluation, ScoresEveryMethodOnTheSameDamage) {
     EXPECT_LT(ours.joint_position_error, rows[i].joint_position_error) << names[i];
     EXPECT_LT(ours.marker_error_mean, rows[i].marker_error_mean) << names[i];
   }
+  // Detection: the original changes nothing; the fills fill every gap and change no
+  // observed sample; repair finds the fly-offs and swaps, and each count adds up.
+  const int gap = DamageKindIndex('g'), fly_off = DamageKindIndex('f'), swap = DamageKindIndex('s');
+  EXPECT_EQ(rows[1].changed_samples, 0);
+  EXPECT_EQ(rows[1].Recall(gap), 0.0);
+  for (size_t i = 2; i <= 4; ++i) {
+    EXPECT_EQ(rows[i].Recall(gap), 1.0) << names[i];
+    EXPECT_EQ(rows[i].changed_samples, 0) << names[i];
+    EXPECT_EQ(rows[i].Precision(), 1.0) << names[i];
+  }
+  int damaged = 0;
+  for (int k = 0; k < kNumDamageKinds; ++k) {
+    EXPECT_LE(ours.kind_detected[k], ours.kind_samples[k]);
+    EXPECT_EQ(ours.kind_samples[k], rows[2].kind_samples[k]);  // The same damage for every method.
+    damaged += ours.kind_samples[k];
+  }
+  EXPECT_EQ(damaged, ours.damaged_samples);
+  EXPECT_GT(ours.kind_samples[fly_off], 0);
+  EXPECT_GT(ours.kind_samples[swap], 0);
+  EXPECT_GT(ours.Recall(fly_off), 0.5);
+  EXPECT_GT(ours.Recall(swap), 0.5);
+  EXPECT_GT(ours.changed_samples, 0);
+  EXPECT_LE(ours.changed_undamaged_samples, ours.changed_samples);
 }
 
 TEST(RepairEvaluation, RejectsMismatchedInputs) {

@@ -58,5 +58,61 @@ TEST(MarkerCorruption, MaskMatchesTheDamageAndIsReproducible) {
   EXPECT_NE(mask_a, mask_c);
 }
 
+// The kinds of issue 16: a swap that begins inside a gap, jitter of 0.5-1.5 x its size,
+// a ghost at a constant offset; and turning them on leaves the earlier kinds' damage of
+// the same seed as it was.
+TEST(MarkerCorruption, SwapsInGapsJitterAndGhosts) {
+  CorruptionOptions options;
+  options.seed = 3;
+  options.gaps = options.cluster_gaps = options.swaps = options.noisy_markers = 2;
+  options.cluster_radius = 15.0;
+  options.fly_off_distance = 30.0;
+  options.swap_radius = 12.0;
+  options.noise_sigma = 2.0;
+  const MarkerTrajectories clean = Clean(400);
+  MarkerTrajectories before = clean;
+  CorruptionMask mask_before;
+  CorruptMarkers(options, &before, &mask_before);
+  options.swaps_in_gaps = 1;
+  options.jitter_markers = 2;
+  options.jitter_distance = 2.0;
+  options.ghosts = 2;
+  options.ghost_distance = 3.0;
+  MarkerTrajectories after = clean;
+  CorruptionMask mask;
+  CorruptMarkers(options, &after, &mask);
+  int counts[256] = {0};
+  Eigen::Vector3d ghost_offset = Eigen::Vector3d::Zero();
+  for (int f = 0; f < 400; ++f) {
+    for (int m = 0; m < 6; ++m) {
+      if (mask_before[f][m] != 0 && mask_before[f][m] != 's') EXPECT_EQ(mask[f][m], mask_before[f][m]);
+      const char kind = mask[f][m];
+      ++counts[static_cast<unsigned char>(kind)];
+      if (kind == 'j') {
+        const double size = (after.position(f, m) - clean.position(f, m)).norm();
+        EXPECT_GE(size, 1.0);
+        EXPECT_LE(size, 3.0);
+      }
+      if (kind == 'h') {
+        const Eigen::Vector3d offset = after.position(f, m) - clean.position(f, m);
+        EXPECT_NEAR(offset.norm(), 3.0, 1e-12);
+        if (f > 0 && mask[f - 1][m] == 'h') EXPECT_LT((offset - ghost_offset).norm(), 1e-12);
+        ghost_offset = offset;
+      }
+    }
+  }
+  EXPECT_GT(counts['j'], 0);
+  EXPECT_GT(counts['h'], 0);
+  // A swap that begins inside a gap: some marker is 'g' and then, without a clean frame
+  // between, 's'.
+  bool swap_after_gap = false;
+  for (int m = 0; m < 6; ++m) {
+    for (int f = 1; f < 400; ++f) swap_after_gap = swap_after_gap || (mask[f - 1][m] == 'g' && mask[f][m] == 's');
+  }
+  EXPECT_TRUE(swap_after_gap);
+  EXPECT_EQ(DamageKindIndex('h'), 5);
+  EXPECT_EQ(DamageKindIndex(0), -1);
+}
+
 }  // namespace
 }  // namespace mocapsolve

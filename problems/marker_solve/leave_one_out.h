@@ -1,0 +1,61 @@
+// Leave-one-marker-out: how well the solved model predicts each marker it was not given,
+// a measure of solve accuracy on real takes that needs no ground truth (issue 16).
+//
+// For each marker m of the set: drop m from every frame, solve the take without it
+// (frame by frame as `solve` does, SolveSequence; with `clip`, then the whole-clip solve
+// from that start, SolveClip), and predict m from the solution through its attachment:
+// x^_m(f) = MarkerSet::Position(m, FK(pose_f)). The prediction error of m at frame f is
+// |x^_m(f) - x_m(f)| over the frames where m was observed. A marker the model places well
+// from the others is predicted within the soft-tissue and calibration error; a marker
+// the solution does not constrain (its bone moved by it alone) shows it.
+//
+// Summaries (mean, median, 95th percentile, max) per marker and over every sample of
+// every marker. Lengths in skeleton units. Each marker's solve is independent of the
+// others', so the markers are spread over num_threads threads and the result does not
+// depend on their number.
+#ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_LEAVE_ONE_OUT_H_
+#define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_LEAVE_ONE_OUT_H_
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "kinematics/marker_set.h"
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+#include "problems/marker_solve/marker_clip_solver.h"
+#include "problems/marker_solve/marker_frame_solver.h"
+
+namespace mocapsolve {
+
+struct LeaveOneOutOptions {
+  MarkerSolveOptions frame;  // The per-frame solve.
+  bool clip = false;         // Then the whole-clip solve with `clip_options`.
+  ClipSolveOptions clip_options;
+  int num_threads = 1;       // Markers solved at once.
+};
+
+struct PredictionErrorSummary {
+  int samples = 0;  // Frames where the marker was observed (and so could be scored).
+  double mean = 0.0, median = 0.0, p95 = 0.0, max = 0.0;  // Skeleton units.
+};
+
+struct LeaveOneOutReport {
+  std::vector<PredictionErrorSummary> markers;  // Per marker of the set.
+  PredictionErrorSummary all;                   // Over every scored sample.
+  double seconds = 0.0;                         // Wall time of all the solves.
+};
+
+// The summary of a set of errors (empty: all zero). Sorts `errors`.
+PredictionErrorSummary SummarizeErrors(std::vector<double>* errors);
+
+// observed[f][m] in skeleton units (NaN = missing). progress(markers_done) after each
+// marker's solves, from the calling thread.
+Status LeaveOneMarkerOut(const Skeleton& skeleton, const MarkerSet& markers,
+                         const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                         const LeaveOneOutOptions& options, LeaveOneOutReport* report,
+                         const std::function<void(int markers_done)>& progress = nullptr);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_LEAVE_ONE_OUT_H_

@@ -1,0 +1,100 @@
+// Leave-one-marker-out (problems/marker_solve/leave_one_out.h): on noise-free markers with
+// three per bone every left-out marker is still predicted exactly; a marker whose
+// observations are moved by a known amount shows that amount and spoils no other; and the
+// result does not depend on the number of threads.
+#include "problems/marker_solve/leave_one_out.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/problems/repair_test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+LeaveOneOutOptions Options(int threads) {
+  LeaveOneOutOptions options;
+  options.frame.solver = SolverKind::kDls;
+  options.frame.dls.function_tolerance = 1e-12;
+  options.frame.dls.gradient_tolerance = 1e-14;
+  options.frame.dls.parameter_tolerance = 1e-14;
+  options.frame.dls.max_iterations = 100;
+  options.num_threads = threads;
+  return options;
+}
+
+TEST(LeaveOneOut, NoiseFreeMarkersArePredictedExactly) {
+  const testing::DemoTake take = testing::MakeDemoTake(12, 30.0, 7);
+  LeaveOneOutReport report;
+  ASSERT_TRUE(LeaveOneMarkerOut(take.skeleton, take.markers, take.clean, Options(1), &report).ok());
+  ASSERT_EQ(static_cast<int>(report.markers.size()), take.markers.num_markers());
+  EXPECT_EQ(report.all.samples, 12 * take.markers.num_markers());
+  // Two markers left on a bone still fix it: every prediction is exact up to the solve.
+  EXPECT_LT(report.all.max, 1e-4);  // cm.
+}
+
+TEST(LeaveOneOut, AMovedMarkerShowsItsOffsetAndSpoilsNoOther) {
+  testing::DemoTake take = testing::MakeDemoTake(12, 30.0, 7);
+  const int moved = 4;
+  const Eigen::Vector3d shift(1.5, -2.0, 0.0);  // cm, |shift| = 2.5.
+  for (auto& frame : take.clean) frame[moved] += shift;
+  LeaveOneOutOptions options = Options(1);
+  LeaveOneOutReport report;
+  ASSERT_TRUE(LeaveOneMarkerOut(take.skeleton, take.markers, take.clean, options, &report).ok());
+  // Left out, the moved marker is predicted where it belongs: 2.5 cm from its samples.
+  EXPECT_NEAR(report.markers[moved].median, 2.5, 0.3);
+  // The others are solved with the moved one in, which pulls their bone a little.
+  double worst_other = 0.0;
+  for (int m = 0; m < take.markers.num_markers(); ++m) {
+    if (m != moved) worst_other = std::max(worst_other, report.markers[m].median);
+  }
+  EXPECT_LT(worst_other, report.markers[moved].median);
+  EXPECT_NEAR(report.all.max, report.markers[moved].max, 1e-12);
+}
+
+TEST(LeaveOneOut, ResultDoesNotDependOnThreads) {
+  testing::DemoTake take = testing::MakeDemoTake(10, 30.0, 3);
+  take.clean[3][2] = Eigen::Vector3d::Constant(std::nan(""));  // A missing sample is not scored.
+  LeaveOneOutReport one, three;
+  ASSERT_TRUE(LeaveOneMarkerOut(take.skeleton, take.markers, take.clean, Options(1), &one).ok());
+  ASSERT_TRUE(LeaveOneMarkerOut(take.skeleton, take.markers, take.clean, Options(3), &three).ok());
+  EXPECT_EQ(one.markers[2].samples, 9);
+  for (size_t m = 0; m < one.markers.size(); ++m) {
+    EXPECT_EQ(one.markers[m].samples, three.markers[m].samples);
+    EXPECT_EQ(one.markers[m].mean, three.markers[m].mean);
+    EXPECT_EQ(one.markers[m].max, three.markers[m].max);
+  }
+  EXPECT_EQ(one.all.median, three.all.median);
+  // Progress counts finished markers, rising to all of them.
+  int last = 0;
+  ASSERT_TRUE(LeaveOneMarkerOut(take.skeleton, take.markers, take.clean, Options(2), &three,
+                                [&](int done) {
+                                  EXPECT_GT(done, last);
+                                  last = done;
+                                })
+                  .ok());
+  EXPECT_EQ(last, take.markers.num_markers());
+}
+
+TEST(LeaveOneOut, SummaryUsesNearestRankPercentiles) {
+  std::vector<double> errors = {5, 1, 4, 2, 3, 6, 7, 8, 9, 10};
+  const PredictionErrorSummary s = SummarizeErrors(&errors);
+  EXPECT_EQ(s.samples, 10);
+  EXPECT_DOUBLE_EQ(s.mean, 5.5);
+  EXPECT_DOUBLE_EQ(s.median, 5.0);
+  EXPECT_DOUBLE_EQ(s.p95, 10.0);
+  EXPECT_DOUBLE_EQ(s.max, 10.0);
+  std::vector<double> none;
+  EXPECT_EQ(SummarizeErrors(&none).samples, 0);
+}
+
+TEST(LeaveOneOut, BadInputIsAnError) {
+  const testing::DemoTake take = testing::MakeDemoTake(3, 30.0, 7);
+  LeaveOneOutReport report;
+  EXPECT_FALSE(LeaveOneMarkerOut(take.skeleton, take.markers, {}, Options(1), &report).ok());
+  auto short_frame = take.clean;
+  short_frame[1].pop_back();
+  EXPECT_FALSE(LeaveOneMarkerOut(take.skeleton, take.markers, short_frame, Options(1), &report).ok());
+}
+
+}  // namespace
+}  // namespace mocapsolve
