@@ -79,5 +79,40 @@ TEST(CommandFlags, AFlagACommandDoesNotReadIsRefused) {
   EXPECT_EQ(testing::RunCli("generate --v=0 --demo_out=" + testing::TempPath("walk.bvh"), &output), 0) << output;
 }
 
+// The default a command's --help shows for a flag, "" if it does not list it.
+std::string HelpDefault(const std::string& command, const std::string& flag) {
+  std::string output;
+  testing::RunCli(command + " --help", &output);
+  const std::string key = "  --" + flag + " (";
+  const size_t at = output.find(key);
+  if (at == std::string::npos) return "";
+  const size_t start = output.find("default: ", at) + 9;
+  return output.substr(start, output.find('\n', start) - start);
+}
+
+// A shared flag shows, for each command, the default that command applies (issue 17:
+// retarget --help said ceres and ran dls; distance said multires and ran green).
+TEST(CommandFlags, SharedFlagsShowEachCommandsOwnDefault) {
+  EXPECT_EQ(HelpDefault("solve", "solver"), "\"ceres\"");
+  for (const char* command : {"repair", "retarget", "pipeline", "evaluate"}) {
+    EXPECT_EQ(HelpDefault(command, "solver"), "\"dls\"") << command;
+  }
+  EXPECT_EQ(HelpDefault("blend", "method"), "\"multires\"");
+  EXPECT_EQ(HelpDefault("distance", "method"), "\"green\"");
+  EXPECT_EQ(HelpDefault("propagate", "method"), "\"green\"");
+  EXPECT_EQ(HelpDefault("evaluate", "method"), "\"repair\"");
+  // The text is the command's own.
+  std::string output;
+  testing::RunCli("distance --help", &output);
+  EXPECT_THAT(output, HasSubstr("distance curves (1 - weight)"));
+  EXPECT_EQ(output.find("RMS marker residual"), std::string::npos);
+  // And the run applies it: the pipeline's printed config says dls.
+  testing::RunCli("pipeline --print_config", &output);
+  EXPECT_THAT(output, HasSubstr("\"solver\": \"dls\""));
+  // A given value still wins.
+  testing::RunCli("pipeline --print_config --solver=ceres", &output);
+  EXPECT_THAT(output, HasSubstr("\"solver\": \"ceres\""));
+}
+
 }  // namespace
 }  // namespace mocapsolve
