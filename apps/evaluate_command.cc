@@ -224,7 +224,8 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
     if (!status.ok()) return status;
   }
   JsonObject report;
-  report.Add("markers", FLAGS_markers).Add("frames", static_cast<int>(clean.size())).Add("trials", FLAGS_trials)
+  report.Add("markers", FLAGS_markers).Add("method", "repair").Add("frames", static_cast<int>(clean.size()))
+      .Add("trials", FLAGS_trials)
       .Add("first_seed", FLAGS_corrupt_seed).Add("reference", FLAGS_reference).Add("methods", json_rows)
       .Add("position_error_ratio_to_ours", ratios);
   return WriteReport(report);

@@ -234,9 +234,54 @@ Status LoadObservations(const std::string& path, const Skeleton& skeleton, const
   return Status::Ok();
 }
 
+namespace {
+
+const Command* running_command = nullptr;  // Set by main before the command runs.
+
+// The flags the command reads, with the values in force (numbers and booleans typed).
+JsonObject OptionsInForce(const Command& command) {
+  std::vector<gflags::CommandLineFlagInfo> flags;
+  gflags::GetAllFlags(&flags);
+  JsonObject options;
+  for (const auto& flag : flags) {
+    if (!CommandReadsFlag(command, flag) || flag.name == "report") continue;
+    if (flag.type == "bool") {
+      options.Add(flag.name, flag.current_value == "true");
+    } else if (flag.type == "string") {
+      options.Add(flag.name, flag.current_value);
+    } else {
+      options.Add(flag.name, std::strtod(flag.current_value.c_str(), nullptr));
+    }
+  }
+  return options;
+}
+
+std::vector<JsonObject> InputsRead() {
+  std::vector<JsonObject> inputs;
+  if (const FileTransaction* files = FileTransaction::Current()) {
+    for (const FileTransaction::InputFile& file : files->InputFiles()) {
+      JsonObject o;
+      o.Add("path", file.path).Add("bytes", static_cast<double>(file.bytes)).Add("fnv1a64", file.hash);
+      inputs.push_back(o);
+    }
+  }
+  return inputs;
+}
+
+}  // namespace
+
+// Every report opens with what it is and where it came from (docs/schemas/report.schema.json):
+// status, command, version, then the command's own members, then the options in force and
+// each input read (path, size, content hash), unless the command reported those itself.
 Status WriteReport(const JsonObject& report) {
   if (FLAGS_report.empty()) return Status::Ok();
-  return WriteFileAtomically(FLAGS_report, report.ToString() + "\n");
+  JsonObject full;
+  full.Add("status", "ok").Add("version", Version());
+  if (running_command != nullptr) full.Add("command", running_command->name);
+  full.Merge(report);
+  if (running_command != nullptr && !full.Has("options")) full.Add("options", OptionsInForce(*running_command));
+  if (!full.Has("inputs")) full.Add("inputs", InputsRead());
+  return WriteFileAtomically(FLAGS_report, full.ToString() + "\n");
 }
 
 // Early, before any work: --report and --plot must not name a file that another argument
@@ -271,8 +316,13 @@ Status CheckReportPaths(const std::vector<std::string>& positional) {
 void WriteFailureReport(const char* command, const std::string& message,
                         const std::vector<std::string>& positional, const FileTransaction& files) {
   if (FLAGS_report.empty() || !CheckReportPaths(positional).ok() || files.NamesAnInput(FLAGS_report)) return;
+  gflags::CommandLineFlagInfo report_flag;
+  gflags::GetCommandLineFlagInfo("report", &report_flag);
+  if (running_command != nullptr && !CommandReadsFlag(*running_command, report_flag)) return;  // Not its flag.
   JsonObject report;
-  report.Add("status", "error").Add("command", command).Add("version", Version()).Add("message", message);
+  report.Add("status", "error").Add("version", Version()).Add("command", command).Add("message", message);
+  if (running_command != nullptr) report.Add("options", OptionsInForce(*running_command));
+  report.Add("inputs", InputsRead());
   StagedFile staged;
   if (StagedFile::Create(FLAGS_report, report.ToString() + "\n", &staged).ok()) (void)staged.Publish();
 }
@@ -336,6 +386,7 @@ int main(int argc, char** argv) {
   // Every file the command reads is an input no output may overwrite; its outputs are
   // published together when it succeeds, and none of them when it fails.
   mocapsolve::FileTransaction files;
+  mocapsolve::running_command = command;
   mocapsolve::Status status = mocapsolve::CheckGivenFlags(*command);
   if (status.ok()) status = mocapsolve::CheckReportPaths(positional);
   if (status.ok()) status = command->run(positional);

@@ -6,8 +6,8 @@
 // with the inputs: the marker file, the subject file, the subject's skeleton file when
 // the subject names one (resolved against the subject's folder), and each character file.
 // Paths do not enter the key, only contents, so moving the data does not redo a take.
-// FNV-1a (64-bit: offset basis 14695981039346656037, prime 1099511628211) reads ~1 GB/s,
-// needs no dependency, and a batch only compares a key with its own earlier value.
+// FNV-1a (io/content_hash.h) needs no dependency, and a batch only compares a key with
+// its own earlier value.
 // A glTF's external buffers (.bin) are not hashed (GLB, the studio's format, has none).
 #ifndef MOCAPSOLVE_BATCH_TAKE_KEY_H_
 #define MOCAPSOLVE_BATCH_TAKE_KEY_H_
@@ -19,24 +19,10 @@
 #include <vector>
 
 #include "batch/manifest.h"
+#include "io/content_hash.h"
 #include "kinematics/status.h"
 
 namespace mocapsolve {
-
-class Fnv1a64 {
- public:
-  void Update(std::string_view bytes);
-  uint64_t value() const { return hash_; }
-
- private:
-  uint64_t hash_ = 14695981039346656037ull;
-};
-
-// 16 lower-case hex digits.
-std::string HexHash(uint64_t hash);
-
-// The file's bytes hashed in 1 MB reads (not recorded as a command input).
-Status HashFile(const std::string& path, uint64_t* hash);
 
 struct KeyInput {
   std::string role;   // "markers", "subject", "skeleton", "character".

@@ -201,6 +201,7 @@ Status ReadFileToString(const std::string& path, std::string* contents) {
     return Status::Error(path + ": the file changed while it was read (" + std::to_string(before.st_size) +
                          " bytes, then " + std::to_string(text.size()) + " read); read it again once it is complete");
   }
+  if (FileTransaction* transaction = FileTransaction::Current()) transaction->RecordInputContents(path, text);
   *contents = std::move(text);
   return Status::Ok();
 }

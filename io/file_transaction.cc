@@ -11,6 +11,7 @@
 #include <cstdlib>
 
 #include "io/atomic_file.h"
+#include "io/content_hash.h"
 
 namespace mocapsolve {
 namespace {
@@ -60,6 +61,7 @@ bool Same(const FileIdentity& a, const FileIdentity& b) {
 struct FileTransaction::State {
   std::mutex mutex;
   std::vector<FileIdentity> inputs;
+  std::vector<InputFile> input_files;
   std::vector<FileIdentity> outputs;  // Parallel to staged.
   std::vector<StagedFile> staged;
 
@@ -97,6 +99,26 @@ void FileTransaction::RecordInput(const std::string& path) {
   FileIdentity id = Identify(path);
   std::lock_guard<std::mutex> lock(state_->mutex);
   state_->inputs.push_back(std::move(id));
+}
+
+void FileTransaction::RecordInputContents(const std::string& path, const std::string& contents) {
+  if (untracked_reads > 0) return;
+  Fnv1a64 hash;
+  hash.Update(contents);
+  InputFile file{path, contents.size(), HexHash(hash.value())};
+  std::lock_guard<std::mutex> lock(state_->mutex);
+  for (InputFile& known : state_->input_files) {
+    if (known.path == path) {
+      known = std::move(file);
+      return;
+    }
+  }
+  state_->input_files.push_back(std::move(file));
+}
+
+std::vector<FileTransaction::InputFile> FileTransaction::InputFiles() const {
+  std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->input_files;
 }
 
 Status FileTransaction::Stage(const std::string& path, const std::string& contents) {

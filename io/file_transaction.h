@@ -21,8 +21,10 @@
 #ifndef MOCAPSOLVE_IO_FILE_TRANSACTION_H_
 #define MOCAPSOLVE_IO_FILE_TRANSACTION_H_
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "kinematics/status.h"
 
@@ -43,8 +45,18 @@ class FileTransaction {
   // The open transaction, or nullptr. Used by io/atomic_file.cc.
   static FileTransaction* Current();
 
-  // Hooks for io/atomic_file.cc.
+  // Hooks for io/atomic_file.cc: a file about to be read, and the bytes read from it.
   void RecordInput(const std::string& path);
+  void RecordInputContents(const std::string& path, const std::string& contents);
+
+  // The inputs read whole (ReadFileToString), in first-read order, each once: what a
+  // report names as the bytes the command saw (FNV-1a 64, io/content_hash.h).
+  struct InputFile {
+    std::string path;
+    uint64_t bytes = 0;
+    std::string hash;  // 16 hex digits.
+  };
+  std::vector<InputFile> InputFiles() const;
   Status Stage(const std::string& path, const std::string& contents);
 
   int num_staged() const;

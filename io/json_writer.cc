@@ -54,6 +54,20 @@ JsonObject& JsonObject::Add(const std::string& key, const JsonValue& value) {
   return *this;
 }
 
+bool JsonObject::Has(const std::string& key) const {
+  for (const auto& member : members_) {
+    if (member.first == key) return true;
+  }
+  return false;
+}
+
+JsonObject& JsonObject::Merge(const JsonObject& other) {
+  for (const auto& member : other.members_) {
+    if (!Has(member.first)) members_.push_back(member);
+  }
+  return *this;
+}
+
 JsonObject& JsonObject::Add(const std::string& key, const JsonObject& object) {
   members_.emplace_back(key, object.ToString(false));
   return *this;

@@ -37,6 +37,9 @@ class JsonObject {
   JsonObject& Add(const std::string& key, const JsonObject& object);
   JsonObject& Add(const std::string& key, const std::vector<JsonValue>& array);
   JsonObject& Add(const std::string& key, const std::vector<JsonObject>& array);
+  bool Has(const std::string& key) const;
+  // Appends the members of `other` whose keys this object lacks.
+  JsonObject& Merge(const JsonObject& other);
   // Compact, one line (for benchmark JSON lines) or indented.
   std::string ToString(bool indent = true) const;
 
