@@ -3,11 +3,15 @@
 #include <cmath>
 
 #include "io/edit_file.h"
+#include "pipeline/edit_weights.h"
 #include "pipeline/falloff_settings.h"
+#include "pipeline/solver_settings.h"
 #include "problems/edit_propagation/falloff.h"
+#include "problems/edit_propagation/ik_edit.h"
 #include "problems/edit_propagation/pose_edit.h"
 #include "problems/edit_propagation/spline_falloff.h"
 #include "python/bindings.h"
+#include "python/solve_bindings.h"
 
 namespace mocapsolve::python {
 namespace {
@@ -149,6 +153,105 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
       }, py::arg("skeleton"), py::arg("motion"), py::arg("edits"), py::arg("weights"),
       "Propagates edits through the clip (eq. 5): weights[k] (frames,) is edit k's falloff\n"
       "(falloff()['weight'] or spline_falloff()). Returns the edited motion.");
+
+  m.def("ik_edit", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& ik_target,
+                      double ik_root_weight, const py::kwargs& keywords) {
+        const SolverSettings settings = SettingsFromKeywords(keywords, nullptr);
+        if (frame < 0 || frame >= motion.num_frames()) {
+          throw py::value_error("--frame: expected 0 <= frame < " + std::to_string(motion.num_frames()) +
+                                " with --ik_target, got " + std::to_string(frame));
+        }
+        std::vector<IkTarget> targets;
+        ThrowIfError(ParseIkTargets(ik_target, skeleton, &targets));
+        MarkerSolveOptions solve;
+        ThrowIfError(MarkerSolveOptionsFromSettings(settings, skeleton.unit(), &solve));
+        if (!(ik_root_weight >= 0.0)) throw py::value_error("--ik_root_weight must be >= 0");
+        solve.prior_translation_weight = ik_root_weight;
+        PoseEdit edit;
+        IkEditReport ik;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = SolveIkEdit(skeleton, motion, frame, targets, solve, &edit, &ik);
+        }
+        ThrowIfError(status);
+        py::dict report;
+        report["solver"] = settings.solver;
+        report["ik_iterations"] = ik.solve.iterations;
+        report["ik_max_target_error"] = ik.max_target_error;
+        report["ik_final_cost"] = ik.solve.final_cost;
+        return py::make_tuple(std::move(edit), report);
+      }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("ik_target"), py::kw_only(),
+      py::arg("ik_root_weight") = 1.0,
+      R"doc(An IK edit, as `mocapsolve propagate --ik_target`: the pose of motion's frame solved so
+that joints reach world points (problems/edit_propagation/ik_edit.h).
+
+skeleton, motion: the clip (read_motion). frame: the edited frame (0-based).
+ik_target: 'JOINT:x,y,z' (world, skeleton units), several separated by ';'.
+ik_root_weight: pull of the root translation toward the original, per skeleton unit
+  (default 1.0; 0 lets the root slide freely).
+Every other keyword is a solver option of solve() (SolverSettings: solver='ceres'|'dls',
+max_iterations, prior_weight, ...).
+Returns (edit, report): a PoseEdit for propagate() and a dict (ik_iterations,
+ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc");
+
+  m.def("edit_weights", [](const Skeleton& skeleton, const Motion& motion, const std::vector<PoseEdit>& edits,
+                           const std::string& method, double harmonic_ground, double spline_width,
+                           const std::string& sparse_library, const py::kwargs& keywords) {
+        FalloffSettings falloff_settings;
+        ApplyKeywords(keywords, {py::cast(&falloff_settings, py::return_value_policy::reference)},
+                      kFalloffSettingNames);
+        if (method != "green" && method != "harmonic" && method != "spline") {
+          throw py::value_error("--method: expected green, harmonic or spline, got '" + method + "'");
+        }
+        FalloffOptions options;
+        ThrowIfError(FalloffOptionsFromSettings(falloff_settings, motion.num_frames(), &options));
+        const int region_begin = options.region_begin;
+        const int region_end = options.region_end < 0 ? motion.num_frames() : options.region_end;
+        std::vector<int> frames;
+        for (const PoseEdit& edit : edits) {
+          if (edit.frame < region_begin || edit.frame >= region_end) {
+            throw py::value_error("--region: edited frame " + std::to_string(edit.frame) + " lies outside " +
+                                  std::to_string(region_begin) + ":" + std::to_string(region_end));
+          }
+          frames.push_back(edit.frame);
+        }
+        EditWeightSettings settings;
+        settings.harmonic_ground = harmonic_ground;
+        settings.spline_width = spline_width;
+        settings.sparse_library = sparse_library;
+        EditWeights weights;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = ComputeEditWeights(method, skeleton, motion, options, frames, settings, &weights);
+        }
+        ThrowIfError(status);
+        py::list arrays;
+        for (const Eigen::VectorXd& w : weights.weights) arrays.append(VectorToArray(w));
+        py::object report = py::module_::import("json").attr("loads")(weights.report.ToString());
+        return py::make_tuple(arrays, report);
+      }, py::arg("skeleton"), py::arg("motion"), py::arg("edits"), py::arg("method") = "green", py::kw_only(),
+      py::arg("harmonic_ground") = EditWeightSettings().harmonic_ground,
+      py::arg("spline_width") = EditWeightSettings().spline_width,
+      py::arg("sparse_library") = EditWeightSettings().sparse_library,
+      R"doc(The falloff weights of edits as `mocapsolve propagate` computes them
+(pipeline/edit_weights.h), one (frames,) array per edit, for propagate().
+
+skeleton, motion: the clip. edits: PoseEdits (make_edit, read_edits, ik_edit).
+method: 'green' (default; the normalized row of the pose-space Green's function),
+  'harmonic' (the harmonic function on the kNN pose graph: 1 at the edit, 0 at the other
+  edits, at a ground node and at the ends of the region; Zhu et al. 2003) or 'spline'.
+harmonic_ground: method='harmonic': weight of every frame's edge to the ground node held
+  at 0, as a fraction of the graph's mean degree (default 0.002; 0 = pure harmonic with the
+  clip's ends held at 0).
+spline_width: method='spline': half-width of the cubic bump, frames (default 30).
+sparse_library: the harmonic solve's sparse library, 'eigen_sparse' (default) or
+  'suite_sparse'.
+Other keywords: the FalloffSettings (sigma, sigma_scale, eigenpairs, region='a:b', knn,
+falloff_kernel, feature_joints, joint_weights, temporal_weight; as falloff()).
+Returns (weights, report): the list of arrays and the CLI report's 'falloff' dict.
+Releases the GIL.)doc");
 }
 
 }  // namespace mocapsolve::python
