@@ -21,6 +21,7 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "apps/falloff_flags.h"
+#include "apps/progress.h"
 #include "apps/solver_flags.h"
 #include "apps/view_flags.h"
 #include "io/atomic_file.h"
@@ -268,7 +269,9 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
       solve.prior_weight = FLAGS_contact_prior_cm * units_per_cm;
       solve.blend_seconds = FLAGS_contact_blend_s;
       ContactSolveReport kept;
-      status = KeepContacts(skeleton, contacts, solve, &propagated, &kept);
+      Progress progress("propagate: contact re-solve", propagated.num_frames(), FLAGS_quiet);
+      status = KeepContacts(skeleton, contacts, solve, &propagated, &kept,
+                            [&progress](int frames_done) { progress.Update(frames_done); });
       if (!status.ok()) return Status::Error("--keep_contacts: " + status.message());
       contact_report.Add("max_drift_cm_with_keep", kept.max_drift_after / units_per_cm)
           .Add("frames_resolved", kept.frames_solved).Add("failed_frames", kept.failed_frames)
