@@ -28,7 +28,7 @@ void BindPropagate(py::module_& m) {
   py::class_<FalloffSettings> settings(m, "FalloffSettings",
       "The pose-space falloff's options, one per flag of `mocapsolve distance`/`propagate`\n"
       "(same names and defaults). falloff() takes them as keywords.");
-  settings.def(py::init<>());
+  settings.def(py::init<>(), "Every option at the CLI's default.");
 #define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &FalloffSettings::name)
   MOCAPSOLVE_FIELD(sigma); MOCAPSOLVE_FIELD(sigma_scale); MOCAPSOLVE_FIELD(eigenpairs);
   MOCAPSOLVE_FIELD(region); MOCAPSOLVE_FIELD(diffusion_steps); MOCAPSOLVE_FIELD(knn);
@@ -38,7 +38,8 @@ void BindPropagate(py::module_& m) {
   settings.def("validate", [](const FalloffSettings& s, int num_frames) {
         FalloffOptions options;
         ThrowIfError(FalloffOptionsFromSettings(s, num_frames, &options));
-      }, py::arg("num_frames"), "Raises ValueError (the CLI's message) if a value is invalid for a clip this long.");
+      }, py::arg("num_frames"),
+      "Raises ValueError (the CLI's message) if a value is invalid for a clip of num_frames frames.");
   m.attr("FALLOFF_OPTION_NAMES") = std::string(kFalloffSettingNames);
 
   m.def("falloff", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& method,
@@ -70,7 +71,7 @@ void BindPropagate(py::module_& m) {
         d["sparse_kernel"] = falloff.sparse_used;
         return d;
       }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("method") = "green",
-      R"doc(The pose-space falloff of an edit at `frame` (as `mocapsolve distance`): method
+      R"doc(The pose-space falloff of an edit at `frame` of motion (on skeleton), as `mocapsolve distance`: method
 'green' (Green's function of the pose Laplacian), 'diffusion' or 'isomap'. Keywords: the
 FalloffSettings (sigma, sigma_scale, eigenpairs, region='a:b', diffusion_steps, knn,
 isomap_knn, falloff_kernel, feature_joints, joint_weights, temporal_weight).
@@ -83,7 +84,9 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
         }
         return VectorToArray(SplineFalloff(num_frames, frame, spline_width, region_begin, region_end));
       }, py::arg("num_frames"), py::arg("frame"), py::arg("spline_width") = 30.0, py::arg("region_begin") = 0,
-      py::arg("region_end") = -1, "The temporal baseline: a cubic bump of half-width spline_width frames.");
+      py::arg("region_end") = -1, "The temporal baseline for a clip of num_frames frames: a cubic bump of half-width\n"
+      "spline_width frames centred on frame, zero outside [region_begin, region_end) (-1 = the\n"
+      "clip's end).");
 
   py::class_<PoseEdit>(m, "PoseEdit", "One edited frame: its index and the whole edited pose.")
       .def_readonly("frame", &PoseEdit::frame)
@@ -133,7 +136,8 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
         }
         return edits;
       }, py::arg("path"), py::arg("skeleton"), py::arg("motion"),
-      "The edits of an edit file (.json, io/edit_file.h) applied to motion's frames.");
+      "The edits of the edit file at path (.json, io/edit_file.h; joints named as in skeleton)\n"
+      "applied to motion's frames: a list of PoseEdit.");
 
   m.def("propagate", [](const Skeleton& skeleton, const Motion& motion, const std::vector<PoseEdit>& edits,
                         const std::vector<Array>& weights) {
@@ -151,7 +155,7 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
         ThrowIfError(status);
         return out;
       }, py::arg("skeleton"), py::arg("motion"), py::arg("edits"), py::arg("weights"),
-      "Propagates edits through the clip (eq. 5): weights[k] (frames,) is edit k's falloff\n"
+      "Propagates edits (PoseEdits) through motion on skeleton (eq. 5): weights[k] (frames,) is edit k's falloff\n"
       "(falloff()['weight'] or spline_falloff()). Returns the edited motion.");
 
   m.def("ik_edit", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& ik_target,

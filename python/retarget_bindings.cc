@@ -14,7 +14,7 @@ void BindRetarget(py::module_& m) {
   py::class_<RetargetSettings> settings(m, "RetargetSettings",
       "The retargeting options, one per flag of `mocapsolve retarget`/`pipeline` (same names and\n"
       "defaults; solver is dls | dls_generic | ceres). retarget() takes them as keywords.");
-  settings.def(py::init<>());
+  settings.def(py::init<>(), "Every option at the CLI's default.");
 #define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &RetargetSettings::name)
   MOCAPSOLVE_FIELD(solver); MOCAPSOLVE_FIELD(limit_weight); MOCAPSOLVE_FIELD(joint_map);
   MOCAPSOLVE_FIELD(plant_feet); MOCAPSOLVE_FIELD(plant_weight); MOCAPSOLVE_FIELD(plant_height);
@@ -128,7 +128,11 @@ void BindRetarget(py::module_& m) {
 (thesis chapter 4). source: a skinned .glb/.gltf (its mesh tracked unless
 source_mesh=False) or a skeleton motion (.bvh, .amc with skeleton= its .asf, .fbx);
 target: a .glb/.gltf character. out: also write a .glb/.gltf (the target plus the new
-animation) or .bvh. Keywords: the RetargetSettings (solver='dls', iterations=10,
+animation) or .bvh. source_animation: the source file's clip (a name or index; glTF/FBX);
+frame_rate: resample the source to this rate (0 = its own); max_frames: only the first N
+frames (0 = all); amc_fps: an .amc's frame rate (default 120); animation_name: the new
+clip's name in the written glTF ('' = 'retargeted from <source clip>').
+Keywords: the RetargetSettings (solver='dls', iterations=10,
 lambda=5, subsample=128, plant_feet=True, joint_map='map.json', ...).
 Returns (target character, motion on the target skeleton, report dict). Releases the GIL.)doc");
 }
