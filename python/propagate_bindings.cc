@@ -11,6 +11,7 @@
 #include "problems/edit_propagation/pose_edit.h"
 #include "problems/edit_propagation/spline_falloff.h"
 #include "python/bindings.h"
+#include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
 
 namespace mocapsolve::python {
@@ -71,12 +72,13 @@ void BindPropagate(py::module_& m) {
         d["sparse_kernel"] = falloff.sparse_used;
         return d;
       }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("method") = "green",
-      R"doc(The pose-space falloff of an edit at `frame` of motion (on skeleton), as `mocapsolve distance`: method
+      (std::string(R"doc(The pose-space falloff of an edit at `frame` of motion (on skeleton), as `mocapsolve distance`: method
 'green' (Green's function of the pose Laplacian), 'diffusion' or 'isomap'. Keywords: the
 FalloffSettings (sigma, sigma_scale, eigenpairs, region='a:b', diffusion_steps, knn,
 isomap_knn, falloff_kernel, feature_joints, joint_weights, temporal_weight).
 Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
-'region', 'sigma', 'eigenpairs', 'sparse_kernel'.)doc");
+'region', 'sigma', 'eigenpairs', 'sparse_kernel'.)doc") +
+       KeywordDefaults("Falloff keywords and defaults (FalloffSettings)", py::cast(FalloffSettings()), kFalloffSettingNames)).c_str());
 
   m.def("spline_falloff", [](int num_frames, int frame, double spline_width, int region_begin, int region_end) {
         if (!(spline_width > 0.0) || !std::isfinite(spline_width)) {
@@ -187,7 +189,7 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
         return py::make_tuple(std::move(edit), report);
       }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("ik_target"), py::kw_only(),
       py::arg("ik_root_weight") = 1.0,
-      R"doc(An IK edit, as `mocapsolve propagate --ik_target`: the pose of motion's frame solved so
+      (std::string(R"doc(An IK edit, as `mocapsolve propagate --ik_target`: the pose of motion's frame solved so
 that joints reach world points (problems/edit_propagation/ik_edit.h).
 
 skeleton, motion: the clip (read_motion). frame: the edited frame (0-based).
@@ -197,7 +199,8 @@ ik_root_weight: pull of the root translation toward the original, per skeleton u
 Every other keyword is a solver option of solve() (SolverSettings: solver='ceres'|'dls',
 max_iterations, prior_weight, ...).
 Returns (edit, report): a PoseEdit for propagate() and a dict (ik_iterations,
-ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc");
+ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc") +
+       KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()), kSolverSettingNames)).c_str());
 
   m.def("edit_weights", [](const Skeleton& skeleton, const Motion& motion, const std::vector<PoseEdit>& edits,
                            const std::string& method, double harmonic_ground, double spline_width,
@@ -239,7 +242,7 @@ ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc");
       py::arg("harmonic_ground") = EditWeightSettings().harmonic_ground,
       py::arg("spline_width") = EditWeightSettings().spline_width,
       py::arg("sparse_library") = EditWeightSettings().sparse_library,
-      R"doc(The falloff weights of edits as `mocapsolve propagate` computes them
+      (std::string(R"doc(The falloff weights of edits as `mocapsolve propagate` computes them
 (pipeline/edit_weights.h), one (frames,) array per edit, for propagate().
 
 skeleton, motion: the clip. edits: PoseEdits (make_edit, read_edits, ik_edit).
@@ -255,7 +258,8 @@ sparse_library: the harmonic solve's sparse library, 'eigen_sparse' (default) or
 Other keywords: the FalloffSettings (sigma, sigma_scale, eigenpairs, region='a:b', knn,
 falloff_kernel, feature_joints, joint_weights, temporal_weight; as falloff()).
 Returns (weights, report): the list of arrays and the CLI report's 'falloff' dict.
-Releases the GIL.)doc");
+Releases the GIL.)doc") +
+       KeywordDefaults("Falloff keywords and defaults (FalloffSettings)", py::cast(FalloffSettings()), kFalloffSettingNames)).c_str());
 }
 
 }  // namespace mocapsolve::python

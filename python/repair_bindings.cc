@@ -4,6 +4,7 @@
 #include "problems/marker_repair/repair_evaluation.h"
 #include "problems/marker_repair/marker_repair.h"
 #include "python/bindings.h"
+#include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
 
 namespace mocapsolve::python {
@@ -110,7 +111,7 @@ void BindRepair(py::module_& m) {
         d["repaired_observed"] = ObservationsToArray(repaired);
         return py::make_tuple(out, std::move(motion), d);
       }, py::arg("subject"), py::arg("markers"),
-      R"doc(Finds broken marker intervals against a robust reference and refills them, as
+      (std::string(R"doc(Finds broken marker intervals against a robust reference and refills them, as
 `mocapsolve repair` (thesis chapter 3).
 
 subject: a Subject; markers: a .c3d/.trc path or a Take.
@@ -123,7 +124,8 @@ Returns (markers, motion, report): the input file's markers with the repaired sa
 own axes and unit: what --out_markers writes), the motion solved from them, and the
 report as a dict ('detected' and 'filled' lists of {marker, first_frame, last_frame,
 what}, 'timings', 'rms_*_mm', 'repaired_observed' (frames, set markers, 3) in skeleton
-units). Releases the GIL while repairing.)doc");
+units). Releases the GIL while repairing.)doc") +
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", [] { SolverSettings s; s.solver = kRepairDefaultSolver; return py::cast(s); }(), kSolverSettingNames)).c_str());
 
   py::class_<CorruptionSettings> damage(m, "CorruptionSettings",
       "The synthetic damage's options, one per flag of `mocapsolve corrupt`/`evaluate` (same\n"
@@ -218,13 +220,14 @@ units). Releases the GIL while repairing.)doc");
         }
         return out;
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("trials") = 1,
-      R"doc(The thesis' Table 1 on synthetic damage, as `mocapsolve evaluate`: per trial (seeds
+      (std::string(R"doc(The thesis' Table 1 on synthetic damage, as `mocapsolve evaluate`: per trial (seeds
 corrupt_seed, corrupt_seed + 1, ...) the clean markers are damaged and refilled by every
 method (original, polynomial, linear, PCA, reference only, ours). Keywords: the repair,
 solver and corruption options. Returns one dict per trial and method, the columns of
 evaluate's --table_csv (errors against the solve of the clean markers).
 subject: a Subject; markers: a .c3d/.trc path or a Take; trials: how many damaged copies
-(default 1, up to 1000).)doc");
+(default 1, up to 1000).)doc") +
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", [] { SolverSettings s; s.solver = kRepairDefaultSolver; return py::cast(s); }(), kSolverSettingNames) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), kCorruptionSettingNames)).c_str());
 }
 
 }  // namespace mocapsolve::python

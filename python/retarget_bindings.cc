@@ -7,6 +7,7 @@
 #include "pipeline/retarget_settings.h"
 #include "problems/retarget/retarget_character.h"
 #include "python/bindings.h"
+#include "python/keyword_docs.h"
 
 namespace mocapsolve::python {
 
@@ -124,7 +125,7 @@ void BindRetarget(py::module_& m) {
       }, py::arg("source"), py::arg("target"), py::kw_only(), py::arg("skeleton") = py::none(),
       py::arg("source_mesh") = true, py::arg("source_animation") = "", py::arg("frame_rate") = 0.0,
       py::arg("max_frames") = 0, py::arg("amc_fps") = 120.0, py::arg("out") = "", py::arg("animation_name") = "",
-      R"doc(Retargets a source motion onto a skinned glTF character, as `mocapsolve retarget`
+      (std::string(R"doc(Retargets a source motion onto a skinned glTF character, as `mocapsolve retarget`
 (thesis chapter 4). source: a skinned .glb/.gltf (its mesh tracked unless
 source_mesh=False) or a skeleton motion (.bvh, .amc with skeleton= its .asf, .fbx);
 target: a .glb/.gltf character. out: also write a .glb/.gltf (the target plus the new
@@ -134,7 +135,9 @@ frames (0 = all); amc_fps: an .amc's frame rate (default 120); animation_name: t
 clip's name in the written glTF ('' = 'retargeted from <source clip>').
 Keywords: the RetargetSettings (solver='dls', iterations=10,
 lambda=5, subsample=128, plant_feet=True, joint_map='map.json', ...).
-Returns (target character, motion on the target skeleton, report dict). Releases the GIL.)doc");
+Returns (target character, motion on the target skeleton, report dict). Releases the GIL.)doc") +
+       KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()),
+                       std::string("solver,limit_weight,") + kRetargetSettingNames)).c_str());
 }
 
 }  // namespace mocapsolve::python

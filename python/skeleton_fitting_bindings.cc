@@ -8,6 +8,7 @@
 #include "pipeline/skeleton_fitting.h"
 #include "pipeline/solver_settings.h"
 #include "python/bindings.h"
+#include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
 
 namespace mocapsolve::python {
@@ -65,7 +66,9 @@ void BindSkeletonFitting(py::module_& m) {
       "round, rms_mm, bone scales, checks). With check='fail' (default) a subject that fails\n"
       "its checks raises ValueError with the CLI's message; 'warn' returns it (report\n"
       "['checks']['passed'] False). Bad options raise ValueError with the CLI's message, a\n"
-      "missing file OSError. Releases the GIL while fitting.";
+      "missing file OSError. Releases the GIL while fitting.\n" +
+      KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()),
+                      kSolverSettingNames);
   m.def("fit_skeleton", [](const std::string& markers, py::object template_subject, py::object skeleton,
                            py::object markerset, const std::string& skeleton_units, const std::string& axes,
                            double marker_scale, double amc_fps, py::object progress, const py::kwargs& keywords) {

@@ -12,6 +12,7 @@
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/sequence_solver.h"
 #include "python/bindings.h"
+#include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
 
 namespace mocapsolve::python {
@@ -240,7 +241,7 @@ void BindSolve(py::module_& m) {
         if (settings.mode == "clip") report["clip"] = ClipReportDict(clip, skeleton.unit());
         return py::make_tuple(std::move(motion), report);
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("max_frames") = 0,
-      R"doc(Joint angles from markers, as `mocapsolve solve`.
+      (std::string(R"doc(Joint angles from markers, as `mocapsolve solve`.
 
 subject: a Subject (read_subject or subject()); markers: a .c3d/.trc path or a Take.
 max_frames: solve only the first N frames (0 = all).
@@ -255,7 +256,8 @@ Every other keyword is a solver option named like the CLI flag (SolverSettings),
 Returns (motion, report): the motion on the subject's skeleton and a dict with the CLI
 report's figures ('per_frame': seconds, iterations, rms_marker_residual (mm), frame_rms
 (frames,) array in mm, ...; 'clip' with mode='clip'). Releases the GIL while solving.
-A bad option raises ValueError with the CLI's message; an unknown one TypeError.)doc");
+A bad option raises ValueError with the CLI's message; an unknown one TypeError.)doc") +
+       KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()), kSolverSettingNames)).c_str());
 
   py::class_<FrameSolveReport>(m, "FrameSolveReport", "One frame's solve.")
       .def_readonly("initial_cost", &FrameSolveReport::initial_cost)

@@ -81,3 +81,40 @@ def test_the_walk_finds_parameters():
     parameters, text = parameters_and_text(mocapsolve.fit_skeleton.__doc__)
     assert {"markers", "template_subject", "skeleton", "axes", "progress"} <= set(parameters)
     assert "attach_rounds (default -1)" in text  # From the library's help table.
+
+
+def test_keyword_lists_are_the_settings_defaults():
+    """The keyword lists are generated from the settings objects: each name=default is there."""
+    ms = mocapsolve
+    solver = ms.SolverSettings()
+    dls = ms.SolverSettings()
+    dls.solver = "dls"
+    cases = [
+        (ms.solve, [(solver, None)]),
+        (ms.ik_edit, [(solver, None)]),
+        (ms.fit_skeleton, [(solver, None), (ms.SkeletonFitSettings(), None)]),
+        (ms.repair, [(ms.RepairSettings(), None), (dls, None)]),
+        (ms.evaluate, [(ms.RepairSettings(), None), (dls, None), (ms.CorruptionSettings(), None)]),
+        (ms.falloff, [(ms.FalloffSettings(), None)]),
+        (ms.edit_weights, [(ms.FalloffSettings(), None)]),
+        (ms.retarget, [(ms.RetargetSettings(), None)]),
+        (ms.pipeline, [(ms.RepairSettings(), None), (dls, None), (ms.RetargetSettings(), None)]),
+    ]
+    names = {ms.RepairSettings: ms.REPAIR_OPTION_NAMES, ms.CorruptionSettings: ms.CORRUPTION_OPTION_NAMES,
+             ms.FalloffSettings: ms.FALLOFF_OPTION_NAMES, ms.SkeletonFitSettings: ms.SKELETON_FIT_OPTION_NAMES,
+             ms.SolverSettings: ms.SOLVER_OPTION_NAMES}
+    for function, settings_list in cases:
+        doc = " ".join(function.__doc__.split())
+        for settings, _ in settings_list:
+            keys = names.get(type(settings), "").split(",")
+            if isinstance(settings, ms.RetargetSettings):
+                keys = ms.RETARGET_OPTION_NAMES.split(",")
+                if function is ms.pipeline:
+                    keys = keys[2:]  # solver and limit_weight come from SolverSettings there.
+            assert len(keys) > 1
+            for key in keys:
+                value = getattr(settings, key)
+                if isinstance(settings, ms.SkeletonFitSettings):
+                    assert "%s (default %r)" % (key, value) in doc, (function.__name__, key)
+                else:
+                    assert "%s=%r" % (key, value) in doc, (function.__name__, key)
