@@ -106,3 +106,32 @@ def test_settings_hold_the_cli_defaults():
         settings.validate()
     for name in mocapsolve.SKELETON_FIT_OPTION_NAMES.split(","):
         assert name in mocapsolve.fit_skeleton.__doc__
+
+
+def test_fit_skeleton_releases_the_gil(cmu02):
+    """While a fit runs in another thread, this thread keeps running Python code: the longest
+    pause between its ticks is a small part of the fit (with the GIL held it would be all of
+    it). Without a progress callback, which takes the GIL for each event."""
+    import concurrent.futures
+    import time
+    squat = data_file("c3d/squat.c3d")
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        start = time.perf_counter()
+        future = pool.submit(mocapsolve.fit_skeleton, squat, cmu02["subject"], **SHORT)
+        last, longest = start, 0.0
+        while not future.done():
+            now = time.perf_counter()
+            longest, last = max(longest, now - last), now
+        seconds = future.result()[2]["seconds"]
+    assert longest < 0.5 * seconds, (longest, seconds)
+
+
+def test_an_exception_in_the_progress_callback_reaches_the_caller(cmu02):
+    squat = data_file("c3d/squat.c3d")
+
+    def stop(event):
+        if event["kind"] == "iteration":
+            raise KeyboardInterrupt("stop")
+
+    with pytest.raises(KeyboardInterrupt, match="stop"):
+        mocapsolve.fit_skeleton(squat, cmu02["subject"], progress=stop, **SHORT)
