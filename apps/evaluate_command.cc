@@ -120,6 +120,7 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
   std::vector<RepairEvaluationRow> mean_rows;
   std::string csv = "trial,seed,method,joint_position_cm,joint_rotation_deg,marker_mean_mm,marker_rms_mm,"
                     "marker_max_mm,damaged_samples,covered_samples,velocity_jump_mm_per_frame,seconds\n";
+  Progress trials_progress("evaluate", FLAGS_trials, FLAGS_quiet, "trials");
   for (int trial = 0; trial < FLAGS_trials; ++trial) {
     damage.seed = static_cast<uint32_t>(FLAGS_corrupt_seed + trial);
     std::vector<RepairEvaluationRow> rows;
@@ -154,9 +155,8 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
                     r.covered_samples, r.velocity_jump * mm, r.seconds);
       csv += line;
     }
-    if (!FLAGS_quiet) std::fprintf(stderr, "\revaluate: trial %d/%d", trial + 1, FLAGS_trials);
+    trials_progress.Update(trial + 1);
   }
-  if (!FLAGS_quiet) std::fprintf(stderr, "\n");
 
   std::printf("%d frames, %d markers, %d trial(s); errors against the solve of the clean markers\n",
               static_cast<int>(clean.size()), markers.num_markers(), FLAGS_trials);

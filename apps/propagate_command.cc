@@ -21,19 +21,18 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "apps/falloff_flags.h"
+#include "apps/progress.h"
 #include "apps/solver_flags.h"
 #include "apps/view_flags.h"
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
 #include "io/edit_file.h"
 #include "io/motion_file.h"
+#include "pipeline/edit_weights.h"
 #include "problems/edit_propagation/falloff.h"
 #include "problems/edit_propagation/foot_contacts.h"
-#include "problems/edit_propagation/harmonic_falloff.h"
 #include "problems/edit_propagation/ik_edit.h"
 #include "problems/edit_propagation/pose_edit.h"
-#include "problems/edit_propagation/pose_features.h"
-#include "problems/edit_propagation/spline_falloff.h"
 
 DECLARE_string(method);  // apps/blend_command.cc; here green | harmonic | spline.
 DECLARE_string(sparse_library);  // apps/solver_flags.cc: eigen_sparse | suite_sparse.
@@ -47,12 +46,12 @@ DEFINE_string(ik_target, "", "IK edit: JOINT:x,y,z moves JOINT to (x, y, z) (wor
               "units) at --frame; several targets separated by ';'.");
 DEFINE_double(ik_root_weight, 1.0, "IK edit: pull of the root translation toward the original, "
               "per skeleton unit (0 lets the root slide freely).");
-DEFINE_double(harmonic_ground, 0.002, "--method=harmonic: weight of every frame's edge to a "
+DEFINE_double(harmonic_ground, mocapsolve::EditWeightSettings().harmonic_ground, "--method=harmonic: weight of every frame's edge to a "
               "ground node held at 0, as a fraction of the graph's mean degree, so the field "
               "decays away from the edit. On 16_15 (arm edits at frames 30-400, default --knn) 0.002 "
               "follows the Green's falloff with correlation 0.90-0.94. 0 = pure harmonic, with the "
               "clip's ends held at 0 instead (correlation 0.24-0.96: often nearly flat).");
-DEFINE_double(spline_width, 30.0, "--method=spline: half-width of the cubic bump, frames.");
+DEFINE_double(spline_width, mocapsolve::EditWeightSettings().spline_width, "--method=spline: half-width of the cubic bump, frames.");
 DEFINE_bool(keep_contacts, false, "Re-solve frames where a foot was planted in the source so "
             "that it stays where it was (legs absorb the edit; the root keeps it).");
 DEFINE_string(foot_joints, "", "Comma-separated foot joints for contacts (default: names with "
@@ -84,31 +83,6 @@ std::vector<std::string> Split(const std::string& text, char separator) {
   return items;
 }
 
-bool ParseDouble(const std::string& text, double* value) {
-  char* stop = nullptr;
-  *value = std::strtod(text.c_str(), &stop);
-  return !text.empty() && *stop == '\0' && std::isfinite(*value);
-}
-
-Status ParseIkTargets(const Skeleton& skeleton, std::vector<IkTarget>* targets) {
-  for (const std::string& item : Split(FLAGS_ik_target, ';')) {
-    const size_t colon = item.rfind(':');
-    const std::vector<std::string> xyz =
-        colon == std::string::npos ? std::vector<std::string>() : Split(item.substr(colon + 1), ',');
-    IkTarget target;
-    if (colon == std::string::npos || xyz.size() != 3 || !ParseDouble(xyz[0], &target.position.x()) ||
-        !ParseDouble(xyz[1], &target.position.y()) || !ParseDouble(xyz[2], &target.position.z())) {
-      return Status::Error("--ik_target: expected JOINT:x,y,z, got '" + item + "'");
-    }
-    target.joint = skeleton.FindJoint(item.substr(0, colon));
-    if (target.joint < 0) {
-      return Status::Error("--ik_target: unknown joint '" + item.substr(0, colon) + "'");
-    }
-    targets->push_back(target);
-  }
-  return Status::Ok();
-}
-
 // Skeleton units per cm; *assumed when the skeleton's unit is unknown (then cm).
 double UnitsPerCm(const Skeleton& skeleton, bool* assumed) {
   *assumed = !skeleton.unit().known();
@@ -121,94 +95,12 @@ double Correlation(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return denominator > 0.0 ? x.dot(y) / denominator : 0.0;
 }
 
-struct Falloffs {
-  std::vector<Eigen::VectorXd> weights;  // One per edit.
-  JsonObject report;
-};
-
-Status HarmonicWeights(const Skeleton& skeleton, const Motion& motion, const FalloffOptions& falloff,
-                       const std::vector<int>& frames, Falloffs* out) {
-  Eigen::MatrixXd features;
-  Status status = PoseFeatures(skeleton, motion, falloff.features, &features);
-  if (!status.ok()) return status;
-  const int begin = falloff.region_begin;
-  const int end = falloff.region_end < 0 ? motion.num_frames() : falloff.region_end;
-  const Eigen::MatrixXd region = features.middleRows(begin, end - begin);
-  const double sigma =
-      falloff.sigma > 0.0 ? falloff.sigma : falloff.sigma_scale * MedianStepDistance(region);
-  if (!(sigma > 0.0)) return Status::Error("--sigma: the auto sigma is 0 (a still clip); give --sigma");
-  const std::vector<WeightedEdge> edges = PoseGraphEdges(region, falloff.knn, sigma);
-  std::vector<int> local_frames;
-  for (int frame : frames) local_frames.push_back(frame - begin);
-  std::vector<Eigen::VectorXd> fields;
-  HarmonicReport harmonic;
-  // The ground edge is a fraction of the mean degree, so --harmonic_ground means the same
-  // whatever --knn and --sigma make the degrees.
-  double degree_sum = 0.0;
-  for (const WeightedEdge& edge : edges) degree_sum += 2.0 * edge.kernel;
-  const double mean_degree = degree_sum / (end - begin);
-  HarmonicOptions options;
-  options.ground_weight = FLAGS_harmonic_ground * mean_degree;
-  if (FLAGS_sparse_library == "suite_sparse") {
-    options.sparse_library = ceres::SUITE_SPARSE;
-  } else if (FLAGS_sparse_library != "eigen_sparse") {
-    return Status::Error("--sparse_library: expected eigen_sparse or suite_sparse, got '" +
-                         FLAGS_sparse_library + "'");
-  }
-  std::string error;
-  if (!options.IsValid(&error)) return Status::Error("--harmonic_ground/--sparse_library: " + error);
-  // The region's ends are labelled 0 where the region cuts the clip (so the weights reach 0
-  // there, without a step), and at the clip's ends too when no ground node pins the field.
-  std::vector<int> anchors;
-  if (begin > 0 || options.ground_weight == 0.0) anchors.push_back(0);
-  if (end < motion.num_frames() || options.ground_weight == 0.0) anchors.push_back(end - begin - 1);
-  status = HarmonicFalloffs(end - begin, edges, local_frames, anchors, options, &fields, &harmonic);
-  if (!status.ok()) return status;
-  out->weights.clear();
-  for (const Eigen::VectorXd& field : fields) {
-    Eigen::VectorXd w = Eigen::VectorXd::Zero(motion.num_frames());
-    w.segment(begin, end - begin) = field.cwiseMax(0.0).cwiseMin(1.0);
-    out->weights.push_back(w);
-  }
-  out->report.Add("sigma", sigma).Add("knn", falloff.knn).Add("graph_edges", harmonic.edges)
-      .Add("harmonic_iterations", harmonic.iterations).Add("harmonic_solve_seconds", harmonic.solve_seconds)
-      .Add("harmonic_max_gradient", harmonic.max_gradient)
-      .Add("harmonic_ground", FLAGS_harmonic_ground).Add("mean_degree", mean_degree)
-      .Add("ground_kernel", options.ground_weight);
-  return Status::Ok();
-}
-
-Status GreenWeights(const Skeleton& skeleton, const Motion& motion, const FalloffOptions& falloff,
-                    const std::vector<int>& frames, Falloffs* out) {
-  std::vector<Falloff> falloffs;
-  Status status = ComputeFalloffs(skeleton, motion, frames, FalloffMethod::kGreen, falloff, &falloffs);
-  if (!status.ok()) return status;
-  out->weights.clear();
-  for (const Falloff& result : falloffs) out->weights.push_back(result.weight);
-  out->report.Add("sigma", falloffs[0].sigma_used).Add("eigenpairs", falloffs[0].eigenpairs_used)
-      .Add("sparse_kernel", falloffs[0].sparse_used);
-  return Status::Ok();
-}
-
-Status SplineWeights(const Motion& motion, const FalloffOptions& falloff, const std::vector<int>& frames,
-                     Falloffs* out) {
-  if (!(FLAGS_spline_width > 0.0) || !std::isfinite(FLAGS_spline_width)) {
-    return Status::Error("--spline_width must be positive");
-  }
-  out->weights.clear();
-  for (int frame : frames) {
-    out->weights.push_back(SplineFalloff(motion.num_frames(), frame, FLAGS_spline_width,
-                                         falloff.region_begin, falloff.region_end));
-  }
-  out->report.Add("spline_width", FLAGS_spline_width);
-  return Status::Ok();
-}
-
-Status ComputeWeights(const std::string& method, const Skeleton& skeleton, const Motion& motion,
-                      const FalloffOptions& falloff, const std::vector<int>& frames, Falloffs* out) {
-  if (method == "green") return GreenWeights(skeleton, motion, falloff, frames, out);
-  if (method == "harmonic") return HarmonicWeights(skeleton, motion, falloff, frames, out);
-  return SplineWeights(motion, falloff, frames, out);
+EditWeightSettings EditWeightSettingsFromFlags() {
+  EditWeightSettings settings;
+  settings.harmonic_ground = FLAGS_harmonic_ground;
+  settings.spline_width = FLAGS_spline_width;
+  settings.sparse_library = FLAGS_sparse_library;
+  return settings;
 }
 
 Status WriteWeightsCsv(const std::string& path, const std::vector<int>& frames,
@@ -293,7 +185,7 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
                            " with --ik_target, got " + std::to_string(FLAGS_frame));
     }
     std::vector<IkTarget> targets;
-    status = ParseIkTargets(skeleton, &targets);
+    status = ParseIkTargets(FLAGS_ik_target, skeleton, &targets);
     if (!status.ok()) return status;
     MarkerSolveOptions solve;
     status = MarkerSolveOptionsFromFlags(skeleton.unit(), &solve);
@@ -321,15 +213,16 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
   }
 
   // Falloff weights, one field per edit.
-  Falloffs chosen;
-  status = ComputeWeights(method, skeleton, motion, falloff, frames, &chosen);
+  const EditWeightSettings weight_settings = EditWeightSettingsFromFlags();
+  EditWeights chosen;
+  status = ComputeEditWeights(method, skeleton, motion, falloff, frames, weight_settings, &chosen);
   if (!status.ok()) return status;
   JsonObject comparison;
   if (FLAGS_compare_falloffs) {
     for (const char* other : {"green", "harmonic", "spline"}) {
       if (other == method) continue;
-      Falloffs alternative;
-      status = ComputeWeights(other, skeleton, motion, falloff, frames, &alternative);
+      EditWeights alternative;
+      status = ComputeEditWeights(other, skeleton, motion, falloff, frames, weight_settings, &alternative);
       if (!status.ok()) return status;
       const Eigen::VectorXd& a = chosen.weights[0];
       const Eigen::VectorXd& b = alternative.weights[0];
@@ -375,7 +268,9 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
       solve.prior_weight = FLAGS_contact_prior_cm * units_per_cm;
       solve.blend_seconds = FLAGS_contact_blend_s;
       ContactSolveReport kept;
-      status = KeepContacts(skeleton, contacts, solve, &propagated, &kept);
+      Progress progress("propagate: contact re-solve", propagated.num_frames(), FLAGS_quiet);
+      status = KeepContacts(skeleton, contacts, solve, &propagated, &kept,
+                            [&progress](int frames_done) { progress.Update(frames_done); });
       if (!status.ok()) return Status::Error("--keep_contacts: " + status.message());
       contact_report.Add("max_drift_cm_with_keep", kept.max_drift_after / units_per_cm)
           .Add("frames_resolved", kept.frames_solved).Add("failed_frames", kept.failed_frames)

@@ -1,9 +1,12 @@
 // mocapsolve repair: find broken marker intervals against a robust kinematic reference
 // and refill them (thesis chapter 3; problems/marker_repair/marker_repair.h).
 #include <cstdio>
+#include <memory>
+#include <string>
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/progress.h"
 #include "apps/repair_flags.h"
 #include "apps/solver_flags.h"
 #include "apps/view_flags.h"
@@ -54,7 +57,16 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   std::vector<std::vector<Eigen::Vector3d>> repaired;
   Motion motion;
   RepairReport report;
-  status = RepairMarkers(skeleton, markers, observed, options, &repaired, &motion, &report);
+  std::unique_ptr<Progress> progress;
+  std::string progress_stage;
+  const RepairProgress show_progress = [&](const std::string& stage, int done, int total) {
+    if (stage != progress_stage) {
+      progress_stage = stage;
+      progress = std::make_unique<Progress>("repair: " + stage, total, FLAGS_quiet);
+    }
+    progress->Update(done);
+  };
+  status = RepairMarkers(skeleton, markers, observed, options, &repaired, &motion, &report, nullptr, show_progress);
   if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
   motion.frame_rate = trajectories.frame_rate;
 

@@ -76,6 +76,7 @@ void BindRetarget(py::module_& m);
 void BindPropagate(py::module_& m);
 void BindPyramid(py::module_& m);
 void BindPipeline(py::module_& m);
+void BindSkeletonFitting(py::module_& m);
 
 }  // namespace mocapsolve::python
 

@@ -47,7 +47,8 @@ void BindIo(py::module_& m) {
       "view on the C++ storage (set a sample to NaN to make it missing).")
       .def(py::init(&MakeMarkers), py::arg("positions"), py::arg("labels"), py::arg("rate"),
            py::arg("units") = "mm",
-           "Markers from a (frames, markers, 3) array (NaN = missing), labels, rate (Hz) and unit.")
+           "Markers from arrays. positions: (frames, markers, 3) float64, NaN = missing; labels: one\n"
+           "name per marker; rate: frames per second; units: of the positions (mm, cm, m, in; default mm).")
       .def_property_readonly("positions", &PositionsView)
       .def_property_readonly("labels", &MarkerTrajectories::labels)
       .def_readwrite("rate", &MarkerTrajectories::frame_rate, "Frames per second.")
@@ -64,7 +65,7 @@ void BindIo(py::module_& m) {
             return out;
           }, "(frames, markers) bool: the sample is present (its position is finite).")
       .def("find_marker", &MarkerTrajectories::FindMarker, py::arg("label"),
-           "Index of the marker (subject prefixes ignored), or -1.")
+           "Index of the marker named label (subject prefixes ignored), or -1.")
       .def("__repr__", [](const MarkerTrajectories& t) {
         return "<mocapsolve.Markers " + std::to_string(t.num_frames()) + " frames x " +
                std::to_string(t.num_markers()) + " markers, " + t.unit.name + ">";
@@ -81,14 +82,14 @@ void BindIo(py::module_& m) {
         ThrowIfError(status);
         return markers;
       }, py::arg("path"),
-      "Reads a .c3d or .trc file: Markers with .positions (frames, markers, 3; NaN where\n"
+      "Reads the .c3d or .trc file at path: Markers with .positions (frames, markers, 3; NaN where\n"
       "missing), .labels, .rate (Hz) and .units (the file's; nothing is rescaled).");
   m.def("write_markers", [](const std::string& path, MarkerTrajectories& markers) {
         SyncMask(&markers);
         py::gil_scoped_release release;
         ThrowIfError(WriteMarkerFile(path, markers));
       }, py::arg("path"), py::arg("markers"),
-      "Writes Markers to a .c3d or .trc file (atomically; NaN samples as missing).");
+      "Writes markers (Markers) to path, a .c3d or .trc file (atomically; NaN samples as missing).");
 
   m.def("read_skeleton", [](const std::string& path, const std::string& skeleton_units) {
         RequireReadable(path);
@@ -97,7 +98,7 @@ void BindIo(py::module_& m) {
         ThrowIfError(SetSkeletonUnits(skeleton_units, skeleton.get()));
         return SkeletonPtr(skeleton);
       }, py::arg("path"), py::arg("skeleton_units") = "",
-      "The skeleton of a .bvh, .asf, .glb/.gltf (skin 0) or .fbx file; skeleton_units\n"
+      "The skeleton of the file at path (.bvh, .asf, .glb/.gltf (skin 0) or .fbx); skeleton_units\n"
       "(mm, cm, m, in) gives a BVH, which states none, its unit.");
 
   m.def("read_motion", [](const std::string& path, py::object skeleton, double amc_fps,
@@ -124,7 +125,9 @@ void BindIo(py::module_& m) {
       }, py::arg("path"), py::arg("skeleton") = py::none(), py::arg("amc_fps") = 120.0,
       py::arg("animation") = "", py::arg("sample_fps") = 0.0, py::arg("skeleton_units") = "",
       "Reads a motion: .bvh, .amc (skeleton= its .asf path), .glb/.gltf or .fbx\n"
-      "(animation= a name or index, sample_fps= resampling rate). Returns (skeleton, motion)\n"
+      "(animation= a name or index, sample_fps= resampling rate). path: the file; amc_fps: the\n"
+      "frame rate of an .amc (which states none; default 120); skeleton_units: the unit of a\n"
+      "skeleton that states none (mm, cm, m, in). Returns (skeleton, motion)\n"
       "with motion.rotations (frames, joints, 4; x, y, z, w) and motion.root_translations\n"
       "(frames, 3) in the file's units.");
 
@@ -138,7 +141,8 @@ void BindIo(py::module_& m) {
         ThrowIfError(WriteBvh(path, skeleton, motion, options));
       }, py::arg("path"), py::arg("skeleton"), py::arg("motion"), py::arg("precision") = 6,
       py::arg("scale") = 1.0,
-      "Writes a .bvh (atomically): precision significant digits, lengths times scale.");
+      "Writes motion on skeleton to path, a .bvh (atomically): precision significant digits,\n"
+      "lengths times scale.");
 
   m.def("write_gltf", [](const std::string& path, const std::string& target, const Motion& motion,
                          const std::string& clip_name) {
@@ -172,7 +176,7 @@ void BindIo(py::module_& m) {
         auto subject = std::make_shared<Subject>();
         ThrowIfError(ReadSubject(path, subject.get()));
         return SubjectPtr(subject);
-      }, py::arg("path"), "Reads a subject file (calibrate/fit_skeleton --out_subject).");
+      }, py::arg("path"), "Reads the subject file at path (calibrate/fit_skeleton --out_subject).");
   m.def("subject", [](const std::string& skeleton, const std::string& markerset, const std::string& axes,
                       double marker_scale, const std::string& skeleton_units, double amc_fps) {
         RequireReadable(skeleton);
@@ -190,10 +194,13 @@ void BindIo(py::module_& m) {
       }, py::arg("skeleton"), py::arg("markerset"), py::arg("axes") = "x,y,z",
       py::arg("marker_scale") = 0.0, py::arg("skeleton_units") = "", py::arg("amc_fps") = 120.0,
       "A subject from files, as the CLI's --skeleton, --markerset, --axes, --marker_scale,\n"
-      "--skeleton_units and --amc_fps assemble it.");
+      "--skeleton_units and --amc_fps assemble it. skeleton: .bvh/.asf path; markerset: marker\n"
+      "set .json path; axes: marker file -> skeleton axes (e.g. 'y,z,x'); marker_scale: marker\n"
+      "units -> skeleton units (0 = from the units); skeleton_units: a BVH's unit (mm, cm, m,\n"
+      "in); amc_fps: the frame rate of AMC motions (default 120).");
   m.def("write_subject", [](const std::string& path, const Subject& subject) {
         ThrowIfError(WriteSubject(path, subject));
-      }, py::arg("path"), py::arg("subject"), "Writes a subject file (atomically).");
+      }, py::arg("path"), py::arg("subject"), "Writes subject to path, a subject .json file (atomically).");
 }
 
 }  // namespace mocapsolve::python

@@ -149,7 +149,7 @@ void BindKinematics(py::module_& m) {
       .def_property_readonly("num_joints", &Skeleton::num_joints)
       .def_property_readonly("units", [](const Skeleton& s) { return s.unit().name; })
       .def_property_readonly("metres_per_unit", [](const Skeleton& s) { return s.unit().metres_per_unit; })
-      .def("find_joint", &Skeleton::FindJoint, py::arg("name"), "Index of the joint, or -1.")
+      .def("find_joint", &Skeleton::FindJoint, py::arg("name"), "Index of the joint named name, or -1.")
       .def("rest_pose", &RestPose, "The rest pose (offsets, identity rotations).")
       .def("__repr__", [](const Skeleton& s) {
         return "<mocapsolve.Skeleton " + std::to_string(s.num_joints()) + " joints, " + s.unit().name + ">";
@@ -158,7 +158,8 @@ void BindKinematics(py::module_& m) {
   py::class_<Pose>(m, "Pose", "One frame: local translations and rotations of every joint.")
       .def(py::init(&PoseFromArrays), py::arg("skeleton"), py::arg("rotations"),
            py::arg("translations"),
-           "rotations (joints, 4) x, y, z, w; translations (joints, 3) or the root's (3,).")
+           "A pose of skeleton: rotations (joints, 4) x, y, z, w; translations (joints, 3) or the\n"
+           "root's (3,) (the others keep their rest offsets), skeleton units.")
       .def_property("rotations",
           [](const Pose& p) {
             Array out({static_cast<py::ssize_t>(p.rotations.size()), py::ssize_t{4}});
@@ -182,15 +183,15 @@ void BindKinematics(py::module_& m) {
             }
             return out;
           }, "(joints, 3) local translations.")
-      .def("copy", [](const Pose& p) { return Pose(p); });
+      .def("copy", [](const Pose& p) { return Pose(p); }, "An independent copy of this pose.");
 
   py::class_<Motion>(m, "Motion",
       "A frame rate and one pose per frame. Array properties are copies (a Motion is not one\n"
       "contiguous block); assign them to change the motion.")
       .def(py::init(&MakeMotion), py::arg("skeleton"), py::arg("rotations"), py::arg("translations"),
            py::arg("rate"),
-           "rotations (frames, joints, 4) x, y, z, w; translations (frames, 3) for the root (the\n"
-           "others keep their rest offsets) or (frames, joints, 3); rate in frames per second.")
+           "A motion of skeleton: rotations (frames, joints, 4) x, y, z, w; translations (frames, 3)\n"
+           "for the root (the others keep their rest offsets) or (frames, joints, 3); rate in frames per second.")
       .def_readwrite("rate", &Motion::frame_rate)
       .def_property_readonly("num_frames", &Motion::num_frames)
       .def_property("rotations", &MotionRotations, &SetRotations, "(frames, joints, 4) x, y, z, w.")
@@ -203,7 +204,7 @@ void BindKinematics(py::module_& m) {
       .def("pose", [](const Motion& mo, int f) {
             if (f < 0 || f >= mo.num_frames()) throw py::index_error("frame out of range");
             return mo.frames[f];
-          }, py::arg("frame"))
+          }, py::arg("frame"), "The Pose of frame (0-based; IndexError when out of range).")
       .def("__len__", &Motion::num_frames)
       .def("__repr__", [](const Motion& mo) {
         return "<mocapsolve.Motion " + std::to_string(mo.num_frames()) + " frames at " +
@@ -227,7 +228,7 @@ void BindKinematics(py::module_& m) {
         }
         return out;
       }, py::arg("skeleton"), py::arg("motion"),
-      "World joint positions (frames, joints, 3) in the file's units.");
+      "World joint positions (frames, joints, 3) of motion on skeleton, in the skeleton's units.");
 
   m.def("joint_rotations_world", [](const Skeleton& skeleton, const Motion& motion) {
         CheckMotion(skeleton, motion);
@@ -242,7 +243,7 @@ void BindKinematics(py::module_& m) {
         }
         return out;
       }, py::arg("skeleton"), py::arg("motion"),
-      "World joint rotations (frames, joints, 4) x, y, z, w.");
+      "World joint rotations (frames, joints, 4) x, y, z, w of motion on skeleton.");
 
   m.def("joint_position_jacobian", [](const Skeleton& skeleton, const Pose& pose, py::object joint) {
         const int j = JointIndices(skeleton, joint)[0];
@@ -259,7 +260,8 @@ void BindKinematics(py::module_& m) {
         }
         return out;
       }, py::arg("skeleton"), py::arg("pose"), py::arg("joint"),
-      "d(world position of joint)/d pose: (3, 3 + 3 joints), columns [root translation |\n"
+      "d(world position of joint)/d pose, for a pose of skeleton and joint an index or a name:\n"
+      "(3, 3 + 3 joints), columns [root translation |\n"
       "delta_0 | ... | delta_{J-1}] for R_j <- R_j exp(delta_j) (kinematics/kinematic_jacobians.h).");
 
   m.def("retract_pose", [](const Pose& pose, const Array& tangent) {
@@ -269,7 +271,8 @@ void BindKinematics(py::module_& m) {
         RetractPose(d, &out);
         return out;
       }, py::arg("pose"), py::arg("tangent"),
-      "The retraction the Jacobians refer to: translation += d[0:3], R_j <- R_j exp(d[3+3j:6+3j]).");
+      "The retraction the Jacobians refer to, a new Pose from pose and tangent d (3 + 3 joints,):\n"
+      "translation += d[0:3], R_j <- R_j exp(d[3+3j:6+3j]).");
 
   py::class_<GltfCharacter, CharacterPtr>(m, "Character",
       "A glTF character: skeleton (metres), skinned mesh, triangles, rest and bind poses.")
@@ -301,7 +304,7 @@ void BindKinematics(py::module_& m) {
         ThrowIfError(status);
         return CharacterPtr(character);
       }, py::arg("path"), py::arg("skin") = "",
-      "Reads a .glb/.gltf character (skin 0 unless skin= names one).");
+      "Reads the .glb/.gltf character at path (skin 0 unless skin= names one).");
 
   m.def("skin", [](const GltfCharacter& character, const Motion& motion) {
         CheckMotion(character.skeleton, motion);
@@ -326,7 +329,8 @@ void BindKinematics(py::module_& m) {
         }
         return py::make_tuple(positions, normals);
       }, py::arg("character"), py::arg("motion"),
-      "Linear blend skinning (thesis eqs. 5, 6) of every frame: (positions, normals), each\n"
+      "Linear blend skinning (thesis eqs. 5, 6) of character over every frame of motion (on its\n"
+      "skeleton): (positions, normals), each\n"
       "(frames, vertices, 3); normals are not renormalized (kinematics/skinning.h).");
 
   m.def("skinned_vertex_jacobians", [](const GltfCharacter& character, const Pose& pose, int vertex) {
@@ -354,7 +358,8 @@ void BindKinematics(py::module_& m) {
         }
         return py::make_tuple(position, normal);
       }, py::arg("character"), py::arg("pose"), py::arg("vertex"),
-      "Exact d(skinned position)/d pose and d(skinned normal)/d pose of one vertex, each\n"
+      "Exact d(skinned position)/d pose and d(skinned normal)/d pose of one vertex (an index) of\n"
+      "character at pose, each\n"
       "(3, 3 + 3 joints), tangent layout as joint_position_jacobian.");
 }
 

@@ -18,4 +18,5 @@ PYBIND11_MODULE(_core, m) {
   BindPropagate(m);
   BindPyramid(m);
   BindPipeline(m);
+  BindSkeletonFitting(m);
 }

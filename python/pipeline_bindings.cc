@@ -7,6 +7,7 @@
 #include "pipeline/retarget_settings.h"
 #include "pipeline/take_pipeline.h"
 #include "python/bindings.h"
+#include "python/keyword_docs.h"
 
 namespace mocapsolve::python {
 
@@ -81,13 +82,25 @@ void BindPipeline(py::module_& m) {
       py::arg("tension") = 0.0, py::arg("gate_naive_rms_mm") = 30.0, py::arg("gate_repaired_rms_mm") = 20.0,
       py::arg("gate_repaired_share") = 0.25, py::arg("gate_iteration_limit_share") = 0.2,
       py::arg("gate_marker_offset_cm") = 25.0, py::arg("gate_torso_deg") = 15.0,
-      R"doc(One take end to end, as `mocapsolve pipeline`: repair and solve the markers (a .c3d/.trc
+      (std::string(R"doc(One take end to end, as `mocapsolve pipeline`: repair and solve the markers (a .c3d/.trc
 path) of the subject, filter (filter_levels > 0), retarget onto each character (.glb
-paths), check the quality gate (gate_* as the CLI's flags; 0 turns a check off).
+paths), check the quality gate (gate_* as the CLI's flags; 0 turns a check off):
+  gate_naive_rms_mm (default 30): the plain solve's marker RMS at most this, mm;
+  gate_repaired_rms_mm (default 20): the repaired solve's marker RMS at most this, mm;
+  gate_repaired_share (default 0.25): at most this share of marker samples repaired;
+  gate_iteration_limit_share (default 0.2): at most this share of frames whose solve
+    stopped at max_iterations;
+  gate_marker_offset_cm (default 25): no marker farther than this from its bone, cm;
+  gate_torso_deg (default 15): the solved pelvis-to-head direction within this (degrees,
+    mean) of the head and pelvis markers' own.
+take_name: the take's name in the report ('' = the marker file's stem).
+filter_levels: the multiresolution filter's levels (0 = off), with kernel_a (the Cardinal
+spline kernel's a, default 0.4) and tension (default 0).
 Keywords: the repair, solver (solver='dls' by default) and retarget options.
 out_dir: also write repaired markers, solved.bvh, <character>.glb and report.json there.
 Returns a dict: 'solved' (Motion), 'repaired_markers' (Markers), 'characters' {name:
-Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc");
+Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc") +
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", [] { SolverSettings s; s.solver = kRepairDefaultSolver; return py::cast(s); }(), kSolverSettingNames) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), kRetargetSettingNames)).c_str());
 }
 
 }  // namespace mocapsolve::python

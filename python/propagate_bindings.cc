@@ -3,11 +3,16 @@
 #include <cmath>
 
 #include "io/edit_file.h"
+#include "pipeline/edit_weights.h"
 #include "pipeline/falloff_settings.h"
+#include "pipeline/solver_settings.h"
 #include "problems/edit_propagation/falloff.h"
+#include "problems/edit_propagation/ik_edit.h"
 #include "problems/edit_propagation/pose_edit.h"
 #include "problems/edit_propagation/spline_falloff.h"
 #include "python/bindings.h"
+#include "python/keyword_docs.h"
+#include "python/solve_bindings.h"
 
 namespace mocapsolve::python {
 namespace {
@@ -24,7 +29,7 @@ void BindPropagate(py::module_& m) {
   py::class_<FalloffSettings> settings(m, "FalloffSettings",
       "The pose-space falloff's options, one per flag of `mocapsolve distance`/`propagate`\n"
       "(same names and defaults). falloff() takes them as keywords.");
-  settings.def(py::init<>());
+  settings.def(py::init<>(), "Every option at the CLI's default.");
 #define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &FalloffSettings::name)
   MOCAPSOLVE_FIELD(sigma); MOCAPSOLVE_FIELD(sigma_scale); MOCAPSOLVE_FIELD(eigenpairs);
   MOCAPSOLVE_FIELD(region); MOCAPSOLVE_FIELD(diffusion_steps); MOCAPSOLVE_FIELD(knn);
@@ -34,7 +39,8 @@ void BindPropagate(py::module_& m) {
   settings.def("validate", [](const FalloffSettings& s, int num_frames) {
         FalloffOptions options;
         ThrowIfError(FalloffOptionsFromSettings(s, num_frames, &options));
-      }, py::arg("num_frames"), "Raises ValueError (the CLI's message) if a value is invalid for a clip this long.");
+      }, py::arg("num_frames"),
+      "Raises ValueError (the CLI's message) if a value is invalid for a clip of num_frames frames.");
   m.attr("FALLOFF_OPTION_NAMES") = std::string(kFalloffSettingNames);
 
   m.def("falloff", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& method,
@@ -66,12 +72,13 @@ void BindPropagate(py::module_& m) {
         d["sparse_kernel"] = falloff.sparse_used;
         return d;
       }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("method") = "green",
-      R"doc(The pose-space falloff of an edit at `frame` (as `mocapsolve distance`): method
+      (std::string(R"doc(The pose-space falloff of an edit at `frame` of motion (on skeleton), as `mocapsolve distance`: method
 'green' (Green's function of the pose Laplacian), 'diffusion' or 'isomap'. Keywords: the
 FalloffSettings (sigma, sigma_scale, eigenpairs, region='a:b', diffusion_steps, knn,
 isomap_knn, falloff_kernel, feature_joints, joint_weights, temporal_weight).
 Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
-'region', 'sigma', 'eigenpairs', 'sparse_kernel'.)doc");
+'region', 'sigma', 'eigenpairs', 'sparse_kernel'.)doc") +
+       KeywordDefaults("Falloff keywords and defaults (FalloffSettings)", py::cast(FalloffSettings()), kFalloffSettingNames)).c_str());
 
   m.def("spline_falloff", [](int num_frames, int frame, double spline_width, int region_begin, int region_end) {
         if (!(spline_width > 0.0) || !std::isfinite(spline_width)) {
@@ -79,7 +86,9 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
         }
         return VectorToArray(SplineFalloff(num_frames, frame, spline_width, region_begin, region_end));
       }, py::arg("num_frames"), py::arg("frame"), py::arg("spline_width") = 30.0, py::arg("region_begin") = 0,
-      py::arg("region_end") = -1, "The temporal baseline: a cubic bump of half-width spline_width frames.");
+      py::arg("region_end") = -1, "The temporal baseline for a clip of num_frames frames: a cubic bump of half-width\n"
+      "spline_width frames centred on frame, zero outside [region_begin, region_end) (-1 = the\n"
+      "clip's end).");
 
   py::class_<PoseEdit>(m, "PoseEdit", "One edited frame: its index and the whole edited pose.")
       .def_readonly("frame", &PoseEdit::frame)
@@ -129,7 +138,8 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
         }
         return edits;
       }, py::arg("path"), py::arg("skeleton"), py::arg("motion"),
-      "The edits of an edit file (.json, io/edit_file.h) applied to motion's frames.");
+      "The edits of the edit file at path (.json, io/edit_file.h; joints named as in skeleton)\n"
+      "applied to motion's frames: a list of PoseEdit.");
 
   m.def("propagate", [](const Skeleton& skeleton, const Motion& motion, const std::vector<PoseEdit>& edits,
                         const std::vector<Array>& weights) {
@@ -147,8 +157,109 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
         ThrowIfError(status);
         return out;
       }, py::arg("skeleton"), py::arg("motion"), py::arg("edits"), py::arg("weights"),
-      "Propagates edits through the clip (eq. 5): weights[k] (frames,) is edit k's falloff\n"
+      "Propagates edits (PoseEdits) through motion on skeleton (eq. 5): weights[k] (frames,) is edit k's falloff\n"
       "(falloff()['weight'] or spline_falloff()). Returns the edited motion.");
+
+  m.def("ik_edit", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& ik_target,
+                      double ik_root_weight, const py::kwargs& keywords) {
+        const SolverSettings settings = SettingsFromKeywords(keywords, nullptr);
+        if (frame < 0 || frame >= motion.num_frames()) {
+          throw py::value_error("--frame: expected 0 <= frame < " + std::to_string(motion.num_frames()) +
+                                " with --ik_target, got " + std::to_string(frame));
+        }
+        std::vector<IkTarget> targets;
+        ThrowIfError(ParseIkTargets(ik_target, skeleton, &targets));
+        MarkerSolveOptions solve;
+        ThrowIfError(MarkerSolveOptionsFromSettings(settings, skeleton.unit(), &solve));
+        if (!(ik_root_weight >= 0.0)) throw py::value_error("--ik_root_weight must be >= 0");
+        solve.prior_translation_weight = ik_root_weight;
+        PoseEdit edit;
+        IkEditReport ik;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = SolveIkEdit(skeleton, motion, frame, targets, solve, &edit, &ik);
+        }
+        ThrowIfError(status);
+        py::dict report;
+        report["solver"] = settings.solver;
+        report["ik_iterations"] = ik.solve.iterations;
+        report["ik_max_target_error"] = ik.max_target_error;
+        report["ik_final_cost"] = ik.solve.final_cost;
+        return py::make_tuple(std::move(edit), report);
+      }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("ik_target"), py::kw_only(),
+      py::arg("ik_root_weight") = 1.0,
+      (std::string(R"doc(An IK edit, as `mocapsolve propagate --ik_target`: the pose of motion's frame solved so
+that joints reach world points (problems/edit_propagation/ik_edit.h).
+
+skeleton, motion: the clip (read_motion). frame: the edited frame (0-based).
+ik_target: 'JOINT:x,y,z' (world, skeleton units), several separated by ';'.
+ik_root_weight: pull of the root translation toward the original, per skeleton unit
+  (default 1.0; 0 lets the root slide freely).
+Every other keyword is a solver option of solve() (SolverSettings: solver='ceres'|'dls',
+max_iterations, prior_weight, ...).
+Returns (edit, report): a PoseEdit for propagate() and a dict (ik_iterations,
+ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc") +
+       KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()), kSolverSettingNames)).c_str());
+
+  m.def("edit_weights", [](const Skeleton& skeleton, const Motion& motion, const std::vector<PoseEdit>& edits,
+                           const std::string& method, double harmonic_ground, double spline_width,
+                           const std::string& sparse_library, const py::kwargs& keywords) {
+        FalloffSettings falloff_settings;
+        ApplyKeywords(keywords, {py::cast(&falloff_settings, py::return_value_policy::reference)},
+                      kFalloffSettingNames);
+        if (method != "green" && method != "harmonic" && method != "spline") {
+          throw py::value_error("--method: expected green, harmonic or spline, got '" + method + "'");
+        }
+        FalloffOptions options;
+        ThrowIfError(FalloffOptionsFromSettings(falloff_settings, motion.num_frames(), &options));
+        const int region_begin = options.region_begin;
+        const int region_end = options.region_end < 0 ? motion.num_frames() : options.region_end;
+        std::vector<int> frames;
+        for (const PoseEdit& edit : edits) {
+          if (edit.frame < region_begin || edit.frame >= region_end) {
+            throw py::value_error("--region: edited frame " + std::to_string(edit.frame) + " lies outside " +
+                                  std::to_string(region_begin) + ":" + std::to_string(region_end));
+          }
+          frames.push_back(edit.frame);
+        }
+        EditWeightSettings settings;
+        settings.harmonic_ground = harmonic_ground;
+        settings.spline_width = spline_width;
+        settings.sparse_library = sparse_library;
+        EditWeights weights;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = ComputeEditWeights(method, skeleton, motion, options, frames, settings, &weights);
+        }
+        ThrowIfError(status);
+        py::list arrays;
+        for (const Eigen::VectorXd& w : weights.weights) arrays.append(VectorToArray(w));
+        py::object report = py::module_::import("json").attr("loads")(weights.report.ToString());
+        return py::make_tuple(arrays, report);
+      }, py::arg("skeleton"), py::arg("motion"), py::arg("edits"), py::arg("method") = "green", py::kw_only(),
+      py::arg("harmonic_ground") = EditWeightSettings().harmonic_ground,
+      py::arg("spline_width") = EditWeightSettings().spline_width,
+      py::arg("sparse_library") = EditWeightSettings().sparse_library,
+      (std::string(R"doc(The falloff weights of edits as `mocapsolve propagate` computes them
+(pipeline/edit_weights.h), one (frames,) array per edit, for propagate().
+
+skeleton, motion: the clip. edits: PoseEdits (make_edit, read_edits, ik_edit).
+method: 'green' (default; the normalized row of the pose-space Green's function),
+  'harmonic' (the harmonic function on the kNN pose graph: 1 at the edit, 0 at the other
+  edits, at a ground node and at the ends of the region; Zhu et al. 2003) or 'spline'.
+harmonic_ground: method='harmonic': weight of every frame's edge to the ground node held
+  at 0, as a fraction of the graph's mean degree (default 0.002; 0 = pure harmonic with the
+  clip's ends held at 0).
+spline_width: method='spline': half-width of the cubic bump, frames (default 30).
+sparse_library: the harmonic solve's sparse library, 'eigen_sparse' (default) or
+  'suite_sparse'.
+Other keywords: the FalloffSettings (sigma, sigma_scale, eigenpairs, region='a:b', knn,
+falloff_kernel, feature_joints, joint_weights, temporal_weight; as falloff()).
+Returns (weights, report): the list of arrays and the CLI report's 'falloff' dict.
+Releases the GIL.)doc") +
+       KeywordDefaults("Falloff keywords and defaults (FalloffSettings)", py::cast(FalloffSettings()), kFalloffSettingNames)).c_str());
 }
 
 }  // namespace mocapsolve::python

@@ -77,7 +77,8 @@ void BindPyramid(py::module_& m) {
       }, py::arg("signal"), py::arg("levels") = 0, py::arg("kernel_a") = 0.4, py::arg("tension") = 0.0,
       "Laplacian pyramid of a (samples, channels) signal (Burt & Adelson; EXPAND by cubic\n"
       "Cardinal splines): (laplacian, gaussian), lists of arrays L_0..L_{N-1} and G_1..G_N.\n"
-      "levels=0: as many as the signal allows.");
+      "levels=0: as many as the signal allows."
+      "\nkernel_a: the cubic Cardinal spline kernel's a (default 0.4); tension: the spline's tension (default 0).");
 
   m.def("reconstruct_signal", [](const std::vector<Array>& laplacian, const Array& top,
                                  const std::vector<double>& weights, double kernel_a, double tension) {
@@ -91,7 +92,10 @@ void BindPyramid(py::module_& m) {
         return SignalToArray(out);
       }, py::arg("laplacian"), py::arg("top"), py::arg("weights"), py::arg("kernel_a") = 0.4,
       py::arg("tension") = 0.0,
-      "Collapses a pyramid with each band scaled: w_N G_N + sum w_l L_l (Huang et al. eq. 7).");
+      "Collapses a pyramid with each band scaled: w_N G_N + sum w_l L_l (Huang et al. eq. 7).\n"
+      "laplacian: the arrays L_0..L_{N-1} of laplacian_pyramid(); top: G_N; weights: N + 1\n"
+      "numbers w_0..w_N."
+      "\nkernel_a: the cubic Cardinal spline kernel's a (default 0.4); tension: the spline's tension (default 0).");
 
   m.def("filter", [](py::object data, int levels, double kernel_a, double tension) {
         if (levels < 1 || levels > 30) throw py::value_error("--levels must be in [1, 30]");
@@ -99,14 +103,16 @@ void BindPyramid(py::module_& m) {
       }, py::arg("data"), py::arg("levels") = 2, py::arg("kernel_a") = 0.4, py::arg("tension") = 0.0,
       "Multiresolution low-pass filter of a Motion or Markers, as `mocapsolve filter`: the\n"
       "pyramid of `levels` levels collapsed without its `levels` finest bands. Returns the\n"
-      "same type (missing marker samples stay missing).");
+      "same type (missing marker samples stay missing). data: a Motion or Markers."
+      "\nkernel_a: the cubic Cardinal spline kernel's a (default 0.4); tension: the spline's tension (default 0).");
 
   m.def("bands", [](py::object data, const std::vector<double>& weights, double kernel_a, double tension) {
         const std::vector<double> w = Weights(weights);
         return FilterAny(data, static_cast<int>(w.size()) - 1, w, kernel_a, tension);
       }, py::arg("data"), py::arg("weights"), py::arg("kernel_a") = 0.4, py::arg("tension") = 0.0,
       "Band editing of a Motion or Markers, as `mocapsolve bands`: N + 1 weights (w_0 the\n"
-      "finest band, w_N the top Gaussian) scale the bands of an N-level pyramid.");
+      "finest band, w_N the top Gaussian) scale the bands of an N-level pyramid of data."
+      "\nkernel_a: the cubic Cardinal spline kernel's a (default 0.4); tension: the spline's tension (default 0).");
 
   m.def("blend", [](const Motion& a, const Motion& b, int b_offset, int transition_start, int transition_end,
                     const std::string& method, int levels, double kernel_a, double tension) {
@@ -140,11 +146,12 @@ void BindPyramid(py::module_& m) {
       py::arg("kernel_a") = 0.4, py::arg("tension") = 0.0,
       "Blends motion b into a over A's frames [transition_start, transition_end] (b's frame 0\n"
       "at A's frame b_offset), as `mocapsolve blend`: method 'multires' (band by band,\n"
-      "blend_levels levels, 0 = as many as fit) or 'weighted' (a plain weighted sum).");
+      "blend_levels levels, 0 = as many as fit) or 'weighted' (a plain weighted sum)."
+      "\nkernel_a: the cubic Cardinal spline kernel's a (default 0.4); tension: the spline's tension (default 0).");
 
   m.def("velocity_jumps", [](const Skeleton& skeleton, const Motion& motion) {
         return VelocityJumps(skeleton, motion);
-      }, py::arg("skeleton"), py::arg("motion"), "Per-frame joint velocity jumps (signal/motion_blend.h).");
+      }, py::arg("skeleton"), py::arg("motion"), "Per-frame joint velocity jumps of motion on skeleton (signal/motion_blend.h).");
 }
 
 }  // namespace mocapsolve::python

@@ -4,6 +4,7 @@
 #include "problems/marker_repair/repair_evaluation.h"
 #include "problems/marker_repair/marker_repair.h"
 #include "python/bindings.h"
+#include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
 
 namespace mocapsolve::python {
@@ -33,7 +34,7 @@ void BindRepair(py::module_& m) {
   py::class_<RepairSettings> settings(m, "RepairSettings",
       "Marker repair's options, one per flag of `mocapsolve repair` (same names, defaults and\n"
       "units: cm, degrees, frames). repair() takes them, and the SolverSettings, as keywords.");
-  settings.def(py::init<>());
+  settings.def(py::init<>(), "Every option at the CLI's default.");
 #define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &RepairSettings::name)
   MOCAPSOLVE_FIELD(dp_max_cm); MOCAPSOLVE_FIELD(dr_max_deg); MOCAPSOLVE_FIELD(outlier_cm);
   MOCAPSOLVE_FIELD(trim_max); MOCAPSOLVE_FIELD(small_track); MOCAPSOLVE_FIELD(small_gap);
@@ -49,7 +50,8 @@ void BindRepair(py::module_& m) {
         RepairOptions options;
         ThrowIfError(RepairOptionsFromSettings(s, solver, skeleton, &options));
       }, py::arg("solver") = SolverSettings(), py::arg("skeleton_units") = "cm",
-      "Raises ValueError (the CLI's message) if a value, or one of the solver's, is invalid.");
+      "Raises ValueError (the CLI's message) if a value, or one of the solver's (solver: a\n"
+      "SolverSettings), is invalid for a skeleton in skeleton_units (mm, cm, m, in).");
   m.attr("REPAIR_OPTION_NAMES") = std::string(kRepairSettingNames);
 
   m.def("repair", [](SubjectPtr subject, py::object markers, const py::kwargs& keywords) {
@@ -109,7 +111,7 @@ void BindRepair(py::module_& m) {
         d["repaired_observed"] = ObservationsToArray(repaired);
         return py::make_tuple(out, std::move(motion), d);
       }, py::arg("subject"), py::arg("markers"),
-      R"doc(Finds broken marker intervals against a robust reference and refills them, as
+      (std::string(R"doc(Finds broken marker intervals against a robust reference and refills them, as
 `mocapsolve repair` (thesis chapter 3).
 
 subject: a Subject; markers: a .c3d/.trc path or a Take.
@@ -122,12 +124,13 @@ Returns (markers, motion, report): the input file's markers with the repaired sa
 own axes and unit: what --out_markers writes), the motion solved from them, and the
 report as a dict ('detected' and 'filled' lists of {marker, first_frame, last_frame,
 what}, 'timings', 'rms_*_mm', 'repaired_observed' (frames, set markers, 3) in skeleton
-units). Releases the GIL while repairing.)doc");
+units). Releases the GIL while repairing.)doc") +
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", [] { SolverSettings s; s.solver = kRepairDefaultSolver; return py::cast(s); }(), kSolverSettingNames)).c_str());
 
   py::class_<CorruptionSettings> damage(m, "CorruptionSettings",
       "The synthetic damage's options, one per flag of `mocapsolve corrupt`/`evaluate` (same\n"
       "names and defaults; distances in mm).");
-  damage.def(py::init<>());
+  damage.def(py::init<>(), "Every option at the CLI's default.");
 #define MOCAPSOLVE_FIELD(name) damage.def_readwrite(#name, &CorruptionSettings::name)
   MOCAPSOLVE_FIELD(corrupt_seed); MOCAPSOLVE_FIELD(gaps); MOCAPSOLVE_FIELD(gap_min); MOCAPSOLVE_FIELD(gap_max);
   MOCAPSOLVE_FIELD(cluster_gaps); MOCAPSOLVE_FIELD(cluster_radius_mm); MOCAPSOLVE_FIELD(fly_off_frames);
@@ -140,7 +143,8 @@ units). Releases the GIL while repairing.)doc");
   damage.def("validate", [](const CorruptionSettings& s, const std::string& units) {
         CorruptionOptions options;
         ThrowIfError(CorruptionOptionsFromSettings(s, LengthUnitFromName(units), &options));
-      }, py::arg("units") = "mm", "Raises ValueError (the CLI's message) if a value is invalid.");
+      }, py::arg("units") = "mm",
+      "Raises ValueError (the CLI's message) if a value is invalid for markers in units (mm, cm, m, in).");
   m.attr("CORRUPTION_OPTION_NAMES") = std::string(kCorruptionSettingNames);
 
   m.def("corrupt", [](MarkerTrajectories& markers, const py::kwargs& keywords) {
@@ -221,11 +225,14 @@ units). Releases the GIL while repairing.)doc");
         }
         return out;
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("trials") = 1,
-      R"doc(The thesis' Table 1 on synthetic damage, as `mocapsolve evaluate`: per trial (seeds
+      (std::string(R"doc(The thesis' Table 1 on synthetic damage, as `mocapsolve evaluate`: per trial (seeds
 corrupt_seed, corrupt_seed + 1, ...) the clean markers are damaged and refilled by every
 method (original, polynomial, linear, PCA, reference only, ours). Keywords: the repair,
 solver and corruption options. Returns one dict per trial and method, the columns of
-evaluate's --table_csv (errors against the solve of the clean markers).)doc");
+evaluate's --table_csv (errors against the solve of the clean markers).
+subject: a Subject; markers: a .c3d/.trc path or a Take; trials: how many damaged copies
+(default 1, up to 1000).)doc") +
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", [] { SolverSettings s; s.solver = kRepairDefaultSolver; return py::cast(s); }(), kSolverSettingNames) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), kCorruptionSettingNames)).c_str());
 }
 
 }  // namespace mocapsolve::python

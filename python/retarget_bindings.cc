@@ -7,6 +7,7 @@
 #include "pipeline/retarget_settings.h"
 #include "problems/retarget/retarget_character.h"
 #include "python/bindings.h"
+#include "python/keyword_docs.h"
 
 namespace mocapsolve::python {
 
@@ -14,7 +15,7 @@ void BindRetarget(py::module_& m) {
   py::class_<RetargetSettings> settings(m, "RetargetSettings",
       "The retargeting options, one per flag of `mocapsolve retarget`/`pipeline` (same names and\n"
       "defaults; solver is dls | dls_generic | ceres). retarget() takes them as keywords.");
-  settings.def(py::init<>());
+  settings.def(py::init<>(), "Every option at the CLI's default.");
 #define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &RetargetSettings::name)
   MOCAPSOLVE_FIELD(solver); MOCAPSOLVE_FIELD(limit_weight); MOCAPSOLVE_FIELD(joint_map);
   MOCAPSOLVE_FIELD(plant_feet); MOCAPSOLVE_FIELD(plant_weight); MOCAPSOLVE_FIELD(plant_height);
@@ -124,13 +125,19 @@ void BindRetarget(py::module_& m) {
       }, py::arg("source"), py::arg("target"), py::kw_only(), py::arg("skeleton") = py::none(),
       py::arg("source_mesh") = true, py::arg("source_animation") = "", py::arg("frame_rate") = 0.0,
       py::arg("max_frames") = 0, py::arg("amc_fps") = 120.0, py::arg("out") = "", py::arg("animation_name") = "",
-      R"doc(Retargets a source motion onto a skinned glTF character, as `mocapsolve retarget`
+      (std::string(R"doc(Retargets a source motion onto a skinned glTF character, as `mocapsolve retarget`
 (thesis chapter 4). source: a skinned .glb/.gltf (its mesh tracked unless
 source_mesh=False) or a skeleton motion (.bvh, .amc with skeleton= its .asf, .fbx);
 target: a .glb/.gltf character. out: also write a .glb/.gltf (the target plus the new
-animation) or .bvh. Keywords: the RetargetSettings (solver='dls', iterations=10,
+animation) or .bvh. source_animation: the source file's clip (a name or index; glTF/FBX);
+frame_rate: resample the source to this rate (0 = its own); max_frames: only the first N
+frames (0 = all); amc_fps: an .amc's frame rate (default 120); animation_name: the new
+clip's name in the written glTF ('' = 'retargeted from <source clip>').
+Keywords: the RetargetSettings (solver='dls', iterations=10,
 lambda=5, subsample=128, plant_feet=True, joint_map='map.json', ...).
-Returns (target character, motion on the target skeleton, report dict). Releases the GIL.)doc");
+Returns (target character, motion on the target skeleton, report dict). Releases the GIL.)doc") +
+       KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()),
+                       std::string("solver,limit_weight,") + kRetargetSettingNames)).c_str());
 }
 
 }  // namespace mocapsolve::python

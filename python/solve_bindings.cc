@@ -12,6 +12,7 @@
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/sequence_solver.h"
 #include "python/bindings.h"
+#include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
 
 namespace mocapsolve::python {
@@ -138,7 +139,7 @@ void BindSolve(py::module_& m) {
   py::class_<SolverSettings> settings(m, "SolverSettings",
       "The marker solver's options, one per flag of `mocapsolve solve` (same names, defaults\n"
       "and units). Keyword arguments of solve(), FrameSolver(), repair() set these.");
-  settings.def(py::init<>());
+  settings.def(py::init<>(), "Every option at the CLI's default.");
 #define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &SolverSettings::name)
   MOCAPSOLVE_FIELD(solver); MOCAPSOLVE_FIELD(mode); MOCAPSOLVE_FIELD(linear_solver);
   MOCAPSOLVE_FIELD(trust_region); MOCAPSOLVE_FIELD(max_iterations); MOCAPSOLVE_FIELD(function_tolerance);
@@ -156,7 +157,8 @@ void BindSolve(py::module_& m) {
         ClipSolveOptions clip;
         ThrowIfError(ClipSolveOptionsFromSettings(s, &clip));
       }, py::arg("skeleton_units") = "cm",
-      "Raises ValueError (the CLI's message) if a value is invalid.");
+      "Raises ValueError (the CLI's message) if a value is invalid for a skeleton in\n"
+      "skeleton_units (mm, cm, m, in; default cm: the prior and limit weights are in mm).");
   settings.def("as_dict", [](py::object self) {
         py::dict d;
         for (const std::string& name : [] {
@@ -190,7 +192,8 @@ void BindSolve(py::module_& m) {
   m.def("load_take", [](SubjectPtr subject, const std::string& path) {
         return TakeArgument(*subject, py::str(path));
       }, py::arg("subject"), py::arg("markers"),
-      "Reads a .c3d/.trc and maps it onto the subject (label prefix, axes, scale).");
+      "Reads markers (a .c3d/.trc path) and maps them onto subject (label prefix, axes, scale):\n"
+      "a Take with .observed (frames, markers, 3) in the skeleton's frame and units.");
 
   m.def("solve", [](SubjectPtr subject, py::object markers, int max_frames, const py::kwargs& keywords) {
         const SolverSettings settings = SettingsFromKeywords(keywords, nullptr);
@@ -238,7 +241,7 @@ void BindSolve(py::module_& m) {
         if (settings.mode == "clip") report["clip"] = ClipReportDict(clip, skeleton.unit());
         return py::make_tuple(std::move(motion), report);
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("max_frames") = 0,
-      R"doc(Joint angles from markers, as `mocapsolve solve`.
+      (std::string(R"doc(Joint angles from markers, as `mocapsolve solve`.
 
 subject: a Subject (read_subject or subject()); markers: a .c3d/.trc path or a Take.
 max_frames: solve only the first N frames (0 = all).
@@ -253,7 +256,8 @@ Every other keyword is a solver option named like the CLI flag (SolverSettings),
 Returns (motion, report): the motion on the subject's skeleton and a dict with the CLI
 report's figures ('per_frame': seconds, iterations, rms_marker_residual (mm), frame_rms
 (frames,) array in mm, ...; 'clip' with mode='clip'). Releases the GIL while solving.
-A bad option raises ValueError with the CLI's message; an unknown one TypeError.)doc");
+A bad option raises ValueError with the CLI's message; an unknown one TypeError.)doc") +
+       KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()), kSolverSettingNames)).c_str());
 
   py::class_<FrameSolveReport>(m, "FrameSolveReport", "One frame's solve.")
       .def_readonly("initial_cost", &FrameSolveReport::initial_cost)
@@ -268,13 +272,16 @@ A bad option raises ValueError with the CLI's message; an unknown one TypeError.
       "One subject's per-frame marker solver (the one solve() runs over a take), for loops in\n"
       "Python: solver.solve(observed_frame, pose) updates pose in place.")
       .def(py::init<SubjectPtr, const py::kwargs&>(), py::arg("subject"),
-           "Keywords: the solver options of solve() (mode and the clip options are ignored).")
+           "A solver for subject (a Subject). Keywords: the solver options of solve() (mode and the\n"
+           "clip options are ignored).")
       .def("solve", &FrameSolver::Solve, py::arg("observed"), py::arg("pose"),
            "observed: (markers, 3) in the skeleton's frame and units (Take.observed[f]), NaN =\n"
            "missing; pose: the warm start, overwritten with the solution (and, with a prior, the\n"
            "prior's reference). Returns a FrameSolveReport. Releases the GIL.")
       .def("initial_pose", &FrameSolver::InitialPose, py::arg("observed"), py::arg("root_from_markers") = false,
-           "The first frame's start: the best of the 24 axis-aligned root orientations (as solve()).")
+           "The first frame's start for observed (markers, 3): the best of the 24 axis-aligned root\n"
+           "orientations (as solve()), or with root_from_markers=True the root pose from the\n"
+           "markers' own geometry (as fit_skeleton).")
       .def_property_readonly("settings", &FrameSolver::settings);
 
   m.def("calibrate", [](const std::string& motion_path, const std::string& markers_path, py::object skeleton,
@@ -339,6 +346,10 @@ A bad option raises ValueError with the CLI's message; an unknown one TypeError.
 on the skeleton, from a solved motion (motion: .bvh, or .amc with skeleton= its .asf) and
 the markers of the same take. axes: marker file -> skeleton axes ('y,z,x' for CMU C3D onto
 ASF) or 'auto'; attach: 'auto' or a marker set .json whose joints are kept.
+marker_scale: marker units -> skeleton units (0 = from the units); frame_offset: marker frame
+= motion frame + frame_offset; min_valid_frames: markers valid in fewer matched frames are
+left out (default 2); amc_fps: the .amc's frame rate (default 120); skeleton_units: the unit
+of a skeleton that states none (mm, cm, m, in).
 Returns (subject, report) with the calibrated RMS and per-marker figures.)doc");
 }
 

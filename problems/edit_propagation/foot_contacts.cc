@@ -154,7 +154,8 @@ bool ContactSolveOptions::IsValid(std::string* error) const {
 }
 
 Status KeepContacts(const Skeleton& skeleton, const FootContacts& contacts,
-                    const ContactSolveOptions& options, Motion* motion, ContactSolveReport* report) {
+                    const ContactSolveOptions& options, Motion* motion, ContactSolveReport* report,
+                    const std::function<void(int frames_done)>& progress) {
   std::string error;
   if (!options.IsValid(&error)) return Status::Error(error);
   if (contacts.num_frames() != motion->num_frames()) {
@@ -192,6 +193,7 @@ Status KeepContacts(const Skeleton& skeleton, const FootContacts& contacts,
   const Motion propagated = *motion;
   std::vector<std::vector<char>> solved(num_joints, std::vector<char>(num_frames, 0));
   for (int f = 0; f < num_frames; ++f) {
+    if (progress) progress(f + 1);
     std::vector<int> active;
     for (int k = 0; k < num_feet; ++k) {
       if (contacts.in_contact[k][f]) active.push_back(k);

@@ -36,6 +36,7 @@
 #ifndef MOCAPSOLVE_PROBLEMS_EDIT_PROPAGATION_FOOT_CONTACTS_H_
 #define MOCAPSOLVE_PROBLEMS_EDIT_PROPAGATION_FOOT_CONTACTS_H_
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -95,9 +96,11 @@ struct ContactSolveReport {
   double solve_seconds = 0.0;
 };
 
-// Re-solves the contact frames of *motion (the propagated clip) in place.
+// Re-solves the contact frames of *motion (the propagated clip) in place. progress
+// (optional): frames scanned so far, of motion's frames.
 Status KeepContacts(const Skeleton& skeleton, const FootContacts& contacts,
-                    const ContactSolveOptions& options, Motion* motion, ContactSolveReport* report);
+                    const ContactSolveOptions& options, Motion* motion, ContactSolveReport* report,
+                    const std::function<void(int frames_done)>& progress = nullptr);
 
 }  // namespace mocapsolve
 

@@ -199,7 +199,7 @@ bool RepairOptions::IsValid(std::string* error) const {
 
 Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
                      const RepairOptions& options, Observations* repaired, Motion* motion,
-                     RepairReport* report, RepairIntermediates* intermediates) {
+                     RepairReport* report, RepairIntermediates* intermediates, const RepairProgress& progress) {
   if (std::string error; !options.IsValid(&error)) return Status::Error(error);
   *report = RepairReport();
   StageClock clock(report);
@@ -208,6 +208,13 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   Motion naive, reference;
   SequenceSolveReport sequence;
   Status status = Status::Ok(), reference_status = Status::Ok();
+  const int num_frames = static_cast<int>(observed.size());
+  std::function<void(int)> naive_progress;
+  if (progress) {
+    naive_progress = [&](int done) {
+      progress(options.reference_kind == ReferenceKind::kTracker ? "IK + reference" : "IK", done, num_frames);
+    };
+  }
   if (options.reference_kind == ReferenceKind::kTracker) {
     SequenceSolveReport tracker_report;
     auto track = [&] {
@@ -216,7 +223,8 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     };
     std::thread tracker;
     if (options.parallel) tracker = std::thread(track);
-    status = SolveSequence(skeleton, markers, observed, options.naive, RestPose(skeleton), &naive, &sequence);
+    status = SolveSequence(skeleton, markers, observed, options.naive, RestPose(skeleton), &naive, &sequence,
+                           naive_progress);
     if (options.parallel) {
       tracker.join();
     } else {
@@ -227,7 +235,8 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     clock.Lap(options.parallel ? "IK (naive) + reference (robust tracker), in parallel"
                                : "IK (naive) + reference (robust tracker)");
   } else {
-    status = SolveSequence(skeleton, markers, observed, options.naive, RestPose(skeleton), &naive, &sequence);
+    status = SolveSequence(skeleton, markers, observed, options.naive, RestPose(skeleton), &naive, &sequence,
+                           naive_progress);
     if (!status.ok()) return status;
     clock.Lap("IK (naive solve)");
     reference = naive;
@@ -306,9 +315,11 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   clock.Lap("Marker Filling");
   // 7. Re-solve.
   const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
+  if (progress) progress("re-solve", 0, num_frames);
   status = ResolveChangedFrames(skeleton, markers, observed, *repaired, naive, options.naive, tolerance,
                                 options.parallel, motion, &report->resolved_frames);
   if (!status.ok()) return status;
+  if (progress) progress("re-solve", num_frames, num_frames);
   report->repaired_rms = RmsOver(skeleton, markers, *motion, *repaired);
   clock.Lap("IK (re-solve)");
   if (intermediates != nullptr) {

@@ -25,6 +25,7 @@
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_MARKER_REPAIR_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_MARKER_REPAIR_H_
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -95,13 +96,18 @@ MarkerTrajectories ObservationTrajectories(const MarkerSet& markers,
                                            const std::vector<std::vector<Eigen::Vector3d>>& observed);
 std::vector<std::vector<Eigen::Vector3d>> TrajectoryObservations(const MarkerTrajectories& trajectories);
 
+// Progress for a display: (stage, done, total) in frames, during the naive solve and
+// around the re-solve.
+using RepairProgress = std::function<void(const std::string& stage, int done, int total)>;
+
 // observed[f][m]: marker m of the set at frame f (NaN = missing). Writes the repaired
 // observations (same layout), the re-solved motion, and the report.
 Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers,
                      const std::vector<std::vector<Eigen::Vector3d>>& observed,
                      const RepairOptions& options, std::vector<std::vector<Eigen::Vector3d>>* repaired,
                      Motion* motion, RepairReport* report,
-                     RepairIntermediates* intermediates = nullptr);
+                     RepairIntermediates* intermediates = nullptr,
+                     const RepairProgress& progress = nullptr);
 
 }  // namespace mocapsolve
 

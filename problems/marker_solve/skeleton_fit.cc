@@ -166,7 +166,8 @@ Status ScaledSkeleton(const Skeleton& skeleton, const std::vector<double>& scale
 Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
                             const MarkerSolveOptions& solve_options, const SkeletonFitOptions& options,
                             Skeleton* fitted_skeleton, MarkerSet* fitted_markers, Motion* motion,
-                            SkeletonFitReport* report, const SkeletonFitProgress& progress) {
+                            SkeletonFitReport* report, const SkeletonFitProgress& progress,
+                            const std::function<void(int frames_done)>& frame_progress) {
   *report = SkeletonFitReport();
   if (options.iterations < 0 || options.frame_step < 1 || !(options.min_scale > 0.0) ||
       !(options.max_scale >= options.min_scale)) {
@@ -179,7 +180,7 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
   if (static_cast<int>(total_scale.size()) != skeleton.num_joints()) return Status::Error("skeleton fit: bad options");
   SequenceSolveReport solve;
   Status status = SolveSequence(current, current_markers, observed, solve_options, RestPose(current), motion, &solve,
-                                nullptr, options.root_from_markers);
+                                frame_progress, options.root_from_markers);
   if (!status.ok()) return status;
   double rms = solve.rms_marker_error;
   report->rms.push_back(rms);
@@ -206,8 +207,8 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
     status = MarkerSet::Create(next, std::move(specs), &next_markers);
     if (!status.ok()) return status;
     Motion next_motion;
-    status = SolveSequence(next, next_markers, observed, solve_options, RestPose(next), &next_motion, &solve, nullptr,
-                           options.root_from_markers);
+    status = SolveSequence(next, next_markers, observed, solve_options, RestPose(next), &next_motion, &solve,
+                           frame_progress, options.root_from_markers);
     if (progress) progress(iteration + 1, solve.rms_marker_error);
     if (!status.ok()) return status;
     if (solve.rms_marker_error < rms) {

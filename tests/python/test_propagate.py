@@ -1,4 +1,5 @@
 """Falloffs and edit propagation against the command line."""
+import json
 import os
 
 import numpy as np
@@ -46,3 +47,54 @@ def test_falloff_errors():
         mocapsolve.falloff(skeleton, motion, 200, falloff_kernel="huge")
     with pytest.raises(TypeError, match="sigmas"):
         mocapsolve.falloff(skeleton, motion, 200, sigmas=1.0)
+
+
+@pytest.mark.parametrize("method", ["harmonic", "green", "spline"])
+def test_ik_edit_and_weights_are_bit_identical_to_the_cli(tmp_path, method):
+    bvh = data_file("bvh/16_15.bvh")
+    skeleton, motion = mocapsolve.read_motion(bvh, skeleton_units="cm")
+    edit, ik = mocapsolve.ik_edit(skeleton, motion, 200, "lhand:32,105,50", solver="dls")
+    assert edit.frame == 200 and ik["ik_max_target_error"] < 5.0  # cm; 1.8 (the hand's reach).
+    weights, falloff = mocapsolve.edit_weights(skeleton, motion, [edit], method, region="20:471")
+    assert len(weights) == 1 and weights[0].shape == (motion.num_frames,)
+    assert weights[0][200] == pytest.approx(1.0) and weights[0][:20].max() == 0.0
+    edited = mocapsolve.propagate(skeleton, motion, [edit], weights)
+    ours = str(tmp_path / "py.bvh")
+    mocapsolve.write_motion(ours, skeleton, edited)
+    cli, csv, report = (str(tmp_path / n) for n in ("cli.bvh", "w.csv", "r.json"))
+    run_cli("propagate", "--motion=" + bvh, "--skeleton_units=cm", "--frame=200", "--ik_target=lhand:32,105,50",
+            "--solver=dls", "--method=" + method, "--region=20:471", "--out=" + cli, "--weights_csv=" + csv,
+            "--report=" + report)
+    assert open(ours, "rb").read() == open(cli, "rb").read()
+    rows = np.genfromtxt(csv, delimiter=",", names=True)
+    assert np.allclose(rows["weight"], weights[0], rtol=1e-8, atol=1e-12)  # The CSV holds 9 digits.
+    expected = json.load(open(report))
+    assert falloff.keys() == expected["falloff"].keys()
+    assert expected["edit"]["ik_iterations"] == ik["ik_iterations"]
+    assert expected["edit"]["ik_max_target_error"] == ik["ik_max_target_error"]
+
+
+def test_ik_and_weight_errors_carry_the_cli_message(tmp_path):
+    bvh = data_file("bvh/16_15.bvh")
+    skeleton, motion = mocapsolve.read_motion(bvh, skeleton_units="cm")
+    edit, _ = mocapsolve.ik_edit(skeleton, motion, 200, "lhand:32,105,50", solver="dls", max_iterations=1)
+    cases = [
+        (lambda: mocapsolve.ik_edit(skeleton, motion, 200, "lhand:32,105"), ["--ik_target=lhand:32,105"]),
+        (lambda: mocapsolve.ik_edit(skeleton, motion, 200, "nohand:1,2,3"), ["--ik_target=nohand:1,2,3"]),
+        (lambda: mocapsolve.ik_edit(skeleton, motion, 200, "lhand:1,2,3", ik_root_weight=-1),
+         ["--ik_target=lhand:1,2,3", "--ik_root_weight=-1"]),
+        (lambda: mocapsolve.edit_weights(skeleton, motion, [edit], "spline", spline_width=0),
+         ["--ik_target=lhand:1,2,3", "--method=spline", "--spline_width=0"]),
+        (lambda: mocapsolve.edit_weights(skeleton, motion, [edit], "harmonic", sparse_library="mkl"),
+         ["--ik_target=lhand:1,2,3", "--method=harmonic", "--sparse_library=mkl"]),
+        (lambda: mocapsolve.edit_weights(skeleton, motion, [edit], "cubic"),
+         ["--ik_target=lhand:1,2,3", "--method=cubic"]),
+        (lambda: mocapsolve.edit_weights(skeleton, motion, [edit], region="300:400"),
+         ["--ik_target=lhand:1,2,3", "--region=300:400"]),
+    ]
+    for call, flags in cases:
+        with pytest.raises(ValueError) as error:
+            call()
+        _, output = run_cli("propagate", "--motion=" + bvh, "--skeleton_units=cm", "--frame=200",
+                            "--out=" + str(tmp_path / "o.bvh"), *flags, expect=1)
+        assert "mocapsolve propagate: " + str(error.value) in output, flags

@@ -1,0 +1,299 @@
+#include "pipeline/skeleton_fitting.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "io/marker_file.h"
+#include "problems/marker_solve/calibration.h"
+#include "problems/marker_solve/marker_observations.h"
+
+namespace mocapsolve {
+namespace {
+
+double Seconds(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+JsonObject ChecksJson(const SubjectChecks& checks) {
+  std::vector<JsonValue> failures(checks.failures.begin(), checks.failures.end());
+  std::vector<JsonObject> markers;
+  for (const MarkerDistance& d : checks.markers) {
+    JsonObject o;
+    o.Add("label", d.label).Add("joint", d.joint).Add("to_bone_cm", d.to_bone_cm).Add("to_joint_cm", d.to_joint_cm);
+    markers.push_back(o);
+  }
+  JsonObject json;
+  json.Add("passed", checks.ok()).Add("failures", failures).Add("rms_mm", checks.rms_mm)
+      .Add("max_marker_bone_distance_cm", checks.max_bone_distance_cm)
+      .Add("max_marker_joint_distance_cm", checks.max_joint_distance_cm)
+      .Add("farthest_marker", checks.farthest_marker)
+      .Add("torso_frames", checks.torso_frames)
+      .Add("torso_error_mean_deg", checks.torso_error_mean_deg)
+      .Add("torso_error_max_deg", checks.torso_error_max_deg)
+      .Add("max_left_right_asymmetry", checks.max_asymmetry)
+      .Add("least_symmetric_pair", checks.least_symmetric_pair)
+      .Add("markers", markers);
+  return json;
+}
+
+}  // namespace
+
+Status ValidateSkeletonFitSettings(const SkeletonFitSettings& s) {
+  if (s.fit_iterations < -1 || s.fit_iterations > 100) return Status::Error("--fit_iterations: -1..100");
+  if (s.attach_iterations < 0 || s.attach_iterations > 100) return Status::Error("--attach_iterations: 0..100");
+  if (s.attach_rounds < -1 || s.attach_rounds > 20) return Status::Error("--attach_rounds: -1..20");
+  if (s.fit_frame_step < 1) return Status::Error("--fit_frame_step: >= 1");
+  if (s.fit_max_frames < 0) return Status::Error("--fit_max_frames: >= 0");
+  if (!(s.offset_prior >= 0.0)) return Status::Error("--offset_prior: >= 0");
+  if (!(s.max_skin_cm >= 0.0)) return Status::Error("--max_skin_cm: >= 0");
+  if (!(s.min_bone_scale > 0.0 && s.min_bone_scale <= 1.0 && s.max_bone_scale >= 1.0)) {
+    return Status::Error("--min_bone_scale in (0, 1] and --max_bone_scale >= 1");
+  }
+  if (s.check != "fail" && s.check != "warn" && s.check != "off") {
+    return Status::Error("--check: expected fail, warn or off");
+  }
+  return Status::Ok();
+}
+
+Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings,
+                        const MarkerSolveOptions& solve_options, SkeletonFitResult* result,
+                        const SkeletonFitCallback& callback) {
+  const auto start = std::chrono::steady_clock::now();
+  *result = SkeletonFitResult();
+  Status status = ValidateSkeletonFitSettings(settings);
+  if (!status.ok()) return status;
+  const std::string& markers_path = inputs.markers_path;
+  const bool from_subject = inputs.from_template_subject;
+  const int rounds = settings.attach_rounds >= 0 ? settings.attach_rounds : (from_subject ? 6 : 0);
+  result->attach_rounds = rounds;
+  const Subject& templ = inputs.templ;
+  const Skeleton& skeleton = templ.skeleton;
+  if (settings.max_skin_cm > 0.0 && !skeleton.unit().known()) {
+    return Status::Error("the template skeleton's unit is unknown: give --skeleton_units (or --max_skin_cm=0)");
+  }
+  const double units_per_cm = skeleton.unit().known() ? 0.01 / skeleton.unit().metres_per_unit : 1.0;
+  result->unit_known = skeleton.unit().known();
+  result->mm_per_unit = skeleton.unit().known() ? skeleton.unit().metres_per_unit * 1000.0 : 1.0;
+  auto emit = [&](SkeletonFitEvent event) {
+    if (!callback) return;
+    event.seconds = Seconds(start);
+    callback(event);
+  };
+
+  // The take, in the skeleton's frame and units (axes, marker_scale describe it).
+  Subject take_mapping = templ;
+  take_mapping.axes = inputs.axes;
+  take_mapping.marker_scale = inputs.marker_scale;
+  take_mapping.label_prefix.clear();
+  MarkerTrajectories file;
+  status = ReadMarkerFile(markers_path, &file);
+  if (!status.ok()) return status;
+  // A template set may name markers this take lacks: fit the ones it has.
+  std::vector<MarkerSpec> present;
+  std::string absent;
+  for (int m = 0; m < templ.markers.num_markers(); ++m) {
+    if (file.FindMarker(templ.markers.label(m)) >= 0) {
+      present.push_back(templ.markers.marker(m));
+    } else {
+      absent += (absent.empty() ? "" : ", ") + templ.markers.label(m);
+      result->absent.push_back(templ.markers.label(m));
+    }
+  }
+  if (present.size() < 3) return Status::Error(markers_path + ": fewer than 3 of the template marker set's labels");
+  if (!absent.empty()) {
+    SkeletonFitEvent event;
+    event.kind = SkeletonFitEvent::kAbsentMarkers;
+    event.text = absent;
+    emit(event);
+  }
+  status = MarkerSet::Create(skeleton, std::move(present), &take_mapping.markers);
+  if (!status.ok()) return status;
+  MarkerTake take;
+  status = LoadTakeForSubject(take_mapping, markers_path, &take);
+  if (!status.ok()) return status;
+  const int frames = settings.fit_max_frames > 0 ? std::min<int>(settings.fit_max_frames, take.observed.size())
+                                                 : static_cast<int>(take.observed.size());
+  take.observed.resize(frames);
+  result->frames = frames;
+  MarkerTrajectories model_frame = take.trajectories;  // For auto attach.
+  TransformMarkers(take.transform, skeleton.unit(), &model_frame);
+
+  SkeletonFitOptions options;
+  options.frame_step = settings.fit_frame_step;
+  options.min_scale = settings.min_bone_scale;
+  options.max_scale = settings.max_bone_scale;
+  options.max_bone_distance = settings.max_skin_cm * units_per_cm;
+  options.root_from_markers = true;
+
+  Skeleton fitted = skeleton;
+  MarkerSet fitted_markers = take_mapping.markers;
+  Motion motion;
+  SkeletonFitReport report;
+  std::vector<double> scales(skeleton.num_joints(), 1.0);
+  // The best round with every marker attached (rounds >= 1), by marker RMS: re-attaching
+  // can also make a round worse.
+  struct Best {
+    int round = -1;
+    double rms = 0.0;
+    Skeleton skeleton;
+    MarkerSet markers;
+    Motion motion;
+    SkeletonFitReport report;
+    std::vector<std::vector<Eigen::Vector3d>> observed;
+  } best;
+  for (int round = 0; round <= rounds; ++round) {
+    std::vector<std::vector<Eigen::Vector3d>> observed = take.observed;
+    MarkerSet round_markers = fitted_markers;
+    if (round >= 2 && best.round >= 1) {
+      // Each round starts from the best so far: a worse round must not feed the next.
+      fitted = best.skeleton;
+      fitted_markers = best.markers;
+      motion = best.motion;
+      scales = best.report.bone_scales;
+    }
+    if (round > 0) {
+      // Attach every marker of the take to the skeleton as fitted; markers the template
+      // knows keep its joints (and their fitted offsets): they anchor the skeleton.
+      CalibrationOptions calibration;
+      calibration.max_bone_distance = options.max_bone_distance;
+      CalibrationResult attached;
+      status = CalibrateMarkers(fitted, motion, model_frame, calibration, nullptr, &attached);
+      if (!status.ok()) {
+        return Status::Error(markers_path + ": attach round " + std::to_string(round) + ": " + status.message());
+      }
+      std::vector<MarkerSpec> specs;
+      for (int m = 0; m < attached.marker_set.num_markers(); ++m) {
+        MarkerSpec spec = attached.marker_set.marker(m);
+        const int known = fitted_markers.FindMarker(spec.label);
+        if (known >= 0 && take_mapping.markers.FindMarker(spec.label) >= 0) spec = fitted_markers.marker(known);
+        for (MarkerAttachment& a : spec.attachments) {
+          if (options.max_bone_distance > 0.0) a.offset = ClampToBone(fitted, a.joint, a.offset, options.max_bone_distance);
+        }
+        specs.push_back(spec);
+      }
+      status = MarkerSet::Create(fitted, std::move(specs), &round_markers);
+      if (!status.ok()) return status;
+      status = GatherObservations(round_markers, take.trajectories, take.transform, &observed);
+      if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
+      observed.resize(frames);
+    }
+    options.iterations = round > 0 ? settings.attach_iterations
+                                   : settings.fit_iterations >= 0 ? settings.fit_iterations : (from_subject ? 15 : 6);
+    // The template's offsets are a prior worth keeping; an attach round's are estimates
+    // from a motion that is itself being fitted.
+    options.offset_prior_weight = round == 0 ? settings.offset_prior : 0.0;
+    options.initial_scales = scales;
+    SkeletonFitEvent started;
+    started.kind = SkeletonFitEvent::kRoundStart;
+    started.round = round;
+    started.rounds = rounds;
+    started.markers = round_markers.num_markers();
+    started.frames = frames;
+    started.iterations = options.iterations;
+    emit(started);
+    const SkeletonFitProgress progress = [&](int iteration, double rms) {
+      SkeletonFitEvent event = started;
+      event.kind = SkeletonFitEvent::kIteration;
+      event.iteration = iteration;
+      event.rms = rms;
+      emit(event);
+    };
+    // Pose solves of this round: 0 is the one before the first step, k the one of step k.
+    int pose_solve = -1, last_done = std::numeric_limits<int>::max();
+    const std::function<void(int)> frame_progress = [&](int frames_done) {
+      if (frames_done <= last_done) ++pose_solve;
+      last_done = frames_done;
+      SkeletonFitEvent event = started;
+      event.kind = SkeletonFitEvent::kFrames;
+      event.iteration = pose_solve;
+      event.frames_done = frames_done;
+      emit(event);
+    };
+    Skeleton next;
+    MarkerSet next_markers;
+    status = FitSkeletonToMarkers(fitted, round_markers, observed, solve_options, options, &next, &next_markers,
+                                  &motion, &report, progress, callback ? frame_progress : nullptr);
+    if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
+    motion.frame_rate = take.trajectories.frame_rate > 0.0 ? take.trajectories.frame_rate : 120.0;
+    fitted = std::move(next);
+    fitted_markers = std::move(next_markers);
+    scales = report.bone_scales;
+    result->rounds.push_back({round, fitted_markers.num_markers(), report.rms});
+    SkeletonFitEvent done = started;
+    done.kind = SkeletonFitEvent::kRoundDone;
+    done.markers = fitted_markers.num_markers();
+    done.rms_first = report.rms.front();
+    done.rms = report.rms.back();
+    emit(done);
+    if (round <= 1 || report.rms.back() < best.rms) {
+      best = {round, report.rms.back(), fitted, fitted_markers, motion, report, observed};
+    } else if (round >= 2) {
+      // The next round would start from the same best state and attach alike.
+      SkeletonFitEvent stopped = started;
+      stopped.kind = SkeletonFitEvent::kStopped;
+      emit(stopped);
+      break;
+    }
+  }
+  if (rounds > 0 && best.round != rounds) {
+    SkeletonFitEvent kept;
+    kept.kind = SkeletonFitEvent::kKept;
+    kept.round = best.round;
+    kept.rounds = rounds;
+    kept.rms = best.rms;
+    emit(kept);
+  }
+  // The checks see the kept model against the observations it was fitted to.
+  result->kept_round = best.round;
+  result->motion = std::move(best.motion);
+  result->motion.frame_rate = take.trajectories.frame_rate;
+  result->report = std::move(best.report);
+  result->checks = CheckSubjectFit(best.skeleton, best.markers, best.observed, result->motion);
+  Subject& subject = result->subject;
+  subject.name = templ.name.empty() ? "fitted" : "fitted from " + templ.name;
+  subject.skeleton = std::move(best.skeleton);  // Inline: the fitted skeleton exists nowhere else.
+  subject.markers = std::move(best.markers);
+  subject.axes = inputs.axes;
+  subject.marker_scale = inputs.marker_scale;
+  subject.amc_fps = inputs.amc_fps;
+  result->seconds = Seconds(start);
+  return Status::Ok();
+}
+
+Status SkeletonFitCheckStatus(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings,
+                              const SkeletonFitResult& result) {
+  if (result.checks.ok() || settings.check != "fail") return Status::Ok();
+  return Status::Error(inputs.markers_path + ": the fitted subject fails its checks (" + result.checks.failures[0] +
+                       "); nothing written but the report (--check=warn writes it anyway)");
+}
+
+JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const SkeletonFitResult& result) {
+  const double mm = result.mm_per_unit;
+  std::vector<JsonObject> round_json;
+  for (const SkeletonFitRound& round : result.rounds) {
+    std::vector<JsonValue> rms;
+    for (double r : round.rms) rms.push_back(JsonValue(r * mm));
+    JsonObject o;
+    o.Add("round", round.round).Add("markers", round.markers).Add("rms_by_iteration", rms);
+    round_json.push_back(o);
+  }
+  const Skeleton& fitted = result.subject.skeleton;
+  std::vector<JsonObject> scale_json;
+  for (int j = 1; j < fitted.num_joints(); ++j) {
+    JsonObject o;
+    o.Add("joint", fitted.name(j)).Add("scale", result.report.bone_scales[j]);
+    scale_json.push_back(o);
+  }
+  JsonObject json;
+  json.Add("markers", inputs.markers_path).Add("template", inputs.template_name)
+      .Add("frames", result.frames).Add("attach_rounds", result.attach_rounds).Add("kept_round", result.kept_round)
+      .Add("seconds", result.seconds)
+      .Add(result.unit_known ? "rms_mm" : "rms", result.report.rms.back() * mm)
+      .Add("rounds", round_json).Add("bone_scales", scale_json).Add("checks", ChecksJson(result.checks));
+  return json;
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,36 @@
+// Docstring text generated from the settings structs, so that help() lists every keyword
+// option with the default the library holds (pipeline/*_settings.h) and cannot drift.
+#ifndef MOCAPSOLVE_PYTHON_KEYWORD_DOCS_H_
+#define MOCAPSOLVE_PYTHON_KEYWORD_DOCS_H_
+
+#include <string>
+
+#include "python/bindings.h"
+
+namespace mocapsolve::python {
+
+// "\n<title>:\n  name=default, name=default, ..." for each comma-separated name, the values
+// read from `defaults` (a bound settings object), wrapped at 88 columns.
+inline std::string KeywordDefaults(const std::string& title, const py::object& defaults, const std::string& names) {
+  std::string text = "\n" + title + ":\n ", line;
+  size_t begin = 0;
+  while (begin <= names.size()) {
+    size_t end = names.find(',', begin);
+    if (end == std::string::npos) end = names.size();
+    const std::string name = names.substr(begin, end - begin);
+    begin = end + 1;
+    if (name.empty()) continue;
+    const std::string item = " " + name + "=" + std::string(py::repr(defaults.attr(name.c_str()))) + ",";
+    if (line.size() + item.size() > 86) {
+      text += line + "\n ";
+      line.clear();
+    }
+    line += item;
+  }
+  if (!line.empty()) line.pop_back();  // The last comma.
+  return text + line;
+}
+
+}  // namespace mocapsolve::python
+
+#endif  // MOCAPSOLVE_PYTHON_KEYWORD_DOCS_H_

@@ -1,0 +1,176 @@
+// Skeleton fitting (`mocapsolve fit_skeleton`): FitSubjectToTake (pipeline/skeleton_fitting.h)
+// with the command's options as keywords. The keyword list of the docstring is generated
+// from the library's help table and a default-constructed SkeletonFitSettings.
+#include <string>
+
+#include "io/marker_set_file.h"
+#include "io/motion_file.h"
+#include "pipeline/skeleton_fitting.h"
+#include "pipeline/solver_settings.h"
+#include "python/bindings.h"
+#include "python/keyword_docs.h"
+#include "python/solve_bindings.h"
+
+namespace mocapsolve::python {
+namespace {
+
+// "  name (default: repr): help" for each entry of the table, values read from `defaults`.
+template <size_t N>
+std::string KeywordList(const py::object& defaults, const SettingHelp (&table)[N]) {
+  std::string text;
+  for (const SettingHelp& entry : table) {
+    text += "  " + std::string(entry.name) + " (default " +
+            std::string(py::repr(defaults.attr(entry.name))) + "): " + entry.help + "\n";
+  }
+  return text;
+}
+
+}  // namespace
+
+void BindSkeletonFitting(py::module_& m) {
+  py::class_<SkeletonFitSettings> settings(m, "SkeletonFitSettings",
+      "The skeleton fit's options, one per flag of `mocapsolve fit_skeleton` (same names and\n"
+      "defaults). fit_skeleton() takes them as keywords.");
+  settings.def(py::init<>(), "Every option at the CLI's default.");
+#define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &SkeletonFitSettings::name)
+  MOCAPSOLVE_FIELD(fit_iterations); MOCAPSOLVE_FIELD(attach_rounds); MOCAPSOLVE_FIELD(attach_iterations);
+  MOCAPSOLVE_FIELD(fit_frame_step); MOCAPSOLVE_FIELD(fit_max_frames); MOCAPSOLVE_FIELD(max_skin_cm);
+  MOCAPSOLVE_FIELD(min_bone_scale); MOCAPSOLVE_FIELD(max_bone_scale); MOCAPSOLVE_FIELD(offset_prior);
+  MOCAPSOLVE_FIELD(check);
+#undef MOCAPSOLVE_FIELD
+  settings.def("validate", [](const SkeletonFitSettings& s) { ThrowIfError(ValidateSkeletonFitSettings(s)); },
+               "Raises ValueError (the CLI's message) if a value is invalid.");
+  m.attr("SKELETON_FIT_OPTION_NAMES") = std::string(kSkeletonFitSettingNames);
+
+  static const std::string doc =
+      "Fits a subject (bone lengths, marker attachments and offsets) to a take's markers, as\n"
+      "`mocapsolve fit_skeleton --out_subject` (pipeline/skeleton_fitting.h, the same code).\n\n"
+      "markers: the take's .c3d/.trc path.\n"
+      "template_subject: the template to start from, a Subject or a subject .json path; or\n"
+      "  None with skeleton (.bvh/.asf path) and markerset (.json path) instead.\n"
+      "skeleton, markerset: the template as files when template_subject is None.\n"
+      "skeleton_units: the unit of a skeleton file that states none ('cm', 'm', ...).\n"
+      "axes: the take's file axes -> skeleton axes ('y,z,x'), default 'x,y,z'.\n"
+      "marker_scale: the take's units -> skeleton units; 0 (default) from the units.\n"
+      "amc_fps: recorded in the fitted subject (default 120).\n"
+      "progress: None, or a callable progress(event: dict) called (with the GIL) at each\n"
+      "  round's start ('kind': 'round'), after each iteration ('iteration', with 'rms_mm'),\n"
+      "  at each round's end ('round_done') and per frame of each pose solve ('frames',\n"
+      "  with 'frames_done' of 'frames'); keys 'round', 'rounds', 'iteration', 'seconds'.\n"
+      "Keywords, the fit's options (SkeletonFitSettings):\n" +
+      KeywordList(py::cast(SkeletonFitSettings()), kSkeletonFitSettingHelp) +
+      "and the solver options of solve() (SolverSettings: solver='ceres'|'dls', max_iterations,\n"
+      "prior_weight, ...).\n\n"
+      "Returns (subject, motion, report): the fitted Subject (skeleton inline), the motion\n"
+      "solved on it over the fitted frames, and the report dict of `--report` (rounds, kept\n"
+      "round, rms_mm, bone scales, checks). With check='fail' (default) a subject that fails\n"
+      "its checks raises ValueError with the CLI's message; 'warn' returns it (report\n"
+      "['checks']['passed'] False). Bad options raise ValueError with the CLI's message, a\n"
+      "missing file OSError. Releases the GIL while fitting.\n" +
+      KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()),
+                      kSolverSettingNames);
+  m.def("fit_skeleton", [](const std::string& markers, py::object template_subject, py::object skeleton,
+                           py::object markerset, const std::string& skeleton_units, const std::string& axes,
+                           double marker_scale, double amc_fps, py::object progress, const py::kwargs& keywords) {
+        SkeletonFitSettings fit;
+        SolverSettings solver;
+        ApplyKeywords(keywords,
+                      {py::cast(&fit, py::return_value_policy::reference),
+                       py::cast(&solver, py::return_value_policy::reference)},
+                      std::string(kSkeletonFitSettingNames) + "," + kSolverSettingNames);
+        ThrowIfError(ValidateSkeletonFitSettings(fit));
+        SkeletonFitInputs inputs;
+        inputs.markers_path = markers;
+        inputs.axes = axes;
+        inputs.marker_scale = marker_scale;
+        inputs.amc_fps = amc_fps;
+        if (!template_subject.is_none()) {
+          if (!skeleton.is_none() || !markerset.is_none() || !skeleton_units.empty()) {
+            throw py::value_error(std::string("--template_subject and --") +
+                                  (!skeleton.is_none() ? "skeleton" : !markerset.is_none() ? "markerset"
+                                                                                           : "skeleton_units") +
+                                  " both given: the template subject holds the skeleton and marker set");
+          }
+          inputs.from_template_subject = true;
+          if (py::isinstance<py::str>(template_subject)) {
+            const std::string path = py::str(template_subject);
+            RequireReadable(path);
+            ThrowIfError(ReadSubject(path, &inputs.templ));
+            inputs.template_name = path;
+          } else {
+            inputs.templ = *template_subject.cast<SubjectPtr>();
+            inputs.template_name = inputs.templ.name;
+          }
+        } else {
+          if (skeleton.is_none() || markerset.is_none()) {
+            throw py::value_error(
+                "--markers and either --template_subject or --skeleton and --markerset are required");
+          }
+          const std::string skeleton_path = py::str(skeleton), markerset_path = py::str(markerset);
+          RequireReadable(skeleton_path);
+          RequireReadable(markerset_path);
+          inputs.from_template_subject = false;
+          inputs.template_name = skeleton_path;
+          ThrowIfError(ReadSkeletonFile(skeleton_path, &inputs.templ.skeleton));
+          ThrowIfError(SetSkeletonUnits(skeleton_units, &inputs.templ.skeleton));
+          ThrowIfError(ReadMarkerSet(markerset_path, inputs.templ.skeleton, &inputs.templ.markers));
+        }
+        RequireReadable(markers);
+        MarkerSolveOptions solve_options;
+        ThrowIfError(MarkerSolveOptionsFromSettings(solver, inputs.templ.skeleton.unit(), &solve_options));
+        SkeletonFitCallback callback;
+        const double mm = inputs.templ.skeleton.unit().known()
+                              ? inputs.templ.skeleton.unit().metres_per_unit * 1000.0 : 1.0;
+        bool interrupted = false;
+        if (!progress.is_none()) {
+          callback = [&](const SkeletonFitEvent& e) {
+            if (interrupted) return;
+            const char* kind = nullptr;
+            switch (e.kind) {
+              case SkeletonFitEvent::kRoundStart: kind = "round"; break;
+              case SkeletonFitEvent::kIteration: kind = "iteration"; break;
+              case SkeletonFitEvent::kRoundDone: kind = "round_done"; break;
+              case SkeletonFitEvent::kFrames: kind = "frames"; break;
+              default: return;
+            }
+            py::gil_scoped_acquire acquire;
+            py::dict d;
+            d["kind"] = kind;
+            d["round"] = e.round;
+            d["rounds"] = e.rounds;
+            d["iteration"] = e.iteration;
+            d["iterations"] = e.iterations;
+            d["frames"] = e.frames;
+            d["frames_done"] = e.frames_done;
+            d["markers"] = e.markers;
+            d["rms_mm"] = e.rms * mm;
+            d["seconds"] = e.seconds;
+            try {
+              progress(d);
+            } catch (py::error_already_set& error) {
+              // Reported after the fit: the library's callback cannot stop it.
+              interrupted = true;
+              error.restore();
+            }
+          };
+        }
+        auto result = std::make_shared<SkeletonFitResult>();
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = FitSubjectToTake(inputs, fit, solve_options, result.get(), callback);
+        }
+        if (interrupted) throw py::error_already_set();
+        ThrowIfError(status);
+        ThrowIfError(SkeletonFitCheckStatus(inputs, fit, *result));
+        const std::string report_text = SkeletonFitReportJson(inputs, *result).ToString();
+        py::object report = py::module_::import("json").attr("loads")(report_text);
+        return py::make_tuple(std::make_shared<Subject>(std::move(result->subject)), std::move(result->motion),
+                              report);
+      }, py::arg("markers"), py::arg("template_subject") = py::none(), py::kw_only(),
+      py::arg("skeleton") = py::none(), py::arg("markerset") = py::none(), py::arg("skeleton_units") = "",
+      py::arg("axes") = "x,y,z", py::arg("marker_scale") = 0.0, py::arg("amc_fps") = 120.0,
+      py::arg("progress") = py::none(), doc.c_str());
+}
+
+}  // namespace mocapsolve::python

@@ -1,0 +1,137 @@
+// FitSubjectToTake (pipeline/skeleton_fitting.h): the settings' validation messages, and on
+// a short real take (squat.c3d from CMU subject 2 calibrated on 02_01) the order of the
+// progress events, the rounds and the report. The CLI's byte-for-byte agreement with the
+// Python binding is tested in tests/python/test_skeleton_fitting.py.
+#include "pipeline/skeleton_fitting.h"
+
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "io/marker_file.h"
+#include "io/motion_file.h"
+#include "pipeline/subject_calibration.h"
+#include "tests/test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+TEST(SkeletonFitSettings, EachBadValueNamesItsFlag) {
+  EXPECT_TRUE(ValidateSkeletonFitSettings(SkeletonFitSettings()).ok());
+  const std::vector<std::pair<void (*)(SkeletonFitSettings*), std::string>> cases = {
+      {[](SkeletonFitSettings* s) { s->fit_iterations = -2; }, "--fit_iterations: -1..100"},
+      {[](SkeletonFitSettings* s) { s->attach_iterations = 101; }, "--attach_iterations: 0..100"},
+      {[](SkeletonFitSettings* s) { s->attach_rounds = 21; }, "--attach_rounds: -1..20"},
+      {[](SkeletonFitSettings* s) { s->fit_frame_step = 0; }, "--fit_frame_step: >= 1"},
+      {[](SkeletonFitSettings* s) { s->fit_max_frames = -1; }, "--fit_max_frames: >= 0"},
+      {[](SkeletonFitSettings* s) { s->offset_prior = -1.0; }, "--offset_prior: >= 0"},
+      {[](SkeletonFitSettings* s) { s->max_skin_cm = -1.0; }, "--max_skin_cm: >= 0"},
+      {[](SkeletonFitSettings* s) { s->min_bone_scale = 1.1; },
+       "--min_bone_scale in (0, 1] and --max_bone_scale >= 1"},
+      {[](SkeletonFitSettings* s) { s->check = "maybe"; }, "--check: expected fail, warn or off"},
+  };
+  for (const auto& [change, message] : cases) {
+    SkeletonFitSettings settings;
+    change(&settings);
+    const Status status = ValidateSkeletonFitSettings(settings);
+    EXPECT_FALSE(status.ok()) << message;
+    EXPECT_EQ(status.message(), message);
+  }
+  // Every setting has one line of help (the CLI's and the docstring's).
+  for (const SettingHelp& entry : kSkeletonFitSettingHelp) EXPECT_GT(std::string(entry.help).size(), 10u);
+  EXPECT_EQ(std::string(SettingHelpFor(kSkeletonFitSettingHelp, "check")).substr(0, 17), "The subject check");
+}
+
+TEST(FitSubjectToTake, ShortSquatFitReportsRoundsInOrder) {
+  MOCAPSOLVE_DATA_FILE(asf, "amc/02.asf");
+  MOCAPSOLVE_DATA_FILE(amc, "amc/02_01.amc");
+  MOCAPSOLVE_DATA_FILE(c3d, "c3d/02_01.c3d");
+  MOCAPSOLVE_DATA_FILE(squat, "c3d/squat.c3d");
+  MotionFileOptions motion_options;
+  motion_options.skeleton_path = asf;
+  Skeleton skeleton;
+  Motion motion;
+  ASSERT_TRUE(ReadMotionFile(amc, motion_options, &skeleton, &motion).ok());
+  MarkerTrajectories trajectories;
+  ASSERT_TRUE(ReadMarkerFile(c3d, &trajectories).ok());
+  SubjectCalibrationOptions calibration;
+  calibration.axes = "y,z,x";
+  calibration.skeleton_path = asf;
+  SubjectCalibration calibrated;
+  ASSERT_TRUE(CalibrateSubject(skeleton, motion, trajectories, calibration, &calibrated).ok());
+
+  SkeletonFitInputs inputs;
+  inputs.templ = calibrated.subject;
+  inputs.templ.name = "S02";
+  inputs.template_name = "S02";
+  inputs.markers_path = squat;
+  SkeletonFitSettings settings;
+  settings.fit_max_frames = 60;
+  settings.attach_rounds = 1;
+  settings.fit_iterations = 2;
+  settings.attach_iterations = 1;
+  MarkerSolveOptions solve;
+  solve.solver = SolverKind::kDls;
+  std::vector<SkeletonFitEvent> events;
+  SkeletonFitResult result;
+  const Status status =
+      FitSubjectToTake(inputs, settings, solve, &result, [&](const SkeletonFitEvent& e) { events.push_back(e); });
+  ASSERT_TRUE(status.ok()) << status.message();
+
+  // The template's markers the take lacks come first, then per round: start, the frames of
+  // each pose solve (1 + iterations of them) with the iterations between, and the end.
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events[0].kind, SkeletonFitEvent::kAbsentMarkers);
+  EXPECT_EQ(events[1].kind, SkeletonFitEvent::kRoundStart);
+  int starts = 0, done = 0, iterations = 0, frame_events = 0;
+  for (const SkeletonFitEvent& e : events) {
+    starts += e.kind == SkeletonFitEvent::kRoundStart;
+    done += e.kind == SkeletonFitEvent::kRoundDone;
+    iterations += e.kind == SkeletonFitEvent::kIteration;
+    if (e.kind == SkeletonFitEvent::kFrames) {
+      ++frame_events;
+      EXPECT_EQ(e.frames, 60);
+      EXPECT_LE(e.iteration, e.iterations);
+    }
+  }
+  EXPECT_EQ(starts, 2);
+  EXPECT_EQ(done, 2);
+  EXPECT_EQ(iterations, 2 + 1);
+  EXPECT_EQ(frame_events, 60 * (2 + 1 + 1 + 1));
+  EXPECT_EQ(events.back().kind, SkeletonFitEvent::kRoundDone);
+
+  EXPECT_EQ(result.frames, 60);
+  EXPECT_EQ(result.attach_rounds, 1);
+  ASSERT_EQ(result.rounds.size(), 2u);
+  EXPECT_EQ(result.rounds[0].rms.size(), 3u);  // Before and after each iteration.
+  EXPECT_EQ(result.subject.markers.num_markers(), 53);  // Round 1 attaches every marker.
+  EXPECT_EQ(result.subject.name, "fitted from S02");
+  EXPECT_EQ(result.motion.num_frames(), 60);
+  EXPECT_GT(result.checks.rms_mm, 0.0);
+  const std::string report = SkeletonFitReportJson(inputs, result).ToString();
+  EXPECT_NE(report.find("\"kept_round\""), std::string::npos);
+  EXPECT_NE(report.find("\"checks\""), std::string::npos);
+  // check=fail turns failed checks into the CLI's error; warn and off never do.
+  if (!result.checks.ok()) {
+    const Status failed = SkeletonFitCheckStatus(inputs, settings, result);
+    EXPECT_EQ(failed.message().rfind(squat + ": the fitted subject fails its checks (", 0), 0u) << failed.message();
+  }
+  settings.check = "warn";
+  EXPECT_TRUE(SkeletonFitCheckStatus(inputs, settings, result).ok());
+}
+
+TEST(FitSubjectToTake, MissingTakeNamesTheFile) {
+  SkeletonFitInputs inputs;
+  inputs.markers_path = ::mocapsolve::testing::TempPath("absent.c3d");
+  JointSpec root;
+  root.name = "root";
+  ASSERT_TRUE(Skeleton::Create({root}, {}, LengthUnitFromName("cm"), &inputs.templ.skeleton).ok());
+  SkeletonFitResult result;
+  const Status status = FitSubjectToTake(inputs, SkeletonFitSettings(), MarkerSolveOptions(), &result);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("absent.c3d"), std::string::npos) << status.message();
+}
+
+}  // namespace
+}  // namespace mocapsolve

@@ -1,0 +1,137 @@
+"""Skeleton fitting (fit_skeleton) against the command line on a short real take."""
+import json
+import os
+
+import pytest
+
+import mocapsolve
+from conftest import data_file, run_cli
+
+# squat.c3d (53-marker Vicon set) from the CMU subject 2 template, kept short: 120 frames,
+# one attach round, few iterations (about a second); check='warn' since a fit this short
+# need not pass the checks.
+SHORT = {"fit_max_frames": 120, "attach_rounds": 1, "fit_iterations": 3, "attach_iterations": 2,
+         "check": "warn", "solver": "dls"}
+
+
+def cli_flags(options):
+    return ["--%s=%s" % (k, v) for k, v in options.items()]
+
+
+def without_seconds(report):
+    report = dict(report)
+    report.pop("seconds")
+    return report
+
+
+def test_fit_skeleton_is_bit_identical_to_the_cli(cmu02, tmp_path):
+    squat = data_file("c3d/squat.c3d")
+    events = []
+    subject, motion, report = mocapsolve.fit_skeleton(squat, cmu02["subject"], progress=events.append, **SHORT)
+    ours = str(tmp_path / "py.json")
+    mocapsolve.write_subject(ours, subject)
+    ours_bvh = str(tmp_path / "py.bvh")
+    mocapsolve.write_motion(ours_bvh, subject.skeleton, motion)
+    cli, cli_bvh, cli_report = (str(tmp_path / n) for n in ("cli.json", "cli.bvh", "cli_report.json"))
+    run_cli("fit_skeleton", "--template_subject=" + cmu02["subject"], "--markers=" + squat,
+            "--out_subject=" + cli, "--out=" + cli_bvh, "--report=" + cli_report, *cli_flags(SHORT))
+    assert open(ours, "rb").read() == open(cli, "rb").read()
+    assert open(ours_bvh, "rb").read() == open(cli_bvh, "rb").read()
+    assert without_seconds(report) == without_seconds(json.load(open(cli_report)))
+    assert motion.num_frames == 120
+    # Progress: each round's start and end, each iteration, every frame of each pose solve.
+    kinds = [e["kind"] for e in events]
+    assert kinds.count("round") == 2 and kinds.count("round_done") == 2
+    assert kinds.count("iteration") == 3 + 2
+    assert kinds.count("frames") == 120 * (3 + 1 + 2 + 1)
+    assert all(e["frames"] == 120 for e in events)
+
+
+def test_fit_skeleton_from_skeleton_and_markerset_files(cmu02):
+    squat = data_file("c3d/squat.c3d")
+    options = dict(SHORT, attach_rounds=0)
+    subject, _, report = mocapsolve.fit_skeleton(squat, skeleton=cmu02["asf"], markerset=cmu02["markerset"],
+                                                 axes="x,y,z", **options)
+    assert report["template"] == cmu02["asf"] and report["attach_rounds"] == 0
+    assert len(subject.marker_labels) == 26  # The template's markers the take has.
+
+
+def test_fit_skeleton_failing_its_checks_raises_the_cli_message(cmu02):
+    squat = data_file("c3d/squat.c3d")
+    options = dict(SHORT, check="fail", fit_iterations=1, attach_rounds=0)
+    with pytest.raises(ValueError) as error:
+        mocapsolve.fit_skeleton(squat, cmu02["subject"], **options)
+    code, output = run_cli("fit_skeleton", "--template_subject=" + cmu02["subject"], "--markers=" + squat,
+                           "--out_subject=" + os.devnull + ".json", *cli_flags(options), expect=1)
+    assert "mocapsolve fit_skeleton: " + str(error.value) in output
+
+
+@pytest.mark.parametrize("keyword,flag", [
+    ({"attach_rounds": 30}, "--attach_rounds=30"),
+    ({"fit_frame_step": 0}, "--fit_frame_step=0"),
+    ({"min_bone_scale": 1.5}, "--min_bone_scale=1.5"),
+    ({"check": "maybe"}, "--check=maybe"),
+    ({"solver": "newton"}, "--solver=newton"),
+])
+def test_bad_options_raise_the_cli_message(cmu02, tmp_path, keyword, flag):
+    squat = data_file("c3d/squat.c3d")
+    with pytest.raises(ValueError) as error:
+        mocapsolve.fit_skeleton(squat, cmu02["subject"], **keyword)
+    _, output = run_cli("fit_skeleton", "--template_subject=" + cmu02["subject"], "--markers=" + squat,
+                        "--out_subject=" + str(tmp_path / "s.json"), flag, expect=1)
+    assert output.strip() == "mocapsolve fit_skeleton: " + str(error.value)
+
+
+def test_bad_input_raises(cmu02, tmp_path):
+    squat = data_file("c3d/squat.c3d")
+    with pytest.raises(OSError, match="nothing.c3d"):
+        mocapsolve.fit_skeleton(str(tmp_path / "nothing.c3d"), cmu02["subject"])
+    with pytest.raises(OSError, match="nothing.json"):
+        mocapsolve.fit_skeleton(squat, str(tmp_path / "nothing.json"))
+    with pytest.raises(ValueError, match="both given"):
+        mocapsolve.fit_skeleton(squat, cmu02["subject"], skeleton=cmu02["asf"])
+    with pytest.raises(ValueError, match="required"):
+        mocapsolve.fit_skeleton(squat)
+    with pytest.raises(TypeError, match="fit_iteration"):
+        mocapsolve.fit_skeleton(squat, cmu02["subject"], fit_iteration=3)
+
+
+def test_settings_hold_the_cli_defaults():
+    settings = mocapsolve.SkeletonFitSettings()
+    assert (settings.fit_iterations, settings.attach_rounds, settings.attach_iterations) == (-1, -1, 6)
+    assert (settings.min_bone_scale, settings.max_bone_scale, settings.max_skin_cm) == (0.8, 1.25, 12.0)
+    assert settings.check == "fail"
+    settings.attach_rounds = 21
+    with pytest.raises(ValueError, match="--attach_rounds: -1..20"):
+        settings.validate()
+    for name in mocapsolve.SKELETON_FIT_OPTION_NAMES.split(","):
+        assert name in mocapsolve.fit_skeleton.__doc__
+
+
+def test_fit_skeleton_releases_the_gil(cmu02):
+    """While a fit runs in another thread, this thread keeps running Python code: the longest
+    pause between its ticks is a small part of the fit (with the GIL held it would be all of
+    it). Without a progress callback, which takes the GIL for each event."""
+    import concurrent.futures
+    import time
+    squat = data_file("c3d/squat.c3d")
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        start = time.perf_counter()
+        future = pool.submit(mocapsolve.fit_skeleton, squat, cmu02["subject"], **SHORT)
+        last, longest = start, 0.0
+        while not future.done():
+            now = time.perf_counter()
+            longest, last = max(longest, now - last), now
+        seconds = future.result()[2]["seconds"]
+    assert longest < 0.5 * seconds, (longest, seconds)
+
+
+def test_an_exception_in_the_progress_callback_reaches_the_caller(cmu02):
+    squat = data_file("c3d/squat.c3d")
+
+    def stop(event):
+        if event["kind"] == "iteration":
+            raise KeyboardInterrupt("stop")
+
+    with pytest.raises(KeyboardInterrupt, match="stop"):
+        mocapsolve.fit_skeleton(squat, cmu02["subject"], progress=stop, **SHORT)
