@@ -31,7 +31,7 @@ namespace mocapsolve::peers {
 struct DartIkSettings {
   std::string gradient = "dls";  // dls (JacobianDLS) | transpose (JacobianTranspose)
   double damping = 0.05;         // JacobianDLS damping (DART's default, DefaultIKDLSCoefficient).
-  double step_size = 0.01;       // GradientDescentSolver step multiplier (DART's default: 0.1).
+  double step_size = 0.1;        // GradientDescentSolver step multiplier (DART's default).
   double linear_bound = 1e-6;    // Per-axis position error counted as zero (DART's default).
   int chunk = 10;                // Solver iterations per solveAndApply call.
 };

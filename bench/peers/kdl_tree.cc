@@ -25,7 +25,7 @@ Eigen::Vector3d FromKdl(const KDL::Vector& v) { return {v.x(), v.y(), v.z()}; }
 
 class KdlTree : public PeerModel {
  public:
-  KdlTree(const Skeleton& skeleton, const MarkerSet& markers) : skeleton_(skeleton), markers_(markers) {
+  KdlTree(const Skeleton& skeleton, const MarkerSet& markers) : skeleton_(skeleton) {
     const int nj = skeleton.num_joints();
     joint_segment_.resize(nj);
     first_q_.resize(nj);
@@ -172,7 +172,6 @@ class KdlTree : public PeerModel {
   }
 
   const Skeleton& skeleton_;
-  const MarkerSet& markers_;
   KDL::Tree tree_;
   std::vector<std::string> joint_segment_, marker_segment_;
   std::vector<int> first_q_;

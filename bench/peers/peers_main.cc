@@ -71,8 +71,8 @@ DEFINE_int32(ik_stride, 1, "IK: use every N-th frame of the clip (larger steps b
 DEFINE_double(ik_target_rms, 1e-4, "IK: stop at this RMS marker residual (skeleton units).");
 DEFINE_int32(ik_max_iterations, 100, "IK: iteration limit per frame, every solver.");
 DEFINE_string(dart_gradient, "dls", "DART IK: gradient method per end effector, dls or transpose.");
-DEFINE_double(dart_damping, 0.05, "DART IK: JacobianDLS damping.");
-DEFINE_double(dart_step_size, 0.01, "DART IK: GradientDescentSolver step size (0.01: the best of those tried).");
+DEFINE_double(dart_damping, 2.0, "DART IK: JacobianDLS damping (DART's default 0.05; 2 was the best tried, BENCHMARKS.md).");
+DEFINE_double(dart_step_size, 0.1, "DART IK: GradientDescentSolver step size (DART's default).");
 DEFINE_int32(dart_ik_frames, 5, "DART IK: solve only the first N IK frames (DART takes seconds per frame).");
 DEFINE_int32(dart_chunk, 10, "DART IK: solver iterations per solveAndApply call (RMS checked between calls).");
 
@@ -396,7 +396,11 @@ int RunInterleaved(Harness* harness) {
     std::printf("%-5s %-10s %-22s %14s %12.1f %11.2f", k.measure.c_str(), k.library.c_str(),
                 k.solver.empty() ? "-" : k.solver.c_str(), time, 1.0 / t, ratio);
     if (k.measure == "ik") {
-      std::printf(" %11.3g %8.3g %8.1f  %d/%zu at target", mean_rms, max_rms, mean_iterations, reached, k.rms.size());
+      if (mean_iterations < 0) {  // KDL does not report its iterations.
+        std::printf(" %11.3g %8.3g %8s  %d/%zu at target", mean_rms, max_rms, "n/a", reached, k.rms.size());
+      } else {
+        std::printf(" %11.3g %8.3g %8.1f  %d/%zu at target", mean_rms, max_rms, mean_iterations, reached, k.rms.size());
+      }
       if (k.failures > 0) std::printf(", %d failed", k.failures);
     }
     std::printf("\n");
