@@ -7,6 +7,8 @@
 #include <random>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "apps/common_flags.h"
 #include "apps/corruption_flags.h"
 #include "apps/repair_flags.h"
@@ -87,35 +89,21 @@ Status RunFkProblem(const std::string& solver, const BenchSettings& settings, Be
 
 // Seconds per frame of FK plus the full dense Jacobian of every marker (3 #markers x
 // (3 + 3 #J), pose tangent layout of kinematics/kinematic_jacobians.h): the unit in which
-// issue 18 states the per-frame IK's cost. The lean way: ForwardKinematics, each joint's
-// rotation matrix once, J zeroed once and each marker's blocks w [o_j - p]x R_j written
-// along its chain (the formula of AccumulateBlendedPointJacobian, which fills one 3-row
-// matrix at a time). Over the clip's poses, repeated to >= 20,000 frames.
+// issue 18 states the per-frame IK's cost. The lean way: ForwardKinematics, then
+// MarkerSetJacobian (kinematics/marker_set.h). Over the clip's poses, repeated to >= 20,000
+// frames.
 double FkAndMarkerJacobianSeconds(const Skeleton& skeleton, const MarkerSet& markers, const Motion& motion) {
   FkData fk(skeleton);
-  const int nm = markers.num_markers();
-  const int nj = skeleton.num_joints();
-  Eigen::MatrixXd jacobian(3 * nm, PoseTangentSize(skeleton));
-  std::vector<Eigen::Matrix3d> rotations(nj);
+  Eigen::MatrixXd jacobian;
+  std::vector<Eigen::Matrix3d> rotations;
   double checksum = 0.0;
   const int passes = std::max(1, 20000 / std::max(1, motion.num_frames()));
   const auto start = std::chrono::steady_clock::now();
   for (int pass = 0; pass < passes; ++pass) {
     for (const Pose& pose : motion.frames) {
       ForwardKinematics(skeleton, pose, &fk);
-      for (int j = 0; j < nj; ++j) rotations[j] = fk.world_rotations[j].toRotationMatrix();
-      jacobian.setZero();
-      for (int m = 0; m < nm; ++m) {
-        for (const MarkerAttachment& a : markers.marker(m).attachments) {
-          const Eigen::Vector3d p = fk.world_positions[a.joint] + rotations[a.joint] * a.offset;
-          jacobian.block<3, 3>(3 * m, 0).diagonal().array() += a.weight;
-          for (int j = a.joint; j >= 0; j = skeleton.parent(j)) {
-            jacobian.block<3, 3>(3 * m, RotationColumn(j)).noalias() +=
-                a.weight * SkewSymmetric(fk.world_positions[j] - p) * rotations[j];
-          }
-        }
-      }
-      checksum += jacobian(3 * nm - 1, 3);
+      MarkerSetJacobian(skeleton, markers, fk, &rotations, &jacobian);
+      checksum += jacobian(jacobian.rows() - 1, 3);
     }
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -401,6 +389,49 @@ Status RunPipelineProblem(const std::string& solver, const BenchSettings& settin
   return Status::Ok();
 }
 
+// Our kinematics beside Orocos KDL, MuJoCo and DART (issue 18): runs
+// bench/peers' mocapsolve_peers_bench, built beside this binary when a peer library was
+// found, in its interleaved mode (--repeats rounds; --bench_motion, --bench_frames = IK
+// frames), passes its table through and keeps its "PEERS name value" figures.
+Status RunPeersProblem(const std::string& solver, const BenchSettings& settings, BenchRecord* record) {
+  if (solver != "all") return Status::Error("problem peers has one solver, 'all'");
+  char self[4096];
+  const ssize_t length = readlink("/proc/self/exe", self, sizeof(self) - 1);
+  std::string dir = length > 0 ? std::string(self, length) : std::string("./mocapsolve");
+  dir = dir.substr(0, dir.rfind('/') == std::string::npos ? 0 : dir.rfind('/'));
+  const std::string program = (dir.empty() ? "." : dir) + "/mocapsolve_peers_bench";
+  if (access(program.c_str(), X_OK) != 0) {
+    return Status::Error("problem peers: " + program + " is not built; install the peer libraries and rebuild "
+                         "(scripts/setup.sh --with-peers)");
+  }
+  std::string command = "'" + program + "' --interleaved --rounds=" + std::to_string(std::max(1, settings.repeats));
+  if (!settings.motion_path.empty()) command += " --motion='" + settings.motion_path + "'";
+  if (settings.max_frames > 0) command += " --ik_frames=" + std::to_string(settings.max_frames);
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return Status::Error("problem peers: cannot run " + program);
+  char line[4096];
+  std::string last;
+  while (std::fgets(line, sizeof(line), pipe) != nullptr) {
+    std::string text(line);
+    if (text.rfind("PEERS ", 0) == 0) {
+      std::istringstream fields(text.substr(6));
+      std::string name;
+      double value = 0.0;
+      if (fields >> name >> value) record->figures.push_back({name, value});
+      continue;
+    }
+    std::fputs(line, stdout);
+    if (text.find_first_not_of(" \n") != std::string::npos) last = text.substr(0, text.find('\n'));
+  }
+  const int code = pclose(pipe);
+  if (code != 0) return Status::Error("problem peers: mocapsolve_peers_bench failed: " + last);
+  record->input = settings.motion_path.empty() ? "CMU 01_01 (bvh/01_01.bvh), 93 synthetic markers" : settings.motion_path;
+  record->error_name = "figures";
+  record->error = static_cast<double>(record->figures.size());
+  record->notes = "per-frame CPU-time medians of interleaved rounds; ratios peer / ours (see the table above)";
+  return Status::Ok();
+}
+
 const std::vector<BenchProblem>& AllBenchProblems() {
   static const std::vector<BenchProblem> problems = {
       {"fk", "forward kinematics of every frame of a clip (--motion, default: demo walk)",
@@ -417,6 +448,9 @@ const std::vector<BenchProblem>& AllBenchProblems() {
       {"pipeline", "one take end to end in memory (--bench_subject, --bench_markers, "
        "--bench_character): repair and solve, retarget, gate; solver = the per-frame solver",
        {"dls", "ceres"}, RunPipelineProblem},
+      {"peers", "our FK, Jacobian and marker IK beside Orocos KDL, MuJoCo and DART (runs "
+       "mocapsolve_peers_bench, built with scripts/setup.sh --with-peers)",
+       {"all"}, RunPeersProblem},
       {"pyramid", "Laplacian pyramid build + reconstruct of a 10,000 x 96 synthetic clip "
        "(--bench_frames for another length)",
        {"pyramid"}, RunPyramidProblem},

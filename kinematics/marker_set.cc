@@ -5,6 +5,7 @@
 #include <set>
 
 #include "kinematics/quote_token.h"
+#include "kinematics/rotation.h"
 
 namespace mocapsolve {
 
@@ -59,6 +60,24 @@ void MarkerSet::BlendTerms(int m, const FkData& fk, std::vector<BlendTerm>* term
   for (const MarkerAttachment& a : markers_[m].attachments) {
     terms->push_back(
         {a.joint, a.weight, fk.world_positions[a.joint] + fk.world_rotations[a.joint] * a.offset});
+  }
+}
+
+void MarkerSetJacobian(const Skeleton& skeleton, const MarkerSet& markers, const FkData& fk,
+                       std::vector<Eigen::Matrix3d>* rotations, Eigen::MatrixXd* jacobian) {
+  const int nj = skeleton.num_joints();
+  rotations->resize(nj);
+  for (int j = 0; j < nj; ++j) (*rotations)[j] = fk.world_rotations[j].toRotationMatrix();
+  jacobian->setZero(3 * markers.num_markers(), PoseTangentSize(skeleton));
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    for (const MarkerAttachment& a : markers.marker(m).attachments) {
+      const Eigen::Vector3d p = fk.world_positions[a.joint] + (*rotations)[a.joint] * a.offset;
+      jacobian->block<3, 3>(3 * m, 0).diagonal().array() += a.weight;
+      for (int j = a.joint; j >= 0; j = skeleton.parent(j)) {
+        jacobian->block<3, 3>(3 * m, RotationColumn(j)).noalias() +=
+            a.weight * SkewSymmetric(fk.world_positions[j] - p) * (*rotations)[j];
+      }
+    }
   }
 }
 

@@ -58,6 +58,15 @@ class MarkerSet {
   std::vector<std::vector<int>> influencing_joints_;
 };
 
+// FK's companion for whole-set solvers and benchmarks: the dense Jacobian of every marker
+// position, 3 #markers x PoseTangentSize (pose tangent layout of kinematic_jacobians.h;
+// rows 3m..3m+2 are marker m), at the pose whose FK is `fk`. The matrix is resized and
+// zeroed, then each attachment's blocks w I (translation) and w [o_j - p]x R_j (joint j on
+// its chain) are added, the formula of AccumulateBlendedPointJacobian written straight
+// into the big matrix. `rotations` is scratch (each joint's rotation matrix, once).
+void MarkerSetJacobian(const Skeleton& skeleton, const MarkerSet& markers, const FkData& fk,
+                       std::vector<Eigen::Matrix3d>* rotations, Eigen::MatrixXd* jacobian);
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_KINEMATICS_MARKER_SET_H_

@@ -15,11 +15,20 @@ packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libsuitesp
 # Opt-in: `setup.sh --fuzz` also installs what scripts/fuzz.sh needs (clang, libFuzzer)
 # and then only installs (the fuzz build is scripts/fuzz.sh's own, in build-fuzz/).
 fuzz_packages=(clang libclang-rt-14-dev libfuzzer-14-dev ccache)
+# Opt-in: `setup.sh --with-peers` also installs the peer kinematics libraries of the peers
+# benchmark (bench/peers: Orocos KDL, MuJoCo, DART; about 600 MB with DART's dependencies),
+# then reconfigures and builds as usual, so build/bin/mocapsolve_peers_bench appears.
+# Not in the default list: CI stays lean, and the build never requires them.
+peer_packages=(liborocos-kdl-dev libmujoco-dev libdart-dev)
 only_install=0
-if [ "${1:-}" = "--fuzz" ]; then
-  packages+=("${fuzz_packages[@]}")
-  only_install=1
-fi
+reconfigure=0
+for option in "$@"; do
+  case "$option" in
+    --fuzz) packages+=("${fuzz_packages[@]}"); only_install=1 ;;
+    --with-peers) packages+=("${peer_packages[@]}"); reconfigure=1 ;;
+    *) echo "setup: unknown option '$option' (known: --fuzz, --with-peers)" >&2; exit 1 ;;
+  esac
+done
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -40,6 +49,8 @@ fi
 build_type=${MOCAPSOLVE_BUILD_TYPE:-Release}
 if [ ! -f build/CMakeCache.txt ]; then
   cmake -S . -B build -DCMAKE_BUILD_TYPE="$build_type" ${MOCAPSOLVE_CMAKE_ARGS:-} >/dev/null
+elif [ "$reconfigure" -eq 1 ]; then
+  cmake -S . -B build >/dev/null  # Finds the peer libraries an earlier configure lacked.
 fi
 echo "setup: building (build/, $build_type; log in build/build.log)"
 if ! cmake --build build -j2 >build/build.log 2>&1; then

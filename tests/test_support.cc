@@ -163,8 +163,8 @@ std::string RandomlyDamaged(const std::string& base, const std::string& alphabet
   return text;
 }
 
-int RunCli(const std::string& arguments, std::string* output) {
-  const std::string command = std::string(MOCAPSOLVE_CLI) + " " + arguments + " 2>&1";
+int RunProgram(const std::string& program, const std::string& arguments, std::string* output) {
+  const std::string command = program + " " + arguments + " 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return -1;
   output->clear();
@@ -173,6 +173,16 @@ int RunCli(const std::string& arguments, std::string* output) {
   while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output->append(buffer, n);
   const int status = ::pclose(pipe);
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+int RunCli(const std::string& arguments, std::string* output) {
+  return RunProgram(MOCAPSOLVE_CLI, arguments, output);
+}
+
+std::string BuiltProgramPath(const std::string& name) {
+  const std::string cli = MOCAPSOLVE_CLI;
+  const size_t slash = cli.rfind('/');
+  return (slash == std::string::npos ? std::string(".") : cli.substr(0, slash)) + "/" + name;
 }
 
 }  // namespace mocapsolve::testing

@@ -58,6 +58,10 @@ std::string RandomlyDamaged(const std::string& text, const std::string& alphabet
 // Runs the built CLI with arguments (shell-quoted by the caller); returns its exit code
 // and fills *output with stdout+stderr.
 int RunCli(const std::string& arguments, std::string* output);
+// The same for another program (a path); stdout+stderr into *output.
+int RunProgram(const std::string& program, const std::string& arguments, std::string* output);
+// Path of another executable built beside the CLI (build/bin/<name>); it may not exist.
+std::string BuiltProgramPath(const std::string& name);
 
 }  // namespace mocapsolve::testing
 

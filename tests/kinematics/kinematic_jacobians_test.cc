@@ -10,6 +10,7 @@
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
+#include "kinematics/marker_set.h"
 #include "kinematics/skinning.h"
 #include "tests/kinematics/test_rigs.h"
 
@@ -177,6 +178,35 @@ TEST_F(KinematicJacobians, BlendedPointsAcrossBranches) {
       return x;
     });
     EXPECT_LT((analytic - numeric).cwiseAbs().maxCoeff(), kNumericTolerance);
+  }
+}
+
+TEST_F(KinematicJacobians, MarkerSetJacobianStacksTheBlendedPointJacobians) {
+  // MarkerSetJacobian (kinematics/marker_set.h) writes the same formula into one big
+  // matrix; it must equal the per-marker AccumulateBlendedPointJacobian (checked above
+  // against the twin and differences) to round-off, blended markers included.
+  std::vector<MarkerSpec> specs = {{"single", {{4, 1.0, {0.02, 0.1, -0.03}}}},
+                                   {"blended", {{6, 0.5, {0.02, 0.03, -0.01}}, {7, 0.3, {0.1, 0.0, 0.05}},
+                                                {10, 0.2, {0.0, 0.01, 0.1}}}},
+                                   {"root", {{0, 1.0, {0.1, 0.0, 0.0}}}}};
+  MarkerSet markers;
+  ASSERT_TRUE(MarkerSet::Create(skeleton_, specs, &markers).ok());
+  std::vector<Eigen::Matrix3d> scratch;
+  Eigen::MatrixXd stacked;
+  for (const Pose& pose : SweepPoses(skeleton_)) {
+    FkData fk(skeleton_);
+    ForwardKinematics(skeleton_, pose, &fk);
+    MarkerSetJacobian(skeleton_, markers, fk, &scratch, &stacked);
+    ASSERT_EQ(stacked.rows(), 3 * markers.num_markers());
+    ASSERT_EQ(stacked.cols(), PoseTangentSize(skeleton_));
+    std::vector<BlendTerm> blend;
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      markers.BlendTerms(m, fk, &blend);
+      PoseJacobian one = PoseJacobian::Zero(3, PoseTangentSize(skeleton_));
+      AccumulateBlendedPointJacobian(skeleton_, fk, blend, &one);
+      // Same products in another order: round-off only.
+      EXPECT_LT((stacked.middleRows(3 * m, 3) - one).cwiseAbs().maxCoeff(), 1e-12) << markers.label(m);
+    }
   }
 }
 
