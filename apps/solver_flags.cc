@@ -44,6 +44,9 @@ DEFINE_double(smooth_translation_weight, kDefault.smooth_translation_weight, "Cl
               "per skeleton unit of per-frame difference.");
 DEFINE_double(clip_function_tolerance, kDefault.clip_function_tolerance, "Clip solve: stop when the relative cost change "
               "is below this (the whole-clip problem is large; its tail gains little).");
+DEFINE_string(clip_solver, kDefault.clip_solver.c_str(), "Clip solve (--mode=clip): ceres (sparse Cholesky, "
+              "--sparse_library) | dls (damped least squares on the same residuals, normal equations "
+              "factored block-banded: one dense block per frame; --dls_lambda, --dls_damping).");
 DEFINE_double(dls_lambda, kDefault.dls_lambda, "DLS damping: the initial (adaptive) or fixed lambda.");
 DEFINE_string(dls_damping, kDefault.dls_damping.c_str(), "DLS damping: adaptive (Levenberg) | fixed (Buss).");
 
@@ -71,6 +74,7 @@ SolverSettings SolverSettingsFromFlags() {
   s.smooth_translation_weight = FLAGS_smooth_translation_weight;
   s.clip_function_tolerance = FLAGS_clip_function_tolerance;
   s.sparse_library = FLAGS_sparse_library;
+  s.clip_solver = FLAGS_clip_solver;
   s.dls_lambda = FLAGS_dls_lambda;
   s.dls_damping = FLAGS_dls_damping;
   s.verbose = FLAGS_v >= 1;
