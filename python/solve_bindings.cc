@@ -61,6 +61,7 @@ namespace {
 py::dict ClipReportDict(const ClipSolveReport& clip, const LengthUnit& unit) {
   const double mm = unit.known() ? unit.metres_per_unit * 1000.0 : 1.0;
   py::dict d;
+  d["solver"] = clip.solver;
   d["seconds"] = clip.solve_seconds;
   d["iterations"] = clip.iterations;
   d["parameters"] = clip.parameters;

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include <algorithm>
+#include <chrono>
 #include <unordered_map>
 
 #include <Eigen/Cholesky>
@@ -280,6 +281,13 @@ bool DlsSolver::ApplyStep(const Eigen::VectorXd& delta, double* step_norm, doubl
 double DlsSolver::MaxGradient() const { return jtr_.cwiseAbs().maxCoeff(); }
 
 bool DlsSolver::ComputeStep(double lambda, Eigen::VectorXd* delta) {
+  const auto start = std::chrono::steady_clock::now();
+  const bool solved = SolveLinearSystem(lambda, delta);
+  linear_solve_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return solved;
+}
+
+bool DlsSolver::SolveLinearSystem(double lambda, Eigen::VectorXd* delta) {
   if (linear_solver_ == DlsLinearSolver::kSparseLdlt) {
     double* values = sparse_.valuePtr();
     for (size_t k = 0; k < gather_.size(); ++k) values[k] = pair_values_[gather_[k]];
@@ -416,6 +424,7 @@ void DlsSolver::Setup(DlsProblem* problem) {
 
 void DlsSolver::Solve(const DlsOptions& options, DlsProblem* problem, DlsSummary* summary) {
   Setup(problem);
+  linear_solve_seconds_ = 0.0;
   problem_ = problem;
   RunDlsIterations(options, this, summary);
   problem_ = nullptr;

@@ -98,6 +98,8 @@ class DlsSolver : private DlsModel {
   // order), jtr = J^T r. For tests; false if a cost function fails.
   bool NormalEquations(DlsProblem* problem, Eigen::SparseMatrix<double>* jtj, Eigen::VectorXd* jtr,
                        double* cost);
+  // Wall seconds the last Solve spent in ComputeStep (forming and factoring the system).
+  double linear_solve_seconds() const { return linear_solve_seconds_; }
   // Flops of one factorization with kBlockBanded (after a Solve), else 0.
   double BandFactorizationFlops() const {
     return linear_solver_ == DlsLinearSolver::kBlockBanded ? band_.FactorizationFlops() : 0.0;
@@ -110,6 +112,7 @@ class DlsSolver : private DlsModel {
   int num_columns() const override { return num_cols_; }
   double MaxGradient() const override;
   bool ComputeStep(double lambda, Eigen::VectorXd* delta) override;
+  bool SolveLinearSystem(double lambda, Eigen::VectorXd* delta);
   void Save() override;
   void Restore() override;
   bool ApplyStep(const Eigen::VectorXd& delta, double* step_norm, double* x_norm) override;
@@ -119,6 +122,7 @@ class DlsSolver : private DlsModel {
 
   DlsLinearSolver linear_solver_;
   int band_block_columns_;
+  double linear_solve_seconds_ = 0.0;
   DlsProblem* problem_ = nullptr;
   bool dense_j_ = false;
   Eigen::MatrixXd system_;

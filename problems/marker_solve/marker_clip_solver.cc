@@ -193,6 +193,7 @@ Status SolveClip(const Skeleton& skeleton, const MarkerSet& markers,
     report->usable = summary.IsSolutionUsable();
     report->brief = summary.BriefReport();
     report->full = summary.FullReport();
+    report->linear_solve_seconds = summary.linear_solver_time_in_seconds;
   } else {
     DlsProblem dls_problem;
     problem.AddTo(&dls_problem);
@@ -206,6 +207,7 @@ Status SolveClip(const Skeleton& skeleton, const MarkerSet& markers,
     report->brief = summary.BriefReport();
     report->full = report->brief;
     report->factorization_flops = solver.BandFactorizationFlops();
+    report->linear_solve_seconds = solver.linear_solve_seconds();
   }
   report->solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!report->usable) return Status::Error("clip solve failed: " + report->brief);

@@ -113,6 +113,7 @@ struct ClipSolveReport {
   int parameters = 0;          // Tangent dimension of the problem.
   double rms_marker_error = 0.0;  // Over all observed samples, skeleton units.
   double solve_seconds = 0.0;
+  double linear_solve_seconds = 0.0;  // Of which forming and factoring the linear systems.
   std::string brief;
   std::string full;            // Ceres' FullReport() (dls: the brief report).
   double factorization_flops = 0.0;  // dls, block-banded: flops of one factorization.
