@@ -10,7 +10,7 @@ const mocapsolve::SolverSettings kDefault;
 DEFINE_string(solver, kDefault.solver.c_str(), "ceres | dls | dls_generic: who minimizes the (same) residual blocks "
               "(dls: the lean tree kernel; dls_generic: the generic DLS solver, a reference).");
 DEFINE_string(mode, kDefault.mode.c_str(), "frame: solve frame by frame, warm-started; clip: then refine all "
-              "frames as one sparse problem with smoothness (Ceres).");
+              "frames as one sparse problem with smoothness (--clip_solver).");
 DEFINE_string(linear_solver, kDefault.linear_solver.c_str(), "Ceres linear solver: dense_qr, dense_normal_cholesky, "
               "sparse_normal_cholesky, dense_schur, sparse_schur, iterative_schur, cgnr "
               "(default: dense_qr per frame, sparse_normal_cholesky per clip).");
