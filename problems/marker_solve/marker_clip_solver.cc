@@ -95,11 +95,12 @@ Status BuildClipProblem(const Skeleton& skeleton, const MarkerSet& markers,
       return Status::Error("frame " + std::to_string(f) + ": observation count differs from the marker set");
     }
   }
-  std::vector<bool> moves(nj, false);
-  for (int m = 0; m < nm; ++m) {
-    for (int j : markers.InfluencingJoints(m)) moves[j] = true;
-  }
   ClipProblem& p = *problem;
+  p.moves.assign(nj, false);
+  for (int m = 0; m < nm; ++m) {
+    for (int j : markers.InfluencingJoints(m)) p.moves[j] = true;
+  }
+  const std::vector<bool>& moves = p.moves;
   Status status = MakeLoss(options.loss, options.loss_scale, &p.loss);
   if (!status.ok()) return status;
   // Parameter storage: per frame 3 translation + 4 per joint, contiguous.
@@ -212,10 +213,6 @@ Status SolveClip(const Skeleton& skeleton, const MarkerSet& markers,
   report->solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!report->usable) return Status::Error("clip solve failed: " + report->brief);
 
-  std::vector<bool> moves(nj, false);
-  for (int m = 0; m < markers.num_markers(); ++m) {
-    for (int j : markers.InfluencingJoints(m)) moves[j] = true;
-  }
   double sum = 0.0;
   int count = 0;
   for (int f = 0; f < num_frames; ++f) {
@@ -223,7 +220,7 @@ Status SolveClip(const Skeleton& skeleton, const MarkerSet& markers,
     const double* frame = &problem.x[static_cast<size_t>(f) * problem.stride];
     pose.translations[0] = Eigen::Map<const Eigen::Vector3d>(frame);
     for (int j = 0; j < nj; ++j) {
-      if (moves[j]) pose.rotations[j] = Eigen::Quaterniond(Eigen::Map<const Eigen::Vector4d>(frame + 3 + 4 * j)).normalized();
+      if (problem.moves[j]) pose.rotations[j] = Eigen::Quaterniond(Eigen::Map<const Eigen::Vector4d>(frame + 3 + 4 * j)).normalized();
     }
     int n = 0;
     const double rms = RmsMarkerError(skeleton, markers, pose, observed[f], &n);

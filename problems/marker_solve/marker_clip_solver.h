@@ -20,7 +20,7 @@
 //            pentadiagonal for acceleration smoothness, factored by BlockBandedCholesky
 //            (7/3 n^3 resp. 19/3 n^3 flops per frame, n unknowns per frame). Robust losses
 //            by IRLS (sqrt(rho') weights): the same gradient as Ceres, a Gauss-Newton
-//            Hessian without Ceres' second-order correction, hence the same minima.
+//            Hessian without Ceres' second-order correction: the same stationary points.
 //            Damping and stopping rules: solvers/dls_iterations.h.
 // The motion given is the initial guess (e.g. per-frame solutions) and receives the result.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_MARKER_CLIP_SOLVER_H_
@@ -92,7 +92,8 @@ struct ClipProblem {
   std::vector<Parameter> parameters;
   std::vector<Residual> residuals;
   std::unique_ptr<ceres::LossFunction> loss;
-  int frame_columns = 0;  // Tangent columns per frame.
+  std::vector<bool> moves;  // Per joint: some marker moves it (it has parameter blocks).
+  int frame_columns = 0;    // Tangent columns per frame.
 
   // The problems own nothing: this ClipProblem must outlive them.
   void AddTo(ceres::Problem* problem) const;  // Options: DO_NOT_TAKE_OWNERSHIP of all.
