@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <iomanip>
+#include <map>
 #include <random>
 #include <sstream>
 
 #include <unistd.h>
+
+#include <ceres/iteration_callback.h>
 
 #include "apps/common_flags.h"
 #include "apps/corruption_flags.h"
@@ -15,8 +19,10 @@
 #include "apps/solver_flags.h"
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
+#include "io/gltf_reader.h"
 #include "io/motion_file.h"
 #include "apps/retarget_flags.h"
+#include "problems/retarget/retarget_character.h"
 #include "pipeline/take_pipeline.h"
 #include "problems/marker_repair/marker_repair.h"
 #include "problems/marker_solve/marker_observations.h"
@@ -43,6 +49,18 @@ JsonObject BenchRecord::ToJson() const {
 }
 
 namespace {
+
+// CPU seconds of the process (all threads): the figure to compare on a loaded machine.
+double ProcessCpuSeconds() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values.empty() ? 0.0 : values[values.size() / 2];
+}
 
 template <typename Function>
 double MedianSeconds(int repeats, Function&& function) {
@@ -211,47 +229,179 @@ Status RunMarkerSolveProblem(const std::string& solver, const BenchSettings& set
   return Status::Ok();
 }
 
-// The whole-clip solve: per-frame DLS for the initial guess (not timed), then all frames
-// as one sparse Ceres problem with smoothness (timed). Markers as for marker_solve, with
-// --bench_noise_mm of Gaussian noise added to synthesized ones.
-Status RunMarkerClipProblem(const std::string& solver, const BenchSettings& settings,
-                            BenchRecord* record) {
-  if (solver != "ceres") return Status::Error("marker_clip solvers: ceres");
+// Ceres' counterpart of DlsOptions::absolute_cost_tolerance: stop once the cost is <= target.
+class StopAtCost : public ceres::IterationCallback {
+ public:
+  explicit StopAtCost(double target) : target_(target) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    return summary.cost <= target_ ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  double target_;
+};
+
+// The clip problem of a bench process, loaded and given its initial guess once for all
+// solvers, and each solver's converged cost (the equal-cost target needs both).
+struct ClipBenchState {
+  std::string key;
   Skeleton skeleton;
   MarkerSet markers;
   std::vector<std::vector<Eigen::Vector3d>> observed;
-  Status status = LoadMarkerProblem(settings, &skeleton, &markers, &observed, record);
-  if (!status.ok()) return status;
-  MarkerSolveOptions frame_options;
-  status = MarkerSolveOptionsFromFlags(skeleton.unit(), &frame_options);
-  if (!status.ok()) return status;
-  frame_options.solver = SolverKind::kDls;
-  ClipSolveOptions clip_options;
-  status = ClipSolveOptionsFromFlags(&clip_options);
-  if (!status.ok()) return status;
   Motion initial;
-  SequenceSolveReport sequence;
-  status = SolveSequence(skeleton, markers, observed, frame_options, RestPose(skeleton), &initial, &sequence);
+  std::string input;
+  std::map<std::string, ClipSolveReport> converged;
+  std::map<std::string, double> converged_cpu;
+};
+
+// ceres | dls (block-banded) | dls_ldlt (the DLS on Eigen's SimplicialLDLT), from the flags.
+Status ClipOptionsForSolver(const std::string& solver, ClipSolveOptions* options) {
+  Status status = ClipSolveOptionsFromFlags(options);
   if (!status.ok()) return status;
-  std::vector<double> times;
+  options->solver = solver == "ceres" ? "ceres" : "dls";
+  options->dls_linear_solver =
+      solver == "dls_ldlt" ? DlsLinearSolver::kSparseLdlt : DlsLinearSolver::kBlockBanded;
+  return Status::Ok();
+}
+
+// The whole-clip solve: per-frame DLS for the initial guess (not timed), then all frames
+// as one sparse problem with smoothness. Markers as for marker_solve, with
+// --bench_noise_mm of Gaussian noise added to synthesized ones. Solvers ceres, dls
+// (block-banded) and dls_ldlt are compared at equal final cost: ceres and dls first run
+// to convergence once (untimed; their CPU time is reported as converged_cpu_seconds),
+// the target is the higher of the two final costs times (1 + 1e-6), and the timed runs
+// stop as soon as their cost is at or below it (Ceres through an IterationCallback, DLS
+// through absolute_cost_tolerance).
+Status RunMarkerClipProblem(const std::string& solver, const BenchSettings& settings,
+                            BenchRecord* record) {
+  if (solver != "ceres" && solver != "dls" && solver != "dls_ldlt") {
+    return Status::Error("marker_clip solvers: ceres, dls, dls_ldlt");
+  }
+  static ClipBenchState state;
+  const std::string key = settings.motion_path + "|" + settings.markers_path + "|" +
+                          std::to_string(settings.max_frames) + "|" + std::to_string(settings.noise_mm);
+  if (state.key != key) {
+    state = ClipBenchState();
+    BenchRecord loaded;
+    Status status = LoadMarkerProblem(settings, &state.skeleton, &state.markers, &state.observed, &loaded);
+    if (!status.ok()) return status;
+    state.input = loaded.input;
+    MarkerSolveOptions frame_options;
+    status = MarkerSolveOptionsFromFlags(state.skeleton.unit(), &frame_options);
+    if (!status.ok()) return status;
+    frame_options.solver = SolverKind::kDls;
+    SequenceSolveReport sequence;
+    status = SolveSequence(state.skeleton, state.markers, state.observed, frame_options,
+                           RestPose(state.skeleton), &state.initial, &sequence);
+    if (!status.ok()) return status;
+    state.key = key;
+  }
+  record->input = state.input;
+  for (const std::string& reference : {std::string("ceres"), std::string("dls")}) {
+    if (state.converged.count(reference) != 0) continue;
+    ClipSolveOptions options;
+    Status status = ClipOptionsForSolver(reference, &options);
+    if (!status.ok()) return status;
+    Motion motion = state.initial;
+    const double cpu = ProcessCpuSeconds();
+    status = SolveClip(state.skeleton, state.markers, state.observed, options, &motion, &state.converged[reference]);
+    if (!status.ok()) return status;
+    state.converged_cpu[reference] = ProcessCpuSeconds() - cpu;
+  }
+  const double target =
+      std::max(state.converged["ceres"].final_cost, state.converged["dls"].final_cost) * (1.0 + 1e-6);
+
+  ClipSolveOptions options;
+  Status status = ClipOptionsForSolver(solver, &options);
+  if (!status.ok()) return status;
+  StopAtCost stop(target);
+  options.ceres.callbacks.push_back(&stop);
+  options.dls.absolute_cost_tolerance = target;
+  std::vector<double> times, cpu_times, linear_times;
   ClipSolveReport report;
   for (int r = 0; r < std::max(1, settings.repeats); ++r) {
-    Motion motion = initial;
-    status = SolveClip(skeleton, markers, observed, clip_options, &motion, &report);
+    Motion motion = state.initial;
+    const double cpu = ProcessCpuSeconds();
+    status = SolveClip(state.skeleton, state.markers, state.observed, options, &motion, &report);
     if (!status.ok()) return status;
+    cpu_times.push_back(ProcessCpuSeconds() - cpu);
     times.push_back(report.solve_seconds);
+    linear_times.push_back(report.linear_solve_seconds);
   }
-  std::sort(times.begin(), times.end());
-  const double mm = skeleton.unit().known() ? skeleton.unit().metres_per_unit * 1000.0 : 0.0;
-  record->seconds = times[times.size() / 2];
-  record->frames = static_cast<int>(observed.size());
+  const double mm = state.skeleton.unit().known() ? state.skeleton.unit().metres_per_unit * 1000.0 : 0.0;
+  record->seconds = Median(times);
+  record->frames = static_cast<int>(state.observed.size());
   record->iterations = report.iterations;
   record->final_cost = report.final_cost;
   record->error_name = mm > 0 ? "rms_marker_residual_mm" : "rms_marker_residual";
   record->error = report.rms_marker_error * (mm > 0 ? mm : 1.0);
+  const ClipSolveReport& own = state.converged[solver == "ceres" ? "ceres" : "dls"];
   record->notes = std::to_string(report.parameters) + " parameters, " +
                   std::to_string(report.residual_blocks) + " residual blocks; initial guess: " +
-                  "per-frame DLS (untimed)";
+                  "per-frame DLS (untimed); stopped at the equal-cost target; " + report.brief;
+  record->figures = {{"cpu_seconds", Median(cpu_times)},
+                     {"linear_solve_seconds", Median(linear_times)},
+                     {"target_cost", target},
+                     {"converged_cost", own.final_cost},
+                     {"converged_iterations", static_cast<double>(own.iterations)},
+                     {"converged_cpu_seconds", state.converged_cpu[solver == "ceres" ? "ceres" : "dls"]}};
+  if (report.factorization_flops > 0) {
+    record->figures.push_back({"factorization_gflop", 1e-9 * report.factorization_flops});
+  }
+  return Status::Ok();
+}
+
+// Retargeting a clip onto a character, as `mocapsolve retarget` and the pipeline do it
+// (RetargetMotionOntoCharacter with the retarget flags): source --bench_motion (a motion
+// file; the target's mesh is bound to its skeleton), target the one --bench_character
+// (.glb); --bench_frames. Timed: the frame loop (seconds, wall) and the whole call
+// including the setup (cpu_seconds); error: mean tracked-vertex error / target height.
+Status RunRetargetProblem(const std::string& solver, const BenchSettings& settings, BenchRecord* record) {
+  if (solver != "dls" && solver != "dls_generic" && solver != "ceres") {
+    return Status::Error("retarget solvers: dls, dls_generic, ceres");
+  }
+  if (settings.motion_path.empty() || settings.character_paths.size() != 1) {
+    return Status::Error("retarget: --bench_motion (the source clip) and one --bench_character (the target .glb) are required");
+  }
+  Skeleton source_skeleton;
+  Motion clip;
+  Status status = LoadMotion(settings.motion_path, &source_skeleton, &clip);
+  if (!status.ok()) return status;
+  if (settings.max_frames > 0 && clip.num_frames() > settings.max_frames) clip.frames.resize(settings.max_frames);
+  GltfCharacter target;
+  status = ReadGltfCharacter(settings.character_paths[0], GltfReadOptions(), &target);
+  if (!status.ok()) return status;
+  const std::string given = FLAGS_solver;
+  FLAGS_solver = solver;
+  CharacterRetargetOptions options;
+  status = RetargetOptionsFromFlags(&options);
+  FLAGS_solver = given;
+  if (!status.ok()) return status;
+  RetargetCharacter source_view;
+  source_view.skeleton = &source_skeleton;
+  const RetargetCharacter target_view = {&target.skeleton, &target.mesh, target.bind_pose, target.rest_pose};
+  std::vector<double> times, cpu_times;
+  CharacterRetargetResult result;
+  for (int r = 0; r < std::max(1, settings.repeats); ++r) {
+    const double cpu = ProcessCpuSeconds();
+    status = RetargetMotionOntoCharacter(source_view, clip, target_view, options, &result);
+    if (!status.ok()) return status;
+    cpu_times.push_back(ProcessCpuSeconds() - cpu);
+    times.push_back(result.clip.solve_seconds);
+  }
+  int iterations = 0;
+  for (const RetargetFrameFigures& f : result.clip.frames) iterations += f.iterations;
+  record->input = settings.motion_path + " onto " + settings.character_paths[0];
+  record->seconds = Median(times);
+  record->frames = clip.num_frames();
+  record->iterations = iterations;
+  record->final_cost = result.clip.mean_final_cost;
+  record->error_name = "mean_vertex_error_per_height";
+  record->error = result.clip.mean_position_error;
+  record->notes = std::to_string(result.setup.tracked.size()) + " tracked vertices; seconds: the frame loop; "
+                  "cpu_seconds: the whole call with its setup";
+  record->figures = {{"cpu_seconds", Median(cpu_times)},
+                     {"ms_per_frame", 1e3 * record->seconds / std::max(1, record->frames)}};
   return Status::Ok();
 }
 
@@ -436,9 +586,13 @@ const std::vector<BenchProblem>& AllBenchProblems() {
   static const std::vector<BenchProblem> problems = {
       {"fk", "forward kinematics of every frame of a clip (--motion, default: demo walk)",
        {"fk"}, RunFkProblem},
-      {"marker_clip", "whole-clip marker solve as one sparse Ceres problem (inputs as for "
-       "marker_solve; --bench_noise_mm for synthesized markers)",
-       {"ceres"}, RunMarkerClipProblem},
+      {"marker_clip", "whole-clip marker solve as one sparse problem (inputs as for "
+       "marker_solve; --bench_noise_mm for synthesized markers); Ceres vs the block-banded DLS "
+       "(and DLS on Eigen's sparse LDLT) timed to an equal final cost",
+       {"ceres", "dls", "dls_ldlt"}, RunMarkerClipProblem},
+      {"retarget", "a clip onto a character as `mocapsolve retarget` (--bench_motion source, "
+       "--bench_character target .glb, retarget flags, --bench_frames)",
+       {"dls", "dls_generic", "ceres"}, RunRetargetProblem},
       {"marker_solve", "per-frame marker solving of a take (--bench_markers/--bench_skeleton/"
        "--bench_markerset, or markers synthesized from --bench_motion)",
        {"dls", "dls_generic", "ceres"}, RunMarkerSolveProblem},

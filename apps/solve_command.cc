@@ -100,12 +100,12 @@ Status RunSolve(const std::vector<std::string>& arguments) {
     if (!FLAGS_quiet) std::fprintf(stderr, "clip solve: %zu frames as one problem...\n", observed.size());
     status = SolveClip(skeleton, markers, observed, clip_options, &motion, &clip);
     if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
-    std::printf("clip (ceres): %d parameters, %d residual blocks, %d iterations in %.3f s, cost "
+    std::printf("clip (%s): %d parameters, %d residual blocks, %d iterations in %.3f s, cost "
                 "%.6g -> %.6g, RMS marker residual %.4g %s\n",
-                clip.parameters, clip.residual_blocks, clip.iterations, clip.solve_seconds,
+                clip.solver.c_str(), clip.parameters, clip.residual_blocks, clip.iterations, clip.solve_seconds,
                 clip.initial_cost, clip.final_cost, clip.rms_marker_error * to_output, unit);
     JsonObject clip_json;
-    clip_json.Add("seconds", clip.solve_seconds).Add("iterations", clip.iterations)
+    clip_json.Add("solver", clip.solver).Add("seconds", clip.solve_seconds).Add("iterations", clip.iterations)
         .Add("parameters", clip.parameters).Add("residual_blocks", clip.residual_blocks)
         .Add("initial_cost", clip.initial_cost).Add("final_cost", clip.final_cost)
         .Add("rms_marker_residual", clip.rms_marker_error * to_output);

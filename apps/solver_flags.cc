@@ -10,7 +10,7 @@ const mocapsolve::SolverSettings kDefault;
 DEFINE_string(solver, kDefault.solver.c_str(), "ceres | dls | dls_generic: who minimizes the (same) residual blocks "
               "(dls: the lean tree kernel; dls_generic: the generic DLS solver, a reference).");
 DEFINE_string(mode, kDefault.mode.c_str(), "frame: solve frame by frame, warm-started; clip: then refine all "
-              "frames as one sparse problem with smoothness (Ceres).");
+              "frames as one sparse problem with smoothness (--clip_solver).");
 DEFINE_string(linear_solver, kDefault.linear_solver.c_str(), "Ceres linear solver: dense_qr, dense_normal_cholesky, "
               "sparse_normal_cholesky, dense_schur, sparse_schur, iterative_schur, cgnr "
               "(default: dense_qr per frame, sparse_normal_cholesky per clip).");
@@ -44,6 +44,9 @@ DEFINE_double(smooth_translation_weight, kDefault.smooth_translation_weight, "Cl
               "per skeleton unit of per-frame difference.");
 DEFINE_double(clip_function_tolerance, kDefault.clip_function_tolerance, "Clip solve: stop when the relative cost change "
               "is below this (the whole-clip problem is large; its tail gains little).");
+DEFINE_string(clip_solver, kDefault.clip_solver.c_str(), "Clip solve (--mode=clip): ceres (sparse Cholesky, "
+              "--sparse_library) | dls (damped least squares on the same residuals, normal equations "
+              "factored block-banded: one dense block per frame; --dls_lambda, --dls_damping).");
 DEFINE_double(dls_lambda, kDefault.dls_lambda, "DLS damping: the initial (adaptive) or fixed lambda.");
 DEFINE_string(dls_damping, kDefault.dls_damping.c_str(), "DLS damping: adaptive (Levenberg) | fixed (Buss).");
 
@@ -71,6 +74,7 @@ SolverSettings SolverSettingsFromFlags() {
   s.smooth_translation_weight = FLAGS_smooth_translation_weight;
   s.clip_function_tolerance = FLAGS_clip_function_tolerance;
   s.sparse_library = FLAGS_sparse_library;
+  s.clip_solver = FLAGS_clip_solver;
   s.dls_lambda = FLAGS_dls_lambda;
   s.dls_damping = FLAGS_dls_damping;
   s.verbose = FLAGS_v >= 1;

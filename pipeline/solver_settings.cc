@@ -31,6 +31,20 @@ Status CeresOptionsFromSettings(const SolverSettings& settings, ceres::Solver::O
   return Status::Ok();
 }
 
+// The DLS iteration options both problems share; function_tolerance is the problem's.
+Status DlsOptionsFromSettings(const SolverSettings& settings, double function_tolerance, DlsOptions* options) {
+  options->max_iterations = settings.max_iterations;
+  options->function_tolerance = function_tolerance;
+  options->gradient_tolerance = settings.gradient_tolerance;
+  options->parameter_tolerance = settings.parameter_tolerance;
+  options->lambda = settings.dls_lambda;
+  if (settings.dls_damping != "adaptive" && settings.dls_damping != "fixed") {
+    return Status::Error("--dls_damping: unknown '" + settings.dls_damping + "' (adaptive, fixed)");
+  }
+  options->adaptive_damping = settings.dls_damping == "adaptive";
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const LengthUnit& skeleton_unit,
@@ -42,15 +56,8 @@ Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const Leng
   Status status = CeresOptionsFromSettings(settings, &options->ceres);
   if (!status.ok()) return status;
   options->ceres.num_threads = 1;  // Small dense problems: threads cost more than they give.
-  options->dls.max_iterations = settings.max_iterations;
-  options->dls.function_tolerance = settings.function_tolerance;
-  options->dls.gradient_tolerance = settings.gradient_tolerance;
-  options->dls.parameter_tolerance = settings.parameter_tolerance;
-  options->dls.lambda = settings.dls_lambda;
-  if (settings.dls_damping != "adaptive" && settings.dls_damping != "fixed") {
-    return Status::Error("--dls_damping: unknown '" + settings.dls_damping + "' (adaptive, fixed)");
-  }
-  options->dls.adaptive_damping = settings.dls_damping == "adaptive";
+  status = DlsOptionsFromSettings(settings, settings.function_tolerance, &options->dls);
+  if (!status.ok()) return status;
   options->marker_weight = settings.marker_weight;
   options->loss = settings.loss;
   options->loss_scale = settings.loss_scale;
@@ -73,6 +80,13 @@ Status ClipSolveOptionsFromSettings(const SolverSettings& settings, ClipSolveOpt
   if (!status.ok()) return status;
   options->ceres.num_threads = std::max(settings.num_threads, 1);
   options->ceres.function_tolerance = settings.clip_function_tolerance;
+  if (settings.clip_solver != "ceres" && settings.clip_solver != "dls") {
+    return Status::Error("--clip_solver: unknown '" + settings.clip_solver + "' (ceres, dls)");
+  }
+  options->solver = settings.clip_solver;
+  options->dls = DefaultClipDlsOptions();
+  status = DlsOptionsFromSettings(settings, settings.clip_function_tolerance, &options->dls);
+  if (!status.ok()) return status;
   if (!ceres::StringToSparseLinearAlgebraLibraryType(settings.sparse_library,
                                                      &options->ceres.sparse_linear_algebra_library_type)) {
     return Status::Error("--sparse_library: unknown '" + settings.sparse_library +

@@ -39,6 +39,7 @@ struct SolverSettings {
   double smooth_translation_weight = 0.1;
   double clip_function_tolerance = 1e-6;
   std::string sparse_library = "eigen_sparse";  // eigen_sparse | suite_sparse.
+  std::string clip_solver = "ceres";       // ceres | dls: who minimizes the clip problem.
   double dls_lambda = 1e-3;
   std::string dls_damping = "adaptive";    // adaptive | fixed.
   bool verbose = false;                    // Ceres prints every iteration (--v=1).
@@ -50,13 +51,15 @@ inline constexpr char kSolverSettingNames[] =
     "solver,mode,linear_solver,trust_region,max_iterations,function_tolerance,"
     "gradient_tolerance,parameter_tolerance,num_threads,loss,loss_scale,marker_weight,"
     "prior_weight,prior_translation_weight,limit_weight,smooth_order,smooth_weight,"
-    "smooth_translation_weight,clip_function_tolerance,sparse_library,dls_lambda,dls_damping";
+    "smooth_translation_weight,clip_function_tolerance,sparse_library,clip_solver,dls_lambda,dls_damping";
 
 // Per-frame options (solver picks Ceres or DLS); the skeleton's unit converts the prior
 // and limit weights from mm.
 Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const LengthUnit& skeleton_unit,
                                       MarkerSolveOptions* options);
-// Whole-clip options (always Ceres; linear_solver defaults to sparse_normal_cholesky).
+// Whole-clip options: clip_solver picks Ceres (linear_solver defaults to
+// sparse_normal_cholesky) or the block-banded DLS (dls_lambda, dls_damping, the iteration
+// limit and tolerances as per frame, clip_function_tolerance).
 Status ClipSolveOptionsFromSettings(const SolverSettings& settings, ClipSolveOptions* options);
 
 }  // namespace mocapsolve

@@ -62,6 +62,7 @@ namespace {
 py::dict ClipReportDict(const ClipSolveReport& clip, const LengthUnit& unit) {
   const double mm = unit.known() ? unit.metres_per_unit * 1000.0 : 1.0;
   py::dict d;
+  d["solver"] = clip.solver;
   d["seconds"] = clip.solve_seconds;
   d["iterations"] = clip.iterations;
   d["parameters"] = clip.parameters;
@@ -147,7 +148,8 @@ void BindSolve(py::module_& m) {
   MOCAPSOLVE_FIELD(loss); MOCAPSOLVE_FIELD(loss_scale); MOCAPSOLVE_FIELD(marker_weight);
   MOCAPSOLVE_FIELD(prior_weight); MOCAPSOLVE_FIELD(prior_translation_weight); MOCAPSOLVE_FIELD(limit_weight);
   MOCAPSOLVE_FIELD(smooth_order); MOCAPSOLVE_FIELD(smooth_weight); MOCAPSOLVE_FIELD(smooth_translation_weight);
-  MOCAPSOLVE_FIELD(clip_function_tolerance); MOCAPSOLVE_FIELD(sparse_library); MOCAPSOLVE_FIELD(dls_lambda);
+  MOCAPSOLVE_FIELD(clip_function_tolerance); MOCAPSOLVE_FIELD(sparse_library); MOCAPSOLVE_FIELD(clip_solver);
+  MOCAPSOLVE_FIELD(dls_lambda);
   MOCAPSOLVE_FIELD(dls_damping); MOCAPSOLVE_FIELD(verbose);
 #undef MOCAPSOLVE_FIELD
   settings.def("validate", [](const SolverSettings& s, const std::string& skeleton_units) {
@@ -251,7 +253,8 @@ Every other keyword is a solver option named like the CLI flag (SolverSettings),
   num_threads=2 (clip), loss='none'|'huber'|'cauchy', loss_scale=1.0, marker_weight=1.0,
   prior_weight=20.0 (mm per radian), prior_translation_weight=0, limit_weight=0,
   smooth_order='velocity'|'acceleration', smooth_weight=1, smooth_translation_weight=0.1,
-  clip_function_tolerance=1e-6, sparse_library='eigen_sparse', dls_lambda=1e-3,
+  clip_function_tolerance=1e-6, sparse_library='eigen_sparse', clip_solver='ceres'|'dls',
+  dls_lambda=1e-3,
   dls_damping='adaptive'|'fixed'.
 Returns (motion, report): the motion on the subject's skeleton and a dict with the CLI
 report's figures ('per_frame': seconds, iterations, rms_marker_residual (mm), frame_rms

@@ -10,6 +10,18 @@
 //   delta = J^T (J J^T + lambda I)^-1 e        when m <  n  (eq. 4 as written),
 //   delta = (J^T J + lambda I)^-1 J^T e        when m >= n  (the same vector, smaller system;
 //                                                             J^T J accumulated block-sparse).
+// Linear algebra (DlsLinearSolver):
+//   kDense       the form above whose system is smaller, dense, Eigen LLT (per-frame problems);
+//   kSparseLdlt  always the normal form; J^T J stored sparse (its pattern: every pair of
+//                parameter blocks some residual block shares, found once per Solve), factored
+//                by Eigen's SimplicialLDLT with AMD ordering (large problems, e.g. a whole clip);
+//   kBlockBanded the normal form on a BlockBandedCholesky (solvers/block_banded_cholesky.h):
+//                the tangent columns, in parameter block order, are cut into equal blocks of
+//                band_block_columns (a clip: one frame each); the bandwidth is read from the
+//                pattern. Needs num_columns a multiple of band_block_columns.
+// The sparse forms accumulate J^T J into one dense block per pair of parameter blocks
+// (each residual block's pairs, upper triangle) and scatter them into the factorization's
+// storage.
 // Robust losses are applied by iteratively reweighted least squares: each block's
 // residual and Jacobian are scaled by sqrt(rho'(s)), s = |r|^2 (Ceres adds a second-order
 // correction that this path omits).
@@ -26,6 +38,10 @@
 #include <ceres/loss_function.h>
 #include <ceres/manifold.h>
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseCholesky>
+
+#include "solvers/block_banded_cholesky.h"
 
 #include "solvers/dls_iterations.h"
 
@@ -65,10 +81,29 @@ class DlsProblem {
   std::vector<Residual> residuals_;
 };
 
+enum class DlsLinearSolver { kDense, kSparseLdlt, kBlockBanded };
+
+// "dense", "sparse_ldlt", "block_banded"; false on an unknown name.
+bool ParseDlsLinearSolver(const std::string& name, DlsLinearSolver* solver);
+
 // Holds the workspace between solves, so per-frame use allocates once.
 class DlsSolver : private DlsModel {
  public:
+  explicit DlsSolver(DlsLinearSolver linear_solver = DlsLinearSolver::kDense, int band_block_columns = 0);
+
   void Solve(const DlsOptions& options, DlsProblem* problem, DlsSummary* summary);
+
+  // The cost and the normal equations at the problem's current parameters, as the solver
+  // forms them (losses by IRLS): jtj the full symmetric J^T J (tangent columns in block
+  // order), jtr = J^T r. For tests; false if a cost function fails.
+  bool NormalEquations(DlsProblem* problem, Eigen::SparseMatrix<double>* jtj, Eigen::VectorXd* jtr,
+                       double* cost);
+  // Wall seconds the last Solve spent in ComputeStep (forming and factoring the system).
+  double linear_solve_seconds() const { return linear_solve_seconds_; }
+  // Flops of one factorization with kBlockBanded (after a Solve), else 0.
+  double BandFactorizationFlops() const {
+    return linear_solver_ == DlsLinearSolver::kBlockBanded ? band_.FactorizationFlops() : 0.0;
+  }
 
  private:
   // DlsModel on problem_: the cost, and if `linearize`, the gradient J^T r and either J^T J
@@ -77,10 +112,17 @@ class DlsSolver : private DlsModel {
   int num_columns() const override { return num_cols_; }
   double MaxGradient() const override;
   bool ComputeStep(double lambda, Eigen::VectorXd* delta) override;
+  bool SolveLinearSystem(double lambda, Eigen::VectorXd* delta);
   void Save() override;
   void Restore() override;
   bool ApplyStep(const Eigen::VectorXd& delta, double* step_norm, double* x_norm) override;
 
+  // Columns, form (dense_j_) and, for the sparse forms, the pattern of problem.
+  void Setup(DlsProblem* problem);
+
+  DlsLinearSolver linear_solver_;
+  int band_block_columns_;
+  double linear_solve_seconds_ = 0.0;
   DlsProblem* problem_ = nullptr;
   bool dense_j_ = false;
   Eigen::MatrixXd system_;
@@ -100,6 +142,26 @@ class DlsSolver : private DlsModel {
   std::vector<double> plus_;  // A manifold's Plus output.
   std::vector<double> plus_jacobians_;  // Every manifold block's PlusJacobian, row-major.
   std::vector<size_t> plus_offset_;     // Where each block's starts.
+  // Sparse forms: one dense block (column-major) per pair of parameter blocks a <= b (by
+  // column) in pair_values_; per residual block, the slots of its pairs in the order
+  // Evaluate visits them (pair_slot_, from residual_pairs_[i]).
+  struct PairBlock {
+    int row, col, rows, cols;  // Tangent offsets and sizes.
+    size_t offset;             // In pair_values_.
+  };
+  std::vector<PairBlock> pairs_;
+  std::vector<int> pair_slot_;
+  std::vector<size_t> residual_pairs_;
+  std::vector<double> pair_values_, saved_pair_values_;
+  // kSparseLdlt: the upper triangle; entry k of its values is pair_values_[gather_[k]].
+  Eigen::SparseMatrix<double> sparse_;
+  std::vector<size_t> gather_;
+  std::vector<Eigen::Index> diagonal_;  // Value index of each diagonal entry.
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper> ldlt_;
+  // kBlockBanded: band_.data()[scatter_[e]] = pair_values_[e] (scatter_[e] = -1: the
+  // lower half of a diagonal pair block, not stored).
+  BlockBandedCholesky band_;
+  std::vector<std::ptrdiff_t> scatter_;
 };
 
 }  // namespace mocapsolve

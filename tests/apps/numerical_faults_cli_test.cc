@@ -103,9 +103,16 @@ TEST_F(NumericalFaults, FramesWithEveryMarkerMissing) {
     ExpectFiniteFile(report);
     EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"unsolved_frames\": 3")) << solver;
   }
-  const std::string clip = testing::TempPath("clip.bvh");
-  ASSERT_EQ(Run(solve + " --mode=clip --out=" + clip), 0) << output_;
-  ExpectFiniteFile(clip);
+  for (const std::string clip_solver : {"ceres", "dls"}) {
+    const std::string clip = testing::TempPath("clip_" + clip_solver + ".bvh");
+    ASSERT_EQ(Run(solve + " --mode=clip --clip_solver=" + clip_solver + " --out=" + clip), 0) << output_;
+    EXPECT_THAT(output_, HasSubstr("clip (" + clip_solver + ")"));
+    ExpectFiniteFile(clip);
+  }
+  const std::string refused = testing::TempPath("clip_refused.bvh");
+  EXPECT_EQ(Run(solve + " --mode=clip --clip_solver=newton --out=" + refused), 1);
+  EXPECT_THAT(output_, HasSubstr("--clip_solver: unknown 'newton' (ceres, dls)"));
+  EXPECT_FALSE(testing::FileExists(refused));
   const std::string repaired = testing::TempPath("repaired.trc"), repaired_motion = testing::TempPath("repaired.bvh");
   ASSERT_EQ(Run("repair --skeleton=" + walk_ + " --skeleton_units=cm --markers=" + markers + " --markerset=" + set_ +
                 " --out_markers=" + repaired + " --out_motion=" + repaired_motion),

@@ -24,45 +24,14 @@
 #include "problems/marker_solve/marker_observations.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/sequence_solver.h"
+#include "tests/problems/cmu0201_test_support.h"
 #include "tests/test_support.h"
 
 namespace mocapsolve {
 namespace {
 
-// CMU 02_01: skeleton, CMU's solve, the calibrated marker set and the observations.
-struct Cmu0201 {
-  Skeleton skeleton;
-  AsfInfo asf;
-  Motion amc;
-  MarkerFileToModel transform;
-  CalibrationResult calibration;
-  std::vector<std::vector<Eigen::Vector3d>> observed;  // Model units, per C3D frame.
-  double mm = 0.0;                                     // mm per skeleton unit.
-};
-
-Status LoadCmu0201(const std::string& c3d, const std::string& asf, const std::string& amc,
-                   Cmu0201* data) {
-  MotionFileOptions motion_options;
-  motion_options.skeleton_path = asf;
-  Status status = ReadMotionFile(amc, motion_options, &data->skeleton, &data->amc);
-  if (!status.ok()) return status;
-  Skeleton again;
-  status = ReadSkeletonFile(asf, &again, &data->asf);
-  if (!status.ok()) return status;
-  MarkerTrajectories file;
-  status = ReadMarkerFile(c3d, &file);
-  if (!status.ok()) return status;
-  status = ParseAxes("y,z,x", &data->transform.rotation);
-  if (!status.ok()) return status;
-  status = UnitScale(file.unit, data->skeleton.unit(), &data->transform.scale);
-  if (!status.ok()) return status;
-  data->mm = 1.0 / data->transform.scale;
-  MarkerTrajectories model = file;
-  TransformMarkers(data->transform, data->skeleton.unit(), &model);
-  status = CalibrateMarkers(data->skeleton, data->amc, model, {}, nullptr, &data->calibration);
-  if (!status.ok()) return status;
-  return GatherObservations(data->calibration.marker_set, file, data->transform, &data->observed);
-}
+using testing::Cmu0201;
+using testing::LoadCmu0201;
 
 MarkerSolveOptions Options(SolverKind kind) {
   MarkerSolveOptions options;

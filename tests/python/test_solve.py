@@ -25,17 +25,29 @@ def test_per_frame_solve_is_bit_identical_to_the_cli(cmu02, tmp_path, solver):
     assert open(ours).read() == open(cli).read()
 
 
-def test_clip_solve_matches_the_cli(cmu02, tmp_path):
+@pytest.mark.parametrize("clip_solver", ["ceres", "dls"])
+def test_clip_solve_matches_the_cli(cmu02, tmp_path, clip_solver):
     subject = mocapsolve.read_subject(cmu02["subject"])
     motion, report = mocapsolve.solve(subject, cmu02["c3d"], mode="clip", solver="dls", max_frames=20,
-                                      num_threads=1)
+                                      num_threads=1, clip_solver=clip_solver)
     assert "clip" in report and report["clip"]["final_cost"] <= report["clip"]["initial_cost"]
     ours = str(tmp_path / "py.bvh")
     mocapsolve.write_motion(ours, subject.skeleton, motion)
     cli = str(tmp_path / "cli.bvh")
     run_cli("solve", "--subject=" + cmu02["subject"], "--markers=" + cmu02["c3d"], "--mode=clip",
-            "--solver=dls", "--max_frames=20", "--num_threads=1", "--out=" + cli)
+            "--solver=dls", "--max_frames=20", "--num_threads=1", "--clip_solver=" + clip_solver,
+            "--out=" + cli)
     assert open(ours).read() == open(cli).read()
+
+
+def test_clip_solvers_reach_the_same_cost(cmu02):
+    subject = mocapsolve.read_subject(cmu02["subject"])
+    costs = {}
+    for clip_solver in ["ceres", "dls"]:
+        _, report = mocapsolve.solve(subject, cmu02["c3d"], mode="clip", solver="dls", max_frames=20,
+                                     clip_solver=clip_solver, clip_function_tolerance=1e-10)
+        costs[clip_solver] = report["clip"]["final_cost"]
+    assert costs["dls"] == pytest.approx(costs["ceres"], rel=1e-6)
 
 
 def test_frame_solver_loop_equals_solve(cmu02):
