@@ -36,6 +36,8 @@ void BindRepair(py::module_& m) {
   settings.def(py::init<>());
 #define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &RepairSettings::name)
   MOCAPSOLVE_FIELD(dp_max_cm); MOCAPSOLVE_FIELD(dr_max_deg); MOCAPSOLVE_FIELD(outlier_cm);
+  MOCAPSOLVE_FIELD(outliers); MOCAPSOLVE_FIELD(outlier_mads); MOCAPSOLVE_FIELD(outlier_min_cm);
+  MOCAPSOLVE_FIELD(undo_swaps); MOCAPSOLVE_FIELD(swap_radius_cm); MOCAPSOLVE_FIELD(swap_min_frames);
   MOCAPSOLVE_FIELD(trim_max); MOCAPSOLVE_FIELD(small_track); MOCAPSOLVE_FIELD(small_gap);
   MOCAPSOLVE_FIELD(vel_clamp); MOCAPSOLVE_FIELD(reference); MOCAPSOLVE_FIELD(reference_loss);
   MOCAPSOLVE_FIELD(reference_loss_cm); MOCAPSOLVE_FIELD(tracker_prior_weight);
