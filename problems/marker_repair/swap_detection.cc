@@ -1,8 +1,88 @@
 #include "problems/marker_repair/swap_detection.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace mocapsolve {
+
+namespace {
+
+using Claims = std::vector<std::vector<int>>;
+
+// The sample label n has at frame f after relabelling by `claim` (NaN if none).
+Eigen::Vector3d Relabelled(const MarkerTrajectories& x, const Claims& claim, int f, int n) {
+  const int nm = x.num_markers();
+  for (int m = 0; m < nm; ++m) {
+    if (claim[f][m] == n) return x.position(f, m);
+  }
+  if (claim[f][n] >= 0) return Eigen::Vector3d::Constant(NAN);
+  return x.position(f, n);
+}
+
+// Where label n is expected at frame f from frames f - step and f - 2 step (relabelled):
+// extrapolated at constant velocity, or the last sample; NaN if unknown.
+Eigen::Vector3d Continued(const MarkerTrajectories& x, const Claims& claim, int f, int step, int n) {
+  const int g = f - step, h = f - 2 * step;
+  if (g < 0 || g >= x.num_frames()) return Eigen::Vector3d::Constant(NAN);
+  const Eigen::Vector3d a = Relabelled(x, claim, g, n);
+  if (h < 0 || h >= x.num_frames()) return a;
+  const Eigen::Vector3d b = Relabelled(x, claim, h, n);
+  return b.allFinite() ? Eigen::Vector3d(2.0 * a - b) : a;
+}
+
+void ExtendByContinuity(const SwapDetectionOptions& options, const MarkerResidualModel& model,
+                        const MarkerTrajectories& x, int step, Claims* claim) {
+  const int nf = x.num_frames(), nm = x.num_markers();
+  const int begin = step > 0 ? 1 : nf - 2, end = step > 0 ? nf : -1;
+  for (int f = begin; f != end; f += step) {
+    const int g = f - step;
+    std::vector<std::pair<int, int>> pairs;
+    for (int m = 0; m < nm; ++m) {
+      if ((*claim)[g][m] >= 0) pairs.emplace_back(m, (*claim)[g][m]);
+    }
+    if (pairs.empty()) continue;
+    // Only where none of the labels involved has a claim of its own at f...
+    std::vector<int> labels;
+    for (const auto& [from, to] : pairs) labels.push_back(from), labels.push_back(to);
+    std::sort(labels.begin(), labels.end());
+    labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+    // ...or whose claims at f are part of the exchange at g (completed here).
+    bool free = true;
+    for (const int l : labels) {
+      const int to = (*claim)[f][l];
+      if (to >= 0) free &= std::find(pairs.begin(), pairs.end(), std::make_pair(l, to)) != pairs.end();
+      for (int m = 0; m < nm; ++m) {
+        if ((*claim)[f][m] == l) free &= std::find(pairs.begin(), pairs.end(), std::make_pair(m, l)) != pairs.end();
+      }
+    }
+    if (!free) continue;
+    bool same = true;
+    for (const auto& [from, to] : pairs) same &= (*claim)[f][from] == to;
+    if (same) continue;
+    double identity = 0.0, swapped = 0.0, gate = std::numeric_limits<double>::infinity();
+    bool known = true;
+    for (const int l : labels) {
+      if (!x.valid(f, l)) continue;
+      const Eigen::Vector3d expected = Continued(x, *claim, f, step, l);
+      known &= expected.allFinite();
+      if (known) identity += (x.position(f, l) - expected).norm();
+      gate = std::min(gate, model.typical_gate[l]);
+    }
+    int samples = 0;
+    for (const auto& [from, to] : pairs) {
+      if (!x.valid(f, from)) continue;
+      const Eigen::Vector3d expected = Continued(x, *claim, f, step, to);
+      known &= expected.allFinite();
+      if (known) swapped += (x.position(f, from) - expected).norm();
+      ++samples;
+    }
+    if (!known || samples == 0 || identity <= gate || swapped > options.margin * identity) continue;
+    for (const auto& [from, to] : pairs) (*claim)[f][from] = to;
+  }
+}
+
+}  // namespace
 
 std::vector<MarkerSwap> UndoSwaps(const MarkerResidualModel& model, const SwapDetectionOptions& options,
                                   MarkerTrajectories* x) {
@@ -37,6 +117,14 @@ std::vector<MarkerSwap> UndoSwaps(const MarkerResidualModel& model, const SwapDe
     for (int n = 0; n < nm; ++n) {
       if (winner[n] >= 0) claim[f][winner[n]] = n;
     }
+    // Exchanges completed: when m's sample goes to n and n's outlying sample is closer to
+    // m's prediction than to its own, and nobody else claims m, n's sample goes to m (the
+    // reference, partly drawn toward the swapped labels, may leave it outside m's gate).
+    for (int n = 0; n < nm; ++n) {
+      const int m = winner[n];
+      if (m < 0 || winner[m] >= 0 || claim[f][n] >= 0 || own[n] < 0.0 || own[n] <= model.typical_gate[n]) continue;
+      if ((x->position(f, n) - p[m]).norm() < options.margin * own[n]) claim[f][n] = m, winner[m] = n;
+    }
   }
   // Persistence: drop claims in runs shorter than min_frames.
   for (int m = 0; m < nm; ++m) {
@@ -50,6 +138,12 @@ std::vector<MarkerSwap> UndoSwaps(const MarkerResidualModel& model, const SwapDe
       f = g;
     }
   }
+  // Continuity: the reference drifts toward the swapped labels after a swap began (a
+  // robust solve still partly follows two wrong markers of a bone), so the claims seen at
+  // a swap's onset are carried forward, and those seen at its end backward, while the
+  // exchange keeps the relabelled trajectories more continuous than the identity.
+  ExtendByContinuity(options, model, *x, +1, &claim);
+  ExtendByContinuity(options, model, *x, -1, &claim);
   // Relabel, and gather the intervals (consecutive frames with the same exchanges).
   std::vector<MarkerSwap> swaps;
   std::vector<std::pair<int, int>> previous;

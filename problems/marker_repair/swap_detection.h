@@ -12,9 +12,16 @@
 //   |x_fm - P_fn| <= margin |x_fm - P_fm|  (much better than its own label), and
 //   label n has no sample of its own that fits it (n missing, or x_fn outlying for n):
 // a point next to a well tracked marker is a ghost, not a swap, and stays an outlier.
-// Claims are one to one per frame (the nearest claim on a label wins), and a claim m -> n
-// counts only in runs of at least min_frames consecutive frames, so single noisy frames are
-// not relabelled. Then, per frame, label n takes sample x_fm; a label that gave its sample
+// Claims are one to one per frame (the nearest claim on a label wins); an exchange is
+// completed (n -> m too, when n's outlying sample is within margin of its own distance
+// from m's prediction and nobody claims m). A claim m -> n counts only in runs of at least
+// min_frames consecutive frames, so single noisy frames are not relabelled. The reference
+// drifts toward the swapped labels once a swap has begun (a robust solve still partly
+// follows two wrong markers of one bone), so the claims are then carried forward from a
+// swap's onset and backward from its end while, by continuity (each relabelled trajectory
+// extrapolated at constant velocity from its two previous frames), the exchange costs
+// less than margin times the identity, and the identity costs more than the smallest gate
+// of the labels involved. Then, per frame, label n takes sample x_fm; a label that gave its sample
 // away and received none becomes missing (a swap that begins or ends inside a gap: the
 // other label's sample was missing), to be filled as any gap. Chains of more than two
 // labels are undone the same way.
