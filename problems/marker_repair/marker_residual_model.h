@@ -25,8 +25,9 @@
 // Small errors (1-4 cm jumps, jitter) are told from soft tissue by being discontinuous:
 // the residual steps, v_fm = d_fm - d_(f-1)m between consecutive valid samples, have a
 // robust gate w_m (the same statistic over |v_fm|, at least min_distance, no cap); a step
-// past w_m into a displacement and the next step back out (v_a + v_b within w_m, at most
-// max_jump_frames later) mark frames a..b-1 as jumped; an unmatched step marks its own
+// past w_m into a displacement and the next step back out (|v_a + v_b| within
+// max(w_m, |v_a| / 2), at most max_jump_frames later, the mean residual in between at
+// least |v_a| / 2 from the one before along v_a) mark frames a..b-1 as jumped; an unmatched step marks its own
 // frame. A sample is an outlier when jumped or |x_fm - P_fm| > u_m.
 // The fixed model of chapter 3 is P = T = X^, u_m = t_m = fixed_distance and no jumps
 // (`robust` false).

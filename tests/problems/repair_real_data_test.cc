@@ -172,6 +172,7 @@ TEST_F(RepairRealData, SmallErrorsAreFound) {
       const double size = std::uniform_real_distribution<double>(1.0, 4.0)(rng) / cm;
       std::normal_distribution<double> normal;
       const Eigen::Vector3d direction = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+      if (getenv("R16DEBUG")) std::printf("event m %d first %d length %d size %.2f jitter %d\n", m, first, length, size * cm, jitter);
       for (int f = first; f < first + length; ++f) {
         const Eigen::Vector3d step = jitter ? Eigen::Vector3d(Eigen::Vector3d(normal(rng), normal(rng), normal(rng)) *
                                                               (2.0 / cm / std::sqrt(3.0)))
@@ -191,6 +192,13 @@ TEST_F(RepairRealData, SmallErrorsAreFound) {
       if (i.what == "missing") continue;
       for (int f = i.first; f <= i.last; ++f) found[f][i.marker] = 1;
     }
+    if (getenv("R16DEBUG")) {
+      for (int m = 0; m < nm; ++m) {
+        for (int f = 0; f < nf; ++f) {
+          if (hurt[f][m] != found[f][m]) std::printf("  %s m %d f %d\n", hurt[f][m] ? "missed" : "false", m, f);
+        }
+      }
+    }
     for (int f = 0; f < nf; ++f) {
       for (int m = 0; m < nm; ++m) {
         damaged += hurt[f][m];
@@ -201,7 +209,7 @@ TEST_F(RepairRealData, SmallErrorsAreFound) {
   }
   const double recall = double(true_positive) / damaged, precision = double(true_positive) / flagged;
   std::printf("1-4 cm errors: %ld samples, recall %.3f, precision %.3f\n", damaged, recall, precision);
-  EXPECT_GE(recall, 0.75);  // The target is 0.9; measured 0.80.
+  EXPECT_GE(recall, 0.8);  // The target is 0.9; measured 0.84.
   EXPECT_GE(precision, 0.9);
 }
 
