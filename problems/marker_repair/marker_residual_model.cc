@@ -162,7 +162,11 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
         if (count > 0 && along >= 0.5 * steps[i].second.norm()) { match = j; break; }
       }
       const int last = match > i ? steps[match].first - 1 : steps[i].first;
-      for (int f = steps[i].first; f <= last; ++f) model.jumped[f][m] = 1;
+      // Only samples displaced past the floor from the soft-tissue residual: noise of a few
+      // mm steps by a cm from frame to frame, and its refill would be worse than it.
+      for (int f = steps[i].first; f <= last; ++f) {
+        model.jumped[f][m] = x.valid(f, m) && (d(f) - smooth[f]).norm() > options.min_distance;
+      }
       if (match > i) i = match;
     }
     deviations.clear();

@@ -28,7 +28,10 @@
 // past w_m into a displacement and the next step back out (|v_a + v_b| within
 // max(w_m, |v_a| / 2), at most max_jump_frames later, the mean residual in between at
 // least |v_a| / 2 from the one before along v_a) mark frames a..b-1 as jumped; an unmatched step marks its own
-// frame. A sample is an outlier when jumped or |x_fm - P_fm| > u_m.
+// frame; of those, only samples displaced more than min_distance from the soft-tissue
+// residual (|d_fm - S_fm|) count as jumped (noise of a few mm steps by about a cm from frame
+// to frame, and a refill would be worse than it). A sample is an outlier when jumped or
+// |x_fm - P_fm| > u_m.
 // The fixed model of chapter 3 is P = T = X^, u_m = t_m = fixed_distance and no jumps
 // (`robust` false).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_MARKER_RESIDUAL_MODEL_H_
