@@ -79,10 +79,10 @@ Status RunRepair(const std::vector<std::string>& arguments) {
     if (!status.ok()) return status;
   }
   const double mm = skeleton.unit().metres_per_unit * 1000.0;
-  std::printf("repair: %zu intervals detected, %zu filled (%d samples trimmed, %d in small tracks "
+  std::printf("repair: %zu swaps undone, %zu intervals detected, %zu filled (%d samples trimmed, %d in small tracks "
               "dropped, %d by polynomial); RMS marker residual naive %.3g mm, reference %.3g mm, "
               "repaired %.3g mm (%d frames re-solved)\n",
-              report.detected.size(), report.filled.size(), report.trimmed_samples,
+              report.swaps.size(), report.detected.size(), report.filled.size(), report.trimmed_samples,
               report.removed_track_samples, report.polynomial_samples, report.naive_rms * mm,
               report.reference_rms * mm, report.repaired_rms * mm, report.resolved_frames);
   double total = 0.0;
@@ -101,6 +101,19 @@ Status RunRepair(const std::vector<std::string>& arguments) {
     }
     return json;
   };
+  std::vector<JsonObject> swaps;
+  for (const MarkerSwap& swap : report.swaps) {
+    std::vector<JsonObject> renamed;
+    for (const auto& [from, to] : swap.from_to) {
+      JsonObject o;
+      o.Add("from", markers.label(from)).Add("to", markers.label(to));
+      renamed.push_back(o);
+    }
+    JsonObject o;
+    o.Add("first_frame", swap.first).Add("last_frame", swap.last).Add("markers_renamed_from_to", renamed)
+        .Add("mean_distance_before_mm", swap.distance_before * mm).Add("mean_distance_after_mm", swap.distance_after * mm);
+    swaps.push_back(o);
+  }
   std::vector<JsonObject> timings;
   for (const RepairStageTime& t : report.timings) {
     JsonObject o;
@@ -109,7 +122,7 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   }
   JsonObject json;
   json.Add("markers", FLAGS_markers).Add("out_markers", FLAGS_out_markers).Add("frames", static_cast<int>(observed.size()))
-      .Add("detected", intervals(report.detected)).Add("filled", intervals(report.filled))
+      .Add("swaps", swaps).Add("detected", intervals(report.detected)).Add("filled", intervals(report.filled))
       .Add("timings", timings).Add("rms_naive_mm", report.naive_rms * mm)
       .Add("rms_reference_mm", report.reference_rms * mm).Add("rms_repaired_mm", report.repaired_rms * mm)
       .Add("resolved_frames", report.resolved_frames).Add("reference", FLAGS_reference);

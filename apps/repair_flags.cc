@@ -13,9 +13,23 @@ DEFINE_double(dp_max_cm, kDefault.dp_max_cm, "A joint farther than this (cm) fro
               "(thesis 3.4.2: 10 cm).");
 DEFINE_double(dr_max_deg, kDefault.dr_max_deg, "A joint turned more than this (degrees) from the reference is bad "
               "(thesis: 30).");
-DEFINE_double(outlier_cm, kDefault.outlier_cm, "A marker sample farther than this (cm) from its reconstruction on "
-              "the reference is an outlier (the thesis takes outliers from its neural solver; a "
-              "swap with a neighbour moves a marker by a few cm, below --dp_max_cm).");
+DEFINE_double(outlier_cm, kDefault.outlier_cm, "With --outliers=fixed, a marker sample farther than this (cm) from its "
+              "reconstruction on the reference is an outlier (chapter 3's rule); with robust, the cap "
+              "of every marker's gate.");
+DEFINE_string(outliers, kDefault.outliers.c_str(), "How outliers are found: robust (each marker judged against its own "
+              "typical residual over the take: gate = median deviation + --outlier_mads MADs, at "
+              "least --outlier_min_cm, at most --outlier_cm; finds 1-4 cm jumps on markers that are "
+              "normally within mm and spares markers on loose tissue or with an offset error) | fixed "
+              "(--outlier_cm from the reconstruction).");
+DEFINE_double(outlier_mads, kDefault.outlier_mads, "Robust outlier gate: robust standard deviations (1.4826 MAD) "
+              "past the marker's median deviation.");
+DEFINE_double(outlier_min_cm, kDefault.outlier_min_cm, "Robust outlier gate: never below this (cm).");
+DEFINE_bool(undo_swaps, kDefault.undo_swaps, "Find label swaps (a sample far from its own marker's prediction and "
+            "close to that of a nearby marker left without a good sample) and relabel them "
+            "instead of cutting and refilling; reported as 'swaps'.");
+DEFINE_double(swap_radius_cm, kDefault.swap_radius_cm, "Markers whose predicted positions are this close (cm) may "
+              "swap labels.");
+DEFINE_int32(swap_min_frames, kDefault.swap_min_frames, "A swap must persist this many consecutive frames.");
 DEFINE_int32(trim_max, kDefault.trim_max, "Frames trimmed at most on each side of a gap (thesis: 120).");
 DEFINE_int32(small_track, kDefault.small_track, "Valid runs of at most this many frames between gaps are dropped.");
 DEFINE_int32(small_gap, kDefault.small_gap, "Gaps of at most this many frames are filled by a plain cubic.");
@@ -43,6 +57,12 @@ RepairSettings RepairSettingsFromFlags() {
   s.dp_max_cm = FLAGS_dp_max_cm;
   s.dr_max_deg = FLAGS_dr_max_deg;
   s.outlier_cm = FLAGS_outlier_cm;
+  s.outliers = FLAGS_outliers;
+  s.outlier_mads = FLAGS_outlier_mads;
+  s.outlier_min_cm = FLAGS_outlier_min_cm;
+  s.undo_swaps = FLAGS_undo_swaps;
+  s.swap_radius_cm = FLAGS_swap_radius_cm;
+  s.swap_min_frames = FLAGS_swap_min_frames;
   s.trim_max = FLAGS_trim_max;
   s.small_track = FLAGS_small_track;
   s.small_gap = FLAGS_small_gap;

@@ -1,5 +1,7 @@
 #include "pipeline/repair_settings.h"
 
+#include <cmath>
+
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
@@ -35,6 +37,15 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
   options->dp_max = settings.dp_max_cm * units_per_cm;
   options->dr_max_rad = DegToRad(settings.dr_max_deg);
   options->outlier_distance = settings.outlier_cm * units_per_cm;
+  if (settings.outliers != "robust" && settings.outliers != "fixed") {
+    return Status::Error("--outliers: unknown '" + settings.outliers + "' (robust, fixed)");
+  }
+  options->robust_outliers = settings.outliers == "robust";
+  options->outlier_mads = settings.outlier_mads;
+  options->outlier_min_distance = settings.outlier_min_cm * units_per_cm;
+  options->undo_swaps = settings.undo_swaps;
+  options->swap_radius = settings.swap_radius_cm * units_per_cm;
+  options->swap_min_frames = settings.swap_min_frames;
   options->trim_max = settings.trim_max;
   options->small_track = settings.small_track;
   options->small_gap = settings.small_gap;
@@ -44,6 +55,16 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
     return Status::Error(error);
   }
   if (!(options->outlier_distance > 0.0)) return Status::Error("--outlier_cm must be positive");
+  if (!(settings.outlier_mads > 0.0) || !std::isfinite(settings.outlier_mads)) {
+    return Status::Error("--outlier_mads must be positive and finite");
+  }
+  if (!(settings.outlier_min_cm >= 0.0) || !std::isfinite(settings.outlier_min_cm)) {
+    return Status::Error("--outlier_min_cm must be >= 0 and finite");
+  }
+  if (!(settings.swap_radius_cm > 0.0) || !std::isfinite(settings.swap_radius_cm)) {
+    return Status::Error("--swap_radius_cm must be positive and finite");
+  }
+  if (settings.swap_min_frames < 1) return Status::Error("--swap_min_frames must be >= 1");
   if (!options->IsValid(&error)) return Status::Error(error);
   return Status::Ok();
 }

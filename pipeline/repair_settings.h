@@ -18,7 +18,13 @@ namespace mocapsolve {
 struct RepairSettings {
   double dp_max_cm = 10.0;           // Joint farther than this from the reference: bad.
   double dr_max_deg = 30.0;          // Joint turned more than this from the reference: bad.
-  double outlier_cm = 4.0;           // Sample farther than this from its reconstruction: outlier.
+  double outlier_cm = 4.0;           // Fixed outlier gate (outliers=fixed) and the robust gates' cap.
+  std::string outliers = "robust";   // robust (per-marker median + MADs) | fixed (outlier_cm).
+  double outlier_mads = 6.0;         // Robust gate: robust standard deviations past the median.
+  double outlier_min_cm = 1.0;       // Robust gate's floor.
+  bool undo_swaps = true;            // Relabel swapped samples instead of refilling them.
+  double swap_radius_cm = 30.0;      // Labels whose predictions are this close may swap.
+  int swap_min_frames = 2;           // Frames a swap must persist.
   int trim_max = 120;                // Frames trimmed at most per side of a gap.
   int small_track = 120;             // Valid runs of at most this many frames are dropped.
   int small_gap = 5;                 // Gaps of at most this many frames: plain cubic.
@@ -32,7 +38,8 @@ struct RepairSettings {
 };
 
 inline constexpr char kRepairSettingNames[] =
-    "dp_max_cm,dr_max_deg,outlier_cm,trim_max,small_track,small_gap,vel_clamp,reference,reference_loss,"
+    "dp_max_cm,dr_max_deg,outlier_cm,outliers,outlier_mads,outlier_min_cm,undo_swaps,swap_radius_cm,"
+    "swap_min_frames,trim_max,small_track,small_gap,vel_clamp,reference,reference_loss,"
     "reference_loss_cm,tracker_prior_weight,tracker_translation_prior,tracker_function_tolerance";
 
 // Repair solves every frame two or three times: its solver is DLS unless the user chose.

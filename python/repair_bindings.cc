@@ -37,6 +37,8 @@ void BindRepair(py::module_& m) {
   settings.def(py::init<>(), "Every option at the CLI's default.");
 #define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &RepairSettings::name)
   MOCAPSOLVE_FIELD(dp_max_cm); MOCAPSOLVE_FIELD(dr_max_deg); MOCAPSOLVE_FIELD(outlier_cm);
+  MOCAPSOLVE_FIELD(outliers); MOCAPSOLVE_FIELD(outlier_mads); MOCAPSOLVE_FIELD(outlier_min_cm);
+  MOCAPSOLVE_FIELD(undo_swaps); MOCAPSOLVE_FIELD(swap_radius_cm); MOCAPSOLVE_FIELD(swap_min_frames);
   MOCAPSOLVE_FIELD(trim_max); MOCAPSOLVE_FIELD(small_track); MOCAPSOLVE_FIELD(small_gap);
   MOCAPSOLVE_FIELD(vel_clamp); MOCAPSOLVE_FIELD(reference); MOCAPSOLVE_FIELD(reference_loss);
   MOCAPSOLVE_FIELD(reference_loss_cm); MOCAPSOLVE_FIELD(tracker_prior_weight);
@@ -89,6 +91,21 @@ void BindRepair(py::module_& m) {
         const double mm = skeleton.unit().metres_per_unit * 1000.0;
         py::dict d;
         d["frames"] = static_cast<int>(take->observed.size());
+        py::list swaps;
+        for (const MarkerSwap& swap : report.swaps) {
+          py::dict o;
+          o["first_frame"] = swap.first;
+          o["last_frame"] = swap.last;
+          py::list renamed;
+          for (const auto& [from, to] : swap.from_to) {
+            renamed.append(py::make_tuple(subject->markers.label(from), subject->markers.label(to)));
+          }
+          o["markers_renamed_from_to"] = renamed;
+          o["mean_distance_before_mm"] = swap.distance_before * mm;
+          o["mean_distance_after_mm"] = swap.distance_after * mm;
+          swaps.append(o);
+        }
+        d["swaps"] = swaps;
         d["detected"] = IntervalList(report.detected, subject->markers);
         d["filled"] = IntervalList(report.filled, subject->markers);
         py::list timings;
@@ -116,15 +133,18 @@ void BindRepair(py::module_& m) {
 
 subject: a Subject; markers: a .c3d/.trc path or a Take.
 Keywords: the repair options (RepairSettings: dp_max_cm=10, dr_max_deg=30, outlier_cm=4,
+outliers='robust'|'fixed', outlier_mads=6, outlier_min_cm=1, undo_swaps=True,
+swap_radius_cm=30, swap_min_frames=2,
 trim_max=120, small_track=120, small_gap=5, vel_clamp=0.25, reference='tracker'|'clip',
 reference_loss='cauchy', reference_loss_cm=1, tracker_prior_weight=20,
 tracker_translation_prior=0, tracker_function_tolerance=1e-4) and the solver options of
 solve() (solver defaults to 'dls' here, as in the CLI).
 Returns (markers, motion, report): the input file's markers with the repaired samples (its
 own axes and unit: what --out_markers writes), the motion solved from them, and the
-report as a dict ('detected' and 'filled' lists of {marker, first_frame, last_frame,
-what}, 'timings', 'rms_*_mm', 'repaired_observed' (frames, set markers, 3) in skeleton
-units). Releases the GIL while repairing.)doc") +
+report as a dict ('swaps': {first_frame, last_frame, markers_renamed_from_to: [(from,
+to)], mean_distance_before_mm, mean_distance_after_mm}; 'detected' and 'filled' lists of
+{marker, first_frame, last_frame, what}, 'timings', 'rms_*_mm', 'repaired_observed'
+(frames, set markers, 3) in skeleton units). Releases the GIL while repairing.)doc") +
        KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", [] { SolverSettings s; s.solver = kRepairDefaultSolver; return py::cast(s); }(), kSolverSettingNames)).c_str());
 
   py::class_<CorruptionSettings> damage(m, "CorruptionSettings",

@@ -7,6 +7,7 @@
 
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/marker_trajectories.h"
+#include "problems/marker_repair/marker_residual_model.h"
 #include "problems/marker_solve/sequence_solver.h"
 #include "signal/bad_interval_detection.h"
 #include "signal/gap_cleanup.h"
@@ -38,12 +39,20 @@ double SlopeDifference(const MarkerTrajectories& x, const MarkerTrajectories& r,
   return ((x.position(f, m) - x.position(f - 1, m)) - (r.position(f, m) - r.position(f - 1, m))).norm();
 }
 
-// Smart trimming: on each side of each gap, cut k <= trim_max valid frames, k chosen so
-// that the new edge sample has the smallest slope difference to the reference.
-int TrimAroundGaps(const MarkerTrajectories& reference, int trim_max, MarkerTrajectories* x) {
+// Smart trimming: on each side of each gap that holds a sample missing from `unflagged`
+// (the capture's own gaps, and labels a swap left without a sample), cut k <= trim_max
+// valid frames, k chosen so that the new edge sample has the smallest slope difference
+// to the reference. Gaps made only of detected outliers are not trimmed: the detector
+// bounded them, and on a clean take trimming turned one outlying sample into up to 241
+// replaced ones.
+int TrimAroundGaps(const MarkerTrajectories& reference, int trim_max, const MarkerTrajectories& unflagged,
+                   MarkerTrajectories* x) {
   int trimmed = 0;
   for (const Gap& gap : FindGaps(*x)) {
     const int m = gap.marker;
+    bool natural = false;
+    for (int f = gap.first; f <= gap.last && !natural; ++f) natural = !unflagged.valid(f, m);
+    if (!natural) continue;
     if (gap.first > 0) {
       int best = 0;
       double best_difference = SlopeDifference(*x, reference, m, gap.first - 1);
@@ -191,6 +200,11 @@ bool RepairOptions::IsValid(std::string* error) const {
       return *error = "resync tolerance, outlier distance and velocity clamp must be finite", false;
     }
   }
+  if (!(outlier_mads > 0.0) || !std::isfinite(outlier_mads) || !std::isfinite(outlier_min_distance) ||
+      !std::isfinite(swap_radius)) {
+    return *error = "outlier_mads must be positive and finite, outlier_min_distance and swap_radius finite", false;
+  }
+  if (swap_min_frames < 1) return *error = "swap_min_frames must be >= 1", false;
   if (trim_max < 0 || small_track < 0 || small_gap < 0) {
     return *error = "trim_max, small_track and small_gap must be >= 0 frames", false;
   }
@@ -257,20 +271,67 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   }
   const MarkerTrajectories reference_paths = ObservationTrajectories(markers, reconstructed);
   clock.Lap("Marker Reconstruction");
-  // 4. Gap detection.
+  // 3b. Residual model.
   MarkerTrajectories x = ObservationTrajectories(markers, observed);
-  for (const Gap& gap : FindGaps(x)) report->detected.push_back({gap.marker, gap.first, gap.last, "missing"});
+  const double outlier = options.outlier_distance > 0.0 ? options.outlier_distance : options.dp_max;
+  ResidualModelOptions model_options;
+  model_options.robust = options.robust_outliers;
+  model_options.mads = options.outlier_mads;
+  model_options.min_distance = options.outlier_min_distance > 0.0 ? options.outlier_min_distance : outlier / 4.0;
+  model_options.max_distance = outlier;
+  model_options.fixed_distance = outlier;
+  MarkerResidualModel model = FitMarkerResidualModel(skeleton, markers, reference, reconstructed, x, model_options);
+  clock.Lap("Residual Model");
+  // 3c. Swaps: relabel, then redo the naive solve where the samples changed.
+  const MarkerTrajectories captured = x;
+  const Observations* input = &observed;
+  Observations relabelled;
+  if (options.undo_swaps) {
+    SwapDetectionOptions swap_options;
+    swap_options.radius = options.swap_radius > 0.0 ? options.swap_radius : 3.0 * options.dp_max;
+    swap_options.min_frames = options.swap_min_frames;
+    report->swaps = UndoSwaps(model, swap_options, &x);
+    if (!report->swaps.empty()) {
+      relabelled = TrajectoryObservations(x);
+      Motion solved;
+      int resolved = 0;
+      const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
+      status = ResolveChangedFrames(skeleton, markers, observed, relabelled, naive, options.naive, tolerance,
+                                    options.parallel, &solved, &resolved);
+      if (!status.ok()) return status;
+      naive = std::move(solved);
+      input = &relabelled;
+      // The soft-tissue residual was fitted with the swapped samples in its window.
+      model = FitMarkerResidualModel(skeleton, markers, reference, reconstructed, x, model_options);
+    }
+    clock.Lap("Swap Detection");
+  }
+  // 4. Gap detection.
+  for (const Gap& gap : FindGaps(captured)) report->detected.push_back({gap.marker, gap.first, gap.last, "missing"});
+  for (const MarkerSwap& swap : report->swaps) {
+    for (const auto& [from, to] : swap.from_to) {
+      report->detected.push_back({to, swap.first, swap.last, "swap"});
+    }
+  }
   std::vector<std::vector<char>> bad_joints;
   status = DetectBadJoints(skeleton, naive, reference, {options.dp_max, options.dr_max_rad}, &bad_joints);
   if (!status.ok()) return status;
-  const auto bad = BadMarkerSamples(markers, bad_joints);
-  const double outlier = options.outlier_distance > 0.0 ? options.outlier_distance : options.dp_max;
+  auto bad = BadMarkerSamples(markers, bad_joints);
+  // A joint difference condemns a marker only where it moves the marker past its gate.
+  FkData fk_naive(skeleton);
+  for (int f = 0; f < x.num_frames(); ++f) {
+    bool any = false;
+    for (int m = 0; m < x.num_markers() && !any; ++m) any = bad[f][m];
+    if (!any) continue;
+    ForwardKinematics(skeleton, naive.frames[f], &fk_naive);
+    for (int m = 0; m < x.num_markers(); ++m) {
+      if (bad[f][m] && (markers.Position(m, fk_naive) - reconstructed[f][m]).norm() <= model.gate[m]) bad[f][m] = 0;
+    }
+  }
   MarkerTrajectories outliers_removed = x;
   for (int f = 0; f < x.num_frames(); ++f) {
     for (int m = 0; m < x.num_markers(); ++m) {
-      if (x.valid(f, m) && (x.position(f, m) - reconstructed[f][m]).norm() > outlier) {
-        outliers_removed.SetMissing(f, m);
-      }
+      if (x.valid(f, m) && model.Outlying(f, m, x.position(f, m))) outliers_removed.SetMissing(f, m);
     }
   }
   MarkerTrajectories flagged = outliers_removed;
@@ -279,21 +340,25 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
       if (bad[f][m] && flagged.valid(f, m)) flagged.SetMissing(f, m);
     }
   }
-  // Name each new gap by its first cause: outlier, else joint difference.
+  // Name each new gap by its first cause: swap (a label left without a sample), outlier,
+  // else joint difference.
   for (const Gap& gap : FindGaps(flagged)) {
-    bool natural = true, outlying = false;
+    bool natural = true, outlying = false, swapped = false;
     for (int f = gap.first; f <= gap.last; ++f) {
-      natural &= !x.valid(f, gap.marker);
+      natural &= !captured.valid(f, gap.marker);
+      swapped |= captured.valid(f, gap.marker) && !x.valid(f, gap.marker);
       outlying |= x.valid(f, gap.marker) && !outliers_removed.valid(f, gap.marker);
     }
     if (!natural) {
-      report->detected.push_back({gap.marker, gap.first, gap.last, outlying ? "outlier" : "joint difference"});
+      report->detected.push_back(
+          {gap.marker, gap.first, gap.last, swapped ? "swap" : outlying ? "outlier" : "joint difference"});
     }
   }
+  const MarkerTrajectories unflagged = x;
   x = flagged;
   clock.Lap("Gap Detection");
   // 5. Preprocessing, in the thesis' order.
-  report->trimmed_samples = TrimAroundGaps(reference_paths, options.trim_max, &x);
+  report->trimmed_samples = TrimAroundGaps(reference_paths, options.trim_max, unflagged, &x);
   report->removed_track_samples = RemoveSmallTracks(options.small_track, &x);
   const MarkerTrajectories before_small = x;
   report->polynomial_samples = FillSmallGaps(options.small_gap, &x);
@@ -316,7 +381,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   // 7. Re-solve.
   const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
   if (progress) progress("re-solve", 0, num_frames);
-  status = ResolveChangedFrames(skeleton, markers, observed, *repaired, naive, options.naive, tolerance,
+  status = ResolveChangedFrames(skeleton, markers, *input, *repaired, naive, options.naive, tolerance,
                                 options.parallel, motion, &report->resolved_frames);
   if (!status.ok()) return status;
   if (progress) progress("re-solve", num_frames, num_frames);
@@ -326,6 +391,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     intermediates->naive = std::move(naive);
     intermediates->reference = std::move(reference);
     intermediates->reconstructed = std::move(reconstructed);
+    intermediates->residual_model = std::move(model);
   }
   return Status::Ok();
 }

@@ -8,9 +8,17 @@
 //      robust loss and a strong pull toward the previous frame (SolveSequence), which
 //      needs no Y and so runs beside step 1 on a second thread, ~10x faster than the clip.
 //   3. Marker reconstruction X^ = LBS(Y^, Z) (eq. 9, MarkerSet::Position).
-//   4. Gap detection: naturally missing samples; outliers, samples farther than
-//      outlier_distance from their reconstruction X^ (the thesis takes these from its
-//      neural solver); and DetectBad(Y, Y^) (Algorithm 2).
+//   3b. Residual model (marker_residual_model.h): per marker, the typical residual against
+//      X^ (its median, in its joint's frame) and a robust gate (median + k MAD), or, with
+//      `robust_outliers` false, chapter 3's fixed outlier_distance from X^.
+//   3c. Swaps undone (swap_detection.h, `undo_swaps`): samples that fit another nearby
+//      label's prediction far better than their own are relabelled; the naive solve is
+//      redone on the frames that changed. Steps 4-7 work on the relabelled samples.
+//   4. Gap detection: naturally missing samples; outliers, samples past their marker's
+//      gate (the thesis takes these from its neural solver); and DetectBad(Y, Y^)
+//      (Algorithm 2), which condemns a marker's sample only where the joint difference
+//      moves that marker past its gate (a joint whose rotation no marker pins down, such
+//      as a head carrying one marker, may differ between Y and Y^ without condemning it).
 //   5. Gap preprocessing (3.3.4): smart trimming (cut up to trim_max frames on each side of
 //      a gap, stopping where the velocity difference between original and reference is
 //      smallest), then small-track removal, then small-gap filling, in that order.
@@ -34,6 +42,7 @@
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
+#include "problems/marker_repair/swap_detection.h"
 #include "problems/marker_solve/marker_clip_solver.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 
@@ -50,7 +59,15 @@ struct RepairOptions {
   double resync_tolerance = 0.0;   // Skeleton units (joint positions); <= 0: dp_max * 1e-4.
   double dp_max = 0.0;             // Joint position threshold, skeleton units.
   double dr_max_rad = 0.0;         // Joint rotation threshold.
-  double outlier_distance = 0.0;   // Skeleton units; <= 0: dp_max.
+  double outlier_distance = 0.0;   // Skeleton units; <= 0: dp_max. The fixed gate, and
+                                   // the robust gates' cap.
+  bool robust_outliers = true;     // Per-marker robust gates (marker_residual_model.h).
+  double outlier_mads = 6.0;       // k of the robust gate.
+  double outlier_min_distance = 0.0;  // Skeleton units: the robust gates' floor; <= 0:
+                                      // outlier_distance / 4.
+  bool undo_swaps = true;          // Step 3c.
+  double swap_radius = 0.0;        // Skeleton units; <= 0: 3 dp_max.
+  int swap_min_frames = 2;         // Frames a swap must persist.
   int trim_max = 120;              // Frames, per side of a gap.
   int small_track = 120;           // Frames.
   int small_gap = 5;               // Frames.
@@ -64,7 +81,7 @@ struct RepairOptions {
 struct RepairInterval {
   int marker = 0;
   int first = 0, last = 0;  // Frames, inclusive.
-  std::string what;         // "missing", "outlier", "joint difference" (detected); "reference",
+  std::string what;         // "missing", "swap", "outlier", "joint difference" (detected); "reference",
                             // "polynomial" (filled); "reference only" (whole take).
 };
 
@@ -74,7 +91,11 @@ struct RepairStageTime {
 };
 
 struct RepairReport {
-  std::vector<RepairInterval> detected;  // Gaps found (before preprocessing).
+  // Intervals found (before preprocessing): gaps ("missing", "outlier", "joint
+  // difference") and relabelled samples ("swap": the label that received them; a label
+  // that gave its sample away and got none is a "swap" gap).
+  std::vector<RepairInterval> detected;
+  std::vector<MarkerSwap> swaps;  // Step 3c, markers as indices of the set.
   std::vector<RepairInterval> filled;    // Gaps filled (after preprocessing).
   std::vector<RepairStageTime> timings;
   int trimmed_samples = 0, removed_track_samples = 0, polynomial_samples = 0;
@@ -88,6 +109,7 @@ struct RepairIntermediates {
   Motion naive;      // Y.
   Motion reference;  // Y^.
   std::vector<std::vector<Eigen::Vector3d>> reconstructed;  // X^ = LBS(Y^, Z).
+  MarkerResidualModel residual_model;  // Step 3b.
 };
 
 // The observations observed[f][m] as trajectories labelled by the marker set (NaN =

@@ -61,7 +61,7 @@ void CheckRepair(ReferenceKind reference_kind) {
   // Markers far from the damage are returned as they came.
   const int head = markers.FindMarker("Head_0");
   for (int f = 0; f < truth.num_frames(); ++f) EXPECT_EQ(repaired[f][head], corrupted[f][head]) << f;
-  EXPECT_EQ(report.timings.size(), reference_kind == ReferenceKind::kClip ? 7u : 6u);
+  EXPECT_EQ(report.timings.size(), reference_kind == ReferenceKind::kClip ? 9u : 8u);
   EXPECT_LT(report.repaired_rms, report.naive_rms);
 
   // Step 7 re-solves only where the markers changed (and until it rejoins the naive

@@ -13,8 +13,8 @@ namespace mocapsolve {
 namespace {
 
 double KindCode(const std::string& what) {
-  const char* kinds[] = {"missing", "outlier", "joint difference", "polynomial", "reference", "reference only"};
-  for (int k = 0; k < 6; ++k) {
+  const char* kinds[] = {"missing", "outlier", "joint difference", "polynomial", "reference", "reference only", "swap"};
+  for (int k = 0; k < 7; ++k) {
     if (what == kinds[k]) return k;
   }
   return -1;

@@ -1,0 +1,196 @@
+#include "problems/marker_repair/swap_detection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mocapsolve {
+
+namespace {
+
+using Claims = std::vector<std::vector<int>>;
+
+// The sample label n has at frame f after relabelling by `claim` (NaN if none).
+Eigen::Vector3d Relabelled(const MarkerTrajectories& x, const Claims& claim, int f, int n) {
+  const int nm = x.num_markers();
+  for (int m = 0; m < nm; ++m) {
+    if (claim[f][m] == n) return x.position(f, m);
+  }
+  if (claim[f][n] >= 0) return Eigen::Vector3d::Constant(NAN);
+  return x.position(f, n);
+}
+
+// Where label n is expected at frame f from frames f - step and f - 2 step (relabelled):
+// extrapolated at constant velocity, or the last sample; NaN if unknown.
+Eigen::Vector3d Continued(const MarkerTrajectories& x, const Claims& claim, int f, int step, int n) {
+  const int g = f - step, h = f - 2 * step;
+  if (g < 0 || g >= x.num_frames()) return Eigen::Vector3d::Constant(NAN);
+  const Eigen::Vector3d a = Relabelled(x, claim, g, n);
+  if (h < 0 || h >= x.num_frames()) return a;
+  const Eigen::Vector3d b = Relabelled(x, claim, h, n);
+  return b.allFinite() ? Eigen::Vector3d(2.0 * a - b) : a;
+}
+
+void ExtendByContinuity(const SwapDetectionOptions& options, const MarkerResidualModel& model,
+                        const MarkerTrajectories& x, int step, Claims* claim) {
+  const int nf = x.num_frames(), nm = x.num_markers();
+  const int begin = step > 0 ? 1 : nf - 2, end = step > 0 ? nf : -1;
+  for (int f = begin; f != end; f += step) {
+    const int g = f - step;
+    std::vector<std::pair<int, int>> pairs;
+    for (int m = 0; m < nm; ++m) {
+      if ((*claim)[g][m] >= 0) pairs.emplace_back(m, (*claim)[g][m]);
+    }
+    if (pairs.empty()) continue;
+    // Only where none of the labels involved has a claim of its own at f...
+    std::vector<int> labels;
+    for (const auto& [from, to] : pairs) labels.push_back(from), labels.push_back(to);
+    std::sort(labels.begin(), labels.end());
+    labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+    // ...or whose claims at f are part of the exchange at g (completed here).
+    bool free = true;
+    for (const int l : labels) {
+      const int to = (*claim)[f][l];
+      if (to >= 0) free &= std::find(pairs.begin(), pairs.end(), std::make_pair(l, to)) != pairs.end();
+      for (int m = 0; m < nm; ++m) {
+        if ((*claim)[f][m] == l) free &= std::find(pairs.begin(), pairs.end(), std::make_pair(m, l)) != pairs.end();
+      }
+    }
+    if (!free) continue;
+    bool same = true;
+    for (const auto& [from, to] : pairs) same &= (*claim)[f][from] == to;
+    if (same) continue;
+    double identity = 0.0, swapped = 0.0, gate = std::numeric_limits<double>::infinity();
+    bool known = true;
+    for (const int l : labels) {
+      if (!x.valid(f, l)) continue;
+      const Eigen::Vector3d expected = Continued(x, *claim, f, step, l);
+      known &= expected.allFinite();
+      if (known) identity += (x.position(f, l) - expected).norm();
+      gate = std::min(gate, model.typical_gate[l]);
+    }
+    int samples = 0;
+    for (const auto& [from, to] : pairs) {
+      if (!x.valid(f, from)) continue;
+      const Eigen::Vector3d expected = Continued(x, *claim, f, step, to);
+      known &= expected.allFinite();
+      if (known) swapped += (x.position(f, from) - expected).norm();
+      ++samples;
+    }
+    if (!known || samples == 0 || identity <= gate || swapped > options.margin * identity) continue;
+    for (const auto& [from, to] : pairs) (*claim)[f][from] = to;
+  }
+}
+
+}  // namespace
+
+std::vector<MarkerSwap> UndoSwaps(const MarkerResidualModel& model, const SwapDetectionOptions& options,
+                                  MarkerTrajectories* x) {
+  const int nf = x->num_frames(), nm = x->num_markers();
+  // claim[f][m]: the label sample x_fm is claimed by, or -1.
+  std::vector<std::vector<int>> claim(nf, std::vector<int>(nm, -1));
+  std::vector<double> own(nm), best(nm);
+  for (int f = 0; f < nf; ++f) {
+    const auto& p = model.typical_predicted[f];
+    for (int m = 0; m < nm; ++m) {
+      own[m] = x->valid(f, m) ? (x->position(f, m) - p[m]).norm() : -1.0;
+    }
+    // Claims on each label: the nearest (relative to the label's gate) wins.
+    std::vector<int> winner(nm, -1);
+    for (int m = 0; m < nm; ++m) {
+      if (own[m] < 0.0 || own[m] <= model.typical_gate[m]) continue;
+      const Eigen::Vector3d sample = x->position(f, m);
+      int chosen = -1;
+      double chosen_ratio = 1.0;
+      for (int n = 0; n < nm; ++n) {
+        if (n == m || (p[n] - p[m]).norm() > options.radius) continue;
+        if (own[n] >= 0.0 && own[n] <= model.typical_gate[n]) continue;  // n is tracked well: not a swap.
+        const double d = (sample - p[n]).norm();
+        if (d > options.margin * own[m]) continue;
+        const double ratio = d / model.typical_gate[n];
+        if (ratio <= chosen_ratio) chosen_ratio = ratio, chosen = n;
+      }
+      if (chosen < 0) continue;
+      best[m] = chosen_ratio;
+      if (winner[chosen] < 0 || best[winner[chosen]] > chosen_ratio) winner[chosen] = m;
+    }
+    for (int n = 0; n < nm; ++n) {
+      if (winner[n] >= 0) claim[f][winner[n]] = n;
+    }
+    // Exchanges completed: when m's sample goes to n and n's outlying sample is closer to
+    // m's prediction than to its own, and nobody else claims m, n's sample goes to m (the
+    // reference, partly drawn toward the swapped labels, may leave it outside m's gate).
+    for (int n = 0; n < nm; ++n) {
+      const int m = winner[n];
+      if (m < 0 || winner[m] >= 0 || claim[f][n] >= 0 || own[n] < 0.0 || own[n] <= model.typical_gate[n]) continue;
+      if ((x->position(f, n) - p[m]).norm() < options.margin * own[n]) claim[f][n] = m, winner[m] = n;
+    }
+  }
+  // Persistence: drop claims in runs shorter than min_frames.
+  for (int m = 0; m < nm; ++m) {
+    for (int f = 0; f < nf;) {
+      const int n = claim[f][m];
+      int g = f + 1;
+      while (g < nf && claim[g][m] == n) ++g;
+      if (n >= 0 && g - f < options.min_frames) {
+        for (int k = f; k < g; ++k) claim[k][m] = -1;
+      }
+      f = g;
+    }
+  }
+  // Continuity: the reference drifts toward the swapped labels after a swap began (a
+  // robust solve still partly follows two wrong markers of a bone), so the claims seen at
+  // a swap's onset are carried forward, and those seen at its end backward, while the
+  // exchange keeps the relabelled trajectories more continuous than the identity.
+  ExtendByContinuity(options, model, *x, +1, &claim);
+  ExtendByContinuity(options, model, *x, -1, &claim);
+  // Relabel, and gather the intervals (consecutive frames with the same exchanges).
+  std::vector<MarkerSwap> swaps;
+  std::vector<std::pair<int, int>> previous;
+  int samples = 0;
+  auto close = [&] {
+    if (!swaps.empty() && samples > 0) {
+      swaps.back().distance_before /= samples;
+      swaps.back().distance_after /= samples;
+    }
+    samples = 0;
+  };
+  for (int f = 0; f < nf; ++f) {
+    std::vector<std::pair<int, int>> pairs;
+    for (int m = 0; m < nm; ++m) {
+      if (claim[f][m] >= 0) pairs.emplace_back(m, claim[f][m]);
+    }
+    if (pairs.empty()) {
+      if (!previous.empty()) close();
+      previous.clear();
+      continue;
+    }
+    if (pairs != previous) {
+      close();
+      swaps.push_back({f, f, pairs, 0.0, 0.0});
+    }
+    MarkerSwap& swap = swaps.back();
+    swap.last = f;
+    std::vector<Eigen::Vector3d> samples_now(nm);
+    std::vector<char> gave(nm, 0), got(nm, 0);
+    for (const auto& [from, to] : pairs) {
+      samples_now[from] = x->position(f, from);
+      swap.distance_before += (samples_now[from] - model.typical_predicted[f][from]).norm();
+      swap.distance_after += (samples_now[from] - model.typical_predicted[f][to]).norm();
+      ++samples;
+      gave[from] = 1;
+    }
+    for (const auto& [from, to] : pairs) {
+      x->SetSample(f, to, samples_now[from]);
+      got[to] = 1;
+    }
+    for (int m = 0; m < nm; ++m) {
+      if (gave[m] && !got[m]) x->SetMissing(f, m);
+    }
+    previous = pairs;
+  }
+  close();
+  return swaps;
+}
+
+}  // namespace mocapsolve

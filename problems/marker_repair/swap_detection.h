@@ -1,0 +1,59 @@
+// Label swaps undone (issue 16 item 1): two or more labels that exchange trajectories for
+// an interval are relabelled instead of cut and refilled.
+//
+// Input: the samples x_fm, the typical predictions T_fm and take-wide gates t_m of the
+// marker residual model (marker_residual_model.h; T is the reference's reconstruction plus
+// the marker's typical residual; written P below). In frame f, a sample x_fm that is an
+// outlier for its own label,
+//   |x_fm - P_fm| > t_m,
+// is claimed by the nearby label n (|P_fn - P_fm| <= radius) that minimizes
+// |x_fm - P_fn| / t_n, if
+//   |x_fm - P_fn| <= t_n                   (it fits n as n's own samples do),
+//   |x_fm - P_fn| <= margin |x_fm - P_fm|  (much better than its own label), and
+//   label n has no sample of its own that fits it (n missing, or x_fn outlying for n):
+// a point next to a well tracked marker is a ghost, not a swap, and stays an outlier.
+// Claims are one to one per frame (the nearest claim on a label wins); an exchange is
+// completed (n -> m too, when n's outlying sample is within margin of its own distance
+// from m's prediction and nobody claims m). A claim m -> n counts only in runs of at least
+// min_frames consecutive frames, so single noisy frames are not relabelled. The reference
+// drifts toward the swapped labels once a swap has begun (a robust solve still partly
+// follows two wrong markers of one bone), so the claims are then carried forward from a
+// swap's onset and backward from its end while, by continuity (each relabelled trajectory
+// extrapolated at constant velocity from its two previous frames), the exchange costs
+// less than margin times the identity, and the identity costs more than the smallest gate
+// of the labels involved. Then, per frame, label n takes sample x_fm; a label that gave its sample
+// away and received none becomes missing (a swap that begins or ends inside a gap: the
+// other label's sample was missing), to be filled as any gap. Chains of more than two
+// labels are undone the same way.
+#ifndef MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_SWAP_DETECTION_H_
+#define MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_SWAP_DETECTION_H_
+
+#include <utility>
+#include <vector>
+
+#include "kinematics/marker_trajectories.h"
+#include "problems/marker_repair/marker_residual_model.h"
+
+namespace mocapsolve {
+
+struct SwapDetectionOptions {
+  double radius = 0.0;  // Skeleton units: labels whose predictions are this close may swap.
+  double margin = 0.5;  // The claimed label's distance at most this fraction of the own one.
+  int min_frames = 2;   // Frames a claim must persist.
+};
+
+// One interval over which the same labels were exchanged.
+struct MarkerSwap {
+  int first = 0, last = 0;                    // Frames, inclusive.
+  std::vector<std::pair<int, int>> from_to;   // Sample of label `first` now labelled `second`.
+  double distance_before = 0.0;  // Mean over the interval's samples of |x - P| to the old label.
+  double distance_after = 0.0;   // ... to the new label (skeleton units).
+};
+
+// Relabels the swapped samples of *x in place and returns the swaps, ordered by first frame.
+std::vector<MarkerSwap> UndoSwaps(const MarkerResidualModel& model, const SwapDetectionOptions& options,
+                                  MarkerTrajectories* x);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_SWAP_DETECTION_H_
