@@ -19,8 +19,11 @@ def cli_flags(options):
 
 
 def without_seconds(report):
+    """The fit's own members: not its time, nor the envelope every CLI report adds
+    (status, version, command, options, inputs: docs/schemas/report.schema.json)."""
     report = dict(report)
-    report.pop("seconds")
+    for key in ("seconds", "status", "version", "command", "options", "inputs"):
+        report.pop(key, None)
     return report
 
 
