@@ -26,6 +26,7 @@
 #include "apps/view_flags.h"
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
+#include "io/comma_list.h"
 #include "io/edit_file.h"
 #include "io/motion_file.h"
 #include "pipeline/edit_weights.h"
@@ -70,18 +71,6 @@ DEFINE_bool(compare_falloffs, false, "Also compute the other falloffs of the fir
 namespace mocapsolve {
 
 namespace {
-
-std::vector<std::string> Split(const std::string& text, char separator) {
-  std::vector<std::string> items;
-  size_t begin = 0;
-  while (true) {
-    const size_t end = text.find(separator, begin);
-    items.push_back(text.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
-    if (end == std::string::npos) break;
-    begin = end + 1;
-  }
-  return items;
-}
 
 // Skeleton units per cm; *assumed when the skeleton's unit is unknown (then cm).
 double UnitsPerCm(const Skeleton& skeleton, bool* assumed) {
@@ -246,7 +235,7 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
   contact_options.height_threshold = FLAGS_contact_height_cm * units_per_cm;
   contact_options.speed_threshold = FLAGS_contact_speed_cm * units_per_cm;
   if (!FLAGS_foot_joints.empty()) {
-    for (const std::string& name : Split(FLAGS_foot_joints, ',')) {
+    for (const std::string& name : SplitFields(FLAGS_foot_joints, ',')) {
       const int joint = skeleton.FindJoint(name);
       if (joint < 0) return Status::Error("--foot_joints: unknown joint '" + name + "'");
       contact_options.joints.push_back(joint);

@@ -10,6 +10,10 @@ namespace mocapsolve {
 // Splits "a,b,c" (empty items dropped).
 std::vector<std::string> SplitCommaList(const std::string& text);
 
+// Splits at every separator, keeping empty items: "a;;b" gives {"a", "", "b"}, "" gives
+// {""} (for formats where a position means something, such as JOINT:x,y,z;...).
+std::vector<std::string> SplitFields(const std::string& text, char separator);
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_IO_COMMA_LIST_H_

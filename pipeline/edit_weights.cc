@@ -5,24 +5,13 @@
 #include <string>
 #include <vector>
 
+#include "io/comma_list.h"
 #include "problems/edit_propagation/harmonic_falloff.h"
 #include "problems/edit_propagation/pose_features.h"
 #include "problems/edit_propagation/spline_falloff.h"
 
 namespace mocapsolve {
 namespace {
-
-std::vector<std::string> Split(const std::string& text, char separator) {
-  std::vector<std::string> items;
-  size_t begin = 0;
-  while (true) {
-    const size_t end = text.find(separator, begin);
-    items.push_back(text.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
-    if (end == std::string::npos) break;
-    begin = end + 1;
-  }
-  return items;
-}
 
 bool ParseDouble(const std::string& text, double* value) {
   char* stop = nullptr;
@@ -34,10 +23,10 @@ bool ParseDouble(const std::string& text, double* value) {
 
 Status ParseIkTargets(const std::string& text, const Skeleton& skeleton, std::vector<IkTarget>* targets) {
   targets->clear();
-  for (const std::string& item : Split(text, ';')) {
+  for (const std::string& item : SplitFields(text, ';')) {
     const size_t colon = item.rfind(':');
     const std::vector<std::string> xyz =
-        colon == std::string::npos ? std::vector<std::string>() : Split(item.substr(colon + 1), ',');
+        colon == std::string::npos ? std::vector<std::string>() : SplitFields(item.substr(colon + 1), ',');
     IkTarget target;
     if (colon == std::string::npos || xyz.size() != 3 || !ParseDouble(xyz[0], &target.position.x()) ||
         !ParseDouble(xyz[1], &target.position.y()) || !ParseDouble(xyz[2], &target.position.z())) {

@@ -48,6 +48,7 @@
 #include "bench/peers/dart_skeleton.h"
 #endif
 #include "io/atomic_file.h"
+#include "io/comma_list.h"
 #include "io/json_writer.h"
 #include "io/motion_file.h"
 #include "kinematics/forward_kinematics.h"
@@ -83,17 +84,6 @@ double CpuSeconds() {
   timespec t;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
-std::vector<std::string> SplitList(const std::string& text) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  while (start <= text.size()) {
-    const size_t end = std::min(text.find(',', start), text.size());
-    if (end > start) out.push_back(text.substr(start, end - start));
-    start = end + 1;
-  }
-  return out;
 }
 
 // The problem all cases share.
@@ -197,7 +187,7 @@ class Harness {
  public:
   Status Build(const PeersProblem& problem) {
     problem_ = &problem;
-    std::vector<std::string> names = SplitList(FLAGS_peers);
+    std::vector<std::string> names = SplitCommaList(FLAGS_peers);
     if (names.empty()) names = AvailablePeers();
     for (const std::string& name : names) {
       std::unique_ptr<PeerModel> peer;
