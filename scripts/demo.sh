@@ -67,6 +67,10 @@ $ms repair --quiet --skeleton="$out/walk.bvh" --skeleton_units=cm --markers="$ou
 echo "-- evaluate: repair against linear, polynomial, PCA and reference-only fills on the same damage"
 $ms evaluate --quiet --skeleton="$out/walk.bvh" --skeleton_units=cm --markers="$out/walk_markers.c3d" \
   --markerset="$out/calibrated_markerset.json" --gaps=6 --swaps=1 --report="$out/evaluate.json" | head -11
+echo "-- evaluate --method=leave_one_out: each marker predicted by the solve of the others (no ground truth needed)"
+$ms evaluate --quiet --method=leave_one_out --skeleton="$out/walk.bvh" --skeleton_units=cm \
+  --markers="$out/walk_markers.c3d" --markerset="$out/calibrated_markerset.json" \
+  --report="$out/leave_one_out.json" | tail -1
 
 echo; echo "== 13. edit propagation: the falloff of a pose edit through the walk, and the edit itself"
 $ms distance --motion="$out/walk.bvh" --frame=60 --method=green,isomap --out="$out/falloff.csv" \
