@@ -1,4 +1,6 @@
 // mocapsolve solve: joint angles from optical markers.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "apps/command.h"
@@ -9,6 +11,7 @@
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
 #include "io/svg_plot.h"
+#include "kinematics/forward_kinematics.h"
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
@@ -18,6 +21,8 @@
 
 DEFINE_int32(max_frames, 0, "Solve only the first N frames (0 = all).");
 DEFINE_string(plot, "", "Write an SVG plot of the per-frame RMS marker residual to this file.");
+DEFINE_string(residuals_csv, "", "Write the written motion's per-frame marker residual as CSV: frame, time (s), "
+              "markers observed, RMS and max residual (mm, or skeleton units when the unit is unknown).");
 
 namespace mocapsolve {
 namespace {
@@ -111,6 +116,32 @@ Status RunSolve(const std::vector<std::string>& arguments) {
         .Add("rms_marker_residual", clip.rms_marker_error * to_output);
     report.Add("clip", clip_json);
   }
+  if (!FLAGS_residuals_csv.empty()) {
+    // Of the motion written (after the clip solve with --mode=clip), frame by frame.
+    std::string csv = std::string("frame,time_s,markers_observed,rms_") + (mm_per_unit > 0.0 ? "mm" : "units") +
+                      ",max_" + (mm_per_unit > 0.0 ? "mm" : "units") + "\n";
+    FkData fk(skeleton);
+    const double rate = motion.frame_rate > 0 ? motion.frame_rate : 0.0;
+    for (size_t f = 0; f < observed.size(); ++f) {
+      ForwardKinematics(skeleton, motion.frames[f], &fk);
+      int count = 0;
+      double sum = 0.0, worst = 0.0;
+      for (int m = 0; m < markers.num_markers(); ++m) {
+        if (!observed[f][m].allFinite()) continue;
+        const double e = (markers.Position(m, fk) - observed[f][m]).norm() * to_output;
+        sum += e * e;
+        worst = std::max(worst, e);
+        ++count;
+      }
+      char line[160];
+      std::snprintf(line, sizeof(line), "%zu,%.6g,%d,%.6g,%.6g\n", f, rate > 0 ? f / rate : 0.0, count,
+                    count > 0 ? std::sqrt(sum / count) : 0.0, worst);
+      csv += line;
+    }
+    status = WriteFileAtomically(FLAGS_residuals_csv, csv);
+    if (!status.ok()) return status;
+    report.Add("residuals_csv", FLAGS_residuals_csv);
+  }
   status = WriteBvh(FLAGS_out, skeleton, motion, BvhWriteOptions());
   if (!status.ok()) return status;
   std::printf("wrote %s\n", FLAGS_out.c_str());
@@ -138,18 +169,21 @@ Status RunSolve(const std::vector<std::string>& arguments) {
 }
 
 const std::string kSolveFlags =
-    std::string("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,plot,max_frames,view,") + kSolverFlagNames;
+    std::string("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,plot,residuals_csv,"
+                "max_frames,view,") + kSolverFlagNames;
 
 }  // namespace
 
 extern const Command kSolveCommand = {
     "solve", "joint angles from markers (C3D/TRC) onto a BVH or ASF skeleton, Ceres or DLS",
     "mocapsolve solve (--skeleton=S.asf|S.bvh --markerset=J.json | --subject=S.json) --markers=M.c3d|M.trc "
-    "--out=O.bvh [--solver=ceres|dls] [--mode=frame|clip] [--axes=y,z,x] [--report=r.json] [--view=PAGE.html]\n\n"
+    "--out=O.bvh [--solver=ceres|dls] [--mode=frame|clip] [--axes=y,z,x] [--report=r.json] [--residuals_csv=r.csv] "
+    "[--plot=r.svg] [--view=PAGE.html]\n\n"
     "Solves the root translation and joint rotations per frame (warm-started from the\n"
     "previous frame; the first frame tries 24 root orientations), and with --mode=clip\n"
     "refines all frames as one sparse problem with smoothness. Missing markers are simply\n"
-    "left out. Prints the RMS marker residual, iterations and time; --report writes them.",
+    "left out. Prints the RMS marker residual, iterations and time; --report writes them,\n"
+    "--residuals_csv the residual of every frame of the written motion (--plot draws it).",
     __FILE__, RunSolve, kSolveFlags.c_str()};
 
 }  // namespace mocapsolve

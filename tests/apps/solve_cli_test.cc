@@ -162,6 +162,33 @@ TEST_F(SolveCli, EvaluatePrintsTheTableAndTheReport) {
   EXPECT_THAT(output, HasSubstr("--reference"));
 }
 
+TEST_F(SolveCli, ResidualsCsvHasOneRowPerFrame) {
+  for (const char* mode : {"frame", "clip"}) {
+    const std::string csv = testing::TempPath(std::string("residuals_") + mode + ".csv");
+    int code = 0;
+    const std::string output = Solve(std::string("--markerset=") + set_ + " --solver=dls --mode=" + mode +
+                                     " --out=" + testing::TempPath("r.bvh") + " --residuals_csv=" + csv, &code);
+    ASSERT_EQ(code, 0) << output;
+    std::istringstream lines(testing::ReadTextFile(csv));
+    std::string line;
+    std::getline(lines, line);
+    EXPECT_EQ(line, "frame,time_s,markers_observed,rms_mm,max_mm");
+    int rows = 0;
+    while (std::getline(lines, line)) {
+      int frame = -1, observed = 0;
+      double time = -1, rms = -1, max = -1;
+      ASSERT_EQ(std::sscanf(line.c_str(), "%d,%lf,%d,%lf,%lf", &frame, &time, &observed, &rms, &max), 5) << line;
+      EXPECT_EQ(frame, rows);
+      EXPECT_NEAR(time, rows / 30.0, 1e-5);
+      EXPECT_GT(observed, 0);
+      EXPECT_LE(rms, max + 1e-12);
+      EXPECT_LT(max, 5.0) << line;  // mm: the markers are the clip's own (noise-free).
+      ++rows;
+    }
+    EXPECT_EQ(rows, 40) << mode;
+  }
+}
+
 TEST_F(SolveCli, EvaluateLeaveOneOutPredictsEveryMarker) {
   const std::string report = testing::TempPath("loo.json"), csv = testing::TempPath("loo.csv");
   std::string output;
