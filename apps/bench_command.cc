@@ -66,7 +66,8 @@ Status RunBench(const std::vector<std::string>& arguments) {
     records.push_back(record.ToJson());
   }
   JsonObject all;
-  all.Add("problem", FLAGS_problem).Add("records", records);
+  // The settings in force with the records, so a figure can be traced to how it was made.
+  all.Add("problem", FLAGS_problem).Add("version", Version()).Add("settings", OptionsInForce()).Add("records", records);
   if (!FLAGS_json.empty()) {
     Status status = WriteFileAtomically(FLAGS_json, all.ToString() + "\n");
     if (!status.ok()) return status;

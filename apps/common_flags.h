@@ -61,8 +61,12 @@ Status MarkerTakeInputs(std::vector<std::string>* inputs);
 // LoadSubjectFromFlags, then LoadTakeForSubject on --markers.
 Status LoadMarkerTake(MarkerTake* take);
 
-// Writes the report to --report if set (atomically).
+// Writes the report to --report if set (atomically), in the envelope every report shares
+// (docs/schemas/report.schema.json).
 Status WriteReport(const JsonObject& report);
+
+// The flags the running command reads, with the values in force (the report's "options").
+JsonObject OptionsInForce();
 
 // An output path must not name one of the inputs.
 Status CheckNotAnInput(const std::string& output, const std::string& input);

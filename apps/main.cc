@@ -239,7 +239,7 @@ namespace {
 const Command* running_command = nullptr;  // Set by main before the command runs.
 
 // The flags the command reads, with the values in force (numbers and booleans typed).
-JsonObject OptionsInForce(const Command& command) {
+JsonObject OptionsOf(const Command& command) {
   std::vector<gflags::CommandLineFlagInfo> flags;
   gflags::GetAllFlags(&flags);
   JsonObject options;
@@ -270,6 +270,8 @@ std::vector<JsonObject> InputsRead() {
 
 }  // namespace
 
+JsonObject OptionsInForce() { return running_command != nullptr ? OptionsOf(*running_command) : JsonObject(); }
+
 // Every report opens with what it is and where it came from (docs/schemas/report.schema.json):
 // status, command, version, then the command's own members, then the options in force and
 // each input read (path, size, content hash), unless the command reported those itself.
@@ -279,7 +281,7 @@ Status WriteReport(const JsonObject& report) {
   full.Add("status", "ok").Add("version", Version());
   if (running_command != nullptr) full.Add("command", running_command->name);
   full.Merge(report);
-  if (running_command != nullptr && !full.Has("options")) full.Add("options", OptionsInForce(*running_command));
+  if (running_command != nullptr && !full.Has("options")) full.Add("options", OptionsOf(*running_command));
   if (!full.Has("inputs")) full.Add("inputs", InputsRead());
   return WriteFileAtomically(FLAGS_report, full.ToString() + "\n");
 }
@@ -321,7 +323,7 @@ void WriteFailureReport(const char* command, const std::string& message,
   if (running_command != nullptr && !CommandReadsFlag(*running_command, report_flag)) return;  // Not its flag.
   JsonObject report;
   report.Add("status", "error").Add("version", Version()).Add("command", command).Add("message", message);
-  if (running_command != nullptr) report.Add("options", OptionsInForce(*running_command));
+  if (running_command != nullptr) report.Add("options", OptionsOf(*running_command));
   report.Add("inputs", InputsRead());
   StagedFile staged;
   if (StagedFile::Create(FLAGS_report, report.ToString() + "\n", &staged).ok()) (void)staged.Publish();

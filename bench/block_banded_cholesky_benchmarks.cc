@@ -39,7 +39,7 @@ void BM_BlockBandedCholesky(benchmark::State& state) {
                                                                         benchmark::Counter::kInvert);
 }
 // n = 96: CMU 01_01 with free joints (31 x 3 + 3); n = 58: 02_01's ASF dofs and root.
-BENCHMARK(BM_BlockBandedCholesky)->Args({96, 1})->Args({96, 2})->Args({58, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BlockBandedCholesky)->Args({96, 1})->Args({96, 2})->Args({58, 1})->ArgNames({"block", "bandwidth"})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace mocapsolve

@@ -80,10 +80,10 @@ void BuildGreen(benchmark::State& state, KernelMode mode) {
 }
 
 void BM_GreenBuildDense(benchmark::State& state) { BuildGreen(state, KernelMode::kDense); }
-BENCHMARK(BM_GreenBuildDense)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GreenBuildDense)->Arg(1000)->ArgName("frames")->Unit(benchmark::kMillisecond);
 
 void BM_GreenBuildSparse(benchmark::State& state) { BuildGreen(state, KernelMode::kSparse); }
-BENCHMARK(BM_GreenBuildSparse)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GreenBuildSparse)->Arg(1000)->Arg(10000)->ArgName("frames")->Unit(benchmark::kMillisecond);
 
 // A new edit once G is built: row + normalization over the whole clip.
 void BM_GreenRepropagate(benchmark::State& state) {
@@ -102,7 +102,7 @@ void BM_GreenRepropagate(benchmark::State& state) {
   }
   state.counters["frames"] = n;
 }
-BENCHMARK(BM_GreenRepropagate)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_GreenRepropagate)->Arg(10000)->ArgName("frames")->Unit(benchmark::kMicrosecond);
 
 // The approximate kNN graph alone (the first part of a sparse build).
 void BM_PoseKnnGraph(benchmark::State& state) {
@@ -113,7 +113,7 @@ void BM_PoseKnnGraph(benchmark::State& state) {
     benchmark::DoNotOptimize(graph.data());
   }
 }
-BENCHMARK(BM_PoseKnnGraph)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PoseKnnGraph)->Arg(10000)->ArgName("frames")->Unit(benchmark::kMillisecond);
 
 void BM_IsomapDistance(benchmark::State& state) {
   const Eigen::MatrixXd& features = LongWalkFeatures(static_cast<int>(state.range(0)));
@@ -126,7 +126,7 @@ void BM_IsomapDistance(benchmark::State& state) {
     frame = (frame + 997) % static_cast<int>(features.rows());
   }
 }
-BENCHMARK(BM_IsomapDistance)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IsomapDistance)->Arg(10000)->ArgName("frames")->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace mocapsolve

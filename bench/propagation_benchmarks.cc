@@ -66,7 +66,7 @@ void BM_HarmonicFalloffSolve(benchmark::State& state) {
   state.counters["iterations"] = report.iterations;
   state.counters["max_gradient"] = report.max_gradient;
 }
-BENCHMARK(BM_HarmonicFalloffSolve)->ArgsProduct({{1000, 10000}, {0, 1}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HarmonicFalloffSolve)->ArgsProduct({{1000, 10000}, {0, 1}})->ArgNames({"frames", "cholmod"})->Unit(benchmark::kMillisecond);
 
 void BM_PoseGraphEdges(benchmark::State& state) {
   const PropagationFixture& f = Fixture(static_cast<int>(state.range(0)));
@@ -75,7 +75,7 @@ void BM_PoseGraphEdges(benchmark::State& state) {
     benchmark::DoNotOptimize(edges.data());
   }
 }
-BENCHMARK(BM_PoseGraphEdges)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PoseGraphEdges)->Arg(1000)->Arg(10000)->ArgName("frames")->Unit(benchmark::kMillisecond);
 
 void BM_PropagateEdits(benchmark::State& state) {
   const int frames = static_cast<int>(state.range(0));
@@ -93,7 +93,7 @@ void BM_PropagateEdits(benchmark::State& state) {
     benchmark::DoNotOptimize(out.frames.data());
   }
 }
-BENCHMARK(BM_PropagateEdits)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PropagateEdits)->Arg(1000)->Arg(10000)->ArgName("frames")->Unit(benchmark::kMillisecond);
 
 // KeepContacts on CMU 16_15 (471 frames, cm) after a hips edit spread over +-80 frames:
 // the per-frame re-solves of the planted frames plus the blending.

@@ -167,7 +167,9 @@ void RunFrames(benchmark::State& state, int which) {
     angle += report.mean_normal_angle * 57.29577951308232 / 100.0;
     if (++f == kLoopFrames) f = 0;
   }
-  state.SetLabel(RetargetSolverName(kind));
+  // The case in words (the arguments are codes): solver, and Ceres' trust radius.
+  state.SetLabel(std::string(RetargetSolverName(kind)) + ", 1:" + std::to_string(state.range(0)) + " vertices" +
+                 (kind == RetargetSolverKind::kCeres ? ", trust radius 1e" + std::to_string(state.range(2)) : ""));
   state.counters["tracked"] = static_cast<double>(c.setup.tracked.size());
   state.counters["joints"] = c.target.skeleton.num_joints();
   state.counters["vertex_error"] = error;
@@ -213,6 +215,7 @@ void BM_RetargetSkeletonOnly(benchmark::State& state) {
     status = RetargetMotionOntoCharacter(source_view, motion, target_view, options, &result);
     if (!status.ok()) return state.SkipWithError(status.message().c_str());
   }
+  state.SetLabel(options.plant_feet ? "16_15 onto Xbot, feet planted" : "16_15 onto Xbot, no foot plants");
   state.counters["solve_ms_per_frame"] = 1e3 * result.clip.solve_seconds / motion.num_frames();
   state.counters["setup_ms"] = 1e3 * result.setup_seconds;
   state.counters["vertex_error"] = result.clip.mean_position_error;
@@ -235,6 +238,8 @@ void BM_RetargetStages(benchmark::State& state) {
     (void)solver.Solve(c.goals.positions[f], c.goals.normals[f], &pose, nullptr);
     if (++f == kLoopFrames) f = 0;
   }
+  const char* kCaseNames[] = {"synthetic", "Soldier onto Xbot", "CesiumMan onto RiggedFigure"};
+  state.SetLabel(kCaseNames[state.range(0)]);
   const RetargetStageTimes& t = solver.stage_times();
   const double total = t.total();
   state.counters["fk_%"] = 100.0 * t.fk / total;

@@ -61,6 +61,14 @@ std::string SourcePath(const std::string& relative) {
 std::string TempPath(const std::string& name) {
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string dir = ::testing::TempDir() + "mocapsolve_" + std::to_string(::getpid());
+  // pids are reused (pid_max is often 32768 and the suite starts thousands of processes):
+  // a folder left by an earlier process with this pid goes, once per process.
+  static const bool fresh = [&dir] {
+    std::error_code ignored;
+    std::filesystem::remove_all(dir, ignored);
+    return true;
+  }();
+  (void)fresh;
   ::mkdir(dir.c_str(), 0755);
   if (info != nullptr) {
     // Parameterized names hold '/': keep the test's folder one level deep.
