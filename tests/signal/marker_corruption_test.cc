@@ -85,7 +85,9 @@ TEST(MarkerCorruption, SwapsInGapsJitterAndGhosts) {
   Eigen::Vector3d ghost_offset = Eigen::Vector3d::Zero();
   for (int f = 0; f < 400; ++f) {
     for (int m = 0; m < 6; ++m) {
-      if (mask_before[f][m] != 0 && mask_before[f][m] != 's') EXPECT_EQ(mask[f][m], mask_before[f][m]);
+      if (mask_before[f][m] != 0 && mask_before[f][m] != 's') {
+        EXPECT_EQ(mask[f][m], mask_before[f][m]);
+      }
       const char kind = mask[f][m];
       ++counts[static_cast<unsigned char>(kind)];
       if (kind == 'j') {
@@ -96,7 +98,9 @@ TEST(MarkerCorruption, SwapsInGapsJitterAndGhosts) {
       if (kind == 'h') {
         const Eigen::Vector3d offset = after.position(f, m) - clean.position(f, m);
         EXPECT_NEAR(offset.norm(), 3.0, 1e-12);
-        if (f > 0 && mask[f - 1][m] == 'h') EXPECT_LT((offset - ghost_offset).norm(), 1e-12);
+        if (f > 0 && mask[f - 1][m] == 'h') {
+          EXPECT_LT((offset - ghost_offset).norm(), 1e-12);
+        }
         ghost_offset = offset;
       }
     }
