@@ -56,7 +56,7 @@ Status RunBlend(const std::vector<std::string>& arguments) {
   if (FLAGS_a.empty() || FLAGS_b.empty() || FLAGS_out.empty() || FLAGS_transition.empty()) {
     return Status::Error("--a, --b, --transition and --out are required");
   }
-  if (FileExtension(FLAGS_out) != ".bvh") return Status::Error(FLAGS_out + ": expected a .bvh");
+  if (!IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh");
   Status status = CheckNotAnInput(FLAGS_out, FLAGS_a);
   if (status.ok()) status = CheckNotAnInput(FLAGS_out, FLAGS_b);
   if (!status.ok()) return status;

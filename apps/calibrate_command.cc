@@ -31,12 +31,12 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
   if (FLAGS_motion.empty() || FLAGS_markers.empty() || FLAGS_out.empty()) {
     return Status::Error("--motion, --markers and --out are required");
   }
-  if (FileExtension(FLAGS_out) != ".json") return Status::Error(FLAGS_out + ": expected a .json output");
+  if (!IsTextOutputPath(FLAGS_out, ".json")) return Status::Error(FLAGS_out + ": expected a .json output");
   const bool auto_attach = FLAGS_attach == "auto";
   if (!auto_attach && FileExtension(FLAGS_attach) != ".json") {
     return Status::Error("--attach='" + FLAGS_attach + "': expected auto or a marker set .json");
   }
-  if (!FLAGS_out_subject.empty() && FileExtension(FLAGS_out_subject) != ".json") {
+  if (!FLAGS_out_subject.empty() && !IsTextOutputPath(FLAGS_out_subject, ".json")) {
     return Status::Error(FLAGS_out_subject + ": expected a .json subject file");
   }
   if (FLAGS_out_subject == FLAGS_out) return Status::Error("--out and --out_subject name the same file");
@@ -52,6 +52,7 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
 
   Skeleton skeleton;
   Motion motion;
+  SetStage("inputs");
   Status status = LoadMotion(FLAGS_motion, &skeleton, &motion);
   if (!status.ok()) return status;
   MarkerTrajectories trajectories;
@@ -78,11 +79,13 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
   options.amc_fps = FLAGS_amc_fps;
   options.markers_name = FLAGS_markers;
   SubjectCalibration calibration;
+  SetStage("calibrate");
   status = CalibrateSubject(skeleton, motion, trajectories, options, &calibration);
   if (!status.ok()) return status;
   const CalibrationResult& result = calibration.result;
   const MarkerFileToModel& transform = calibration.transform;
   const std::vector<double>& axis_rms = calibration.axis_rms;
+  SetStage("writing");
   status = WriteMarkerSet(FLAGS_out, skeleton, result.marker_set, options.skeleton_path);
   if (!status.ok()) return status;
   if (!FLAGS_out_subject.empty()) {

@@ -68,6 +68,11 @@ Status WriteReport(const JsonObject& report);
 // The flags the running command reads, with the values in force (the report's "options").
 JsonObject OptionsInForce();
 
+// What the running command is doing, named in its failure report's "stage": main.cc says
+// "arguments" while it checks the flags, "run" when the command starts and "outputs" while
+// it publishes them; a command names its own steps in between ("inputs", "solve", ...).
+void SetStage(const std::string& stage);
+
 // An output path must not name one of the inputs.
 Status CheckNotAnInput(const std::string& output, const std::string& input);
 

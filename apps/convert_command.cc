@@ -116,7 +116,7 @@ Status RunConvert(const std::vector<std::string>& arguments) {
   }
   if (!FLAGS_out_units.empty()) return Status::Error("--out_units is for marker files (.c3d, .trc)");
   if (out_ext == ".glb" || out_ext == ".gltf") return ConvertToGltf(in, out);
-  if (out_ext != ".bvh") return Status::Error(out + ": output must be .bvh, .glb or .gltf");
+  if (!IsTextOutputPath(out, ".bvh")) return Status::Error(out + ": output must be .bvh, .glb or .gltf");
   Status status = CheckNotAnInput(out, in);
   if (status.ok() && !FLAGS_skeleton.empty()) status = CheckNotAnInput(out, FLAGS_skeleton);
   if (!status.ok()) return status;

@@ -60,11 +60,11 @@ Status RunDistance(const std::vector<std::string>& arguments) {
   if (FLAGS_motion.empty() || FLAGS_out.empty() || FLAGS_frame < 0) {
     return Status::Error("--motion, --frame (>= 0) and --out are required");
   }
-  if (FileExtension(FLAGS_out) != ".csv") return Status::Error(FLAGS_out + ": expected a .csv");
+  if (!IsTextOutputPath(FLAGS_out, ".csv")) return Status::Error(FLAGS_out + ": expected a .csv");
   Status status = CheckNotAnInput(FLAGS_out, FLAGS_motion);
   if (!status.ok()) return status;
   if (!FLAGS_plot.empty()) {
-    if (FileExtension(FLAGS_plot) != ".svg") return Status::Error(FLAGS_plot + ": expected a .svg");
+    if (!IsTextOutputPath(FLAGS_plot, ".svg")) return Status::Error(FLAGS_plot + ": expected a .svg");
     status = CheckNotAnInput(FLAGS_plot, FLAGS_motion);
     if (!status.ok()) return status;
   }

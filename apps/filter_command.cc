@@ -45,7 +45,7 @@ Status FilterFromFlags(const char* command, int levels, const std::vector<double
   report.Add("command", command).Add("in", input).Add("out", FLAGS_out).Add("levels", levels)
       .Add("kernel_a", FLAGS_kernel_a).Add("tension", FLAGS_tension);
   if (!FLAGS_motion.empty()) {
-    if (FileExtension(FLAGS_out) != ".bvh") return Status::Error(FLAGS_out + ": expected a .bvh");
+    if (!IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh");
     Skeleton skeleton;
     Motion motion, filtered;
     status = LoadMotion(FLAGS_motion, &skeleton, &motion);

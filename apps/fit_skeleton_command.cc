@@ -74,9 +74,9 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
     return Status::Error("--markers and either --template_subject or --skeleton and --markerset are required");
   }
   if (FLAGS_out.empty() && FLAGS_out_subject.empty()) return Status::Error("--out or --out_subject is required");
-  if (!FLAGS_out.empty() && FileExtension(FLAGS_out) != ".bvh") return Status::Error(FLAGS_out + ": expected a .bvh");
+  if (!FLAGS_out.empty() && !IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh");
   for (const std::string& json : {FLAGS_out_markerset, FLAGS_out_subject}) {
-    if (!json.empty() && FileExtension(json) != ".json") return Status::Error(json + ": expected a .json");
+    if (!json.empty() && !IsTextOutputPath(json, ".json")) return Status::Error(json + ": expected a .json");
   }
   const std::vector<std::string> outputs = {FLAGS_out, FLAGS_out_markerset, FLAGS_out_subject};
   for (size_t a = 0; a < outputs.size(); ++a) {
@@ -163,6 +163,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
     }
   };
   SkeletonFitResult result;
+  SetStage("fit");
   status = FitSubjectToTake(inputs, settings, solve_options, &result, callback);
   if (!status.ok()) return status;
   const SubjectChecks& checks = result.checks;
@@ -193,6 +194,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
     }
   }
   if (!FLAGS_out.empty()) {
+    SetStage("writing");
     status = WriteBvh(FLAGS_out, fitted, result.motion, BvhWriteOptions());
     if (!status.ok()) return status;
   }

@@ -18,7 +18,7 @@ Status RunFk(const std::vector<std::string>& arguments) {
   if (FLAGS_motion.empty() || FLAGS_out.empty()) {
     return Status::Error("--motion and --out are required");
   }
-  if (FileExtension(FLAGS_out) != ".csv") return Status::Error(FLAGS_out + ": expected a .csv");
+  if (!IsTextOutputPath(FLAGS_out, ".csv")) return Status::Error(FLAGS_out + ": expected a .csv");
   Status status = CheckNotAnInput(FLAGS_out, FLAGS_motion);
   if (!status.ok()) return status;
   Skeleton skeleton;

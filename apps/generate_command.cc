@@ -16,7 +16,7 @@ namespace {
 
 Status RunGenerate(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_demo_out.empty() || FileExtension(FLAGS_demo_out) != ".bvh") {
+  if (FLAGS_demo_out.empty() || !IsTextOutputPath(FLAGS_demo_out, ".bvh")) {
     return Status::Error("--demo_out=FILE.bvh is required");
   }
   if (FLAGS_frames < 1 || FLAGS_frames > 1000000) return Status::Error("--frames out of range");

@@ -237,6 +237,7 @@ Status LoadObservations(const std::string& path, const Skeleton& skeleton, const
 namespace {
 
 const Command* running_command = nullptr;  // Set by main before the command runs.
+std::string running_stage = "arguments";   // SetStage.
 
 // The flags the command reads, with the values in force (numbers and booleans typed).
 JsonObject OptionsOf(const Command& command) {
@@ -269,6 +270,8 @@ std::vector<JsonObject> InputsRead() {
 }
 
 }  // namespace
+
+void SetStage(const std::string& stage) { running_stage = stage; }
 
 JsonObject OptionsInForce() { return running_command != nullptr ? OptionsOf(*running_command) : JsonObject(); }
 
@@ -312,6 +315,20 @@ Status CheckReportPaths(const std::vector<std::string>& positional) {
   return Status::Ok();
 }
 
+// True if a flag the command reads, or a positional argument, is "-" (the standard
+// output as an output path): then only the outputs go to stdout.
+bool NamesStandardOutput(const Command& command, const std::vector<std::string>& positional) {
+  for (const std::string& argument : positional) {
+    if (IsStandardOutput(argument)) return true;
+  }
+  std::vector<gflags::CommandLineFlagInfo> flags;
+  gflags::GetAllFlags(&flags);
+  for (const auto& flag : flags) {
+    if (flag.type == "string" && IsStandardOutput(flag.current_value) && CommandReadsFlag(command, flag)) return true;
+  }
+  return false;
+}
+
 // A failed run still answers --report, so a pipeline reads failures as it reads results:
 // {"status": "error", "command", "version", "message"}. Written outside the failed
 // transaction (whose outputs are dropped); not over an input or another argument's file.
@@ -323,6 +340,7 @@ void WriteFailureReport(const char* command, const std::string& message,
   if (running_command != nullptr && !CommandReadsFlag(*running_command, report_flag)) return;  // Not its flag.
   JsonObject report;
   report.Add("status", "error").Add("version", Version()).Add("command", command).Add("message", message);
+  report.Add("stage", running_stage);
   if (running_command != nullptr) report.Add("options", OptionsOf(*running_command));
   report.Add("inputs", InputsRead());
   StagedFile staged;
@@ -389,10 +407,18 @@ int main(int argc, char** argv) {
   // published together when it succeeds, and none of them when it fails.
   mocapsolve::FileTransaction files;
   mocapsolve::running_command = command;
+  mocapsolve::SetStage("arguments");
   mocapsolve::Status status = mocapsolve::CheckGivenFlags(*command);
   if (status.ok()) status = mocapsolve::CheckReportPaths(positional);
-  if (status.ok()) status = command->run(positional);
-  if (status.ok()) status = files.Commit();
+  if (status.ok() && mocapsolve::NamesStandardOutput(*command, positional)) mocapsolve::ReserveStandardOutputForData();
+  if (status.ok()) {
+    mocapsolve::SetStage("run");
+    status = command->run(positional);
+  }
+  if (status.ok()) {
+    mocapsolve::SetStage("outputs");
+    status = files.Commit();
+  }
   if (!status.ok()) mocapsolve::WriteFailureReport(command->name, status.message(), positional, files);
   if (!status.ok()) {
     std::fprintf(stderr, "mocapsolve %s: %s\n", command->name, status.message().c_str());

@@ -88,7 +88,7 @@ Status RunMarkers(const std::vector<std::string>& arguments) {
   if (auto_set && !ParseAutoMarkerSet(FLAGS_markerset, &per_joint, &set_seed)) {
     return Status::Error("--markerset='" + FLAGS_markerset + "': expected auto:N (1 <= N <= 100) or auto:N:SEED");
   }
-  if (!FLAGS_write_markerset.empty() && FileExtension(FLAGS_write_markerset) != ".json") {
+  if (!FLAGS_write_markerset.empty() && !IsTextOutputPath(FLAGS_write_markerset, ".json")) {
     return Status::Error(FLAGS_write_markerset + ": expected a .json marker set file");
   }
   if (!(FLAGS_noise_mm >= 0.0) || !std::isfinite(FLAGS_noise_mm)) {

@@ -66,6 +66,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   }
   if (!IsMarkerFile(FLAGS_markers)) return Status::Error(FLAGS_markers + ": expected a .c3d or .trc");
   Subject subject;
+  SetStage("inputs");
   Status status = ReadSubject(FLAGS_subject, &subject);
   if (!status.ok()) return status;
 
@@ -95,6 +96,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   std::string shown;
   status = RunTakePipeline(inputs, options, &result, [&](const std::string& stage, int done, int total) {
     if (stage != shown) {
+      SetStage(stage);
       progress = std::make_unique<Progress>("pipeline: " + stage, total, FLAGS_quiet);
       shown = stage;
     }
@@ -110,6 +112,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   const Status view_runtime = FindViewerRuntime(&runtime);
   report.Add("view", view_runtime.ok() ? JsonValue("view.html") : JsonValue());
   if (!view_runtime.ok()) std::fprintf(stderr, "warning: pipeline: no view.html: %s\n", view_runtime.message().c_str());
+  SetStage("writing");
   status = MakeFolders(FLAGS_out_dir);
   if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report, view_runtime.ok());
   if (status.ok()) status = WriteReport(report);

@@ -120,7 +120,7 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
   if (FLAGS_frame < -1) {  // -1 = not given.
     return Status::Error("--frame: expected a frame index >= 0, got " + std::to_string(FLAGS_frame));
   }
-  if (FileExtension(FLAGS_out) != ".bvh") return Status::Error(FLAGS_out + ": expected a .bvh");
+  if (!IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh");
   Status status = CheckNotAnInput(FLAGS_out, FLAGS_motion);
   if (status.ok() && !FLAGS_edit.empty()) status = CheckNotAnInput(FLAGS_out, FLAGS_edit);
   if (status.ok()) status = CheckViewFlag({FLAGS_motion, FLAGS_edit});
@@ -132,6 +132,7 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
 
   Skeleton skeleton;
   Motion motion;
+  SetStage("inputs");
   status = LoadMotion(FLAGS_motion, &skeleton, &motion);
   if (!status.ok()) return status;
   const int num_frames = motion.num_frames();
@@ -204,6 +205,7 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
   // Falloff weights, one field per edit.
   const EditWeightSettings weight_settings = EditWeightSettingsFromFlags();
   EditWeights chosen;
+  SetStage("falloff");
   status = ComputeEditWeights(method, skeleton, motion, falloff, frames, weight_settings, &chosen);
   if (!status.ok()) return status;
   JsonObject comparison;
@@ -224,6 +226,7 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
   }
 
   Motion propagated;
+  SetStage("propagate");
   status = PropagateEdits(skeleton, motion, edits, chosen.weights, &propagated);
   if (!status.ok()) return status;
 

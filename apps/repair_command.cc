@@ -39,10 +39,11 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   checked = CheckViewFlag(inputs);
   if (!checked.ok()) return checked;
   if (!IsMarkerFile(FLAGS_out_markers)) return Status::Error(FLAGS_out_markers + ": expected .c3d or .trc");
-  if (!FLAGS_out_motion.empty() && FileExtension(FLAGS_out_motion) != ".bvh") {
+  if (!FLAGS_out_motion.empty() && !IsTextOutputPath(FLAGS_out_motion, ".bvh")) {
     return Status::Error(FLAGS_out_motion + ": expected a .bvh");
   }
   MarkerTake take;
+  SetStage("inputs");
   Status status = LoadMarkerTake(&take);
   if (!status.ok()) return status;
   const Skeleton& skeleton = take.skeleton;
@@ -66,12 +67,14 @@ Status RunRepair(const std::vector<std::string>& arguments) {
     }
     progress->Update(done);
   };
+  SetStage("repair");
   status = RepairMarkers(skeleton, markers, observed, options, &repaired, &motion, &report, nullptr, show_progress);
   if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
   motion.frame_rate = trajectories.frame_rate;
 
   // Output: the input file with the repaired samples, in its own axes and units.
   const MarkerTrajectories out = WithRepairedSamples(take, repaired);
+  SetStage("writing");
   status = WriteMarkerFile(FLAGS_out_markers, out);
   if (!status.ok()) return status;
   if (!FLAGS_out_motion.empty()) {

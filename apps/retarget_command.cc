@@ -76,7 +76,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
       if (!status.ok()) return status;
     }
   }
-  const bool out_bvh = HasExtension(FLAGS_out, ".bvh");
+  const bool out_bvh = IsTextOutputPath(FLAGS_out, ".bvh");
   if (!FLAGS_out.empty() && !out_bvh && !HasExtension(FLAGS_out, ".glb") && !HasExtension(FLAGS_out, ".gltf")) {
     return Status::Error("--out: " + FLAGS_out + ": expected .glb, .gltf or .bvh");
   }
@@ -92,6 +92,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
 
   const auto start = std::chrono::steady_clock::now();
   GltfDocument target_document;
+  SetStage("inputs");
   status = GltfDocument::Read(FLAGS_target, &target_document);
   if (!status.ok()) return status;
   GltfCharacter target;
@@ -149,6 +150,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   const RetargetCharacter target_view = {&target.skeleton, &target.mesh, target.bind_pose, target.rest_pose};
   CharacterRetargetResult retarget;
   Progress progress("retarget", motion.num_frames(), FLAGS_quiet);
+  SetStage("retarget");
   status = RetargetMotionOntoCharacter(source_view, motion, target_view, options, &retarget,
                                        [&](int done, int) { progress.Update(done); });
   if (!status.ok()) return Status::Error(FLAGS_source + " -> " + FLAGS_target + ": " + status.message());
@@ -169,6 +171,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
     }
     name = "retargeted from " + from;
   }
+  SetStage("writing");
   if (!FLAGS_out.empty()) {
     if (out_bvh) {
       status = WriteBvh(FLAGS_out, target.skeleton, result.motion);

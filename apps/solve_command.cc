@@ -33,7 +33,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   Status checked = MarkerTakeInputs(&inputs);
   if (!checked.ok()) return checked;
   if (FLAGS_out.empty()) return Status::Error("--out is required");
-  if (FileExtension(FLAGS_out) != ".bvh") return Status::Error(FLAGS_out + ": expected a .bvh output");
+  if (!IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh output");
   for (const std::string& input : inputs) {
     Status status = CheckNotAnInput(FLAGS_out, input);
     if (!status.ok()) return status;
@@ -44,6 +44,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
     return Status::Error("--mode: unknown '" + FLAGS_mode + "' (frame, clip)");
   }
   MarkerTake take;
+  SetStage("inputs");
   Status status = LoadMarkerTake(&take);
   if (!status.ok()) return status;
   const Skeleton& skeleton = take.skeleton;
@@ -67,6 +68,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   motion.frame_rate = trajectories.frame_rate;
   SequenceSolveReport sequence;
   Progress progress("solve (" + FLAGS_solver + ")", static_cast<int>(observed.size()), FLAGS_quiet);
+  SetStage("solve");
   status = SolveSequence(skeleton, markers, observed, frame_options, RestPose(skeleton), &motion,
                          &sequence, [&](int done) { progress.Update(done); });
   if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
@@ -103,6 +105,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   if (FLAGS_mode == "clip") {
     ClipSolveReport clip;
     if (!FLAGS_quiet) std::fprintf(stderr, "clip solve: %zu frames as one problem...\n", observed.size());
+    SetStage("clip solve");
     status = SolveClip(skeleton, markers, observed, clip_options, &motion, &clip);
     if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
     std::printf("clip (%s): %d parameters, %d residual blocks, %d iterations in %.3f s, cost "
@@ -138,6 +141,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
                     count > 0 ? std::sqrt(sum / count) : 0.0, worst);
       csv += line;
     }
+    SetStage("writing");
     status = WriteFileAtomically(FLAGS_residuals_csv, csv);
     if (!status.ok()) return status;
     report.Add("residuals_csv", FLAGS_residuals_csv);

@@ -129,7 +129,7 @@ Status AddFalloff(ViewScene* scene) {
 Status RunView(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   if (FLAGS_out.empty()) return Status::Error("--out=PAGE.html is required");
-  if (FileExtension(FLAGS_out) != ".html") return Status::Error("--out=" + FLAGS_out + ": expected an .html page");
+  if (!IsTextOutputPath(FLAGS_out, ".html")) return Status::Error("--out=" + FLAGS_out + ": expected an .html page");
   if (FLAGS_markers.empty() && FLAGS_motion.empty() && FLAGS_character.empty()) {
     return Status::Error("nothing to show: give --markers, --motion and/or --character");
   }

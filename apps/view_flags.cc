@@ -10,7 +10,7 @@ namespace mocapsolve {
 
 Status CheckViewFlag(const std::vector<std::string>& inputs) {
   if (FLAGS_view.empty()) return Status::Ok();
-  if (FileExtension(FLAGS_view) != ".html") return Status::Error("--view=" + FLAGS_view + ": expected an .html page");
+  if (!IsTextOutputPath(FLAGS_view, ".html")) return Status::Error("--view=" + FLAGS_view + ": expected an .html page");
   for (const std::string& input : inputs) {
     Status status = CheckNotAnInput(FLAGS_view, input);
     if (!status.ok()) return status;

@@ -23,6 +23,10 @@ std::string FolderOf(const std::string& path) {
   return slash == 0 ? "/" : path.substr(0, slash);
 }
 
+// Where the outputs named "-" go: the standard output, or the copy of it kept by
+// ReserveStandardOutputForData.
+int data_stdout_fd = STDOUT_FILENO;
+
 // Writes all of `bytes` to `fd`, retrying short writes and EINTR.
 bool WriteAll(int fd, const std::string& bytes) {
   size_t done = 0;
@@ -47,6 +51,11 @@ Status StagedFile::Create(const std::string& path, const std::string& contents, 
   staged->Discard();
   staged->path_ = path;
   if (path.empty() || path.back() == '/') return Status::Error("'" + path + "': expected a file name");
+  if (IsStandardOutput(path)) {
+    staged->stream_ = true;
+    staged->stream_bytes_ = contents;
+    return Status::Ok();
+  }
   struct stat st;
   if (::stat(path.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) return Status::Error(path + ": is a directory");
@@ -85,6 +94,15 @@ Status StagedFile::Create(const std::string& path, const std::string& contents, 
 }
 
 Status StagedFile::Publish() {
+  if (stream_ && IsStandardOutput(path_)) {
+    std::fflush(stdout);  // What was printed before comes first when stdout is not reserved.
+    const bool written = WriteAll(data_stdout_fd, stream_bytes_);
+    const std::string reason = Reason();
+    stream_ = false;
+    stream_bytes_.clear();
+    if (!written) return Status::Error("standard output (-): write failed (" + reason + ")");
+    return Status::Ok();
+  }
   if (stream_) {
     const int fd = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd < 0) return Status::Error(path_ + ": cannot write (" + Reason() + ")");
@@ -147,6 +165,20 @@ StagedFile& StagedFile::operator=(StagedFile&& other) noexcept {
   stream_ = std::exchange(other.stream_, false);
   stream_bytes_ = std::move(other.stream_bytes_);
   return *this;
+}
+
+bool IsStandardOutput(const std::string& path) { return path == "-"; }
+
+void ReserveStandardOutputForData() {
+  if (data_stdout_fd != STDOUT_FILENO) return;
+  std::fflush(stdout);
+  const int kept = ::fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 3);
+  if (kept < 0) return;  // No descriptor left: "-" then shares stdout with the messages.
+  if (::dup2(STDERR_FILENO, STDOUT_FILENO) < 0) {
+    ::close(kept);
+    return;
+  }
+  data_stdout_fd = kept;
 }
 
 Status WriteFileAtomically(const std::string& path, const std::string& contents) {

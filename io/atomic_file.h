@@ -7,6 +7,8 @@
 //
 // An existing character device or FIFO (/dev/null, /dev/full, a pipe) is written into,
 // never replaced by a regular file; a directory or another special file is an error.
+// The path "-" names the standard output: written into like a stream, when the
+// transaction commits (text outputs only: the commands check which outputs may be "-").
 #ifndef MOCAPSOLVE_IO_ATOMIC_FILE_H_
 #define MOCAPSOLVE_IO_ATOMIC_FILE_H_
 
@@ -17,6 +19,13 @@
 namespace mocapsolve {
 
 Status WriteFileAtomically(const std::string& path, const std::string& contents);
+
+// True for "-", the output path that means the standard output.
+bool IsStandardOutput(const std::string& path);
+// Keeps the process's standard output for the outputs named "-" and sends everything
+// else printed there (progress, "wrote ...") to standard error, so the data on stdout is
+// the output alone. apps/main.cc calls it when a flag of the command is "-"; idempotent.
+void ReserveStandardOutputForData();
 
 // Reads a whole file; the error names the path. Inside a FileTransaction the file is
 // recorded as an input. A regular file that changes while it is read (its size or

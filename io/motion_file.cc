@@ -6,6 +6,7 @@
 #include "kinematics/marker_trajectories.h"
 
 #include "io/amc_reader.h"
+#include "io/atomic_file.h"
 #include "io/asf_reader.h"
 #include "io/bvh_reader.h"
 #include "io/fbx_reader.h"
@@ -20,6 +21,10 @@ std::string FileExtension(const std::string& path) {
   std::string ext = path.substr(dot);
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext;
+}
+
+bool IsTextOutputPath(const std::string& path, const std::string& extension) {
+  return IsStandardOutput(path) || FileExtension(path) == extension;
 }
 
 std::string FileStem(const std::string& path) {

@@ -46,6 +46,10 @@ Status SetSkeletonUnits(const std::string& name, Skeleton* skeleton);
 
 // Lower-case extension with the dot (".bvh"), or "".
 std::string FileExtension(const std::string& path);
+// The name check of a text output (.bvh, .csv, .json, .svg, .html): `path` has
+// `extension`, or is "-", the standard output (io/atomic_file.h). Binary outputs (.c3d,
+// .glb) test FileExtension alone, so "-" is refused for them.
+bool IsTextOutputPath(const std::string& path, const std::string& extension);
 // The file name without folder and extension: "takes/02_05.c3d" -> "02_05".
 std::string FileStem(const std::string& path);
 

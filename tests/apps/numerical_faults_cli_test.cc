@@ -123,7 +123,9 @@ TEST_F(NumericalFaults, FramesWithEveryMarkerMissing) {
   std::istringstream rows(testing::ReadTextFile(repaired));
   int row = 0;
   for (std::string line; std::getline(rows, line); ++row) {
-    if (row >= 5) EXPECT_EQ(line.find("\t\t"), std::string::npos) << "row " << row;
+    if (row >= 5) {
+      EXPECT_EQ(line.find("\t\t"), std::string::npos) << "row " << row;
+    }
   }
   EXPECT_GT(row, 40);
 }

@@ -105,12 +105,46 @@ TEST_F(OutputSafety, FailedRunWritesAnErrorReport) {
   EXPECT_THAT(json, HasSubstr("\"command\": \"solve\""));
   EXPECT_THAT(json, HasSubstr("\"version\""));
   EXPECT_THAT(json, HasSubstr("missing.c3d"));
+  EXPECT_THAT(json, HasSubstr("\"stage\": \"inputs\""));  // Where it failed.
   EXPECT_FALSE(testing::FileExists(out));
+  // A flag refused before any work fails in the "arguments" stage.
+  EXPECT_EQ(testing::RunCli("solve --quiet --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + markers_ +
+                            " --markerset=" + set_ + " --out=" + out + " --report=" + report + " --out=" + set_, &output), 1);
+  EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"stage\": \"run\""));
   // Never onto an input, even when failing.
   const std::string before = testing::ReadTextFile(set_);
   EXPECT_EQ(testing::RunCli("solve --quiet --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + missing +
                             " --markerset=" + set_ + " --report=" + set_, &output), 1);
   EXPECT_EQ(testing::ReadTextFile(set_), before);
+}
+
+// "-" is the standard output for text outputs (issue 17): the data alone goes to stdout,
+// the command's messages to stderr; binary outputs and two outputs on "-" are refused.
+TEST_F(OutputSafety, DashWritesTextOutputsToStandardOutput) {
+  const std::string err = testing::TempPath("stderr.txt");
+  auto run_split = [&](const std::string& arguments, std::string* out) {
+    return testing::RunProgram("/bin/sh", "-c '" + std::string(MOCAPSOLVE_CLI) + " " + arguments + " 2>" + err + "'", out);
+  };
+  std::string out;
+  ASSERT_EQ(run_split("fk --motion=" + demo_ + " --out=-", &out), 0) << testing::ReadTextFile(err);
+  EXPECT_THAT(out, ::testing::StartsWith("frame,joint,x,y,z\n"));
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1 + 20 * 20) << out.substr(0, 200);  // 20 frames x 20 joints.
+  EXPECT_THAT(out, ::testing::Not(HasSubstr("wrote")));
+  EXPECT_THAT(testing::ReadTextFile(err), HasSubstr("wrote -"));
+
+  const std::string report = testing::TempPath("dash_report.json");
+  ASSERT_EQ(run_split(Solve() + "--out=- --report=" + report, &out), 0) << testing::ReadTextFile(err);
+  EXPECT_THAT(out, ::testing::StartsWith("HIERARCHY\n"));
+  EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"out\": \"-\""));
+
+  // A failure report on stdout, nothing else there.
+  EXPECT_EQ(run_split("fk --motion=" + testing::TempPath("missing.bvh") + " --out=x.csv --report=-", &out), 1);
+  EXPECT_THAT(out, ::testing::StartsWith("{"));
+  EXPECT_THAT(out, HasSubstr("\"status\": \"error\""));
+  EXPECT_THAT(out, HasSubstr("\"stage\": \"run\""));
+
+  ExpectRefused("markers --motion=" + demo_ + " --skeleton_units=cm --markerset=auto:3 --out=-", "-");
+  ExpectRefused(Solve() + "--out=- --report=-", "--report=-");
 }
 
 TEST(Help, DefaultsAreWrittenAsPeopleWriteThem) {

@@ -237,7 +237,9 @@ namespace {
 // the file, not a shorter file parsed as if whole (a truncated BVH can parse as a shorter
 // motion). The seam truncates the file after the first 64 KiB chunk.
 void TruncateAfterFirstChunk(const std::string& path, size_t bytes_so_far) {
-  if (bytes_so_far <= 65536) ASSERT_EQ(::truncate(path.c_str(), 1000), 0);
+  if (bytes_so_far <= 65536) {
+    ASSERT_EQ(::truncate(path.c_str(), 1000), 0);
+  }
 }
 void AppendAfterFirstChunk(const std::string& path, size_t bytes_so_far) {
   if (bytes_so_far > 65536) return;
