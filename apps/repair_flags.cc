@@ -35,6 +35,9 @@ DEFINE_int32(small_track, kDefault.small_track, "Valid runs of at most this many
 DEFINE_int32(small_gap, kDefault.small_gap, "Gaps of at most this many frames are filled by a plain cubic.");
 DEFINE_double(vel_clamp, kDefault.vel_clamp, "Clamp of the offset velocity at gap edges, in cm per frame "
               "(the thesis' 0.25; its unit is not stated, its data are in cm).");
+DEFINE_int32(edge_samples, kDefault.edge_samples, "Samples beyond each gap edge that the refill's offset velocity is "
+             "fitted to (a least-squares line; 2 = the thesis' one-sided difference, which a jittery "
+             "marker throws off).");
 DEFINE_string(reference, kDefault.reference.c_str(), "The robust reference Y^: tracker (frame by frame, robust loss, "
               "pulled toward the previous frame; runs beside the naive solve) | clip (the "
               "whole-clip solve with a robust loss and smoothness; ~10x slower).");
@@ -67,6 +70,7 @@ RepairSettings RepairSettingsFromFlags() {
   s.small_track = FLAGS_small_track;
   s.small_gap = FLAGS_small_gap;
   s.vel_clamp = FLAGS_vel_clamp;
+  s.edge_samples = FLAGS_edge_samples;
   s.reference = FLAGS_reference;
   s.reference_loss = FLAGS_reference_loss;
   s.reference_loss_cm = FLAGS_reference_loss_cm;

@@ -50,6 +50,7 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
   options->small_track = settings.small_track;
   options->small_gap = settings.small_gap;
   options->velocity_clamp = settings.vel_clamp * units_per_cm;
+  options->edge_samples = settings.edge_samples;
   std::string error;
   if (!options->reference.IsValid(&error) || !options->tracker.IsValid(&error)) {
     return Status::Error(error);

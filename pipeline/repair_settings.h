@@ -29,6 +29,7 @@ struct RepairSettings {
   int small_track = 120;             // Valid runs of at most this many frames are dropped.
   int small_gap = 5;                 // Gaps of at most this many frames: plain cubic.
   double vel_clamp = 0.25;           // cm per frame.
+  int edge_samples = 10;             // Samples per gap edge its offset velocity is fitted to.
   std::string reference = "tracker";  // tracker | clip.
   std::string reference_loss = "cauchy";
   double reference_loss_cm = 1.0;
@@ -39,7 +40,7 @@ struct RepairSettings {
 
 inline constexpr char kRepairSettingNames[] =
     "dp_max_cm,dr_max_deg,outlier_cm,outliers,outlier_mads,outlier_min_cm,undo_swaps,swap_radius_cm,"
-    "swap_min_frames,trim_max,small_track,small_gap,vel_clamp,reference,reference_loss,"
+    "swap_min_frames,trim_max,small_track,small_gap,vel_clamp,edge_samples,reference,reference_loss,"
     "reference_loss_cm,tracker_prior_weight,tracker_translation_prior,tracker_function_tolerance";
 
 // Repair solves every frame two or three times: its solver is DLS unless the user chose.

@@ -6,18 +6,34 @@
 namespace mocapsolve {
 namespace {
 
-// Offset D = X - R at frame f and its per-frame velocity toward the outside of the gap
-// (step = -1 before the gap, +1 after): a one-sided difference if the next sample out is
-// valid in both paths, else zero.
+// Offset D = X - R at the edge frame f, and its per-frame velocity: the slope of the
+// least-squares line through D at up to `samples` consecutive frames f, f + step, ...
+// valid in both paths (step = -1 before the gap, +1 after), zero with one sample. With
+// two samples this is the thesis' one-sided difference; more average out the noise of
+// a jittery marker, whose one-sided difference, scaled by the gap's length in the
+// Hermite tangent, would throw the fill far off (issue 16).
 void EdgeOffset(const MarkerTrajectories& x, const MarkerTrajectories& r, int m, int f, int step,
-                double clamp, Eigen::Vector3d* offset, Eigen::Vector3d* velocity) {
+                int samples, double clamp, Eigen::Vector3d* offset, Eigen::Vector3d* velocity) {
   *offset = x.position(f, m) - r.position(f, m);
-  const int g = f + step;
   velocity->setZero();
-  if (g >= 0 && g < x.num_frames() && x.valid(g, m) && r.valid(g, m)) {
-    const Eigen::Vector3d outer = x.position(g, m) - r.position(g, m);
-    // Velocity along increasing time: (D(f) - D(f-1)) before the gap, (D(f+1) - D(f)) after.
-    *velocity = step < 0 ? Eigen::Vector3d(*offset - outer) : Eigen::Vector3d(outer - *offset);
+  // Sums for the line D(t) = a + b t with t = frames from f (0, 1, 2, ... outward).
+  double st = 0.0, stt = 0.0;
+  Eigen::Vector3d sd = Eigen::Vector3d::Zero(), std_ = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (int k = 0; k < samples; ++k) {
+    const int g = f + k * step;
+    if (g < 0 || g >= x.num_frames() || !x.valid(g, m) || !r.valid(g, m)) break;
+    const Eigen::Vector3d d = x.position(g, m) - r.position(g, m);
+    st += k;
+    stt += double(k) * k;
+    sd += d;
+    std_ += k * d;
+    ++n;
+  }
+  if (n >= 2) {
+    const Eigen::Vector3d outward_slope = (n * std_ - st * sd) / (n * stt - st * st);
+    // Along increasing time: outward is backward in time before the gap.
+    *velocity = step < 0 ? Eigen::Vector3d(-outward_slope) : outward_slope;
   }
   *velocity = velocity->cwiseMax(-clamp).cwiseMin(clamp);
 }
@@ -61,8 +77,8 @@ Status FillGapFromReference(const Gap& gap, const MarkerTrajectories& reference,
   const double clamp = options.velocity_clamp;
   Eigen::Vector3d d0 = Eigen::Vector3d::Zero(), v0 = Eigen::Vector3d::Zero();
   Eigen::Vector3d d1 = Eigen::Vector3d::Zero(), v1 = Eigen::Vector3d::Zero();
-  if (has_before) EdgeOffset(*markers, reference, m, gap.first - 1, -1, clamp, &d0, &v0);
-  if (has_after) EdgeOffset(*markers, reference, m, gap.last + 1, +1, clamp, &d1, &v1);
+  if (has_before) EdgeOffset(*markers, reference, m, gap.first - 1, -1, options.edge_samples, clamp, &d0, &v0);
+  if (has_after) EdgeOffset(*markers, reference, m, gap.last + 1, +1, options.edge_samples, clamp, &d1, &v1);
   if (!has_after) {  // Runs to the end: hold the offset.
     d1 = d0;
     v1.setZero();

@@ -8,10 +8,14 @@
 // matches D and its velocity D' at both ends:
 //   X(t) = R(t) + H(t),  H(s-1) = D(s-1), H'(s-1) = D'(s-1), H(e+1) = D(e+1), H'(e+1) = D'(e+1)
 // so the filled path is C1-continuous with the original at both edges and moves like the
-// reference inside. Velocities are backward/forward differences per frame (length units
-// per frame) from the two samples at each edge (zero offset velocity when only one is
-// valid), clamped componentwise to +-velocity_clamp (thesis: keeps the fill from straying
-// when the two paths' speeds differ). Degenerate gaps, as in the thesis: a gap that runs
+// reference inside. Velocities (length units per frame) are the slope of a least-squares
+// line through D at up to `edge_samples` valid frames beyond each edge: with 2, the
+// thesis' backward/forward difference; the repair uses 10, because a jittery marker's
+// one-sided difference, scaled by the span in the tangent, threw short fills 2-4x
+// further off than the noise itself (issue 16; BENCHMARKS.md). Zero offset velocity when
+// only one sample is valid; clamped componentwise to +-velocity_clamp (thesis: keeps the
+// fill from straying when the two paths' speeds differ). D itself is the edge sample's,
+// so the fill stays C0 with the data. Degenerate gaps, as in the thesis: a gap that runs
 // to the end uses D(e+1) = D(s-1), D'(e+1) = 0; one at the start D(s-1) = D(e+1),
 // D'(s-1) = 0; a marker missing all take takes the reference as it is.
 #ifndef MOCAPSOLVE_SIGNAL_GAP_FILL_H_
@@ -39,6 +43,9 @@ struct GapFillOptions {
   // Componentwise clamp of the offset velocities at the gap edges, in the markers' length
   // units per frame; infinity = no clamp.
   double velocity_clamp = std::numeric_limits<double>::infinity();
+  // Samples beyond each edge that the offset velocity is fitted to (a least-squares
+  // line; 2 = the thesis' one-sided difference).
+  int edge_samples = 2;
 };
 
 // Fills `gap` of *markers from the same marker (same index) of `reference`, which must

@@ -205,6 +205,7 @@ bool RepairOptions::IsValid(std::string* error) const {
     return *error = "outlier_mads must be positive and finite, outlier_min_distance and swap_radius finite", false;
   }
   if (swap_min_frames < 1) return *error = "swap_min_frames must be >= 1", false;
+  if (edge_samples < 1 || edge_samples > 1000) return *error = "edge_samples must be in [1, 1000]", false;
   if (trim_max < 0 || small_track < 0 || small_gap < 0) {
     return *error = "trim_max, small_track and small_gap must be >= 0 frames", false;
   }
@@ -369,6 +370,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   // 6. Marker filling from the reference.
   GapFillOptions fill;
   if (options.velocity_clamp > 0.0) fill.velocity_clamp = options.velocity_clamp;
+  fill.edge_samples = options.edge_samples;
   for (const Gap& gap : FindGaps(x)) {
     status = FillGapFromReference(gap, reference_paths, fill, &x);
     if (!status.ok()) return status;

@@ -1,7 +1,9 @@
 // Algorithm 3's Hermite refill: exact when the offset between original and reference is
-// linear, C1-continuous at the gap edges, every degenerate case, the velocity clamp.
+// linear, C1-continuous at the gap edges, every degenerate case, the velocity clamp, and
+// edge velocities fitted over several samples so a jittery marker's fill stays near it.
 #include "signal/gap_fill.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -75,6 +77,44 @@ TEST(GapFill, C1ContinuousAtTheEdges) {
   ASSERT_TRUE(FillGapFromReference(FindGaps(c0)[0], reference, zero, &c0).ok());
   const Eigen::Vector3d jump_c0 = (offset(c0, s) - offset(c0, s - 1)) - (offset(c0, s - 1) - offset(c0, s - 2));
   EXPECT_GT(jump_c0.norm(), 5.0 * jump_in.norm());
+}
+
+TEST(GapFill, LinearOffsetStaysExactWithMoreEdgeSamples) {
+  // A line fitted to a linear offset is that line: edge_samples > 2 changes nothing there.
+  MarkerTrajectories original, reference;
+  MakePaths(60, [](double t) { return Eigen::Vector3d(0.5 + 0.01 * t, -0.2, 0.003 * t); }, &original, &reference);
+  MarkerTrajectories damaged = original;
+  for (int f = 20; f <= 35; ++f) damaged.SetMissing(f, 0);
+  GapFillOptions options;
+  options.edge_samples = 10;
+  ASSERT_TRUE(FillGapFromReference(FindGaps(damaged)[0], reference, options, &damaged).ok());
+  for (int f = 0; f < 60; ++f) EXPECT_LT((damaged.position(f, 0) - original.position(f, 0)).norm(), 1e-12) << f;
+}
+
+TEST(GapFill, JitteryEdgesAreAveragedOverEdgeSamples) {
+  // A constant true offset seen through +-1 jitter alternating frame by frame (a noisy
+  // marker): the one-sided difference reads a slope of 2 per frame at each edge, which the
+  // Hermite tangent scales by the gap's length; a line over 10 samples reads almost none.
+  MarkerTrajectories original, reference;
+  MakePaths(80, [](double) { return Eigen::Vector3d(0.3, 0.0, 0.0); }, &original, &reference);
+  MarkerTrajectories noisy = original;
+  for (int f = 0; f < 80; ++f) {
+    noisy.SetSample(f, 0, original.position(f, 0) + Eigen::Vector3d(f % 2 == 0 ? 1.0 : -1.0, 0.0, 0.0));
+  }
+  const int s = 30, e = 49;
+  auto worst_error = [&](int edge_samples) {
+    MarkerTrajectories filled = noisy;
+    for (int f = s; f <= e; ++f) filled.SetMissing(f, 0);
+    GapFillOptions options;
+    options.edge_samples = edge_samples;
+    EXPECT_TRUE(FillGapFromReference(FindGaps(filled)[0], reference, options, &filled).ok());
+    double worst = 0.0;
+    for (int f = s; f <= e; ++f) worst = std::max(worst, (filled.position(f, 0) - original.position(f, 0)).norm());
+    return worst;
+  };
+  const double thesis = worst_error(2), fitted = worst_error(10);
+  EXPECT_GT(thesis, 3.0);   // Tangents of 2 per frame over a 21-frame span: 4.8 off.
+  EXPECT_LT(fitted, 1.5);   // The edge samples' own jitter (1), no more.
 }
 
 TEST(GapFill, DegenerateGaps) {
