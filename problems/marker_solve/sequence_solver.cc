@@ -65,6 +65,11 @@ Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
   centroid /= n;
   MarkerSolveOptions search = options;
   search.prior_rotation_weight = search.prior_translation_weight = 0.0;
+  // Plain least squares for the cold start: a robust loss (the repair's reference) makes
+  // a limb posed wrongly a cheap local minimum, which a tracker pulled toward the previous
+  // frame then keeps (Ceres' Cauchy at 1 cm held 02_01's left forearm wrong for 65
+  // frames). The first frame's own solve then applies the loss from this start.
+  search.loss = "none";
   MarkerFrameSolver solver(skeleton, markers, search);
   double best = std::numeric_limits<double>::infinity();
   Pose best_pose;

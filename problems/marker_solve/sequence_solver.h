@@ -2,7 +2,8 @@
 // frame's solution (and, with a prior, pulled toward it). The first frame starts from a
 // coarse search (or, with root_from_markers, from the markers' geometry): the root is placed at the markers' centroid and tried in the 24
 // axis-aligned orientations (when it has three rotation dofs), and the best solve is
-// kept, so a take need not start near the skeleton's rest orientation.
+// kept, so a take need not start near the skeleton's rest orientation. The search is
+// plain least squares even when the options ask for a robust loss (see InitialPose).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SEQUENCE_SOLVER_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SEQUENCE_SOLVER_H_
 
