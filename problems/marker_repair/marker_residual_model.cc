@@ -145,19 +145,21 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
     for (size_t i = 0; i < steps.size(); ++i) {
       size_t match = i;
       for (size_t j = i + 1; j < steps.size() && steps[j].first - steps[i].first <= options.max_jump_frames; ++j) {
-        // The way back out: opposite within the gate or half the step (the residual
-        // drifts with the pose while the marker is displaced).
+        // The way back out: opposite within the gate or half the step, or back to the
+        // residual before the step within as much (while the marker is displaced the
+        // residual drifts with the pose, and the robust reference slowly leans toward it,
+        // so the step out can be much smaller than the step in).
+        const int a = steps[i].first, b = steps[j].first;
+        const Eigen::Vector3d before = d(a) - steps[i].second;
         const double tolerance = std::max(model.step_gate[m], 0.5 * steps[i].second.norm());
-        if ((steps[i].second + steps[j].second).norm() > tolerance) continue;
+        if ((steps[i].second + steps[j].second).norm() > tolerance && (d(b) - before).norm() > tolerance) continue;
         // ...and displaced in between: the mean residual inside, against the last one
         // before, at least half the step along it (two unrelated steps far apart are no jump).
-        const int a = steps[i].first, b = steps[j].first;
         Eigen::Vector3d inside = Eigen::Vector3d::Zero();
         int count = 0;
         for (int f = a; f < b; ++f) {
           if (x.valid(f, m)) inside += d(f), ++count;
         }
-        const Eigen::Vector3d before = d(a) - steps[i].second;
         const double along = (inside / std::max(count, 1) - before).dot(steps[i].second.normalized());
         if (count > 0 && along >= 0.5 * steps[i].second.norm()) { match = j; break; }
       }

@@ -187,7 +187,7 @@ TEST_F(RepairRealData, SmallErrorsAreFound) {
   }
   const double recall = double(true_positive) / damaged, precision = double(true_positive) / flagged;
   std::printf("1-4 cm errors: %ld samples, recall %.3f, precision %.3f\n", damaged, recall, precision);
-  EXPECT_GE(recall, 0.65);  // The target is 0.9; measured 0.69 (BENCHMARKS.md).
+  EXPECT_GE(recall, 0.72);  // The target is 0.9; measured 0.736 (BENCHMARKS.md).
   EXPECT_GE(precision, 0.9);
 }
 
