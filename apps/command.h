@@ -29,8 +29,8 @@ struct Command {
   const char* source;   // __FILE__ of the command: its flags are the ones defined there.
   // Positional arguments after flag parsing. Returns a failed Status on bad input.
   Status (*run)(const std::vector<std::string>& arguments);
-  // The shared flags (defined in apps/main.cc) the command reads, comma-separated, for
-  // its --help; nullptr lists them all.
+  // The shared flags (defined in apps/main.cc, solver_flags.cc, ...) the command reads,
+  // comma-separated: its --help lists them and main refuses the others (nullptr: none).
   const char* shared_flags = nullptr;
   std::vector<FlagOverride> flag_overrides = {};
 };

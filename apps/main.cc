@@ -58,10 +58,8 @@ std::string ShownDefault(const gflags::CommandLineFlagInfo& flag) {
 bool CommandReadsFlag(const Command& command, const gflags::CommandLineFlagInfo& flag) {
   if (flag.name == "quiet") return true;  // Common to every command (`mocapsolve --help`).
   const bool own = EndsWith(flag.filename, command.source) || EndsWith(command.source, flag.filename);
-  const bool common =
-      command.shared_flags == nullptr
-          ? EndsWith(flag.filename, "apps/main.cc")
-          : ("," + std::string(command.shared_flags) + ",").find("," + flag.name + ",") != std::string::npos;
+  const bool common = command.shared_flags != nullptr &&
+                      ("," + std::string(command.shared_flags) + ",").find("," + flag.name + ",") != std::string::npos;
   return own || common;
 }
 

@@ -75,6 +75,12 @@ TEST(CommandFlags, AFlagACommandDoesNotReadIsRefused) {
   EXPECT_THAT(output, HasSubstr("not a flag of `info`"));
   EXPECT_EQ(testing::RunCli("repair --out=x.c3d", &output), 1);
   EXPECT_THAT(output, HasSubstr("--out: not a flag of `repair`"));
+  // calibrate and markers listed every shared flag, retarget's --target among them.
+  for (const char* command : {"calibrate", "markers"}) {
+    EXPECT_EQ(testing::RunCli(std::string(command) + " --target=x.glb", &output), 1) << command;
+    EXPECT_THAT(output, HasSubstr("--target: not a flag of `" + std::string(command) + "`"));
+    EXPECT_EQ(HelpFlags(command).count("target"), 0u) << command;
+  }
   // glog's own flags stay accepted everywhere.
   EXPECT_EQ(testing::RunCli("generate --v=0 --demo_out=" + testing::TempPath("walk.bvh"), &output), 0) << output;
 }

@@ -59,7 +59,7 @@ SUCCESS = {
                           "--cluster_radius_mm=0"],
     "evaluate": lambda d: marker_take(d) + ["--gaps=2", "--gap_min=5", "--gap_max=8", "--trim_max=5"],
     "calibrate": lambda d: ["--motion=" + d["walk"], "--skeleton_units=cm", "--markers=" + d["c3d"],
-                            "--markerset=" + d["markerset"], "--out=" + str(d["folder"] / "cal.json")],
+                            "--attach=" + d["markerset"], "--out=" + str(d["folder"] / "cal.json")],
     "fit_skeleton": lambda d: marker_take(d) + ["--solver=dls", "--fit_iterations=2",
                                                 "--out=" + str(d["folder"] / "fit.bvh")],
     "filter": lambda d: ["--motion=" + d["walk"], "--levels=2", "--out=" + str(d["folder"] / "f.bvh")],
