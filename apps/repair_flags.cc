@@ -37,7 +37,8 @@ DEFINE_double(vel_clamp, kDefault.vel_clamp, "Clamp of the offset velocity at ga
               "(the thesis' 0.25; its unit is not stated, its data are in cm).");
 DEFINE_int32(edge_samples, kDefault.edge_samples, "Samples beyond each gap edge that the refill's offset velocity is "
              "fitted to (a least-squares line; 2 = the thesis' one-sided difference, which a jittery "
-             "marker throws off).");
+             "marker throws off; 1 = no offset velocity: the fill blends the two edge offsets, "
+             "which measured best on real takes, BENCHMARKS.md).");
 DEFINE_string(reference, kDefault.reference.c_str(), "The robust reference Y^: tracker (frame by frame, robust loss, "
               "pulled toward the previous frame; runs beside the naive solve) | clip (the "
               "whole-clip solve with a robust loss and smoothness; ~10x slower).");

@@ -29,7 +29,7 @@ struct RepairSettings {
   int small_track = 120;             // Valid runs of at most this many frames are dropped.
   int small_gap = 5;                 // Gaps of at most this many frames: plain cubic.
   double vel_clamp = 0.25;           // cm per frame.
-  int edge_samples = 10;             // Samples per gap edge its offset velocity is fitted to.
+  int edge_samples = 1;              // Samples per gap edge its offset velocity is fitted to (1: none).
   std::string reference = "tracker";  // tracker | clip.
   std::string reference_loss = "cauchy";
   double reference_loss_cm = 1.0;

@@ -135,7 +135,7 @@ subject: a Subject; markers: a .c3d/.trc path or a Take.
 Keywords: the repair options (RepairSettings: dp_max_cm=10, dr_max_deg=30, outlier_cm=4,
 outliers='robust'|'fixed', outlier_mads=6, outlier_min_cm=1, undo_swaps=True,
 swap_radius_cm=30, swap_min_frames=2,
-trim_max=120, small_track=120, small_gap=5, vel_clamp=0.25, edge_samples=10, reference='tracker'|'clip',
+trim_max=120, small_track=120, small_gap=5, vel_clamp=0.25, edge_samples=1, reference='tracker'|'clip',
 reference_loss='cauchy', reference_loss_cm=1, tracker_prior_weight=20,
 tracker_translation_prior=0, tracker_function_tolerance=1e-4) and the solver options of
 solve() (solver defaults to 'dls' here, as in the CLI).

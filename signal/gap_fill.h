@@ -10,12 +10,14 @@
 // so the filled path is C1-continuous with the original at both edges and moves like the
 // reference inside. Velocities (length units per frame) are the slope of a least-squares
 // line through D at up to `edge_samples` valid frames beyond each edge: with 2, the
-// thesis' backward/forward difference; the repair uses 10, because a jittery marker's
-// one-sided difference, scaled by the span in the tangent, threw short fills 2-4x
-// further off than the noise itself (issue 16; BENCHMARKS.md). Zero offset velocity when
-// only one sample is valid; clamped componentwise to +-velocity_clamp (thesis: keeps the
-// fill from straying when the two paths' speeds differ). D itself is the edge sample's,
-// so the fill stays C0 with the data. Degenerate gaps, as in the thesis: a gap that runs
+// thesis' backward/forward difference; with 1 (or when only one sample is valid) zero, so
+// the fill blends the two edge offsets and is C0 at the edges, moving like the reference.
+// The repair uses 1: measured on real takes with damage (issue 16; BENCHMARKS.md), any
+// extrapolated offset velocity made fills worse, and the thesis' two-sample difference on
+// a jittery marker, scaled by the span in the tangent, threw short fills 2-4x further off
+// than the noise itself. Velocities are clamped componentwise to +-velocity_clamp (thesis:
+// keeps the fill from straying when the two paths' speeds differ). D itself is the edge
+// sample's, so the fill always meets the data. Degenerate gaps, as in the thesis: a gap that runs
 // to the end uses D(e+1) = D(s-1), D'(e+1) = 0; one at the start D(s-1) = D(e+1),
 // D'(s-1) = 0; a marker missing all take takes the reference as it is.
 #ifndef MOCAPSOLVE_SIGNAL_GAP_FILL_H_

@@ -72,7 +72,7 @@ struct RepairOptions {
   int small_track = 120;           // Frames.
   int small_gap = 5;               // Frames.
   double velocity_clamp = 0.0;     // Skeleton units per frame (<= 0: no clamp).
-  int edge_samples = 10;           // Per gap edge, for the offset velocity (signal/gap_fill.h).
+  int edge_samples = 1;            // Per gap edge, for the offset velocity (1: none; signal/gap_fill.h).
 
   // Every number finite, the thresholds positive, the frame counts >= 0, and the solve
   // options valid; otherwise false with a one-line reason in *error.

@@ -80,7 +80,7 @@ TEST(GapFill, C1ContinuousAtTheEdges) {
 }
 
 TEST(GapFill, LinearOffsetStaysExactWithMoreEdgeSamples) {
-  // A line fitted to a linear offset is that line: edge_samples > 2 changes nothing there.
+  // A line fitted to a linear offset is that line: more edge samples change nothing there.
   MarkerTrajectories original, reference;
   MakePaths(60, [](double t) { return Eigen::Vector3d(0.5 + 0.01 * t, -0.2, 0.003 * t); }, &original, &reference);
   MarkerTrajectories damaged = original;
