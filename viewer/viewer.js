@@ -717,7 +717,9 @@
       g.groups.forEach(function (group) { geometry.addGroup(group.start, group.count, group.materialIndex); });
       const mesh = new THREE.Mesh(geometry, normal ? basicMaterial(skinned.material) : skinned.material);
       const materials = [].concat(mesh.material);
-      if (normal && materials.some(function (m) { return m.side === THREE.DoubleSide; }) &&
+      // (Opaque materials only: through a transparent or cut-out surface its back shows.)
+      const opaque = materials.every(function (m) { return !m.transparent && m.opacity === 1 && !(m.alphaTest > 0); });
+      if (normal && opaque && materials.some(function (m) { return m.side === THREE.DoubleSide; }) &&
           closedOutward(rest, g.index, n)) {
         materials.forEach(function (m) { m.side = THREE.FrontSide; });
       }
@@ -730,9 +732,10 @@
     }
     // True if the triangles (index, or consecutive vertices) make closed surfaces facing
     // outwards: with vertices welded by position, every edge a->b of a triangle is an
-    // edge b->a of another, and the signed volume is positive. Such a mesh shows no back
-    // face, so drawing it single-sided gives the same picture for half the triangles
-    // rasterized (exporters mark meshes double-sided by default: Blender does, Xbot is).
+    // edge b->a of another, and the signed volume is positive. Such a mesh, if opaque,
+    // shows no back face, so drawing it single-sided gives the same picture for half the
+    // triangles rasterized (exporters mark meshes double-sided by default: Blender does,
+    // Xbot is).
     function closedOutward(xyz, index, n) {
       const corners = index ? index.count : n, triangles = Math.floor(corners / 3);
       if (triangles === 0) return false;
