@@ -194,7 +194,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
     character.name = FileStem(FLAGS_target);
     character.animation = name;
     made = SerializeGltfWithAnimation(target_document, target, result.motion, name, /*binary=*/true, &character.glb,
-                                      /*int16_rotations=*/true);
+                                      /*compact=*/true);
     if (made.ok()) scene->characters.push_back(std::move(character));
     return made;
   });

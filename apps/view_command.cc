@@ -13,6 +13,7 @@
 #include "io/atomic_file.h"
 #include "io/csv_columns.h"
 #include "io/gltf_reader.h"
+#include "io/gltf_writer.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "kinematics/forward_kinematics.h"
@@ -80,11 +81,12 @@ bool HaveSubject() { return !FLAGS_subject.empty() || !FLAGS_markerset.empty(); 
 
 Status AddCharacters(ViewScene* scene) {
   for (const std::string& path : SplitCommaList(FLAGS_character)) {
-    if (FileExtension(path) != ".glb") {
-      return Status::Error(path + ": --character takes .glb files (a .gltf's buffers are separate files)");
-    }
+    const std::string ext = FileExtension(path);
+    if (ext != ".glb" && ext != ".gltf") return Status::Error(path + ": --character takes .glb or .gltf files");
+    GltfDocument document;
+    Status status = GltfDocument::Read(path, &document);
     GltfCharacter character;
-    Status status = ReadGltfCharacter(path, {}, &character);
+    if (status.ok()) status = ReadGltfCharacter(document, {}, &character);
     if (!status.ok()) return status;
     if (character.animation_names.empty()) return Status::Error(path + ": the character has no animation to play");
     if (!FLAGS_character_animation.empty()) {
@@ -95,7 +97,9 @@ Status AddCharacters(ViewScene* scene) {
     ViewCharacter c;
     c.name = FileStem(path);
     c.animation = FLAGS_character_animation;
-    status = ReadFileToString(path, &c.glb);
+    // A .glb as it is; a .gltf (its buffers and images in other files or data: URIs) as
+    // one self-contained .glb, since the page has no files beside it.
+    status = ext == ".glb" ? ReadFileToString(path, &c.glb) : SerializeGltfAsGlb(document, &c.glb);
     if (!status.ok()) return status;
     scene->characters.push_back(std::move(c));
   }
@@ -262,7 +266,7 @@ Status RunView(const std::vector<std::string>& arguments) {
 extern const Command kViewCommand = {
     "view", "write a self-contained browser page showing markers, motions, characters, repairs",
     "mocapsolve view [--markers=M.c3d|.trc] [--motion=X.bvh|.amc --skeleton=...] "
-    "[--character=C.glb[,C2.glb]] [--repair_report=r.json] [--falloff=w.csv] "
+    "[--character=C.glb|.gltf[,C2.glb]] [--repair_report=r.json] [--falloff=w.csv] "
     "[--compare=OTHER.c3d|.bvh] --out=PAGE.html\n\n"
     "One HTML file that opens from disk, offline: three.js (installed by scripts/viewer_tools.sh)\n"
     "and the data (base64 binary arrays) inlined. One 3D view (orbit: drag; zoom: wheel),\n"

@@ -26,9 +26,13 @@ using gltf_internal::Similarity;
 using gltf_internal::kMaxSampleRate;
 using gltf_internal::ShortNumber;
 
-// Images are kept as they are (bytes in their buffer view, or their URI); never decoded.
-bool KeepImageUndecoded(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                        const unsigned char*, int, void*) {
+// Images are never decoded: their encoded bytes (PNG, JPEG, ... from a buffer view, an
+// external file or a data: URI) are kept in Image::image (as_is), so that a writer can
+// embed them (gltf_writer.h: SerializeGltfAsGlb).
+bool KeepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                    const unsigned char* bytes, int size, void*) {
+  image->as_is = true;
+  image->image.assign(bytes, bytes + std::max(size, 0));
   return true;
 }
 
@@ -296,7 +300,7 @@ Status GltfDocument::Parse(const std::string& bytes, const std::string& name_for
                            const std::string& base_dir, GltfDocument* document) {
   auto model = std::make_shared<tinygltf::Model>();
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&KeepImageUndecoded, nullptr);
+  loader.SetImageLoader(&KeepImageBytes, nullptr);
   std::string err, warn;
   bool ok = false;
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;

@@ -1,7 +1,8 @@
 // glTF 2.0 reader (.gltf JSON with embedded or external buffers, and binary .glb): one
 // skin of a file as a Skeleton + SkinnedMesh + triangle list, and any of its
 // animations sampled into a Motion. Parsing is tinygltf's; everything else (node graph,
-// scales, samplers, skinning data) is here. No image is decoded.
+// scales, samplers, skinning data) is here. No image is decoded: tinygltf::Image::image
+// holds each image's encoded bytes (PNG, JPEG, ...), wherever the file keeps them.
 //
 // Skeleton (skin 0 unless GltfReadOptions::skin names another, by name or index):
 // - Joints: the skin's joints in preorder of the node tree (parents first; siblings in

@@ -89,11 +89,97 @@ int AppendNormalizedShortAccessor(tinygltf::Model* model, const std::vector<floa
   return static_cast<int>(model->accessors.size()) - 1;
 }
 
+// The MIME type of encoded image bytes: from their signature (PNG, JPEG, WebP), else the
+// type the file stated (an image's mimeType or its data: URI's), else from the URI's extension.
+std::string ImageMimeType(const std::vector<unsigned char>& bytes, const std::string& stated, const std::string& uri) {
+  auto starts = [&](size_t at, const char* magic) {
+    const size_t n = std::strlen(magic);
+    return bytes.size() >= at + n && std::memcmp(bytes.data() + at, magic, n) == 0;
+  };
+  if (starts(0, "\x89PNG")) return "image/png";
+  if (starts(0, "\xff\xd8\xff")) return "image/jpeg";
+  if (starts(0, "RIFF") && starts(8, "WEBP")) return "image/webp";
+  if (stated.rfind("image/", 0) == 0) return stated;
+  const std::string ext = FileExtension(uri);
+  if (ext == ".png") return "image/png";
+  if (ext == ".jpg" || ext == ".jpeg") return "image/jpeg";
+  if (ext == ".webp") return "image/webp";
+  if (ext == ".ktx2") return "image/ktx2";
+  return "application/octet-stream";
+}
+
+// Makes `model` self-contained: every buffer's bytes go into buffer 0 (each started at a
+// multiple of 4 bytes, which keeps every accessor's alignment) with the buffer views
+// re-pointed, and every image given by a URI (an external file or a data: URI, whose
+// bytes the reader kept) moves into a buffer view of its own with its MIME type. Buffer
+// 0 then has no URI: a .glb's BIN chunk.
+Status EmbedBuffersAndImages(const std::string& file, tinygltf::Model* model) {
+  tinygltf::Buffer merged;
+  if (!model->buffers.empty()) merged.name = model->buffers[0].name;
+  std::vector<size_t> start(model->buffers.size());
+  for (size_t b = 0; b < model->buffers.size(); ++b) {
+    while (merged.data.size() % 4 != 0) merged.data.push_back(0);
+    start[b] = merged.data.size();
+    const std::vector<unsigned char>& data = model->buffers[b].data;
+    merged.data.insert(merged.data.end(), data.begin(), data.end());
+  }
+  for (size_t v = 0; v < model->bufferViews.size(); ++v) {
+    tinygltf::BufferView& view = model->bufferViews[v];
+    if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= start.size()) {
+      return Status::Error(file + ": bufferView " + std::to_string(v) + ": buffer " + std::to_string(view.buffer) +
+                           " does not exist");
+    }
+    view.byteOffset += start[view.buffer];
+    view.buffer = 0;
+  }
+  for (size_t i = 0; i < model->images.size(); ++i) {
+    tinygltf::Image& image = model->images[i];
+    if (image.bufferView >= 0) {  // Already in a buffer view (re-pointed above).
+      image.image.clear();
+      continue;
+    }
+    if (image.image.empty()) {
+      return Status::Error(file + ": image " + std::to_string(i) +
+                           (image.uri.empty() ? ": has no data" : " (" + QuoteToken(image.uri) + "): could not be read"));
+    }
+    while (merged.data.size() % 4 != 0) merged.data.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = merged.data.size();
+    view.byteLength = image.image.size();
+    merged.data.insert(merged.data.end(), image.image.begin(), image.image.end());
+    model->bufferViews.push_back(view);
+    image.bufferView = static_cast<int>(model->bufferViews.size()) - 1;
+    image.mimeType = ImageMimeType(image.image, image.mimeType, image.uri);
+    image.uri.clear();
+    image.image.clear();
+  }
+  model->buffers.clear();
+  if (!merged.data.empty()) model->buffers.push_back(std::move(merged));
+  return Status::Ok();
+}
+
+// The model's bytes: .glb if `binary`, else .gltf JSON (buffers as data: URIs).
+Status WriteModel(const std::string& file, tinygltf::Model* model, bool binary, std::string* bytes) {
+  tinygltf::TinyGLTF writer;
+  writer.SetImageWriter(&KeepImageAsIs, nullptr);
+  std::ostringstream stream;
+  bool ok = false;
+  try {
+    ok = writer.WriteGltfSceneToStream(model, stream, /*prettyPrint=*/!binary, binary);
+  } catch (const std::exception& e) {
+    return Status::Error(file + ": glTF writer: " + e.what());
+  }
+  if (!ok) return Status::Error(file + ": glTF writer failed");
+  *bytes = stream.str();
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
                                   const Motion& motion, const std::string& animation_name,
-                                  bool binary, std::string* bytes, bool int16_rotations) {
+                                  bool binary, std::string* bytes, bool compact) {
   if (!source.loaded()) return Status::Error("glTF writer: source document not loaded");
   const std::string& file = source.name();
   const Skeleton& skeleton = character.skeleton;
@@ -122,8 +208,11 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
   }
   const int nj = skeleton.num_joints();
   const int nf = motion.num_frames();
+  if (binary) {  // Buffer 0 becomes the GLB's BIN chunk, with every buffer and image in it.
+    status = EmbedBuffersAndImages(file, &model);
+    if (!status.ok()) return status;
+  }
   if (model.buffers.empty()) model.buffers.emplace_back();
-  if (binary) model.buffers[0].uri.clear();  // Buffer 0 becomes the GLB BIN chunk.
 
   std::vector<float> times(nf);
   for (int f = 0; f < nf; ++f) times[f] = static_cast<float>(f / motion.frame_rate);
@@ -131,12 +220,27 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
 
   tinygltf::Animation animation;
   animation.name = animation_name;
-  auto add_channel = [&](int node, const char* path, const std::vector<float>& values, int type) {
+  int one_key_time = -1;  // compact: the time accessor [0] of the channels with one key.
+  auto add_channel = [&](int node, const char* path, std::vector<float> values, int type) {
+    const bool shorts = compact && type == TINYGLTF_TYPE_VEC4;
+    const size_t width = type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    // The value as stored: int16 (AppendNormalizedShortAccessor's rounding) or float.
+    auto stored = [shorts](float v) {
+      return shorts ? static_cast<float>(std::lround(std::clamp(v, -1.0f, 1.0f) * 32767.0f)) : v;
+    };
+    bool constant = compact;
+    for (size_t i = width; constant && i < values.size(); ++i) constant = stored(values[i]) == stored(values[i % width]);
+    size_t keys = nf;
     tinygltf::AnimationSampler sampler;
     sampler.input = time_accessor;
-    sampler.output = int16_rotations && type == TINYGLTF_TYPE_VEC4
-                         ? AppendNormalizedShortAccessor(&model, values, type, nf)
-                         : AppendFloatAccessor(&model, values, type, nf, false);
+    if (constant) {
+      if (one_key_time < 0) one_key_time = AppendFloatAccessor(&model, {0.0f}, TINYGLTF_TYPE_SCALAR, 1, true);
+      sampler.input = one_key_time;
+      values.resize(width);
+      keys = 1;
+    }
+    sampler.output = shorts ? AppendNormalizedShortAccessor(&model, values, type, keys)
+                            : AppendFloatAccessor(&model, values, type, keys, false);
     sampler.interpolation = "LINEAR";
     animation.samplers.push_back(sampler);
     tinygltf::AnimationChannel channel;
@@ -200,19 +304,15 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
     if (moves) add_channel(node, "translation", translations, TINYGLTF_TYPE_VEC3);
   }
   model.animations.push_back(std::move(animation));
+  return WriteModel(file, &model, binary, bytes);
+}
 
-  tinygltf::TinyGLTF writer;
-  writer.SetImageWriter(&KeepImageAsIs, nullptr);
-  std::ostringstream stream;
-  bool ok = false;
-  try {
-    ok = writer.WriteGltfSceneToStream(&model, stream, /*prettyPrint=*/!binary, binary);
-  } catch (const std::exception& e) {
-    return Status::Error(file + ": glTF writer: " + e.what());
-  }
-  if (!ok) return Status::Error(file + ": glTF writer failed");
-  *bytes = stream.str();
-  return Status::Ok();
+Status SerializeGltfAsGlb(const GltfDocument& source, std::string* glb) {
+  if (!source.loaded()) return Status::Error("glTF writer: source document not loaded");
+  tinygltf::Model model = source.model();
+  Status status = EmbedBuffersAndImages(source.name(), &model);
+  if (!status.ok()) return status;
+  return WriteModel(source.name(), &model, /*binary=*/true, glb);
 }
 
 Status MotionForCharacter(const Skeleton& source, const Motion& motion, const GltfCharacter& character,

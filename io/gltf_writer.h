@@ -7,8 +7,9 @@
 // node a LINEAR rotation channel (VEC4 float) and, for the root joint and every joint
 // whose translation differs from its rest offset in some frame (by more than 1e-9 of
 // |offset| + 1), a LINEAR translation channel (VEC3 float). The data go at the end of
-// buffer 0 (4-byte aligned, one bufferView per accessor); existing buffers, images (as
-// stored: buffer views or their URIs) and animations are kept.
+// buffer 0 (4-byte aligned, one bufferView per accessor); existing animations are kept, and
+// so are buffers and images: in a .glb all inside it (as SerializeGltfAsGlb below), in a
+// .gltf as stored (buffers as data: URIs; images as buffer views or their URIs).
 //
 // The reader's baking is undone (gltf_reader.h): with A_j the default-transform
 // similarity of the nodes between j's parent joint and j's node and c_p the parent's
@@ -39,13 +40,26 @@ Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& c
                               const Motion& motion, const std::string& animation_name,
                               const std::string& path);
 
-// The same, into memory: .glb bytes if `binary`, else .gltf JSON text. int16_rotations
-// writes the new animation's rotations as normalized SHORT VEC4 (allowed by glTF 2.0 for
-// rotation outputs; 3e-5 per component) instead of float: half their bytes (the viewer's
-// pages use it; the files commands deliver keep float).
+// The same, into memory: .glb bytes if `binary`, else .gltf JSON text. A .glb is
+// self-contained as SerializeGltfAsGlb makes it (a .gltf keeps its images' URIs). `compact`
+// (the viewer's pages use it; the files commands deliver keep the full form) writes the
+// new animation's rotations as normalized SHORT VEC4 (allowed by glTF 2.0 for rotation
+// outputs; 3e-5 per component) instead of float, half their bytes, and a channel whose
+// stored value is the same in every frame (a finger the take does not move) as one key
+// at time 0, which holds over the clip (glTF and three.js keep a track's end values).
 Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
                                   const Motion& motion, const std::string& animation_name,
-                                  bool binary, std::string* bytes, bool int16_rotations = false);
+                                  bool binary, std::string* bytes, bool compact = false);
+
+// The source as one self-contained .glb (bytes), e.g. a .gltf with external .bin files,
+// images beside it or data: URIs, for a page that has no files beside it (`mocapsolve
+// view --character=X.gltf`): every buffer's bytes are appended to buffer 0 (the BIN
+// chunk; each buffer starting at a multiple of 4 bytes) and the buffer views re-pointed;
+// every image given by a URI (a file or a data: URI) moves into a buffer view of its own,
+// its mimeType from its bytes' signature (PNG, JPEG, WebP), else as stated, else from its
+// extension. Everything else is kept as tinygltf writes it. Errors: an image that could
+// not be read (a missing file), named by index and URI.
+Status SerializeGltfAsGlb(const GltfDocument& source, std::string* glb);
 
 // Re-expresses a motion of another skeleton that has the character's joints (same names
 // and parents, e.g. a BVH converted from the character and edited) in the character's

@@ -255,7 +255,7 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
     character.name = c.name;
     character.animation = inputs.name;
     Status status = SerializeGltfWithAnimation(c.document, c.character, c.result.clip.motion, inputs.name,
-                                               /*binary=*/true, &character.glb, /*int16_rotations=*/true);
+                                               /*binary=*/true, &character.glb, /*compact=*/true);
     if (!status.ok()) return status;
     view.characters.push_back(std::move(character));
   }

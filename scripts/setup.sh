@@ -7,7 +7,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libsuitesparse-dev
           libgoogle-glog-dev libgflags-dev libgtest-dev libgmock-dev libbenchmark-dev
-          libtinygltf-dev libassimp-dev libnanoflann-dev libspectra-dev
+          libtinygltf-dev libassimp-dev libnanoflann-dev libspectra-dev zlib1g-dev
           python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
           python3-matplotlib python3-jsonschema python3-setuptools python3-venv python3-pip chromium)
 # node and npm (for scripts/viewer_tools.sh and validate_gltf.sh) are taken as found: this

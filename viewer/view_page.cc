@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/gzip.h"
 #include "io/html_escape.h"
 #include "io/json_writer.h"
 
@@ -24,20 +25,26 @@ extern const char kViewerJs[];
 
 namespace {
 
-// Binary arrays, each one <script type="application/octet-stream"> element.
+// Binary arrays, each one <script type="application/octet-stream"> element: base64 of
+// their gzip stream.
 class Blobs {
  public:
-  // Returns the JSON reference {"blob": i, "encoding": ..., ...extra}.
+  // Returns the JSON reference {"blob": i, "encoding": ..., "compression": "gzip"}.
   JsonObject Add(const std::string& bytes, const std::string& encoding) {
-    blobs_.push_back(Base64(bytes));
+    std::string gz;
+    const Status status = GzipCompress(bytes, &gz);
+    if (!status.ok() && status_.ok()) status_ = status;
+    blobs_.push_back(Base64(gz));
     JsonObject ref;
-    ref.Add("blob", static_cast<int>(blobs_.size()) - 1).Add("encoding", encoding);
+    ref.Add("blob", static_cast<int>(blobs_.size()) - 1).Add("encoding", encoding).Add("compression", "gzip");
     return ref;
   }
   const std::vector<std::string>& blobs() const { return blobs_; }
+  const Status& status() const { return status_; }  // The first failure.
 
  private:
   std::vector<std::string> blobs_;
+  Status status_ = Status::Ok();
 };
 
 template <typename T>
@@ -45,8 +52,11 @@ std::string Bytes(const std::vector<T>& values) {
   return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
-// #N x 3 positions as int16 per axis over the finite values' box (-32768 = NaN).
-JsonObject AddPositions(const std::vector<float>& xyz, Blobs* blobs) {
+// #F x #N x 3 positions as int16 per axis over the finite values' box (-32768 = NaN),
+// stored as differences from the previous frame (wrapping int16 arithmetic, so lossless
+// whatever the values; `delta` = 3 #N values back): a moving point's small steps
+// compress to a third of the bytes of its positions.
+JsonObject AddPositions(const std::vector<float>& xyz, size_t values_per_frame, Blobs* blobs) {
   double low[3], high[3];
   for (int k = 0; k < 3; ++k) low[k] = std::numeric_limits<double>::infinity(), high[k] = -low[k];
   for (size_t i = 0; i + 2 < xyz.size(); i += 3) {
@@ -72,8 +82,15 @@ JsonObject AddPositions(const std::vector<float>& xyz, Blobs* blobs) {
     const double v = std::round((xyz[i] - origin[k]) / step[k]);
     q[i] = static_cast<std::int16_t>(std::clamp(v, -32767.0, 32767.0));
   }
-  JsonObject ref = blobs->Add(Bytes(q), "int16");
-  ref.Add("origin", std::vector<JsonValue>{origin[0], origin[1], origin[2]})
+  const size_t stride = std::max<size_t>(values_per_frame, 1);
+  std::vector<std::uint16_t> delta(q.size());
+  for (size_t i = 0; i < q.size(); ++i) {
+    const std::uint16_t previous = i >= stride ? static_cast<std::uint16_t>(q[i - stride]) : 0;
+    delta[i] = static_cast<std::uint16_t>(static_cast<std::uint16_t>(q[i]) - previous);
+  }
+  JsonObject ref = blobs->Add(Bytes(delta), "int16");
+  ref.Add("delta", static_cast<int>(stride))
+      .Add("origin", std::vector<JsonValue>{origin[0], origin[1], origin[2]})
       .Add("step", std::vector<JsonValue>{step[0], step[1], step[2]});
   return ref;
 }
@@ -162,7 +179,7 @@ Status BuildViewPage(const ViewScene& scene, const std::string& runtime, std::st
   for (const ViewMarkers& m : scene.markers) {
     JsonObject o;
     o.Add("name", m.name).Add("labels", Strings(m.labels)).Add("frames", m.num_frames)
-        .Add("positions", AddPositions(m.positions, &blobs)).Add("states", blobs.Add(Bytes(m.states), "uint8"));
+        .Add("positions", AddPositions(m.positions, 3 * m.labels.size(), &blobs)).Add("states", blobs.Add(Bytes(m.states), "uint8"));
     markers.push_back(o);
   }
   std::vector<JsonObject> skeletons;
@@ -170,7 +187,7 @@ Status BuildViewPage(const ViewScene& scene, const std::string& runtime, std::st
     std::vector<JsonValue> parents(s.parents.begin(), s.parents.end());
     JsonObject o;
     o.Add("name", s.name).Add("joints", Strings(s.joint_names)).Add("parents", parents).Add("frames", s.num_frames)
-        .Add("ghost", s.ghost).Add("positions", AddPositions(s.positions, &blobs));
+        .Add("ghost", s.ghost).Add("positions", AddPositions(s.positions, 3 * s.joint_names.size(), &blobs));
     skeletons.push_back(o);
   }
   std::vector<JsonObject> characters;
@@ -195,8 +212,9 @@ Status BuildViewPage(const ViewScene& scene, const std::string& runtime, std::st
   for (int s = 0; s <= static_cast<int>(MarkerState::kRepairedSwap); ++s) {
     states.push_back(MarkerStateName(static_cast<MarkerState>(s)));
   }
+  if (!blobs.status().ok()) return Status::Error("view: " + blobs.status().message());
   JsonObject meta;
-  meta.Add("format", "mocapsolve.view").Add("version", 1).Add("title", scene.title)
+  meta.Add("format", "mocapsolve.view").Add("version", 2).Add("title", scene.title)
       .Add("frame_rate", scene.frame_rate).Add("frames", scene.num_frames()).Add("notes", Strings(scene.notes))
       .Add("state_names", states).Add("markers", markers).Add("skeletons", skeletons)
       .Add("characters", characters).Add("intervals", intervals).Add("curves", curves);

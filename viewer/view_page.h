@@ -9,12 +9,18 @@
 //     modules because module scripts from file:// need an importmap of data:/blob: URLs,
 //     which browsers treat unevenly; a global works everywhere;
 //   - the data: one JSON header (names, labels, parents, intervals, notes) and binary
-//     arrays as base64 in <script type="application/octet-stream"> elements:
+//     arrays in <script type="application/octet-stream"> elements, each the base64 of
+//     its gzip stream (io/gzip.h; the page inflates it with DecompressionStream):
 //       positions  int16, quantized per axis: x = origin + step * q (step = the array's
-//                  extent / 65534, so <= 0.15 mm for a 10 m capture volume), -32768 = NaN;
+//                  extent / 65534, so <= 0.15 mm for a 10 m capture volume), -32768 = NaN,
+//                  stored as d[i] = q[i] - q[i - delta] (delta = one frame's values,
+//                  wrapping int16 arithmetic; q[i] = d[i] in the first frame);
 //       states     uint8 (MarkerState);
 //       curves     float32 (little-endian), NaN = no value;
-//       characters the .glb file's bytes, given to three.js' GLTFLoader.
+//       characters .glb bytes, given to three.js' GLTFLoader.
+//     A reference in the header: {"blob": i, "encoding": "int16", "compression": "gzip",
+//     "delta": 3 #M, "origin": [...], "step": [...]}. A 10,000-frame take with 53 markers
+//     and a 28k-vertex character makes about 8 MB (17 MB as plain base64).
 //
 // The page sets window.mocapsolveView = {ready, frames, setFrame(i), ...} (viewer.js).
 #ifndef MOCAPSOLVE_VIEWER_VIEW_PAGE_H_

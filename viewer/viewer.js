@@ -40,21 +40,53 @@
     const t0 = performance.now();
     view.timings = { script_start_ms: t0 };  // Since navigation started.
     const meta = JSON.parse(document.getElementById('mv-meta').textContent);
+    inflateBlobs(meta).then(function (blobs) {
+      view.timings.inflated_ms = performance.now() - t0;
+      show(THREE, meta, blobs, t0);
+    }).catch(fail);
+  }
+
+  // Every array the header references, base64-decoded and inflated (gzip, natively by
+  // DecompressionStream, all at once): blob index -> Uint8Array.
+  function inflateBlobs(meta) {
+    const refs = [];
+    meta.markers.forEach(function (m) { refs.push(m.positions, m.states); });
+    meta.skeletons.forEach(function (s) { refs.push(s.positions); });
+    meta.curves.forEach(function (c) { refs.push(c.values); });
+    meta.characters.forEach(function (c) { refs.push(c.glb); });
+    const blobs = new Map();
+    return Promise.all(refs.map(function (ref) {
+      const text = document.getElementById('mv-blob-' + ref.blob).textContent.trim();
+      let bytes;
+      if (typeof Uint8Array.fromBase64 === 'function') {
+        bytes = Uint8Array.fromBase64(text);
+      } else {
+        const binary = atob(text);
+        bytes = new Uint8Array(binary.length);
+        for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
+      }
+      if (!ref.compression) return blobs.set(ref.blob, bytes);
+      if (ref.compression !== 'gzip') throw new Error('array ' + ref.blob + ': unknown compression ' + ref.compression);
+      const stream = new Response(bytes).body.pipeThrough(new DecompressionStream('gzip'));
+      return new Response(stream).arrayBuffer().then(function (buffer) { blobs.set(ref.blob, new Uint8Array(buffer)); });
+    })).then(function () { return blobs; });
+  }
+
+  function show(THREE, meta, blobs, t0) {
     const fps = meta.frame_rate;
     view.stateNames = meta.state_names.slice();
 
     // ---- data --------------------------------------------------------------------
     function blobBytes(ref) {
-      const text = document.getElementById('mv-blob-' + ref.blob).textContent.trim();
-      if (typeof Uint8Array.fromBase64 === 'function') return Uint8Array.fromBase64(text);
-      const binary = atob(text);
-      const out = new Uint8Array(binary.length);
-      for (let i = 0; i < binary.length; ++i) out[i] = binary.charCodeAt(i);
-      return out;
+      return blobs.get(ref.blob);
     }
+    // Positions: int16 steps from the previous frame (ref.delta values back), summed in
+    // place (Int16Array wraps as the writer did), then scaled; -32768 = NaN.
     function positions(ref) {
       const bytes = blobBytes(ref);
       const q = new Int16Array(bytes.buffer, bytes.byteOffset, bytes.byteLength >> 1);
+      const delta = ref.delta || 0;
+      if (delta > 0) for (let i = delta; i < q.length; ++i) q[i] += q[i - delta];
       const out = new Float32Array(q.length);
       const o = ref.origin, s = ref.step;
       for (let i = 0; i < q.length; i += 3) {
@@ -110,8 +142,8 @@
     // ---- scene -------------------------------------------------------------------
     const canvas = document.getElementById('mv-canvas');
     // A software WebGL (SwiftShader, llvmpipe: no GPU, or a headless browser) gets no
-    // multisampling, one pixel per CSS pixel and Lambert instead of PBR shading on the
-    // characters: several times the frame rate, for a little less polish.
+    // multisampling, one pixel per CSS pixel, and characters skinned and lit (Lambert, per
+    // vertex) on the CPU (makeCpuSkin): several times the frame rate, for a little less polish.
     const software = (function () {
       try {
         const probe = document.createElement('canvas').getContext('webgl2') ||
@@ -132,7 +164,8 @@
     const scene = new THREE.Scene();
     scene.background = new THREE.Color('#1d2127');
     const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 2000);
-    scene.add(new THREE.HemisphereLight(0xffffff, 0x445566, 2.0));
+    const hemisphere = new THREE.HemisphereLight(0xffffff, 0x445566, 2.0);
+    scene.add(hemisphere);
     const sun = new THREE.DirectionalLight(0xffffff, 2.0);
     sun.position.set(3, 6, 4);
     scene.add(sun);
@@ -324,11 +357,11 @@
     timeline.style.height = Math.max(24, Math.min(260, (curves.length ? 70 : 8) + rowPixels * intervalRows.length)) + 'px';
 
     function legend() {
-      const used = new Set();
-      markerSets.forEach(function (m) { for (const s of m.states) used.add(s); });
+      const used = new Uint8Array(256);  // A histogram: a Set over 10^6 states takes tens of ms.
+      markerSets.forEach(function (m) { for (let i = 0; i < m.states.length; ++i) used[m.states[i]] = 1; });
       let html = '';
       meta.state_names.forEach(function (name, s) {
-        if (used.has(s)) html += '<span class="sw" style="background:' + STATE_COLORS[s] + '"></span>' + name;
+        if (used[s]) html += '<span class="sw" style="background:' + STATE_COLORS[s] + '"></span>' + name;
       });
       skeletons.forEach(function (s, index) {
         const color = s.ghost ? GHOST_COLOR : SKELETON_COLORS[index % SKELETON_COLORS.length];
@@ -477,8 +510,8 @@
       updateFrame(frame);
       follow(frame);
       render();
+      drawTimeline();  // Before the text changes: its size read then needs no new layout.
       showFrameText();
-      drawTimeline();
       updateInfo();
       return frame;
     }
@@ -492,8 +525,8 @@
       updateFrame(frame);
       follow(frame);
       render();
-      showFrameText();
       drawTimeline();
+      showFrameText();
       requestAnimationFrame(tick);
     }
     view.play = function () {
@@ -601,7 +634,8 @@
             if (software && o.material && o.material.isMeshStandardMaterial) {
               const m = o.material;
               o.material = new THREE.MeshLambertMaterial({ color: m.color, map: m.map, transparent: m.transparent,
-                                                           opacity: m.opacity, side: m.side });
+                                                           opacity: m.opacity, side: m.side, alphaTest: m.alphaTest,
+                                                           vertexColors: m.vertexColors });
             }
           });
           const skins = [];
@@ -614,13 +648,32 @@
         });
     });
 
-    // Skinning on the CPU, for software renderers: SwiftShader runs three.js' skinning
-    // shader (four bone matrices fetched from a texture per vertex) several times slower
-    // than this loop, which writes a plain mesh's positions and normals each frame:
+    // Skinning and lighting on the CPU, for software renderers. SwiftShader runs three.js'
+    // skinning shader (four bone matrices fetched from a texture per vertex) several times
+    // slower than this loop, which writes a plain mesh's positions each frame:
     //   x = bindMatrix^-1 * sum_k w_k * B_k * bindMatrix * x0,  B_k = bone_k.matrixWorld * boneInverse_k
-    // (three.js' own formula), the plain mesh carrying matrixWorld * bindMatrix^-1.
+    // (three.js' own formula), the plain mesh carrying matrixWorld * bindMatrix^-1; and
+    // per-pixel lighting was 40 % of the time it took to draw Xbot, so the loop also
+    // lights each vertex as MeshLambertMaterial lights a pixel (linear colour, the page's
+    // hemisphere and sun, n the skinned normal):
+    //   c = (mix(ground, sky, 0.5 n.up + 0.5) + max(0, n.sun) * sun) / pi,
+    // the vertex colours of a MeshBasicMaterial that multiplies them by the material's
+    // colour and map (Gouraud shading: on a 28k-vertex character it looks the same).
+    const lightColors = (function () {
+      const sky = hemisphere.color.clone().multiplyScalar(hemisphere.intensity / Math.PI);
+      const ground = hemisphere.groundColor.clone().multiplyScalar(hemisphere.intensity / Math.PI);
+      const direct = sun.color.clone().multiplyScalar(sun.intensity / Math.PI);
+      return { sky: sky, ground: ground, sun: direct, sunDirection: sun.position.clone().normalize() };
+    })();
+    function basicMaterial(m) {
+      if (Array.isArray(m)) return m.map(basicMaterial);
+      return new THREE.MeshBasicMaterial({ color: m.color, map: m.map || null, vertexColors: true,
+                                           transparent: m.transparent, opacity: m.opacity, side: m.side,
+                                           alphaTest: m.alphaTest || 0 });
+    }
     function makeCpuSkin(skinned) {
       const g = skinned.geometry, position = g.attributes.position, normal = g.attributes.normal;
+      const vertexColor = g.attributes.color;  // COLOR_0: multiplies the light.
       const skinIndex = g.attributes.skinIndex, skinWeight = g.attributes.skinWeight;
       const n = position.count, bind = skinned.bindMatrix.elements;
       const rest = new Float32Array(3 * n), restNormal = new Float32Array(3 * n);
@@ -641,28 +694,111 @@
         weight[4 * i] = skinWeight.getX(i); weight[4 * i + 1] = skinWeight.getY(i);
         weight[4 * i + 2] = skinWeight.getZ(i); weight[4 * i + 3] = skinWeight.getW(i);
       }
+      let restColor = null;
+      if (normal && vertexColor) {
+        restColor = new Float32Array(3 * n);
+        for (let i = 0; i < n; ++i) {
+          restColor[3 * i] = vertexColor.getX(i);
+          restColor[3 * i + 1] = vertexColor.getY(i);
+          restColor[3 * i + 2] = vertexColor.getZ(i);
+        }
+      }
       const geometry = new THREE.BufferGeometry();
       if (g.index) geometry.setIndex(g.index);
       for (const name in g.attributes) {
-        if (!/^(position|normal|skinIndex|skinWeight)$/.test(name)) geometry.setAttribute(name, g.attributes[name]);
+        if (!/^(position|normal|color|skinIndex|skinWeight)$/.test(name)) geometry.setAttribute(name, g.attributes[name]);
       }
       const outPosition = new THREE.BufferAttribute(new Float32Array(3 * n), 3).setUsage(THREE.DynamicDrawUsage);
-      const outNormal = new THREE.BufferAttribute(new Float32Array(3 * n), 3).setUsage(THREE.DynamicDrawUsage);
+      const outColor = new THREE.BufferAttribute(new Float32Array(3 * n), 3).setUsage(THREE.DynamicDrawUsage);
       geometry.setAttribute('position', outPosition);
-      if (normal) geometry.setAttribute('normal', outNormal);
+      // Without normals (rare) the mesh keeps its (Lambert) material, lit by three.js.
+      if (normal) geometry.setAttribute('color', outColor);
+      else if (vertexColor) geometry.setAttribute('color', vertexColor);
       g.groups.forEach(function (group) { geometry.addGroup(group.start, group.count, group.materialIndex); });
-      const mesh = new THREE.Mesh(geometry, skinned.material);
+      const mesh = new THREE.Mesh(geometry, normal ? basicMaterial(skinned.material) : skinned.material);
+      const materials = [].concat(mesh.material);
+      // (Opaque materials only: through a transparent or cut-out surface its back shows.)
+      const opaque = materials.every(function (m) { return !m.transparent && m.opacity === 1 && !(m.alphaTest > 0); });
+      if (normal && opaque && materials.some(function (m) { return m.side === THREE.DoubleSide; }) &&
+          closedOutward(rest, g.index, n)) {
+        materials.forEach(function (m) { m.side = THREE.FrontSide; });
+      }
       mesh.matrixAutoUpdate = false;
       mesh.frustumCulled = false;
       skinned.visible = false;
       scene.add(mesh);
-      return { skinned: skinned, mesh: mesh, rest: rest, restNormal: normal ? restNormal : null, index: index,
-               weight: weight, position: outPosition, normal: outNormal, count: n };
+      return { skinned: skinned, mesh: mesh, rest: rest, restNormal: normal ? restNormal : null, restColor: restColor,
+               index: index, weight: weight, position: outPosition, color: outColor, count: n };
+    }
+    // True if the triangles (index, or consecutive vertices) make closed surfaces facing
+    // outwards: with vertices welded by position, every edge a->b of a triangle is an
+    // edge b->a of another, and the signed volume is positive. Such a mesh, if opaque,
+    // shows no back face, so drawing it single-sided gives the same picture for half the
+    // triangles rasterized (exporters mark meshes double-sided by default: Blender does,
+    // Xbot is).
+    function closedOutward(xyz, index, n) {
+      const corners = index ? index.count : n, triangles = Math.floor(corners / 3);
+      if (triangles === 0) return false;
+      // Weld: open addressing on the coordinates' bits.
+      const bits = new Uint32Array(xyz.buffer, xyz.byteOffset, 3 * n);
+      const size = 1 << Math.ceil(Math.log2(2 * n + 2));
+      const table = new Int32Array(size).fill(-1), weld = new Int32Array(n);
+      for (let i = 0; i < n; ++i) {
+        const x = bits[3 * i], y = bits[3 * i + 1], z = bits[3 * i + 2];
+        let h = (Math.imul(x ^ Math.imul(y, 0x9e3779b1) ^ Math.imul(z, 0x85ebca77), 0xc2b2ae3d) >>> 7) & (size - 1);
+        for (;;) {
+          const j = table[h];
+          if (j < 0) { table[h] = i; weld[i] = i; break; }
+          if (bits[3 * j] === x && bits[3 * j + 1] === y && bits[3 * j + 2] === z) { weld[i] = j; break; }
+          h = (h + 1) & (size - 1);
+        }
+      }
+      // Edges: per undirected edge {lo, hi}, +1 for each lo->hi and -1 for each hi->lo;
+      // closed and consistently wound iff every sum is 0.
+      const slots = 1 << Math.ceil(Math.log2(4 * triangles + 4));
+      const low = new Int32Array(slots).fill(-1), high = new Int32Array(slots), sum = new Int32Array(slots);
+      function edge(a, b) {
+        if (a === b) return;
+        const lo = a < b ? a : b, hi = a < b ? b : a;
+        let h = (Math.imul(lo ^ Math.imul(hi, 0x9e3779b1), 0x85ebca77) >>> 9) & (slots - 1);
+        while (low[h] >= 0 && (low[h] !== lo || high[h] !== hi)) h = (h + 1) & (slots - 1);
+        low[h] = lo;
+        high[h] = hi;
+        sum[h] += a < b ? 1 : -1;
+      }
+      let volume = 0;
+      for (let t = 0; t < triangles; ++t) {
+        const i0 = index ? index.getX(3 * t) : 3 * t, i1 = index ? index.getX(3 * t + 1) : 3 * t + 1;
+        const i2 = index ? index.getX(3 * t + 2) : 3 * t + 2;
+        const a = weld[i0], b = weld[i1], c = weld[i2];
+        edge(a, b);
+        edge(b, c);
+        edge(c, a);
+        const ax = xyz[3 * i0], ay = xyz[3 * i0 + 1], az = xyz[3 * i0 + 2];
+        const bx = xyz[3 * i1], by = xyz[3 * i1 + 1], bz = xyz[3 * i1 + 2];
+        const cx = xyz[3 * i2], cy = xyz[3 * i2 + 1], cz = xyz[3 * i2 + 2];
+        volume += ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx);
+      }
+      for (let k = 0; k < slots; ++k) if (sum[k] !== 0) return false;
+      return volume > 0;
     }
     function cpuSkin(s) {
       s.skinned.skeleton.update();
-      const B = s.skinned.skeleton.boneMatrices, rest = s.rest, restNormal = s.restNormal;
-      const index = s.index, weight = s.weight, out = s.position.array, outNormal = s.normal.array;
+      s.mesh.matrix.multiplyMatrices(s.skinned.matrixWorld, s.skinned.bindMatrixInverse);
+      s.mesh.matrixWorldNeedsUpdate = true;
+      // The lights' directions in the mesh's space: R^T v, R = the matrix's rotation (times
+      // a uniform scale, normalized away).
+      const e = s.mesh.matrix.elements, L = lightColors, d = L.sunDirection;
+      let ux = e[1], uy = e[5], uz = e[9];
+      let sx = e[0] * d.x + e[1] * d.y + e[2] * d.z, sy = e[4] * d.x + e[5] * d.y + e[6] * d.z;
+      let sz = e[8] * d.x + e[9] * d.y + e[10] * d.z;
+      const ul = 1 / (Math.hypot(ux, uy, uz) || 1), sl = 1 / (Math.hypot(sx, sy, sz) || 1);
+      ux *= ul; uy *= ul; uz *= ul; sx *= sl; sy *= sl; sz *= sl;
+      const gr = L.ground.r, gg = L.ground.g, gb = L.ground.b;
+      const kr = L.sky.r - gr, kg = L.sky.g - gg, kb = L.sky.b - gb;
+      const dr = L.sun.r, dg = L.sun.g, db = L.sun.b;
+      const B = s.skinned.skeleton.boneMatrices, rest = s.rest, restNormal = s.restNormal, restColor = s.restColor;
+      const index = s.index, weight = s.weight, out = s.position.array, color = s.color.array;
       for (let i = 0; i < s.count; ++i) {
         let m0 = 0, m1 = 0, m2 = 0, m3 = 0, m4 = 0, m5 = 0, m6 = 0, m7 = 0, m8 = 0, m9 = 0, m10 = 0, m11 = 0;
         for (let k = 4 * i; k < 4 * i + 4; ++k) {
@@ -680,15 +816,17 @@
         out[3 * i + 2] = m2 * x + m5 * y + m8 * z + m11;
         if (restNormal) {
           const a = restNormal[3 * i], b = restNormal[3 * i + 1], c = restNormal[3 * i + 2];
-          outNormal[3 * i] = m0 * a + m3 * b + m6 * c;
-          outNormal[3 * i + 1] = m1 * a + m4 * b + m7 * c;
-          outNormal[3 * i + 2] = m2 * a + m5 * b + m8 * c;
+          const nx = m0 * a + m3 * b + m6 * c, ny = m1 * a + m4 * b + m7 * c, nz = m2 * a + m5 * b + m8 * c;
+          const inverse = 1 / (Math.sqrt(nx * nx + ny * ny + nz * nz) || 1);
+          const w = 0.5 * (nx * ux + ny * uy + nz * uz) * inverse + 0.5;
+          const lit = Math.max(0, (nx * sx + ny * sy + nz * sz) * inverse);
+          let r = gr + kr * w + dr * lit, g = gg + kg * w + dg * lit, b2 = gb + kb * w + db * lit;
+          if (restColor) { r *= restColor[3 * i]; g *= restColor[3 * i + 1]; b2 *= restColor[3 * i + 2]; }
+          color[3 * i] = r; color[3 * i + 1] = g; color[3 * i + 2] = b2;
         }
       }
       s.position.needsUpdate = true;
-      s.normal.needsUpdate = true;
-      s.mesh.matrix.multiplyMatrices(s.skinned.matrixWorld, s.skinned.bindMatrixInverse);
-      s.mesh.matrixWorldNeedsUpdate = true;
+      if (restNormal) s.color.needsUpdate = true;
     }
 
     // A character's box from its bones' world positions (skinning every vertex on the CPU

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "io/json_reader.h"
+#include "tests/gltf_test_files.h"
 #include "tests/test_support.h"
 #include "viewer/view_page.h"
 
@@ -124,13 +126,17 @@ TEST_F(ViewCli, BadInputsGiveOneLineAndNoPage) {
   FILE* file = std::fopen(not_json.c_str(), "w");
   std::fputs("{\"detected\": [], \"filled\": [{\"marker\": \"NOPE\", \"first_frame\": 1, \"last_frame\": 2}]}", file);
   std::fclose(file);
+  const std::string no_bin = testing::TempPath("no_bin.gltf");  // Its buffer's file is not there.
+  testing::WriteTextFile(no_bin, "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{\"byteLength\": 12, "
+                                 "\"uri\": \"missing.bin\"}]}");
   const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--character=" + no_bin + " --out=" + page, "missing.bin"},
       {"--markers=" + clean_, "--out=PAGE.html is required"},
       {"--markers=" + clean_ + " --out=" + testing::TempPath("page.txt"), "expected an .html page"},
       {"--out=" + page, "nothing to show"},
       {"--markers=" + missing + " --out=" + page, "missing.c3d"},
       {"--markers=" + clean_ + " --repair_report=" + not_json + " --out=" + page, "'NOPE' is not a marker"},
-      {"--markers=" + clean_ + " --character=" + demo_ + " --out=" + page, "takes .glb files"},
+      {"--markers=" + clean_ + " --character=" + demo_ + " --out=" + page, "takes .glb or .gltf files"},
       {"--motion=" + demo_ + " --compare=" + clean_ + " --out=" + page, "a marker file needs --markers"},
       {"--markers=" + clean_ + " --up=w --out=" + page, "--up=w"},
       {"--markers=" + clean_ + " --out=" + clean_, "expected an .html page"},
@@ -243,6 +249,24 @@ TEST(ViewRealData, RetargetAndPropagatePages) {
             0) << output;
   MOCAPSOLVE_CHECK_IN_BROWSER("{\"pages\": [{\"path\": \"" + retarget_page + "\", \"moving\": [0, 20]},\n"
                               "{\"path\": \"" + propagate_page + "\", \"moving\": [150, 250]}]}\n");
+}
+
+// .gltf characters, with their buffers and texture in files beside them or as data: URIs,
+// are embedded as one .glb each: the page, elsewhere, needs nothing beside it.
+TEST(ViewRealData, GltfCharacters) {
+  MOCAPSOLVE_DATA_FILE(cesium, "gltf/CesiumMan.glb");
+  MOCAPSOLVE_NEED_VIEWER_RUNTIME();
+  const std::string files = testing::TempPath("files/CesiumMan.gltf"), data = testing::TempPath("data/CesiumMan.gltf");
+  for (const std::string& path : {files, data}) std::filesystem::create_directories(path.substr(0, path.rfind('/')));
+  testing::WriteGltfVariant(cesium, files, testing::GltfLayout::kSeparateFiles);
+  testing::WriteGltfVariant(cesium, data, testing::GltfLayout::kDataUris);
+  const std::string page = testing::TempPath("gltf.html");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("view --quiet --character=" + files + "," + data + " --out=" + page, &output), 0) << output;
+  const std::string html = testing::ReadTextFile(page);
+  EXPECT_EQ(html.find("CesiumMan.bin"), std::string::npos);
+  EXPECT_EQ(html.find("CesiumMan_image0.jpg"), std::string::npos);
+  MOCAPSOLVE_CHECK_IN_BROWSER("{\"pages\": [{\"path\": \"" + page + "\", \"moving\": [0, 20]}]}\n");
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "io/gltf_writer.h"
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "io/atomic_file.h"
 #include "io/gltf_reader.h"
 #include "kinematics/rotation.h"
+#include "tests/gltf_test_files.h"
 #include "tests/test_support.h"
 
 namespace mocapsolve {
@@ -191,5 +193,119 @@ TEST(GltfWriter, MatrixJointNodesAreReadAndRewrittenAsTrs) {
   ASSERT_TRUE(ReadGltfAnimation(back, bc, options, &read).ok());
   ExpectSameMotion(motion, read, 1.0);
 }
+
+// The pages' compact variant: int16 rotations, and a joint the motion holds still written
+// as one key; it reads back as the motion (to int16 precision), every frame.
+TEST(GltfWriter, CompactVariantHoldsConstantChannelsWithOneKey) {
+  MOCAPSOLVE_DATA_FILE(path, "gltf/Xbot.glb");
+  GltfDocument doc;
+  ASSERT_TRUE(GltfDocument::Read(path, &doc).ok());
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(doc, {}, &c).ok());
+  Motion motion;
+  motion.frame_rate = 30.0;
+  const int nj = c.skeleton.num_joints();
+  for (int f = 0; f < 40; ++f) {
+    Pose pose = c.rest_pose;
+    for (int j = 0; j < nj; j += 2) pose.rotations[j] = pose.rotations[j] * ExpMap(Eigen::Vector3d(0.02 * f, 0.1, 0));
+    pose.translations[0] += Eigen::Vector3d(0.01 * f, 0, 0);
+    motion.frames.push_back(pose);
+  }
+  std::string full, compact;
+  ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "take", true, &full).ok());
+  Status status = SerializeGltfWithAnimation(doc, c, motion, "take", true, &compact, /*compact=*/true);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_LT(compact.size(), full.size());
+  GltfDocument back;
+  ASSERT_TRUE(GltfDocument::Parse(compact, "compact.glb", "", &back).ok());
+  const tinygltf::Animation& animation = back.model().animations.back();
+  int one_key = 0;
+  for (const tinygltf::AnimationSampler& sampler : animation.samplers) {
+    if (back.model().accessors[sampler.input].count == 1) ++one_key;
+  }
+  EXPECT_EQ(one_key, nj / 2);  // The odd joints' rotations.
+  GltfCharacter bc;
+  ASSERT_TRUE(ReadGltfCharacter(back, {}, &bc).ok());
+  GltfAnimationOptions options;
+  options.animation = "take";
+  Motion read;
+  status = ReadGltfAnimation(back, bc, options, &read);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_EQ(read.num_frames(), motion.num_frames());
+  for (int f = 0; f < motion.num_frames(); ++f) {
+    for (int j = 0; j < nj; ++j) {
+      // 2e-4 rad: normalized int16 components (3e-5 each).
+      ASSERT_LT(read.frames[f].rotations[j].angularDistance(motion.frames[f].rotations[j]), 2e-4)
+          << "frame " << f << " joint " << j;
+    }
+  }
+}
+
+// A .gltf whose buffers and texture are separate files, or data: URIs, becomes one .glb
+// with everything inside it (the viewer's pages embed characters so): one buffer without
+// a URI, the image in a buffer view with its bytes and MIME type, the same character.
+TEST(GltfAsGlb, SeparateFilesAndDataUrisBecomeOneSelfContainedGlb) {
+  MOCAPSOLVE_DATA_FILE(path, "gltf/CesiumMan.glb");
+  GltfDocument original;
+  ASSERT_TRUE(GltfDocument::Read(path, &original).ok());
+  GltfCharacter expected;
+  ASSERT_TRUE(ReadGltfCharacter(original, {}, &expected).ok());
+  ASSERT_EQ(original.model().images.size(), 1u);
+  const std::vector<unsigned char> texture = original.model().images[0].image;  // The reader keeps its bytes:
+  ASSERT_GT(texture.size(), 8u);
+  ASSERT_EQ(texture[0], 0xff);  // a JPEG.
+  ASSERT_EQ(texture[1], 0xd8);
+  for (const auto layout : {testing::GltfLayout::kSeparateFiles, testing::GltfLayout::kDataUris}) {
+    const bool files = layout == testing::GltfLayout::kSeparateFiles;
+    const std::string gltf = testing::TempPath(files ? "files/CesiumMan.gltf" : "data/CesiumMan.gltf");
+    std::filesystem::create_directories(gltf.substr(0, gltf.rfind('/')));
+    testing::WriteGltfVariant(path, gltf, layout);
+    ASSERT_EQ(testing::FileExists(gltf.substr(0, gltf.rfind('/')) + "/CesiumMan.bin"), files);
+    GltfDocument document;
+    Status status = GltfDocument::Read(gltf, &document);
+    ASSERT_TRUE(status.ok()) << status.message();
+    std::string glb;
+    status = SerializeGltfAsGlb(document, &glb);
+    ASSERT_TRUE(status.ok()) << status.message();
+    ASSERT_EQ(glb.substr(0, 4), "glTF");
+    GltfDocument back;
+    status = GltfDocument::Parse(glb, "back.glb", "/nonexistent", &back);  // Nothing to find beside it.
+    ASSERT_TRUE(status.ok()) << status.message();
+    const tinygltf::Model& model = back.model();
+    ASSERT_EQ(model.buffers.size(), 1u);
+    EXPECT_TRUE(model.buffers[0].uri.empty());
+    ASSERT_EQ(model.images.size(), 1u);
+    EXPECT_TRUE(model.images[0].uri.empty());
+    EXPECT_GE(model.images[0].bufferView, 0);
+    EXPECT_EQ(model.images[0].mimeType, "image/jpeg");  // From the bytes (the .gltf states none).
+    EXPECT_EQ(model.images[0].image, texture);
+    GltfCharacter c;
+    status = ReadGltfCharacter(back, {}, &c);
+    ASSERT_TRUE(status.ok()) << status.message();
+    ASSERT_EQ(c.skeleton.num_joints(), expected.skeleton.num_joints());
+    ASSERT_EQ(c.mesh.num_vertices(), expected.mesh.num_vertices());
+    EXPECT_EQ(c.triangles, expected.triangles);
+    EXPECT_EQ(c.animation_names, expected.animation_names);
+    for (int j = 0; j < c.skeleton.num_joints(); ++j) EXPECT_EQ(c.skeleton.name(j), expected.skeleton.name(j));
+    // 1e-12: the same float32 vertex data, converted to double alike.
+    EXPECT_LT((c.mesh.rest_positions() - expected.mesh.rest_positions()).cwiseAbs().maxCoeff(), 1e-12);
+    Motion a, b;
+    ASSERT_TRUE(ReadGltfAnimation(original, expected, {}, &a).ok());
+    ASSERT_TRUE(ReadGltfAnimation(back, c, {}, &b).ok());
+    ExpectSameMotion(a, b, 1.0);
+    if (files) {  // A texture file gone: an error naming the image, no bytes.
+      ASSERT_TRUE(std::filesystem::remove(gltf.substr(0, gltf.rfind('/')) + "/CesiumMan_image0.jpg"));
+      GltfDocument missing;
+      ASSERT_TRUE(GltfDocument::Read(gltf, &missing).ok());
+      std::string none;
+      status = SerializeGltfAsGlb(missing, &none);
+      ASSERT_FALSE(status.ok());
+      EXPECT_NE(status.message().find("image 0 ('CesiumMan_image0.jpg'): could not be read"), std::string::npos)
+          << status.message();
+      EXPECT_EQ(status.message().find('\n'), std::string::npos);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mocapsolve

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "io/csv_columns.h"
+#include "io/gzip.h"
 #include "tests/test_support.h"
 #include "viewer/repair_intervals.h"
 #include "viewer/view_scene.h"
@@ -36,6 +37,14 @@ std::string Unbase64(const std::string& text) {
     }
   }
   return out;
+}
+
+// A page's array: base64 of a gzip stream.
+std::string Inflated(const std::string& base64) {
+  std::string bytes;
+  const Status status = GzipDecompress(Unbase64(base64), &bytes);
+  EXPECT_TRUE(status.ok()) << status.message();
+  return bytes;
 }
 
 std::string Between(const std::string& text, const std::string& open, const std::string& close) {
@@ -72,16 +81,19 @@ TEST(ViewPage, EmbedsQuantizedPositionsStatesAndEscapedText) {
   EXPECT_THAT(html, HasSubstr("window.mocapsolveView"));
   EXPECT_THAT(html, HasSubstr("\"<\\/script>\""));  // The label cannot end the JSON's element.
   EXPECT_EQ(html.find("@DATA@"), std::string::npos);
-  // Positions: int16 per axis around the box's centre, steps <= extent / 65534; NaN -> -32768.
-  const std::string bytes = Unbase64(Between(html, "id=\"mv-blob-0\">", "</script>"));
+  // Positions: int16 per axis around the box's centre, steps <= extent / 65534; NaN ->
+  // -32768; gzip-compressed, each frame stored as its difference from the previous one.
+  EXPECT_THAT(html, HasSubstr("\"compression\": \"gzip\", \"delta\": 6,"));
+  const std::string bytes = Inflated(Between(html, "id=\"mv-blob-0\">", "</script>"));
   ASSERT_EQ(bytes.size(), 12 * sizeof(std::int16_t));
   std::vector<std::int16_t> q(12);
   std::memcpy(q.data(), bytes.data(), bytes.size());
+  for (size_t i = 6; i < q.size(); ++i) q[i] = static_cast<std::int16_t>(q[i] + q[i - 6]);  // Wrapping, as the page.
   EXPECT_EQ(q[6], -32768);
   const double step_x = 3.5 / 65534.0, origin_x = 1.75;
   EXPECT_NEAR(origin_x + step_x * q[0], 0.0, step_x);
   EXPECT_NEAR(origin_x + step_x * q[3], 3.5, step_x);
-  EXPECT_EQ(Unbase64(Between(html, "id=\"mv-blob-1\">", "</script>")), std::string("\0\0\1\2", 4));
+  EXPECT_EQ(Inflated(Between(html, "id=\"mv-blob-1\">", "</script>")), std::string("\0\0\1\2", 4));
 }
 
 TEST(ViewPage, RefusesAnEmptySceneAndABadRate) {
