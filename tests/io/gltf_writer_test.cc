@@ -224,6 +224,25 @@ TEST_P(GltfAnimationOnly, HoldsTheSkeletonSkinAndAnimationOnly) {
     EXPECT_EQ(slim.accessors[sa.input].minValues, full.accessors[sb.input].minValues);
     EXPECT_EQ(slim.accessors[sa.input].maxValues, full.accessors[sb.input].maxValues);
   }
+  // Read back (a character without vertices): the same skeleton, and the written motion.
+  GltfCharacter back;
+  status = ReadGltfCharacter(slim_doc, {}, &back);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(back.mesh.num_vertices(), 0);
+  double size = 0.0;
+  for (int j = 0; j < c.skeleton.num_joints(); ++j) size = std::max(size, c.skeleton.offset(j).norm());
+  ASSERT_EQ(back.skeleton.num_joints(), c.skeleton.num_joints());
+  for (int j = 0; j < c.skeleton.num_joints(); ++j) {
+    EXPECT_EQ(back.skeleton.name(j), c.skeleton.name(j));
+    EXPECT_EQ(back.skeleton.parent(j), c.skeleton.parent(j));
+    // 1e-12: the same node transforms, composed the same way.
+    EXPECT_LT((back.skeleton.offset(j) - c.skeleton.offset(j)).norm(), 1e-12 * (1 + size));
+    EXPECT_LT(back.bind_pose.rotations[j].angularDistance(c.bind_pose.rotations[j]), 1e-12);
+  }
+  Motion read;
+  status = ReadGltfAnimation(slim_doc, back, {}, &read);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ExpectSameMotion(motion, read, size);
   EXPECT_LT(slim_bytes.size(), full_bytes.size());
   // Xbot: 5.2 MB of meshes against 65 joints' keys.
   if (std::string(GetParam()) == "Xbot.glb") {
