@@ -92,13 +92,14 @@ int AppendNormalizedShortAccessor(tinygltf::Model* model, const std::vector<floa
 // Copies accessor `index` of `from` (its elements, tightly packed) into buffer 0 of `to`
 // as a new buffer view + accessor (type, component type, count, normalized, min/max kept);
 // `copied` maps accessors already copied. Returns the new index, or -1 with *error set.
+// With first_only, just its first element (not cached).
 int CopyAccessor(const tinygltf::Model& from, int index, tinygltf::Model* to, std::vector<int>* copied,
-                 std::string* error) {
+                 std::string* error, bool first_only = false) {
   if (index < 0 || index >= static_cast<int>(from.accessors.size())) {
     *error = "accessor " + std::to_string(index) + " out of range";
     return -1;
   }
-  if ((*copied)[index] >= 0) return (*copied)[index];
+  if (!first_only && (*copied)[index] >= 0) return (*copied)[index];
   const tinygltf::Accessor& a = from.accessors[index];
   const std::string name = "accessor " + std::to_string(index);
   if (a.sparse.isSparse) {
@@ -126,14 +127,15 @@ int CopyAccessor(const tinygltf::Model& from, int index, tinygltf::Model* to, st
     *error = name + ": runs past its buffer view or buffer";
     return -1;
   }
+  const size_t count = first_only ? std::min<size_t>(a.count, 1) : a.count;
   tinygltf::Buffer& buffer = to->buffers[0];
   while (buffer.data.size() % 4 != 0) buffer.data.push_back(0);
   tinygltf::BufferView out_view;
   out_view.buffer = 0;
   out_view.byteOffset = buffer.data.size();
-  out_view.byteLength = element * a.count;
+  out_view.byteLength = element * count;
   buffer.data.reserve(buffer.data.size() + out_view.byteLength);
-  for (size_t e = 0; e < a.count; ++e) {
+  for (size_t e = 0; e < count; ++e) {
     const unsigned char* p = data.data() + start + e * stride;
     buffer.data.insert(buffer.data.end(), p, p + element);
   }
@@ -141,9 +143,29 @@ int CopyAccessor(const tinygltf::Model& from, int index, tinygltf::Model* to, st
   tinygltf::Accessor out = a;
   out.bufferView = static_cast<int>(to->bufferViews.size()) - 1;
   out.byteOffset = 0;
+  out.count = count;
+  if (first_only) {  // Bounds of the whole accessor would be wrong for one element.
+    out.minValues.clear();
+    out.maxValues.clear();
+  }
   to->accessors.push_back(out);
-  (*copied)[index] = static_cast<int>(to->accessors.size()) - 1;
-  return (*copied)[index];
+  const int made = static_cast<int>(to->accessors.size()) - 1;
+  if (!first_only) (*copied)[index] = made;
+  return made;
+}
+
+// True if every element of accessor `index` (written by this file: tightly packed) has the
+// bytes of the first.
+bool AllElementsEqual(const tinygltf::Model& model, int index) {
+  const tinygltf::Accessor& a = model.accessors[index];
+  const tinygltf::BufferView& view = model.bufferViews[a.bufferView];
+  const size_t element = static_cast<size_t>(tinygltf::GetComponentSizeInBytes(a.componentType)) *
+                         tinygltf::GetNumComponentsInType(a.type);
+  const unsigned char* first = model.buffers[view.buffer].data.data() + view.byteOffset + a.byteOffset;
+  for (size_t e = 1; e < a.count; ++e) {
+    if (std::memcmp(first, first + e * element, element) != 0) return false;
+  }
+  return true;
 }
 
 // The animation-only model (gltf_writer.h) of `full`: the nodes of skin `skin` and their
@@ -206,13 +228,31 @@ Status AnimationOnlyModel(const tinygltf::Model& full, const std::vector<int>& p
     if (out_skin.inverseBindMatrices < 0) return Status::Error(file + ": skin " + std::to_string(skin) + ": " + error);
   }
   model.skins.push_back(out_skin);
+  // The animation (written by this file: LINEAR samplers, tightly packed accessors). A
+  // channel whose keys are all equal (fingers a skeleton-only source does not move) gets
+  // one key at time 0, which glTF holds for the whole clip, unless every channel is
+  // constant (the clip then keeps its length).
   const tinygltf::Animation& from = full.animations.back();
+  std::vector<bool> constant(from.samplers.size());
+  bool all_constant = true;
+  for (size_t k = 0; k < from.samplers.size(); ++k) {
+    constant[k] = AllElementsEqual(full, from.samplers[k].output);
+    all_constant = all_constant && constant[k];
+  }
+  int single_time = -1;
   tinygltf::Animation animation;
   animation.name = from.name;
-  for (const tinygltf::AnimationSampler& s : from.samplers) {
+  for (size_t k = 0; k < from.samplers.size(); ++k) {
+    const tinygltf::AnimationSampler& s = from.samplers[k];
     tinygltf::AnimationSampler sampler = s;
-    sampler.input = CopyAccessor(full, s.input, &model, &copied, &error);
-    if (sampler.input >= 0) sampler.output = CopyAccessor(full, s.output, &model, &copied, &error);
+    if (constant[k] && !all_constant) {
+      if (single_time < 0) single_time = AppendFloatAccessor(&model, {0.0f}, TINYGLTF_TYPE_SCALAR, 1, true);
+      sampler.input = single_time;
+      sampler.output = CopyAccessor(full, s.output, &model, &copied, &error, /*first_only=*/true);
+    } else {
+      sampler.input = CopyAccessor(full, s.input, &model, &copied, &error);
+      if (sampler.input >= 0) sampler.output = CopyAccessor(full, s.output, &model, &copied, &error);
+    }
     if (sampler.input < 0 || sampler.output < 0) return Status::Error(file + ": animation only: " + error);
     animation.samplers.push_back(sampler);
   }

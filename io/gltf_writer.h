@@ -27,7 +27,9 @@
 // nodes that only hold them are dropped), the skin itself (joints, skeleton and
 // inverseBindMatrices: 64 bytes a joint; no node references it, as a glTF skin needs a mesh
 // node, so the validator reports it as unused, an info), one scene of the kept top-level
-// nodes, and the new animation with the same channels and keys as in the full file. No
+// nodes, and the new animation with the same channels and keys as in the full file, except
+// that a channel whose keys are all equal (the fingers of a skeleton-only source: half of
+// Xbot's channels) has one key at time 0, which glTF holds for the whole clip. No
 // meshes, materials, textures, images, samplers, other animations or vertex buffers; the
 // data (animation keys and inverse bind matrices) are copied into one buffer. The skin is
 // kept because Blender's importer makes an armature only of a skin's joints (other nodes
@@ -35,9 +37,8 @@
 // "guess original bind pose"), so the animation-only import gets the same armature and
 // rest pose as the character's and its action applies to the character's armature by bone
 // name (scripts/apply_animation_gltf.py). three.js binds animation tracks by node name, so
-// GLTFLoader's clip plays on the character's scene as it is. About 4 % of Xbot's 5.2 MB
-// for a 5 s take (README). Node names must then identify the joints: the character's are
-// used as they are (the source's own names).
+// GLTFLoader's clip plays on the character's scene as it is (when node names are unique:
+// GLTFLoader renames repeated ones). CMU 02_05 onto Xbot: 1.05 MB against 3.81 MB (README).
 //
 // Output is written atomically (io/atomic_file.h). Errors: Status naming the output
 // path and what is wrong (motion size, frame rate, animation name already used, ...).
