@@ -48,7 +48,7 @@ namespace {
 
 const std::string kPipelineOptionFlags =
     std::string("take_name,filter_levels,kernel_a,tension,gate_naive_rms_mm,gate_repaired_rms_mm,"
-                "gate_repaired_share,gate_iteration_limit_share,gate_marker_offset_cm,gate_torso_deg,") +
+                "gate_repaired_share,gate_iteration_limit_share,gate_marker_offset_cm,gate_torso_deg,animation_only,") +
     kRepairFlagNames + "," + kSolverFlagNames + "," + kRetargetOptionFlagNames;
 
 Status RunPipeline(const std::vector<std::string>& arguments) {
@@ -106,6 +106,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
 
   JsonObject report = TakeReport(inputs, result);
   report.Add("command", "pipeline").Add("version", Version()).Add("subject", FLAGS_subject).Add("config", FLAGS_config)
+      .Add("animation_only", FLAGS_animation_only)
       .Add("options", JsonValue::Raw(ConfigJson(kPipelineOptionFlags)));
   // DIR/view.html when the viewer's runtime is installed; otherwise say why not.
   std::string runtime;
@@ -114,7 +115,9 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!view_runtime.ok()) std::fprintf(stderr, "warning: pipeline: no view.html: %s\n", view_runtime.message().c_str());
   SetStage("writing");
   status = MakeFolders(FLAGS_out_dir);
-  if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report, view_runtime.ok());
+  GltfWriteOptions character_files;
+  character_files.animation_only = FLAGS_animation_only;
+  if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report, view_runtime.ok(), character_files);
   if (status.ok()) status = WriteReport(report);
   if (!status.ok()) return status;
 
@@ -160,7 +163,8 @@ extern const Command kPipelineCommand = {
     "onto each character (thesis ch. 4, the character's own mesh bound to the subject's\n"
     "skeleton), then checks the quality gate. Writes DIR/repaired.c3d (or .trc),\n"
     "DIR/solved.bvh, DIR/<character>.glb (the character file plus the take as a new\n"
-    "animation) and DIR/report.json (stage timings, marker residuals, repaired intervals,\n"
+    "animation; --animation_only: the character's skeleton, skin and the take, no meshes)\n"
+    "and DIR/report.json (stage timings, marker residuals, repaired intervals,\n"
     "retarget error, foot skating, the gate's verdict), all together or none.\n"
     "Exit code: 0 done, 1 bad input or a failed stage (nothing written), 3 the take failed\n"
     "the quality gate (outputs written, the report says why).",

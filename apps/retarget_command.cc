@@ -80,6 +80,9 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   if (!FLAGS_out.empty() && !out_bvh && !HasExtension(FLAGS_out, ".glb") && !HasExtension(FLAGS_out, ".gltf")) {
     return Status::Error("--out: " + FLAGS_out + ": expected .glb, .gltf or .bvh");
   }
+  if (FLAGS_animation_only && (FLAGS_out.empty() || out_bvh)) {
+    return Status::Error("--animation_only: applies to a .glb/.gltf --out");
+  }
   Status status = CheckViewFlag({FLAGS_source, FLAGS_target, FLAGS_skeleton, FLAGS_joint_map});
   if (!status.ok()) return status;
   CharacterRetargetOptions options;
@@ -176,7 +179,9 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
     if (out_bvh) {
       status = WriteBvh(FLAGS_out, target.skeleton, result.motion);
     } else {
-      status = WriteGltfWithAnimation(target_document, target, result.motion, name, FLAGS_out);
+      GltfWriteOptions write_options;
+      write_options.animation_only = FLAGS_animation_only;
+      status = WriteGltfWithAnimation(target_document, target, result.motion, name, FLAGS_out, write_options);
     }
     if (!status.ok()) return status;
   }
@@ -193,8 +198,10 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
     ViewCharacter character;
     character.name = FileStem(FLAGS_target);
     character.animation = name;
+    GltfWriteOptions page_copy;
+    page_copy.compact = true;  // Int16 rotations, still joints as one key: the page only plays it.
     made = SerializeGltfWithAnimation(target_document, target, result.motion, name, /*binary=*/true, &character.glb,
-                                      /*compact=*/true);
+                                      page_copy);
     if (made.ok()) scene->characters.push_back(std::move(character));
     return made;
   });
@@ -235,6 +242,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
       .Add("source_animation", FLAGS_source_animation)
       .Add("source_kind", retarget.skeleton_only ? "skeleton" : "mesh")
       .Add("target", FLAGS_target)
+      .Add("animation_only", FLAGS_animation_only)
       .Add("solver", RetargetSolverName(solve.solver))
       .Add("frames", motion.num_frames())
       .Add("frame_rate", motion.frame_rate)
@@ -275,7 +283,8 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   return WriteReport(report);
 }
 
-const std::string kRetargetFlags = std::string("target,out,report,quiet,solver,max_frames,limit_weight,skeleton,amc_fps,view,") +
+const std::string kRetargetFlags = std::string("target,out,report,quiet,solver,max_frames,limit_weight,skeleton,amc_fps,view,"
+                                               "animation_only,") +
                                    kRetargetOptionFlagNames;
 
 }  // namespace
@@ -283,7 +292,7 @@ const std::string kRetargetFlags = std::string("target,out,report,quiet,solver,m
 extern const Command kRetargetCommand = {
     "retarget", "transfer a motion (glTF, BVH, AMC, FBX) onto a glTF character by meshes (thesis ch. 4)",
     "mocapsolve retarget --source=SRC.glb|.bvh|.amc|.fbx [--skeleton=X.asf] [--source_animation=NAME] --target=TGT.glb "
-    "--out=OUT.glb|.gltf|.bvh [--out_bvh=OUT.bvh] [--animation_name=NAME] [--solver=dls|dls_generic|ceres] [--subsample=128] "
+    "--out=OUT.glb|.gltf|.bvh [--animation_only] [--out_bvh=OUT.bvh] [--animation_name=NAME] [--solver=dls|dls_generic|ceres] [--subsample=128] "
     "[--iterations=10] [--lambda=5] [--blend_mask=auto|FILE.json] [--report=r.json] [--view=PAGE.html]\n\n"
     "Subsamples the source mesh (farthest points, normal check, >= 3 per joint), maps the samples\n"
     "to the nearest target vertices in a height-normalized rest frame, and solves each frame's\n"
@@ -292,7 +301,9 @@ extern const Command kRetargetCommand = {
     "A skeleton-only source (BVH, AMC, FBX; or --source_mesh=false) gets the target's mesh bound\n"
     "to its skeleton after aligning the rest poses (joints mapped by name, --joint_map overrides).\n"
     "Feet are planted where the source's foot joints are in contact (--plant_feet).\n"
-    "A .glb/.gltf --out is the target file with the result added as a new animation.\n"
+    "A .glb/.gltf --out is the target file with the result added as a new animation; with\n"
+    "--animation_only just the target's skeleton, skin and that animation (no meshes), to play\n"
+    "on the target file an application already has (Blender: scripts/apply_animation_gltf.py).\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
     __FILE__, RunRetarget, kRetargetFlags.c_str(),

@@ -43,6 +43,10 @@ DEFINE_double(contact_height, kDefault.contact_height, "Foot contact: height abo
               "target height (for the foot-skating figures).");
 DEFINE_double(ceres_trust_radius, kDefault.ceres_trust_radius, "Ceres' initial trust region radius (its default is 1e4; ~1 "
               "converges better within a few iterations on the cross-character cases).");
+DEFINE_bool(animation_only, false, "Write each retargeted .glb/.gltf as an animation-only glTF: the character's "
+            "skeleton nodes (same names and rest transforms), its skin and the new animation, without meshes, "
+            "materials or images; Blender (scripts/apply_animation_gltf.py) and three.js play it on the "
+            "character file they already have.");
 
 namespace mocapsolve {
 

@@ -11,6 +11,9 @@
 
 DECLARE_string(joint_map);
 DECLARE_int32(subsample);
+// Not a retargeting knob but how the result is delivered (io/gltf_writer.h); retarget and
+// pipeline read it.
+DECLARE_bool(animation_only);
 
 namespace mocapsolve {
 

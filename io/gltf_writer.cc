@@ -175,11 +175,193 @@ Status WriteModel(const std::string& file, tinygltf::Model* model, bool binary, 
   return Status::Ok();
 }
 
+// Copies accessor `index` of `from` (its elements, tightly packed) into buffer 0 of `to`
+// as a new buffer view + accessor (type, component type, count, normalized, min/max kept);
+// `copied` maps accessors already copied. Returns the new index, or -1 with *error set.
+// With first_only, just its first element (not cached).
+int CopyAccessor(const tinygltf::Model& from, int index, tinygltf::Model* to, std::vector<int>* copied,
+                 std::string* error, bool first_only = false) {
+  if (index < 0 || index >= static_cast<int>(from.accessors.size())) {
+    *error = "accessor " + std::to_string(index) + " out of range";
+    return -1;
+  }
+  if (!first_only && (*copied)[index] >= 0) return (*copied)[index];
+  const tinygltf::Accessor& a = from.accessors[index];
+  const std::string name = "accessor " + std::to_string(index);
+  if (a.sparse.isSparse) {
+    *error = name + ": sparse accessors are not copied into an animation-only file";
+    return -1;
+  }
+  if (a.bufferView < 0 || a.bufferView >= static_cast<int>(from.bufferViews.size())) {
+    *error = name + ": has no buffer view";
+    return -1;
+  }
+  const tinygltf::BufferView& view = from.bufferViews[a.bufferView];
+  const int component_size = tinygltf::GetComponentSizeInBytes(a.componentType);
+  const int components = tinygltf::GetNumComponentsInType(a.type);
+  if (view.buffer < 0 || view.buffer >= static_cast<int>(from.buffers.size()) || component_size <= 0 ||
+      components <= 0) {
+    *error = name + ": bad buffer, component type or type";
+    return -1;
+  }
+  const size_t element = static_cast<size_t>(component_size) * components;
+  const size_t stride = view.byteStride > 0 ? view.byteStride : element;
+  const std::vector<unsigned char>& data = from.buffers[view.buffer].data;
+  const size_t start = view.byteOffset + a.byteOffset;
+  if (a.count > 0 && (a.byteOffset + stride * (a.count - 1) + element > view.byteLength ||
+                      view.byteOffset + view.byteLength > data.size())) {
+    *error = name + ": runs past its buffer view or buffer";
+    return -1;
+  }
+  const size_t count = first_only ? std::min<size_t>(a.count, 1) : a.count;
+  tinygltf::Buffer& buffer = to->buffers[0];
+  while (buffer.data.size() % 4 != 0) buffer.data.push_back(0);
+  tinygltf::BufferView out_view;
+  out_view.buffer = 0;
+  out_view.byteOffset = buffer.data.size();
+  out_view.byteLength = element * count;
+  buffer.data.reserve(buffer.data.size() + out_view.byteLength);
+  for (size_t e = 0; e < count; ++e) {
+    const unsigned char* p = data.data() + start + e * stride;
+    buffer.data.insert(buffer.data.end(), p, p + element);
+  }
+  to->bufferViews.push_back(out_view);
+  tinygltf::Accessor out = a;
+  out.bufferView = static_cast<int>(to->bufferViews.size()) - 1;
+  out.byteOffset = 0;
+  out.count = count;
+  if (first_only) {  // Bounds of the whole accessor would be wrong for one element.
+    out.minValues.clear();
+    out.maxValues.clear();
+  }
+  to->accessors.push_back(out);
+  const int made = static_cast<int>(to->accessors.size()) - 1;
+  if (!first_only) (*copied)[index] = made;
+  return made;
+}
+
+// True if every element of accessor `index` (written by this file: tightly packed) has the
+// bytes of the first.
+bool AllElementsEqual(const tinygltf::Model& model, int index) {
+  const tinygltf::Accessor& a = model.accessors[index];
+  const tinygltf::BufferView& view = model.bufferViews[a.bufferView];
+  const size_t element = static_cast<size_t>(tinygltf::GetComponentSizeInBytes(a.componentType)) *
+                         tinygltf::GetNumComponentsInType(a.type);
+  const unsigned char* first = model.buffers[view.buffer].data.data() + view.byteOffset + a.byteOffset;
+  for (size_t e = 1; e < a.count; ++e) {
+    if (std::memcmp(first, first + e * element, element) != 0) return false;
+  }
+  return true;
+}
+
+// The animation-only model (gltf_writer.h) of `full`: the nodes of skin `skin` and their
+// ancestors (`parent` per node), the skin, one scene, and the last animation of `full`.
+Status AnimationOnlyModel(const tinygltf::Model& full, const std::vector<int>& parent, int skin,
+                          const std::string& file, tinygltf::Model* out) {
+  const int nn = static_cast<int>(full.nodes.size());
+  if (skin < 0 || skin >= static_cast<int>(full.skins.size()) || full.animations.empty()) {
+    return Status::Error(file + ": animation only: no skin " + std::to_string(skin) + " or no animation");
+  }
+  const tinygltf::Skin& source_skin = full.skins[skin];
+  std::vector<bool> keep(nn, false);
+  auto keep_with_ancestors = [&](int node) {
+    for (int n = node; n >= 0 && !keep[n]; n = parent[n]) keep[n] = true;
+  };
+  for (int n : source_skin.joints) keep_with_ancestors(n);
+  if (source_skin.skeleton >= 0) keep_with_ancestors(source_skin.skeleton);
+  std::vector<int> index(nn, -1);
+  tinygltf::Model model;
+  model.asset = full.asset;
+  model.asset.extras = tinygltf::Value();
+  model.asset.extensions.clear();
+  for (int n = 0; n < nn; ++n) {
+    if (!keep[n]) continue;
+    index[n] = static_cast<int>(model.nodes.size());
+    const tinygltf::Node& from = full.nodes[n];
+    tinygltf::Node node;
+    node.name = from.name;
+    node.translation = from.translation;
+    node.rotation = from.rotation;
+    node.scale = from.scale;
+    node.matrix = from.matrix;
+    model.nodes.push_back(node);
+  }
+  tinygltf::Scene scene;
+  if (!full.scenes.empty()) {
+    scene.name = full.scenes[full.defaultScene >= 0 && full.defaultScene < static_cast<int>(full.scenes.size())
+                                 ? full.defaultScene
+                                 : 0]
+                     .name;
+  }
+  for (int n = 0; n < nn; ++n) {
+    if (!keep[n]) continue;
+    for (int child : full.nodes[n].children) {
+      if (child >= 0 && child < nn && keep[child]) model.nodes[index[n]].children.push_back(index[child]);
+    }
+    if (parent[n] < 0) scene.nodes.push_back(index[n]);
+  }
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+  model.buffers.emplace_back();
+  std::vector<int> copied(full.accessors.size(), -1);
+  std::string error;
+  tinygltf::Skin out_skin;
+  out_skin.name = source_skin.name;
+  for (int n : source_skin.joints) out_skin.joints.push_back(index[n]);
+  out_skin.skeleton = source_skin.skeleton >= 0 ? index[source_skin.skeleton] : -1;
+  if (source_skin.inverseBindMatrices >= 0) {
+    out_skin.inverseBindMatrices = CopyAccessor(full, source_skin.inverseBindMatrices, &model, &copied, &error);
+    if (out_skin.inverseBindMatrices < 0) return Status::Error(file + ": skin " + std::to_string(skin) + ": " + error);
+  }
+  model.skins.push_back(out_skin);
+  // The animation (written by this file: LINEAR samplers, tightly packed accessors). A
+  // channel whose keys are all equal (fingers a skeleton-only source does not move) gets
+  // one key at time 0, which glTF holds for the whole clip, unless every channel is
+  // constant (the clip then keeps its length).
+  const tinygltf::Animation& from = full.animations.back();
+  std::vector<bool> constant(from.samplers.size());
+  bool all_constant = true;
+  for (size_t k = 0; k < from.samplers.size(); ++k) {
+    constant[k] = AllElementsEqual(full, from.samplers[k].output);
+    all_constant = all_constant && constant[k];
+  }
+  int single_time = -1;
+  tinygltf::Animation animation;
+  animation.name = from.name;
+  for (size_t k = 0; k < from.samplers.size(); ++k) {
+    const tinygltf::AnimationSampler& s = from.samplers[k];
+    tinygltf::AnimationSampler sampler = s;
+    if (constant[k] && !all_constant) {
+      if (single_time < 0) single_time = AppendFloatAccessor(&model, {0.0f}, TINYGLTF_TYPE_SCALAR, 1, true);
+      sampler.input = single_time;
+      sampler.output = CopyAccessor(full, s.output, &model, &copied, &error, /*first_only=*/true);
+    } else {
+      sampler.input = CopyAccessor(full, s.input, &model, &copied, &error);
+      if (sampler.input >= 0) sampler.output = CopyAccessor(full, s.output, &model, &copied, &error);
+    }
+    if (sampler.input < 0 || sampler.output < 0) return Status::Error(file + ": animation only: " + error);
+    animation.samplers.push_back(sampler);
+  }
+  for (const tinygltf::AnimationChannel& c : from.channels) {
+    tinygltf::AnimationChannel channel = c;
+    channel.target_node = c.target_node >= 0 && c.target_node < nn ? index[c.target_node] : -1;
+    if (channel.target_node < 0) {
+      return Status::Error(file + ": animation only: channel on node " + std::to_string(c.target_node) +
+                           ", which is not a joint of skin " + std::to_string(skin));
+    }
+    animation.channels.push_back(channel);
+  }
+  model.animations.push_back(std::move(animation));
+  *out = std::move(model);
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
                                   const Motion& motion, const std::string& animation_name,
-                                  bool binary, std::string* bytes, bool compact) {
+                                  bool binary, std::string* bytes, const GltfWriteOptions& options) {
+  const bool compact = options.compact;
   if (!source.loaded()) return Status::Error("glTF writer: source document not loaded");
   const std::string& file = source.name();
   const Skeleton& skeleton = character.skeleton;
@@ -304,6 +486,12 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
     if (moves) add_channel(node, "translation", translations, TINYGLTF_TYPE_VEC3);
   }
   model.animations.push_back(std::move(animation));
+  if (options.animation_only) {
+    tinygltf::Model slim;
+    status = AnimationOnlyModel(model, graph.parent, character.skin, file, &slim);
+    if (!status.ok()) return status;
+    model = std::move(slim);
+  }
   return WriteModel(file, &model, binary, bytes);
 }
 
@@ -377,7 +565,7 @@ Status MotionForCharacter(const Skeleton& source, const Motion& motion, const Gl
 
 Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
                               const Motion& motion, const std::string& animation_name,
-                              const std::string& path) {
+                              const std::string& path, const GltfWriteOptions& options) {
   const std::string ext = FileExtension(path);
   if (ext != ".glb" && ext != ".gltf") {
     return Status::Error(path + ": glTF output must end in .glb or .gltf");
@@ -387,7 +575,7 @@ Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& c
   }
   std::string bytes;
   Status status = SerializeGltfWithAnimation(source, character, motion, animation_name,
-                                             ext == ".glb", &bytes);
+                                             ext == ".glb", &bytes, options);
   if (!status.ok()) return status;
   return WriteFileAtomically(path, bytes);
 }

@@ -254,8 +254,10 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
     ViewCharacter character;
     character.name = c.name;
     character.animation = inputs.name;
+    GltfWriteOptions page_copy;
+    page_copy.compact = true;  // Int16 rotations, still joints as one key: the page only plays it.
     Status status = SerializeGltfWithAnimation(c.document, c.character, c.result.clip.motion, inputs.name,
-                                               /*binary=*/true, &character.glb, /*compact=*/true);
+                                               /*binary=*/true, &character.glb, page_copy);
     if (!status.ok()) return status;
     view.characters.push_back(std::move(character));
   }
@@ -263,13 +265,13 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
 }
 
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
-                        const JsonObject& report, bool write_view) {
+                        const JsonObject& report, bool write_view, const GltfWriteOptions& character_files) {
   Status status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
   if (status.ok()) status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved, BvhWriteOptions());
   for (const CharacterOutput& c : result.characters) {
     if (!status.ok()) break;
     status = WriteGltfWithAnimation(c.document, c.character, c.result.clip.motion, inputs.name,
-                                    CharacterOutputPath(out_dir, c.name, c.path));
+                                    CharacterOutputPath(out_dir, c.name, c.path), character_files);
   }
   if (status.ok()) status = WriteFileAtomically(InFolder(out_dir, "report.json"), report.ToString() + "\n");
   if (status.ok() && write_view) {

@@ -13,7 +13,8 @@
 //   DIR/repaired.c3d (or .trc, as the input)  the input file with the repaired samples,
 //   DIR/solved.bvh                            the (filtered) solve on the subject's skeleton,
 //   DIR/<character>.glb                       each character's file plus the take as a new
-//                                             animation named after the take,
+//                                             animation named after the take (or, animation
+//                                             only, its skeleton, skin and the take: io/gltf_writer.h),
 //   DIR/report.json                           every stage's timings and quality figures,
 //   DIR/view.html                             the take's browser page (when asked),
 // each atomically (inside the command's FileTransaction, all together). Errors name the
@@ -26,6 +27,7 @@
 #include <vector>
 
 #include "io/gltf_reader.h"
+#include "io/gltf_writer.h"
 #include "io/json_writer.h"
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/motion.h"
@@ -104,8 +106,11 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result);
 // DIR/report.json; with write_view also DIR/view.html, the take's page (pipeline/take_view.h:
 // the repaired markers coloured by reason, the solve, the residual curve, each character
 // playing the take beside it), which needs the viewer's runtime (viewer/view_page.h).
+// character_files: how DIR/<character>.glb is written (animation_only: without the
+// character's meshes; the page always embeds whole characters).
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
-                        const JsonObject& report, bool write_view = false);
+                        const JsonObject& report, bool write_view = false,
+                        const GltfWriteOptions& character_files = {});
 // DIR/view.html.
 std::string ViewPagePath(const std::string& out_dir);
 // The page WriteTakeOutputs writes.

@@ -16,7 +16,7 @@ void BindPipeline(py::module_& m) {
                        const std::string& out_dir, const std::string& take_name, int filter_levels, double kernel_a,
                        double tension, double gate_naive_rms_mm, double gate_repaired_rms_mm,
                        double gate_repaired_share, double gate_iteration_limit_share, double gate_marker_offset_cm,
-                       double gate_torso_deg, const py::kwargs& keywords) {
+                       double gate_torso_deg, bool animation_only, const py::kwargs& keywords) {
         RepairSettings repair_settings;
         SolverSettings solver_settings;
         solver_settings.solver = kRepairDefaultSolver;  // The pipeline solves with DLS by default.
@@ -62,7 +62,10 @@ void BindPipeline(py::module_& m) {
             report_text = report.ToString();
             if (!out_dir.empty()) {
               status = MakeFolders(out_dir);
-              if (status.ok()) status = WriteTakeOutputs(out_dir, inputs, *result, report);
+              GltfWriteOptions character_files;
+              character_files.animation_only = animation_only;
+              if (status.ok()) status = WriteTakeOutputs(out_dir, inputs, *result, report, /*write_view=*/false,
+                                                         character_files);
             }
           }
         }
@@ -81,7 +84,7 @@ void BindPipeline(py::module_& m) {
       py::arg("out_dir") = "", py::arg("take_name") = "", py::arg("filter_levels") = 0, py::arg("kernel_a") = 0.4,
       py::arg("tension") = 0.0, py::arg("gate_naive_rms_mm") = 30.0, py::arg("gate_repaired_rms_mm") = 20.0,
       py::arg("gate_repaired_share") = 0.25, py::arg("gate_iteration_limit_share") = 0.2,
-      py::arg("gate_marker_offset_cm") = 25.0, py::arg("gate_torso_deg") = 15.0,
+      py::arg("gate_marker_offset_cm") = 25.0, py::arg("gate_torso_deg") = 15.0, py::arg("animation_only") = false,
       (std::string(R"doc(One take end to end, as `mocapsolve pipeline`: repair and solve the markers (a .c3d/.trc
 path) of the subject, filter (filter_levels > 0), retarget onto each character (.glb
 paths), check the quality gate (gate_* as the CLI's flags; 0 turns a check off):
@@ -97,7 +100,9 @@ take_name: the take's name in the report ('' = the marker file's stem).
 filter_levels: the multiresolution filter's levels (0 = off), with kernel_a (the Cardinal
 spline kernel's a, default 0.4) and tension (default 0).
 Keywords: the repair, solver (solver='dls' by default) and retarget options.
-out_dir: also write repaired markers, solved.bvh, <character>.glb and report.json there.
+out_dir: also write repaired markers, solved.bvh, <character>.glb and report.json there;
+animation_only: each <character>.glb then holds the character's skeleton, skin and the
+take only, no meshes (as the CLI's --animation_only).
 Returns a dict: 'solved' (Motion), 'repaired_markers' (Markers), 'characters' {name:
 Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc") +
        KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", [] { SolverSettings s; s.solver = kRepairDefaultSolver; return py::cast(s); }(), kSolverSettingNames) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), kRetargetSettingNames)).c_str());

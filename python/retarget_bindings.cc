@@ -34,13 +34,16 @@ void BindRetarget(py::module_& m) {
   m.def("retarget", [](const std::string& source, const std::string& target, py::object skeleton,
                        bool source_mesh, const std::string& source_animation, double frame_rate,
                        int max_frames, double amc_fps, const std::string& out, const std::string& animation_name,
-                       const py::kwargs& keywords) {
+                       bool animation_only, const py::kwargs& keywords) {
         RetargetSettings retarget_settings;
         ApplyKeywords(keywords, {py::cast(&retarget_settings, py::return_value_policy::reference)},
                       std::string("solver,limit_weight,") + kRetargetSettingNames);
         CharacterRetargetOptions options;
         ThrowIfError(RetargetOptionsFromSettings(retarget_settings, &options));
         if (max_frames < 0) throw py::value_error("--max_frames: must be >= 0");
+        if (animation_only && (out.empty() || FileExtension(out) == ".bvh")) {
+          throw py::value_error("--animation_only: applies to a .glb/.gltf --out");
+        }
         RequireReadable(source);
         RequireReadable(target);
         const std::string skeleton_path = skeleton.is_none() ? std::string() : std::string(py::str(skeleton));
@@ -100,7 +103,10 @@ void BindRetarget(py::module_& m) {
                                                                        ? source.substr(source.find_last_of('/') + 1)
                                                                        : source_animation)
                                            : animation_name;
-              status = WriteGltfWithAnimation(target_document, *target_character, retarget.clip.motion, name, out);
+              GltfWriteOptions write_options;
+              write_options.animation_only = animation_only;
+              status = WriteGltfWithAnimation(target_document, *target_character, retarget.clip.motion, name, out,
+                                              write_options);
             }
           }
         }
@@ -125,6 +131,7 @@ void BindRetarget(py::module_& m) {
       }, py::arg("source"), py::arg("target"), py::kw_only(), py::arg("skeleton") = py::none(),
       py::arg("source_mesh") = true, py::arg("source_animation") = "", py::arg("frame_rate") = 0.0,
       py::arg("max_frames") = 0, py::arg("amc_fps") = 120.0, py::arg("out") = "", py::arg("animation_name") = "",
+      py::arg("animation_only") = false,
       (std::string(R"doc(Retargets a source motion onto a skinned glTF character, as `mocapsolve retarget`
 (thesis chapter 4). source: a skinned .glb/.gltf (its mesh tracked unless
 source_mesh=False) or a skeleton motion (.bvh, .amc with skeleton= its .asf, .fbx);
@@ -132,7 +139,9 @@ target: a .glb/.gltf character. out: also write a .glb/.gltf (the target plus th
 animation) or .bvh. source_animation: the source file's clip (a name or index; glTF/FBX);
 frame_rate: resample the source to this rate (0 = its own); max_frames: only the first N
 frames (0 = all); amc_fps: an .amc's frame rate (default 120); animation_name: the new
-clip's name in the written glTF ('' = 'retargeted from <source clip>').
+clip's name in the written glTF ('' = 'retargeted from <source clip>'); animation_only:
+write the glTF out as the target's skeleton, skin and the new animation only, no meshes
+(as the CLI's --animation_only).
 Keywords: the RetargetSettings (solver='dls', iterations=10,
 lambda=5, subsample=128, plant_feet=True, joint_map='map.json', ...).
 Returns (target character, motion on the target skeleton, report dict). Releases the GIL.)doc") +

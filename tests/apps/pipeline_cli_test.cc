@@ -8,6 +8,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include "io/bvh_reader.h"
 #include "io/gltf_reader.h"
@@ -60,10 +61,36 @@ TEST_F(PipelineCli, SolvesTheTakeAndWritesTheOutputs) {
   EXPECT_EQ(solved.num_frames(), 60);
 }
 
+// --animation_only: DIR/Xbot.glb holds Xbot's skeleton, skin and the take, no meshes.
+TEST_F(PipelineCli, AnimationOnlyCharacterFiles) {
+  MOCAPSOLVE_DATA_FILE(xbot, "gltf/Xbot.glb");
+  const std::string dir = testing::TempPath("slim");
+  const std::string report = testing::TempPath("slim.json");
+  std::string output;
+  ASSERT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + dir + " --character=" + xbot +
+                     " --animation_only --report=" + report, &output), 0) << output;
+  GltfDocument document;
+  ASSERT_TRUE(GltfDocument::Read(dir + "/Xbot.glb", &document).ok());
+  const tinygltf::Model& model = document.model();
+  EXPECT_TRUE(model.meshes.empty());
+  EXPECT_TRUE(model.materials.empty());
+  ASSERT_EQ(model.animations.size(), 1u);
+  EXPECT_EQ(model.animations[0].name, "walk");
+  ASSERT_EQ(model.skins.size(), 1u);
+  EXPECT_EQ(model.skins[0].joints.size(), 65u);
+  struct stat written, character;
+  ASSERT_EQ(::stat((dir + "/Xbot.glb").c_str(), &written), 0);
+  ASSERT_EQ(::stat(xbot.c_str(), &character), 0);
+  EXPECT_LT(written.st_size, character.st_size / 10);  // 1.84 MB; 60 frames: 99 kB.
+  EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"animation_only\": true"));
+  EXPECT_THAT(testing::ReadTextFile(dir + "/report.json"), HasSubstr("\"animation_only\": true"));
+}
+
 TEST_F(PipelineCli, ConfigFileAndFlagsAndPrintConfig) {
   std::string output;
   ASSERT_EQ(testing::RunCli("pipeline --print_config", &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("\"dp_max_cm\": 10"));
+  EXPECT_THAT(output, HasSubstr("\"animation_only\": false"));
   EXPECT_THAT(output, HasSubstr("\"gate_repaired_rms_mm\": 20"));
   const std::string config = testing::TempPath("config.json");
   ASSERT_EQ(testing::RunCli("pipeline --print_config --gate_repaired_rms_mm=5", &output), 0);

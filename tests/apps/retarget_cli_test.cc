@@ -11,6 +11,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include "io/bvh_reader.h"
 #include "io/gltf_reader.h"
@@ -80,6 +81,55 @@ TEST(RetargetCli, WritesTheResultIntoTheTargetGlb) {
   ASSERT_TRUE(ReadBvh(bvh, &skeleton, &from_bvh).ok());
   EXPECT_EQ(from_glb.num_frames(), 6);
   EXPECT_EQ(from_bvh.num_frames(), 6);
+}
+
+// --animation_only: the target's skeleton, skin and the new animation, no meshes; the
+// report records the option; a .bvh --out with it is an error.
+TEST(RetargetCli, AnimationOnlyGlb) {
+  MOCAPSOLVE_DATA_FILE(source, "gltf/CesiumMan.glb");
+  MOCAPSOLVE_DATA_FILE(target, "gltf/RiggedFigure.glb");
+  const std::string out = testing::TempPath("walk.glb");
+  const std::string report = testing::TempPath("walk.json");
+  const std::string base = "retarget --quiet --source=" + source + " --target=" + target +
+                           " --iterations=3 --max_frames=6 --animation_name=walk --animation_only";
+  std::string output;
+  ASSERT_EQ(testing::RunCli(base + " --out=" + out + " --report=" + report, &output), 0) << output;
+  GltfDocument written, character;
+  ASSERT_TRUE(GltfDocument::Read(out, &written).ok());
+  ASSERT_TRUE(GltfDocument::Read(target, &character).ok());
+  const tinygltf::Model& model = written.model();
+  EXPECT_TRUE(model.meshes.empty());
+  EXPECT_TRUE(model.images.empty());
+  ASSERT_EQ(model.animations.size(), 1u);
+  EXPECT_EQ(model.animations[0].name, "walk");
+  ASSERT_EQ(model.skins.size(), 1u);
+  EXPECT_EQ(model.skins[0].joints.size(), 19u);
+  // Every node is one of the character's, by name (what Blender and three.js bind by).
+  std::vector<std::string> names;
+  for (const tinygltf::Node& node : character.model().nodes) names.push_back(node.name);
+  for (const tinygltf::Node& node : model.nodes) {
+    EXPECT_NE(std::find(names.begin(), names.end(), node.name), names.end()) << node.name;
+  }
+  for (const tinygltf::AnimationChannel& channel : model.animations[0].channels) {
+    EXPECT_GE(channel.target_node, 0);
+  }
+  std::ifstream out_file(out, std::ios::binary | std::ios::ate), target_file(target, std::ios::binary | std::ios::ate);
+  // RiggedFigure is 50 kB, 6 frames' keys and the nodes' JSON 13 kB.
+  EXPECT_LT(static_cast<long>(out_file.tellg()), static_cast<long>(target_file.tellg()) / 2);
+  JsonNode root;
+  ASSERT_TRUE(ReadJsonFile(report, &root).ok());
+  ASSERT_NE(root.Find("animation_only"), nullptr);
+  EXPECT_TRUE(root.Find("animation_only")->boolean);
+  const JsonNode* options = root.Find("options");
+  ASSERT_NE(options, nullptr);
+  ASSERT_NE(options->Find("animation_only"), nullptr);
+  EXPECT_TRUE(options->Find("animation_only")->boolean);
+  // Only for a glTF --out.
+  const std::string bvh = testing::TempPath("walk.bvh");
+  EXPECT_EQ(testing::RunCli(base + " --out=" + bvh, &output), 1);
+  EXPECT_THAT(output, HasSubstr("--animation_only: applies to a .glb/.gltf --out"));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  EXPECT_FALSE(testing::FileExists(bvh));
 }
 
 TEST(RetargetCli, BadInputsFailWithOneLine) {

@@ -41,11 +41,20 @@ TEST(GltfValidator, WrittenFilesHaveNoErrors) {
   for (Pose& pose : motion.frames) pose.rotations.back() = Eigen::Quaterniond::Identity();
   const std::string quantized = testing::TempPath("validated_int16.glb");
   std::string bytes;
-  ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "validated", true, &bytes, /*compact=*/true).ok());
+  GltfWriteOptions compact;
+  compact.compact = true;
+  ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "validated", true, &bytes, compact).ok());
   ASSERT_TRUE(WriteFileAtomically(quantized, bytes).ok());
+  // --animation_only: skeleton, skin and the animation, no meshes (the skin is unused: an info).
+  const std::string animation_only = testing::TempPath("validated_animation_only.glb");
+  const std::string animation_only_gltf = testing::TempPath("validated_animation_only.gltf");
+  GltfWriteOptions slim;
+  slim.animation_only = true;
+  ASSERT_TRUE(WriteGltfWithAnimation(doc, c, motion, "validated", animation_only, slim).ok());
+  ASSERT_TRUE(WriteGltfWithAnimation(doc, c, motion, "validated", animation_only_gltf, slim).ok());
   const std::string log = testing::TempPath("validator.log");
   const std::string command = testing::SourcePath("scripts/validate_gltf.sh") + " " + glb + " " + gltf + " " +
-                              quantized + " > " + log + " 2>&1";
+                              quantized + " " + animation_only + " " + animation_only_gltf + " > " + log + " 2>&1";
   const int raw = std::system(command.c_str());
   const int code = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   const std::string output = testing::ReadTextFile(log);
@@ -55,6 +64,8 @@ TEST(GltfValidator, WrittenFilesHaveNoErrors) {
   EXPECT_NE(output.find("validated.glb: 0 errors"), std::string::npos) << output;
   EXPECT_NE(output.find("validated.gltf: 0 errors"), std::string::npos) << output;
   EXPECT_NE(output.find("validated_int16.glb: 0 errors"), std::string::npos) << output;
+  EXPECT_NE(output.find("validated_animation_only.glb: 0 errors, 0 warnings"), std::string::npos) << output;
+  EXPECT_NE(output.find("validated_animation_only.gltf: 0 errors, 0 warnings"), std::string::npos) << output;
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include "io/gltf_writer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -99,6 +101,185 @@ TEST_P(GltfRoundTrip, AddedAnimationReadsBackAsWritten) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, GltfRoundTrip,
+                         ::testing::Values("CesiumMan.glb", "RiggedFigure.glb", "Xbot.glb", "Ely.glb",
+                                           "Soldier.glb", "RobotExpressive.glb", "Fox.glb"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                           std::string name = info.param;
+                           return name.substr(0, name.find('.'));
+                         });
+
+// The bytes of an accessor the writer made (tightly packed: no byte stride).
+std::string AccessorBytes(const tinygltf::Model& model, int index) {
+  const tinygltf::Accessor& a = model.accessors.at(index);
+  const tinygltf::BufferView& view = model.bufferViews.at(a.bufferView);
+  EXPECT_EQ(view.byteStride, 0);
+  const size_t size = a.count * tinygltf::GetComponentSizeInBytes(a.componentType) *
+                      tinygltf::GetNumComponentsInType(a.type);
+  const std::vector<unsigned char>& data = model.buffers.at(view.buffer).data;
+  const size_t start = view.byteOffset + a.byteOffset;
+  EXPECT_LE(start + size, data.size());
+  return std::string(reinterpret_cast<const char*>(data.data()) + start, size);
+}
+
+// --animation_only: the skeleton's nodes (names, rest transforms, hierarchy), the skin
+// and the new animation, no meshes or images; the animation's channels are the full
+// file's, key for key, on the nodes of the same names; a fraction of the size.
+class GltfAnimationOnly : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(GltfAnimationOnly, HoldsTheSkeletonSkinAndAnimationOnly) {
+  MOCAPSOLVE_DATA_FILE(path, std::string("gltf/") + GetParam());
+  GltfDocument doc;
+  ASSERT_TRUE(GltfDocument::Read(path, &doc).ok());
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(doc, {}, &c).ok());
+  Motion motion = NewMotion(doc, c);
+  const int still = c.skeleton.num_joints() - 1;  // A leaf held still: its channel gets one key.
+  for (Pose& pose : motion.frames) pose.rotations[still] = motion.frames[0].rotations[still];
+  GltfWriteOptions animation_only;
+  animation_only.animation_only = true;
+  std::string full_bytes, slim_bytes;
+  ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "mocapsolve", true, &full_bytes).ok());
+  Status status = SerializeGltfWithAnimation(doc, c, motion, "mocapsolve", true, &slim_bytes, animation_only);
+  ASSERT_TRUE(status.ok()) << status.message();
+  GltfDocument full_doc, slim_doc;
+  ASSERT_TRUE(GltfDocument::Parse(full_bytes, "full.glb", "", &full_doc).ok());
+  status = GltfDocument::Parse(slim_bytes, "slim.glb", "", &slim_doc);
+  ASSERT_TRUE(status.ok()) << status.message();
+  const tinygltf::Model& full = full_doc.model();
+  const tinygltf::Model& slim = slim_doc.model();
+  std::printf("%s: full %zu bytes, animation only %zu bytes (%.1f %%), %d frames\n", GetParam(), full_bytes.size(),
+              slim_bytes.size(), 100.0 * slim_bytes.size() / full_bytes.size(), motion.num_frames());
+  EXPECT_TRUE(slim.meshes.empty());
+  EXPECT_TRUE(slim.materials.empty());
+  EXPECT_TRUE(slim.textures.empty());
+  EXPECT_TRUE(slim.images.empty());
+  EXPECT_TRUE(slim.samplers.empty());
+  EXPECT_TRUE(slim.cameras.empty());
+  EXPECT_TRUE(slim.extensionsRequired.empty());
+  EXPECT_EQ(slim.buffers.size(), 1u);
+  ASSERT_EQ(slim.scenes.size(), 1u);
+  ASSERT_EQ(slim.animations.size(), 1u);
+  EXPECT_EQ(slim.animations[0].name, "mocapsolve");
+  // The nodes: skin joint k is the full file's skin joint k, a kept node's parent the
+  // full node's parent (names may repeat: RobotExpressive has a mesh node and a joint both
+  // named "Torso"); each with the full node's name and rest transform.
+  ASSERT_EQ(slim.skins.size(), 1u);
+  const tinygltf::Skin& skin = slim.skins[0];
+  const tinygltf::Skin& full_skin = full.skins[c.skin];
+  ASSERT_EQ(skin.joints.size(), full_skin.joints.size());
+  std::vector<int> slim_parent(slim.nodes.size(), -1), full_parent(full.nodes.size(), -1);
+  for (size_t n = 0; n < slim.nodes.size(); ++n) {
+    EXPECT_EQ(slim.nodes[n].mesh, -1);
+    EXPECT_EQ(slim.nodes[n].skin, -1);
+    for (int child : slim.nodes[n].children) slim_parent.at(child) = static_cast<int>(n);
+  }
+  for (size_t n = 0; n < full.nodes.size(); ++n) {
+    for (int child : full.nodes[n].children) full_parent.at(child) = static_cast<int>(n);
+  }
+  std::vector<int> full_of(slim.nodes.size(), -1);  // Slim node -> full node.
+  for (size_t k = 0; k < skin.joints.size(); ++k) {
+    for (int a = skin.joints[k], b = full_skin.joints[k]; a >= 0; a = slim_parent[a], b = full_parent[b]) {
+      ASSERT_GE(b, 0) << "slim node " << a << " has a parent the full file's node has not";
+      if (full_of[a] >= 0) {
+        EXPECT_EQ(full_of[a], b) << "slim node " << a;
+        break;
+      }
+      full_of[a] = b;
+    }
+  }
+  for (size_t n = 0; n < slim.nodes.size(); ++n) {
+    const tinygltf::Node& node = slim.nodes[n];
+    const int f = full_of[n];
+    ASSERT_GE(f, 0) << "slim node " << n << " (" << node.name << ") is neither a joint nor above one";
+    EXPECT_EQ(node.name, full.nodes[f].name);
+    EXPECT_EQ(node.translation, full.nodes[f].translation) << node.name;
+    EXPECT_EQ(node.rotation, full.nodes[f].rotation) << node.name;
+    EXPECT_EQ(node.scale, full.nodes[f].scale) << node.name;
+    EXPECT_EQ(node.matrix, full.nodes[f].matrix) << node.name;
+    if (slim_parent[n] < 0) {
+      EXPECT_EQ(full_parent[f], -1) << node.name;
+      EXPECT_NE(std::find(slim.scenes[0].nodes.begin(), slim.scenes[0].nodes.end(), static_cast<int>(n)),
+                slim.scenes[0].nodes.end()) << node.name;
+    }
+  }
+  if (full_skin.inverseBindMatrices >= 0) {
+    ASSERT_GE(skin.inverseBindMatrices, 0);
+    const tinygltf::Accessor& ibm = full.accessors[full_skin.inverseBindMatrices];
+    if (full.bufferViews[ibm.bufferView].byteStride == 0 && !ibm.sparse.isSparse) {
+      EXPECT_EQ(AccessorBytes(slim, skin.inverseBindMatrices), AccessorBytes(full, full_skin.inverseBindMatrices));
+    }
+  }
+  // The animation: channel k is the full file's channel k on the same node, key for key,
+  // or, when all the full channel's keys are equal, its one key at time 0.
+  const tinygltf::Animation& a = slim.animations[0];
+  const tinygltf::Animation& b = full.animations.back();
+  ASSERT_EQ(b.name, "mocapsolve");
+  ASSERT_EQ(a.channels.size(), b.channels.size());
+  int single_key_channels = 0;
+  EXPECT_GE(a.channels.size(), static_cast<size_t>(c.skeleton.num_joints() - 1));
+  for (size_t k = 0; k < a.channels.size(); ++k) {
+    const tinygltf::AnimationChannel& ca = a.channels[k];
+    const tinygltf::AnimationChannel& cb = b.channels[k];
+    EXPECT_EQ(full_of.at(ca.target_node), cb.target_node) << "channel " << k;
+    EXPECT_EQ(ca.target_path, cb.target_path);
+    const tinygltf::AnimationSampler& sa = a.samplers.at(ca.sampler);
+    const tinygltf::AnimationSampler& sb = b.samplers.at(cb.sampler);
+    EXPECT_EQ(sa.interpolation, sb.interpolation);
+    const std::string full_output = AccessorBytes(full, sb.output);
+    if (slim.accessors[sa.input].count == 1 && full.accessors[sb.input].count > 1) {
+      ++single_key_channels;
+      EXPECT_EQ(slim.accessors[sa.input].minValues, std::vector<double>{0.0});
+      const std::string key = AccessorBytes(slim, sa.output);
+      ASSERT_EQ(slim.accessors[sa.output].count, 1u);
+      for (size_t e = 0; e < full_output.size(); e += key.size()) {
+        ASSERT_EQ(full_output.substr(e, key.size()), key) << "channel " << k << " key " << e / key.size();
+      }
+      continue;
+    }
+    EXPECT_EQ(AccessorBytes(slim, sa.input), AccessorBytes(full, sb.input));
+    EXPECT_EQ(AccessorBytes(slim, sa.output), full_output) << "channel " << k;
+    EXPECT_EQ(slim.accessors[sa.input].minValues, full.accessors[sb.input].minValues);
+    EXPECT_EQ(slim.accessors[sa.input].maxValues, full.accessors[sb.input].maxValues);
+  }
+  // NewMotion turns every joint but `still` (a translation channel may be constant too).
+  std::printf("%s: %d of %zu channels with one key\n", GetParam(), single_key_channels, a.channels.size());
+  EXPECT_GE(single_key_channels, 1);
+  EXPECT_LT(single_key_channels, static_cast<int>(a.channels.size()));
+  // Read back (a character without vertices): the same skeleton, and the written motion.
+  GltfCharacter back;
+  status = ReadGltfCharacter(slim_doc, {}, &back);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(back.mesh.num_vertices(), 0);
+  double size = 0.0;
+  for (int j = 0; j < c.skeleton.num_joints(); ++j) size = std::max(size, c.skeleton.offset(j).norm());
+  ASSERT_EQ(back.skeleton.num_joints(), c.skeleton.num_joints());
+  for (int j = 0; j < c.skeleton.num_joints(); ++j) {
+    EXPECT_EQ(back.skeleton.name(j), c.skeleton.name(j));
+    EXPECT_EQ(back.skeleton.parent(j), c.skeleton.parent(j));
+    // 1e-12: the same node transforms, composed the same way.
+    EXPECT_LT((back.skeleton.offset(j) - c.skeleton.offset(j)).norm(), 1e-12 * (1 + size));
+    EXPECT_LT(back.bind_pose.rotations[j].angularDistance(c.bind_pose.rotations[j]), 1e-12);
+  }
+  Motion read;
+  status = ReadGltfAnimation(slim_doc, back, {}, &read);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ExpectSameMotion(motion, read, size);
+  EXPECT_LT(slim_bytes.size(), full_bytes.size());
+  // Xbot: 5.2 MB of meshes against 65 joints' keys.
+  if (std::string(GetParam()) == "Xbot.glb") {
+    EXPECT_LT(slim_bytes.size(), full_bytes.size() / 10);
+  }
+  // The .gltf form (embedded buffer) parses too.
+  std::string text;
+  ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "mocapsolve", false, &text, animation_only).ok());
+  GltfDocument text_doc;
+  status = GltfDocument::Parse(text, "slim.gltf", "", &text_doc);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(text_doc.model().nodes.size(), slim.nodes.size());
+  EXPECT_TRUE(text_doc.model().meshes.empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedData, GltfAnimationOnly,
                          ::testing::Values("CesiumMan.glb", "RiggedFigure.glb", "Xbot.glb", "Ely.glb",
                                            "Soldier.glb", "RobotExpressive.glb", "Fox.glb"),
                          [](const ::testing::TestParamInfo<const char*>& info) {
@@ -213,7 +394,9 @@ TEST(GltfWriter, CompactVariantHoldsConstantChannelsWithOneKey) {
   }
   std::string full, compact;
   ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "take", true, &full).ok());
-  Status status = SerializeGltfWithAnimation(doc, c, motion, "take", true, &compact, /*compact=*/true);
+  GltfWriteOptions options;
+  options.compact = true;
+  Status status = SerializeGltfWithAnimation(doc, c, motion, "take", true, &compact, options);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_LT(compact.size(), full.size());
   GltfDocument back;

@@ -3,6 +3,7 @@ import json
 import os
 
 import numpy as np
+import pytest
 
 import mocapsolve
 from conftest import data_file, run_cli
@@ -31,3 +32,19 @@ def test_pipeline_on_one_take_matches_the_cli(cmu02, tmp_path):
         assert open(os.path.join(out_py, name), "rb").read() == open(os.path.join(out_cli, name), "rb").read(), name
     expected = json.load(open(os.path.join(out_cli, "report.json")))
     assert result["report"]["quality_gate"] == expected["quality_gate"]
+
+
+def test_retarget_animation_only_matches_the_cli(tmp_path):
+    """animation_only=True writes the CLI's --animation_only file, byte for byte: Xbot's
+    skeleton, skin and the new animation, without its 5 MB of meshes."""
+    bvh = data_file("bvh/16_15.bvh")
+    glb = data_file("gltf/Xbot.glb")
+    ours = str(tmp_path / "py.glb")
+    mocapsolve.retarget(bvh, glb, max_frames=8, out=ours, animation_only=True)
+    cli = str(tmp_path / "cli.glb")
+    run_cli("retarget", "--source=" + bvh, "--target=" + glb, "--max_frames=8", "--out=" + cli, "--animation_only")
+    data = open(ours, "rb").read()
+    assert data == open(cli, "rb").read()
+    assert data[:4] == b"glTF" and len(data) < os.path.getsize(glb) / 20
+    with pytest.raises(ValueError, match="animation_only"):
+        mocapsolve.retarget(bvh, glb, max_frames=8, out=str(tmp_path / "x.bvh"), animation_only=True)
