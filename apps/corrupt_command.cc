@@ -1,5 +1,6 @@
 // mocapsolve corrupt: damaged copies of clean marker files, with the ground truth of what
 // was damaged, for evaluating repair (signal/marker_corruption.h).
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -10,7 +11,8 @@
 #include "io/marker_file.h"
 #include "signal/marker_corruption.h"
 
-DEFINE_string(mask_out, "", "CSV of the damaged samples: frame,marker,kind (gap, fly_off, swap, noise).");
+DEFINE_string(mask_out, "", "CSV of the damaged samples: frame,marker,kind (gap, fly_off, swap, noise, jitter, ghost, "
+              "unlabelled).");
 
 namespace mocapsolve {
 namespace {
@@ -30,31 +32,63 @@ Status RunCorrupt(const std::vector<std::string>& arguments) {
   status = CorruptionOptionsFromFlags(markers.unit, &options);
   if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
   CorruptionMask mask;
-  CorruptMarkers(options, &markers, &mask);
-  status = WriteMarkerFile(FLAGS_out, markers);
+  UnlabelledDamage unlabelled;
+  CorruptMarkers(options, &markers, &mask, &unlabelled);
+  // The unlabelled damage's tracks become the output's unlabelled points ("*1", ... after
+  // the file's own columns; a label the file already has gets a '*' more).
+  std::vector<std::string> labels = markers.labels();
+  for (int k = 0; k < unlabelled.tracks.num_markers(); ++k) {
+    std::string label = unlabelled.tracks.label(k);
+    while (std::find(labels.begin(), labels.end(), label) != labels.end()) label = "*" + label;
+    labels.push_back(label);
+  }
+  MarkerTrajectories out = markers;
+  if (unlabelled.tracks.num_markers() > 0) {
+    out = MarkerTrajectories(labels, markers.num_frames());
+    out.frame_rate = markers.frame_rate;
+    out.unit = markers.unit;
+    out.first_frame = markers.first_frame;
+    out.subject_prefixes = markers.subject_prefixes;
+    for (int f = 0; f < markers.num_frames(); ++f) {
+      for (int m = 0; m < markers.num_markers(); ++m) {
+        if (markers.valid(f, m)) {
+          out.SetSample(f, m, markers.position(f, m), markers.residual(f, m), markers.camera_mask(f, m));
+        }
+      }
+      for (int k = 0; k < unlabelled.tracks.num_markers(); ++k) {
+        out.SetSample(f, markers.num_markers() + k, unlabelled.tracks.position(f, k));
+      }
+    }
+  }
+  status = WriteMarkerFile(FLAGS_out, out);
   if (!status.ok()) return status;
-  int counts[4] = {0, 0, 0, 0};
+  // Samples per kind; jitter and ghosts were counted as noise before they had names.
+  int counts[kNumDamageKinds] = {};
   std::string csv = "frame,marker,kind\n";
   for (size_t f = 0; f < mask.size(); ++f) {
     for (size_t m = 0; m < mask[f].size(); ++m) {
-      const char kind = mask[f][m];
-      if (kind == 0) continue;
-      const int k = kind == 'g' ? 0 : kind == 'f' ? 1 : kind == 's' ? 2 : 3;
+      const int k = DamageKindIndex(mask[f][m]);
+      if (k < 0) continue;
       ++counts[k];
-      static const char* kNames[] = {"gap", "fly_off", "swap", "noise"};
-      csv += std::to_string(f) + "," + markers.label(static_cast<int>(m)) + "," + kNames[k] + "\n";
+      csv += std::to_string(f) + "," + markers.label(static_cast<int>(m)) + "," + kDamageKindNames[k] + "\n";
     }
   }
   if (!FLAGS_mask_out.empty()) {
     status = WriteFileAtomically(FLAGS_mask_out, csv);
     if (!status.ok()) return status;
   }
-  std::printf("wrote %s: %d gap, %d fly-off, %d swapped, %d noisy samples (seed %d)%s%s\n",
-              FLAGS_out.c_str(), counts[0], counts[1], counts[2], counts[3], FLAGS_corrupt_seed,
-              FLAGS_mask_out.empty() ? "" : "; mask in ", FLAGS_mask_out.c_str());
+  std::string summary;
+  for (int k = 0; k < kNumDamageKinds; ++k) {
+    if (k < 4 || counts[k] > 0) summary += std::string(summary.empty() ? "" : ", ") + std::to_string(counts[k]) + " " + kDamageKindNames[k];
+  }
+  std::printf("wrote %s: samples damaged: %s (seed %d)%s%s\n", FLAGS_out.c_str(), summary.c_str(),
+              FLAGS_corrupt_seed, FLAGS_mask_out.empty() ? "" : "; mask in ", FLAGS_mask_out.c_str());
   JsonObject report;
-  report.Add("markers", FLAGS_markers).Add("out", FLAGS_out).Add("gap_samples", counts[0])
-      .Add("fly_off_samples", counts[1]).Add("swap_samples", counts[2]).Add("noise_samples", counts[3]);
+  report.Add("markers", FLAGS_markers).Add("out", FLAGS_out);
+  for (int k = 0; k < kNumDamageKinds; ++k) report.Add(std::string(kDamageKindNames[k]) + "_samples", counts[k]);
+  std::vector<JsonValue> track_names;
+  for (int k = 0; k < unlabelled.tracks.num_markers(); ++k) track_names.push_back(labels[markers.num_markers() + k]);
+  report.Add("unlabelled_tracks", track_names);
   return WriteReport(report);
 }
 

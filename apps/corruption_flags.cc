@@ -30,6 +30,9 @@ DEFINE_double(jitter_mm, kDefault.jitter_mm, "Typical jitter displacement (mm): 
 DEFINE_int32(ghosts, kDefault.ghosts, "Runs in which a marker's label sits on a ghost reflection near it.");
 DEFINE_int32(ghost_length, kDefault.ghost_length, "Frames of each ghost run.");
 DEFINE_double(ghost_mm, kDefault.ghost_mm, "Distance of the ghost from the marker (mm), constant over its run.");
+DEFINE_int32(unlabels, kDefault.unlabels, "Runs in which a marker's samples lose their label: they move to a new "
+             "unlabelled track (*1, *2, ...), as points a labeller could not name.");
+DEFINE_int32(unlabel_length, kDefault.unlabel_length, "Frames of each unlabelled run.");
 
 namespace mocapsolve {
 
@@ -56,6 +59,8 @@ Status CorruptionOptionsFromFlags(const LengthUnit& unit, CorruptionOptions* opt
   s.ghosts = FLAGS_ghosts;
   s.ghost_length = FLAGS_ghost_length;
   s.ghost_mm = FLAGS_ghost_mm;
+  s.unlabels = FLAGS_unlabels;
+  s.unlabel_length = FLAGS_unlabel_length;
   return CorruptionOptionsFromSettings(s, unit, options);
 }
 

@@ -147,6 +147,8 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
       }
       m.changed_samples += r.changed_samples;
       m.changed_undamaged_samples += r.changed_undamaged_samples;
+      m.unlabelled_assigned_samples += r.unlabelled_assigned_samples;
+      m.unlabelled_false_samples += r.unlabelled_false_samples;
       m.seconds += w * r.seconds;
       char line[512];
       std::snprintf(line, sizeof(line), "%d,%u,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g,%.4g\n", trial, damage.seed,
@@ -175,7 +177,9 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
         .Add("marker_mean_mm", r.marker_error_mean * mm).Add("marker_rms_mm", r.marker_error_rms * mm)
         .Add("marker_max_mm", r.marker_error_max * mm).Add("damaged_samples", r.damaged_samples)
         .Add("covered_samples", r.covered_samples).Add("velocity_jump_mm_per_frame", r.velocity_jump * mm)
-        .Add("seconds", r.seconds).Add("precision", r.Precision());
+        .Add("seconds", r.seconds).Add("precision", r.Precision())
+        .Add("unlabelled_assigned_samples", r.unlabelled_assigned_samples)
+        .Add("unlabelled_false_samples", r.unlabelled_false_samples);
     for (int k = 0; k < kNumDamageKinds; ++k) {
       const std::string kind = kDamageKindNames[k];
       o.Add(kind + "_mean_mm", r.kind_error[k] * mm).Add(kind + "_samples", r.kind_samples[k])
@@ -200,6 +204,15 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
       std::printf(" %7.2f %5.1f%%", r.kind_error[k] * mm, 100.0 * r.Recall(k));
     }
     std::printf("   precision %.1f%% (%d changed)\n", 100.0 * r.Precision(), r.changed_samples);
+  }
+  const int unlabelled = DamageKindIndex('u');
+  if (!mean_rows.empty() && mean_rows.back().kind_samples[unlabelled] > 0) {
+    const RepairEvaluationRow& r = mean_rows.back();
+    std::printf("unlabelled samples (ours): %d of %d assigned to their own marker (%.1f%%), %d to another; %d "
+                "(%.1f%%) kept in the output bit for bit (the rest cut by later stages, as trimming beside gaps)\n",
+                r.unlabelled_assigned_samples, r.kind_samples[unlabelled],
+                100.0 * r.unlabelled_assigned_samples / r.kind_samples[unlabelled], r.unlabelled_false_samples,
+                r.kind_detected[unlabelled], 100.0 * r.Recall(unlabelled));
   }
   auto find = [&](const char* name) -> const RepairEvaluationRow* {
     for (const RepairEvaluationRow& r : mean_rows) {

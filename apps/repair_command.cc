@@ -68,12 +68,15 @@ Status RunRepair(const std::vector<std::string>& arguments) {
     progress->Update(done);
   };
   SetStage("repair");
-  status = RepairMarkers(skeleton, markers, observed, options, &repaired, &motion, &report, nullptr, show_progress);
+  status = RepairMarkers(skeleton, markers, observed, take.unlabelled, options, &repaired, &motion, &report, nullptr,
+                         show_progress);
   if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
   motion.frame_rate = trajectories.frame_rate;
 
   // Output: the input file with the repaired samples, in its own axes and units.
-  const MarkerTrajectories out = WithRepairedSamples(take, repaired);
+  // Points assigned to markers leave their unlabelled columns.
+  int unlabelled_removed = 0;
+  const MarkerTrajectories out = WithRepairedSamples(take, repaired, nullptr, report.unlabelled, &unlabelled_removed);
   SetStage("writing");
   status = WriteMarkerFile(FLAGS_out_markers, out);
   if (!status.ok()) return status;
@@ -88,6 +91,19 @@ Status RunRepair(const std::vector<std::string>& arguments) {
               report.swaps.size(), report.detected.size(), report.filled.size(), report.trimmed_samples,
               report.removed_track_samples, report.polynomial_samples, report.naive_rms * mm,
               report.reference_rms * mm, report.repaired_rms * mm, report.resolved_frames);
+  if (take.unlabelled.num_tracks() > 0) {
+    int points = 0;
+    for (const auto& frame : take.unlabelled.points) {
+      for (const Eigen::Vector3d& p : frame) points += p.allFinite();
+    }
+    std::printf("  unlabelled points: %d in %d tracks; %d assigned to missing markers in %zu runs%s\n", points,
+                take.unlabelled.num_tracks(), unlabelled_removed, report.unlabelled.size(),
+                report.unlabelled.empty() ? "" : ":");
+    for (const UnlabelledAssignment& a : report.unlabelled) {
+      std::printf("    %s <- %s frames %d-%d (%d), mean %.3g mm from the prediction\n", markers.label(a.marker).c_str(),
+                  take.unlabelled.names[a.track].c_str(), a.first, a.last, a.last - a.first + 1, a.mean_distance * mm);
+    }
+  }
   double total = 0.0;
   for (const RepairStageTime& t : report.timings) total += t.seconds;
   for (const RepairStageTime& t : report.timings) {
@@ -117,6 +133,15 @@ Status RunRepair(const std::vector<std::string>& arguments) {
         .Add("mean_distance_before_mm", swap.distance_before * mm).Add("mean_distance_after_mm", swap.distance_after * mm);
     swaps.push_back(o);
   }
+  const std::vector<JsonValue> track_names(take.unlabelled.names.begin(), take.unlabelled.names.end());
+  std::vector<JsonObject> assigned;
+  for (const UnlabelledAssignment& a : report.unlabelled) {
+    JsonObject o;
+    o.Add("marker", markers.label(a.marker)).Add("unlabelled", take.unlabelled.names[a.track])
+        .Add("first_frame", a.first).Add("last_frame", a.last).Add("frames", a.last - a.first + 1)
+        .Add("mean_distance_mm", a.mean_distance * mm);
+    assigned.push_back(o);
+  }
   std::vector<JsonObject> timings;
   for (const RepairStageTime& t : report.timings) {
     JsonObject o;
@@ -125,7 +150,8 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   }
   JsonObject json;
   json.Add("markers", FLAGS_markers).Add("out_markers", FLAGS_out_markers).Add("frames", static_cast<int>(observed.size()))
-      .Add("swaps", swaps).Add("detected", intervals(report.detected)).Add("filled", intervals(report.filled))
+      .Add("swaps", swaps).Add("unlabelled_tracks", track_names).Add("unlabelled_assigned", assigned)
+      .Add("unlabelled_removed_samples", unlabelled_removed).Add("detected", intervals(report.detected)).Add("filled", intervals(report.filled))
       .Add("timings", timings).Add("rms_naive_mm", report.naive_rms * mm)
       .Add("rms_reference_mm", report.reference_rms * mm).Add("rms_repaired_mm", report.repaired_rms * mm)
       .Add("resolved_frames", report.resolved_frames).Add("reference", FLAGS_reference);
@@ -158,6 +184,8 @@ extern const Command kRepairCommand = {
     "Thesis chapter 3: a naive per-frame solve and a robust reference (--reference: a robust\n"
     "tracker or the whole-clip solve; Cauchy loss); marker paths rebuilt from the\n"
     "reference; gaps = missing samples, outliers and joints that differ from the reference (--dp_max_cm, --dr_max_deg);\n"
+    "unlabelled points (C3D '*52') assigned to missing markers where the reference predicts them\n"
+    "(--assign_unlabelled; they leave their unlabelled columns in --out_markers);\n"
     "trimming, small tracks and small gaps; Hermite refill from the reference; re-solve.\n"
     "Samples never marked bad are written as they were read. Prints per-stage timings.",
     __FILE__, RunRepair, kRepairFlags.c_str(),

@@ -30,6 +30,14 @@ DEFINE_bool(undo_swaps, kDefault.undo_swaps, "Find label swaps (a sample far fro
 DEFINE_double(swap_radius_cm, kDefault.swap_radius_cm, "Markers whose predicted positions are this close (cm) may "
               "swap labels.");
 DEFINE_int32(swap_min_frames, kDefault.swap_min_frames, "A swap must persist this many consecutive frames.");
+DEFINE_bool(assign_unlabelled, kDefault.assign_unlabelled, "Label unlabelled points (C3D '*52'): a point becomes the "
+            "sample of a missing marker where it lies within the marker's gate around its prediction "
+            "and continues the marker's track, one to one per frame; reported as 'unlabelled_assigned'.");
+DEFINE_double(unlabelled_min_cm, kDefault.unlabelled_min_cm, "Unlabelled assignment gate (the marker's median deviation + "
+              "--outlier_mads MADs): never below this (cm).");
+DEFINE_double(unlabelled_max_cm, kDefault.unlabelled_max_cm, "Unlabelled assignment gate: never above this (cm).");
+DEFINE_int32(unlabelled_min_frames, kDefault.unlabelled_min_frames, "An assigned run of frames that continues no observed "
+             "sample of the marker needs at least this many frames.");
 DEFINE_int32(trim_max, kDefault.trim_max, "Frames trimmed at most on each side of a gap (thesis: 120).");
 DEFINE_int32(small_track, kDefault.small_track, "Valid runs of at most this many frames between gaps are dropped.");
 DEFINE_int32(small_gap, kDefault.small_gap, "Gaps of at most this many frames are filled by a plain cubic.");
@@ -67,6 +75,10 @@ RepairSettings RepairSettingsFromFlags() {
   s.undo_swaps = FLAGS_undo_swaps;
   s.swap_radius_cm = FLAGS_swap_radius_cm;
   s.swap_min_frames = FLAGS_swap_min_frames;
+  s.assign_unlabelled = FLAGS_assign_unlabelled;
+  s.unlabelled_min_cm = FLAGS_unlabelled_min_cm;
+  s.unlabelled_max_cm = FLAGS_unlabelled_max_cm;
+  s.unlabelled_min_frames = FLAGS_unlabelled_min_frames;
   s.trim_max = FLAGS_trim_max;
   s.small_track = FLAGS_small_track;
   s.small_gap = FLAGS_small_gap;

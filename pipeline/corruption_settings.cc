@@ -18,7 +18,8 @@ Status CorruptionOptionsFromSettings(const CorruptionSettings& settings, const L
       {"swaps", settings.swaps}, {"swap_length", settings.swap_length}, {"noisy_markers", settings.noisy_markers},
       {"noise_length", settings.noise_length}, {"swaps_in_gaps", settings.swaps_in_gaps},
       {"jitter_markers", settings.jitter_markers}, {"jitter_length", settings.jitter_length},
-      {"ghosts", settings.ghosts}, {"ghost_length", settings.ghost_length}};
+      {"ghosts", settings.ghosts}, {"ghost_length", settings.ghost_length}, {"unlabels", settings.unlabels},
+      {"unlabel_length", settings.unlabel_length}};
   for (const auto& [name, value] : counts) {
     if (value < 0) return Status::Error(std::string("--") + name + ": expected >= 0, got " + std::to_string(value));
   }
@@ -53,6 +54,8 @@ Status CorruptionOptionsFromSettings(const CorruptionSettings& settings, const L
   options->ghosts = settings.ghosts;
   options->ghost_length = settings.ghost_length;
   options->ghost_distance = settings.ghost_mm * per_mm;
+  options->unlabels = settings.unlabels;
+  options->unlabel_length = settings.unlabel_length;
   return Status::Ok();
 }
 

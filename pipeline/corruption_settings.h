@@ -34,12 +34,14 @@ struct CorruptionSettings {
   int ghosts = 0;
   int ghost_length = 20;
   double ghost_mm = 30.0;
+  int unlabels = 0;               // Runs whose samples leave their label for an unlabelled track.
+  int unlabel_length = 30;        // Frames of each.
 };
 
 inline constexpr char kCorruptionSettingNames[] =
     "corrupt_seed,gaps,gap_min,gap_max,cluster_gaps,cluster_radius_mm,fly_off_frames,fly_off_mm,"
     "swaps,swap_length,swap_radius_mm,noisy_markers,noise_length,noise_sigma_mm,swaps_in_gaps,jitter_markers,"
-    "jitter_length,jitter_mm,ghosts,ghost_length,ghost_mm";
+    "jitter_length,jitter_mm,ghosts,ghost_length,ghost_mm,unlabels,unlabel_length";
 
 // Distances in mm converted to `unit` (which must be known).
 Status CorruptionOptionsFromSettings(const CorruptionSettings& settings, const LengthUnit& unit,

@@ -46,6 +46,10 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
   options->undo_swaps = settings.undo_swaps;
   options->swap_radius = settings.swap_radius_cm * units_per_cm;
   options->swap_min_frames = settings.swap_min_frames;
+  options->assign_unlabelled = settings.assign_unlabelled;
+  options->unlabelled_min_distance = settings.unlabelled_min_cm * units_per_cm;
+  options->unlabelled_max_distance = settings.unlabelled_max_cm * units_per_cm;
+  options->unlabelled_min_frames = settings.unlabelled_min_frames;
   options->trim_max = settings.trim_max;
   options->small_track = settings.small_track;
   options->small_gap = settings.small_gap;
@@ -66,6 +70,11 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
     return Status::Error("--swap_radius_cm must be positive and finite");
   }
   if (settings.swap_min_frames < 1) return Status::Error("--swap_min_frames must be >= 1");
+  if (!(settings.unlabelled_min_cm > 0.0) || !std::isfinite(settings.unlabelled_max_cm) ||
+      !(settings.unlabelled_max_cm >= settings.unlabelled_min_cm)) {
+    return Status::Error("--unlabelled_min_cm must be positive and --unlabelled_max_cm finite and at least it");
+  }
+  if (settings.unlabelled_min_frames < 1) return Status::Error("--unlabelled_min_frames must be >= 1");
   if (!options->IsValid(&error)) return Status::Error(error);
   return Status::Ok();
 }

@@ -25,6 +25,10 @@ struct RepairSettings {
   bool undo_swaps = true;            // Relabel swapped samples instead of refilling them.
   double swap_radius_cm = 30.0;      // Labels whose predictions are this close may swap.
   int swap_min_frames = 2;           // Frames a swap must persist.
+  bool assign_unlabelled = true;     // Unlabelled points become missing markers' samples.
+  double unlabelled_min_cm = 2.0;    // Floor of the assignment gate around a marker's prediction.
+  double unlabelled_max_cm = 5.0;    // Its cap.
+  int unlabelled_min_frames = 3;     // Frames an assignment needs when it continues no observed sample.
   int trim_max = 120;                // Frames trimmed at most per side of a gap.
   int small_track = 120;             // Valid runs of at most this many frames are dropped.
   int small_gap = 5;                 // Gaps of at most this many frames: plain cubic.
@@ -40,7 +44,8 @@ struct RepairSettings {
 
 inline constexpr char kRepairSettingNames[] =
     "dp_max_cm,dr_max_deg,outlier_cm,outliers,outlier_mads,outlier_min_cm,undo_swaps,swap_radius_cm,"
-    "swap_min_frames,trim_max,small_track,small_gap,vel_clamp,edge_samples,reference,reference_loss,"
+    "swap_min_frames,assign_unlabelled,unlabelled_min_cm,unlabelled_max_cm,unlabelled_min_frames,trim_max,"
+    "small_track,small_gap,vel_clamp,edge_samples,reference,reference_loss,"
     "reference_loss_cm,tracker_prior_weight,tracker_translation_prior,tracker_function_tolerance";
 
 // Repair solves every frame two or three times: its solver is DLS unless the user chose.

@@ -1,5 +1,6 @@
 #include "pipeline/subject.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -12,6 +13,7 @@
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
 #include "io/skeleton_json.h"
+#include "kinematics/unlabelled_label.h"
 
 namespace mocapsolve {
 namespace {
@@ -231,13 +233,31 @@ Status LoadTakeForSubject(const Subject& subject, const std::string& markers_pat
   }
   status = GatherObservations(result.markers, matched, result.transform, &result.observed);
   if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
+  const Eigen::Vector3d nan = Eigen::Vector3d::Constant(std::nan(""));
+  std::set<int> in_set;  // Columns the marker set reads (a set may name a marker "*52").
+  for (int m = 0; m < result.markers.num_markers(); ++m) in_set.insert(matched.FindMarker(result.markers.label(m)));
+  for (int c = 0; c < matched.num_markers(); ++c) {
+    if (in_set.count(c) != 0) continue;
+    if (!IsUnlabelledLabel(SplitSubjectPrefix(matched.label(c), matched.subject_prefixes).name)) continue;
+    result.unlabelled.names.push_back(result.trajectories.label(c));
+    result.unlabelled_columns.push_back(c);
+  }
+  const int tracks = result.unlabelled.num_tracks();
+  result.unlabelled.points.assign(tracks > 0 ? matched.num_frames() : 0, std::vector<Eigen::Vector3d>(tracks, nan));
+  for (int f = 0; f < static_cast<int>(result.unlabelled.points.size()); ++f) {
+    for (int k = 0; k < tracks; ++k) {
+      const int c = result.unlabelled_columns[k];
+      if (matched.valid(f, c)) result.unlabelled.points[f][k] = result.transform.Apply(matched.position(f, c));
+    }
+  }
   *take = std::move(result);
   return Status::Ok();
 }
 
 MarkerTrajectories WithRepairedSamples(const MarkerTake& take,
                                        const std::vector<std::vector<Eigen::Vector3d>>& repaired,
-                                       int* rewritten) {
+                                       int* rewritten, const std::vector<UnlabelledAssignment>& assigned,
+                                       int* unlabelled_removed) {
   MarkerTrajectories out = take.trajectories;
   int count = 0;
   for (int m = 0; m < take.markers.num_markers(); ++m) {
@@ -251,6 +271,15 @@ MarkerTrajectories WithRepairedSamples(const MarkerTake& take,
     }
   }
   if (rewritten != nullptr) *rewritten = count;
+  int removed = 0;
+  for (const UnlabelledAssignment& a : assigned) {
+    if (a.track < 0 || a.track >= static_cast<int>(take.unlabelled_columns.size())) continue;  // Defensive.
+    const int column = take.unlabelled_columns[a.track];
+    for (int f = std::max(a.first, 0); f <= a.last && f < out.num_frames(); ++f) {
+      if (out.valid(f, column)) out.SetMissing(f, column), ++removed;
+    }
+  }
+  if (unlabelled_removed != nullptr) *unlabelled_removed = removed;
   return out;
 }
 

@@ -36,6 +36,7 @@
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
+#include "problems/marker_repair/unlabelled_assignment.h"
 #include "problems/marker_solve/marker_observations.h"
 
 namespace mocapsolve {
@@ -79,20 +80,29 @@ struct MarkerTake {
   MarkerTrajectories trajectories;  // The file as read (labels as the file spells them).
   MarkerFileToModel transform;      // File to skeleton frame.
   std::vector<std::vector<Eigen::Vector3d>> observed;  // [frame][marker], skeleton units.
+  // The file's unlabelled points (kinematics/unlabelled_label.h; columns the marker set
+  // reads excluded) in the skeleton frame and units, and the file column of each track
+  // (unlabelled_columns[k] for unlabelled.names[k]).
+  UnlabelledPoints unlabelled;
+  std::vector<int> unlabelled_columns;
 };
 
 // Reads the marker file at markers_path and maps it onto the subject: the label prefix
 // stripped, axes and scale applied, observed[f][m] gathered for every marker of the set
-// (an error names the ones the file lacks).
+// (an error names the ones the file lacks), and the unlabelled points kept.
 Status LoadTakeForSubject(const Subject& subject, const std::string& markers_path, MarkerTake* take);
 
 // The inverse for outputs: the take's file as read, with every sample of the set's
 // markers that differs from the observation (repaired[f][m], skeleton frame and units)
 // mapped back to the file's axes and units; every other sample as it was read.
-// *rewritten (optional) counts the samples replaced.
+// *rewritten (optional) counts the samples replaced. The unlabelled points a repair
+// assigned to markers (`assigned`, its report's list) are removed from their unlabelled
+// columns (they now live under the marker's label); *unlabelled_removed counts them.
 MarkerTrajectories WithRepairedSamples(const MarkerTake& take,
                                        const std::vector<std::vector<Eigen::Vector3d>>& repaired,
-                                       int* rewritten = nullptr);
+                                       int* rewritten = nullptr,
+                                       const std::vector<UnlabelledAssignment>& assigned = {},
+                                       int* unlabelled_removed = nullptr);
 
 }  // namespace mocapsolve
 

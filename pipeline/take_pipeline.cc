@@ -100,12 +100,12 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   stage_start = Clock::now();
   if (progress) progress("repair", 0, frames);
   std::vector<std::vector<Eigen::Vector3d>> repaired;
-  status = RepairMarkers(take.skeleton, take.markers, take.observed, options.repair, &repaired, &result->solved,
-                         &result->repair);
+  status = RepairMarkers(take.skeleton, take.markers, take.observed, take.unlabelled, options.repair, &repaired,
+                         &result->solved, &result->repair);
   if (!status.ok()) return Status::Error("repair: " + inputs.markers_path + ": " + status.message());
   result->solved.frame_rate = take.trajectories.frame_rate;
   if (progress) progress("repair", frames, frames);
-  result->repaired_file = WithRepairedSamples(take, repaired, &result->repaired_samples);
+  result->repaired_file = WithRepairedSamples(take, repaired, &result->repaired_samples, result->repair.unlabelled);
   result->repaired = std::move(repaired);
   result->samples = frames * take.markers.num_markers();
   lap("repair and solve", stage_start);

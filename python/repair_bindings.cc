@@ -39,6 +39,8 @@ void BindRepair(py::module_& m) {
   MOCAPSOLVE_FIELD(dp_max_cm); MOCAPSOLVE_FIELD(dr_max_deg); MOCAPSOLVE_FIELD(outlier_cm);
   MOCAPSOLVE_FIELD(outliers); MOCAPSOLVE_FIELD(outlier_mads); MOCAPSOLVE_FIELD(outlier_min_cm);
   MOCAPSOLVE_FIELD(undo_swaps); MOCAPSOLVE_FIELD(swap_radius_cm); MOCAPSOLVE_FIELD(swap_min_frames);
+  MOCAPSOLVE_FIELD(assign_unlabelled); MOCAPSOLVE_FIELD(unlabelled_min_cm); MOCAPSOLVE_FIELD(unlabelled_max_cm);
+  MOCAPSOLVE_FIELD(unlabelled_min_frames);
   MOCAPSOLVE_FIELD(trim_max); MOCAPSOLVE_FIELD(small_track); MOCAPSOLVE_FIELD(small_gap);
   MOCAPSOLVE_FIELD(vel_clamp); MOCAPSOLVE_FIELD(edge_samples); MOCAPSOLVE_FIELD(reference); MOCAPSOLVE_FIELD(reference_loss);
   MOCAPSOLVE_FIELD(reference_loss_cm); MOCAPSOLVE_FIELD(tracker_prior_weight);
@@ -77,11 +79,11 @@ void BindRepair(py::module_& m) {
         Status status = Status::Ok();
         {
           py::gil_scoped_release release;
-          status = RepairMarkers(skeleton, subject->markers, take->observed, options, &repaired, &motion,
-                                 &report, &intermediates);
+          status = RepairMarkers(skeleton, subject->markers, take->observed, take->unlabelled, options, &repaired,
+                                 &motion, &report, &intermediates);
           if (status.ok()) {
             motion.frame_rate = take->trajectories.frame_rate;
-            *out = WithRepairedSamples(*take, repaired, &rewritten);
+            *out = WithRepairedSamples(*take, repaired, &rewritten, report.unlabelled);
           }
         }
         if (!status.ok()) {
@@ -106,6 +108,18 @@ void BindRepair(py::module_& m) {
           swaps.append(o);
         }
         d["swaps"] = swaps;
+        py::list assigned;
+        for (const UnlabelledAssignment& a : report.unlabelled) {
+          py::dict o;
+          o["marker"] = subject->markers.label(a.marker);
+          o["unlabelled"] = take->unlabelled.names[a.track];
+          o["first_frame"] = a.first;
+          o["last_frame"] = a.last;
+          o["frames"] = a.last - a.first + 1;
+          o["mean_distance_mm"] = a.mean_distance * mm;
+          assigned.append(o);
+        }
+        d["unlabelled_assigned"] = assigned;
         d["detected"] = IntervalList(report.detected, subject->markers);
         d["filled"] = IntervalList(report.filled, subject->markers);
         py::list timings;
@@ -134,7 +148,8 @@ void BindRepair(py::module_& m) {
 subject: a Subject; markers: a .c3d/.trc path or a Take.
 Keywords: the repair options (RepairSettings: dp_max_cm=10, dr_max_deg=30, outlier_cm=4,
 outliers='robust'|'fixed', outlier_mads=6, outlier_min_cm=1, undo_swaps=True,
-swap_radius_cm=30, swap_min_frames=2,
+swap_radius_cm=30, swap_min_frames=2, assign_unlabelled=True, unlabelled_min_cm=2,
+unlabelled_max_cm=5, unlabelled_min_frames=3,
 trim_max=120, small_track=120, small_gap=5, vel_clamp=0.25, edge_samples=1, reference='tracker'|'clip',
 reference_loss='cauchy', reference_loss_cm=1, tracker_prior_weight=20,
 tracker_translation_prior=0, tracker_function_tolerance=1e-4) and the solver options of
@@ -142,7 +157,8 @@ solve() (solver defaults to 'dls' here, as in the CLI).
 Returns (markers, motion, report): the input file's markers with the repaired samples (its
 own axes and unit: what --out_markers writes), the motion solved from them, and the
 report as a dict ('swaps': {first_frame, last_frame, markers_renamed_from_to: [(from,
-to)], mean_distance_before_mm, mean_distance_after_mm}; 'detected' and 'filled' lists of
+to)], mean_distance_before_mm, mean_distance_after_mm}; 'unlabelled_assigned': {marker,
+unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and 'filled' lists of
 {marker, first_frame, last_frame, what}, 'timings', 'rms_*_mm', 'repaired_observed'
 (frames, set markers, 3) in skeleton units). Releases the GIL while repairing.)doc") +
        KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", [] { SolverSettings s; s.solver = kRepairDefaultSolver; return py::cast(s); }(), kSolverSettingNames)).c_str());
@@ -158,7 +174,8 @@ to)], mean_distance_before_mm, mean_distance_after_mm}; 'detected' and 'filled' 
   MOCAPSOLVE_FIELD(swap_radius_mm); MOCAPSOLVE_FIELD(noisy_markers); MOCAPSOLVE_FIELD(noise_length);
   MOCAPSOLVE_FIELD(noise_sigma_mm); MOCAPSOLVE_FIELD(swaps_in_gaps); MOCAPSOLVE_FIELD(jitter_markers);
   MOCAPSOLVE_FIELD(jitter_length); MOCAPSOLVE_FIELD(jitter_mm); MOCAPSOLVE_FIELD(ghosts);
-  MOCAPSOLVE_FIELD(ghost_length); MOCAPSOLVE_FIELD(ghost_mm);
+  MOCAPSOLVE_FIELD(ghost_length); MOCAPSOLVE_FIELD(ghost_mm); MOCAPSOLVE_FIELD(unlabels);
+  MOCAPSOLVE_FIELD(unlabel_length);
 #undef MOCAPSOLVE_FIELD
   damage.def("validate", [](const CorruptionSettings& s, const std::string& units) {
         CorruptionOptions options;

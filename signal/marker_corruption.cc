@@ -1,6 +1,8 @@
 #include "signal/marker_corruption.h"
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 #include <limits>
 #include <random>
 
@@ -50,9 +52,11 @@ int DamageKindIndex(char letter) {
   return -1;
 }
 
-void CorruptMarkers(const CorruptionOptions& o, MarkerTrajectories* markers, CorruptionMask* mask) {
+void CorruptMarkers(const CorruptionOptions& o, MarkerTrajectories* markers, CorruptionMask* mask,
+                    UnlabelledDamage* unlabelled) {
   const int nf = markers->num_frames(), nm = markers->num_markers();
   mask->assign(nf, std::vector<char>(nm, 0));
+  if (unlabelled != nullptr) *unlabelled = UnlabelledDamage();
   if (nf == 0 || nm == 0) return;
   std::mt19937 rng(o.seed);
   std::normal_distribution<double> normal;
@@ -135,6 +139,33 @@ void CorruptMarkers(const CorruptionOptions& o, MarkerTrajectories* markers, Cor
       markers->SetSample(f, m, markers->position(f, m) + offset);
       (*mask)[f][m] = 'h';
     }
+  }
+  // Unlabelled: drawn last, so the earlier kinds' damage of a seed is as it was.
+  std::vector<std::vector<Eigen::Vector3d>> tracks;  // [event][frame].
+  std::vector<int> source;
+  for (int u = 0; u < o.unlabels; ++u) {
+    const int m = Uniform(&rng, 0, nm - 1);
+    const int first = Uniform(&rng, 0, std::max(0, nf - o.unlabel_length));
+    tracks.emplace_back(nf, Eigen::Vector3d::Constant(std::nan("")));
+    source.push_back(m);
+    for (int f = first; f < std::min(nf, first + o.unlabel_length); ++f) {
+      if (!markers->valid(f, m) || (*mask)[f][m]) continue;
+      tracks.back()[f] = markers->position(f, m);
+      markers->SetMissing(f, m);
+      (*mask)[f][m] = 'u';
+    }
+  }
+  if (unlabelled != nullptr) {
+    std::vector<std::string> labels;
+    for (size_t k = 0; k < tracks.size(); ++k) labels.push_back("*" + std::to_string(k + 1));
+    unlabelled->tracks = MarkerTrajectories(labels, nf);
+    unlabelled->tracks.unit = markers->unit;
+    unlabelled->tracks.frame_rate = markers->frame_rate;
+    unlabelled->tracks.first_frame = markers->first_frame;
+    for (size_t k = 0; k < tracks.size(); ++k) {
+      for (int f = 0; f < nf; ++f) unlabelled->tracks.SetSample(f, static_cast<int>(k), tracks[k][f]);
+    }
+    unlabelled->source = std::move(source);
   }
 }
 

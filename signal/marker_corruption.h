@@ -21,6 +21,10 @@
 //   ghosts        `ghosts` times a marker's label sits on a ghost reflection for
 //                 ghost_length frames: the sample is offset by ghost_distance in one random
 //                 direction, constant over the run.
+//   unlabelled    `unlabels` times a marker's samples over unlabel_length frames lose
+//                 their label: they leave the marker (missing there) for a new unlabelled
+//                 track ("*1", "*2", ... in `unlabelled`, one per event), as a capture's
+//                 labeller leaves points it cannot name; relabelling should bring them back.
 // Lengths are in the trajectories' units. Every draw comes from one std::mt19937 seeded
 // with `seed`, the kinds drawn in the order above, so adding a later kind leaves the
 // earlier damage of a seed as it was. The mask (frames x markers) says what was done to
@@ -56,20 +60,32 @@ struct CorruptionOptions {
   int ghosts = 0;
   int ghost_length = 20;
   double ghost_distance = 0.0;
+  int unlabels = 0;
+  int unlabel_length = 30;
+};
+
+// The unlabelled tracks the unlabelled damage made: tracks.label(k) = "*<k+1>", holding
+// marker source[k]'s samples (exactly as they were) over its interval, missing elsewhere.
+struct UnlabelledDamage {
+  MarkerTrajectories tracks;
+  std::vector<int> source;
 };
 
 // The mask's letters and the kinds' names, in the same order: gap, fly-off, swap, noise,
-// jitter, ghost (a swap that begins in a gap is 'g' there and 's' after).
-inline constexpr int kNumDamageKinds = 6;
-inline constexpr char kDamageKinds[kNumDamageKinds + 1] = "gfsnjh";
+// jitter, ghost, unlabelled (a swap that begins in a gap is 'g' there and 's' after).
+inline constexpr int kNumDamageKinds = 7;
+inline constexpr char kDamageKinds[kNumDamageKinds + 1] = "gfsnjhu";
 inline constexpr const char* kDamageKindNames[kNumDamageKinds] = {"gap", "fly_off", "swap", "noise", "jitter",
-                                                                   "ghost"};
+                                                                   "ghost", "unlabelled"};
 // The index of a mask letter in kDamageKinds, -1 for 0 or an unknown letter.
 int DamageKindIndex(char letter);
 
 using CorruptionMask = std::vector<std::vector<char>>;
 
-void CorruptMarkers(const CorruptionOptions& options, MarkerTrajectories* markers, CorruptionMask* mask);
+// `unlabelled` (optional) receives the unlabelled damage's tracks (without it the samples
+// are only removed); it has the markers' frame count, unit and frame rate.
+void CorruptMarkers(const CorruptionOptions& options, MarkerTrajectories* markers, CorruptionMask* mask,
+                    UnlabelledDamage* unlabelled = nullptr);
 
 }  // namespace mocapsolve
 

@@ -61,6 +61,15 @@ Status ReadList(const std::string& path, const JsonNode& root, const char* key,
 std::vector<ViewInterval> RepairedViewIntervals(const std::vector<ReportedInterval>& detected,
                                                 const std::vector<ReportedInterval>& filled) {
   std::vector<ViewInterval> out;
+  for (const ReportedInterval& d : detected) {
+    if (d.what != "unlabelled") continue;
+    ViewInterval interval;
+    interval.marker = d.marker;
+    interval.first = d.first;
+    interval.last = d.last;
+    interval.state = MarkerState::kRepairedUnlabelled;
+    out.push_back(interval);
+  }
   for (const ReportedInterval& fill : filled) {
     ViewInterval interval;
     interval.marker = fill.marker;
@@ -68,7 +77,7 @@ std::vector<ViewInterval> RepairedViewIntervals(const std::vector<ReportedInterv
     interval.last = fill.last;
     int best = 0;
     for (const ReportedInterval& d : detected) {
-      if (d.marker != fill.marker) continue;
+      if (d.marker != fill.marker || d.what == "unlabelled") continue;
       const int overlap = std::min(d.last, fill.last) - std::max(d.first, fill.first) + 1;
       if (overlap > best) {
         best = overlap;

@@ -2,7 +2,9 @@
 // intervals it detected (each with its reason: "missing", "outlier", "joint difference",
 // "swap") and those it filled (with their fill method: "reference", "polynomial", ...).
 // A filled interval takes the reason of the detected interval of its marker that overlaps
-// it most, or "gap" when none does (a fill method is not a reason).
+// it most, or "gap" when none does (a fill method is not a reason). A detected
+// "unlabelled" interval (unlabelled points the repair gave the marker: observations, not
+// fills) is drawn as itself, under the filled ones.
 //
 // The report file is the JSON `mocapsolve repair --report` and `pipeline` write:
 //   {"detected": [{"marker": "LKNE", "first_frame": 10, "last_frame": 14, "what": "outlier"}, ...],

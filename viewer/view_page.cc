@@ -209,7 +209,7 @@ Status BuildViewPage(const ViewScene& scene, const std::string& runtime, std::st
     curves.push_back(o);
   }
   std::vector<JsonValue> states;
-  for (int s = 0; s <= static_cast<int>(MarkerState::kRepairedSwap); ++s) {
+  for (int s = 0; s <= static_cast<int>(MarkerState::kRepairedUnlabelled); ++s) {
     states.push_back(MarkerStateName(static_cast<MarkerState>(s)));
   }
   if (!blobs.status().ok()) return Status::Error("view: " + blobs.status().message());

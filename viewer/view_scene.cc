@@ -17,6 +17,7 @@ const char* MarkerStateName(MarkerState state) {
     case MarkerState::kRepairedOutlier: return "outlier";
     case MarkerState::kRepairedJointDifference: return "joint difference";
     case MarkerState::kRepairedSwap: return "swap";
+    case MarkerState::kRepairedUnlabelled: return "unlabelled";
   }
   return "observed";
 }
@@ -25,6 +26,7 @@ MarkerState RepairedStateForReason(const std::string& reason) {
   if (reason == "outlier") return MarkerState::kRepairedOutlier;
   if (reason == "joint difference") return MarkerState::kRepairedJointDifference;
   if (reason == "swap") return MarkerState::kRepairedSwap;
+  if (reason == "unlabelled") return MarkerState::kRepairedUnlabelled;
   return MarkerState::kRepairedGap;
 }
 

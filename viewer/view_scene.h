@@ -42,11 +42,12 @@ enum class MarkerState : std::uint8_t {
   kRepairedOutlier = 3,
   kRepairedJointDifference = 4,
   kRepairedSwap = 5,
+  kRepairedUnlabelled = 6,  // An unlabelled point the repair assigned to the marker.
 };
-// "observed", "missing", "gap", "outlier", "joint difference", "swap".
+// "observed", "missing", "gap", "outlier", "joint difference", "swap", "unlabelled".
 const char* MarkerStateName(MarkerState state);
 // A repair report's reason ("missing" and "gap" -> gap, "outlier", "joint difference",
-// "swap"); anything else (a fill method such as "reference") -> gap.
+// "swap", "unlabelled"); anything else (a fill method such as "reference") -> gap.
 MarkerState RepairedStateForReason(const std::string& reason);
 
 struct ViewTransform {

@@ -15,7 +15,7 @@
     ready: false, frames: 0, frame: 0, playing: false, renders: 0, error: null,
     setFrame: function () {}, play: function () {}, pause: function () {},
   });
-  const STATE_COLORS = ['#4cc9f0', '#7b8794', '#ffb703', '#ff4d6d', '#c77dff', '#80ed99'];
+  const STATE_COLORS = ['#4cc9f0', '#7b8794', '#ffb703', '#ff4d6d', '#c77dff', '#80ed99', '#f8f9fa'];
   const SKELETON_COLORS = ['#e9ecef', '#f4a261', '#90be6d'];
   const GHOST_COLOR = '#7aa7ff';
   const CURVE_COLORS = ['#f72585', '#4cc9f0', '#b5e48c', '#ffd166'];

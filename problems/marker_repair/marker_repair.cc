@@ -8,6 +8,7 @@
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/marker_trajectories.h"
 #include "problems/marker_repair/marker_residual_model.h"
+#include "problems/marker_repair/unlabelled_assignment.h"
 #include "problems/marker_solve/sequence_solver.h"
 #include "signal/bad_interval_detection.h"
 #include "signal/gap_cleanup.h"
@@ -206,6 +207,10 @@ bool RepairOptions::IsValid(std::string* error) const {
   }
   if (swap_min_frames < 1) return *error = "swap_min_frames must be >= 1", false;
   if (edge_samples < 1 || edge_samples > 1000) return *error = "edge_samples must be in [1, 1000]", false;
+  if (!std::isfinite(unlabelled_min_distance) || !std::isfinite(unlabelled_max_distance)) {
+    return *error = "unlabelled_min_distance and unlabelled_max_distance must be finite", false;
+  }
+  if (unlabelled_min_frames < 1) return *error = "unlabelled_min_frames must be >= 1", false;
   if (trim_max < 0 || small_track < 0 || small_gap < 0) {
     return *error = "trim_max, small_track and small_gap must be >= 0 frames", false;
   }
@@ -215,7 +220,24 @@ bool RepairOptions::IsValid(std::string* error) const {
 Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
                      const RepairOptions& options, Observations* repaired, Motion* motion,
                      RepairReport* report, RepairIntermediates* intermediates, const RepairProgress& progress) {
+  return RepairMarkers(skeleton, markers, observed, UnlabelledPoints(), options, repaired, motion, report,
+                       intermediates, progress);
+}
+
+Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
+                     const UnlabelledPoints& unlabelled, const RepairOptions& options, Observations* repaired,
+                     Motion* motion, RepairReport* report, RepairIntermediates* intermediates,
+                     const RepairProgress& progress) {
   if (std::string error; !options.IsValid(&error)) return Status::Error(error);
+  if (unlabelled.num_tracks() > 0 && unlabelled.points.size() != observed.size()) {
+    return Status::Error("unlabelled points: " + std::to_string(unlabelled.points.size()) + " frames, markers " +
+                         std::to_string(observed.size()));
+  }
+  for (const auto& frame : unlabelled.points) {
+    if (frame.size() != static_cast<size_t>(unlabelled.num_tracks())) {
+      return Status::Error("unlabelled points: a frame's point count differs from the track names'");
+    }
+  }
   *report = RepairReport();
   StageClock clock(report);
   // 1. Naive solve and 2. robust reference (the tracker needs no naive solve, so with two
@@ -283,28 +305,44 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   model_options.fixed_distance = outlier;
   MarkerResidualModel model = FitMarkerResidualModel(skeleton, markers, reference, reconstructed, x, model_options);
   clock.Lap("Residual Model");
-  // 3c. Swaps: relabel, then redo the naive solve where the samples changed.
+  // 3c. Swaps: relabel; 3d. unlabelled points labelled; then redo the naive solve where
+  // the samples changed.
   const MarkerTrajectories captured = x;
   const Observations* input = &observed;
   Observations relabelled;
+  const bool assigning = options.assign_unlabelled && unlabelled.num_tracks() > 0;
   if (options.undo_swaps) {
     SwapDetectionOptions swap_options;
     swap_options.radius = options.swap_radius > 0.0 ? options.swap_radius : 3.0 * options.dp_max;
     swap_options.min_frames = options.swap_min_frames;
     report->swaps = UndoSwaps(model, swap_options, &x);
-    if (!report->swaps.empty()) {
-      relabelled = TrajectoryObservations(x);
-      Motion solved;
-      int resolved = 0;
-      const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
-      status = ResolveChangedFrames(skeleton, markers, observed, relabelled, naive, options.naive, tolerance,
-                                    options.parallel, &solved, &resolved);
-      if (!status.ok()) return status;
-      naive = std::move(solved);
-      input = &relabelled;
-      // The soft-tissue residual was fitted with the swapped samples in its window.
-      model = FitMarkerResidualModel(skeleton, markers, reference, reconstructed, x, model_options);
-    }
+    if (assigning) clock.Lap("Swap Detection");
+  }
+  if (assigning) {
+    UnlabelledAssignmentOptions assign;
+    assign.mads = options.outlier_mads;
+    assign.min_distance = options.unlabelled_min_distance > 0.0 ? options.unlabelled_min_distance : outlier / 2.0;
+    assign.max_distance = options.unlabelled_max_distance > 0.0 ? options.unlabelled_max_distance : 1.25 * outlier;
+    assign.min_frames = options.unlabelled_min_frames;
+    report->unlabelled = AssignUnlabelledPoints(model, unlabelled, assign, &x);
+  }
+  if (!report->swaps.empty() || !report->unlabelled.empty()) {
+    relabelled = TrajectoryObservations(x);
+    Motion solved;
+    int resolved = 0;
+    const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
+    status = ResolveChangedFrames(skeleton, markers, observed, relabelled, naive, options.naive, tolerance,
+                                  options.parallel, &solved, &resolved);
+    if (!status.ok()) return status;
+    naive = std::move(solved);
+    input = &relabelled;
+    // The soft-tissue residual was fitted with the swapped samples in its window and
+    // without the assigned ones.
+    model = FitMarkerResidualModel(skeleton, markers, reference, reconstructed, x, model_options);
+  }
+  if (assigning) {
+    clock.Lap("Unlabelled Assignment");  // With the re-solve of the changed frames.
+  } else if (options.undo_swaps) {
     clock.Lap("Swap Detection");
   }
   // 4. Gap detection.
@@ -313,6 +351,9 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     for (const auto& [from, to] : swap.from_to) {
       report->detected.push_back({to, swap.first, swap.last, "swap"});
     }
+  }
+  for (const UnlabelledAssignment& a : report->unlabelled) {
+    report->detected.push_back({a.marker, a.first, a.last, "unlabelled"});
   }
   std::vector<std::vector<char>> bad_joints;
   status = DetectBadJoints(skeleton, naive, reference, {options.dp_max, options.dr_max_rad}, &bad_joints);

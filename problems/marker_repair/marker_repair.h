@@ -14,6 +14,10 @@
 //   3c. Swaps undone (swap_detection.h, `undo_swaps`): samples that fit another nearby
 //      label's prediction far better than their own are relabelled; the naive solve is
 //      redone on the frames that changed. Steps 4-7 work on the relabelled samples.
+//   3d. Unlabelled points labelled (unlabelled_assignment.h, `assign_unlabelled`): points
+//      the capture could not name (C3D "*52") become the samples of missing markers where
+//      the prediction P of the residual model and continuity with the marker's track say
+//      they belong, one to one per frame; the naive solve is redone on those frames too.
 //   4. Gap detection: naturally missing samples; outliers, samples past their marker's
 //      gate (the thesis takes these from its neural solver); and DetectBad(Y, Y^)
 //      (Algorithm 2), which condemns a marker's sample only where the joint difference
@@ -43,6 +47,7 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "problems/marker_repair/swap_detection.h"
+#include "problems/marker_repair/unlabelled_assignment.h"
 #include "problems/marker_solve/marker_clip_solver.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 
@@ -68,6 +73,11 @@ struct RepairOptions {
   bool undo_swaps = true;          // Step 3c.
   double swap_radius = 0.0;        // Skeleton units; <= 0: 3 dp_max.
   int swap_min_frames = 2;         // Frames a swap must persist.
+  bool assign_unlabelled = true;   // Step 3d (only with unlabelled points given).
+  double unlabelled_min_distance = 0.0;  // Skeleton units: the assignment gates' floor;
+                                         // <= 0: outlier_distance / 2.
+  double unlabelled_max_distance = 0.0;  // Skeleton units: their cap; <= 0: 1.25 outlier_distance.
+  int unlabelled_min_frames = 3;   // Frames an assignment needs when it continues no observed sample.
   int trim_max = 120;              // Frames, per side of a gap.
   int small_track = 120;           // Frames.
   int small_gap = 5;               // Frames.
@@ -82,7 +92,7 @@ struct RepairOptions {
 struct RepairInterval {
   int marker = 0;
   int first = 0, last = 0;  // Frames, inclusive.
-  std::string what;         // "missing", "swap", "outlier", "joint difference" (detected); "reference",
+  std::string what;         // "missing", "swap", "unlabelled", "outlier", "joint difference" (detected); "reference",
                             // "polynomial" (filled); "reference only" (whole take).
 };
 
@@ -97,6 +107,9 @@ struct RepairReport {
   // that gave its sample away and got none is a "swap" gap).
   std::vector<RepairInterval> detected;
   std::vector<MarkerSwap> swaps;  // Step 3c, markers as indices of the set.
+  // Step 3d: runs of frames in which a missing marker took an unlabelled track's points
+  // (also in `detected` as "unlabelled" intervals of the marker).
+  std::vector<UnlabelledAssignment> unlabelled;
   std::vector<RepairInterval> filled;    // Gaps filled (after preprocessing).
   std::vector<RepairStageTime> timings;
   int trimmed_samples = 0, removed_track_samples = 0, polynomial_samples = 0;
@@ -131,6 +144,13 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers,
                      Motion* motion, RepairReport* report,
                      RepairIntermediates* intermediates = nullptr,
                      const RepairProgress& progress = nullptr);
+// The same with the take's unlabelled points (step 3d; their frame count must be the
+// observations', or no tracks).
+Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers,
+                     const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                     const UnlabelledPoints& unlabelled, const RepairOptions& options,
+                     std::vector<std::vector<Eigen::Vector3d>>* repaired, Motion* motion, RepairReport* report,
+                     RepairIntermediates* intermediates = nullptr, const RepairProgress& progress = nullptr);
 
 }  // namespace mocapsolve
 

@@ -85,15 +85,16 @@ void ScoreMarkers(const MarkerObservations& clean, const MarkerObservations& x, 
 }
 
 // Which samples of the corrupted markers x0 the method's markers x changed, against the mask.
-void ScoreDetection(const MarkerObservations& x0, const MarkerObservations& x, const CorruptionMask& mask,
-                    RepairEvaluationRow* row) {
+void ScoreDetection(const MarkerObservations& clean, const MarkerObservations& x0, const MarkerObservations& x,
+                    const CorruptionMask& mask, RepairEvaluationRow* row) {
+  const int unlabelled = DamageKindIndex('u');
   for (size_t f = 0; f < x0.size(); ++f) {
     for (size_t m = 0; m < x0[f].size(); ++m) {
       const int k = DamageKindIndex(mask[f][m]);
-      if (!x0[f][m].allFinite()) {  // Missing in X: detected when filled.
+      if (!x0[f][m].allFinite()) {  // Missing in X: detected when filled (unlabelled: restored).
         if (k < 0) continue;
         ++row->kind_samples[k];
-        if (x[f][m].allFinite()) ++row->kind_detected[k];
+        if (k == unlabelled ? x[f][m] == clean[f][m] : x[f][m].allFinite()) ++row->kind_detected[k];
         continue;
       }
       const bool changed = !(x[f][m].array() == x0[f][m].array()).all();
@@ -113,8 +114,18 @@ void ScoreDetection(const MarkerObservations& x0, const MarkerObservations& x, c
 
 Status EvaluateRepair(const Skeleton& skeleton, const MarkerSet& markers, const MarkerObservations& clean,
                       const MarkerObservations& corrupted, const CorruptionMask& mask,
-                      const RepairOptions& options, std::vector<RepairEvaluationRow>* rows) {
+                      const RepairOptions& options, std::vector<RepairEvaluationRow>* rows,
+                      const UnlabelledDamage* unlabelled) {
   rows->clear();
+  UnlabelledPoints points;
+  if (unlabelled != nullptr && unlabelled->tracks.num_markers() > 0) {
+    if (unlabelled->tracks.num_frames() != static_cast<int>(clean.size()) ||
+        unlabelled->source.size() != static_cast<size_t>(unlabelled->tracks.num_markers())) {
+      return Status::Error("unlabelled tracks and markers differ in frame or track count");
+    }
+    points.names = unlabelled->tracks.labels();
+    points.points = TrajectoryObservations(unlabelled->tracks);
+  }
   if (clean.size() != corrupted.size() || clean.size() != mask.size()) {
     return Status::Error("clean markers, corrupted markers and mask differ in frame count");
   }
@@ -148,7 +159,7 @@ Status EvaluateRepair(const Skeleton& skeleton, const MarkerSet& markers, const 
     r.seconds = Seconds(start);
     ScoreJoints(skeleton, truth, motion, &r);
     ScoreMarkers(clean, filled, mask, &r);
-    ScoreDetection(corrupted, filled, mask, &r);
+    ScoreDetection(clean, corrupted, filled, mask, &r);
     rows->push_back(r);
     return Status::Ok();
   };
@@ -163,7 +174,7 @@ Status EvaluateRepair(const Skeleton& skeleton, const MarkerSet& markers, const 
   Motion motion;
   RepairReport report;
   RepairIntermediates intermediates;
-  status = RepairMarkers(skeleton, markers, corrupted, options, &repaired, &motion, &report, &intermediates);
+  status = RepairMarkers(skeleton, markers, corrupted, points, options, &repaired, &motion, &report, &intermediates);
   if (!status.ok()) return status;
   const double repair_seconds = Seconds(start);
   RepairEvaluationRow reference;
@@ -173,14 +184,21 @@ Status EvaluateRepair(const Skeleton& skeleton, const MarkerSet& markers, const 
   }
   ScoreJoints(skeleton, truth, intermediates.reference, &reference);
   ScoreMarkers(clean, intermediates.reconstructed, mask, &reference);
-  ScoreDetection(corrupted, intermediates.reconstructed, mask, &reference);
+  ScoreDetection(clean, corrupted, intermediates.reconstructed, mask, &reference);
   rows->push_back(reference);
   RepairEvaluationRow ours;
   ours.method = "ours";
   ours.seconds = repair_seconds;
   ScoreJoints(skeleton, truth, motion, &ours);
   ScoreMarkers(clean, repaired, mask, &ours);
-  ScoreDetection(corrupted, repaired, mask, &ours);
+  ScoreDetection(clean, corrupted, repaired, mask, &ours);
+  for (const UnlabelledAssignment& a : report.unlabelled) {
+    if (a.marker != unlabelled->source[a.track]) {
+      ours.unlabelled_false_samples += a.last - a.first + 1;
+      continue;
+    }
+    for (int f = a.first; f <= a.last; ++f) ours.unlabelled_assigned_samples += mask[f][a.marker] == 'u';
+  }
   rows->push_back(ours);
   return Status::Ok();
 }
@@ -191,8 +209,9 @@ Status EvaluateRepairTrial(const Skeleton& skeleton, const MarkerSet& markers, c
   MarkerTrajectories x = ObservationTrajectories(markers, clean);
   x.unit = skeleton.unit();
   CorruptionMask mask;
-  CorruptMarkers(damage, &x, &mask);
-  return EvaluateRepair(skeleton, markers, clean, TrajectoryObservations(x), mask, options, rows);
+  UnlabelledDamage unlabelled;
+  CorruptMarkers(damage, &x, &mask, &unlabelled);
+  return EvaluateRepair(skeleton, markers, clean, TrajectoryObservations(x), mask, options, rows, &unlabelled);
 }
 
 }  // namespace mocapsolve

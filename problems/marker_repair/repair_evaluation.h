@@ -20,8 +20,14 @@
 //   detection              which samples the method changed, against the mask: a sample
 //                          observed in X is "detected" when the method's marker differs
 //                          from it (repair returns unflagged samples bit for bit); recall
-//                          per damage kind (for gaps: the share filled), and precision =
-//                          damaged / all changed observed samples.
+//                          per damage kind (for gaps: the share filled; for unlabelled
+//                          samples, the share restored: the method's marker equals the
+//                          clean sample bit for bit, which only a relabelling achieves), and
+//                          precision = damaged / all changed observed samples;
+//   relabels               (ours) unlabelled samples the labelling stage gave back to the
+//                          marker they came from (the restored ones above are those of them
+//                          that no later stage cut, such as trimming beside a gap), and those
+//                          it gave to another marker.
 // All methods solve with options.naive, so the differences come from the markers.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_REPAIR_EVALUATION_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_REPAIR_EVALUATION_H_
@@ -48,6 +54,8 @@ struct RepairEvaluationRow {
   double kind_error[kNumDamageKinds] = {};
   int kind_samples[kNumDamageKinds] = {};
   int kind_detected[kNumDamageKinds] = {};
+  int unlabelled_assigned_samples = 0;  // Unlabelled samples assigned to their own marker (ours)...
+  int unlabelled_false_samples = 0;     // ...and to another one.
   int changed_samples = 0;          // Observed samples of X the method changed...
   int changed_undamaged_samples = 0;  // ...of which undamaged: false detections.
   double velocity_jump = 0.0;  // Skeleton units per frame.
@@ -66,10 +74,12 @@ using MarkerObservations = std::vector<std::vector<Eigen::Vector3d>>;  // [frame
 // clean and corrupted in model units (marker_observations.h), mask[frame][marker] as
 // CorruptMarkers writes it. Rows: "clean" (the truth's own velocity jump), then the six
 // methods in the order above.
+// `unlabelled` (optional): the unlabelled damage's tracks (model units), given to the
+// repair as the take's unlabelled points.
 Status EvaluateRepair(const Skeleton& skeleton, const MarkerSet& markers,
                       const MarkerObservations& clean, const MarkerObservations& corrupted,
                       const CorruptionMask& mask, const RepairOptions& options,
-                      std::vector<RepairEvaluationRow>* rows);
+                      std::vector<RepairEvaluationRow>* rows, const UnlabelledDamage* unlabelled = nullptr);
 
 // One trial: `clean` damaged by CorruptMarkers(damage) (in the skeleton's units), then
 // EvaluateRepair. `evaluate` and the Python module run trials with seeds seed, seed+1, ...

@@ -10,6 +10,7 @@
 
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/quote_token.h"
+#include "kinematics/unlabelled_label.h"
 #include "problems/marker_solve/subject_checks.h"
 
 namespace mocapsolve {
@@ -184,7 +185,7 @@ Status CalibrateMarkers(const Skeleton& skeleton, const Motion& motion,
     std::set<std::string> names;
     for (int m = 0; m < trajectories.num_markers(); ++m) {
       const std::string name = MarkerName(trajectories, m);
-      if (name.empty() || name[0] == '*') {
+      if (IsUnlabelledLabel(name)) {
         out.skipped.push_back(trajectories.label(m) + ": unlabelled point");
         continue;
       }

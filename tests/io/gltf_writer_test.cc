@@ -394,9 +394,9 @@ TEST(GltfWriter, CompactVariantHoldsConstantChannelsWithOneKey) {
   }
   std::string full, compact;
   ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "take", true, &full).ok());
-  GltfWriteOptions options;
-  options.compact = true;
-  Status status = SerializeGltfWithAnimation(doc, c, motion, "take", true, &compact, options);
+  GltfWriteOptions page;
+  page.compact = true;
+  Status status = SerializeGltfWithAnimation(doc, c, motion, "take", true, &compact, page);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_LT(compact.size(), full.size());
   GltfDocument back;

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "io/bvh_writer.h"
+#include "io/marker_file.h"
 #include "kinematics/demo_character.h"
 #include "problems/marker_solve/synthetic_marker_set.h"
 #include "tests/test_support.h"
@@ -99,6 +100,45 @@ TEST(Subject, InlineSkeletonRoundTrip) {
   const std::string again = testing::TempPath("s2.json");
   ASSERT_TRUE(WriteSubject(again, read).ok());
   EXPECT_EQ(testing::ReadTextFile(path), testing::ReadTextFile(again));
+}
+
+// A take keeps the file's unlabelled points ("*7", in the skeleton's frame and units), and
+// the repaired file loses those a repair assigned to markers, the rest as read.
+TEST(Subject, TakeKeepsUnlabelledPointsAndTheOutputDropsAssignedOnes) {
+  const Subject subject = MakeSubject();
+  std::vector<std::string> labels;
+  for (int m = 0; m < subject.markers.num_markers(); ++m) labels.push_back("Subject1:" + subject.markers.label(m));
+  labels.push_back("*7");
+  MarkerTrajectories file(labels, 5);
+  file.frame_rate = 60.0;
+  file.unit = LengthUnitFromName("mm");
+  for (int f = 0; f < 5; ++f) {
+    for (int c = 0; c < file.num_markers(); ++c) file.SetSample(f, c, Eigen::Vector3d(c + 1.0, f + 1.0, 10.0 * c + f + 1.0));
+  }
+  file.SetMissing(4, file.num_markers() - 1);
+  const std::string path = testing::TempPath("unlabelled.c3d");
+  ASSERT_TRUE(WriteMarkerFile(path, file).ok());
+  MarkerTake take;
+  const Status status = LoadTakeForSubject(subject, path, &take);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_EQ(take.unlabelled.names, std::vector<std::string>{"*7"});
+  ASSERT_EQ(take.unlabelled_columns, std::vector<int>{file.num_markers() - 1});
+  ASSERT_EQ(take.unlabelled.points.size(), 5u);
+  const int column = file.num_markers() - 1;
+  for (int f = 0; f < 4; ++f) {
+    EXPECT_TRUE(take.unlabelled.points[f][0].isApprox(take.transform.Apply(file.position(f, column)), 1e-6)) << f;
+  }
+  EXPECT_FALSE(take.unlabelled.present(4, 0));
+  // Marker 0 took the point at frames 1-2.
+  std::vector<std::vector<Eigen::Vector3d>> repaired = take.observed;
+  int rewritten = -1, removed = -1;
+  const MarkerTrajectories out = WithRepairedSamples(take, repaired, &rewritten, {{0, 0, 1, 2, 0.0}}, &removed);
+  EXPECT_EQ(rewritten, 0);
+  EXPECT_EQ(removed, 2);
+  EXPECT_TRUE(out.valid(0, column));
+  EXPECT_FALSE(out.valid(1, column));
+  EXPECT_FALSE(out.valid(2, column));
+  EXPECT_TRUE(out.valid(3, column));
 }
 
 // The subject text with `from` replaced by `to` (which must occur).

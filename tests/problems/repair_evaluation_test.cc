@@ -81,6 +81,33 @@ TEST(RepairEvaluation, ScoresEveryMethodOnTheSameDamage) {
   EXPECT_LE(ours.changed_undamaged_samples, ours.changed_samples);
 }
 
+// Relabelling recall: samples moved from their markers into unlabelled tracks (with gaps
+// around) are assigned back to the right marker, none to a wrong one; the fills only refill.
+TEST(RepairEvaluation, UnlabelledSamplesAreRestoredToTheirMarkers) {
+  const testing::DemoTake take = testing::MakeDemoTake(150, 60.0, 5);
+  CorruptionOptions damage;
+  damage.seed = 4;
+  damage.gaps = 3;
+  damage.gap_min = 5;
+  damage.gap_max = 15;
+  damage.cluster_gaps = damage.swaps = damage.noisy_markers = 0;
+  damage.unlabels = 4;
+  damage.unlabel_length = 20;
+  RepairOptions options = testing::DemoRepairOptions(ReferenceKind::kTracker);
+  std::vector<RepairEvaluationRow> rows;
+  const Status status = EvaluateRepairTrial(take.skeleton, take.markers, take.clean, damage, options, &rows);
+  ASSERT_TRUE(status.ok()) << status.message();
+  const int unlabelled = DamageKindIndex('u');
+  const RepairEvaluationRow& ours = rows.back();
+  ASSERT_GT(ours.kind_samples[unlabelled], 40);
+  EXPECT_GE(ours.unlabelled_assigned_samples, 0.95 * ours.kind_samples[unlabelled]);
+  EXPECT_EQ(ours.unlabelled_false_samples, 0);
+  // Kept bit for bit in the output: trimming beside the damage's gaps cuts some again.
+  EXPECT_GE(ours.Recall(unlabelled), 0.5);
+  EXPECT_LE(ours.kind_detected[unlabelled], ours.unlabelled_assigned_samples);
+  EXPECT_EQ(rows[2].Recall(unlabelled), 0.0);  // Polynomial: refilled, never the sample itself.
+}
+
 TEST(RepairEvaluation, RejectsMismatchedInputs) {
   const Skeleton skeleton = MakeDemoSkeleton();
   const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 1, 5);

@@ -118,5 +118,54 @@ TEST(MarkerCorruption, SwapsInGapsJitterAndGhosts) {
   EXPECT_EQ(DamageKindIndex(0), -1);
 }
 
+// Unlabelled runs: drawn after every other kind, so a seed's other damage is as it was;
+// each run's samples leave the marker for their own track, exactly as they were.
+TEST(MarkerCorruption, UnlabelledRunsMoveSamplesToTracks) {
+  CorruptionOptions options;
+  options.seed = 5;
+  options.cluster_radius = 15.0;
+  options.fly_off_distance = 30.0;
+  options.swap_radius = 12.0;
+  options.noise_sigma = 2.0;
+  options.ghosts = 1;
+  options.ghost_distance = 3.0;
+  const MarkerTrajectories clean = Clean(300);
+  MarkerTrajectories before = clean, after = clean;
+  CorruptionMask mask_before, mask;
+  UnlabelledDamage none;
+  CorruptMarkers(options, &before, &mask_before, &none);
+  EXPECT_EQ(none.tracks.num_markers(), 0);
+  options.unlabels = 3;
+  options.unlabel_length = 20;
+  UnlabelledDamage unlabelled;
+  CorruptMarkers(options, &after, &mask, &unlabelled);
+  ASSERT_EQ(unlabelled.tracks.num_markers(), 3);
+  ASSERT_EQ(unlabelled.source.size(), 3u);
+  EXPECT_EQ(unlabelled.tracks.label(0), "*1");
+  EXPECT_EQ(unlabelled.tracks.num_frames(), 300);
+  int moved = 0;
+  for (int f = 0; f < 300; ++f) {
+    for (int m = 0; m < 6; ++m) {
+      if (mask[f][m] != 'u') {
+        EXPECT_EQ(mask[f][m], mask_before[f][m]);
+        if (before.valid(f, m)) EXPECT_EQ(after.position(f, m), before.position(f, m));
+        continue;
+      }
+      EXPECT_EQ(mask_before[f][m], 0);
+      EXPECT_FALSE(after.valid(f, m));
+      bool found = false;
+      for (int k = 0; k < 3; ++k) {
+        if (unlabelled.source[k] == m && unlabelled.tracks.valid(f, k)) {
+          found |= unlabelled.tracks.position(f, k) == clean.position(f, m);
+        }
+      }
+      EXPECT_TRUE(found) << f << " " << m;
+      ++moved;
+    }
+  }
+  EXPECT_GT(moved, 0);
+  EXPECT_EQ(DamageKindIndex('u'), 6);
+}
+
 }  // namespace
 }  // namespace mocapsolve

@@ -148,6 +148,20 @@ TEST(RepairIntervals, FilledIntervalsTakeTheDetectedReason) {
   EXPECT_EQ(markers.states[5 * 3 + 1], static_cast<std::uint8_t>(MarkerState::kRepairedJointDifference));
 }
 
+// Unlabelled points a repair assigned are drawn as their own state (they are observations,
+// not fills) and are no fill's reason.
+TEST(RepairIntervals, AssignedUnlabelledPointsHaveTheirOwnState) {
+  const std::vector<ReportedInterval> detected = {{0, 10, 20, "unlabelled"}, {0, 5, 30, "missing"}};
+  const std::vector<ReportedInterval> filled = {{0, 21, 30, "reference"}};
+  const std::vector<ViewInterval> intervals = RepairedViewIntervals(detected, filled);
+  ASSERT_EQ(intervals.size(), 2u);
+  EXPECT_EQ(intervals[0].state, MarkerState::kRepairedUnlabelled);
+  EXPECT_EQ(intervals[0].first, 10);
+  EXPECT_EQ(intervals[1].state, MarkerState::kRepairedGap);
+  EXPECT_STREQ(MarkerStateName(MarkerState::kRepairedUnlabelled), "unlabelled");
+  EXPECT_EQ(RepairedStateForReason("unlabelled"), MarkerState::kRepairedUnlabelled);
+}
+
 TEST(RepairIntervals, ReportErrorsNameTheFieldAndPrefixedLabelsMatch) {
   const std::string path = testing::TempPath("r.json");
   auto write = [&](const std::string& text) {
