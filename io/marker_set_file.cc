@@ -14,6 +14,9 @@
 namespace mocapsolve {
 namespace {
 
+// Largest attachment weight (weights are renormalized per marker; this keeps their sum finite).
+constexpr double kMaxWeight = 1e6;
+
 constexpr const char* kFormat = "mocapsolve.markerset";
 
 // The unit a marker set file names: the skeleton's own by name, a marker-file unit
@@ -149,7 +152,9 @@ class Interpreter {
       if (const JsonNode* weight = a.Find("weight")) {
         status = CheckType(*weight, JsonNode::Type::kNumber, field + ".weight");
         if (!status.ok()) return status;
-        if (!(weight->number >= 0.0)) return Error(*weight, field + ".weight: expected >= 0");
+        if (!(weight->number >= 0.0 && weight->number <= kMaxWeight)) {
+          return Error(*weight, field + ".weight: expected in [0, 1e6]");
+        }
         attachment.weight = weight->number;
       }
       total_weight += attachment.weight;
@@ -163,6 +168,11 @@ class Interpreter {
         if (!value.is_number()) {
           return Error(value, field + ".offset[" + std::to_string(i) + "]: expected number, got " +
                                   JsonTypeName(value.type));
+        }
+        // As marker coordinates (MarkerTrajectories::kMaxCoordinate): a sum of such
+        // offsets stays finite, and in float (C3D) range, through FK.
+        if (!(std::abs(value.number) <= MarkerTrajectories::kMaxCoordinate)) {
+          return Error(value, field + ".offset[" + std::to_string(i) + "]: beyond +-1e9");
         }
         attachment.offset[i] = value.number * factor_;
       }

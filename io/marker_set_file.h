@@ -12,8 +12,9 @@
 //       {"label": "LBWT",                        non-empty, unique (no subject prefix)
 //        "attachments": [                        one or more
 //          {"joint": "root",                     a joint name of the skeleton
-//           "weight": 1.0,                       optional (default 1), >= 0
-//           "offset": [x, y, z]}]}               z_mk in the joint's frame, `units`
+//           "weight": 1.0,                       optional (default 1), in [0, 1e6]
+//           "offset": [x, y, z]}]}               z_mk in the joint's frame, `units`,
+//                                                each within +-1e9
 //     ]
 //   }
 // Weights are renormalized to sum to 1 per marker (MarkerSet::Create); a marker on one

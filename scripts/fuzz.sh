@@ -4,9 +4,10 @@
 # TARGET: bvh, asf, amc, c3d, trc, json, gltf, fbx, or all (default). Default budget:
 # --seconds=120 per target. Opt-in: needs clang and libFuzzer (scripts/setup.sh
 # --fuzz installs them). Each target keeps a growing corpus in build-fuzz/corpus/TARGET
-# (seeded by fuzz/make_seeds.py) and writes crashes, leaks, timeouts and OOMs to
-# build-fuzz/artifacts/TARGET/. Runs under nice -n 19 (the machine is shared). The last
-# line per target: "fuzz TARGET: N runs in S s (E exec/s), cov C, ft F, corpus K, found: ..."
+# (seeded by fuzz/make_seeds.py and by tests/data/bad's files of its format) and writes
+# crashes, leaks, timeouts and OOMs to build-fuzz/artifacts/TARGET/. Runs under nice -n 19
+# (the machine is shared). The last line per target:
+# "fuzz TARGET: N runs in S s (E exec/s), cov C, ft F, corpus K, found: ..."
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -46,6 +47,20 @@ if ! nice cmake --build build-fuzz -j2 --target "${targets[@]/%/_fuzzer}" >build
   exit 1
 fi
 /usr/bin/python3 fuzz/make_seeds.py build-fuzz/seeds
+# tests/data/bad's files join the seeds of the target that reads their format.
+rm -rf build-fuzz/bad
+for t in "${all[@]}"; do
+  mkdir -p "build-fuzz/bad/$t"
+  case "$t" in
+    gltf) patterns=(bad_*.gltf bad_*.glb) ;;
+    *) patterns=("bad_*.$t") ;;
+  esac
+  for p in "${patterns[@]}"; do
+    for f in tests/data/bad/$p; do
+      if [ -e "$f" ]; then cp "$f" "build-fuzz/bad/$t/"; fi
+    done
+  done
+done
 
 # Leaks inside Debian's uninstrumented assimp/zlib are suppressed by name (fuzz/lsan.supp).
 export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0"
@@ -57,7 +72,7 @@ for t in "${targets[@]}"; do
   log="build-fuzz/fuzz-$t.log"
   start=$(date +%s)
   set +e
-  nice -n 19 "build-fuzz/bin/${t}_fuzzer" "build-fuzz/corpus/$t" "build-fuzz/seeds/$t" \
+  nice -n 19 "build-fuzz/bin/${t}_fuzzer" "build-fuzz/corpus/$t" "build-fuzz/seeds/$t" "build-fuzz/bad/$t" \
     "${budget[@]}" -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
     -artifact_prefix="build-fuzz/artifacts/$t/" "${extra[@]}" >"$log" 2>&1
   rc=$?

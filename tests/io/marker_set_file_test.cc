@@ -47,7 +47,7 @@ MarkerSet BlendedSet(const Skeleton& skeleton) {
       {"LKNE", {{skeleton.FindJoint("LeftUpLeg"), 0.25, {1.0 / 3.0, -40.0, 5.5}},
                 {skeleton.FindJoint("LeftLeg"), 0.75, {0.1, 2.0, 5.0}}}},
       {"C7", {{skeleton.FindJoint("Neck"), 1.0, {0.0, 1e-17, -7.25}}}},
-      {"we\"ird\\label", {{0, 2.0, {-1e300, 3e-300, 12345.678901234567}}}},
+      {"we\"ird\\label", {{0, 2.0, {-987654321.12345678, 3e-300, 12345.678901234567}}}},
   };
   MarkerSet set;
   EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
@@ -124,7 +124,14 @@ TEST(MarkerSetFile, BadInputsGiveOneLineErrorsNamingTheField) {
       {"string in offset", head + R"({"label": "B", "attachments": [{"joint": "Hips", "offset": [1, "2", 3]}]}]})",
        "attachments[0].offset[1]: expected number, got string"},
       {"negative weight", head + R"({"label": "B", "attachments": [{"joint": "Hips", "weight": -1, "offset": [1, 2, 3]}]}]})",
-       "attachments[0].weight: expected >= 0"},
+       "attachments[0].weight: expected in [0, 1e6]"},
+      // Found by tests/apps/malformed_input_sweep_cli_test.cc: an offset of -1e308 went through
+      // FK and came out as a marker beyond float range in the C3D writer, whose error named
+      // the output, not the marker set.
+      {"huge offset", head + R"({"label": "B", "attachments": [{"joint": "Hips", "offset": [1, -1e308, 3]}]}]})",
+       "attachments[0].offset[1]: beyond +-1e9"},
+      {"huge weight", head + R"({"label": "B", "attachments": [{"joint": "Hips", "weight": 1e308, "offset": [1, 2, 3]}]}]})",
+       "attachments[0].weight: expected in [0, 1e6]"},
       {"zero weights", head + R"({"label": "B", "attachments": [{"joint": "Hips", "weight": 0, "offset": [1, 2, 3]}]}]})",
        "weights sum to zero"},
       {"no attachments", head + R"({"label": "B", "attachments": []}]})", "attachments: empty"},
@@ -165,7 +172,7 @@ TEST(MarkerSetFile, ReadErrorsNameThePath) {
   EXPECT_THAT(status.message(), HasSubstr("/nonexistent/set.json"));
   // The corpus files the CLI test also runs.
   for (const char* name : {"bad_markerset_unknown_joint.json", "bad_markerset_offset.json",
-                           "bad_markerset_syntax.json"}) {
+                           "bad_markerset_syntax.json", "bad_markerset_huge_offset.json"}) {
     const std::string path = testing::SourcePath(std::string("tests/data/bad/") + name);
     status = ReadMarkerSet(path, skeleton, &set);
     ASSERT_FALSE(status.ok()) << name;
