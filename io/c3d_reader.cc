@@ -183,6 +183,13 @@ const Parameter* C3dParser::Find(const std::string& group, const std::string& na
   return nullptr;
 }
 
+// A parameter's number as written: whole numbers without a fraction, others to 6 digits.
+std::string NumberText(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
 bool C3dParser::Number(const Parameter* p, bool is_count, double* value) const {
   if (p == nullptr || p->count == 0) return false;
   switch (p->type) {
@@ -243,8 +250,7 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
   const int num_points = decoder_.U16(2);
   double value;
   if (Number(Find("POINT", "USED"), /*is_count=*/true, &value) && value != num_points) {
-    return Error("POINT:USED", std::to_string(static_cast<long long>(value)) +
-                                   " disagrees with the header's point count " +
+    return Error("POINT:USED", NumberText(value) + " disagrees with the header's point count " +
                                    std::to_string(num_points));
   }
   // Storage: the sign of POINT:SCALE.
@@ -316,7 +322,13 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
   // disagree about the layout.
   const int analog_values = decoder_.U16(4);
   int analog_channels = 0;
-  if (Number(Find("ANALOG", "USED"), true, &value)) analog_channels = static_cast<int>(value);
+  if (Number(Find("ANALOG", "USED"), true, &value)) {
+    // A float parameter can hold anything: a count is a whole number a frame can carry.
+    if (!(value >= 0.0 && value <= 65535.0) || value != std::floor(value)) {
+      return Error("ANALOG:USED", NumberText(value) + " is not a channel count");
+    }
+    analog_channels = static_cast<int>(value);
+  }
   if (analog_channels > 0 && analog_values % analog_channels != 0) {
     return Error("header word 3 (analog values per frame)",
                  std::to_string(analog_values) + " is not a multiple of ANALOG:USED " +
