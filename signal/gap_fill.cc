@@ -18,7 +18,7 @@ void EdgeOffset(const MarkerTrajectories& x, const MarkerTrajectories& r, int m,
   velocity->setZero();
   // Sums for the line D(t) = a + b t with t = frames from f (0, 1, 2, ... outward).
   double st = 0.0, stt = 0.0;
-  Eigen::Vector3d sd = Eigen::Vector3d::Zero(), std_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sd = Eigen::Vector3d::Zero(), std_sum = Eigen::Vector3d::Zero();
   int n = 0;
   for (int k = 0; k < samples; ++k) {
     const int g = f + k * step;
@@ -27,11 +27,11 @@ void EdgeOffset(const MarkerTrajectories& x, const MarkerTrajectories& r, int m,
     st += k;
     stt += double(k) * k;
     sd += d;
-    std_ += k * d;
+    std_sum += k * d;
     ++n;
   }
   if (n >= 2) {
-    const Eigen::Vector3d outward_slope = (n * std_ - st * sd) / (n * stt - st * st);
+    const Eigen::Vector3d outward_slope = (n * std_sum - st * sd) / (n * stt - st * st);
     // Along increasing time: outward is backward in time before the gap.
     *velocity = step < 0 ? Eigen::Vector3d(-outward_slope) : outward_slope;
   }

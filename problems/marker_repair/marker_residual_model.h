@@ -25,8 +25,10 @@
 // Small errors (1-4 cm jumps, jitter) are told from soft tissue by being discontinuous:
 // the residual steps, v_fm = d_fm - d_(f-1)m between consecutive valid samples, have a
 // robust gate w_m (the same statistic over |v_fm|, at least min_distance, no cap); a step
-// past w_m into a displacement and the next step back out (|v_a + v_b| within
-// max(w_m, |v_a| / 2), at most max_jump_frames later, the mean residual in between at
+// past w_m into a displacement and the next step back out (|v_a + v_b|, or the residual
+// after it against the one before v_a, within max(w_m, |v_a| / 2): the reference leans
+// toward a displaced marker, so the way out can be smaller than the way in; at most
+// max_jump_frames later, the mean residual in between at
 // least |v_a| / 2 from the one before along v_a) mark frames a..b-1 as jumped; an unmatched step marks its own
 // frame; of those, only samples displaced more than min_distance from the soft-tissue
 // residual (|d_fm - S_fm|) count as jumped (noise of a few mm steps by about a cm from frame
