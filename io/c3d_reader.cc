@@ -106,6 +106,11 @@ class C3dParser {
   const Parameter* Find(const std::string& group, const std::string& name) const;
   // First value of a numeric parameter; int16 read as unsigned when is_count.
   bool Number(const Parameter* p, bool is_count, double* value) const;
+  // A count parameter (POINT:USED, POINT:DATA_START, ANALOG:USED): *present tells whether
+  // the file has it. A float one can hold anything, so it must be a whole number 0..65535
+  // (what the 16-bit integer form holds); anything else is an error naming it.
+  Status Count(const std::string& group, const std::string& name, bool* present,
+               double* value) const;
   std::vector<std::string> Strings(const Parameter* p) const;
 
   std::string_view bytes_;
@@ -202,6 +207,19 @@ bool C3dParser::Number(const Parameter* p, bool is_count, double* value) const {
   }
 }
 
+Status C3dParser::Count(const std::string& group, const std::string& name, bool* present,
+                        double* value) const {
+  const Parameter* p = Find(group, name);
+  *present = p != nullptr && p->count > 0 && (p->type == 1 || p->type == 2 || p->type == 4);
+  if (!*present) return Status::Ok();
+  if (p->type == 4) *value = decoder_.F32(p->data_offset);
+  else Number(p, /*is_count=*/true, value);
+  if (!(*value >= 0.0 && *value <= 65535.0) || *value != std::floor(*value)) {
+    return Error(group + ":" + name, NumberText(*value) + " is not a count (a whole number 0-65535)");
+  }
+  return Status::Ok();
+}
+
 std::vector<std::string> C3dParser::Strings(const Parameter* p) const {
   std::vector<std::string> out;
   if (p == nullptr || p->type != -1) return out;
@@ -249,7 +267,9 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
   // Points per frame.
   const int num_points = decoder_.U16(2);
   double value;
-  if (Number(Find("POINT", "USED"), /*is_count=*/true, &value) && value != num_points) {
+  bool present;
+  if (Status s = Count("POINT", "USED", &present, &value); !s.ok()) return s;
+  if (present && value != num_points) {
     return Error("POINT:USED", NumberText(value) + " disagrees with the header's point count " +
                                    std::to_string(num_points));
   }
@@ -277,7 +297,8 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
   // Data start.
   std::uint64_t data_start_block = decoder_.U16(16);
   std::string data_start_field = "header word 9 (data start)";
-  if (Number(Find("POINT", "DATA_START"), true, &value)) {
+  if (Status s = Count("POINT", "DATA_START", &present, &value); !s.ok()) return s;
+  if (present) {
     data_start_block = static_cast<std::uint64_t>(value);
     data_start_field = "POINT:DATA_START";
   }
@@ -322,13 +343,8 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
   // disagree about the layout.
   const int analog_values = decoder_.U16(4);
   int analog_channels = 0;
-  if (Number(Find("ANALOG", "USED"), true, &value)) {
-    // A float parameter can hold anything: a count is a whole number a frame can carry.
-    if (!(value >= 0.0 && value <= 65535.0) || value != std::floor(value)) {
-      return Error("ANALOG:USED", NumberText(value) + " is not a channel count");
-    }
-    analog_channels = static_cast<int>(value);
-  }
+  if (Status s = Count("ANALOG", "USED", &present, &value); !s.ok()) return s;
+  if (present) analog_channels = static_cast<int>(value);
   if (analog_channels > 0 && analog_values % analog_channels != 0) {
     return Error("header word 3 (analog values per frame)",
                  std::to_string(analog_values) + " is not a multiple of ANALOG:USED " +

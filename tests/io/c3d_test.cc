@@ -595,9 +595,11 @@ TEST(C3dBadInputRealFile, CorruptedDecIntFileWithAnalogNeverCrashes) {
 
 TEST(C3dBadFiles, HandmadeBadFilesFailWithOneLine) {
   // bad_c3d_analog_used_huge.c3d: found by the c3d fuzzer (UBSan: a float ANALOG:USED of
-  // -4e34 cast to int); now refused as no channel count.
+  // -4e34 cast to int); bad_c3d_data_start_negative.c3d likewise (a float POINT:DATA_START
+  // of -1.07e8 cast to uint64). Every count parameter is now checked as a whole number
+  // 0..65535 in one place.
   for (const char* name : {"bad_processor.c3d", "bad_truncated.c3d", "bad_data_start.c3d",
-                           "bad_c3d_analog_used_huge.c3d"}) {
+                           "bad_c3d_analog_used_huge.c3d", "bad_c3d_data_start_negative.c3d"}) {
     const std::string path = mocapsolve::testing::SourcePath(std::string("tests/data/bad/") + name);
     MarkerTrajectories t;
     const Status status = ReadC3d(path, &t);
