@@ -164,6 +164,17 @@ class StageClock {
   std::chrono::steady_clock::time_point start_;
 };
 
+// X^ = LBS(Y^, Z): every marker's position on the reference, every frame.
+Observations ReconstructMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Motion& reference) {
+  Observations out(reference.frames.size(), std::vector<Eigen::Vector3d>(markers.num_markers()));
+  FkData fk(skeleton);
+  for (size_t f = 0; f < reference.frames.size(); ++f) {
+    ForwardKinematics(skeleton, reference.frames[f], &fk);
+    for (int m = 0; m < markers.num_markers(); ++m) out[f][m] = markers.Position(m, fk);
+  }
+  return out;
+}
+
 }  // namespace
 
 MarkerTrajectories ObservationTrajectories(const MarkerSet& markers, const Observations& observed) {
@@ -286,13 +297,8 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   report->naive_unconverged_frames = sequence.unconverged_frames;
   report->reference_rms = RmsOver(skeleton, markers, reference, observed);
   // 3. Marker reconstruction.
-  Observations reconstructed(observed.size(), std::vector<Eigen::Vector3d>(markers.num_markers()));
-  FkData fk(skeleton);
-  for (size_t f = 0; f < observed.size(); ++f) {
-    ForwardKinematics(skeleton, reference.frames[f], &fk);
-    for (int m = 0; m < markers.num_markers(); ++m) reconstructed[f][m] = markers.Position(m, fk);
-  }
-  const MarkerTrajectories reference_paths = ObservationTrajectories(markers, reconstructed);
+  Observations reconstructed = ReconstructMarkers(skeleton, markers, reference);
+  MarkerTrajectories reference_paths = ObservationTrajectories(markers, reconstructed);
   clock.Lap("Marker Reconstruction");
   // 3b. Residual model.
   MarkerTrajectories x = ObservationTrajectories(markers, observed);
@@ -316,6 +322,21 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     swap_options.radius = options.swap_radius > 0.0 ? options.swap_radius : 3.0 * options.dp_max;
     swap_options.min_frames = options.swap_min_frames;
     report->swaps = UndoSwaps(model, swap_options, &x);
+    // The robust tracker leans toward the swapped labels while a swap lasts (on a bone
+    // that one marker pins, such as the thumb's, it follows them), so the relabelled
+    // samples would be judged outliers against it: it is redone where the samples changed,
+    // until it rejoins the earlier solution, and X^ with it.
+    if (!report->swaps.empty() && options.reference_kind == ReferenceKind::kTracker) {
+      Motion redone;
+      int resolved = 0;
+      const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
+      status = ResolveChangedFrames(skeleton, markers, observed, TrajectoryObservations(x), reference,
+                                    options.tracker, tolerance, options.parallel, &redone, &resolved);
+      if (!status.ok()) return status;
+      reference = std::move(redone);
+      reconstructed = ReconstructMarkers(skeleton, markers, reference);
+      reference_paths = ObservationTrajectories(markers, reconstructed);
+    }
     if (assigning) clock.Lap("Swap Detection");
   }
   if (assigning) {
