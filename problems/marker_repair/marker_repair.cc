@@ -326,12 +326,22 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     // that one marker pins, such as the thumb's, it follows them), so the relabelled
     // samples would be judged outliers against it: it is redone where the samples changed,
     // until it rejoins the earlier solution, and X^ with it.
+    // A swap from the first frame misled the tracker's start (its orientation search):
+    // then the whole tracker is run again.
     if (!report->swaps.empty() && options.reference_kind == ReferenceKind::kTracker) {
       Motion redone;
-      int resolved = 0;
-      const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
-      status = ResolveChangedFrames(skeleton, markers, observed, TrajectoryObservations(x), reference,
-                                    options.tracker, tolerance, options.parallel, &redone, &resolved);
+      const Observations swapped_back = TrajectoryObservations(x);
+      if (report->swaps.front().first == 0) {
+        SequenceSolveReport tracker_report;
+        status = SolveSequence(skeleton, markers, swapped_back, options.tracker, RestPose(skeleton), &redone,
+                               &tracker_report);
+      } else {
+        int resolved = 0;
+        const double tolerance =
+            options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
+        status = ResolveChangedFrames(skeleton, markers, observed, swapped_back, reference, options.tracker,
+                                      tolerance, options.parallel, &redone, &resolved);
+      }
       if (!status.ok()) return status;
       reference = std::move(redone);
       reconstructed = ReconstructMarkers(skeleton, markers, reference);

@@ -12,8 +12,11 @@
 //      X^ (its median, in its joint's frame) and a robust gate (median + k MAD), or, with
 //      `robust_outliers` false, chapter 3's fixed outlier_distance from X^.
 //   3c. Swaps undone (swap_detection.h, `undo_swaps`): samples that fit another nearby
-//      label's prediction far better than their own are relabelled; the naive solve is
-//      redone on the frames that changed. Steps 4-7 work on the relabelled samples.
+//      label's prediction far better than their own, or that exchange trajectories with
+//      it, are relabelled; the naive solve is redone on the frames that changed, and so
+//      is the tracker reference (which leans toward, or follows, swapped labels), with
+//      X^ (the whole tracker when a swap touches the first frame). Steps 4-7 work on the
+//      relabelled samples.
 //   3d. Unlabelled points labelled (unlabelled_assignment.h, `assign_unlabelled`): points
 //      the capture could not name (C3D "*52") become the samples of missing markers where
 //      the prediction P of the residual model and continuity with the marker's track say

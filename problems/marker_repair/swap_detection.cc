@@ -82,6 +82,96 @@ void ExtendByContinuity(const SwapDetectionOptions& options, const MarkerResidua
   }
 }
 
+// Where label l is expected at frame f from frames f - step and f - 2 step of the samples
+// as captured (constant velocity, or the last sample; NaN if f - step is unknown).
+Eigen::Vector3d Extrapolated(const MarkerTrajectories& x, int f, int step, int l) {
+  const int g = f - step, h = f - 2 * step;
+  if (g < 0 || g >= x.num_frames() || !x.valid(g, l)) return Eigen::Vector3d::Constant(NAN);
+  if (h < 0 || h >= x.num_frames() || !x.valid(h, l)) return x.position(g, l);
+  return 2.0 * x.position(g, l) - x.position(h, l);
+}
+
+// Whether labels a and b exchange trajectories between frames f - 1 and f: seen from
+// either side (extrapolated forward to f, backward to f - 1), the exchanged labelling
+// continues the other side within event_margin of the identity's cost, and the identity
+// jumps by more than the two labels' gates together.
+bool ExchangeEvent(const MarkerResidualModel& model, const SwapDetectionOptions& options,
+                   const MarkerTrajectories& x, int f, int a, int b) {
+  const double jump = model.typical_gate[a] + model.typical_gate[b];
+  for (const int step : {+1, -1}) {
+    const int at = step > 0 ? f : f - 1;
+    const Eigen::Vector3d ea = Extrapolated(x, at, step, a), eb = Extrapolated(x, at, step, b);
+    if (!ea.allFinite() || !eb.allFinite()) return false;
+    const Eigen::Vector3d xa = x.position(at, a), xb = x.position(at, b);
+    const double identity = (xa - ea).norm() + (xb - eb).norm();
+    const double exchanged = (xa - eb).norm() + (xb - ea).norm();
+    if (identity <= jump || exchanged > options.event_margin * identity) return false;
+  }
+  return true;
+}
+
+// Exchange events decide the pair's labelling where the reference cannot (a swap from
+// the take's first frame, which the reference follows from its start; a bone that one
+// marker pins, which the reference turns to follow the swap). Over each run of frames
+// where both labels are observed, the events cut the run into segments whose labellings
+// alternate; of the two alternations, the one whose exchanged segments fit the typical
+// predictions better (summed over the segments: identity cost less exchanged cost) is
+// kept, so a segment the reference followed is outweighed by the segments it did not.
+// The pair's claims in such a run are replaced by that labelling.
+void DecideByExchangeEvents(const MarkerResidualModel& model, const SwapDetectionOptions& options,
+                            const MarkerTrajectories& x, Claims* claim) {
+  const int nf = x.num_frames(), nm = x.num_markers();
+  for (int a = 0; a < nm; ++a) {
+    for (int b = a + 1; b < nm; ++b) {
+      for (int first = 0; first < nf;) {
+        if (!x.valid(first, a) || !x.valid(first, b)) {
+          ++first;
+          continue;
+        }
+        int last = first;
+        while (last + 1 < nf && x.valid(last + 1, a) && x.valid(last + 1, b)) ++last;
+        // Frames [first, last], both observed; events at frames first + 1 .. last.
+        std::vector<int> events;
+        for (int f = first + 1; f <= last; ++f) {
+          if ((x.position(f, a) - x.position(f, b)).norm() > options.radius) continue;
+          if (ExchangeEvent(model, options, x, f, a, b)) events.push_back(f);
+        }
+        const int run_first = first;
+        first = last + 1;
+        if (events.empty()) continue;
+        // d[s]: identity cost less exchanged cost over segment s.
+        std::vector<int> bounds = {run_first};
+        bounds.insert(bounds.end(), events.begin(), events.end());
+        bounds.push_back(last + 1);
+        const auto& t = model.typical_predicted;
+        double sum[2] = {0.0, 0.0};
+        for (size_t s = 0; s + 1 < bounds.size(); ++s) {
+          for (int f = bounds[s]; f < bounds[s + 1]; ++f) {
+            const Eigen::Vector3d xa = x.position(f, a), xb = x.position(f, b);
+            sum[s % 2] += (xa - t[f][a]).norm() + (xb - t[f][b]).norm() - (xa - t[f][b]).norm() -
+                          (xb - t[f][a]).norm();
+          }
+        }
+        const size_t parity = sum[1] > sum[0] ? 1 : 0;
+        for (size_t s = 0; s + 1 < bounds.size(); ++s) {
+          for (int f = bounds[s]; f < bounds[s + 1]; ++f) {
+            auto& c = (*claim)[f];
+            if (s % 2 == parity) {
+              for (int m = 0; m < nm; ++m) {
+                if (c[m] == a || c[m] == b) c[m] = -1;
+              }
+              c[a] = b, c[b] = a;
+            } else {
+              if (c[a] == b) c[a] = -1;
+              if (c[b] == a) c[b] = -1;
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<MarkerSwap> UndoSwaps(const MarkerResidualModel& model, const SwapDetectionOptions& options,
@@ -144,6 +234,7 @@ std::vector<MarkerSwap> UndoSwaps(const MarkerResidualModel& model, const SwapDe
   // exchange keeps the relabelled trajectories more continuous than the identity.
   ExtendByContinuity(options, model, *x, +1, &claim);
   ExtendByContinuity(options, model, *x, -1, &claim);
+  DecideByExchangeEvents(model, options, *x, &claim);
   // Relabel, and gather the intervals (consecutive frames with the same exchanges).
   std::vector<MarkerSwap> swaps;
   std::vector<std::pair<int, int>> previous;

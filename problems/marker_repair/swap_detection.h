@@ -21,10 +21,25 @@
 // swap's onset and backward from its end while, by continuity (each relabelled trajectory
 // extrapolated at constant velocity from its two previous frames), the exchange costs
 // less than margin times the identity, and the identity costs more than the smallest gate
-// of the labels involved. Then, per frame, label n takes sample x_fm; a label that gave its sample
+// of the labels involved.
+// The reference cannot see every swap: from the take's first frame it follows the swapped
+// labels (its start fits them), and on a bone that one marker pins (LFIN on the thumb) it
+// turns the bone to follow the swap. Exchange events need no reference: labels a and b,
+// within radius of each other, exchange between frames f - 1 and f when, with E_l(f) the
+// position of label l extrapolated at constant velocity from frames f - 1 and f - 2,
+//   |x_fa - E_b| + |x_fb - E_a| <= event_margin (|x_fa - E_a| + |x_fb - E_b|),
+// the identity's cost exceeds t_a + t_b, and the same holds backward (f - 1 extrapolated
+// from f and f + 1). Over each run of frames where both labels are observed, the events
+// cut the run into segments whose labellings alternate; of the two alternations, the one
+// whose exchanged segments gain more against the typical predictions,
+//   sum over its exchanged segments and frames of |x_a - T_a| + |x_b - T_b| - |x_a - T_b| - |x_b - T_a|,
+// is kept (a segment the reference followed is outweighed by the ones it did not), and it
+// replaces the pair's claims in that run. A run without events keeps the claims above (a
+// swap that begins inside a gap shows no event at its start).
+// Then, per frame, label n takes sample x_fm; a label that gave its sample
 // away and received none becomes missing (a swap that begins or ends inside a gap: the
 // other label's sample was missing), to be filled as any gap. Chains of more than two
-// labels are undone the same way.
+// labels are undone the same way (by claims only: their events are not pairwise).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_SWAP_DETECTION_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_SWAP_DETECTION_H_
 
@@ -40,6 +55,7 @@ struct SwapDetectionOptions {
   double radius = 0.0;  // Skeleton units: labels whose predictions are this close may swap.
   double margin = 0.5;  // The claimed label's distance at most this fraction of the own one.
   int min_frames = 2;   // Frames a claim must persist.
+  double event_margin = 0.25;  // An exchange event's exchanged cost at most this fraction of the identity's.
 };
 
 // One interval over which the same labels were exchanged.

@@ -95,7 +95,7 @@ TEST_F(RepairRealData, SwapsAreRelabelled) {
   const Observations clean = Load(c3d_);
   const double cm = CmPerUnit();
   long swapped = 0, right = 0, wrong = 0, others = 0;
-  for (uint32_t seed = 1; seed <= 3; ++seed) {
+  for (uint32_t seed = 1; seed <= 5; ++seed) {
     MarkerTrajectories x = ObservationTrajectories(subject_.markers, clean);
     CorruptionOptions damage;  // Swaps only: 3 of 40 frames with the nearest marker within 20 cm.
     damage.seed = seed;
@@ -119,10 +119,12 @@ TEST_F(RepairRealData, SwapsAreRelabelled) {
     for (size_t f = 0; f < clean.size(); ++f) {
       for (int m = 0; m < subject_.markers.num_markers(); ++m) {
         const bool hit = relabelled.count({int(f), m}) > 0;
-        if (mask[f][m] == 's') {
+        // Two swaps of one pair that overlap give the overlap back its own samples
+        // (seed 4, LANK and LHEE): marked 's' but unmoved, nothing to relabel there.
+        if (mask[f][m] == 's' && !Same(x.position(int(f), m), clean[f][m])) {
           ++swapped;
           right += hit && repaired[f][m] == clean[f][m];
-        } else {
+        } else {  // Also the overlap's samples: none may be relabelled.
           ++others;
           wrong += hit;
         }
@@ -131,9 +133,8 @@ TEST_F(RepairRealData, SwapsAreRelabelled) {
   }
   std::printf("swapped samples relabelled %ld of %ld (%.1f %%), other samples relabelled %ld of %ld (%.3f %%)\n",
               right, swapped, 100.0 * right / swapped, wrong, others, 100.0 * wrong / others);
-  // The target is 95 %; measured 79.6 %: a swap from the take's first frame is
-  // not seen (the reference follows the swapped labels from the start).
-  EXPECT_GE(right, 0.75 * swapped);
+  // The target is 95 %; measured 99.9 % (1,047 of 1,048; BENCHMARKS.md).
+  EXPECT_GE(right, 0.99 * swapped);
   EXPECT_LE(wrong, 0.001 * others);
 }
 

@@ -1,6 +1,7 @@
 // Swap detection (issue 16 item 1) on crafted cases: the demo walk's markers with 1 mm of
-// seeded noise, two markers of one bone exchanging labels (also from inside a gap), two
-// pairs at once, and a ghost point beside a well tracked marker, which is no swap.
+// seeded noise, two markers of one bone exchanging labels (also from inside a gap, from
+// the take's first frame and to its last), two pairs at once, and a ghost point beside a
+// well tracked marker, which is no swap.
 #include <random>
 #include <set>
 #include <utility>
@@ -69,6 +70,31 @@ TEST(SwapDetection, SwapThatStartsInsideAGapIsRelabelled) {
   for (const RepairInterval& i : r.report.detected) reported |= i.what == "swap" && i.marker == a;
   EXPECT_TRUE(reported);
 }
+
+// A swap from the take's first frame (or to its last): only one exchange event is seen,
+// and the reference may follow the swapped labels from its start.
+void ExpectSwapUndone(int first, int last) {
+  const testing::DemoTake take = testing::MakeDemoTake(160, 60.0, 5);
+  const Observations truth = Noisy(take.clean, 0.1, 10);
+  const int a = take.markers.FindMarker("LeftLeg_0"), b = take.markers.FindMarker("LeftLeg_2");
+  ASSERT_TRUE(a >= 0 && b >= 0);
+  Observations observed = truth;
+  for (int f = first; f <= last; ++f) std::swap(observed[f][a], observed[f][b]);
+  const Result r = Repair(take, observed);
+  for (int f = first; f <= last; ++f) {
+    for (const int m : {a, b}) {
+      EXPECT_TRUE(r.relabelled.count({f, m})) << f << " " << m;
+      EXPECT_EQ(r.repaired[f][m], truth[f][m]) << f << " " << m;
+    }
+  }
+  for (const auto& [f, m] : r.relabelled) {
+    EXPECT_TRUE(f >= first && f <= last && (m == a || m == b)) << f << " " << m;
+  }
+}
+
+TEST(SwapDetection, SwapFromTheFirstFrameIsRelabelled) { ExpectSwapUndone(0, 39); }
+
+TEST(SwapDetection, SwapToTheLastFrameIsRelabelled) { ExpectSwapUndone(120, 159); }
 
 TEST(SwapDetection, TwoSwapsAtOnce) {
   const testing::DemoTake take = testing::MakeDemoTake(160, 60.0, 5);
