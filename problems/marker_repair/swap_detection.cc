@@ -153,6 +153,19 @@ void DecideByExchangeEvents(const MarkerResidualModel& model, const SwapDetectio
           }
         }
         const size_t parity = sum[1] > sum[0] ? 1 : 0;
+        // Inside an exchanged segment both trajectories must be smooth: a label that jumps
+        // there too (an exchange with a third label, as when two swaps overlap) makes a
+        // chain the pair's events do not describe, left to the claims.
+        bool smooth = true;
+        for (size_t s = parity; s + 1 < bounds.size() && smooth; s += 2) {
+          for (int f = bounds[s] + 2; f < bounds[s + 1] && smooth; ++f) {
+            for (const int l : {a, b}) {
+              const Eigen::Vector3d bend = x.position(f, l) - 2.0 * x.position(f - 1, l) + x.position(f - 2, l);
+              smooth &= bend.norm() <= model.typical_gate[l];
+            }
+          }
+        }
+        if (!smooth) continue;
         for (size_t s = 0; s + 1 < bounds.size(); ++s) {
           for (int f = bounds[s]; f < bounds[s + 1]; ++f) {
             auto& c = (*claim)[f];

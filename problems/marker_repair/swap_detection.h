@@ -34,7 +34,9 @@
 // whose exchanged segments gain more against the typical predictions,
 //   sum over its exchanged segments and frames of |x_a - T_a| + |x_b - T_b| - |x_a - T_b| - |x_b - T_a|,
 // is kept (a segment the reference followed is outweighed by the ones it did not), and it
-// replaces the pair's claims in that run. A run without events keeps the claims above (a
+// replaces the pair's claims in that run, provided both trajectories are smooth inside its
+// exchanged segments (|x_f - 2 x_(f-1) + x_(f-2)| <= t_l): a label that also jumps there
+// (overlapping swaps with a third label) forms a chain the pair's events do not describe. A run without events keeps the claims above (a
 // swap that begins inside a gap shows no event at its start).
 // Then, per frame, label n takes sample x_fm; a label that gave its sample
 // away and received none becomes missing (a swap that begins or ends inside a gap: the
