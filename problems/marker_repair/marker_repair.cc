@@ -370,6 +370,13 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     // The soft-tissue residual was fitted with the swapped samples in its window and
     // without the assigned ones.
     model = FitMarkerResidualModel(skeleton, markers, reference, reconstructed, x, model_options);
+    // The reference followed the swapped labels: its parent frames do not judge the
+    // relabelled samples (marker_residual_model.h).
+    for (const MarkerSwap& swap : report->swaps) {
+      for (int f = swap.first; f <= swap.last; ++f) {
+        for (const auto& [from, to] : swap.from_to) model.absorbed[f][to] = 0;
+      }
+    }
   }
   if (assigning) {
     clock.Lap("Unlabelled Assignment");  // With the re-solve of the changed frames.

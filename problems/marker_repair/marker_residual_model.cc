@@ -4,9 +4,24 @@
 #include <cmath>
 
 #include "kinematics/forward_kinematics.h"
+#include "kinematics/rotation.h"
 
 namespace mocapsolve {
 namespace {
+
+// A step of the marker seen from its joint's parent counts when the residual steps with
+// it by at least this share of its length (the reference absorbs the rest).
+constexpr double kConfirmedShare = 0.2;
+// A paired jump whose steps in and out are both at least kSharpSteps times the marker's
+// own step statistic (median + k MAD of its steps, before the floor) and that lasts less
+// than half the soft-tissue window also condemns the samples displaced from the level
+// before it by at least half the step in (the reference leans toward a displaced marker,
+// which takes it under the floor from the soft-tissue residual).
+constexpr double kSharpSteps = 5.0;
+// Knot spacing (frames) of the running medians: the soft-tissue residual's, and the
+// steady frame's (computed for more signals, and smoother).
+constexpr int kSoftTissueStride = 4;
+constexpr int kSteadyStride = 16;
 
 // Median of v (reordered); 0 for an empty v.
 double Median(std::vector<double>* v) {
@@ -37,6 +52,114 @@ double RobustGate(std::vector<double>* deviations, const ResidualModelOptions& o
   return gate;
 }
 
+
+// Component-wise running median of value(f) over the valid frames within `half` of f,
+// taken at every `stride`-th frame and linear between (`fallback` where a window is empty).
+template <typename Valid, typename Value>
+std::vector<Eigen::Vector3d> RunningMedian(int nf, int half, int stride, const Valid& valid, const Value& value,
+                                           const Eigen::Vector3d& fallback) {
+  std::vector<Eigen::Vector3d> samples(nf);
+  std::vector<char> ok(nf);
+  for (int f = 0; f < nf; ++f) {
+    ok[f] = valid(f);
+    if (ok[f]) samples[f] = value(f);
+  }
+  std::vector<int> knots;
+  for (int f = 0; f < nf; f += stride) knots.push_back(f);
+  if (knots.back() != nf - 1) knots.push_back(nf - 1);
+  std::vector<Eigen::Vector3d> knot_values(knots.size());
+  std::vector<double> values;
+  for (size_t i = 0; i < knots.size(); ++i) {
+    const int f = knots[i], a = std::max(0, f - half), b = std::min(nf - 1, f + half);
+    for (int k = 0; k < 3; ++k) {
+      values.clear();
+      for (int g = a; g <= b; ++g) {
+        if (ok[g]) values.push_back(samples[g][k]);
+      }
+      knot_values[i][k] = values.empty() ? fallback[k] : Median(&values);
+    }
+  }
+  std::vector<Eigen::Vector3d> smooth(nf);
+  for (size_t i = 0; i + 1 < knots.size(); ++i) {
+    for (int f = knots[i]; f <= knots[i + 1]; ++f) {
+      const double t = double(f - knots[i]) / (knots[i + 1] - knots[i]);
+      smooth[f] = (1.0 - t) * knot_values[i] + t * knot_values[i + 1];
+    }
+  }
+  if (knots.size() == 1) smooth[0] = knot_values[0];
+  return smooth;
+}
+
+// The robust gate of the steps d(f) - d(f-1) between consecutive valid samples (at least
+// min_distance, no cap), and the paired steps past it marked in jumped[f][m] where the
+// sample is displaced past min_distance from smooth[f] (see the header).
+template <typename Valid, typename Value, typename Confirm>
+double MarkJumps(int nf, int m, const Valid& valid, const Value& d, const Confirm& confirm,
+                 const std::vector<Eigen::Vector3d>& smooth, const ResidualModelOptions& options,
+                 std::vector<std::vector<char>>* jumped) {
+  std::vector<double> deviations;
+  int previous = -1;
+  for (int f = 0; f < nf; ++f) {
+    if (!valid(f)) continue;
+    if (previous >= 0 && previous == f - 1) deviations.push_back((d(f) - d(previous)).norm());
+    previous = f;
+  }
+  ResidualModelOptions step_options = options;
+  step_options.max_distance = 0.0;
+  double median = 0.0, scale = 0.0;
+  const double step_gate = RobustGate(&deviations, step_options, &median, &scale);
+  // A step into a displacement and the step back out (about opposite) bound an outlying
+  // interval; an unmatched step condemns its own sample.
+  std::vector<std::pair<int, Eigen::Vector3d>> steps;
+  previous = -1;
+  for (int f = 0; f < nf; ++f) {
+    if (!valid(f)) continue;
+    if (previous >= 0 && previous == f - 1 && (d(f) - d(previous)).norm() > step_gate &&
+        confirm(f, d(f) - d(previous))) {
+      steps.push_back({f, d(f) - d(previous)});
+    }
+    previous = f;
+  }
+  for (size_t i = 0; i < steps.size(); ++i) {
+    size_t match = i;
+    for (size_t j = i + 1; j < steps.size() && steps[j].first - steps[i].first <= options.max_jump_frames; ++j) {
+      // The way back out: opposite within the gate or half the step, or back to the
+      // residual before the step within as much (while the marker is displaced the
+      // residual drifts with the pose, and the robust reference slowly leans toward it,
+      // so the step out can be much smaller than the step in).
+      const int a = steps[i].first, b = steps[j].first;
+      const Eigen::Vector3d before = d(a) - steps[i].second;
+      const double tolerance = std::max(step_gate, 0.5 * steps[i].second.norm());
+      if ((steps[i].second + steps[j].second).norm() > tolerance && (d(b) - before).norm() > tolerance) continue;
+      // ...and displaced in between: the mean residual inside, against the last one
+      // before, at least half the step along it (two unrelated steps far apart are no jump).
+      Eigen::Vector3d inside = Eigen::Vector3d::Zero();
+      int count = 0;
+      for (int f = a; f < b; ++f) {
+        if (valid(f)) inside += d(f), ++count;
+      }
+      const double along = (inside / std::max(count, 1) - before).dot(steps[i].second.normalized());
+      if (count > 0 && along >= 0.5 * steps[i].second.norm()) { match = j; break; }
+    }
+    const int last = match > i ? steps[match].first - 1 : steps[i].first;
+    // Only samples displaced past the floor from the soft-tissue residual: noise of a few
+    // mm steps by a cm from frame to frame, and its refill would be worse than it.
+    // A sharp, short pair: also the samples displaced from the level before it.
+    const Eigen::Vector3d before = d(steps[i].first) - steps[i].second;
+    const Eigen::Vector3d along = steps[i].second.normalized();
+    const bool sharp = match > i && 2 * (last - steps[i].first) < options.window &&
+                       std::min(steps[i].second.norm(), steps[match].second.norm()) >=
+                           kSharpSteps * (median + options.mads * scale);
+    for (int f = steps[i].first; f <= last; ++f) {
+      if (valid(f) && ((d(f) - smooth[f]).norm() > options.min_distance ||
+                       (sharp && (d(f) - before).dot(along) >= 0.5 * steps[i].second.norm()))) {
+        (*jumped)[f][m] = 1;
+      }
+    }
+    if (match > i) i = match;
+  }
+  return step_gate;
+}
 }  // namespace
 
 MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const MarkerSet& markers,
@@ -54,12 +177,14 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
   model.typical_gate.assign(nm, options.fixed_distance);
   model.step_gate.assign(nm, 0.0);
   model.jumped.assign(nf, std::vector<char>(nm, 0));
+  model.absorbed.assign(nf, std::vector<char>(nm, 0));
   if (!options.robust) return model;
   std::vector<int> joint(nm);
   for (int m = 0; m < nm; ++m) joint[m] = MainJoint(markers.marker(m));
   // Reference rotations of each marker's joint, and local residuals d_fm (frame-major).
   std::vector<Eigen::Quaterniond> rotation(static_cast<size_t>(nf) * nm);
   std::vector<Eigen::Vector3d> local(static_cast<size_t>(nf) * nm, Eigen::Vector3d::Zero());
+  std::vector<Eigen::Vector3d> unpinned(static_cast<size_t>(nf) * nm, Eigen::Vector3d::Zero());
   FkData fk(skeleton);
   for (int f = 0; f < nf; ++f) {
     ForwardKinematics(skeleton, reference.frames[f], &fk);
@@ -74,10 +199,27 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
         rebuilt = (reconstructed[f - 2][m] + 4.0 * reconstructed[f - 1][m] + 6.0 * reconstructed[f][m] +
                    4.0 * reconstructed[f + 1][m] + reconstructed[f + 2][m]) / 16.0;
       }
-      if (x.valid(f, m)) local[i] = rotation[i].conjugate() * (x.position(f, m) - rebuilt);
+      if (x.valid(f, m)) {
+        local[i] = rotation[i].conjugate() * (x.position(f, m) - rebuilt);
+        unpinned[i] = reference.frames[f].rotations[joint[m]] *
+                      (rotation[i].conjugate() * (x.position(f, m) - fk.world_positions[joint[m]]));
+      }
     }
   }
   const int half = std::max(0, options.window / 2);
+  // Each joint's own rotation, median-filtered (computed for the joints that need it): a
+  // turn of 1-20 frames that follows a jumped marker is not in it.
+  std::vector<std::vector<Eigen::Quaterniond>> steady(skeleton.num_joints());
+  auto steady_rotations = [&](int j) -> const std::vector<Eigen::Quaterniond>& {
+    std::vector<Eigen::Quaterniond>& q = steady[j];
+    if (!q.empty()) return q;
+    const auto log = RunningMedian(nf, half, kSteadyStride, [](int) { return true; },
+                                   [&](int f) { return LogMap(reference.frames[f].rotations[j]); },
+                                   Eigen::Vector3d::Zero());
+    q.resize(nf);
+    for (int f = 0; f < nf; ++f) q[f] = ExpMap(log[f]);
+    return q;
+  };
   std::vector<double> values, deviations;
   std::vector<Eigen::Vector3d> smooth(nf);
   for (int m = 0; m < nm; ++m) {
@@ -96,80 +238,34 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
     }
     double median = 0.0, scale = 0.0;
     model.typical_gate[m] = RobustGate(&deviations, options, &median, &scale);
-    // Soft-tissue residual: running median (the typical one where the window is empty),
-    // at every `stride`-th frame and linear between.
-    const int stride = 4;
-    std::vector<int> knots;
-    for (int f = 0; f < nf; f += stride) knots.push_back(f);
-    if (knots.back() != nf - 1) knots.push_back(nf - 1);
-    std::vector<Eigen::Vector3d> knot_values(knots.size());
-    for (size_t i = 0; i < knots.size(); ++i) {
-      const int f = knots[i], a = std::max(0, f - half), b = std::min(nf - 1, f + half);
-      for (int k = 0; k < 3; ++k) {
-        values.clear();
-        for (int g = a; g <= b; ++g) {
-          if (x.valid(g, m)) values.push_back(d(g)[k]);
-        }
-        knot_values[i][k] = values.empty() ? model.typical[m][k] : Median(&values);
-      }
+    // Soft-tissue residual: running median (the typical one where the window is empty).
+    auto valid = [&](int f) { return x.valid(f, m); };
+    smooth = RunningMedian(nf, half, kSoftTissueStride, valid, d, model.typical[m]);
+    model.step_gate[m] = MarkJumps(nf, m, valid, d, [](int, const Eigen::Vector3d&) { return true; }, smooth, options,
+                                   &model.jumped);
+    // Jumps the reference absorbed: steps of the marker seen from its joint's parent that
+    // the residual confirms. A step of the steady-frame signal is about the step of u
+    // turned by the steady rotation, so u finds the markers that have a candidate at all.
+    const int j = joint[m];
+    auto u = [&](int f) -> const Eigen::Vector3d& { return unpinned[static_cast<size_t>(f) * nm + m]; };
+    auto confirmed = [&](int f, const Eigen::Vector3d& step_in_joint, double size) {
+      return (d(f) - d(f - 1)).dot(step_in_joint.normalized()) >= kConfirmedShare * size;
+    };
+    bool candidate = false;
+    for (int f = 1; f < nf && !candidate; ++f) {
+      if (!x.valid(f, m) || !x.valid(f - 1, m)) continue;
+      const Eigen::Vector3d step = u(f) - u(f - 1);
+      candidate = step.norm() > 0.8 * options.min_distance &&
+                  confirmed(f, reference.frames[f].rotations[j].conjugate() * step, step.norm());
     }
-    for (size_t i = 0; i + 1 < knots.size(); ++i) {
-      for (int f = knots[i]; f <= knots[i + 1]; ++f) {
-        const double t = double(f - knots[i]) / (knots[i + 1] - knots[i]);
-        smooth[f] = (1.0 - t) * knot_values[i] + t * knot_values[i + 1];
-      }
-    }
-    if (knots.size() == 1) smooth[0] = knot_values[0];
-    // Steps: jumps of the residual between consecutive valid samples.
-    deviations.clear();
-    int previous = -1;
-    for (int f = 0; f < nf; ++f) {
-      if (!x.valid(f, m)) continue;
-      if (previous >= 0 && previous == f - 1) deviations.push_back((d(f) - d(previous)).norm());
-      previous = f;
-    }
-    ResidualModelOptions step_options = options;
-    step_options.max_distance = 0.0;
-    model.step_gate[m] = RobustGate(&deviations, step_options, &median, &scale);
-    // A step into a displacement and the step back out (about opposite) bound an outlying
-    // interval; an unmatched step condemns its own sample.
-    std::vector<std::pair<int, Eigen::Vector3d>> steps;
-    previous = -1;
-    for (int f = 0; f < nf; ++f) {
-      if (!x.valid(f, m)) continue;
-      if (previous >= 0 && previous == f - 1 && (d(f) - d(previous)).norm() > model.step_gate[m]) {
-        steps.push_back({f, d(f) - d(previous)});
-      }
-      previous = f;
-    }
-    for (size_t i = 0; i < steps.size(); ++i) {
-      size_t match = i;
-      for (size_t j = i + 1; j < steps.size() && steps[j].first - steps[i].first <= options.max_jump_frames; ++j) {
-        // The way back out: opposite within the gate or half the step, or back to the
-        // residual before the step within as much (while the marker is displaced the
-        // residual drifts with the pose, and the robust reference slowly leans toward it,
-        // so the step out can be much smaller than the step in).
-        const int a = steps[i].first, b = steps[j].first;
-        const Eigen::Vector3d before = d(a) - steps[i].second;
-        const double tolerance = std::max(model.step_gate[m], 0.5 * steps[i].second.norm());
-        if ((steps[i].second + steps[j].second).norm() > tolerance && (d(b) - before).norm() > tolerance) continue;
-        // ...and displaced in between: the mean residual inside, against the last one
-        // before, at least half the step along it (two unrelated steps far apart are no jump).
-        Eigen::Vector3d inside = Eigen::Vector3d::Zero();
-        int count = 0;
-        for (int f = a; f < b; ++f) {
-          if (x.valid(f, m)) inside += d(f), ++count;
-        }
-        const double along = (inside / std::max(count, 1) - before).dot(steps[i].second.normalized());
-        if (count > 0 && along >= 0.5 * steps[i].second.norm()) { match = j; break; }
-      }
-      const int last = match > i ? steps[match].first - 1 : steps[i].first;
-      // Only samples displaced past the floor from the soft-tissue residual: noise of a few
-      // mm steps by a cm from frame to frame, and its refill would be worse than it.
-      for (int f = steps[i].first; f <= last; ++f) {
-        model.jumped[f][m] = x.valid(f, m) && (d(f) - smooth[f]).norm() > options.min_distance;
-      }
-      if (match > i) i = match;
+    if (candidate) {
+      const std::vector<Eigen::Quaterniond>& q = steady_rotations(j);
+      auto p = [&](int f) -> Eigen::Vector3d { return q[f].conjugate() * u(f); };
+      const auto p_smooth = RunningMedian(nf, half, kSteadyStride, valid, p, Eigen::Vector3d::Zero());
+      auto confirm = [&](int f, const Eigen::Vector3d& step) {
+        return confirmed(f, reference.frames[f].rotations[j].conjugate() * (q[f] * step), step.norm());
+      };
+      MarkJumps(nf, m, valid, p, confirm, p_smooth, options, &model.absorbed);
     }
     deviations.clear();
     for (int f = 0; f < nf; ++f) {

@@ -32,8 +32,27 @@
 // least |v_a| / 2 from the one before along v_a) mark frames a..b-1 as jumped; an unmatched step marks its own
 // frame; of those, only samples displaced more than min_distance from the soft-tissue
 // residual (|d_fm - S_fm|) count as jumped (noise of a few mm steps by about a cm from frame
-// to frame, and a refill would be worse than it). A sample is an outlier when jumped or
-// |x_fm - P_fm| > u_m.
+// to frame, and a refill would be worse than it). A sharp, short pair is the exception:
+// when both steps are at least 5 times the marker's own step statistic before the floor
+// (median + k MAD of |v_fm|, so a marker that is normally within millimetres qualifies and
+// a loose one does not) and it lasts less than window / 2 frames, a sample in between
+// counts as jumped also when displaced from the residual before the step by at least half
+// the step along it (the reference leans toward a displaced marker and takes it under
+// the floor). A sample is an outlier when jumped or |x_fm - P_fm| > u_m.
+// A jump the reference absorbs: on a bone one marker pins (a head, a thumb, a wrist) the
+// robust reference turns the joint to follow the jumped marker, so d steps by a fraction
+// of the jump. Seen from the joint's parent instead, with the joint's own rotation
+// replaced by its running median Q~_j(f) (component-wise over `window` frames of
+// log(Q_j), Q_j the reference's local rotation), the marker
+//   p_fm = Q~_j(f)^T Q_j(f) R_j(Y^_f)^T (x_fm - o_j(Y^_f))      (o_j: the joint's origin)
+// steps by the whole jump, while real motion of the joint (smooth) stays in Q~ or moves
+// p slowly. Steps of p are paired exactly as those of d (their own gate, soft-tissue
+// median, floor and sharp-pair exception), but a step of p counts only when d steps with it, by at least 0.2 of
+// its length along it (turned into the joint's frame): a sudden turn of an ancestor that
+// the joint's own rotation undoes moves p, not d, and is no jump of the marker. Samples
+// so found are `absorbed`, and outliers as the jumped ones. The check trusts the
+// reference's parent frames: where a swap was undone the reference had followed the
+// swapped labels, so the repair clears `absorbed` on the relabelled samples.
 // The fixed model of chapter 3 is P = T = X^, u_m = t_m = fixed_distance and no jumps
 // (`robust` false).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_REPAIR_MARKER_RESIDUAL_MODEL_H_
@@ -71,9 +90,10 @@ struct MarkerResidualModel {
   std::vector<double> typical_gate;      // t_m.
   std::vector<double> step_gate;         // w_m.
   std::vector<std::vector<char>> jumped;  // [f][m], 1 = inside a jump (robust model only).
+  std::vector<std::vector<char>> absorbed;  // [f][m], 1 = inside a jump found from the parent.
 
   bool Outlying(int f, int m, const Eigen::Vector3d& sample) const {
-    return jumped[f][m] || (sample - predicted[f][m]).norm() > gate[m];
+    return jumped[f][m] || absorbed[f][m] || (sample - predicted[f][m]).norm() > gate[m];
   }
 };
 

@@ -73,15 +73,15 @@ TEST_F(RepairRealData, CleanTakesStayClean) {
       ASSERT_TRUE(RepairMarkers(subject_.skeleton, subject_.markers, observed, Options(solver), &repaired, &motion,
                                 &report).ok());
       const int nf = static_cast<int>(observed.size()), nm = subject_.markers.num_markers();
-      int replaced = 0, worst = 0;
+      int replaced = 0, worst = 0, worst_marker = 0;
       for (int m = 0; m < nm; ++m) {
         int count = 0;
         for (int f = 0; f < nf; ++f) count += observed[f][m].allFinite() && !Same(repaired[f][m], observed[f][m]);
         replaced += count;
-        worst = std::max(worst, count);
+        if (count > worst) worst = count, worst_marker = m;
       }
-      std::printf("%s %s: %.3f %% of samples replaced, worst marker %.1f %% of the take\n", path.c_str(), solver,
-                  100.0 * replaced / (nf * nm), 100.0 * worst / nf);
+      std::printf("%s %s: %.3f %% of samples replaced, worst marker %s %.1f %% of the take\n", path.c_str(), solver,
+                  100.0 * replaced / (nf * nm), subject_.markers.label(worst_marker).c_str(), 100.0 * worst / nf);
       // The targets: under 0.5 % of samples, no marker over 5 % of the take, either
       // solver (measured 0.014-0.146 % and 0.3-3.2 %, BENCHMARKS.md).
       EXPECT_LT(replaced, 0.005 * nf * nm) << path << " " << solver;
@@ -242,7 +242,9 @@ TEST_F(RepairRealData, SmallErrorsAreFound) {
   }
   const double recall = double(true_positive) / damaged, precision = double(true_positive) / flagged;
   std::printf("1-4 cm errors: %ld samples, recall %.3f, precision %.3f\n", damaged, recall, precision);
-  EXPECT_GE(recall, 0.72);  // The target is 0.9; measured 0.736 (BENCHMARKS.md).
+  // The target is 0.9; measured 0.844 / 0.919 (0.736 / 0.927 before the steps
+  // seen from the joint's parent and the sharp pairs; BENCHMARKS.md).
+  EXPECT_GE(recall, 0.83);
   EXPECT_GE(precision, 0.9);
 }
 
