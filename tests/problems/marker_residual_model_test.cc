@@ -55,6 +55,18 @@ MarkerTrajectories Noisy(const testing::DemoTake& take, const Observations& mark
   return x;
 }
 
+// The reference leaning toward a displaced marker as the robust tracker does: `joint` of
+// frame f turned so that the clean marker's position seen from the joint moves by `lean`.
+void TurnJointToward(const testing::DemoTake& take, int joint, int f, int m, const Eigen::Vector3d& lean,
+                     Motion* reference) {
+  FkData fk(take.skeleton);
+  ForwardKinematics(take.skeleton, take.truth.frames[f], &fk);
+  const Eigen::Vector3d from = take.clean[f][m] - fk.world_positions[joint];
+  const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(from, from + lean);
+  const Eigen::Quaterniond& world = fk.world_rotations[joint];
+  reference->frames[f].rotations[joint] = take.truth.frames[f].rotations[joint] * (world.conjugate() * turn * world);
+}
+
 int CountJumped(const MarkerResidualModel& model, int m, int first, int last) {
   int count = 0;
   for (int f = first; f <= last; ++f) count += model.jumped[f][m] || model.absorbed[f][m];
@@ -72,14 +84,9 @@ TEST(MarkerResidualModel, FindsAJumpTheReferenceAbsorbsByTurningTheJoint) {
   const Eigen::Vector3d jump = 2.0 * Eigen::Vector3d(0.3, -0.5, 0.8).normalized();
   Observations observed = take.clean;
   Motion reference = take.truth;
-  FkData fk(take.skeleton);
   for (int f = first; f <= last; ++f) {
     observed[f][m] += jump;
-    ForwardKinematics(take.skeleton, take.truth.frames[f], &fk);
-    const Eigen::Vector3d origin = fk.world_positions[joint], from = take.clean[f][m] - origin;
-    const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(from, from + 0.7 * jump);
-    const Eigen::Quaterniond& world = fk.world_rotations[joint];
-    reference.frames[f].rotations[joint] = take.truth.frames[f].rotations[joint] * (world.conjugate() * turn * world);
+    TurnJointToward(take, joint, f, m, 0.7 * jump, &reference);
   }
   const Observations reconstructed = Reconstruct(take, reference);
   MarkerTrajectories x = Noisy(take, observed, 0.05, 1);
@@ -107,15 +114,10 @@ TEST(MarkerResidualModel, FindsAJumpNearOneCentimetreOnAQuietMarker) {
   const int hip = take.skeleton.parent(take.markers.marker(m).attachments.front().joint);
   Observations observed = take.clean;
   Motion reference = take.truth;
-  FkData fk(take.skeleton);
   for (int f = first; f <= last; ++f) {
     observed[f][m] += jump;
-    ForwardKinematics(take.skeleton, take.truth.frames[f], &fk);
-    const Eigen::Vector3d from = take.clean[f][m] - fk.world_positions[hip];
     const double lean = 0.3 + 0.3 * std::sin(M_PI * (f - first) / (last - first));
-    const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(from, from + lean * jump);
-    const Eigen::Quaterniond& world = fk.world_rotations[hip];
-    reference.frames[f].rotations[hip] = take.truth.frames[f].rotations[hip] * (world.conjugate() * turn * world);
+    TurnJointToward(take, hip, f, m, lean * jump, &reference);
   }
   const Observations reconstructed = Reconstruct(take, reference);
   MarkerTrajectories x = Noisy(take, observed, 0.05, 4);
