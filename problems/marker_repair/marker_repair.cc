@@ -311,6 +311,8 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   model_options.fixed_distance = outlier;
   MarkerResidualModel model = FitMarkerResidualModel(skeleton, markers, reference, reconstructed, x, model_options);
   clock.Lap("Residual Model");
+  // Re-solves of changed frames stop where the solution rejoins the earlier one.
+  const double resync_tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
   // 3c. Swaps: relabel; 3d. unlabelled points labelled; then redo the naive solve where
   // the samples changed.
   const MarkerTrajectories captured = x;
@@ -337,10 +339,8 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
                                &tracker_report);
       } else {
         int resolved = 0;
-        const double tolerance =
-            options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
         status = ResolveChangedFrames(skeleton, markers, observed, swapped_back, reference, options.tracker,
-                                      tolerance, options.parallel, &redone, &resolved);
+                                      resync_tolerance, options.parallel, &redone, &resolved);
       }
       if (!status.ok()) return status;
       reference = std::move(redone);
@@ -361,8 +361,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     relabelled = TrajectoryObservations(x);
     Motion solved;
     int resolved = 0;
-    const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
-    status = ResolveChangedFrames(skeleton, markers, observed, relabelled, naive, options.naive, tolerance,
+    status = ResolveChangedFrames(skeleton, markers, observed, relabelled, naive, options.naive, resync_tolerance,
                                   options.parallel, &solved, &resolved);
     if (!status.ok()) return status;
     naive = std::move(solved);
@@ -460,9 +459,8 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   *repaired = TrajectoryObservations(x);
   clock.Lap("Marker Filling");
   // 7. Re-solve.
-  const double tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
   if (progress) progress("re-solve", 0, num_frames);
-  status = ResolveChangedFrames(skeleton, markers, *input, *repaired, naive, options.naive, tolerance,
+  status = ResolveChangedFrames(skeleton, markers, *input, *repaired, naive, options.naive, resync_tolerance,
                                 options.parallel, motion, &report->resolved_frames);
   if (!status.ok()) return status;
   if (progress) progress("re-solve", num_frames, num_frames);
