@@ -13,6 +13,7 @@
 #include "signal/bad_interval_detection.h"
 #include "signal/gap_cleanup.h"
 #include "signal/gap_fill.h"
+#include "signal/offset_kriging.h"
 
 namespace mocapsolve {
 namespace {
@@ -218,6 +219,7 @@ bool RepairOptions::IsValid(std::string* error) const {
   }
   if (swap_min_frames < 1) return *error = "swap_min_frames must be >= 1", false;
   if (edge_samples < 1 || edge_samples > 1000) return *error = "edge_samples must be in [1, 1000]", false;
+  if (fill_samples < 1 || fill_samples > 1000) return *error = "fill_samples must be in [1, 1000]", false;
   if (!std::isfinite(unlabelled_min_distance) || !std::isfinite(unlabelled_max_distance)) {
     return *error = "unlabelled_min_distance and unlabelled_max_distance must be finite", false;
   }
@@ -449,8 +451,21 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   GapFillOptions fill;
   if (options.velocity_clamp > 0.0) fill.velocity_clamp = options.velocity_clamp;
   fill.edge_samples = options.edge_samples;
+  // Kriging conditions on the samples that survived detection and preprocessing, not on
+  // the small gaps' cubics nor on another gap's fill.
+  OffsetKrigingOptions kriging;
+  kriging.samples_per_side = options.fill_samples;
+  std::vector<OffsetProcess> processes;
+  if (options.fill == GapFillKind::kKriging) {
+    status = EstimateOffsetProcesses(before_small, reference_paths, kriging, &processes);
+    if (!status.ok()) return status;
+  }
   for (const Gap& gap : FindGaps(x)) {
-    status = FillGapFromReference(gap, reference_paths, fill, &x);
+    if (options.fill == GapFillKind::kKriging && processes[gap.marker].valid) {
+      status = FillGapByKriging(gap, before_small, reference_paths, processes[gap.marker], kriging, &x);
+    } else {
+      status = FillGapFromReference(gap, reference_paths, fill, &x);
+    }
     if (!status.ok()) return status;
     const bool whole = gap.first == 0 && gap.last + 1 == x.num_frames();
     report->filled.push_back({gap.marker, gap.first, gap.last, whole ? "reference only" : "reference"});

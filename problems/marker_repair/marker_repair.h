@@ -58,6 +58,12 @@ namespace mocapsolve {
 
 enum class ReferenceKind { kClip, kTracker };
 
+// Step 6's refill of a gap from X^: kBlend, X^ plus a Hermite blend of the edge offsets
+// (thesis Algorithm 3, signal/gap_fill.h); kKriging, X^ plus the conditional mean of the
+// offset modelled as mean + exponentially correlated process + white noise, estimated per
+// marker from the take (signal/offset_kriging.h).
+enum class GapFillKind { kBlend, kKriging };
+
 struct RepairOptions {
   MarkerSolveOptions naive;        // Steps 1 and 7.
   ReferenceKind reference_kind = ReferenceKind::kClip;
@@ -86,6 +92,8 @@ struct RepairOptions {
   int small_gap = 5;               // Frames.
   double velocity_clamp = 0.0;     // Skeleton units per frame (<= 0: no clamp).
   int edge_samples = 1;            // Per gap edge, for the offset velocity (1: none; signal/gap_fill.h).
+  GapFillKind fill = GapFillKind::kBlend;  // Step 6: how a gap's offset from X^ is filled.
+  int fill_samples = 10;           // kKriging: samples of the offset conditioned on per side.
 
   // Every number finite, the thresholds positive, the frame counts >= 0, and the solve
   // options valid; otherwise false with a one-line reason in *error.
