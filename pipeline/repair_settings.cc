@@ -63,6 +63,8 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
     return Status::Error("--fill: unknown '" + settings.fill + "' (blend, kriging)");
   }
   options->fill_samples = settings.fill_samples;
+  options->refit_reference = settings.refit_reference;
+  options->refit_rough_factor = settings.refit_rough_factor;
   std::string error;
   if (!options->reference.IsValid(&error) || !options->tracker.IsValid(&error)) {
     return Status::Error(error);

@@ -19,7 +19,7 @@
 namespace mocapsolve {
 namespace {
 
-void CheckRepair(ReferenceKind reference_kind, GapFillKind fill = GapFillKind::kBlend) {
+void CheckRepair(ReferenceKind reference_kind, GapFillKind fill = GapFillKind::kKriging) {
   const testing::DemoTake take = testing::MakeDemoTake(120, 60.0, 5);
   const Skeleton& skeleton = take.skeleton;
   const Motion& truth = take.truth;
@@ -93,10 +93,10 @@ TEST(MarkerRepair, RefillsGapsAndReplacesAFlyingMarkerWithTheTrackerReference) {
   CheckRepair(ReferenceKind::kTracker);
 }
 
-// The fill by kriging the offset from the reference (signal/offset_kriging.h) meets the
-// same bounds.
-TEST(MarkerRepair, RefillsGapsAndReplacesAFlyingMarkerByKriging) {
-  CheckRepair(ReferenceKind::kTracker, GapFillKind::kKriging);
+// The defaults fill by kriging the offset from the reference (signal/offset_kriging.h);
+// Algorithm 3's blend meets the same bounds.
+TEST(MarkerRepair, RefillsGapsAndReplacesAFlyingMarkerByTheEdgeBlend) {
+  CheckRepair(ReferenceKind::kTracker, GapFillKind::kBlend);
 }
 
 // Two neighbouring markers exchange places for 20 frames (a labelling swap): both are
@@ -177,6 +177,7 @@ TEST(MarkerRepair, OptionsRejectNonFiniteAndNegativeValues) {
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->small_gap = -1; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->trim_max = -1; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->fill_samples = 0; }));
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->refit_rough_factor = nan; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->dp_max = nan; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->naive.prior_rotation_weight = nan; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->tracker.limit_weight = nan; }));
