@@ -47,6 +47,16 @@ DEFINE_int32(edge_samples, kDefault.edge_samples, "Samples beyond each gap edge 
              "fitted to (a least-squares line; 2 = the thesis' one-sided difference, which a jittery "
              "marker throws off; 1 = no offset velocity: the fill blends the two edge offsets, "
              "which measured best on real takes, BENCHMARKS.md).");
+DEFINE_string(fill, kDefault.fill.c_str(), "How a gap is filled from the reference X^: kriging (the offset from "
+              "X^ modelled per marker as mean + exponentially correlated process + white noise, "
+              "estimated from the take; the fill is its conditional mean given --fill_samples samples "
+              "on each side) | blend (X^ plus a blend from one edge's offset to the other's, Algorithm 3).");
+DEFINE_int32(fill_samples, kDefault.fill_samples, "--fill=kriging: offset samples conditioned on per gap side.");
+DEFINE_bool(refit_reference, kDefault.refit_reference, "With --reference=tracker: refit X^ without the samples found "
+            "bad (it leaned toward them) and fill smooth bad runs (fly-off, ghost) and gaps from it; "
+            "rough runs (noise, jitter) are filled from X^ as solved.");
+DEFINE_double(refit_rough_factor, kDefault.refit_rough_factor, "A bad run is rough when its median |second "
+              "difference| exceeds this many times the marker's own.");
 DEFINE_string(reference, kDefault.reference.c_str(), "The robust reference Y^: tracker (frame by frame, robust loss, "
               "pulled toward the previous frame; runs beside the naive solve) | clip (the "
               "whole-clip solve with a robust loss and smoothness; ~10x slower).");
@@ -84,6 +94,10 @@ RepairSettings RepairSettingsFromFlags() {
   s.small_gap = FLAGS_small_gap;
   s.vel_clamp = FLAGS_vel_clamp;
   s.edge_samples = FLAGS_edge_samples;
+  s.fill = FLAGS_fill;
+  s.fill_samples = FLAGS_fill_samples;
+  s.refit_reference = FLAGS_refit_reference;
+  s.refit_rough_factor = FLAGS_refit_rough_factor;
   s.reference = FLAGS_reference;
   s.reference_loss = FLAGS_reference_loss;
   s.reference_loss_cm = FLAGS_reference_loss_cm;

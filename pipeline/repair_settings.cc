@@ -55,6 +55,16 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
   options->small_gap = settings.small_gap;
   options->velocity_clamp = settings.vel_clamp * units_per_cm;
   options->edge_samples = settings.edge_samples;
+  if (settings.fill == "blend") {
+    options->fill = GapFillKind::kBlend;
+  } else if (settings.fill == "kriging") {
+    options->fill = GapFillKind::kKriging;
+  } else {
+    return Status::Error("--fill: unknown '" + settings.fill + "' (blend, kriging)");
+  }
+  options->fill_samples = settings.fill_samples;
+  options->refit_reference = settings.refit_reference;
+  options->refit_rough_factor = settings.refit_rough_factor;
   std::string error;
   if (!options->reference.IsValid(&error) || !options->tracker.IsValid(&error)) {
     return Status::Error(error);

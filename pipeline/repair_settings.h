@@ -34,6 +34,10 @@ struct RepairSettings {
   int small_gap = 5;                 // Gaps of at most this many frames: plain cubic.
   double vel_clamp = 0.25;           // cm per frame.
   int edge_samples = 1;              // Samples per gap edge its offset velocity is fitted to (1: none).
+  std::string fill = "kriging";       // kriging (offset process, conditional mean) | blend (edge offsets blended).
+  int fill_samples = 10;             // kriging: offset samples conditioned on per gap side.
+  bool refit_reference = true;       // Tracker: X^ refitted without the cut samples for the fill.
+  double refit_rough_factor = 3.0;   // Cut runs rougher than this (vs the marker's own) use X^ as solved.
   std::string reference = "tracker";  // tracker | clip.
   std::string reference_loss = "cauchy";
   double reference_loss_cm = 1.0;
@@ -45,7 +49,7 @@ struct RepairSettings {
 inline constexpr char kRepairSettingNames[] =
     "dp_max_cm,dr_max_deg,outlier_cm,outliers,outlier_mads,outlier_min_cm,undo_swaps,swap_radius_cm,"
     "swap_min_frames,assign_unlabelled,unlabelled_min_cm,unlabelled_max_cm,unlabelled_min_frames,trim_max,"
-    "small_track,small_gap,vel_clamp,edge_samples,reference,reference_loss,"
+    "small_track,small_gap,vel_clamp,edge_samples,fill,fill_samples,refit_reference,refit_rough_factor,reference,reference_loss,"
     "reference_loss_cm,tracker_prior_weight,tracker_translation_prior,tracker_function_tolerance";
 
 // Repair solves every frame two or three times: its solver is DLS unless the user chose.

@@ -1,5 +1,6 @@
 #include "problems/marker_repair/marker_repair.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -13,6 +14,7 @@
 #include "signal/bad_interval_detection.h"
 #include "signal/gap_cleanup.h"
 #include "signal/gap_fill.h"
+#include "signal/offset_kriging.h"
 
 namespace mocapsolve {
 namespace {
@@ -164,6 +166,20 @@ class StageClock {
   std::chrono::steady_clock::time_point start_;
 };
 
+// Median |x(f + 1) - 2 x(f) + x(f - 1)| of marker m over frames [first, last] where the
+// three samples are valid; -1 when there is none.
+double MedianSecondDifference(const MarkerTrajectories& paths, int m, int first, int last) {
+  std::vector<double> values;
+  for (int f = std::max(1, first); f <= std::min(paths.num_frames() - 2, last); ++f) {
+    if (paths.valid(f - 1, m) && paths.valid(f, m) && paths.valid(f + 1, m)) {
+      values.push_back((paths.position(f + 1, m) - 2.0 * paths.position(f, m) + paths.position(f - 1, m)).norm());
+    }
+  }
+  if (values.empty()) return -1.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
 // X^ = LBS(Y^, Z): every marker's position on the reference, every frame.
 Observations ReconstructMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Motion& reference) {
   Observations out(reference.frames.size(), std::vector<Eigen::Vector3d>(markers.num_markers()));
@@ -218,6 +234,10 @@ bool RepairOptions::IsValid(std::string* error) const {
   }
   if (swap_min_frames < 1) return *error = "swap_min_frames must be >= 1", false;
   if (edge_samples < 1 || edge_samples > 1000) return *error = "edge_samples must be in [1, 1000]", false;
+  if (fill_samples < 1 || fill_samples > 1000) return *error = "fill_samples must be in [1, 1000]", false;
+  if (!(refit_rough_factor > 0.0) || !std::isfinite(refit_rough_factor)) {
+    return *error = "refit_rough_factor must be positive and finite", false;
+  }
   if (!std::isfinite(unlabelled_min_distance) || !std::isfinite(unlabelled_max_distance)) {
     return *error = "unlabelled_min_distance and unlabelled_max_distance must be finite", false;
   }
@@ -446,11 +466,55 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   }
   clock.Lap("Gap Preprocessing");
   // 6. Marker filling from the reference.
+  // The tracker leaned toward the samples now cut (its loss bounds the pull of each sample,
+  // not of a displaced run of them): it is refitted without them where they were (the
+  // trimmed samples kept), until it rejoins. A smooth run (a marker flown off, a ghost:
+  // the removed samples' median |second difference| within refit_rough_factor times the
+  // marker's own over its kept samples) and a gap without samples are filled from the
+  // refitted X^; a rough run (noise, jitter), whose samples scatter about the true path
+  // so that the robust solve averaged them, from X^ as solved (issue 16, BENCHMARKS.md).
+  MarkerTrajectories refit_paths;
+  const bool refit = options.refit_reference && options.reference_kind == ReferenceKind::kTracker;
+  if (refit) {
+    Motion refitted;
+    int resolved = 0;
+    status = ResolveChangedFrames(skeleton, markers, *input, TrajectoryObservations(flagged), reference,
+                                  options.tracker, resync_tolerance, options.parallel, &refitted, &resolved);
+    if (!status.ok()) return status;
+    refit_paths = ObservationTrajectories(markers, ReconstructMarkers(skeleton, markers, refitted));
+  }
   GapFillOptions fill;
   if (options.velocity_clamp > 0.0) fill.velocity_clamp = options.velocity_clamp;
   fill.edge_samples = options.edge_samples;
+  // Kriging conditions on the samples that survived detection and preprocessing, not on
+  // the small gaps' cubics nor on another gap's fill; one offset process per reference.
+  OffsetKrigingOptions kriging;
+  kriging.samples_per_side = options.fill_samples;
+  std::vector<OffsetProcess> processes, refit_processes;
+  if (options.fill == GapFillKind::kKriging) {
+    status = EstimateOffsetProcesses(before_small, reference_paths, kriging, &processes);
+    if (status.ok() && refit) status = EstimateOffsetProcesses(before_small, refit_paths, kriging, &refit_processes);
+    if (!status.ok()) return status;
+  }
+  std::vector<double> own_roughness(x.num_markers(), -1.0);
+  if (refit) {
+    for (int m = 0; m < x.num_markers(); ++m) {
+      own_roughness[m] = MedianSecondDifference(before_small, m, 0, x.num_frames() - 1);
+    }
+  }
   for (const Gap& gap : FindGaps(x)) {
-    status = FillGapFromReference(gap, reference_paths, fill, &x);
+    bool from_refit = false;
+    if (refit) {
+      const double roughness = MedianSecondDifference(unflagged, gap.marker, gap.first, gap.last);
+      from_refit = roughness < 0.0 || roughness <= options.refit_rough_factor * own_roughness[gap.marker];
+    }
+    const MarkerTrajectories& paths = from_refit ? refit_paths : reference_paths;
+    const std::vector<OffsetProcess>& offsets = from_refit ? refit_processes : processes;
+    if (options.fill == GapFillKind::kKriging && offsets[gap.marker].valid) {
+      status = FillGapByKriging(gap, before_small, paths, offsets[gap.marker], kriging, &x);
+    } else {
+      status = FillGapFromReference(gap, paths, fill, &x);
+    }
     if (!status.ok()) return status;
     const bool whole = gap.first == 0 && gap.last + 1 == x.num_frames();
     report->filled.push_back({gap.marker, gap.first, gap.last, whole ? "reference only" : "reference"});

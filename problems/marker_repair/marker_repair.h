@@ -29,7 +29,11 @@
 //   5. Gap preprocessing (3.3.4): smart trimming (cut up to trim_max frames on each side of
 //      a gap, stopping where the velocity difference between original and reference is
 //      smallest), then small-track removal, then small-gap filling, in that order.
-//   6. Marker filling (Algorithm 3): Hermite offsets on the reference paths.
+//   6. Marker filling: X^ plus the offset from it, kriged from the samples beside each gap
+//      (signal/offset_kriging.h; or Algorithm 3's Hermite blend of the edge offsets). With
+//      the tracker, X^ is first refitted without the cut samples where they were; runs
+//      that were smooth (fly-off, ghost) and gaps are filled from the refitted X^, rough
+//      runs (noise, jitter, which the robust solve averaged) from X^ as solved.
 //   7. Re-solve Y- on the filled markers: only the frames whose markers changed, and the
 //      frames after each until the solution rejoins Y (within resync_tolerance), since
 //      elsewhere the per-frame problem, its warm start and its prior are Y's own. With
@@ -57,6 +61,12 @@
 namespace mocapsolve {
 
 enum class ReferenceKind { kClip, kTracker };
+
+// Step 6's refill of a gap from X^: kBlend, X^ plus a Hermite blend of the edge offsets
+// (thesis Algorithm 3, signal/gap_fill.h); kKriging, X^ plus the conditional mean of the
+// offset modelled as mean + exponentially correlated process + white noise, estimated per
+// marker from the take (signal/offset_kriging.h).
+enum class GapFillKind { kBlend, kKriging };
 
 struct RepairOptions {
   MarkerSolveOptions naive;        // Steps 1 and 7.
@@ -86,6 +96,12 @@ struct RepairOptions {
   int small_gap = 5;               // Frames.
   double velocity_clamp = 0.0;     // Skeleton units per frame (<= 0: no clamp).
   int edge_samples = 1;            // Per gap edge, for the offset velocity (1: none; signal/gap_fill.h).
+  GapFillKind fill = GapFillKind::kKriging;  // Step 6: how a gap's offset from X^ is filled.
+  int fill_samples = 10;           // kKriging: samples of the offset conditioned on per side.
+  bool refit_reference = true;     // Step 6, kTracker: X^ refitted without the cut samples
+                                   // for smooth runs and gaps (marker_repair.cc).
+  double refit_rough_factor = 3.0;  // A cut run rougher than this (median |second difference|
+                                    // against the marker's own) is filled from X^ as solved.
 
   // Every number finite, the thresholds positive, the frame counts >= 0, and the solve
   // options valid; otherwise false with a one-line reason in *error.

@@ -19,7 +19,7 @@
 namespace mocapsolve {
 namespace {
 
-void CheckRepair(ReferenceKind reference_kind) {
+void CheckRepair(ReferenceKind reference_kind, GapFillKind fill = GapFillKind::kKriging) {
   const testing::DemoTake take = testing::MakeDemoTake(120, 60.0, 5);
   const Skeleton& skeleton = take.skeleton;
   const Motion& truth = take.truth;
@@ -38,6 +38,7 @@ void CheckRepair(ReferenceKind reference_kind) {
   options.trim_max = 10;
   options.small_track = 10;
   options.small_gap = 3;
+  options.fill = fill;
   std::vector<std::vector<Eigen::Vector3d>> repaired;
   Motion motion;
   RepairReport report;
@@ -90,6 +91,12 @@ TEST(MarkerRepair, RefillsGapsAndReplacesAFlyingMarkerWithTheClipReference) {
 
 TEST(MarkerRepair, RefillsGapsAndReplacesAFlyingMarkerWithTheTrackerReference) {
   CheckRepair(ReferenceKind::kTracker);
+}
+
+// The defaults fill by kriging the offset from the reference (signal/offset_kriging.h);
+// Algorithm 3's blend meets the same bounds.
+TEST(MarkerRepair, RefillsGapsAndReplacesAFlyingMarkerByTheEdgeBlend) {
+  CheckRepair(ReferenceKind::kTracker, GapFillKind::kBlend);
 }
 
 // Two neighbouring markers exchange places for 20 frames (a labelling swap): both are
@@ -169,6 +176,8 @@ TEST(MarkerRepair, OptionsRejectNonFiniteAndNegativeValues) {
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->velocity_clamp = nan; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->small_gap = -1; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->trim_max = -1; }));
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->fill_samples = 0; }));
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->refit_rough_factor = nan; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->dp_max = nan; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->naive.prior_rotation_weight = nan; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->tracker.limit_weight = nan; }));
