@@ -133,8 +133,10 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   Motion motion;
   SkeletonFitReport report;
   std::vector<double> scales(skeleton.num_joints(), 1.0);
-  // The best round with every marker attached (rounds >= 1), by marker RMS: re-attaching
-  // can also make a round worse.
+  // The best round with every marker attached, by marker RMS: re-attaching can also make
+  // a round worse. Round 0 is a candidate when it already holds every marker the attach
+  // finds (a template with the take's whole marker set: round 0 is a complete fit).
+  bool round0_complete = false;
   struct Best {
     int round = -1;
     double rms = 0.0;
@@ -147,7 +149,7 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   for (int round = 0; round <= rounds; ++round) {
     std::vector<std::vector<Eigen::Vector3d>> observed = take.observed;
     MarkerSet round_markers = fitted_markers;
-    if (round >= 2 && best.round >= 1) {
+    if (round >= 2 && (best.round >= 1 || round0_complete)) {
       // Each round starts from the best so far: a worse round must not feed the next.
       fitted = best.skeleton;
       fitted_markers = best.markers;
@@ -165,15 +167,26 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
         return Status::Error(markers_path + ": attach round " + std::to_string(round) + ": " + status.message());
       }
       std::vector<MarkerSpec> specs;
+      int new_markers = 0;
       for (int m = 0; m < attached.marker_set.num_markers(); ++m) {
         MarkerSpec spec = attached.marker_set.marker(m);
         const int known = fitted_markers.FindMarker(spec.label);
-        if (known >= 0 && take_mapping.markers.FindMarker(spec.label) >= 0) spec = fitted_markers.marker(known);
-        for (MarkerAttachment& a : spec.attachments) {
-          if (options.max_bone_distance > 0.0) a.offset = ClampToBone(fitted, a.joint, a.offset, options.max_bone_distance);
+        if (known >= 0 && take_mapping.markers.FindMarker(spec.label) >= 0) {
+          // As fitted (not clamped again: the fit kept it within its own radius, which
+          // can exceed max_skin_cm for a template marker), so the round starts where the
+          // last one ended.
+          spec = fitted_markers.marker(known);
+        } else {
+          ++new_markers;
+          for (MarkerAttachment& a : spec.attachments) {
+            if (options.max_bone_distance > 0.0) {
+              a.offset = ClampToBone(fitted, a.joint, a.offset, options.max_bone_distance);
+            }
+          }
         }
         specs.push_back(spec);
       }
+      if (round == 1) round0_complete = new_markers == 0;
       status = MarkerSet::Create(fitted, std::move(specs), &round_markers);
       if (!status.ok()) return status;
       status = GatherObservations(round_markers, take.trajectories, take.transform, &observed);
@@ -228,9 +241,9 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
     done.rms_first = report.rms.front();
     done.rms = report.rms.back();
     emit(done);
-    if (round <= 1 || report.rms.back() < best.rms) {
+    if (round == 0 || (round == 1 && !round0_complete) || report.rms.back() < best.rms) {
       best = {round, report.rms.back(), fitted, fitted_markers, motion, report, observed};
-    } else if (round >= 2) {
+    } else {
       // The next round would start from the same best state and attach alike.
       SkeletonFitEvent stopped = started;
       stopped.kind = SkeletonFitEvent::kStopped;
