@@ -168,6 +168,7 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
       }
       std::vector<MarkerSpec> specs;
       int new_markers = 0;
+      std::vector<std::pair<int, int>> reattached;  // (index in specs, index in fitted_markers).
       for (int m = 0; m < attached.marker_set.num_markers(); ++m) {
         MarkerSpec spec = attached.marker_set.marker(m);
         const int known = fitted_markers.FindMarker(spec.label);
@@ -177,7 +178,11 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
           // last one ended.
           spec = fitted_markers.marker(known);
         } else {
-          ++new_markers;
+          if (known >= 0) {
+            reattached.push_back({static_cast<int>(specs.size()), known});
+          } else {
+            ++new_markers;
+          }
           for (MarkerAttachment& a : spec.attachments) {
             if (options.max_bone_distance > 0.0) {
               a.offset = ClampToBone(fitted, a.joint, a.offset, options.max_bone_distance);
@@ -185,6 +190,32 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
           }
         }
         specs.push_back(spec);
+      }
+      if (!reattached.empty()) {
+        // A marker attached in an earlier round keeps that attachment (as fitted) unless
+        // the new one fits the best round's motion better: so the round does not start
+        // worse than the state it comes from. (Keeping every earlier attachment starts
+        // squat.c3d's rounds where the last ended, but leaves JA1Gait35 at round 1's poor
+        // attachments, 107 mm; re-attaching every one started squat's rounds 4-38 mm worse.)
+        MarkerSet fresh;
+        status = MarkerSet::Create(fitted, specs, &fresh);
+        if (!status.ok()) return status;
+        CalibrationResult fresh_fit, kept_fit;
+        status = EvaluateMarkerSet(fitted, motion, model_frame, fresh, calibration, &fresh_fit);
+        if (status.ok()) status = EvaluateMarkerSet(fitted, motion, model_frame, fitted_markers, calibration, &kept_fit);
+        if (!status.ok()) {
+          return Status::Error(markers_path + ": attach round " + std::to_string(round) + ": " + status.message());
+        }
+        auto rms_of = [](const CalibrationResult& fit, const std::string& label) {
+          for (const CalibratedMarker& c : fit.markers) {
+            if (c.label == label) return c.rms;
+          }
+          return std::numeric_limits<double>::infinity();
+        };
+        for (const auto& [index, known] : reattached) {
+          const std::string& label = specs[index].label;
+          if (rms_of(kept_fit, label) <= rms_of(fresh_fit, label)) specs[index] = fitted_markers.marker(known);
+        }
       }
       if (round == 1) round0_complete = new_markers == 0;
       status = MarkerSet::Create(fitted, std::move(specs), &round_markers);

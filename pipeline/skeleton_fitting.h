@@ -8,7 +8,9 @@
 // frame's root from the markers' geometry) with a damped Gauss-Newton step on (s, offsets).
 // Rounds r = 1..R then attach every marker of the take to the joint it moves least with
 // (CalibrateMarkers; the template's markers keep their joints and fitted offsets, so a
-// round starts where the round it comes from ended) and fit again for attach_iterations,
+// round starts where the round it comes from ended; a marker attached in an earlier round
+// keeps that attachment unless the new one fits the best round's motion better) and fit
+// again for attach_iterations,
 // each from the best round so far (by marker RMS), stopping when a round does not improve.
 // Round 0 competes too when the attach finds no marker it lacks (the template has the
 // take's whole set: round 0 is then a complete fit). The kept model is then checked by measures that
