@@ -67,7 +67,7 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   if (!status.ok()) return status;
   const std::string& markers_path = inputs.markers_path;
   const bool from_subject = inputs.from_template_subject;
-  const int rounds = settings.attach_rounds >= 0 ? settings.attach_rounds : (from_subject ? 6 : 0);
+  const int rounds = settings.attach_rounds >= 0 ? settings.attach_rounds : (from_subject ? 12 : 0);
   result->attach_rounds = rounds;
   const Subject& templ = inputs.templ;
   const Skeleton& skeleton = templ.skeleton;

@@ -40,7 +40,7 @@ namespace mocapsolve {
 // (same name, default and units), documented once in kSkeletonFitSettingHelp.
 struct SkeletonFitSettings {
   int fit_iterations = -1;       // -1: 15 with a template subject, else 6.
-  int attach_rounds = -1;        // -1: 6 with a template subject, else 0.
+  int attach_rounds = -1;        // -1: 12 with a template subject, else 0.
   int attach_iterations = 6;
   int fit_frame_step = 4;
   int fit_max_frames = 0;        // 0 = all frames.
@@ -63,7 +63,7 @@ inline constexpr SettingHelp kSkeletonFitSettingHelp[] = {
                        "-1: 15 with --template_subject, else 6."},
     {"attach_rounds", "Rounds of attaching every marker of the take to the fitted skeleton (auto: the joint it "
                       "moves least with, among joints whose bone is within --max_skin_cm) and fitting again "
-                      "(stopping early when a round does not improve); -1: 6 with --template_subject, else 0."},
+                      "(stopping early when a round does not improve); -1: 12 with --template_subject, else 0."},
     {"attach_iterations", "Fit iterations in each attach round."},
     {"fit_frame_step", "Use every N-th frame in the length/offset fit."},
     {"fit_max_frames", "Fit on the first N frames only (0 = all)."},
