@@ -153,7 +153,10 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
         std::fflush(stdout);
         break;
       case SkeletonFitEvent::kStopped:
-        if (!FLAGS_quiet) std::fprintf(stderr, "fit_skeleton: round %d did not improve; stopping\n", e.round);
+        if (!FLAGS_quiet) {
+          std::fprintf(stderr, e.rms > 0.0 ? "fit_skeleton: round %d improved by less than 1 %%; stopping\n"
+                                           : "fit_skeleton: round %d did not improve; stopping\n", e.round);
+        }
         break;
       case SkeletonFitEvent::kKept:
         if (!FLAGS_quiet) {

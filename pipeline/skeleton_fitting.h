@@ -11,7 +11,8 @@
 // round starts where the round it comes from ended; a marker attached in an earlier round
 // keeps that attachment unless the new one fits the best round's motion better) and fit
 // again for attach_iterations,
-// each from the best round so far (by marker RMS), stopping when a round does not improve.
+// each from the best round so far (by marker RMS), stopping when a round does not improve
+// the best marker RMS by 1 % (a round that improves it less is kept, then the rounds stop).
 // Round 0 competes too when the attach finds no marker it lacks (the template has the
 // take's whole set: round 0 is then a complete fit). The kept model is then checked by measures that
 // do not trust the residual (subject_checks.h). Knows nothing of flags or printing: the
@@ -63,7 +64,8 @@ inline constexpr SettingHelp kSkeletonFitSettingHelp[] = {
                        "-1: 15 with --template_subject, else 6."},
     {"attach_rounds", "Rounds of attaching every marker of the take to the fitted skeleton (auto: the joint it "
                       "moves least with, among joints whose bone is within --max_skin_cm) and fitting again "
-                      "(stopping early when a round does not improve); -1: 12 with --template_subject, else 0."},
+                      "(stopping early when a round improves the marker RMS by less than 1 %); -1: 12 with "
+                      "--template_subject, else 0."},
     {"attach_iterations", "Fit iterations in each attach round."},
     {"fit_frame_step", "Use every N-th frame in the length/offset fit."},
     {"fit_max_frames", "Fit on the first N frames only (0 = all)."},
@@ -102,7 +104,7 @@ struct SkeletonFitEvent {
                      // frames_done of frames.
     kIteration,      // round, iteration, rms (skeleton units).
     kRoundDone,      // round, markers, rms_first, rms (skeleton units).
-    kStopped,        // round: it did not improve; the rounds stop.
+    kStopped,        // round: it did not improve (rms = 0) or by less than 1 % (rms: the kept one); the rounds stop.
     kKept,           // round (the kept one), rms: the last round was not the best.
   };
   Kind kind = kRoundStart;
