@@ -113,6 +113,17 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
     event.text = absent;
     emit(event);
   }
+  // The skin check allows what the template itself holds: the fit keeps a template marker
+  // within its starting distance when that exceeds --max_skin_cm (skeleton_fit.h), and a
+  // calibrated template is trusted (CMU subject 2 calibrated on 02_01 holds RBAC 20.7 cm
+  // from upperback; clamping it to 12 cm fits cmu_02_05 at 16.4 mm instead of 4.6).
+  SubjectCheckOptions check_options;
+  for (const MarkerSpec& spec : present) {
+    for (const MarkerAttachment& a : spec.attachments) {
+      const double cm = DistanceToBone(skeleton, a.joint, a.offset) / units_per_cm;
+      check_options.max_marker_bone_distance_cm = std::max(check_options.max_marker_bone_distance_cm, cm + 0.1);
+    }
+  }
   status = MarkerSet::Create(skeleton, std::move(present), &take_mapping.markers);
   if (!status.ok()) return status;
   MarkerTake take;
@@ -311,7 +322,7 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   result->motion = std::move(best.motion);
   result->motion.frame_rate = take.trajectories.frame_rate;
   result->report = std::move(best.report);
-  result->checks = CheckSubjectFit(best.skeleton, best.markers, best.observed, result->motion);
+  result->checks = CheckSubjectFit(best.skeleton, best.markers, best.observed, result->motion, check_options);
   Subject& subject = result->subject;
   subject.name = templ.name.empty() ? "fitted" : "fitted from " + templ.name;
   subject.skeleton = std::move(best.skeleton);  // Inline: the fitted skeleton exists nowhere else.

@@ -74,8 +74,8 @@ inline constexpr SettingHelp kSkeletonFitSettingHelp[] = {
     {"max_bone_scale", "Bone lengths no longer than this times the template's."},
     {"offset_prior", "Weight of the prior that keeps marker offsets near the template's in the first fit, per "
                      "frame, relative to a marker residual; 0: off."},
-    {"check", "The subject checks (marker within 15 cm of its bone, torso direction within 15 degrees of the "
-              "markers', left/right within 5 %, marker RMS within 25 mm): fail (exit 1, nothing written but "
+    {"check", "The subject checks (marker within 15 cm of its bone, or within its template distance when "
+              "larger, torso direction within 15 degrees of the markers', left/right within 5 %, marker RMS within 25 mm): fail (exit 1, nothing written but "
               "the report), warn, off."},
 };
 

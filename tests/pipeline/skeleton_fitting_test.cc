@@ -168,6 +168,9 @@ TEST(FitSubjectToTake, CompleteTemplateRoundsStartWhereTheLastEnded) {
     best = std::min(best, rms.back());
   }
   EXPECT_NEAR(result.report.rms.back(), best, 1e-12);
+  // The template's own skin distances (up to 20.7 cm) do not fail the skin check.
+  EXPECT_GT(result.checks.max_bone_distance_cm, 15.0);
+  EXPECT_TRUE(result.checks.ok()) << result.checks.failures.front();
 
   // No attach iterations: round 1 cannot beat round 0, which is complete, so round 0 is
   // kept and the rounds stop.
