@@ -153,7 +153,10 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
         std::fflush(stdout);
         break;
       case SkeletonFitEvent::kStopped:
-        if (!FLAGS_quiet) std::fprintf(stderr, "fit_skeleton: round %d did not improve; stopping\n", e.round);
+        if (!FLAGS_quiet) {
+          std::fprintf(stderr, e.rms > 0.0 ? "fit_skeleton: round %d improved by less than 1 %%; stopping\n"
+                                           : "fit_skeleton: round %d did not improve; stopping\n", e.round);
+        }
         break;
       case SkeletonFitEvent::kKept:
         if (!FLAGS_quiet) {
@@ -221,7 +224,7 @@ const std::string kFitFlags =
 extern const Command kFitSkeletonCommand = {
     "fit_skeleton", "fit a subject (bone lengths, marker attachments and offsets) to a take's markers",
     "mocapsolve fit_skeleton --template_subject=T.json --markers=IN.c3d|.trc --out_subject=S.json\n"
-    "          [--out=FITTED.bvh] [--out_markerset=S.json] [--axes=x,y,z] [--attach_rounds=6]\n"
+    "          [--out=FITTED.bvh] [--out_markerset=S.json] [--axes=x,y,z] [--attach_rounds=12]\n"
     "          [--check=fail|warn|off] [--report=r.json]\n"
     "   or: --skeleton=TEMPLATE.bvh|.asf --markerset=J.json instead of --template_subject\n\n"
     "For captures without a skeleton. Starts from a template subject (skeleton + marker set;\n"

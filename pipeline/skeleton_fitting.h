@@ -7,9 +7,14 @@
 // the take shares with the template by label, alternating per-frame pose solves (the first
 // frame's root from the markers' geometry) with a damped Gauss-Newton step on (s, offsets).
 // Rounds r = 1..R then attach every marker of the take to the joint it moves least with
-// (CalibrateMarkers; the template's markers keep their joints and fitted offsets) and fit
-// again for attach_iterations, each from the best round so far (by marker RMS), stopping
-// when a round r >= 2 does not improve. The kept model is then checked by measures that
+// (CalibrateMarkers; the template's markers keep their joints and fitted offsets, so a
+// round starts where the round it comes from ended; a marker attached in an earlier round
+// keeps that attachment unless the new one fits the best round's motion better) and fit
+// again for attach_iterations,
+// each from the best round so far (by marker RMS), stopping when a round does not improve
+// the best marker RMS by 1 % (a round that improves it less is kept, then the rounds stop).
+// Round 0 competes too when the attach finds no marker it lacks (the template has the
+// take's whole set: round 0 is then a complete fit). The kept model is then checked by measures that
 // do not trust the residual (subject_checks.h). Knows nothing of flags or printing: the
 // caller formats the progress events.
 #ifndef MOCAPSOLVE_PIPELINE_SKELETON_FITTING_H_
@@ -36,7 +41,7 @@ namespace mocapsolve {
 // (same name, default and units), documented once in kSkeletonFitSettingHelp.
 struct SkeletonFitSettings {
   int fit_iterations = -1;       // -1: 15 with a template subject, else 6.
-  int attach_rounds = -1;        // -1: 6 with a template subject, else 0.
+  int attach_rounds = -1;        // -1: 12 with a template subject, else 0.
   int attach_iterations = 6;
   int fit_frame_step = 4;
   int fit_max_frames = 0;        // 0 = all frames.
@@ -59,7 +64,8 @@ inline constexpr SettingHelp kSkeletonFitSettingHelp[] = {
                        "-1: 15 with --template_subject, else 6."},
     {"attach_rounds", "Rounds of attaching every marker of the take to the fitted skeleton (auto: the joint it "
                       "moves least with, among joints whose bone is within --max_skin_cm) and fitting again "
-                      "(stopping early when a round does not improve); -1: 6 with --template_subject, else 0."},
+                      "(stopping early when a round improves the marker RMS by less than 1 %); -1: 12 with "
+                      "--template_subject, else 0."},
     {"attach_iterations", "Fit iterations in each attach round."},
     {"fit_frame_step", "Use every N-th frame in the length/offset fit."},
     {"fit_max_frames", "Fit on the first N frames only (0 = all)."},
@@ -68,8 +74,8 @@ inline constexpr SettingHelp kSkeletonFitSettingHelp[] = {
     {"max_bone_scale", "Bone lengths no longer than this times the template's."},
     {"offset_prior", "Weight of the prior that keeps marker offsets near the template's in the first fit, per "
                      "frame, relative to a marker residual; 0: off."},
-    {"check", "The subject checks (marker within 15 cm of its bone, torso direction within 15 degrees of the "
-              "markers', left/right within 5 %, marker RMS within 25 mm): fail (exit 1, nothing written but "
+    {"check", "The subject checks (marker within 15 cm of its bone, or within its template distance when "
+              "larger, torso direction within 15 degrees of the markers', left/right within 5 %, marker RMS within 25 mm): fail (exit 1, nothing written but "
               "the report), warn, off."},
 };
 
@@ -98,7 +104,7 @@ struct SkeletonFitEvent {
                      // frames_done of frames.
     kIteration,      // round, iteration, rms (skeleton units).
     kRoundDone,      // round, markers, rms_first, rms (skeleton units).
-    kStopped,        // round: it did not improve; the rounds stop.
+    kStopped,        // round: it did not improve (rms = 0) or by less than 1 % (rms: the kept one); the rounds stop.
     kKept,           // round (the kept one), rms: the last round was not the best.
   };
   Kind kind = kRoundStart;

@@ -178,6 +178,17 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
   std::vector<double> total_scale = options.initial_scales;
   if (total_scale.empty()) total_scale.assign(skeleton.num_joints(), 1.0);
   if (static_cast<int>(total_scale.size()) != skeleton.num_joints()) return Status::Error("skeleton fit: bad options");
+  // Each attachment's skin radius: max_bone_distance, or its distance at the start when
+  // that is farther (a marker the given set holds outside the tube stays where it is
+  // trusted to be, so the first step cannot be worse for a clamp alone).
+  std::vector<std::vector<double>> radius(markers.num_markers());
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    for (const MarkerAttachment& a : markers.marker(m).attachments) {
+      radius[m].push_back(options.max_bone_distance > 0.0
+                              ? std::max(options.max_bone_distance, DistanceToBone(skeleton, a.joint, a.offset))
+                              : 0.0);
+    }
+  }
   SequenceSolveReport solve;
   Status status = SolveSequence(current, current_markers, observed, solve_options, RestPose(current), motion, &solve,
                                 frame_progress, options.root_from_markers);
@@ -197,9 +208,10 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
     status = ScaledSkeleton(current, scales, &next);
     if (!status.ok()) return status;
     if (options.max_bone_distance > 0.0) {
-      for (MarkerSpec& spec : specs) {
-        for (MarkerAttachment& a : spec.attachments) {
-          a.offset = ClampToBone(next, a.joint, a.offset, options.max_bone_distance);
+      for (size_t m = 0; m < specs.size(); ++m) {
+        for (size_t k = 0; k < specs[m].attachments.size(); ++k) {
+          MarkerAttachment& a = specs[m].attachments[k];
+          a.offset = ClampToBone(next, a.joint, a.offset, radius[m][k]);
         }
       }
     }

@@ -24,7 +24,9 @@
 // total scale relative to the template stays in [min_scale, max_scale] (default 0.8 ..
 // 1.25), left and right share a scale, the rest pose (bone directions, rest rotations)
 // is the template's, and with max_bone_distance every marker stays within that skin
-// distance of its bone. subject_checks.h measures the result without trusting the
+// distance of its bone (or within its starting distance, when the given set already holds
+// it farther out: clamping a trusted template marker would make the fit worse than its
+// start and every step would be refused). subject_checks.h measures the result without trusting the
 // residual.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SKELETON_FIT_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SKELETON_FIT_H_
@@ -54,7 +56,8 @@ struct SkeletonFitOptions {
   // joint; empty: all 1), so rounds of fitting keep one bound.
   std::vector<double> initial_scales;
   // Skin distance: after each step every marker offset is moved onto the tube of this
-  // radius around its joint's bone (subject_checks.h, ClampToBone); skeleton units, 0: off.
+  // radius around its joint's bone (subject_checks.h, ClampToBone), or of its starting
+  // distance when that is larger; skeleton units, 0: off.
   double max_bone_distance = 0.0;
   // The first frame's root pose from the markers' geometry (sequence_solver.h), not the
   // 24 axis orientations.

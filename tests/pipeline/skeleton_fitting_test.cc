@@ -43,11 +43,9 @@ TEST(SkeletonFitSettings, EachBadValueNamesItsFlag) {
   EXPECT_EQ(std::string(SettingHelpFor(kSkeletonFitSettingHelp, "check")).substr(0, 17), "The subject check");
 }
 
-TEST(FitSubjectToTake, ShortSquatFitReportsRoundsInOrder) {
-  MOCAPSOLVE_DATA_FILE(asf, "amc/02.asf");
-  MOCAPSOLVE_DATA_FILE(amc, "amc/02_01.amc");
-  MOCAPSOLVE_DATA_FILE(c3d, "c3d/02_01.c3d");
-  MOCAPSOLVE_DATA_FILE(squat, "c3d/squat.c3d");
+// CMU subject 2 calibrated on 02_01 (as `mocapsolve calibrate --out_subject`).
+void CalibrateCmu02(const std::string& asf, const std::string& amc, const std::string& c3d,
+                    SubjectCalibration* calibrated) {
   MotionFileOptions motion_options;
   motion_options.skeleton_path = asf;
   Skeleton skeleton;
@@ -58,8 +56,16 @@ TEST(FitSubjectToTake, ShortSquatFitReportsRoundsInOrder) {
   SubjectCalibrationOptions calibration;
   calibration.axes = "y,z,x";
   calibration.skeleton_path = asf;
+  ASSERT_TRUE(CalibrateSubject(skeleton, motion, trajectories, calibration, calibrated).ok());
+}
+
+TEST(FitSubjectToTake, ShortSquatFitReportsRoundsInOrder) {
+  MOCAPSOLVE_DATA_FILE(asf, "amc/02.asf");
+  MOCAPSOLVE_DATA_FILE(amc, "amc/02_01.amc");
+  MOCAPSOLVE_DATA_FILE(c3d, "c3d/02_01.c3d");
+  MOCAPSOLVE_DATA_FILE(squat, "c3d/squat.c3d");
   SubjectCalibration calibrated;
-  ASSERT_TRUE(CalibrateSubject(skeleton, motion, trajectories, calibration, &calibrated).ok());
+  ASSERT_NO_FATAL_FAILURE(CalibrateCmu02(asf, amc, c3d, &calibrated));
 
   SkeletonFitInputs inputs;
   inputs.templ = calibrated.subject;
@@ -119,6 +125,61 @@ TEST(FitSubjectToTake, ShortSquatFitReportsRoundsInOrder) {
   }
   settings.check = "warn";
   EXPECT_TRUE(SkeletonFitCheckStatus(inputs, settings, result).ok());
+}
+
+// A template with the take's whole marker set (CMU subject 2 on its take 02_05): the
+// calibration holds several markers farther than --max_skin_cm from their bone (RBAC 21 cm
+// from upperback). The fit must still improve on the template (each step used to clamp
+// them onto the 12 cm tube, so every step was refused: 9.19 -> 9.19 mm on the whole take),
+// an attach round must start where round 0 ended (it used to clamp them again: 26.68 mm),
+// and round 0, a complete fit here, is kept when no round beats it.
+TEST(FitSubjectToTake, CompleteTemplateRoundsStartWhereTheLastEnded) {
+  MOCAPSOLVE_DATA_FILE(asf, "amc/02.asf");
+  MOCAPSOLVE_DATA_FILE(amc, "amc/02_01.amc");
+  MOCAPSOLVE_DATA_FILE(c3d, "c3d/02_01.c3d");
+  MOCAPSOLVE_DATA_FILE(take, "c3d/cmu_02_05.c3d");
+  SubjectCalibration calibrated;
+  ASSERT_NO_FATAL_FAILURE(CalibrateCmu02(asf, amc, c3d, &calibrated));
+  SkeletonFitInputs inputs;
+  inputs.templ = calibrated.subject;
+  inputs.markers_path = take;
+  inputs.axes = "y,z,x";
+  SkeletonFitSettings settings;
+  settings.fit_max_frames = 120;
+  settings.fit_iterations = 4;
+  settings.attach_rounds = 3;
+  settings.attach_iterations = 2;
+  settings.check = "off";
+  MarkerSolveOptions solve;
+  solve.solver = SolverKind::kDls;
+  SkeletonFitResult result;
+  Status status = FitSubjectToTake(inputs, settings, solve, &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_GE(result.rounds.size(), 2u);
+  const std::vector<double>& round0 = result.rounds[0].rms;
+  EXPECT_EQ(result.rounds[0].markers, 41);
+  EXPECT_LT(round0.back(), 0.9 * round0.front());  // Steps accepted.
+  double best = round0.back();
+  for (size_t r = 1; r < result.rounds.size(); ++r) {
+    const std::vector<double>& rms = result.rounds[r].rms;
+    // The same skeleton, markers and frames as the best round before it: the same solve
+    // (a relative 1e-9: the per-frame solves are deterministic).
+    EXPECT_NEAR(rms.front(), best, 1e-9 * best) << "round " << r;
+    best = std::min(best, rms.back());
+  }
+  EXPECT_NEAR(result.report.rms.back(), best, 1e-12);
+  // The template's own skin distances (up to 20.7 cm) do not fail the skin check.
+  EXPECT_GT(result.checks.max_bone_distance_cm, 15.0);
+  EXPECT_TRUE(result.checks.ok()) << result.checks.failures.front();
+
+  // No attach iterations: round 1 cannot beat round 0, which is complete, so round 0 is
+  // kept and the rounds stop.
+  settings.attach_iterations = 0;
+  status = FitSubjectToTake(inputs, settings, solve, &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(result.kept_round, 0);
+  EXPECT_EQ(result.rounds.size(), 2u);
+  EXPECT_EQ(result.report.rms, result.rounds[0].rms);
 }
 
 TEST(FitSubjectToTake, MissingTakeNamesTheFile) {
