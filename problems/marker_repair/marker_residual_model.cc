@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/rotation.h"
@@ -18,6 +19,21 @@ constexpr double kConfirmedShare = 0.2;
 // before it by at least half the step in (the reference leans toward a displaced marker,
 // which takes it under the floor from the soft-tissue residual).
 constexpr double kSharpSteps = 5.0;
+// A calm plateau, also under the floor: a step in and a step out of at least
+// kPlateauSteps times the marker's own step statistic and kPlateauFloor times the floor,
+// the step just before the one in, those inside and the one just after the one out all
+// under kPlateauCalm times the step in, at least kPlateauShortest samples and less than
+// half the soft-tissue window long: a displaced marker held still. Noise steps at every
+// frame (no calm neighbours), soft tissue does not step. It counts only where the
+// captured marker itself jumps at both ends: the second difference of its samples at
+// least kPlateauRaw times the step (when the reference turns a joint toward a displaced
+// marker, the joint's other markers get residual plateaus while their samples move
+// smoothly). A single sample under the floor is not told from noise.
+constexpr double kPlateauSteps = 3.0;
+constexpr double kPlateauFloor = 0.5;
+constexpr double kPlateauCalm = 0.3;
+constexpr int kPlateauShortest = 2;
+constexpr double kPlateauRaw = 0.5;
 // Knot spacing (frames) of the running medians: the soft-tissue residual's, and the
 // steady frame's (computed for more signals, and smoother).
 constexpr int kSoftTissueStride = 4;
@@ -90,13 +106,56 @@ std::vector<Eigen::Vector3d> RunningMedian(int nf, int half, int stride, const V
   return smooth;
 }
 
+// Calm plateaus (see kPlateauSteps): a step v_a of at least `least`, the step before it
+// calm, and within `longest` frames a step v_b of at least `least` back (|v_a + v_b|, or
+// the residual after it against the one before v_a, within |v_a| / 2), every step in
+// between and the one after v_b calm: samples a..b-1 are candidates, appended to
+// `plateaus` (the caller judges them against the captured samples, which d may not be).
+// Consecutive valid samples only; a gap ends the search.
+struct Plateau {
+  int marker, first, last;                   // Samples first..last displaced.
+  double size;                               // |v_a|.
+  std::vector<std::vector<char>>* target;    // jumped or absorbed.
+};
+
+template <typename Valid, typename Value, typename Confirm>
+void FindPlateaus(int nf, int m, const Valid& valid, const Value& d, const Confirm& confirm, double least,
+                  int longest, std::vector<std::vector<char>>* target, std::vector<Plateau>* plateaus) {
+  auto step = [&](int f) -> Eigen::Vector3d {  // Zero where f or f - 1 is missing or out.
+    if (f < 1 || f >= nf || !valid(f) || !valid(f - 1)) return Eigen::Vector3d::Zero();
+    return d(f) - d(f - 1);
+  };
+  for (int a = 1; a < nf; ++a) {
+    const Eigen::Vector3d in = step(a);
+    const double size = in.norm();
+    if (size < least || !valid(a) || !valid(a - 1)) continue;
+    const double calm = kPlateauCalm * size;
+    if (step(a - 1).norm() > calm || !confirm(a, in)) continue;
+    const Eigen::Vector3d before = d(a - 1);
+    for (int b = a + 1; b < nf && b - a <= longest && valid(b) && valid(b - 1); ++b) {
+      const Eigen::Vector3d out = step(b);
+      if (out.norm() < least) {
+        if (out.norm() > calm) break;  // Neither calm nor a step back: no plateau.
+        continue;
+      }
+      // The way back out: opposite, or back to the level before, within half the step.
+      const bool back = (in + out).norm() <= 0.5 * size || (d(b) - before).norm() <= 0.5 * size;
+      if (b - a >= kPlateauShortest && back && step(b + 1).norm() <= calm && confirm(b, out)) {
+        plateaus->push_back({m, a, b - 1, size, target});
+        a = b;
+      }
+      break;
+    }
+  }
+}
+
 // The robust gate of the steps d(f) - d(f-1) between consecutive valid samples (at least
 // min_distance, no cap), and the paired steps past it marked in jumped[f][m] where the
 // sample is displaced past min_distance from smooth[f] (see the header).
 template <typename Valid, typename Value, typename Confirm>
 double MarkJumps(int nf, int m, const Valid& valid, const Value& d, const Confirm& confirm,
                  const std::vector<Eigen::Vector3d>& smooth, const ResidualModelOptions& options,
-                 std::vector<std::vector<char>>* jumped) {
+                 std::vector<std::vector<char>>* jumped, std::vector<Plateau>* plateaus) {
   std::vector<double> deviations;
   int previous = -1;
   for (int f = 0; f < nf; ++f) {
@@ -158,6 +217,9 @@ double MarkJumps(int nf, int m, const Valid& valid, const Value& d, const Confir
     }
     if (match > i) i = match;
   }
+  FindPlateaus(nf, m, valid, d, confirm, std::max(kPlateauSteps * (median + options.mads * scale),
+                                                   kPlateauFloor * options.min_distance),
+               options.window / 2, jumped, plateaus);
   return step_gate;
 }
 }  // namespace
@@ -221,6 +283,7 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
     return q;
   };
   std::vector<double> values, deviations;
+  std::vector<Plateau> plateaus;
   std::vector<Eigen::Vector3d> smooth(nf);
   for (int m = 0; m < nm; ++m) {
     auto d = [&](int f) -> const Eigen::Vector3d& { return local[static_cast<size_t>(f) * nm + m]; };
@@ -242,7 +305,7 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
     auto valid = [&](int f) { return x.valid(f, m); };
     smooth = RunningMedian(nf, half, kSoftTissueStride, valid, d, model.typical[m]);
     model.step_gate[m] = MarkJumps(nf, m, valid, d, [](int, const Eigen::Vector3d&) { return true; }, smooth, options,
-                                   &model.jumped);
+                                   &model.jumped, &plateaus);
     // Jumps the reference absorbed: steps of the marker seen from its joint's parent that
     // the residual confirms. A step of the steady-frame signal is about the step of u
     // turned by the steady rotation, so u finds the markers that have a candidate at all.
@@ -265,7 +328,7 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
       auto confirm = [&](int f, const Eigen::Vector3d& step) {
         return confirmed(f, reference.frames[f].rotations[j].conjugate() * (q[f] * step), step.norm());
       };
-      MarkJumps(nf, m, valid, p, confirm, p_smooth, options, &model.absorbed);
+      MarkJumps(nf, m, valid, p, confirm, p_smooth, options, &model.absorbed, &plateaus);
     }
     deviations.clear();
     for (int f = 0; f < nf; ++f) {
@@ -278,6 +341,26 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
       model.typical_predicted[f][m] += r * model.typical[m];
       model.predicted[f][m] += r * smooth[f];
     }
+  }
+  // A plateau is a displacement of the marker only where the captured marker itself
+  // jumps: its second difference at the step in (and at the step out) at least
+  // kPlateauRaw times the step. When the reference turns a joint toward a displaced
+  // marker, the other markers of that joint (and of its children) get residual plateaus
+  // of their own while their samples move smoothly. Missing neighbours: no evidence, kept.
+  // |(x_f - x_(f-1)) - (x_g - x_(g-1))|, or +inf where a sample is missing.
+  auto jerk = [&](int m, int f, int g) -> double {
+    const int lo = std::min(f, g) - 1, hi = std::max(f, g);
+    if (lo < 0 || hi >= nf) return std::numeric_limits<double>::infinity();
+    for (int k = lo; k <= hi; ++k) {
+      if (!x.valid(k, m)) return std::numeric_limits<double>::infinity();
+    }
+    return ((x.position(f, m) - x.position(f - 1, m)) - (x.position(g, m) - x.position(g - 1, m))).norm();
+  };
+  for (const Plateau& plateau : plateaus) {
+    const int m = plateau.marker, a = plateau.first, b = plateau.last + 1;
+    const double least = kPlateauRaw * plateau.size;
+    if (jerk(m, a, a - 1) < least || jerk(m, b, b + 1) < least) continue;
+    for (int f = a; f <= plateau.last; ++f) (*plateau.target)[f][m] = 1;
   }
   return model;
 }

@@ -38,7 +38,15 @@
 // a loose one does not) and it lasts less than window / 2 frames, a sample in between
 // counts as jumped also when displaced from the residual before the step by at least half
 // the step along it (the reference leans toward a displaced marker and takes it under
-// the floor). A sample is an outlier when jumped or |x_fm - P_fm| > u_m.
+// the floor). A calm plateau is found even with steps under the floor: a step in and a
+// step out of at least 3 times the marker's own step statistic and half the floor, the
+// step before the one in, every step inside and the one after the one out under 0.3 of
+// the step in, 2 to window / 2 samples long (a marker displaced and held still; noise
+// steps at every frame, soft tissue does not step). It counts only where the captured
+// samples themselves jump at both ends, |(x_a - x_(a-1)) - (x_(a-1) - x_(a-2))| at least
+// half the step (and likewise at the step out): when the reference turns a joint toward
+// a displaced marker, its other markers get residual plateaus while their samples move
+// smoothly. A sample is an outlier when jumped or |x_fm - P_fm| > u_m.
 // A jump the reference absorbs: on a bone one marker pins (a head, a thumb, a wrist) the
 // robust reference turns the joint to follow the jumped marker, so d steps by a fraction
 // of the jump. Seen from the joint's parent instead, with the joint's own rotation
@@ -47,10 +55,10 @@
 //   p_fm = Q~_j(f)^T Q_j(f) R_j(Y^_f)^T (x_fm - o_j(Y^_f))      (o_j: the joint's origin)
 // steps by the whole jump, while real motion of the joint (smooth) stays in Q~ or moves
 // p slowly. Steps of p are paired exactly as those of d (their own gate, soft-tissue
-// median, floor and sharp-pair exception), but a step of p counts only when d steps with it, by at least 0.2 of
-// its length along it (turned into the joint's frame): a sudden turn of an ancestor that
-// the joint's own rotation undoes moves p, not d, and is no jump of the marker. Samples
-// so found are `absorbed`, and outliers as the jumped ones. The check trusts the
+// median, floor, sharp-pair exception and calm plateaus), but a step of p counts only
+// when d steps with it, by at least 0.2 of its length along it (turned into the joint's
+// frame): a sudden turn of an ancestor that the joint's own rotation undoes moves p, not
+// d, and is no jump of the marker. Samples so found are `absorbed`, and outliers as the jumped ones. The check trusts the
 // reference's parent frames: where a swap was undone the reference had followed the
 // swapped labels, so the repair clears `absorbed` on the relabelled samples.
 // The fixed model of chapter 3 is P = T = X^, u_m = t_m = fixed_distance and no jumps

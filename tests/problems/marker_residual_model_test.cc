@@ -4,6 +4,10 @@
 //    turning the joint (the residual steps by 0.6 cm only), is found;
 //  - a 1.5 cm jump on a quiet marker, which the reference leans toward by 30-60 % (it steps
 //    by 1.05 cm in and out, and is displaced by 0.6 cm between), is found;
+//  - a 1 cm jump on a quiet marker, which the reference leans toward by 40 % (the residual
+//    steps by 0.6 cm, under the 1 cm floor), is found as a calm plateau;
+//  - a calm residual plateau under the floor whose captured samples move smoothly (the
+//    reference's joint frame turned) is not found;
 //  - a marker noisy all take (5 mm per axis) is not cut away.
 #include <cmath>
 #include <random>
@@ -125,6 +129,74 @@ TEST(MarkerResidualModel, FindsAJumpNearOneCentimetreOnAQuietMarker) {
       FitMarkerResidualModel(take.skeleton, take.markers, reference, reconstructed, x, CmOptions());
   EXPECT_GE(CountJumped(model, m, first, last), last - first);
   EXPECT_EQ(CountJumped(model, m, 0, first - 1) + CountJumped(model, m, last + 1, kFrames - 1), 0);
+}
+
+TEST(MarkerResidualModel, FindsAOneCentimetreJumpUnderTheFloor) {
+  const testing::DemoTake take = testing::MakeDemoTake(kFrames, 120.0, 7);
+  const int m = take.markers.FindMarker("LeftLeg_2");
+  ASSERT_GE(m, 0);
+  // Frames 60-75: the marker 1 cm off; the reference turns the hip toward it by 40 % of
+  // the jump: the residual steps by 0.6 cm, under the 1 cm floor of the step pairs.
+  const int first = 60, last = 75;
+  const Eigen::Vector3d jump = 1.0 * Eigen::Vector3d(0.5, 0.7, -0.4).normalized();
+  const int hip = take.skeleton.parent(take.markers.marker(m).attachments.front().joint);
+  Observations observed = take.clean;
+  Motion reference = take.truth;
+  for (int f = first; f <= last; ++f) {
+    observed[f][m] += jump;
+    TurnJointToward(take, hip, f, m, 0.4 * jump, &reference);
+  }
+  const Observations reconstructed = Reconstruct(take, reference);
+  MarkerTrajectories x = Noisy(take, observed, 0.02, 5);  // 0.2 mm per axis: a quiet marker.
+  const double residual_step = ((x.position(first, m) - reconstructed[first][m]) -
+                                (x.position(first - 1, m) - reconstructed[first - 1][m])).norm();
+  EXPECT_LT(residual_step, 0.8);
+  const MarkerResidualModel model =
+      FitMarkerResidualModel(take.skeleton, take.markers, reference, reconstructed, x, CmOptions());
+  EXPECT_EQ(CountJumped(model, m, first, last), last - first + 1);
+  EXPECT_EQ(CountJumped(model, m, 0, first - 1) + CountJumped(model, m, last + 1, kFrames - 1), 0);
+}
+
+TEST(MarkerResidualModel, KeepsAResidualPlateauWhoseSamplesMoveSmoothly) {
+  const testing::DemoTake take = testing::MakeDemoTake(kFrames, 120.0, 7);
+  const int m = take.markers.FindMarker("LeftToe_1");
+  ASSERT_GE(m, 0);
+  // Frames 60-75: the reference turns the toe joint by 11 degrees and back, and the joint's
+  // markers sit 6 cm from where the marker set puts them (a constant residual, which the
+  // turn rotates): each marker's residual, in the joint's frame, steps calmly into a
+  // plateau of 0.8 cm and back out. The captured samples move smoothly (nothing jumped),
+  // so nothing is found. X^ is the truth's (the residual steps by the turn of the frame).
+  const int first = 60, last = 75;
+  const int joint = take.markers.marker(m).attachments.front().joint;
+  const Eigen::Vector3d offset(0.0, 6.0, 0.0);  // In the joint's frame.
+  Observations observed = take.clean;
+  FkData fk(take.skeleton);
+  for (int f = 0; f < kFrames; ++f) {
+    ForwardKinematics(take.skeleton, take.truth.frames[f], &fk);
+    for (int k = 0; k < take.markers.num_markers(); ++k) {
+      if (take.markers.marker(k).attachments.front().joint != joint) continue;
+      observed[f][k] += fk.world_rotations[joint] * offset;
+    }
+  }
+  Motion reference = take.truth;
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(0.2, Eigen::Vector3d(0.5, 0.7, -0.4).normalized()));
+  for (int f = first; f <= last; ++f) {
+    reference.frames[f].rotations[joint] = take.truth.frames[f].rotations[joint] * turn;
+  }
+  const Observations reconstructed = Reconstruct(take, take.truth);
+  MarkerTrajectories x = Noisy(take, observed, 0.02, 6);
+  const MarkerResidualModel model =
+      FitMarkerResidualModel(take.skeleton, take.markers, reference, reconstructed, x, CmOptions());
+  FkData turned(take.skeleton);
+  ForwardKinematics(take.skeleton, take.truth.frames[first], &fk);
+  ForwardKinematics(take.skeleton, reference.frames[first], &turned);
+  const double step =  // Of the residual in the joint's frame, R_turned^T R offset - offset.
+      (turned.world_rotations[joint].conjugate() * (fk.world_rotations[joint] * offset) - offset).norm();
+  EXPECT_GT(step, 0.5);  // Past half the floor: a plateau candidate.
+  EXPECT_LT(step, 1.0);  // Under the floor: the step pairs do not see it.
+  for (int k = 0; k < take.markers.num_markers(); ++k) {
+    EXPECT_EQ(CountJumped(model, k, 0, kFrames - 1), 0) << take.markers.label(k);
+  }
 }
 
 TEST(MarkerResidualModel, KeepsAMarkerNoisyAllTake) {

@@ -242,9 +242,10 @@ TEST_F(RepairRealData, SmallErrorsAreFound) {
   }
   const double recall = double(true_positive) / damaged, precision = double(true_positive) / flagged;
   std::printf("1-4 cm errors: %ld samples, recall %.3f, precision %.3f\n", damaged, recall, precision);
-  // The target is 0.9; measured 0.844 / 0.919 (0.736 / 0.927 before the steps
-  // seen from the joint's parent and the sharp pairs; BENCHMARKS.md).
-  EXPECT_GE(recall, 0.83);
+  // The target is 0.9 / 0.9; measured 0.906 / 0.924 (0.844 / 0.919 before the calm
+  // plateaus, 0.736 / 0.927 before the steps seen from the joint's parent and the sharp
+  // pairs; BENCHMARKS.md).
+  EXPECT_GE(recall, 0.9);
   EXPECT_GE(precision, 0.9);
 }
 
