@@ -37,6 +37,15 @@ Status FixLoneJointGauges(const Skeleton& skeleton, MarkerSet* markers, Motion* 
     if (sum.norm() == 0.0) continue;
     Eigen::Quaterniond r;
     r.coeffs() = sum.normalized();
+    if (dofs == 3) {
+      // Turned the least so that r z points at the mean of q z (what a prediction at
+      // rest should hit); the quaternion mean alone can miss it when q twists about z.
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (const Pose& pose : motion->frames) mean += pose.rotations[j] * spec.attachments[0].offset;
+      if (mean.norm() > 0.0 && spec.attachments[0].offset.norm() > 0.0) {
+        r = (Eigen::Quaterniond::FromTwoVectors(r * spec.attachments[0].offset, mean) * r).normalized();
+      }
+    }
     spec.attachments[0].offset = r * spec.attachments[0].offset;
     const Eigen::Quaterniond inverse = r.conjugate();
     for (Pose& pose : motion->frames) pose.rotations[j] = (pose.rotations[j] * inverse).normalized();

@@ -7,7 +7,9 @@
 // q_j = 1) and predicts p_j + R_parent Q_j z: off by |q_j z - z|, a constant 15-20 cm
 // on the toes of a fitted 53-marker take. FixLoneJointGauges picks r = the mean of the
 // fitted q_j over the motion (the chordal L2 mean: sign-aligned quaternion sum,
-// normalized), so the rest pose is the joint's mean pose: z' = r z and every frame's
+// normalized), so the rest pose is the joint's mean pose, and on a 3-dof joint turns it
+// the least so that r z points along mean_f q_j z (one marker leaves the twist about z
+// free, so the mean rotation can miss the mean position): z' = r z and every frame's
 // q_j' = q_j r^-1 (the markers' world positions do not change). Joints with 1 or 3
 // rotation dofs only: q_j r^-1 stays on a single axis, and any rotation is on the full
 // set; a 2-dof joint's product would leave its dof set.
