@@ -8,6 +8,7 @@
 
 #include "io/marker_file.h"
 #include "problems/marker_solve/calibration.h"
+#include "problems/marker_solve/lone_joint_gauge.h"
 #include "problems/marker_solve/marker_observations.h"
 
 namespace mocapsolve {
@@ -317,6 +318,11 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
     kept.rms = best.rms;
     emit(kept);
   }
+  // A joint one marker alone constrains rests at its mean fitted pose (lone_joint_gauge.h):
+  // the same fit, but a solve without that marker predicts it.
+  std::vector<std::string> regauged;
+  status = FixLoneJointGauges(best.skeleton, &best.markers, &best.motion, &regauged);
+  if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
   // The checks see the kept model against the observations it was fitted to.
   result->kept_round = best.round;
   result->motion = std::move(best.motion);

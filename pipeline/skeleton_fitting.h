@@ -14,7 +14,10 @@
 // each from the best round so far (by marker RMS), stopping when a round does not improve
 // the best marker RMS by 1 % (a round that improves it less is kept, then the rounds stop).
 // Round 0 competes too when the attach finds no marker it lacks (the template has the
-// take's whole set: round 0 is then a complete fit). The kept model is then checked by measures that
+// take's whole set: round 0 is then a complete fit). A joint one marker alone constrains (no
+// other marker on it or below it) is then re-expressed to rest at its mean fitted pose
+// (lone_joint_gauge.h: the same fit, but a solve that lacks the marker predicts it). The
+// kept model is then checked by measures that
 // do not trust the residual (subject_checks.h). Knows nothing of flags or printing: the
 // caller formats the progress events.
 #ifndef MOCAPSOLVE_PIPELINE_SKELETON_FITTING_H_
