@@ -62,7 +62,9 @@ TEST(LoneJointGauge, LeafJointRestsAtItsMeanPoseWithTheSameMarkers) {
     }
     mean_local += motion.frames[f].rotations[leaf] * z;
     for (int j = 0; j < skeleton.num_joints(); ++j) {
-      if (j != leaf) EXPECT_TRUE(motion.frames[f].rotations[j].isApprox(before_motion.frames[f].rotations[j]));
+      if (j != leaf) {
+        EXPECT_TRUE(motion.frames[f].rotations[j].isApprox(before_motion.frames[f].rotations[j]));
+      }
     }
   }
   // At rest the joint puts the marker on the mean of its fitted local positions' direction.
