@@ -59,7 +59,8 @@ DEFINE_double(refit_rough_factor, kDefault.refit_rough_factor, "A bad run is rou
               "difference| exceeds this many times the marker's own.");
 DEFINE_double(rough_extension_factor, kDefault.rough_extension_factor, "A rough bad run is extended over the "
               "samples beside it whose residual |second difference| exceeds this many times the marker's "
-              "median (a noise run cut whole; at most --trim_max per side; 0: off).");
+              "median and a tenth of the gates' floor (a noise run cut whole; at most --trim_max per side; "
+              "0: off).");
 DEFINE_string(reference, kDefault.reference.c_str(), "The robust reference Y^: tracker (frame by frame, robust loss, "
               "pulled toward the previous frame; runs beside the naive solve) | clip (the "
               "whole-clip solve with a robust loss and smoothness; ~10x slower).");

@@ -501,15 +501,19 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   // small draws pass the gates), judged on the residual to X^ as solved
   // (signal/rough_run_extension.h); they leave the kriging's conditioning samples too.
   if (refit && options.rough_extension_factor > 0.0) {
+    // The threshold is at least a tenth of the gates' floor (1 mm by default): a noise-free
+    // marker's median is ~0, and the walk then cut the clean samples where X^ leaned toward
+    // the run (the synthetic demo walk: 4-7 a side; on real takes the floor changes nothing).
+    const double threshold_floor = 0.1 * model_options.min_distance;
     std::vector<double> own(x.num_markers(), std::numeric_limits<double>::quiet_NaN());  // Computed once needed.
     for (const Gap& gap : FindGaps(x)) {
       if (!is_rough(gap)) continue;
       double& own_level = own[gap.marker];
       if (std::isnan(own_level)) own_level = MedianResidualSecondDifference(before_small, reference_paths, gap.marker);
       if (own_level < 0.0) continue;
-      report->rough_extension_samples += ExtendRoughRun(gap, unflagged, reference_paths,
-                                                        options.rough_extension_factor * own_level, options.trim_max,
-                                                        &x, &before_small);
+      const double threshold = std::max(options.rough_extension_factor * own_level, threshold_floor);
+      report->rough_extension_samples +=
+          ExtendRoughRun(gap, unflagged, reference_paths, threshold, options.trim_max, &x, &before_small);
     }
   }
   GapFillOptions fill;

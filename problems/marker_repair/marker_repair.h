@@ -106,7 +106,8 @@ struct RepairOptions {
                                     // against the marker's own) is filled from X^ as solved.
   double rough_extension_factor = 6.0;  // A rough run is extended over the samples beside it whose
                                         // residual |second difference| exceeds this times the
-                                        // marker's median, up to trim_max per side (0: off;
+                                        // marker's median (and a tenth of the gates' floor),
+                                        // up to trim_max per side (0: off;
                                         // signal/rough_run_extension.h).
 
   // Every number finite, the thresholds positive, the frame counts >= 0, and the solve
