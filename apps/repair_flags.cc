@@ -57,6 +57,10 @@ DEFINE_bool(refit_reference, kDefault.refit_reference, "With --reference=tracker
             "rough runs (noise, jitter) are filled from X^ as solved.");
 DEFINE_double(refit_rough_factor, kDefault.refit_rough_factor, "A bad run is rough when its median |second "
               "difference| exceeds this many times the marker's own.");
+DEFINE_double(rough_extension_factor, kDefault.rough_extension_factor, "A rough bad run is extended over the "
+              "samples beside it whose residual |second difference| exceeds this many times the marker's "
+              "median and a tenth of the gates' floor (a noise run cut whole; at most --trim_max per side; "
+              "0: off).");
 DEFINE_string(reference, kDefault.reference.c_str(), "The robust reference Y^: tracker (frame by frame, robust loss, "
               "pulled toward the previous frame; runs beside the naive solve) | clip (the "
               "whole-clip solve with a robust loss and smoothness; ~10x slower).");
@@ -98,6 +102,7 @@ RepairSettings RepairSettingsFromFlags() {
   s.fill_samples = FLAGS_fill_samples;
   s.refit_reference = FLAGS_refit_reference;
   s.refit_rough_factor = FLAGS_refit_rough_factor;
+  s.rough_extension_factor = FLAGS_rough_extension_factor;
   s.reference = FLAGS_reference;
   s.reference_loss = FLAGS_reference_loss;
   s.reference_loss_cm = FLAGS_reference_loss_cm;

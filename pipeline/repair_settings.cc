@@ -65,6 +65,7 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
   options->fill_samples = settings.fill_samples;
   options->refit_reference = settings.refit_reference;
   options->refit_rough_factor = settings.refit_rough_factor;
+  options->rough_extension_factor = settings.rough_extension_factor;
   std::string error;
   if (!options->reference.IsValid(&error) || !options->tracker.IsValid(&error)) {
     return Status::Error(error);

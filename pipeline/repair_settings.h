@@ -38,6 +38,7 @@ struct RepairSettings {
   int fill_samples = 10;             // kriging: offset samples conditioned on per gap side.
   bool refit_reference = true;       // Tracker: X^ refitted without the cut samples for the fill.
   double refit_rough_factor = 3.0;   // Cut runs rougher than this (vs the marker's own) use X^ as solved.
+  double rough_extension_factor = 6.0;  // Rough runs extended over neighbours this rough (0: off).
   std::string reference = "tracker";  // tracker | clip.
   std::string reference_loss = "cauchy";
   double reference_loss_cm = 1.0;
@@ -49,8 +50,8 @@ struct RepairSettings {
 inline constexpr char kRepairSettingNames[] =
     "dp_max_cm,dr_max_deg,outlier_cm,outliers,outlier_mads,outlier_min_cm,undo_swaps,swap_radius_cm,"
     "swap_min_frames,assign_unlabelled,unlabelled_min_cm,unlabelled_max_cm,unlabelled_min_frames,trim_max,"
-    "small_track,small_gap,vel_clamp,edge_samples,fill,fill_samples,refit_reference,refit_rough_factor,reference,reference_loss,"
-    "reference_loss_cm,tracker_prior_weight,tracker_translation_prior,tracker_function_tolerance";
+    "small_track,small_gap,vel_clamp,edge_samples,fill,fill_samples,refit_reference,refit_rough_factor,"
+    "rough_extension_factor,reference,reference_loss,reference_loss_cm,tracker_prior_weight,tracker_translation_prior,tracker_function_tolerance";
 
 // Repair solves every frame two or three times: its solver is DLS unless the user chose.
 inline constexpr char kRepairDefaultSolver[] = "dls";

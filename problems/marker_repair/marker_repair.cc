@@ -15,6 +15,7 @@
 #include "signal/gap_cleanup.h"
 #include "signal/gap_fill.h"
 #include "signal/offset_kriging.h"
+#include "signal/rough_run_extension.h"
 
 namespace mocapsolve {
 namespace {
@@ -238,6 +239,9 @@ bool RepairOptions::IsValid(std::string* error) const {
   if (!(refit_rough_factor > 0.0) || !std::isfinite(refit_rough_factor)) {
     return *error = "refit_rough_factor must be positive and finite", false;
   }
+  if (!(rough_extension_factor >= 0.0) || !std::isfinite(rough_extension_factor)) {
+    return *error = "rough_extension_factor must be >= 0 and finite", false;
+  }
   if (!std::isfinite(unlabelled_min_distance) || !std::isfinite(unlabelled_max_distance)) {
     return *error = "unlabelled_min_distance and unlabelled_max_distance must be finite", false;
   }
@@ -459,7 +463,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   // 5. Preprocessing, in the thesis' order.
   report->trimmed_samples = TrimAroundGaps(reference_paths, options.trim_max, unflagged, &x);
   report->removed_track_samples = RemoveSmallTracks(options.small_track, &x);
-  const MarkerTrajectories before_small = x;
+  MarkerTrajectories before_small = x;
   report->polynomial_samples = FillSmallGaps(options.small_gap, &x);
   for (const Gap& gap : FindGaps(before_small)) {
     if (x.valid(gap.first, gap.marker)) report->filled.push_back({gap.marker, gap.first, gap.last, "polynomial"});
@@ -483,6 +487,35 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     if (!status.ok()) return status;
     refit_paths = ObservationTrajectories(markers, ReconstructMarkers(skeleton, markers, refitted));
   }
+  std::vector<double> own_roughness(x.num_markers(), -1.0);
+  if (refit) {
+    for (int m = 0; m < x.num_markers(); ++m) {
+      own_roughness[m] = MedianSecondDifference(before_small, m, 0, x.num_frames() - 1);
+    }
+  }
+  auto is_rough = [&](const Gap& gap) {
+    const double roughness = MedianSecondDifference(unflagged, gap.marker, gap.first, gap.last);
+    return refit && roughness >= 0.0 && roughness > options.refit_rough_factor * own_roughness[gap.marker];
+  };
+  // A rough run is cut whole: the samples beside it as rough as it (a noise run's ends and
+  // small draws pass the gates), judged on the residual to X^ as solved
+  // (signal/rough_run_extension.h); they leave the kriging's conditioning samples too.
+  if (refit && options.rough_extension_factor > 0.0) {
+    // The threshold is at least a tenth of the gates' floor (1 mm by default): a noise-free
+    // marker's median is ~0, and the walk then cut the clean samples where X^ leaned toward
+    // the run (the synthetic demo walk: 4-7 a side; on real takes the floor changes nothing).
+    const double threshold_floor = 0.1 * model_options.min_distance;
+    std::vector<double> own(x.num_markers(), std::numeric_limits<double>::quiet_NaN());  // Computed once needed.
+    for (const Gap& gap : FindGaps(x)) {
+      if (!is_rough(gap)) continue;
+      double& own_level = own[gap.marker];
+      if (std::isnan(own_level)) own_level = MedianResidualSecondDifference(before_small, reference_paths, gap.marker);
+      if (own_level < 0.0) continue;
+      const double threshold = std::max(options.rough_extension_factor * own_level, threshold_floor);
+      report->rough_extension_samples +=
+          ExtendRoughRun(gap, unflagged, reference_paths, threshold, options.trim_max, &x, &before_small);
+    }
+  }
   GapFillOptions fill;
   if (options.velocity_clamp > 0.0) fill.velocity_clamp = options.velocity_clamp;
   fill.edge_samples = options.edge_samples;
@@ -496,18 +529,8 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     if (status.ok() && refit) status = EstimateOffsetProcesses(before_small, refit_paths, kriging, &refit_processes);
     if (!status.ok()) return status;
   }
-  std::vector<double> own_roughness(x.num_markers(), -1.0);
-  if (refit) {
-    for (int m = 0; m < x.num_markers(); ++m) {
-      own_roughness[m] = MedianSecondDifference(before_small, m, 0, x.num_frames() - 1);
-    }
-  }
   for (const Gap& gap : FindGaps(x)) {
-    bool from_refit = false;
-    if (refit) {
-      const double roughness = MedianSecondDifference(unflagged, gap.marker, gap.first, gap.last);
-      from_refit = roughness < 0.0 || roughness <= options.refit_rough_factor * own_roughness[gap.marker];
-    }
+    const bool from_refit = refit && !is_rough(gap);
     const MarkerTrajectories& paths = from_refit ? refit_paths : reference_paths;
     const std::vector<OffsetProcess>& offsets = from_refit ? refit_processes : processes;
     if (options.fill == GapFillKind::kKriging && offsets[gap.marker].valid) {

@@ -33,7 +33,9 @@
 //      (signal/offset_kriging.h; or Algorithm 3's Hermite blend of the edge offsets). With
 //      the tracker, X^ is first refitted without the cut samples where they were; runs
 //      that were smooth (fly-off, ghost) and gaps are filled from the refitted X^, rough
-//      runs (noise, jitter, which the robust solve averaged) from X^ as solved.
+//      runs (noise, jitter, which the robust solve averaged) from X^ as solved; a rough run
+//      is first extended over the samples beside it that are as rough (a noise run's ends
+//      and small draws pass the gates; signal/rough_run_extension.h).
 //   7. Re-solve Y- on the filled markers: only the frames whose markers changed, and the
 //      frames after each until the solution rejoins Y (within resync_tolerance), since
 //      elsewhere the per-frame problem, its warm start and its prior are Y's own. With
@@ -102,6 +104,11 @@ struct RepairOptions {
                                    // for smooth runs and gaps (marker_repair.cc).
   double refit_rough_factor = 3.0;  // A cut run rougher than this (median |second difference|
                                     // against the marker's own) is filled from X^ as solved.
+  double rough_extension_factor = 6.0;  // A rough run is extended over the samples beside it whose
+                                        // residual |second difference| exceeds this times the
+                                        // marker's median (and a tenth of the gates' floor),
+                                        // up to trim_max per side (0: off;
+                                        // signal/rough_run_extension.h).
 
   // Every number finite, the thresholds positive, the frame counts >= 0, and the solve
   // options valid; otherwise false with a one-line reason in *error.
@@ -132,6 +139,7 @@ struct RepairReport {
   std::vector<RepairInterval> filled;    // Gaps filled (after preprocessing).
   std::vector<RepairStageTime> timings;
   int trimmed_samples = 0, removed_track_samples = 0, polynomial_samples = 0;
+  int rough_extension_samples = 0;  // Samples cut beside rough runs (signal/rough_run_extension.h).
   double naive_rms = 0.0, reference_rms = 0.0, repaired_rms = 0.0;  // Skeleton units.
   int resolved_frames = 0;  // Frames step 7 solved again (the others are Y's).
   int naive_unconverged_frames = 0;  // Frames whose naive solve stopped at the iteration limit.

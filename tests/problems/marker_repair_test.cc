@@ -178,6 +178,8 @@ TEST(MarkerRepair, OptionsRejectNonFiniteAndNegativeValues) {
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->trim_max = -1; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->fill_samples = 0; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->refit_rough_factor = nan; }));
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->rough_extension_factor = -1.0; }));
+  EXPECT_TRUE(invalid([&](RepairOptions* o) { o->rough_extension_factor = nan; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->dp_max = nan; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->naive.prior_rotation_weight = nan; }));
   EXPECT_TRUE(invalid([&](RepairOptions* o) { o->tracker.limit_weight = nan; }));
