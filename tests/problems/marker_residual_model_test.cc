@@ -10,6 +10,7 @@
 //    reference's joint frame turned) is not found;
 //  - a marker noisy all take (5 mm per axis) is not cut away.
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -77,6 +78,37 @@ int CountJumped(const MarkerResidualModel& model, int m, int first, int last) {
   return count;
 }
 
+// Marker m displaced by `jump` over frames [first, last], the reference's `joint` turned
+// toward it by lean(f) of the jump, the samples with `sigma` cm of noise (seed), and the
+// residual model of that take.
+struct LeaningJump {
+  Observations reconstructed;  // X^ of the leaning reference.
+  MarkerTrajectories x;        // The captured samples.
+  MarkerResidualModel model;
+};
+
+LeaningJump MakeLeaningJump(const testing::DemoTake& take, int m, int joint, int first, int last,
+                            const Eigen::Vector3d& jump, const std::function<double(int f)>& lean, double sigma,
+                            uint32_t seed) {
+  Observations observed = take.clean;
+  Motion reference = take.truth;
+  for (int f = first; f <= last; ++f) {
+    observed[f][m] += jump;
+    TurnJointToward(take, joint, f, m, lean(f) * jump, &reference);
+  }
+  LeaningJump out;
+  out.reconstructed = Reconstruct(take, reference);
+  out.x = Noisy(take, observed, sigma, seed);
+  out.model = FitMarkerResidualModel(take.skeleton, take.markers, reference, out.reconstructed, out.x, CmOptions());
+  return out;
+}
+
+// |step of the residual x - X^ into frame f|.
+double ResidualStep(const LeaningJump& take, int m, int f) {
+  return ((take.x.position(f, m) - take.reconstructed[f][m]) -
+          (take.x.position(f - 1, m) - take.reconstructed[f - 1][m])).norm();
+}
+
 TEST(MarkerResidualModel, FindsAJumpTheReferenceAbsorbsByTurningTheJoint) {
   const testing::DemoTake take = testing::MakeDemoTake(kFrames, 120.0, 7);
   const int m = take.markers.FindMarker("Head_0");
@@ -86,22 +118,11 @@ TEST(MarkerResidualModel, FindsAJumpTheReferenceAbsorbsByTurningTheJoint) {
   // of the marker moves 1.4 cm of the 2 (a one-marker bone: nothing else holds it).
   const int first = 100, last = 111;
   const Eigen::Vector3d jump = 2.0 * Eigen::Vector3d(0.3, -0.5, 0.8).normalized();
-  Observations observed = take.clean;
-  Motion reference = take.truth;
-  for (int f = first; f <= last; ++f) {
-    observed[f][m] += jump;
-    TurnJointToward(take, joint, f, m, 0.7 * jump, &reference);
-  }
-  const Observations reconstructed = Reconstruct(take, reference);
-  MarkerTrajectories x = Noisy(take, observed, 0.05, 1);
+  const LeaningJump jumped = MakeLeaningJump(take, m, joint, first, last, jump, [](int) { return 0.7; }, 0.05, 1);
   // The residual steps by about 0.6 cm, under the 1 cm floor of the steps.
-  const double residual_step = ((x.position(first, m) - reconstructed[first][m]) -
-                                (x.position(first - 1, m) - reconstructed[first - 1][m])).norm();
-  EXPECT_LT(residual_step, 0.8);
-  const MarkerResidualModel model =
-      FitMarkerResidualModel(take.skeleton, take.markers, reference, reconstructed, x, CmOptions());
-  EXPECT_EQ(CountJumped(model, m, first, last), last - first + 1);
-  EXPECT_EQ(CountJumped(model, m, 0, first - 1) + CountJumped(model, m, last + 1, kFrames - 1), 0);
+  EXPECT_LT(ResidualStep(jumped, m, first), 0.8);
+  EXPECT_EQ(CountJumped(jumped.model, m, first, last), last - first + 1);
+  EXPECT_EQ(CountJumped(jumped.model, m, 0, first - 1) + CountJumped(jumped.model, m, last + 1, kFrames - 1), 0);
 }
 
 TEST(MarkerResidualModel, FindsAJumpNearOneCentimetreOnAQuietMarker) {
@@ -116,19 +137,10 @@ TEST(MarkerResidualModel, FindsAJumpNearOneCentimetreOnAQuietMarker) {
   const int first = 60, last = 75;
   const Eigen::Vector3d jump = 1.5 * Eigen::Vector3d(-0.6, 0.2, 0.7).normalized();
   const int hip = take.skeleton.parent(take.markers.marker(m).attachments.front().joint);
-  Observations observed = take.clean;
-  Motion reference = take.truth;
-  for (int f = first; f <= last; ++f) {
-    observed[f][m] += jump;
-    const double lean = 0.3 + 0.3 * std::sin(M_PI * (f - first) / (last - first));
-    TurnJointToward(take, hip, f, m, lean * jump, &reference);
-  }
-  const Observations reconstructed = Reconstruct(take, reference);
-  MarkerTrajectories x = Noisy(take, observed, 0.05, 4);
-  const MarkerResidualModel model =
-      FitMarkerResidualModel(take.skeleton, take.markers, reference, reconstructed, x, CmOptions());
-  EXPECT_GE(CountJumped(model, m, first, last), last - first);
-  EXPECT_EQ(CountJumped(model, m, 0, first - 1) + CountJumped(model, m, last + 1, kFrames - 1), 0);
+  const auto lean = [&](int f) { return 0.3 + 0.3 * std::sin(M_PI * (f - first) / (last - first)); };
+  const LeaningJump jumped = MakeLeaningJump(take, m, hip, first, last, jump, lean, 0.05, 4);
+  EXPECT_GE(CountJumped(jumped.model, m, first, last), last - first);
+  EXPECT_EQ(CountJumped(jumped.model, m, 0, first - 1) + CountJumped(jumped.model, m, last + 1, kFrames - 1), 0);
 }
 
 TEST(MarkerResidualModel, FindsAOneCentimetreJumpUnderTheFloor) {
@@ -140,21 +152,11 @@ TEST(MarkerResidualModel, FindsAOneCentimetreJumpUnderTheFloor) {
   const int first = 60, last = 75;
   const Eigen::Vector3d jump = 1.0 * Eigen::Vector3d(0.5, 0.7, -0.4).normalized();
   const int hip = take.skeleton.parent(take.markers.marker(m).attachments.front().joint);
-  Observations observed = take.clean;
-  Motion reference = take.truth;
-  for (int f = first; f <= last; ++f) {
-    observed[f][m] += jump;
-    TurnJointToward(take, hip, f, m, 0.4 * jump, &reference);
-  }
-  const Observations reconstructed = Reconstruct(take, reference);
-  MarkerTrajectories x = Noisy(take, observed, 0.02, 5);  // 0.2 mm per axis: a quiet marker.
-  const double residual_step = ((x.position(first, m) - reconstructed[first][m]) -
-                                (x.position(first - 1, m) - reconstructed[first - 1][m])).norm();
-  EXPECT_LT(residual_step, 0.8);
-  const MarkerResidualModel model =
-      FitMarkerResidualModel(take.skeleton, take.markers, reference, reconstructed, x, CmOptions());
-  EXPECT_EQ(CountJumped(model, m, first, last), last - first + 1);
-  EXPECT_EQ(CountJumped(model, m, 0, first - 1) + CountJumped(model, m, last + 1, kFrames - 1), 0);
+  // 0.2 mm of noise per axis: a quiet marker.
+  const LeaningJump jumped = MakeLeaningJump(take, m, hip, first, last, jump, [](int) { return 0.4; }, 0.02, 5);
+  EXPECT_LT(ResidualStep(jumped, m, first), 0.8);
+  EXPECT_EQ(CountJumped(jumped.model, m, first, last), last - first + 1);
+  EXPECT_EQ(CountJumped(jumped.model, m, 0, first - 1) + CountJumped(jumped.model, m, last + 1, kFrames - 1), 0);
 }
 
 TEST(MarkerResidualModel, KeepsAResidualPlateauWhoseSamplesMoveSmoothly) {
