@@ -29,6 +29,10 @@ DEFINE_double(prior_weight, kDefault.prior_weight, "Per-frame pull of each joint
               "skeleton units when the skeleton's unit is unknown). It makes redundant chains "
               "(three spine joints seen by a few markers) well-posed, which cuts iterations "
               "several-fold at a tiny bias; 0 = off.");
+DEFINE_double(rest_prior_weight, kDefault.rest_prior_weight, "Per-frame pull of each joint rotation toward the rest "
+              "pose (zero local rotations), mm of marker error per radian like --prior_weight and well "
+              "below it: it decides only directions no visible marker constrains (a joint's twist "
+              "while its other marker is missing), which relax to rest instead of drifting; 0 = off.");
 DEFINE_double(limit_weight, kDefault.limit_weight, "Soft joint limits (ASF 'limits'): 1 radian beyond a limit "
               "costs as much as this many mm of marker error; 0 = off (default: CMU's own solve "
               "of 02_01 leaves its ASF limits in 4.5% of dof samples, by up to 30 degrees).");
@@ -68,6 +72,7 @@ SolverSettings SolverSettingsFromFlags() {
   s.marker_weight = FLAGS_marker_weight;
   s.prior_weight = FLAGS_prior_weight;
   s.prior_translation_weight = FLAGS_prior_translation_weight;
+  s.rest_prior_weight = FLAGS_rest_prior_weight;
   s.limit_weight = FLAGS_limit_weight;
   s.smooth_order = FLAGS_smooth_order;
   s.smooth_weight = FLAGS_smooth_weight;

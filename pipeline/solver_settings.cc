@@ -66,6 +66,9 @@ Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const Leng
       skeleton_unit.known() ? settings.prior_weight / (1000.0 * skeleton_unit.metres_per_unit)
                             : settings.prior_weight;
   options->prior_translation_weight = settings.prior_translation_weight;
+  options->rest_rotation_weight = skeleton_unit.known()
+                                      ? settings.rest_prior_weight / (1000.0 * skeleton_unit.metres_per_unit)
+                                      : settings.rest_prior_weight;
   options->limit_weight = skeleton_unit.known()
                               ? settings.limit_weight / (1000.0 * skeleton_unit.metres_per_unit)
                               : settings.limit_weight;

@@ -33,6 +33,7 @@ struct SolverSettings {
   double marker_weight = 1.0;
   double prior_weight = 20.0;              // mm of marker error per radian.
   double prior_translation_weight = 0.0;   // Per skeleton unit.
+  double rest_prior_weight = 0.0;          // mm of marker error per radian away from rest.
   double limit_weight = 0.0;               // mm of marker error per radian past a limit.
   std::string smooth_order = "velocity";   // velocity | acceleration.
   double smooth_weight = 1.0;
@@ -50,7 +51,7 @@ struct SolverSettings {
 inline constexpr char kSolverSettingNames[] =
     "solver,mode,linear_solver,trust_region,max_iterations,function_tolerance,"
     "gradient_tolerance,parameter_tolerance,num_threads,loss,loss_scale,marker_weight,"
-    "prior_weight,prior_translation_weight,limit_weight,smooth_order,smooth_weight,"
+    "prior_weight,prior_translation_weight,rest_prior_weight,limit_weight,smooth_order,smooth_weight,"
     "smooth_translation_weight,clip_function_tolerance,sparse_library,clip_solver,dls_lambda,dls_damping";
 
 // Per-frame options (solver picks Ceres or DLS); the skeleton's unit converts the prior

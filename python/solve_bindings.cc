@@ -146,7 +146,7 @@ void BindSolve(py::module_& m) {
   MOCAPSOLVE_FIELD(trust_region); MOCAPSOLVE_FIELD(max_iterations); MOCAPSOLVE_FIELD(function_tolerance);
   MOCAPSOLVE_FIELD(gradient_tolerance); MOCAPSOLVE_FIELD(parameter_tolerance); MOCAPSOLVE_FIELD(num_threads);
   MOCAPSOLVE_FIELD(loss); MOCAPSOLVE_FIELD(loss_scale); MOCAPSOLVE_FIELD(marker_weight);
-  MOCAPSOLVE_FIELD(prior_weight); MOCAPSOLVE_FIELD(prior_translation_weight); MOCAPSOLVE_FIELD(limit_weight);
+  MOCAPSOLVE_FIELD(prior_weight); MOCAPSOLVE_FIELD(prior_translation_weight); MOCAPSOLVE_FIELD(rest_prior_weight); MOCAPSOLVE_FIELD(limit_weight);
   MOCAPSOLVE_FIELD(smooth_order); MOCAPSOLVE_FIELD(smooth_weight); MOCAPSOLVE_FIELD(smooth_translation_weight);
   MOCAPSOLVE_FIELD(clip_function_tolerance); MOCAPSOLVE_FIELD(sparse_library); MOCAPSOLVE_FIELD(clip_solver);
   MOCAPSOLVE_FIELD(dls_lambda);
@@ -251,7 +251,7 @@ Every other keyword is a solver option named like the CLI flag (SolverSettings),
   solver='ceres'|'dls', mode='frame'|'clip', linear_solver='dense_qr', max_iterations=50,
   function_tolerance=1e-6, gradient_tolerance=1e-10, parameter_tolerance=1e-8,
   num_threads=2 (clip), loss='none'|'huber'|'cauchy', loss_scale=1.0, marker_weight=1.0,
-  prior_weight=20.0 (mm per radian), prior_translation_weight=0, limit_weight=0,
+  prior_weight=20.0 (mm per radian), prior_translation_weight=0, rest_prior_weight=0, limit_weight=0,
   smooth_order='velocity'|'acceleration', smooth_weight=1, smooth_translation_weight=0.1,
   clip_function_tolerance=1e-6, sparse_library='eigen_sparse', clip_solver='ceres'|'dls',
   dls_lambda=1e-3,

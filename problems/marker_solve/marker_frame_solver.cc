@@ -38,7 +38,7 @@ bool MarkerSolveOptions::IsValid(std::string* error) const {
   if (!(loss_scale > 0.0) || !std::isfinite(loss_scale)) {
     return *error = "loss scale must be positive and finite", false;
   }
-  for (const double w : {prior_rotation_weight, prior_translation_weight, limit_weight}) {
+  for (const double w : {prior_rotation_weight, rest_rotation_weight, prior_translation_weight, limit_weight}) {
     if (!(w >= 0.0) || !std::isfinite(w)) {
       return *error = "prior and limit weights must be finite and >= 0", false;
     }
@@ -91,6 +91,9 @@ double RmsMarkerError(const Skeleton& skeleton, const MarkerSet& markers, const 
   return n > 0 ? std::sqrt(sum / n) : 0.0;
 }
 
+// The rest pose's local rotation (identity), Eigen order: the rest prior's reference.
+const double kIdentityXyzw[4] = {0.0, 0.0, 0.0, 1.0};
+
 class MarkerFrameSolver::Impl {
  public:
   Impl(const Skeleton& skeleton, const MarkerSet& markers, const MarkerSolveOptions& options)
@@ -115,6 +118,13 @@ class MarkerFrameSolver::Impl {
       for (int j : solved_joints_) {
         rotation_priors_.emplace_back(new RotationPriorResidual(&reference_rotations_[4 * j],
                                                                 options.prior_rotation_weight));
+        prior_joints_.push_back(j);
+      }
+    }
+    if (options.rest_rotation_weight > 0.0) {
+      for (int j : solved_joints_) {
+        rotation_priors_.emplace_back(new RotationPriorResidual(kIdentityXyzw, options.rest_rotation_weight));
+        prior_joints_.push_back(j);
       }
     }
     if (options.limit_weight > 0.0) {
@@ -209,7 +219,7 @@ class MarkerFrameSolver::Impl {
       tree_->AddPointRow(std::move(attachments), &observed_[m], options_.marker_weight);
     }
     tree_->set_loss(loss_.get());
-    for (size_t k = 0; k < rotation_priors_.size(); ++k) tree_->AddBlockCost(solved_joints_[k], rotation_priors_[k].get());
+    for (size_t k = 0; k < rotation_priors_.size(); ++k) tree_->AddBlockCost(prior_joints_[k], rotation_priors_[k].get());
     for (size_t k = 0; k < limits_.size(); ++k) tree_->AddBlockCost(limit_joints_[k], limits_[k].get());
     if (translation_prior_) tree_->AddBlockCost(-1, translation_prior_.get());
   }
@@ -235,7 +245,7 @@ class MarkerFrameSolver::Impl {
       ceres_problem_->AddResidualBlock(residuals_[m].get(), loss_.get(), blocks);
     }
     for (size_t k = 0; k < rotation_priors_.size(); ++k) {
-      ceres_problem_->AddResidualBlock(rotation_priors_[k].get(), nullptr, &rotations_[4 * solved_joints_[k]]);
+      ceres_problem_->AddResidualBlock(rotation_priors_[k].get(), nullptr, &rotations_[4 * prior_joints_[k]]);
     }
     for (size_t k = 0; k < limits_.size(); ++k) {
       ceres_problem_->AddResidualBlock(limits_[k].get(), nullptr, &rotations_[4 * limit_joints_[k]]);
@@ -260,7 +270,7 @@ class MarkerFrameSolver::Impl {
       dls_problem_.AddResidualBlock(residuals_[m].get(), loss_.get(), blocks);
     }
     for (size_t k = 0; k < rotation_priors_.size(); ++k) {
-      dls_problem_.AddResidualBlock(rotation_priors_[k].get(), nullptr, {block_of_joint[solved_joints_[k]]});
+      dls_problem_.AddResidualBlock(rotation_priors_[k].get(), nullptr, {block_of_joint[prior_joints_[k]]});
     }
     for (size_t k = 0; k < limits_.size(); ++k) {
       dls_problem_.AddResidualBlock(limits_[k].get(), nullptr, {block_of_joint[limit_joints_[k]]});
@@ -281,7 +291,9 @@ class MarkerFrameSolver::Impl {
   std::vector<int> chain_joints_;   // Joints on some marker's chain: a parameter block each.
   std::vector<int> solved_joints_;  // Those of them with rotation dofs.
   std::vector<std::unique_ptr<MarkerResidual>> residuals_;
+  // Toward the previous solution, then toward the rest pose (each optional).
   std::vector<std::unique_ptr<RotationPriorResidual>> rotation_priors_;
+  std::vector<int> prior_joints_;  // The joint of each rotation prior.
   std::unique_ptr<TranslationPriorResidual> translation_prior_;
   std::vector<std::unique_ptr<JointLimitResidual>> limits_;
   std::vector<int> limit_joints_;

@@ -1,5 +1,6 @@
 // Pose priors: pull a rotation or a translation toward a reference (the previous frame's
-// solution in per-frame solving; a neighbouring frame in whole-clip smoothness).
+// solution, or the rest pose's identity, in per-frame solving; a neighbouring frame in
+// whole-clip smoothness).
 //
 // RotationPriorResidual, one parameter block q (4, Eigen order, RightQuaternionManifold):
 //   r = 2 weight (q - s q_ref),  s = sign(q . q_ref)                         4 rows
