@@ -7,21 +7,24 @@
 
 namespace mocapsolve {
 
-double ResidualSecondDifference(const MarkerTrajectories& samples, const MarkerTrajectories& reference, int marker,
-                                int frame) {
+double SecondDifference(const MarkerTrajectories& samples, const MarkerTrajectories* reference, int marker,
+                        int frame) {
   if (frame < 1 || frame + 1 >= samples.num_frames()) return -1.0;
   for (int f = frame - 1; f <= frame + 1; ++f) {
-    if (!samples.valid(f, marker) || !reference.valid(f, marker)) return -1.0;
+    if (!samples.valid(f, marker) || (reference != nullptr && !reference->valid(f, marker))) return -1.0;
   }
-  auto r = [&](int f) -> Eigen::Vector3d { return samples.position(f, marker) - reference.position(f, marker); };
+  auto r = [&](int f) -> Eigen::Vector3d {
+    return reference != nullptr ? Eigen::Vector3d(samples.position(f, marker) - reference->position(f, marker))
+                                : Eigen::Vector3d(samples.position(f, marker));
+  };
   return (r(frame + 1) - 2.0 * r(frame) + r(frame - 1)).norm();
 }
 
-double MedianResidualSecondDifference(const MarkerTrajectories& samples, const MarkerTrajectories& reference,
-                                      int marker) {
+double MedianSecondDifference(const MarkerTrajectories& samples, const MarkerTrajectories* reference, int marker,
+                              int first, int last) {
   std::vector<double> values;
-  for (int f = 1; f + 1 < samples.num_frames(); ++f) {
-    const double s = ResidualSecondDifference(samples, reference, marker, f);
+  for (int f = std::max(1, first); f <= std::min(samples.num_frames() - 2, last); ++f) {
+    const double s = SecondDifference(samples, reference, marker, f);
     if (s >= 0.0) values.push_back(s);
   }
   if (values.empty()) return -1.0;
@@ -35,7 +38,7 @@ int ExtendRoughRun(const Gap& gap, const MarkerTrajectories& samples, const Mark
   CHECK_EQ(reference.num_frames(), x->num_frames());
   CHECK(gap.first >= 0 && gap.last < x->num_frames() && gap.first <= gap.last);
   const int m = gap.marker;
-  auto rough = [&](int f) { return ResidualSecondDifference(samples, reference, m, f) > threshold; };
+  auto rough = [&](int f) { return SecondDifference(samples, &reference, m, f) > threshold; };
   int cut = 0;
   auto cut_sample = [&](int f) {
     if (!x->valid(f, m)) return;

@@ -25,13 +25,15 @@
 
 namespace mocapsolve {
 
-// s(f) above; -1 where it is not defined (a missing sample or f at the take's ends).
-double ResidualSecondDifference(const MarkerTrajectories& samples, const MarkerTrajectories& reference, int marker,
-                                int frame);
+// s(f) above; -1 where it is not defined (a missing sample or f at the take's ends). With
+// reference null, the samples' own second difference |X(f + 1) - 2 X(f) + X(f - 1)|.
+double SecondDifference(const MarkerTrajectories& samples, const MarkerTrajectories* reference, int marker,
+                        int frame);
 
-// Median s(f) of `marker` over the frames where it is defined in `samples`; -1 if none.
-double MedianResidualSecondDifference(const MarkerTrajectories& samples, const MarkerTrajectories& reference,
-                                      int marker);
+// Median SecondDifference of `marker` over frames [first, last] where it is defined; -1 if
+// none.
+double MedianSecondDifference(const MarkerTrajectories& samples, const MarkerTrajectories* reference, int marker,
+                              int first, int last);
 
 // Sets missing in *x (and in *also, when not null) the samples of gap.marker beside `gap`
 // that lie inside the stretch of s > threshold around the gap (above); `samples` are the

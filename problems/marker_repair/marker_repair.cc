@@ -167,20 +167,6 @@ class StageClock {
   std::chrono::steady_clock::time_point start_;
 };
 
-// Median |x(f + 1) - 2 x(f) + x(f - 1)| of marker m over frames [first, last] where the
-// three samples are valid; -1 when there is none.
-double MedianSecondDifference(const MarkerTrajectories& paths, int m, int first, int last) {
-  std::vector<double> values;
-  for (int f = std::max(1, first); f <= std::min(paths.num_frames() - 2, last); ++f) {
-    if (paths.valid(f - 1, m) && paths.valid(f, m) && paths.valid(f + 1, m)) {
-      values.push_back((paths.position(f + 1, m) - 2.0 * paths.position(f, m) + paths.position(f - 1, m)).norm());
-    }
-  }
-  if (values.empty()) return -1.0;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
-
 // X^ = LBS(Y^, Z): every marker's position on the reference, every frame.
 Observations ReconstructMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Motion& reference) {
   Observations out(reference.frames.size(), std::vector<Eigen::Vector3d>(markers.num_markers()));
@@ -490,11 +476,11 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   std::vector<double> own_roughness(x.num_markers(), -1.0);
   if (refit) {
     for (int m = 0; m < x.num_markers(); ++m) {
-      own_roughness[m] = MedianSecondDifference(before_small, m, 0, x.num_frames() - 1);
+      own_roughness[m] = MedianSecondDifference(before_small, nullptr, m, 0, x.num_frames() - 1);
     }
   }
   auto is_rough = [&](const Gap& gap) {
-    const double roughness = MedianSecondDifference(unflagged, gap.marker, gap.first, gap.last);
+    const double roughness = MedianSecondDifference(unflagged, nullptr, gap.marker, gap.first, gap.last);
     return refit && roughness >= 0.0 && roughness > options.refit_rough_factor * own_roughness[gap.marker];
   };
   // A rough run is cut whole: the samples beside it as rough as it (a noise run's ends and
@@ -509,7 +495,9 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     for (const Gap& gap : FindGaps(x)) {
       if (!is_rough(gap)) continue;
       double& own_level = own[gap.marker];
-      if (std::isnan(own_level)) own_level = MedianResidualSecondDifference(before_small, reference_paths, gap.marker);
+      if (std::isnan(own_level)) {
+        own_level = MedianSecondDifference(before_small, &reference_paths, gap.marker, 0, x.num_frames() - 1);
+      }
       if (own_level < 0.0) continue;
       const double threshold = std::max(options.rough_extension_factor * own_level, threshold_floor);
       report->rough_extension_samples +=

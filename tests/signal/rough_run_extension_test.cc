@@ -31,13 +31,22 @@ void MakePaths(int frames, int first, int last, MarkerTrajectories* samples, Mar
   }
 }
 
-TEST(RoughRunExtensionTest, ResidualSecondDifferenceIgnoresTheReferencesMotion) {
+TEST(RoughRunExtensionTest, TheResidualsSecondDifferenceIgnoresTheReferencesMotion) {
   MarkerTrajectories samples, reference;
   MakePaths(50, 100, 99, &samples, &reference);  // No noise.
-  for (int f = 1; f < 49; ++f) EXPECT_NEAR(ResidualSecondDifference(samples, reference, 0, f), 0.0, 1e-12);
-  EXPECT_EQ(ResidualSecondDifference(samples, reference, 0, 0), -1.0);
-  EXPECT_EQ(ResidualSecondDifference(samples, reference, 0, 49), -1.0);
-  EXPECT_NEAR(MedianResidualSecondDifference(samples, reference, 0), 0.0, 1e-12);
+  for (int f = 1; f < 49; ++f) EXPECT_NEAR(SecondDifference(samples, &reference, 0, f), 0.0, 1e-12);
+  EXPECT_EQ(SecondDifference(samples, &reference, 0, 0), -1.0);
+  EXPECT_EQ(SecondDifference(samples, &reference, 0, 49), -1.0);
+  EXPECT_NEAR(MedianSecondDifference(samples, &reference, 0, 0, 49), 0.0, 1e-12);
+  // Without a reference: the samples' own second difference, the reference's acceleration
+  // (y'' = 0.1 a frame squared) with the sine and cosine's, over the frames asked for only.
+  auto own = [&](int f) {
+    return (reference.position(f + 1, 0) - 2.0 * reference.position(f, 0) + reference.position(f - 1, 0)).norm();
+  };
+  EXPECT_NEAR(SecondDifference(samples, nullptr, 0, 7), own(7), 1e-12);
+  EXPECT_GT(own(7), 0.1);
+  EXPECT_NEAR(MedianSecondDifference(samples, nullptr, 0, 7, 7), own(7), 1e-12);
+  EXPECT_EQ(MedianSecondDifference(samples, nullptr, 0, 49, 60), -1.0);  // No frame in range has one.
 }
 
 TEST(RoughRunExtensionTest, ANoiseRunDetectedInItsMiddleIsCutToExactlyItsNoisySamples) {
