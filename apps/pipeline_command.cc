@@ -15,6 +15,7 @@
 #include "io/atomic_file.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
+#include "pipeline/quality_gate.h"
 #include "pipeline/take_pipeline.h"
 #include "viewer/view_page.h"
 
@@ -30,17 +31,17 @@ DEFINE_string(take_name, "", "The take's name: the characters' new animation (de
               "file's name without extension).");
 DEFINE_int32(filter_levels, 0, "Filter the solved motion: drop the N finest bands of its Laplacian "
              "pyramid (as `filter --levels=N`); 0 = no filtering.");
-DEFINE_double(gate_naive_rms_mm, 30.0, "Quality gate: the plain solve's marker RMS (mm) at most this "
+DEFINE_double(gate_naive_rms_mm, mocapsolve::QualityGate().max_naive_rms_mm, "Quality gate: the plain solve's marker RMS (mm) at most this "
               "(a marker set that does not fit the actor shows here); 0 = no check.");
-DEFINE_double(gate_repaired_rms_mm, 20.0, "Quality gate: the repaired solve's marker RMS (mm) at most "
+DEFINE_double(gate_repaired_rms_mm, mocapsolve::QualityGate().max_repaired_rms_mm, "Quality gate: the repaired solve's marker RMS (mm) at most "
               "this; 0 = no check.");
-DEFINE_double(gate_repaired_share, 0.25, "Quality gate: at most this share of the subject's marker "
+DEFINE_double(gate_repaired_share, mocapsolve::QualityGate().max_repaired_share, "Quality gate: at most this share of the subject's marker "
               "samples repaired; 0 = no check.");
-DEFINE_double(gate_iteration_limit_share, 0.2, "Quality gate: at most this share of frames whose "
+DEFINE_double(gate_iteration_limit_share, mocapsolve::QualityGate().max_iteration_limit_share, "Quality gate: at most this share of frames whose "
               "solve stopped at --max_iterations; 0 = no check.");
-DEFINE_double(gate_marker_offset_cm, 25.0, "Quality gate: no marker of the subject farther than this "
+DEFINE_double(gate_marker_offset_cm, mocapsolve::QualityGate().max_marker_offset_cm, "Quality gate: no marker of the subject farther than this "
               "(cm) from its bone (skin distance; CMU subject 2's own calibration puts RBAC 20.7 cm from upperback); 0 = no check.");
-DEFINE_double(gate_torso_deg, 15.0, "Quality gate: the solved pelvis-to-head direction within this "
+DEFINE_double(gate_torso_deg, mocapsolve::QualityGate().max_torso_error_deg, "Quality gate: the solved pelvis-to-head direction within this "
               "(degrees, mean over the take) of the head and pelvis markers' own; 0 = no check.");
 
 namespace mocapsolve {

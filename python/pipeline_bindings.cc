@@ -4,6 +4,7 @@
 #include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "pipeline/repair_settings.h"
+#include "pipeline/quality_gate.h"
 #include "pipeline/retarget_settings.h"
 #include "pipeline/take_pipeline.h"
 #include "python/bindings.h"
@@ -12,6 +13,7 @@
 namespace mocapsolve::python {
 
 void BindPipeline(py::module_& m) {
+  const QualityGate gate;  // The defaults, as the CLI's flags take them.
   m.def("pipeline", [](SubjectPtr subject, const std::string& markers, const std::vector<std::string>& characters,
                        const std::string& out_dir, const std::string& take_name, int filter_levels, double kernel_a,
                        double tension, double gate_naive_rms_mm, double gate_repaired_rms_mm,
@@ -82,9 +84,9 @@ void BindPipeline(py::module_& m) {
         return out;
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("characters") = std::vector<std::string>(),
       py::arg("out_dir") = "", py::arg("take_name") = "", py::arg("filter_levels") = 0, py::arg("kernel_a") = 0.4,
-      py::arg("tension") = 0.0, py::arg("gate_naive_rms_mm") = 30.0, py::arg("gate_repaired_rms_mm") = 20.0,
-      py::arg("gate_repaired_share") = 0.25, py::arg("gate_iteration_limit_share") = 0.2,
-      py::arg("gate_marker_offset_cm") = 25.0, py::arg("gate_torso_deg") = 15.0, py::arg("animation_only") = false,
+      py::arg("tension") = 0.0, py::arg("gate_naive_rms_mm") = gate.max_naive_rms_mm, py::arg("gate_repaired_rms_mm") = gate.max_repaired_rms_mm,
+      py::arg("gate_repaired_share") = gate.max_repaired_share, py::arg("gate_iteration_limit_share") = gate.max_iteration_limit_share,
+      py::arg("gate_marker_offset_cm") = gate.max_marker_offset_cm, py::arg("gate_torso_deg") = gate.max_torso_error_deg, py::arg("animation_only") = false,
       (std::string(R"doc(One take end to end, as `mocapsolve pipeline`: repair and solve the markers (a .c3d/.trc
 path) of the subject, filter (filter_levels > 0), retarget onto each character (.glb
 paths), check the quality gate (gate_* as the CLI's flags; 0 turns a check off):
