@@ -55,7 +55,7 @@ Status ReadTemplateLabels(const std::string& value, std::vector<TemplateLabel>* 
     }
     labels->push_back(std::move(label));
   }
-  if (labels->empty()) return Status::Error(where(line) + ": no TEMPLATE:TAKE pairs");
+  if (labels->empty()) return Status::Error((from_file ? value : "--template_labels") + ": no TEMPLATE:TAKE pairs");
   return Status::Ok();
 }
 
