@@ -37,6 +37,8 @@ DEFINE_double(min_bone_scale, mocapsolve::SkeletonFitSettings().min_bone_scale, 
 DEFINE_double(max_bone_scale, mocapsolve::SkeletonFitSettings().max_bone_scale, MOCAPSOLVE_FIT_HELP(max_bone_scale));
 DEFINE_double(offset_prior, mocapsolve::SkeletonFitSettings().offset_prior, MOCAPSOLVE_FIT_HELP(offset_prior));
 DEFINE_string(check, mocapsolve::SkeletonFitSettings().check.c_str(), MOCAPSOLVE_FIT_HELP(check));
+DEFINE_string(template_labels, mocapsolve::SkeletonFitSettings().template_labels.c_str(),
+              MOCAPSOLVE_FIT_HELP(template_labels));
 #undef MOCAPSOLVE_FIT_HELP
 
 namespace mocapsolve {
@@ -58,6 +60,7 @@ SkeletonFitSettings SkeletonFitSettingsFromFlags() {
   s.max_bone_scale = FLAGS_max_bone_scale;
   s.offset_prior = FLAGS_offset_prior;
   s.check = FLAGS_check;
+  s.template_labels = FLAGS_template_labels;
   return s;
 }
 
@@ -225,11 +228,12 @@ extern const Command kFitSkeletonCommand = {
     "fit_skeleton", "fit a subject (bone lengths, marker attachments and offsets) to a take's markers",
     "mocapsolve fit_skeleton --template_subject=T.json --markers=IN.c3d|.trc --out_subject=S.json\n"
     "          [--out=FITTED.bvh] [--out_markerset=S.json] [--axes=x,y,z] [--attach_rounds=12]\n"
-    "          [--check=fail|warn|off] [--report=r.json]\n"
+    "          [--check=fail|warn|off] [--template_labels=T:TAKE,...|FILE] [--report=r.json]\n"
     "   or: --skeleton=TEMPLATE.bvh|.asf --markerset=J.json instead of --template_subject\n\n"
     "For captures without a skeleton. Starts from a template subject (skeleton + marker set;\n"
     "--axes/--marker_scale describe the take's file) and fits on the markers the take shares\n"
-    "with it by label: per-frame pose solves (the first frame's root from the markers' own\n"
+    "with it by label (--template_labels renames template markers to the take's labels\n"
+    "where the take's protocol names the same landmark otherwise): per-frame pose solves (the first frame's root from the markers' own\n"
     "geometry) alternate with a Gauss-Newton fit of bone-length scales and marker offsets.\n"
     "Then --attach_rounds times: every marker of the take is attached to the joint it moves\n"
     "least with (among joints whose bone it is within --max_skin_cm of) and the fit runs\n"

@@ -56,6 +56,10 @@ Status ValidateSkeletonFitSettings(const SkeletonFitSettings& s) {
   if (s.check != "fail" && s.check != "warn" && s.check != "off") {
     return Status::Error("--check: expected fail, warn or off");
   }
+  if (!s.template_labels.empty()) {
+    std::vector<TemplateLabel> labels;
+    return ReadTemplateLabels(s.template_labels, &labels);
+  }
   return Status::Ok();
 }
 
@@ -96,18 +100,30 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   MarkerTrajectories file;
   status = ReadMarkerFile(markers_path, &file);
   if (!status.ok()) return status;
+  // The template's markers, those the map names under the take's labels.
+  MarkerSet template_markers = templ.markers;
+  if (!settings.template_labels.empty()) {
+    status = ReadTemplateLabels(settings.template_labels, &result->template_labels);
+    if (status.ok()) {
+      status = RenameTemplateMarkers(result->template_labels, skeleton, file, markers_path, &template_markers);
+    }
+    if (!status.ok()) return status;
+  }
   // A template set may name markers this take lacks: fit the ones it has.
   std::vector<MarkerSpec> present;
   std::string absent;
-  for (int m = 0; m < templ.markers.num_markers(); ++m) {
-    if (file.FindMarker(templ.markers.label(m)) >= 0) {
-      present.push_back(templ.markers.marker(m));
+  for (int m = 0; m < template_markers.num_markers(); ++m) {
+    if (file.FindMarker(template_markers.label(m)) >= 0) {
+      present.push_back(template_markers.marker(m));
     } else {
-      absent += (absent.empty() ? "" : ", ") + templ.markers.label(m);
-      result->absent.push_back(templ.markers.label(m));
+      absent += (absent.empty() ? "" : ", ") + template_markers.label(m);
+      result->absent.push_back(template_markers.label(m));
     }
   }
-  if (present.size() < 3) return Status::Error(markers_path + ": fewer than 3 of the template marker set's labels");
+  if (present.size() < 3) {
+    return Status::Error(markers_path + ": fewer than 3 of the template marker set's labels (--template_labels "
+                         "maps the template's labels to the take's)");
+  }
   if (!absent.empty()) {
     SkeletonFitEvent event;
     event.kind = SkeletonFitEvent::kAbsentMarkers;
@@ -364,8 +380,15 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
     o.Add("joint", fitted.name(j)).Add("scale", result.report.bone_scales[j]);
     scale_json.push_back(o);
   }
+  std::vector<JsonObject> label_json;
+  for (const TemplateLabel& label : result.template_labels) {
+    JsonObject o;
+    o.Add("template", label.templ).Add("take", label.take);
+    label_json.push_back(o);
+  }
   JsonObject json;
   json.Add("markers", inputs.markers_path).Add("template", inputs.template_name)
+      .Add("template_labels", label_json)
       .Add("frames", result.frames).Add("attach_rounds", result.attach_rounds).Add("kept_round", result.kept_round)
       .Add("seconds", result.seconds)
       .Add(result.unit_known ? "rms_mm" : "rms", result.report.rms.back() * mm)

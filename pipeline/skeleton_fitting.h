@@ -4,7 +4,8 @@
 //
 // Round 0 fits the template's bone-length scales s_j in [min_bone_scale, max_bone_scale]
 // (left = right) and marker offsets (each within max_skin_cm of its bone) on the markers
-// the take shares with the template by label, alternating per-frame pose solves (the first
+// the take shares with the template by label (after renaming template markers to the take's
+// labels by settings.template_labels, template_labels.h), alternating per-frame pose solves (the first
 // frame's root from the markers' geometry) with a damped Gauss-Newton step on (s, offsets).
 // Rounds r = 1..R then attach every marker of the take to the joint it moves least with
 // (CalibrateMarkers; the template's markers keep their joints and fitted offsets, so a
@@ -34,6 +35,7 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "pipeline/subject.h"
+#include "pipeline/template_labels.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/skeleton_fit.h"
 #include "problems/marker_solve/subject_checks.h"
@@ -53,6 +55,7 @@ struct SkeletonFitSettings {
   double max_bone_scale = 1.25;
   double offset_prior = 0.0;
   std::string check = "fail";    // fail | warn | off.
+  std::string template_labels;   // TEMPLATE:TAKE pairs or their file (template_labels.h); "": none.
 };
 
 struct SettingHelp {
@@ -80,6 +83,9 @@ inline constexpr SettingHelp kSkeletonFitSettingHelp[] = {
     {"check", "The subject checks (marker within 15 cm of its bone, or within its template distance when "
               "larger, torso direction within 15 degrees of the markers', left/right within 5 %, marker RMS within 25 mm): fail (exit 1, nothing written but "
               "the report), warn, off."},
+    {"template_labels", "Template markers that are the take's under other labels: TEMPLATE:TAKE pairs "
+                        "(RFWT:RASI,LFWT:LASI) or a file of them (examples/ais_to_cmu_labels.txt); round 0 fits "
+                        "them under the take's labels, which the fitted subject keeps. \"\": labels as they are."},
 };
 
 // The help of `name` in a table like the one above ("" if absent).
@@ -93,7 +99,7 @@ const char* SettingHelpFor(const SettingHelp (&table)[N], const std::string& nam
 
 inline constexpr char kSkeletonFitSettingNames[] =
     "fit_iterations,attach_rounds,attach_iterations,fit_frame_step,fit_max_frames,max_skin_cm,min_bone_scale,"
-    "max_bone_scale,offset_prior,check";
+    "max_bone_scale,offset_prior,check,template_labels";
 
 // The CLI's one-line messages ("--attach_rounds: -1..20").
 Status ValidateSkeletonFitSettings(const SkeletonFitSettings& settings);
@@ -141,6 +147,7 @@ struct SkeletonFitResult {
   SubjectChecks checks;
   std::vector<SkeletonFitRound> rounds;
   std::vector<std::string> absent;  // Template labels the take lacks.
+  std::vector<TemplateLabel> template_labels;  // The map applied (settings.template_labels).
   int frames = 0;           // Frames fitted.
   int attach_rounds = 0;    // Rounds asked for (after the -1 default).
   int kept_round = -1;
@@ -158,7 +165,7 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
 Status SkeletonFitCheckStatus(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings,
                               const SkeletonFitResult& result);
 
-// The report (`--report`): frames, rounds, kept round, RMS, bone scales, checks.
+// The report (`--report`): frames, rounds, kept round, RMS, bone scales, checks, the label map.
 JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const SkeletonFitResult& result);
 
 }  // namespace mocapsolve

@@ -224,6 +224,10 @@ TEST_F(SolveCli, FitSkeletonWritesTheSkeletonAndTheMarkerSet) {
   EXPECT_EQ(testing::RunCli("fit_skeleton --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + markers_ +
                             " --markerset=" + set_ + " --out=" + bvh + " --out_markerset=" + bvh, &output), 1);
   EXPECT_THAT(output, HasSubstr("expected a .json"));
+  // A label map naming a label the take lacks: one line, exit 1.
+  EXPECT_EQ(testing::RunCli("fit_skeleton --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + markers_ +
+                            " --markerset=" + set_ + " --out=" + bvh + " --template_labels=Hips_0:NOPE", &output), 1);
+  EXPECT_EQ(output, "mocapsolve fit_skeleton: --template_labels: NOPE (for Hips_0) is not in " + markers_ + "\n");
 }
 
 }  // namespace
