@@ -83,9 +83,10 @@ Status InterpretMeanPose(const std::string& path, const JsonNode& node, const Sk
     if (!numbers) return Status::Error(field + "expected [w, x, y, z]");
     const Eigen::Quaterniond q(value.items[0].number, value.items[1].number, value.items[2].number,
                                value.items[3].number);
-    // As ValidateMotion's unit test; the file's 17 digits keep it to round-off.
+    // As ValidateMotion's unit test; kept as read (the solver normalizes), so a file
+    // written again is the same to the byte.
     if (!(std::abs(q.norm() - 1.0) <= 1e-6)) return Status::Error(field + "expected a unit quaternion");
-    result[j] = q.normalized();
+    result[j] = q;
   }
   *mean_pose = std::move(result);
   return Status::Ok();

@@ -239,8 +239,7 @@ TEST(Subject, MeanPoseRoundTripAndErrors) {
   ASSERT_TRUE(status.ok()) << status.message();
   ASSERT_EQ(read.mean_pose.size(), subject.mean_pose.size());
   for (size_t j = 0; j < read.mean_pose.size(); ++j) {
-    // 17 digits, then normalized again on read: round-off.
-    EXPECT_LT((read.mean_pose[j].coeffs() - subject.mean_pose[j].coeffs()).norm(), 1e-15) << j;
+    EXPECT_EQ(read.mean_pose[j].coeffs(), subject.mean_pose[j].coeffs()) << j;  // 17 digits: exact.
   }
   const std::string again = testing::TempPath("mean2.json");
   ASSERT_TRUE(WriteSubject(again, read).ok());

@@ -92,11 +92,9 @@ TEST_P(MarkerFrameSolverTest, RestPriorDecidesOnlyUnconstrainedJoints) {
   }
   ASSERT_GT(hidden, 0);
   const Eigen::Quaterniond start(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
-  // A reference pose away from zero rotations on every joint (the hand's 2.5 rad from it).
-  QuaternionVector mean_pose;
-  for (int j = 0; j < skeleton.num_joints(); ++j) {
-    mean_pose.push_back(Eigen::Quaterniond(Eigen::AngleAxisd(0.1 * j, Eigen::Vector3d(j % 3, 1, 2).normalized())));
-  }
+  // A reference pose away from zero rotations: the observed pose (as a subject's mean pose
+  // is near its poses), the hidden hand 2.5 rad from zero.
+  QuaternionVector mean_pose = truth.frames[2].rotations;
   mean_pose[hand] = Eigen::Quaterniond(Eigen::AngleAxisd(2.5, Eigen::Vector3d(-2, 1, 0.5).normalized()));
   for (bool given : {false, true}) {
     for (double rest_weight : {0.0, 0.05}) {
