@@ -34,6 +34,7 @@ Status RunLeaveOneOut(const MarkerTake& take) {
   LeaveOneOutOptions options;
   Status status = MarkerSolveOptionsFromFlags(skeleton.unit(), &options.frame);
   if (!status.ok()) return status;
+  options.frame.rest_rotations = take.mean_pose;
   if (FLAGS_mode != "frame" && FLAGS_mode != "clip") {
     return Status::Error("--mode: unknown '" + FLAGS_mode + "' (frame, clip)");
   }
@@ -112,6 +113,7 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
   RepairOptions options;
   status = RepairOptionsFromFlags(skeleton, &options);
   if (!status.ok()) return status;
+  SetRepairRestRotations(take.mean_pose, &options);
   CorruptionOptions damage;
   status = CorruptionOptionsFromFlags(skeleton.unit(), &damage);
   if (!status.ok()) return status;

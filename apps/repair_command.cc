@@ -54,6 +54,7 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   RepairOptions options;
   status = RepairOptionsFromFlags(skeleton, &options);
   if (!status.ok()) return status;
+  SetRepairRestRotations(take.mean_pose, &options);
 
   std::vector<std::vector<Eigen::Vector3d>> repaired;
   Motion motion;

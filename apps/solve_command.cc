@@ -55,6 +55,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   MarkerSolveOptions frame_options;
   status = MarkerSolveOptionsFromFlags(skeleton.unit(), &frame_options);
   if (!status.ok()) return status;
+  frame_options.rest_rotations = take.mean_pose;
   ClipSolveOptions clip_options;
   if (FLAGS_mode == "clip") {
     status = ClipSolveOptionsFromFlags(&clip_options);

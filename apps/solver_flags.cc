@@ -30,7 +30,8 @@ DEFINE_double(prior_weight, kDefault.prior_weight, "Per-frame pull of each joint
               "(three spine joints seen by a few markers) well-posed, which cuts iterations "
               "several-fold at a tiny bias; 0 = off.");
 DEFINE_double(rest_prior_weight, kDefault.rest_prior_weight, "Per-frame pull of each joint rotation toward the rest "
-              "pose (zero local rotations), mm of marker error per radian like --prior_weight and well "
+              "pose (the subject's mean pose when its file has one, as fit_skeleton and calibrate write; "
+              "else zero local rotations), mm of marker error per radian like --prior_weight and well "
               "below it: it decides only directions no visible marker constrains (a joint's twist "
               "while its other marker is missing), which relax to rest instead of drifting; 0 = off.");
 DEFINE_double(limit_weight, kDefault.limit_weight, "Soft joint limits (ASF 'limits'): 1 radian beyond a limit "

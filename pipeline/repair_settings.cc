@@ -6,6 +6,11 @@
 
 namespace mocapsolve {
 
+void SetRepairRestRotations(const QuaternionVector& mean_pose, RepairOptions* options) {
+  options->naive.rest_rotations = mean_pose;
+  options->tracker.rest_rotations = mean_pose;
+}
+
 Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSettings& solver,
                                  const Skeleton& skeleton, RepairOptions* options) {
   if (!skeleton.unit().known()) {

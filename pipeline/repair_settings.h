@@ -61,6 +61,10 @@ inline constexpr char kRepairDefaultSolver[] = "dls";
 Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSettings& solver,
                                  const Skeleton& skeleton, RepairOptions* options);
 
+// A subject's mean pose (MarkerTake::mean_pose; empty: zero rotations) as the rest prior's
+// reference of every per-frame solve of the repair.
+void SetRepairRestRotations(const QuaternionVector& mean_pose, RepairOptions* options);
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_PIPELINE_REPAIR_SETTINGS_H_

@@ -10,6 +10,7 @@
 #include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/lone_joint_gauge.h"
 #include "problems/marker_solve/marker_observations.h"
+#include "problems/marker_solve/mean_pose.h"
 
 namespace mocapsolve {
 namespace {
@@ -352,6 +353,9 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   subject.axes = inputs.axes;
   subject.marker_scale = inputs.marker_scale;
   subject.amc_fps = inputs.amc_fps;
+  // The rest prior's reference in later solves of this subject (directions no marker fixes
+  // settle at the pose the subject typically holds, not at zero rotations).
+  subject.mean_pose = MeanPose(subject.skeleton, result->motion);
   result->seconds = Seconds(start);
   return Status::Ok();
 }

@@ -68,13 +68,37 @@ Status LoadSkeletonPath(const std::string& path, const JsonNode& node, const Jso
   return Status::Ok();
 }
 
+// "mean_pose": {joint: [w, x, y, z], ...}: one unit quaternion per named joint, the
+// others identity.
+Status InterpretMeanPose(const std::string& path, const JsonNode& node, const Skeleton& skeleton,
+                         QuaternionVector* mean_pose) {
+  if (!node.is_object()) return Status::Error(node.Where(path) + ": mean_pose: expected an object {joint: [w, x, y, z]}");
+  QuaternionVector result(skeleton.num_joints(), Eigen::Quaterniond::Identity());
+  for (const auto& [name, value] : node.members) {
+    const std::string field = value.Where(path) + ": mean_pose." + name + ": ";
+    const int j = skeleton.FindJoint(name);
+    if (j < 0) return Status::Error(field + "unknown joint");
+    bool numbers = value.is_array() && value.items.size() == 4;
+    for (size_t i = 0; numbers && i < 4; ++i) numbers = value.items[i].is_number();
+    if (!numbers) return Status::Error(field + "expected [w, x, y, z]");
+    const Eigen::Quaterniond q(value.items[0].number, value.items[1].number, value.items[2].number,
+                               value.items[3].number);
+    // As ValidateMotion's unit test; kept as read (the solver normalizes), so a file
+    // written again is the same to the byte.
+    if (!(std::abs(q.norm() - 1.0) <= 1e-6)) return Status::Error(field + "expected a unit quaternion");
+    result[j] = q;
+  }
+  *mean_pose = std::move(result);
+  return Status::Ok();
+}
+
 Status Interpret(const std::string& path, const JsonNode& root, Subject* subject) {
   const auto error = [&](const JsonNode& node, const std::string& message) {
     return Status::Error(node.Where(path) + ": " + message);
   };
   if (!root.is_object()) return error(root, "expected a subject object");
   const std::set<std::string> keys = {"format", "version", "name", "skeleton", "skeleton_units",
-                                      "markerset", "marker_files", "amc_fps"};
+                                      "markerset", "marker_files", "amc_fps", "mean_pose"};
   if (const auto* member = FindUnknownKey(root, keys)) {
     return error(member->second, "unknown key '" + member->first + "' (known: " + KeyList(keys) + ")");
   }
@@ -148,6 +172,10 @@ Status Interpret(const std::string& path, const JsonNode& root, Subject* subject
     if (!fps->is_number() || !(fps->number > 0.0)) return error(*fps, "amc_fps: expected a number > 0");
     result.amc_fps = fps->number;
   }
+  if (const JsonNode* mean = root.Find("mean_pose")) {
+    status = InterpretMeanPose(path, *mean, result.skeleton, &result.mean_pose);
+    if (!status.ok()) return status;
+  }
   *subject = std::move(result);
   return Status::Ok();
 }
@@ -178,6 +206,15 @@ std::string FormatSubject(const std::string& path, const Subject& subject) {
   out += "  \"marker_files\": {\"axes\": " + JsonQuote(subject.axes) + ", \"scale\": " +
          JsonValue(subject.marker_scale).text() + ", \"label_prefix\": " + JsonQuote(subject.label_prefix) + "},\n";
   out += "  \"amc_fps\": " + JsonValue(subject.amc_fps).text() + ",\n";
+  if (!subject.mean_pose.empty()) {
+    out += "  \"mean_pose\": {";
+    for (int j = 0; j < static_cast<int>(subject.mean_pose.size()); ++j) {
+      const Eigen::Quaterniond& q = subject.mean_pose[j];
+      out += (j == 0 ? "\n    " : ",\n    ") + JsonQuote(subject.skeleton.name(j)) + ": [" + JsonValue(q.w()).text() +
+             ", " + JsonValue(q.x()).text() + ", " + JsonValue(q.y()).text() + ", " + JsonValue(q.z()).text() + "]";
+    }
+    out += "\n  },\n";
+  }
   // The marker set as its own file writes it, indented one level.
   std::string markers = FormatMarkerSet(subject.skeleton, subject.markers);
   while (!markers.empty() && markers.back() == '\n') markers.pop_back();
@@ -195,6 +232,10 @@ Status WriteSubject(const std::string& path, const Subject& subject) {
   Eigen::Matrix3d rotation;
   Status status = ParseAxes(subject.axes, &rotation);
   if (!status.ok()) return Status::Error(path + ": axes: " + status.message());
+  if (!subject.mean_pose.empty() && static_cast<int>(subject.mean_pose.size()) != subject.skeleton.num_joints()) {
+    return Status::Error(path + ": the mean pose has " + std::to_string(subject.mean_pose.size()) +
+                         " rotations, the skeleton " + std::to_string(subject.skeleton.num_joints()) + " joints");
+  }
   for (int m = 0; m < subject.markers.num_markers(); ++m) {
     for (const MarkerAttachment& a : subject.markers.marker(m).attachments) {
       if (a.joint < 0 || a.joint >= subject.skeleton.num_joints()) {
@@ -210,6 +251,7 @@ Status LoadTakeForSubject(const Subject& subject, const std::string& markers_pat
   MarkerTake result;
   result.skeleton = subject.skeleton;
   result.markers = subject.markers;
+  result.mean_pose = subject.mean_pose;
   Status status = ReadMarkerFile(markers_path, &result.trajectories);
   if (!status.ok()) return status;
   MarkerTrajectories matched = result.trajectories;

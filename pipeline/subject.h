@@ -20,7 +20,12 @@
 //                                               that states none (BVH)
 //     "markerset": {"format": "mocapsolve.markerset", ...},   inline, required
 //     "marker_files": {"axes": "y,z,x", "scale": 0, "label_prefix": ""},   optional
-//     "amc_fps": 120                            optional
+//     "amc_fps": 120,                           optional
+//     "mean_pose": {"lfemur": [w, x, y, z], ...}   optional: each joint's mean local
+//                                               rotation over the take the subject was
+//                                               fitted on (unit quaternions; a joint not
+//                                               named: identity), the rest prior's
+//                                               reference (MarkerSolveOptions::rest_rotations)
 //   }
 // Errors are one line naming the file, line:column and field, e.g.
 //   S.json:7:5: markerset: markers[3]: 'RTOE': attachments[0].joint: unknown joint 'rtoes'
@@ -34,6 +39,7 @@
 
 #include "kinematics/marker_set.h"
 #include "kinematics/marker_trajectories.h"
+#include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "problems/marker_repair/unlabelled_assignment.h"
@@ -51,6 +57,9 @@ struct Subject {
   double marker_scale = 0.0;   // Marker file units -> skeleton units; 0: from the units.
   std::string label_prefix;    // Stripped from marker file labels ("" = none).
   double amc_fps = 120.0;      // Frame rate of AMC motions.
+  // Each joint's mean local rotation in the fitted take (one per joint), or empty (none:
+  // the rest prior pulls toward zero rotations).
+  QuaternionVector mean_pose;
 };
 
 // Reads and validates a subject file (skeleton file paths resolved against its folder).
@@ -77,6 +86,7 @@ std::string FormatSubject(const std::string& path, const Subject& subject);
 struct MarkerTake {
   Skeleton skeleton;
   MarkerSet markers;
+  QuaternionVector mean_pose;       // The subject's (empty if it has none).
   MarkerTrajectories trajectories;  // The file as read (labels as the file spells them).
   MarkerFileToModel transform;      // File to skeleton frame.
   std::vector<std::vector<Eigen::Vector3d>> observed;  // [frame][marker], skeleton units.

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "problems/marker_solve/mean_pose.h"
+
 namespace mocapsolve {
 
 Status CalibrateSubject(const Skeleton& skeleton, const Motion& motion,
@@ -50,6 +52,7 @@ Status CalibrateSubject(const Skeleton& skeleton, const Motion& motion,
   subject.marker_scale = options.marker_scale;
   if (trajectories.subject_prefixes.size() == 1) subject.label_prefix = trajectories.subject_prefixes[0];
   subject.amc_fps = options.amc_fps;
+  subject.mean_pose = MeanPose(skeleton, motion);  // The rest prior's reference.
   result.transform = transform;
   result.axis_rms = std::move(axis_rms);
   *out = std::move(result);

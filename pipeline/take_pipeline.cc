@@ -8,6 +8,7 @@
 #include "io/gltf_writer.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
+#include "pipeline/repair_settings.h"
 #include "pipeline/take_view.h"
 #include "problems/marker_solve/subject_checks.h"
 #include "signal/motion_pyramid.h"
@@ -100,7 +101,9 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   stage_start = Clock::now();
   if (progress) progress("repair", 0, frames);
   std::vector<std::vector<Eigen::Vector3d>> repaired;
-  status = RepairMarkers(take.skeleton, take.markers, take.observed, take.unlabelled, options.repair, &repaired,
+  RepairOptions repair_options = options.repair;
+  SetRepairRestRotations(take.mean_pose, &repair_options);
+  status = RepairMarkers(take.skeleton, take.markers, take.observed, take.unlabelled, repair_options, &repaired,
                          &result->solved, &result->repair);
   if (!status.ok()) return Status::Error("repair: " + inputs.markers_path + ": " + status.message());
   result->solved.frame_rate = take.trajectories.frame_rate;

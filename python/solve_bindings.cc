@@ -80,6 +80,7 @@ class FrameSolver {
   FrameSolver(SubjectPtr subject, const py::kwargs& keywords) : subject_(std::move(subject)) {
     settings_ = SettingsFromKeywords(keywords, nullptr);
     ThrowIfError(MarkerSolveOptionsFromSettings(settings_, subject_->skeleton.unit(), &options_));
+    options_.rest_rotations = subject_->mean_pose;
     solver_ = std::make_unique<MarkerFrameSolver>(subject_->skeleton, subject_->markers, options_);
     observed_.resize(subject_->markers.num_markers());
   }
@@ -205,6 +206,7 @@ void BindSolve(py::module_& m) {
         const Skeleton& skeleton = subject->skeleton;
         MarkerSolveOptions frame_options;
         ThrowIfError(MarkerSolveOptionsFromSettings(settings, skeleton.unit(), &frame_options));
+        frame_options.rest_rotations = subject->mean_pose;
         ClipSolveOptions clip_options;
         if (settings.mode == "clip") ThrowIfError(ClipSolveOptionsFromSettings(settings, &clip_options));
         if (max_frames < 0) throw py::value_error("--max_frames must be >= 0");

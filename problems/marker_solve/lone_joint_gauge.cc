@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 
+#include "problems/marker_solve/mean_pose.h"
+
 namespace mocapsolve {
 
 Status FixLoneJointGauges(const Skeleton& skeleton, MarkerSet* markers, Motion* motion,
@@ -28,15 +30,7 @@ Status FixLoneJointGauges(const Skeleton& skeleton, MarkerSet* markers, Motion* 
     const int j = spec.attachments[0].joint;
     const int dofs = skeleton.num_rotation_dofs(j);
     if (subtree[j] != 1 || (dofs != 1 && dofs != 3)) continue;
-    const Eigen::Quaterniond first = motion->frames[0].rotations[j];
-    Eigen::Vector4d sum = Eigen::Vector4d::Zero();
-    for (const Pose& pose : motion->frames) {
-      const Eigen::Quaterniond& q = pose.rotations[j];
-      sum += (q.coeffs().dot(first.coeffs()) < 0.0 ? -1.0 : 1.0) * q.coeffs();
-    }
-    if (sum.norm() == 0.0) continue;
-    Eigen::Quaterniond r;
-    r.coeffs() = sum.normalized();
+    Eigen::Quaterniond r = MeanLocalRotation(*motion, j);
     if (dofs == 3) {
       // Turned the least so that r z points at the mean of q z (what a prediction at
       // rest should hit); the quaternion mean alone can miss it when q twists about z.

@@ -6,8 +6,7 @@
 // left out by leave_one_out.h) the solve keeps j at its warm start (the rest pose,
 // q_j = 1) and predicts p_j + R_parent Q_j z: off by |q_j z - z|, a constant 15-20 cm
 // on the toes of a fitted 53-marker take. FixLoneJointGauges picks r = the mean of the
-// fitted q_j over the motion (the chordal L2 mean: sign-aligned quaternion sum,
-// normalized), so the rest pose is the joint's mean pose, and on a 3-dof joint turns it
+// fitted q_j over the motion (the chordal L2 mean, mean_pose.h), so the rest pose is the joint's mean pose, and on a 3-dof joint turns it
 // the least so that r z points along mean_f q_j z (one marker leaves the twist about z
 // free, so the mean rotation can miss the mean position): z' = r z and every frame's
 // q_j' = q_j r^-1 (the markers' world positions do not change). Joints with 1 or 3

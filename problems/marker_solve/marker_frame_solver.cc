@@ -91,15 +91,12 @@ double RmsMarkerError(const Skeleton& skeleton, const MarkerSet& markers, const 
   return n > 0 ? std::sqrt(sum / n) : 0.0;
 }
 
-// The rest pose's local rotation (identity), Eigen order: the rest prior's reference.
-const double kIdentityXyzw[4] = {0.0, 0.0, 0.0, 1.0};
-
 class MarkerFrameSolver::Impl {
  public:
   Impl(const Skeleton& skeleton, const MarkerSet& markers, const MarkerSolveOptions& options)
       : skeleton_(skeleton), markers_(markers), options_(options),
         observed_(markers.num_markers()), rotations_(4 * skeleton.num_joints()),
-        reference_rotations_(4 * skeleton.num_joints()) {
+        reference_rotations_(4 * skeleton.num_joints()), rest_rotations_(4 * skeleton.num_joints()) {
     (void)MakeLoss(options.loss, options.loss_scale, &loss_);
     std::vector<bool> moves(skeleton.num_joints(), false);
     for (int m = 0; m < markers.num_markers(); ++m) {
@@ -121,9 +118,16 @@ class MarkerFrameSolver::Impl {
         prior_joints_.push_back(j);
       }
     }
+    const int given = static_cast<int>(options.rest_rotations.size());
+    rest_size_ok_ = given == 0 || given == skeleton.num_joints();
+    for (int j = 0; j < skeleton.num_joints(); ++j) {
+      const Eigen::Quaterniond q = given == skeleton.num_joints() ? options.rest_rotations[j].normalized()
+                                                                  : Eigen::Quaterniond::Identity();
+      for (int i = 0; i < 4; ++i) rest_rotations_[4 * j + i] = q.coeffs()[i];
+    }
     if (options.rest_rotation_weight > 0.0) {
       for (int j : solved_joints_) {
-        rotation_priors_.emplace_back(new RotationPriorResidual(kIdentityXyzw, options.rest_rotation_weight));
+        rotation_priors_.emplace_back(new RotationPriorResidual(&rest_rotations_[4 * j], options.rest_rotation_weight));
         prior_joints_.push_back(j);
       }
     }
@@ -145,6 +149,10 @@ class MarkerFrameSolver::Impl {
   Status Solve(const std::vector<Eigen::Vector3d>& observed, Pose* pose, FrameSolveReport* report) {
     if (static_cast<int>(observed.size()) != markers_.num_markers()) {
       return Status::Error("observation count differs from the marker set");
+    }
+    if (!rest_size_ok_) {
+      return Status::Error("the rest pose has " + std::to_string(options_.rest_rotations.size()) +
+                           " rotations, the skeleton " + std::to_string(skeleton_.num_joints()) + " joints");
     }
     std::vector<bool> visible(markers_.num_markers());
     int num_visible = 0;
@@ -288,10 +296,12 @@ class MarkerFrameSolver::Impl {
   double reference_translation_[3] = {0, 0, 0};
   std::vector<double> rotations_;            // 4 per joint, Eigen order.
   std::vector<double> reference_rotations_;  // The prior's reference, 4 per joint.
+  std::vector<double> rest_rotations_;       // The rest prior's reference, 4 per joint.
+  bool rest_size_ok_ = true;                 // options_.rest_rotations: empty or one per joint.
   std::vector<int> chain_joints_;   // Joints on some marker's chain: a parameter block each.
   std::vector<int> solved_joints_;  // Those of them with rotation dofs.
   std::vector<std::unique_ptr<MarkerResidual>> residuals_;
-  // Toward the previous solution, then toward the rest pose (each optional).
+  // Toward the previous solution, then toward rest_rotations_ (each optional).
   std::vector<std::unique_ptr<RotationPriorResidual>> rotation_priors_;
   std::vector<int> prior_joints_;  // The joint of each rotation prior.
   std::unique_ptr<TranslationPriorResidual> translation_prior_;

@@ -10,11 +10,12 @@
 // warm-start pose. Residuals: one MarkerResidual per observed marker (missing markers
 // are simply absent), optionally robustified (loss), plus an optional pose prior toward
 // the previous frame's solution (RotationPriorResidual per joint, TranslationPriorResidual
-// for the root), an optional weak rotation prior toward the rest pose (zero local rotations,
-// RotationPriorResidual with the identity as reference: with a weight well below the
-// previous-frame prior's and the markers', it decides only directions no observed marker
-// constrains, e.g. a joint's twist when its only other marker is missing, which then relax
-// toward rest instead of keeping wherever the solver's path left them), and soft joint limits (JointLimitResidual) where the skeleton has them.
+// for the root), an optional weak rotation prior toward a reference pose (rest_rotations:
+// a subject's mean pose, or, when empty, zero local rotations; RotationPriorResidual: with
+// a weight well below the previous-frame prior's and the markers', it decides only
+// directions no observed marker constrains, e.g. a joint's twist when its only other
+// marker is missing, which then relax toward the reference instead of keeping wherever
+// the solver's path left them), and soft joint limits (JointLimitResidual) where the skeleton has them.
 // Each joint's rotation stays on its dof set (Skeleton::rotation_axes, RotationManifold).
 //
 // Units: observations in the skeleton's length units; marker residuals scaled by
@@ -51,7 +52,10 @@ struct MarkerSolveOptions {
   double loss_scale = 1.0;       // Skeleton units (the residual size where the loss bends).
   double prior_rotation_weight = 0.0;     // Per radian, toward the previous solution.
   double prior_translation_weight = 0.0;  // Per skeleton unit.
-  double rest_rotation_weight = 0.0;      // Per radian, toward zero local rotations; 0 = off.
+  double rest_rotation_weight = 0.0;      // Per radian, toward rest_rotations; 0 = off.
+  // The rest prior's reference, one local rotation per joint (a subject's mean pose);
+  // empty: zero rotations. Another size is an error at Solve.
+  QuaternionVector rest_rotations;
   double limit_weight = 0.0;     // Per radian outside a joint's limits (ASF); 0 = off.
   ceres::Solver::Options ceres;  // Used when solver == kCeres.
   DlsOptions dls;                // Used when solver == kDls or kDlsGeneric.

@@ -33,6 +33,15 @@ TEST(SubjectCli, SolveWithSubjectEqualsExplicitFlags) {
   const std::string a = testing::ReadTextFile(explicit_bvh);
   ASSERT_FALSE(a.empty());
   EXPECT_EQ(a, testing::ReadTextFile(subject_bvh));
+  // The subject also holds the calibration take's mean pose, the rest prior's reference: with
+  // the prior on, the solve through the subject differs from the one toward zero rotations.
+  EXPECT_THAT(testing::ReadTextFile(subject), HasSubstr("\"mean_pose\": {"));
+  const std::string rest = " --rest_prior_weight=5";
+  ASSERT_EQ(testing::RunCli("solve" + common + rest + " --skeleton=" + asf + " --markerset=" + set +
+                                " --axes=y,z,x --out=" + explicit_bvh, &output), 0) << output;
+  ASSERT_EQ(testing::RunCli("solve" + common + rest + " --subject=" + subject + " --out=" + subject_bvh, &output), 0)
+      << output;
+  EXPECT_NE(testing::ReadTextFile(explicit_bvh), testing::ReadTextFile(subject_bvh));
 
   // Both ways of naming the model: an error naming both flags, no output.
   const std::string both = testing::TempPath("both.bvh");
@@ -70,6 +79,7 @@ TEST(SubjectCli, FitSkeletonFromTemplateSubject) {
       << output;
   EXPECT_THAT(output, HasSubstr("checks: marker RMS"));
   EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"torso_error_mean_deg\""));
+  EXPECT_THAT(testing::ReadTextFile(subject), HasSubstr("\"mean_pose\": {"));
   ASSERT_EQ(testing::RunCli("solve --quiet --solver=dls --max_frames=20 --subject=" + subject + " --markers=" + squat +
                                 " --out=" + testing::TempPath("squat.bvh"), &output),
             0)

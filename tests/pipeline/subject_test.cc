@@ -218,5 +218,59 @@ TEST(Subject, BadFilesNameTheFileAndField) {
   EXPECT_THAT(ReadEdited(no_skeleton, "no_skeleton.json"), HasSubstr("missing \"skeleton\""));
 }
 
+// The optional mean pose (the rest prior's reference): round trip to the digit, absent in a
+// subject without one (files written before it existed read as before), joints not named
+// are the identity, and a bad entry names the field.
+TEST(Subject, MeanPoseRoundTripAndErrors) {
+  Subject subject = MakeSubject();
+  EXPECT_EQ(FormatSubject("old.json", subject).find("mean_pose"), std::string::npos);
+  const std::string old_path = testing::TempPath("old.json");
+  ASSERT_TRUE(WriteSubject(old_path, subject).ok());
+  Subject read;
+  ASSERT_TRUE(ReadSubject(old_path, &read).ok());
+  EXPECT_TRUE(read.mean_pose.empty());
+
+  for (int j = 0; j < subject.skeleton.num_joints(); ++j) {
+    subject.mean_pose.push_back(Eigen::Quaterniond(Eigen::AngleAxisd(0.3 + j / 3.0, Eigen::Vector3d(1, -j, 2).normalized())));
+  }
+  const std::string path = testing::TempPath("mean.json");
+  ASSERT_TRUE(WriteSubject(path, subject).ok());
+  Status status = ReadSubject(path, &read);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_EQ(read.mean_pose.size(), subject.mean_pose.size());
+  for (size_t j = 0; j < read.mean_pose.size(); ++j) {
+    EXPECT_EQ(read.mean_pose[j].coeffs(), subject.mean_pose[j].coeffs()) << j;  // 17 digits: exact.
+  }
+  const std::string again = testing::TempPath("mean2.json");
+  ASSERT_TRUE(WriteSubject(again, read).ok());
+  EXPECT_EQ(testing::ReadTextFile(path), testing::ReadTextFile(again));
+
+  // The file with another "mean_pose" value.
+  const std::string good = testing::ReadTextFile(path);
+  const auto with_mean = [&](const std::string& value) {
+    return good.substr(0, good.find("  \"mean_pose\"")) + "  \"mean_pose\": " + value + ",\n" +
+           good.substr(good.find("  \"markerset\""));
+  };
+  const std::string joint2 = "\"" + subject.skeleton.name(2) + "\"";
+  const std::string partial = testing::TempPath("partial.json");
+  std::ofstream(partial) << with_mean("{" + joint2 + ": [0, 1, 0, 0]}");
+  status = ReadSubject(partial, &read);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_EQ(read.mean_pose.size(), static_cast<size_t>(subject.skeleton.num_joints()));
+  EXPECT_EQ(read.mean_pose[0].coeffs(), Eigen::Quaterniond::Identity().coeffs());
+  EXPECT_EQ(read.mean_pose[2].coeffs(), Eigen::Quaterniond(0, 1, 0, 0).coeffs());
+
+  EXPECT_THAT(ReadEdited(with_mean("{\"nojoint\": [1, 0, 0, 0]}"), "mean_joint.json"),
+              HasSubstr("mean_pose.nojoint: unknown joint"));
+  EXPECT_THAT(ReadEdited(with_mean("{" + joint2 + ": [1, 0, 0]}"), "mean_size.json"),
+              HasSubstr("mean_pose." + subject.skeleton.name(2) + ": expected [w, x, y, z]"));
+  EXPECT_THAT(ReadEdited(with_mean("{" + joint2 + ": [2, 0, 0, 0]}"), "mean_norm.json"),
+              HasSubstr("mean_pose." + subject.skeleton.name(2) + ": expected a unit quaternion"));
+  EXPECT_THAT(ReadEdited(with_mean("[1, 0, 0, 0]"), "mean_type.json"), HasSubstr("mean_pose: expected an object"));
+  Subject wrong = subject;
+  wrong.mean_pose.pop_back();
+  EXPECT_FALSE(WriteSubject(testing::TempPath("wrong.json"), wrong).ok());
+}
+
 }  // namespace
 }  // namespace mocapsolve

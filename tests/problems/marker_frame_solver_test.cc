@@ -71,7 +71,8 @@ TEST_P(MarkerFrameSolverTest, MissingMarkersAreSkipped) {
 }
 
 // A joint whose markers are all missing is free: without the rest prior it keeps its warm
-// start, with it (the only term on that joint) it goes to rest; the observed markers are
+// start, with it (the only term on that joint) it goes to the prior's reference (zero
+// rotations, or the given rest_rotations: a subject's mean pose); the observed markers are
 // still fitted exactly (the prior costs nothing where they decide).
 TEST_P(MarkerFrameSolverTest, RestPriorDecidesOnlyUnconstrainedJoints) {
   const Skeleton skeleton = MakeDemoSkeleton();
@@ -91,26 +92,46 @@ TEST_P(MarkerFrameSolverTest, RestPriorDecidesOnlyUnconstrainedJoints) {
   }
   ASSERT_GT(hidden, 0);
   const Eigen::Quaterniond start(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
-  for (double rest_weight : {0.0, 0.05}) {
-    MarkerSolveOptions options;
-    options.solver = GetParam();
-    options.ceres = DefaultFrameCeresOptions();
-    options.rest_rotation_weight = rest_weight;
-    MarkerFrameSolver solver(skeleton, markers, options);
-    Pose pose = truth.frames[0];
-    pose.rotations[hand] = start;
-    FrameSolveReport report;
-    ASSERT_TRUE(solver.Solve(observed, &pose, &report).ok()) << report.brief;
-    // The rest prior moves the other joints only as far as it trades marker error: under a
-    // micron here (cm units; noise-free data, every other joint held by three markers).
-    EXPECT_LT(report.rms_marker_error, 1e-4) << rest_weight << " " << report.brief;
-    const double to_rest = AngularDistance(pose.rotations[hand], Eigen::Quaterniond::Identity());
-    if (rest_weight == 0.0) {
-      EXPECT_LT(AngularDistance(pose.rotations[hand], start), 1e-8);
-    } else {
-      EXPECT_LT(to_rest, 1e-4) << report.brief;  // The solvers' tolerances, in radians.
+  // A reference pose away from zero rotations: the observed pose (as a subject's mean pose
+  // is near its poses), the hidden hand 2.5 rad from zero.
+  QuaternionVector mean_pose = truth.frames[2].rotations;
+  mean_pose[hand] = Eigen::Quaterniond(Eigen::AngleAxisd(2.5, Eigen::Vector3d(-2, 1, 0.5).normalized()));
+  for (bool given : {false, true}) {
+    for (double rest_weight : {0.0, 0.05}) {
+      MarkerSolveOptions options;
+      options.solver = GetParam();
+      options.ceres = DefaultFrameCeresOptions();
+      options.rest_rotation_weight = rest_weight;
+      if (given) options.rest_rotations = mean_pose;
+      MarkerFrameSolver solver(skeleton, markers, options);
+      Pose pose = truth.frames[0];
+      pose.rotations[hand] = start;
+      FrameSolveReport report;
+      ASSERT_TRUE(solver.Solve(observed, &pose, &report).ok()) << report.brief;
+      // The rest prior moves the other joints only as far as it trades marker error: under a
+      // micron here (cm units; noise-free data, every other joint held by three markers).
+      EXPECT_LT(report.rms_marker_error, 1e-4) << rest_weight << " " << report.brief;
+      const Eigen::Quaterniond reference = given ? mean_pose[hand] : Eigen::Quaterniond::Identity();
+      if (rest_weight == 0.0) {
+        EXPECT_LT(AngularDistance(pose.rotations[hand], start), 1e-8);
+      } else {
+        // The solvers' tolerances, in radians.
+        EXPECT_LT(AngularDistance(pose.rotations[hand], reference), 1e-4) << given << " " << report.brief;
+      }
     }
   }
+  // A reference of another size than the skeleton is an error, not a silent identity.
+  MarkerSolveOptions options;
+  options.solver = GetParam();
+  options.ceres = DefaultFrameCeresOptions();
+  options.rest_rotation_weight = 0.05;
+  options.rest_rotations.assign(skeleton.num_joints() - 1, Eigen::Quaterniond::Identity());
+  MarkerFrameSolver solver(skeleton, markers, options);
+  Pose pose = truth.frames[0];
+  FrameSolveReport report;
+  const Status status = solver.Solve(observed, &pose, &report);
+  EXPECT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("rest pose"), std::string::npos) << status.message();
 }
 
 INSTANTIATE_TEST_SUITE_P(AllSolvers, MarkerFrameSolverTest,
@@ -151,6 +172,9 @@ TEST(MarkerFrameSolver, LeanAndGenericDlsTakeTheSameSteps) {
       options.prior_rotation_weight = 2.0;
       options.prior_translation_weight = 0.1;
       options.rest_rotation_weight = 0.2;
+      for (int j = 0; j < skeleton.num_joints(); ++j) {  // A reference other than zero rotations.
+        options.rest_rotations.push_back(ExpMap(Eigen::Vector3d(0.1 * j, -0.05, 0.2)));
+      }
       options.loss = loss;
       options.loss_scale = 1.0;
       options.solver = SolverKind::kDls;

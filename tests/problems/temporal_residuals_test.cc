@@ -139,12 +139,19 @@ struct TranslationPriorTwin {
 
 TEST(PosePriors, MatchTwinsAndNumericDerivatives) {
   RightQuaternionManifold manifold;
-  const Eigen::Vector4d reference = ExpMap(Eigen::Vector3d(1.0, 0.5, -0.3)).coeffs();
-  for (const Eigen::Vector3d& v : {Eigen::Vector3d(1.0, 0.5, -0.3), Eigen::Vector3d(0.1, 2.0, 0.3), Eigen::Vector3d(kPi - 1e-6, 0, 0)}) {
-    const Eigen::Vector4d q = ExpMap(v).coeffs();
-    RotationPriorResidual analytic(reference.data(), 1.5);
-    ceres::AutoDiffCostFunction<RotationPriorTwin, 4, 4> twin(new RotationPriorTwin{reference, 1.5});
-    ExpectJacobiansMatch(analytic, twin, {q.data()}, {&manifold});
+  // References (the previous frame, or a subject's mean pose as the rest prior's): a generic
+  // rotation, one 3.11 rad from the identity, one on the far hemisphere of every point
+  // (s = -1). Each has |q . q_ref| >= 0.43 with every point: the checker's differences
+  // crossed the s flip (where the residual jumps) at |q . q_ref| <= 0.11.
+  for (const Eigen::Vector3d& r : {Eigen::Vector3d(1.0, 0.5, -0.3), Eigen::Vector3d(2.2, 2.2, 0.0), Eigen::Vector3d(-2.3, -1.7, 0.7)}) {
+    const Eigen::Vector4d reference = ExpMap(r).coeffs();
+    for (const Eigen::Vector3d& v : {Eigen::Vector3d(1.0, 0.5, -0.3), Eigen::Vector3d(0.1, 2.0, 0.3), Eigen::Vector3d(kPi - 1e-6, 0, 0)}) {
+      const Eigen::Vector4d q = ExpMap(v).coeffs();
+      SCOPED_TRACE(::testing::Message() << "reference " << r.transpose() << ", q " << v.transpose());
+      RotationPriorResidual analytic(reference.data(), 1.5);
+      ceres::AutoDiffCostFunction<RotationPriorTwin, 4, 4> twin(new RotationPriorTwin{reference, 1.5});
+      ExpectJacobiansMatch(analytic, twin, {q.data()}, {&manifold});
+    }
   }
   const Eigen::Vector3d t_ref(1, 2, 3), t(0.5, -1, 4);
   TranslationPriorResidual analytic(t_ref.data(), 0.7);
