@@ -52,7 +52,7 @@ struct SkeletonFitSettings {
   double min_bone_scale = 0.8;
   double max_bone_scale = 1.25;
   double offset_prior = 0.0;
-  double fit_outlier_mm = 0.0;   // 0 = off.
+  double fit_outlier_mm = 200.0;  // 0 = off.
   std::string check = "fail";    // fail | warn | off.
 };
 
