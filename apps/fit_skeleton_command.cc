@@ -36,6 +36,7 @@ DEFINE_double(max_skin_cm, mocapsolve::SkeletonFitSettings().max_skin_cm, MOCAPS
 DEFINE_double(min_bone_scale, mocapsolve::SkeletonFitSettings().min_bone_scale, MOCAPSOLVE_FIT_HELP(min_bone_scale));
 DEFINE_double(max_bone_scale, mocapsolve::SkeletonFitSettings().max_bone_scale, MOCAPSOLVE_FIT_HELP(max_bone_scale));
 DEFINE_double(offset_prior, mocapsolve::SkeletonFitSettings().offset_prior, MOCAPSOLVE_FIT_HELP(offset_prior));
+DEFINE_double(fit_outlier_mm, mocapsolve::SkeletonFitSettings().fit_outlier_mm, MOCAPSOLVE_FIT_HELP(fit_outlier_mm));
 DEFINE_string(check, mocapsolve::SkeletonFitSettings().check.c_str(), MOCAPSOLVE_FIT_HELP(check));
 DEFINE_string(template_labels, mocapsolve::SkeletonFitSettings().template_labels.c_str(),
               MOCAPSOLVE_FIT_HELP(template_labels));
@@ -59,6 +60,7 @@ SkeletonFitSettings SkeletonFitSettingsFromFlags() {
   s.min_bone_scale = FLAGS_min_bone_scale;
   s.max_bone_scale = FLAGS_max_bone_scale;
   s.offset_prior = FLAGS_offset_prior;
+  s.fit_outlier_mm = FLAGS_fit_outlier_mm;
   s.check = FLAGS_check;
   s.template_labels = FLAGS_template_labels;
   return s;
@@ -187,8 +189,10 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
       std::printf(" %s %.3f", fitted.name(j).c_str(), result.report.bone_scales[j]);
     }
   }
-  std::printf("\nfit: %d markers, marker RMS %.2f %s, %.1f s\n", result.subject.markers.num_markers(),
-              result.report.rms.back() * mm, unit, result.seconds);
+  const int outliers = result.outlier_samples;
+  const std::string left_out = outliers > 0 ? " (" + std::to_string(outliers) + " outlier samples left out)" : "";
+  std::printf("\nfit: %d markers, marker RMS %.2f %s%s, %.1f s\n", result.subject.markers.num_markers(),
+              result.report.rms.back() * mm, unit, left_out.c_str(), result.seconds);
   const JsonObject json = SkeletonFitReportJson(inputs, result);
   if (!checks.ok() && FLAGS_check != "off") {
     for (const std::string& failure : checks.failures) std::fprintf(stderr, "fit_skeleton: check failed: %s\n", failure.c_str());

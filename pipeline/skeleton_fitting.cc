@@ -51,6 +51,7 @@ Status ValidateSkeletonFitSettings(const SkeletonFitSettings& s) {
   if (s.fit_max_frames < 0) return Status::Error("--fit_max_frames: >= 0");
   if (!(s.offset_prior >= 0.0)) return Status::Error("--offset_prior: >= 0");
   if (!(s.max_skin_cm >= 0.0)) return Status::Error("--max_skin_cm: >= 0");
+  if (!(s.fit_outlier_mm >= 0.0)) return Status::Error("--fit_outlier_mm: >= 0");
   if (!(s.min_bone_scale > 0.0 && s.min_bone_scale <= 1.0 && s.max_bone_scale >= 1.0)) {
     return Status::Error("--min_bone_scale in (0, 1] and --max_bone_scale >= 1");
   }
@@ -83,6 +84,9 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   const Skeleton& skeleton = templ.skeleton;
   if (settings.max_skin_cm > 0.0 && !skeleton.unit().known()) {
     return Status::Error("the template skeleton's unit is unknown: give --skeleton_units (or --max_skin_cm=0)");
+  }
+  if (settings.fit_outlier_mm > 0.0 && !skeleton.unit().known()) {
+    return Status::Error("the template skeleton's unit is unknown: give --skeleton_units (or --fit_outlier_mm=0)");
   }
   const double units_per_cm = skeleton.unit().known() ? 0.01 / skeleton.unit().metres_per_unit : 1.0;
   result->unit_known = skeleton.unit().known();
@@ -160,6 +164,7 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   options.max_scale = settings.max_bone_scale;
   options.max_bone_distance = settings.max_skin_cm * units_per_cm;
   options.root_from_markers = true;
+  const double outlier_distance = settings.fit_outlier_mm * 0.1 * units_per_cm;
 
   Skeleton fitted = skeleton;
   MarkerSet fitted_markers = take_mapping.markers;
@@ -170,6 +175,8 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   // a round worse. Round 0 is a candidate when it already holds every marker the attach
   // finds (a template with the take's whole marker set: round 0 is a complete fit).
   bool round0_complete = false;
+  // Round 0's outliers (frame, label): samples of the template's markers that its fit left out.
+  std::vector<std::pair<int, std::string>> template_outliers;
   struct Best {
     int round = -1;
     double rms = 0.0;
@@ -256,7 +263,16 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
       status = GatherObservations(round_markers, take.trajectories, take.transform, &observed);
       if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
       observed.resize(frames);
+      for (const auto& [f, label] : template_outliers) {
+        const int m = round_markers.FindMarker(label);
+        if (m >= 0) observed[f][m].setConstant(std::numeric_limits<double>::quiet_NaN());
+      }
     }
+    // Outliers are found in round 0, on the template's markers (a trusted attachment), and left
+    // out of every round. A fresh attachment misses by a lot until its round fits it (squat.c3d's
+    // round 1 starts at 59-104 mm): finding outliers in the attach rounds too left squat at
+    // 10.8-19.8 mm instead of 7.94 (gates 200-400 mm).
+    options.outlier_distance = round == 0 ? outlier_distance : 0.0;
     options.iterations = round > 0 ? settings.attach_iterations
                                    : settings.fit_iterations >= 0 ? settings.fit_iterations : (from_subject ? 15 : 6);
     // The template's offsets are a prior worth keeping; an attach round's are estimates
@@ -298,7 +314,11 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
     fitted = std::move(next);
     fitted_markers = std::move(next_markers);
     scales = report.bone_scales;
-    result->rounds.push_back({round, fitted_markers.num_markers(), report.rms});
+    if (round == 0) {
+      for (const auto& [f, m] : report.outliers) template_outliers.push_back({f, round_markers.label(m)});
+      for (const auto& [f, m] : report.outliers) observed[f][m].setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+    result->rounds.push_back({round, fitted_markers.num_markers(), report.rms, static_cast<int>(template_outliers.size())});
     SkeletonFitEvent done = started;
     done.kind = SkeletonFitEvent::kRoundDone;
     done.markers = fitted_markers.num_markers();
@@ -342,6 +362,7 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
   // The checks see the kept model against the observations it was fitted to.
   result->kept_round = best.round;
+  result->outlier_samples = static_cast<int>(template_outliers.size());
   result->motion = std::move(best.motion);
   result->motion.frame_rate = take.trajectories.frame_rate;
   result->report = std::move(best.report);
@@ -374,7 +395,8 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
     std::vector<JsonValue> rms;
     for (double r : round.rms) rms.push_back(JsonValue(r * mm));
     JsonObject o;
-    o.Add("round", round.round).Add("markers", round.markers).Add("rms_by_iteration", rms);
+    o.Add("round", round.round).Add("markers", round.markers).Add("rms_by_iteration", rms)
+        .Add("outlier_samples", round.outlier_samples);
     round_json.push_back(o);
   }
   const Skeleton& fitted = result.subject.skeleton;
@@ -396,6 +418,7 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
       .Add("frames", result.frames).Add("attach_rounds", result.attach_rounds).Add("kept_round", result.kept_round)
       .Add("seconds", result.seconds)
       .Add(result.unit_known ? "rms_mm" : "rms", result.report.rms.back() * mm)
+      .Add("outlier_samples", result.outlier_samples)
       .Add("rounds", round_json).Add("bone_scales", scale_json).Add("checks", ChecksJson(result.checks));
   return json;
 }

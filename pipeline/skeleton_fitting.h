@@ -54,6 +54,7 @@ struct SkeletonFitSettings {
   double min_bone_scale = 0.8;
   double max_bone_scale = 1.25;
   double offset_prior = 0.0;
+  double fit_outlier_mm = 200.0;  // 0 = off.
   std::string check = "fail";    // fail | warn | off.
   std::string template_labels;   // TEMPLATE:TAKE pairs or their file (template_labels.h); "": none.
 };
@@ -80,6 +81,10 @@ inline constexpr SettingHelp kSkeletonFitSettingHelp[] = {
     {"max_bone_scale", "Bone lengths no longer than this times the template's."},
     {"offset_prior", "Weight of the prior that keeps marker offsets near the template's in the first fit, per "
                      "frame, relative to a marker residual; 0: off."},
+    {"fit_outlier_mm", "Leave out of every round's fit the samples of the template's markers farther than this, "
+                       "and than 5 times their marker's median residual, from their marker in the first fit "
+                       "(mislabels, ghosts); the fit RMS and the checks are then over the kept samples, and the "
+                       "report counts the others; 0: fit every sample."},
     {"check", "The subject checks (marker within 15 cm of its bone, or within its template distance when "
               "larger, torso direction within 15 degrees of the markers', left/right within 5 %, marker RMS within 25 mm): fail (exit 1, nothing written but "
               "the report), warn, off."},
@@ -99,7 +104,7 @@ const char* SettingHelpFor(const SettingHelp (&table)[N], const std::string& nam
 
 inline constexpr char kSkeletonFitSettingNames[] =
     "fit_iterations,attach_rounds,attach_iterations,fit_frame_step,fit_max_frames,max_skin_cm,min_bone_scale,"
-    "max_bone_scale,offset_prior,check,template_labels";
+    "max_bone_scale,offset_prior,fit_outlier_mm,check,template_labels";
 
 // The CLI's one-line messages ("--attach_rounds: -1..20").
 Status ValidateSkeletonFitSettings(const SkeletonFitSettings& settings);
@@ -138,6 +143,7 @@ struct SkeletonFitRound {
   int round = 0;
   int markers = 0;
   std::vector<double> rms;  // Before and after each iteration, skeleton units.
+  int outlier_samples = 0;  // Left out of the round's fit (--fit_outlier_mm): round 0's, in every round.
 };
 
 struct SkeletonFitResult {
@@ -151,6 +157,7 @@ struct SkeletonFitResult {
   int frames = 0;           // Frames fitted.
   int attach_rounds = 0;    // Rounds asked for (after the -1 default).
   int kept_round = -1;
+  int outlier_samples = 0;  // Samples of the template's markers left out (--fit_outlier_mm).
   double seconds = 0.0;
   double mm_per_unit = 1.0; // 1 when the skeleton's unit is unknown.
   bool unit_known = false;

@@ -36,7 +36,7 @@ void BindSkeletonFitting(py::module_& m) {
   MOCAPSOLVE_FIELD(fit_iterations); MOCAPSOLVE_FIELD(attach_rounds); MOCAPSOLVE_FIELD(attach_iterations);
   MOCAPSOLVE_FIELD(fit_frame_step); MOCAPSOLVE_FIELD(fit_max_frames); MOCAPSOLVE_FIELD(max_skin_cm);
   MOCAPSOLVE_FIELD(min_bone_scale); MOCAPSOLVE_FIELD(max_bone_scale); MOCAPSOLVE_FIELD(offset_prior);
-  MOCAPSOLVE_FIELD(check); MOCAPSOLVE_FIELD(template_labels);
+  MOCAPSOLVE_FIELD(fit_outlier_mm); MOCAPSOLVE_FIELD(check); MOCAPSOLVE_FIELD(template_labels);
 #undef MOCAPSOLVE_FIELD
   settings.def("validate", [](const SkeletonFitSettings& s) { ThrowIfError(ValidateSkeletonFitSettings(s)); },
                "Raises ValueError (the CLI's message) if a value is invalid.");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <limits>
 #include <string>
 
 #include <Eigen/Cholesky>
@@ -161,9 +162,44 @@ Status ScaledSkeleton(const Skeleton& skeleton, const std::vector<double>& scale
   return Skeleton::Create(std::move(joints), std::move(sites), skeleton.unit(), out);
 }
 
+// A marker's outlier gate: at least this many times its median residual, so a marker that
+// misses by a lot in every frame (a rough fresh attachment: squat.c3d's round 1 starts at
+// 59 mm) is fitted, not cut; a ghost or swap misses by many times its marker's median.
+constexpr double kOutlierMedianFactor = 5.0;
+
+// The samples of `observed` farther than max(distance, kOutlierMedianFactor x their marker's
+// median residual) from their marker on `motion` (frame, marker).
+std::vector<std::pair<int, int>> FarSamples(const Skeleton& skeleton, const MarkerSet& markers,
+                                            const Observations& observed, const Motion& motion, double distance) {
+  const size_t frames = std::min(observed.size(), motion.frames.size());
+  std::vector<std::vector<double>> residual(markers.num_markers(), std::vector<double>(frames, -1.0));
+  FkData fk(skeleton);
+  for (size_t f = 0; f < frames; ++f) {
+    ForwardKinematics(skeleton, motion.frames[f], &fk);
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      if (observed[f][m].allFinite()) residual[m][f] = (markers.Position(m, fk) - observed[f][m]).norm();
+    }
+  }
+  std::vector<std::pair<int, int>> far;
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    std::vector<double> seen;
+    for (double r : residual[m]) {
+      if (r >= 0.0) seen.push_back(r);
+    }
+    if (seen.empty()) continue;
+    std::nth_element(seen.begin(), seen.begin() + seen.size() / 2, seen.end());
+    const double gate = std::max(distance, kOutlierMedianFactor * seen[seen.size() / 2]);
+    for (size_t f = 0; f < frames; ++f) {
+      if (residual[m][f] > gate) far.push_back({static_cast<int>(f), m});
+    }
+  }
+  std::sort(far.begin(), far.end());
+  return far;
+}
+
 }  // namespace
 
-Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
+Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Observations& all_observed,
                             const MarkerSolveOptions& solve_options, const SkeletonFitOptions& options,
                             Skeleton* fitted_skeleton, MarkerSet* fitted_markers, Motion* motion,
                             SkeletonFitReport* report, const SkeletonFitProgress& progress,
@@ -190,9 +226,22 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
     }
   }
   SequenceSolveReport solve;
+  Observations observed = all_observed;
   Status status = SolveSequence(current, current_markers, observed, solve_options, RestPose(current), motion, &solve,
                                 frame_progress, options.root_from_markers);
   if (!status.ok()) return status;
+  // Outliers of the first solve are left out and the poses solved again: without the pull of
+  // a ghost, more of them stand out (3 passes at most; each is one more pose solve).
+  for (int pass = 0; pass < 3 && options.outlier_distance > 0.0; ++pass) {
+    const std::vector<std::pair<int, int>> far =
+        FarSamples(current, current_markers, observed, *motion, options.outlier_distance);
+    if (far.empty()) break;
+    for (const auto& [f, m] : far) observed[f][m].setConstant(std::numeric_limits<double>::quiet_NaN());
+    report->outliers.insert(report->outliers.end(), far.begin(), far.end());
+    status = SolveSequence(current, current_markers, observed, solve_options, RestPose(current), motion, &solve,
+                           frame_progress, options.root_from_markers);
+    if (!status.ok()) return status;
+  }
   double rms = solve.rms_marker_error;
   report->rms.push_back(rms);
   // Levenberg-Marquardt on the globals: a step is kept only if the pose solve on the

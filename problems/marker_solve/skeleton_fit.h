@@ -28,10 +28,17 @@
 // it farther out: clamping a trusted template marker would make the fit worse than its
 // start and every step would be refused). subject_checks.h measures the result without trusting the
 // residual.
+// Outliers (with outlier_distance > 0): a sample farther than outlier_distance, and than 5
+// times its marker's median residual, from its marker on the first pose solve is left out of
+// the whole fit (poses and lengths/offsets), and the poses are solved again, up to 3 times
+// while new ones appear. A mislabelled or ghost sample
+// (nick_freeform_001's RTOE label on a marker 1 m up for its last 126 frames) is otherwise
+// fitted like any other: least squares moves the leg toward it and skews every bone.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SKELETON_FIT_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SKELETON_FIT_H_
 
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -67,6 +74,9 @@ struct SkeletonFitOptions {
   // length/offset step, so a marker's offset and its bones' lengths do not trade freely
   // (a knee marker stays at the knee, the knee between thigh and shin). 0: off.
   double offset_prior_weight = 0.0;
+  // Samples farther than this (and than 5x their marker's median residual) from their marker
+  // on the first pose solve are left out of the fit (skeleton units); 0: every sample is fitted.
+  double outlier_distance = 0.0;
 };
 
 // Called after each pose solve of an iteration: (iteration, marker RMS of that solve).
@@ -76,10 +86,12 @@ struct SkeletonFitReport {
   std::vector<double> rms;          // Marker RMS before and after each iteration (skeleton units).
   std::vector<double> bone_scales;  // Per joint: its offset's overall scale relative to the
                                     // template (initial_scales times this fit's; 1 for the root).
+  std::vector<std::pair<int, int>> outliers;  // (frame, marker) samples left out (outlier_distance).
 };
 
 // observed[f][m] in skeleton units (marker_observations.h). Writes the fitted skeleton
-// and marker set, and the motion solved on them (one more pose solve after the last fit).
+// and marker set, and the motion solved on them (one more pose solve after the last fit);
+// report->rms is over the samples the fit kept (report->outliers are left out).
 // frame_progress (optional) is SolveSequence's: frames done within each pose solve.
 Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers,
                             const std::vector<std::vector<Eigen::Vector3d>>& observed,

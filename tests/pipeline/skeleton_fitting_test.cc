@@ -31,6 +31,7 @@ TEST(SkeletonFitSettings, EachBadValueNamesItsFlag) {
       {[](SkeletonFitSettings* s) { s->fit_max_frames = -1; }, "--fit_max_frames: >= 0"},
       {[](SkeletonFitSettings* s) { s->offset_prior = -1.0; }, "--offset_prior: >= 0"},
       {[](SkeletonFitSettings* s) { s->max_skin_cm = -1.0; }, "--max_skin_cm: >= 0"},
+      {[](SkeletonFitSettings* s) { s->fit_outlier_mm = -1.0; }, "--fit_outlier_mm: >= 0"},
       {[](SkeletonFitSettings* s) { s->min_bone_scale = 1.1; },
        "--min_bone_scale in (0, 1] and --max_bone_scale >= 1"},
       {[](SkeletonFitSettings* s) { s->check = "maybe"; }, "--check: expected fail, warn or off"},

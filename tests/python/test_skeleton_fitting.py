@@ -127,6 +127,7 @@ def test_settings_hold_the_cli_defaults():
     settings = mocapsolve.SkeletonFitSettings()
     assert (settings.fit_iterations, settings.attach_rounds, settings.attach_iterations) == (-1, -1, 6)
     assert (settings.min_bone_scale, settings.max_bone_scale, settings.max_skin_cm) == (0.8, 1.25, 12.0)
+    assert settings.fit_outlier_mm == 200.0
     assert settings.check == "fail"
     settings.attach_rounds = 21
     with pytest.raises(ValueError, match="--attach_rounds: -1..20"):
