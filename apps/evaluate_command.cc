@@ -143,6 +143,9 @@ Status RunSmallErrors(const MarkerTake& take) {
     std::printf("flagged on the undamaged take (seed %u):%s\n", score.seeds[0].seed,
                 runs(score.seeds[0].own_samples, nullptr).c_str());
   }
+  for (const SmallErrorSeedScore& s : score.seeds) {
+    std::printf("damaged samples missed (seed %u):%s\n", s.seed, runs(s.damaged_samples, &s.flagged_samples).c_str());
+  }
   JsonObject report;
   report.Add("markers", FLAGS_markers).Add("method", "small_errors").Add("frames", nf).Add("trials", FLAGS_trials)
       .Add("first_seed", FLAGS_corrupt_seed).Add("white_noise_mm", FLAGS_white_noise_mm)

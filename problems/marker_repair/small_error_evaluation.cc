@@ -101,7 +101,7 @@ Status EvaluateSmallErrors(const Skeleton& skeleton, const MarkerSet& markers,
     SmallErrorSeedScore seed;
     seed.seed = r.seed;
     AddSmallErrors(r, &observed, &seed.damaged_samples);
-    SampleFlags flagged;
+    SampleFlags& flagged = seed.flagged_samples;
     const Status status = flag(observed, &flagged);
     if (!status.ok()) return status;
     seed.own_samples = own;

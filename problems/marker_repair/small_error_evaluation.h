@@ -71,7 +71,8 @@ struct SmallErrorSeedScore {
   long true_positive = 0;  // Both.
   long own = 0;            // Flagged on the damaged take and on the undamaged one...
   long own_damaged = 0;    // ...of which damaged.
-  SampleFlags damaged_samples, own_samples;  // [frame][marker] (own: flagged on the undamaged take).
+  // [frame][marker]: damaged, flagged, and flagged on the undamaged take (own).
+  SampleFlags damaged_samples, flagged_samples, own_samples;
 };
 
 struct SmallErrorScore {
