@@ -13,12 +13,15 @@
 #include "io/atomic_file.h"
 #include "io/marker_set_file.h"
 #include "problems/marker_repair/repair_evaluation.h"
+#include "problems/marker_repair/small_error_evaluation.h"
 #include "problems/marker_solve/leave_one_out.h"
 
 DEFINE_int32(trials, 1, "Damage draws to average over (seeds --corrupt_seed, +1, ...).");
 DEFINE_string(table_csv, "", "Also write the table as CSV (repair: one row per method and trial; leave_one_out: one "
               "row per marker).");
-DECLARE_string(method);  // apps/blend_command.cc; here repair | leave_one_out (kEvaluateCommand's default).
+DEFINE_double(white_noise_mm, 0.0, "--method=small_errors: white noise (mm per axis) added to every sample before "
+              "the damage, and to the undamaged take the own detections come from (a noise-free synthetic take: 1).");
+DECLARE_string(method);  // apps/blend_command.cc; here repair | leave_one_out | small_errors.
 DECLARE_int32(num_threads);
 
 namespace mocapsolve {
@@ -88,13 +91,80 @@ Status RunLeaveOneOut(const MarkerTake& take) {
   return WriteReport(report);
 }
 
+// --method=small_errors: the recipe of 1-4 cm jumps and jitter (small_error_evaluation.h)
+// over --trials seeds from --corrupt_seed; recall, precision raw and without the samples
+// the repair also flags on the undamaged take (listed: the take's own glitches).
+Status RunSmallErrors(const MarkerTake& take) {
+  const Skeleton& skeleton = take.skeleton;
+  RepairOptions options;
+  Status status = RepairOptionsFromFlags(skeleton, &options);
+  if (!status.ok()) return status;
+  if (!(FLAGS_white_noise_mm >= 0.0)) return Status::Error("--white_noise_mm: expected >= 0");
+  SmallErrorRecipe recipe = DefaultSmallErrorRecipe(skeleton.unit().metres_per_unit, FLAGS_white_noise_mm);
+  recipe.seed = static_cast<uint32_t>(FLAGS_corrupt_seed);
+  SmallErrorScore score;
+  status = EvaluateSmallErrors(skeleton, take.markers, take.observed, options, recipe, FLAGS_trials, &score);
+  if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
+  const int nf = static_cast<int>(take.observed.size()), nm = take.markers.num_markers();
+  std::printf("%d frames, %d markers; per seed %d jumps of 1-4 cm (1-%d frames) and %d runs of 2 cm jitter, white "
+              "noise %.2f mm\n", nf, nm, recipe.jumps, recipe.jump_max_frames, recipe.jitter_runs, FLAGS_white_noise_mm);
+  std::printf("| seed | damaged | flagged | found | recall | precision | own flagged (damaged) | precision without own "
+              "|\n|---|---|---|---|---|---|---|---|\n");
+  std::vector<JsonObject> seeds;
+  for (const SmallErrorSeedScore& s : score.seeds) {
+    SmallErrorScore one;
+    one.damaged = s.damaged, one.flagged = s.flagged, one.true_positive = s.true_positive, one.own = s.own;
+    one.own_damaged = s.own_damaged;
+    std::printf("| %u | %ld | %ld | %ld | %.3f | %.3f | %ld (%ld) | %.3f |\n", s.seed, s.damaged, s.flagged,
+                s.true_positive, one.Recall(), one.Precision(), s.own, s.own_damaged, one.PrecisionWithoutOwn());
+    JsonObject o;
+    o.Add("seed", static_cast<int>(s.seed)).Add("damaged", static_cast<double>(s.damaged))
+        .Add("flagged", static_cast<double>(s.flagged)).Add("true_positive", static_cast<double>(s.true_positive))
+        .Add("own", static_cast<double>(s.own)).Add("own_damaged", static_cast<double>(s.own_damaged));
+    seeds.push_back(o);
+  }
+  std::printf("all seeds: recall %.3f, precision %.3f, precision without the take's own detections %.3f (%ld flagged "
+              "samples excluded, %ld of them damaged)\n", score.Recall(), score.Precision(),
+              score.PrecisionWithoutOwn(), score.own, score.own_damaged);
+  // The undamaged take's own detections (first seed), as runs per marker, and the damage missed.
+  auto runs = [&](const SampleFlags& flags, const SampleFlags* unless) {
+    std::string text;
+    for (int m = 0; m < nm; ++m) {
+      for (int f = 0; f < nf; ++f) {
+        if (!flags[f][m] || (unless != nullptr && (*unless)[f][m])) continue;
+        int last = f;
+        while (last + 1 < nf && flags[last + 1][m] && (unless == nullptr || !(*unless)[last + 1][m])) ++last;
+        text += " " + take.markers.label(m) + " " + std::to_string(f) + (last > f ? "-" + std::to_string(last) : "");
+        f = last;
+      }
+    }
+    return text;
+  };
+  if (!score.seeds.empty()) {
+    std::printf("flagged on the undamaged take (seed %u):%s\n", score.seeds[0].seed,
+                runs(score.seeds[0].own_samples, nullptr).c_str());
+  }
+  for (const SmallErrorSeedScore& s : score.seeds) {
+    std::printf("damaged samples missed (seed %u):%s\n", s.seed, runs(s.damaged_samples, &s.flagged_samples).c_str());
+  }
+  JsonObject report;
+  report.Add("markers", FLAGS_markers).Add("method", "small_errors").Add("frames", nf).Add("trials", FLAGS_trials)
+      .Add("first_seed", FLAGS_corrupt_seed).Add("white_noise_mm", FLAGS_white_noise_mm)
+      .Add("damaged", static_cast<double>(score.damaged)).Add("flagged", static_cast<double>(score.flagged))
+      .Add("true_positive", static_cast<double>(score.true_positive)).Add("own", static_cast<double>(score.own))
+      .Add("own_damaged", static_cast<double>(score.own_damaged)).Add("recall", score.Recall())
+      .Add("precision", score.Precision()).Add("precision_without_own", score.PrecisionWithoutOwn())
+      .Add("seeds", seeds);
+  return WriteReport(report);
+}
+
 Status RunEvaluate(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   std::vector<std::string> inputs;
   Status checked = MarkerTakeInputs(&inputs);
   if (!checked.ok()) return checked;
-  if (FLAGS_method != "repair" && FLAGS_method != "leave_one_out") {
-    return Status::Error("--method: expected repair or leave_one_out, got '" + FLAGS_method + "'");
+  if (FLAGS_method != "repair" && FLAGS_method != "leave_one_out" && FLAGS_method != "small_errors") {
+    return Status::Error("--method: expected repair, leave_one_out or small_errors, got '" + FLAGS_method + "'");
   }
   if (FLAGS_trials < 1 || FLAGS_trials > 1000) return Status::Error("--trials: expected 1..1000");
   if (!FLAGS_table_csv.empty()) {
@@ -107,6 +177,7 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
   Status status = LoadMarkerTake(&take);
   if (!status.ok()) return status;
   if (FLAGS_method == "leave_one_out") return RunLeaveOneOut(take);
+  if (FLAGS_method == "small_errors") return RunSmallErrors(take);
   const Skeleton& skeleton = take.skeleton;
   const MarkerSet& markers = take.markers;
   const MarkerObservations& clean = take.observed;
@@ -247,7 +318,7 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
 }
 
 const std::string kEvaluateFlags = std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,"
-                                               "report,quiet,method,") +
+                                               "report,quiet,method,white_noise_mm,") +
                                    kCorruptionFlagNames + "," + kRepairFlagNames + "," + kSolverFlagNames;
 
 }  // namespace
@@ -257,7 +328,9 @@ extern const Command kEvaluateCommand = {
     "mocapsolve evaluate (--skeleton=S --markerset=J.json | --subject=S.json) --markers=CLEAN.c3d|.trc [--trials=N] "
     "[--corrupt_seed=1 --gaps=10 ...] [--table_csv=t.csv] [--report=r.json]\n"
     "       mocapsolve evaluate --method=leave_one_out (--subject=S.json | ...) --markers=TAKE.c3d|.trc "
-    "[--mode=frame|clip] [--table_csv=t.csv]\n\n"
+    "[--mode=frame|clip] [--table_csv=t.csv]\n"
+    "       mocapsolve evaluate --method=small_errors (--subject=S.json | ...) --markers=TAKE.c3d|.trc [--trials=5] "
+    "[--white_noise_mm=1]\n\n"
     "Damages the clean markers (as `corrupt` does, in the skeleton's frame), runs every method\n"
     "on the same damage and prints the analogue of the thesis' Table 1: mean global joint\n"
     "position (cm) and rotation (deg) error of the per-frame solve after each method against\n"
@@ -268,11 +341,15 @@ extern const Command kEvaluateCommand = {
     "--method=leave_one_out measures a real take without ground truth: for each marker, the take\n"
     "is solved without it (per frame, and with --mode=clip also as a whole clip) and the marker\n"
     "is predicted from the solution; prints the prediction error per marker and over all samples\n"
-    "(mean, median, 95th percentile, max).",
+    "(mean, median, 95th percentile, max).\n"
+    "--method=small_errors adds 12 jumps of 1-4 cm and 3 runs of 2 cm jitter per seed to the take\n"
+    "(after --white_noise_mm of noise) and prints the repair's recall and precision on them, the\n"
+    "latter also without the samples it flags on the undamaged take (the take's own glitches).",
     __FILE__, RunEvaluate, kEvaluateFlags.c_str(),
     {{"method", "repair",
       "repair: damage the markers and score repair against the usual fills (Table 1); leave_one_out: "
-      "predict each marker from the solve of the others, on the take as it is."},
+      "predict each marker from the solve of the others, on the take as it is; small_errors: recall and precision "
+      "of the repair's detections on 1-4 cm jumps and jitter."},
      {"solver", kRepairDefaultSolver, ""},
      {"num_threads", "2",
       "Threads: leave_one_out solves this many markers at once; repair runs its solves on two threads when "

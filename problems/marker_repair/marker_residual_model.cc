@@ -34,6 +34,20 @@ constexpr double kPlateauFloor = 0.5;
 constexpr double kPlateauCalm = 0.3;
 constexpr int kPlateauShortest = 2;
 constexpr double kPlateauRaw = 0.5;
+// A windowed calm plateau, for steps that single-frame steps cannot tell from white noise
+// (1 mm per axis makes a marker's own step statistic ~7 mm, so a 1-1.5 cm jump is under
+// kPlateauSteps of it): the step between the means of kWindow samples after and before a
+// frame, D_f = mean(d_f..d_(f+k-1)) - mean(d_(f-k)..d_(f-1)), whose noise falls as
+// 1/sqrt(k). A step in at a local peak of |D| of at least kWindowSteps times its own
+// statistic (median + k MAD of |D| over the take) and kPlateauFloor times the floor, and
+// one out at least kWindow samples later (a plateau no shorter than the windows, so they
+// see its whole height) and less than half the soft-tissue window, back as for the
+// plateaus; D calm (under kPlateauCalm of the step in) a window before the step in,
+// between the steps and a window after the step out. Each end is put on the frame of the
+// largest single step along D within one frame of the peak, where the raw-sample check of
+// the plateaus then applies.
+constexpr int kWindow = 4;
+constexpr double kWindowSteps = 2.0;
 // Knot spacing (frames) of the running medians: the soft-tissue residual's, and the
 // steady frame's (computed for more signals, and smoother).
 constexpr int kSoftTissueStride = 4;
@@ -149,6 +163,67 @@ void FindPlateaus(int nf, int m, const Valid& valid, const Value& d, const Confi
   }
 }
 
+template <typename Valid, typename Value, typename Confirm>
+void FindWindowedPlateaus(int nf, int m, const Valid& valid, const Value& d, const Confirm& confirm,
+                          const ResidualModelOptions& options, std::vector<std::vector<char>>* target,
+                          std::vector<Plateau>* plateaus) {
+  const int k = kWindow;
+  if (nf < 4 * k) return;
+  std::vector<Eigen::Vector3d> sum(nf + 1, Eigen::Vector3d::Zero());  // Prefix sums over valid samples.
+  std::vector<int> count(nf + 1, 0);
+  for (int f = 0; f < nf; ++f) {
+    const bool ok = valid(f);
+    sum[f + 1] = sum[f] + (ok ? Eigen::Vector3d(d(f)) : Eigen::Vector3d::Zero());
+    count[f + 1] = count[f] + ok;
+  }
+  // D_f where both windows are fully observed (NaN elsewhere).
+  std::vector<Eigen::Vector3d> step(nf, Eigen::Vector3d::Constant(std::nan("")));
+  std::vector<double> sizes;
+  for (int f = k; f + k <= nf; ++f) {
+    if (count[f + k] - count[f - k] != 2 * k) continue;
+    step[f] = ((sum[f + k] - sum[f]) - (sum[f] - sum[f - k])) / k;
+    sizes.push_back(step[f].norm());
+  }
+  if (sizes.size() < 4 * static_cast<size_t>(k)) return;
+  ResidualModelOptions window_options = options;
+  window_options.min_distance = window_options.max_distance = 0.0;
+  double median = 0.0, scale = 0.0;
+  RobustGate(&sizes, window_options, &median, &scale);
+  const double least = std::max(kWindowSteps * (median + options.mads * scale), kPlateauFloor * options.min_distance);
+  auto size = [&](int f) { return f >= 0 && f < nf && step[f].allFinite() ? step[f].norm() : -1.0; };
+  auto peak = [&](int f) { return size(f) >= least && size(f) >= size(f - 1) && size(f) >= size(f + 1); };
+  auto calm = [&](int f, double limit) { return size(f) >= 0.0 && size(f) <= limit; };
+  // The frame within one of f whose single step along D_f is largest.
+  auto sharpest = [&](int f) {
+    int best = f;
+    double along = -std::numeric_limits<double>::infinity();
+    for (int g = f - 1; g <= f + 1; ++g) {
+      if (g < 1 || g >= nf || !valid(g) || !valid(g - 1)) continue;
+      const double a = (d(g) - d(g - 1)).dot(step[f].normalized());
+      if (a > along) along = a, best = g;
+    }
+    return best;
+  };
+  const int longest = options.window / 2;
+  for (int a = k; a < nf; ++a) {
+    if (!peak(a)) continue;
+    const double height = size(a), limit = kPlateauCalm * height;
+    if (!calm(a - k, limit)) continue;
+    int b = a + k;
+    while (b < nf && b - a < longest && !peak(b)) ++b;
+    if (b >= nf || b - a >= longest) continue;
+    bool quiet = calm(b + k, limit);
+    for (int f = a + k; f <= b - k && quiet; ++f) quiet = calm(f, limit);
+    const Eigen::Vector3d before = (sum[a] - sum[a - k]) / k, after = (sum[b + k] - sum[b]) / k;
+    const bool back = (step[a] + step[b]).norm() <= 0.5 * height || (after - before).norm() <= 0.5 * height;
+    if (!quiet || !back) continue;
+    const int in = sharpest(a), out = sharpest(b);
+    if (out - in < k || !confirm(in, d(in) - d(in - 1)) || !confirm(out, d(out) - d(out - 1))) continue;
+    plateaus->push_back({m, in, out - 1, height, target});
+    a = b;
+  }
+}
+
 // The robust gate of the steps d(f) - d(f-1) between consecutive valid samples (at least
 // min_distance, no cap), and the paired steps past it marked in jumped[f][m] where the
 // sample is displaced past min_distance from smooth[f] (see the header).
@@ -220,6 +295,7 @@ double MarkJumps(int nf, int m, const Valid& valid, const Value& d, const Confir
   FindPlateaus(nf, m, valid, d, confirm, std::max(kPlateauSteps * (median + options.mads * scale),
                                                    kPlateauFloor * options.min_distance),
                options.window / 2, jumped, plateaus);
+  FindWindowedPlateaus(nf, m, valid, d, confirm, options, jumped, plateaus);
   return step_gate;
 }
 }  // namespace

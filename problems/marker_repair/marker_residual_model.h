@@ -46,7 +46,15 @@
 // samples themselves jump at both ends, |(x_a - x_(a-1)) - (x_(a-1) - x_(a-2))| at least
 // half the step (and likewise at the step out): when the reference turns a joint toward
 // a displaced marker, its other markers get residual plateaus while their samples move
-// smoothly. A sample is an outlier when jumped or |x_fm - P_fm| > u_m.
+// smoothly. Under white noise (1 mm per axis makes the marker's own step statistic ~7 mm)
+// single steps cannot see a 1-1.5 cm jump, so plateaus are also found on windowed steps,
+// D_f = mean(d_f..d_(f+k-1)) - mean(d_(f-k)..d_(f-1)) with k = 4, whose noise falls as
+// 1/sqrt(k): a step in at a local peak of |D| of at least 2 times its own statistic
+// (median + k MAD of |D|) and half the floor, a step out k to window / 2 samples later, D
+// calm (under 0.3 of the step in) a window before, between the steps and a window after,
+// back as above; each end is put on the sharpest single step within a frame of the peak,
+// and the same raw-sample check applies. A sample is an outlier when jumped or
+// |x_fm - P_fm| > u_m.
 // A jump the reference absorbs: on a bone one marker pins (a head, a thumb, a wrist) the
 // robust reference turns the joint to follow the jumped marker, so d steps by a fraction
 // of the jump. Seen from the joint's parent instead, with the joint's own rotation

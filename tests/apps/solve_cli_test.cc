@@ -207,7 +207,24 @@ TEST_F(SolveCli, EvaluateLeaveOneOutPredictsEveryMarker) {
   }
   EXPECT_EQ(testing::RunCli("evaluate --method=guess --skeleton=" + demo_ + " --skeleton_units=cm --markers=" +
                             markers_ + " --markerset=" + set_, &output), 1);
-  EXPECT_THAT(output, HasSubstr("--method: expected repair or leave_one_out"));
+  EXPECT_THAT(output, HasSubstr("--method: expected repair, leave_one_out or small_errors"));
+}
+
+TEST_F(SolveCli, EvaluateSmallErrorsReportsRecallAndPrecision) {
+  const std::string report = testing::TempPath("small.json");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("evaluate --quiet --method=small_errors --trials=2 --white_noise_mm=1 --skeleton=" +
+                            demo_ + " --skeleton_units=cm --markers=" + markers_ + " --markerset=" + set_ +
+                            " --report=" + report, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("| seed | damaged | flagged | found | recall | precision |"));
+  EXPECT_THAT(output, HasSubstr("flagged on the undamaged take (seed 1):"));
+  const std::string json = testing::ReadTextFile(report);
+  for (const char* key : {"\"recall\"", "\"precision\"", "\"precision_without_own\"", "\"own\"", "\"seeds\""}) {
+    EXPECT_THAT(json, HasSubstr(key));
+  }
+  EXPECT_EQ(testing::RunCli("evaluate --method=small_errors --white_noise_mm=-1 --skeleton=" + demo_ +
+                            " --skeleton_units=cm --markers=" + markers_ + " --markerset=" + set_, &output), 1);
+  EXPECT_THAT(output, HasSubstr("--white_noise_mm"));
 }
 
 TEST_F(SolveCli, FitSkeletonWritesTheSkeletonAndTheMarkerSet) {
