@@ -112,11 +112,8 @@ Status RunSmallErrors(const MarkerTake& take) {
               "|\n|---|---|---|---|---|---|---|---|\n");
   std::vector<JsonObject> seeds;
   for (const SmallErrorSeedScore& s : score.seeds) {
-    SmallErrorScore one;
-    one.damaged = s.damaged, one.flagged = s.flagged, one.true_positive = s.true_positive, one.own = s.own;
-    one.own_damaged = s.own_damaged;
     std::printf("| %u | %ld | %ld | %ld | %.3f | %.3f | %ld (%ld) | %.3f |\n", s.seed, s.damaged, s.flagged,
-                s.true_positive, one.Recall(), one.Precision(), s.own, s.own_damaged, one.PrecisionWithoutOwn());
+                s.true_positive, s.Recall(), s.Precision(), s.own, s.own_damaged, s.PrecisionWithoutOwn());
     JsonObject o;
     o.Add("seed", static_cast<int>(s.seed)).Add("damaged", static_cast<double>(s.damaged))
         .Add("flagged", static_cast<double>(s.flagged)).Add("true_positive", static_cast<double>(s.true_positive))

@@ -66,6 +66,15 @@ void AddSmallErrors(const SmallErrorRecipe& recipe, std::vector<std::vector<Eige
   }
 }
 
+SmallErrorCounts& SmallErrorCounts::operator+=(const SmallErrorCounts& other) {
+  damaged += other.damaged;
+  flagged += other.flagged;
+  true_positive += other.true_positive;
+  own += other.own;
+  own_damaged += other.own_damaged;
+  return *this;
+}
+
 SampleFlags FlaggedSamples(const RepairReport& report, int num_frames, int num_markers) {
   SampleFlags flagged(num_frames, std::vector<char>(num_markers, 0));
   for (const RepairInterval& i : report.detected) {
@@ -115,11 +124,7 @@ Status EvaluateSmallErrors(const Skeleton& skeleton, const MarkerSet& markers,
         seed.own_damaged += hurt && found && own[f][m];
       }
     }
-    score->damaged += seed.damaged;
-    score->flagged += seed.flagged;
-    score->true_positive += seed.true_positive;
-    score->own += seed.own;
-    score->own_damaged += seed.own_damaged;
+    *score += seed;
     score->seeds.push_back(std::move(seed));
   }
   return Status::Ok();

@@ -64,26 +64,30 @@ void AddSmallErrors(const SmallErrorRecipe& recipe, std::vector<std::vector<Eige
 // The samples inside the report's detected intervals other than "missing".
 SampleFlags FlaggedSamples(const RepairReport& report, int num_frames, int num_markers);
 
-struct SmallErrorSeedScore {
-  uint32_t seed = 0;
+// Sample counts of one seed or of all, and the figures made from them.
+struct SmallErrorCounts {
   long damaged = 0;        // Samples the recipe moved.
   long flagged = 0;        // Samples the repair flagged on the damaged take.
   long true_positive = 0;  // Both.
   long own = 0;            // Flagged on the damaged take and on the undamaged one...
   long own_damaged = 0;    // ...of which damaged.
-  // [frame][marker]: damaged, flagged, and flagged on the undamaged take (own).
-  SampleFlags damaged_samples, flagged_samples, own_samples;
-};
-
-struct SmallErrorScore {
-  std::vector<SmallErrorSeedScore> seeds;
-  long damaged = 0, flagged = 0, true_positive = 0, own = 0, own_damaged = 0;
 
   double Recall() const { return damaged > 0 ? double(true_positive) / damaged : 1.0; }
   double Precision() const { return flagged > 0 ? double(true_positive) / flagged : 1.0; }
   double PrecisionWithoutOwn() const {
     return flagged > own ? double(true_positive - own_damaged) / (flagged - own) : 1.0;
   }
+  SmallErrorCounts& operator+=(const SmallErrorCounts& other);
+};
+
+struct SmallErrorSeedScore : SmallErrorCounts {
+  uint32_t seed = 0;
+  // [frame][marker]: damaged, flagged, and flagged on the undamaged take (own).
+  SampleFlags damaged_samples, flagged_samples, own_samples;
+};
+
+struct SmallErrorScore : SmallErrorCounts {  // Summed over the seeds.
+  std::vector<SmallErrorSeedScore> seeds;
 };
 
 // Runs the recipe with seeds first_seed .. first_seed + num_seeds - 1 on `clean`
