@@ -99,6 +99,7 @@ Status RunSmallErrors(const MarkerTake& take) {
   RepairOptions options;
   Status status = RepairOptionsFromFlags(skeleton, &options);
   if (!status.ok()) return status;
+  SetRepairRestRotations(take.mean_pose, &options);  // As --method=repair and `mocapsolve repair`.
   if (!(FLAGS_white_noise_mm >= 0.0)) return Status::Error("--white_noise_mm: expected >= 0");
   SmallErrorRecipe recipe = DefaultSmallErrorRecipe(skeleton.unit().metres_per_unit, FLAGS_white_noise_mm);
   recipe.seed = static_cast<uint32_t>(FLAGS_corrupt_seed);

@@ -70,6 +70,7 @@ void BindRepair(py::module_& m) {
         RepairOptions options;
         ThrowIfError(RepairOptionsFromSettings(repair_settings, solver_settings, skeleton, &options));
         const MarkerTakePtr take = TakeArgument(*subject, markers);
+        SetRepairRestRotations(take->mean_pose, &options);  // As `mocapsolve repair`.
         std::vector<std::vector<Eigen::Vector3d>> repaired;
         Motion motion;
         RepairReport report;
@@ -227,6 +228,7 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
         CorruptionOptions damage;
         ThrowIfError(CorruptionOptionsFromSettings(damage_settings, skeleton.unit(), &damage));
         const MarkerTakePtr take = TakeArgument(*subject, markers);
+        SetRepairRestRotations(take->mean_pose, &options);  // As `mocapsolve evaluate`.
         const double cm = skeleton.unit().metres_per_unit * 100.0, mm = cm * 10.0;
         py::list out;
         for (int trial = 0; trial < trials; ++trial) {

@@ -67,3 +67,22 @@ def test_corrupt_damages_markers():
     assert np.isnan(damaged.positions).sum() > np.isnan(markers.positions).sum()
     with pytest.raises(ValueError, match="--gap_min/--gap_max"):
         mocapsolve.corrupt(markers, gap_min=20, gap_max=10)
+
+
+def test_repair_pulls_toward_the_subjects_mean_pose_as_the_cli(cmu02, tmp_path):
+    # calibrate --out_subject stores each joint's mean pose; with a rest prior, the repair's
+    # solves pull toward it in Python as on the command line.
+    subject = mocapsolve.read_subject(cmu02["subject"])
+    mean = subject.mean_pose
+    assert mean.shape == (subject.skeleton.num_joints, 4)
+    assert np.allclose(np.linalg.norm(mean, axis=1), 1.0)
+    assert np.abs(mean[:, :3]).max() > 0.1  # Not the rest pose.
+    bare = mocapsolve.subject(cmu02["asf"], cmu02["markerset"], axes="y,z,x")
+    assert bare.mean_pose is None
+    _, motion, _ = mocapsolve.repair(subject, cmu02["c3d"], rest_prior_weight=10)
+    cli_motion = str(tmp_path / "cli.bvh")
+    run_cli("repair", "--subject=" + cmu02["subject"], "--markers=" + cmu02["c3d"], "--rest_prior_weight=10",
+            "--out_markers=" + str(tmp_path / "cli.c3d"), "--out_motion=" + cli_motion)
+    ours = str(tmp_path / "py.bvh")
+    mocapsolve.write_motion(ours, subject.skeleton, motion)
+    assert open(ours).read() == open(cli_motion).read()
