@@ -294,14 +294,11 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
       event.rms = rms;
       emit(event);
     };
-    // Pose solves of this round: 0 is the one before the first step, k the one of step k.
-    int pose_solve = -1, last_done = std::numeric_limits<int>::max();
-    const std::function<void(int)> frame_progress = [&](int frames_done) {
-      if (frames_done <= last_done) ++pose_solve;
-      last_done = frames_done;
+    // Pose solves of this round: 0 before the first step (the outlier passes' too), k the one of step k.
+    const std::function<void(int, int)> frame_progress = [&](int step, int frames_done) {
       SkeletonFitEvent event = started;
       event.kind = SkeletonFitEvent::kFrames;
-      event.iteration = pose_solve;
+      event.iteration = step;
       event.frames_done = frames_done;
       emit(event);
     };

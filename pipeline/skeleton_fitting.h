@@ -114,8 +114,8 @@ struct SkeletonFitEvent {
   enum Kind {
     kAbsentMarkers,  // text: the template's labels the take lacks (left out).
     kRoundStart,     // round, rounds, markers, frames, iterations.
-    kFrames,         // round, iteration (the pose solve: 0 before the first step, k after step k),
-                     // frames_done of frames.
+    kFrames,         // round, iteration (the pose solve's step: 0 before the first step, outlier passes included;
+                     // k the solve of step k), frames_done of frames.
     kIteration,      // round, iteration, rms (skeleton units).
     kRoundDone,      // round, markers, rms_first, rms (skeleton units).
     kStopped,        // round: it did not improve (rms = 0) or by less than 1 % (rms: the kept one); the rounds stop.

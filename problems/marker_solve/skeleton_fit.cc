@@ -203,7 +203,7 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
                             const MarkerSolveOptions& solve_options, const SkeletonFitOptions& options,
                             Skeleton* fitted_skeleton, MarkerSet* fitted_markers, Motion* motion,
                             SkeletonFitReport* report, const SkeletonFitProgress& progress,
-                            const std::function<void(int frames_done)>& frame_progress) {
+                            const std::function<void(int step, int frames_done)>& frame_progress) {
   *report = SkeletonFitReport();
   if (options.iterations < 0 || options.frame_step < 1 || !(options.min_scale > 0.0) ||
       !(options.max_scale >= options.min_scale)) {
@@ -225,10 +225,15 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
                               : 0.0);
     }
   }
+  // SolveSequence's progress, told which step its solve belongs to.
+  int step = 0;
+  const std::function<void(int)> solve_progress =
+      frame_progress ? std::function<void(int)>([&](int frames_done) { frame_progress(step, frames_done); })
+                     : nullptr;
   SequenceSolveReport solve;
   Observations observed = all_observed;
   Status status = SolveSequence(current, current_markers, observed, solve_options, RestPose(current), motion, &solve,
-                                frame_progress, options.root_from_markers);
+                                solve_progress, options.root_from_markers);
   if (!status.ok()) return status;
   // Outliers of the first solve are left out and the poses solved again: without the pull of
   // a ghost, more of them stand out (3 passes at most; each is one more pose solve).
@@ -239,7 +244,7 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
     for (const auto& [f, m] : far) observed[f][m].setConstant(std::numeric_limits<double>::quiet_NaN());
     report->outliers.insert(report->outliers.end(), far.begin(), far.end());
     status = SolveSequence(current, current_markers, observed, solve_options, RestPose(current), motion, &solve,
-                           frame_progress, options.root_from_markers);
+                           solve_progress, options.root_from_markers);
     if (!status.ok()) return status;
   }
   double rms = solve.rms_marker_error;
@@ -248,6 +253,7 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
   // new skeleton fits better; otherwise the damping grows and the step is retried.
   double damping = 1e-3;
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
+    step = iteration + 1;
     std::vector<double> scales;
     std::vector<MarkerSpec> specs;
     status = FitLengthsAndOffsets(current, current_markers, observed, *motion, options, damping, total_scale,
@@ -269,7 +275,7 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
     if (!status.ok()) return status;
     Motion next_motion;
     status = SolveSequence(next, next_markers, observed, solve_options, RestPose(next), &next_motion, &solve,
-                           frame_progress, options.root_from_markers);
+                           solve_progress, options.root_from_markers);
     if (progress) progress(iteration + 1, solve.rms_marker_error);
     if (!status.ok()) return status;
     if (solve.rms_marker_error < rms) {

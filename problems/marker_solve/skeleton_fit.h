@@ -92,13 +92,15 @@ struct SkeletonFitReport {
 // observed[f][m] in skeleton units (marker_observations.h). Writes the fitted skeleton
 // and marker set, and the motion solved on them (one more pose solve after the last fit);
 // report->rms is over the samples the fit kept (report->outliers are left out).
-// frame_progress (optional) is SolveSequence's: frames done within each pose solve.
+// frame_progress (optional): SolveSequence's frames done within each pose solve, with the
+// step the solve belongs to (0: the solves before the first step, the outlier passes
+// included; k: the solve of step k).
 Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers,
                             const std::vector<std::vector<Eigen::Vector3d>>& observed,
                             const MarkerSolveOptions& solve_options, const SkeletonFitOptions& options,
                             Skeleton* fitted_skeleton, MarkerSet* fitted_markers, Motion* motion,
                             SkeletonFitReport* report, const SkeletonFitProgress& progress = nullptr,
-                            const std::function<void(int frames_done)>& frame_progress = nullptr);
+                            const std::function<void(int step, int frames_done)>& frame_progress = nullptr);
 
 }  // namespace mocapsolve
 
