@@ -334,6 +334,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     swap_options.radius = options.swap_radius > 0.0 ? options.swap_radius : 3.0 * options.dp_max;
     swap_options.min_frames = options.swap_min_frames;
     report->swaps = UndoSwaps(model, swap_options, &x);
+    if (!report->swaps.empty()) relabelled = TrajectoryObservations(x);
     // The robust tracker leans toward the swapped labels while a swap lasts (on a bone
     // that one marker pins, such as the thumb's, it follows them), so the relabelled
     // samples would be judged outliers against it: it is redone where the samples changed,
@@ -342,14 +343,13 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     // then the whole tracker is run again.
     if (!report->swaps.empty() && options.reference_kind == ReferenceKind::kTracker) {
       Motion redone;
-      const Observations swapped_back = TrajectoryObservations(x);
       if (report->swaps.front().first == 0) {
         SequenceSolveReport tracker_report;
-        status = SolveSequence(skeleton, markers, swapped_back, options.tracker, RestPose(skeleton), &redone,
+        status = SolveSequence(skeleton, markers, relabelled, options.tracker, RestPose(skeleton), &redone,
                                &tracker_report);
       } else {
         int resolved = 0;
-        status = ResolveChangedFrames(skeleton, markers, observed, swapped_back, reference, options.tracker,
+        status = ResolveChangedFrames(skeleton, markers, observed, relabelled, reference, options.tracker,
                                       resync_tolerance, options.parallel, &redone, &resolved);
       }
       if (!status.ok()) return status;
@@ -366,9 +366,9 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
     assign.max_distance = options.unlabelled_max_distance > 0.0 ? options.unlabelled_max_distance : 1.25 * outlier;
     assign.min_frames = options.unlabelled_min_frames;
     report->unlabelled = AssignUnlabelledPoints(model, unlabelled, assign, &x);
+    if (!report->unlabelled.empty()) relabelled = TrajectoryObservations(x);
   }
   if (!report->swaps.empty() || !report->unlabelled.empty()) {
-    relabelled = TrajectoryObservations(x);
     Motion solved;
     int resolved = 0;
     status = ResolveChangedFrames(skeleton, markers, observed, relabelled, naive, options.naive, resync_tolerance,
