@@ -33,7 +33,8 @@ DEFINE_double(rest_prior_weight, kDefault.rest_prior_weight, "Per-frame pull of 
               "pose (the subject's mean pose when its file has one, as fit_skeleton and calibrate write; "
               "else zero local rotations), mm of marker error per radian like --prior_weight and well "
               "below it: it decides only directions no visible marker constrains (a joint's twist "
-              "while its other marker is missing), which relax to rest instead of drifting; 0 = off.");
+              "while its other marker is missing), which settle at the subject's typical pose instead of "
+              "drifting; -1 (default): 5 toward the subject's mean pose, off when it has none; 0 = off.");
 DEFINE_double(limit_weight, kDefault.limit_weight, "Soft joint limits (ASF 'limits'): 1 radian beyond a limit "
               "costs as much as this many mm of marker error; 0 = off (default: CMU's own solve "
               "of 02_01 leaves its ASF limits in 4.5% of dof samples, by up to 30 degrees).");

@@ -66,9 +66,14 @@ Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const Leng
       skeleton_unit.known() ? settings.prior_weight / (1000.0 * skeleton_unit.metres_per_unit)
                             : settings.prior_weight;
   options->prior_translation_weight = settings.prior_translation_weight;
-  options->rest_rotation_weight = skeleton_unit.known()
-                                      ? settings.rest_prior_weight / (1000.0 * skeleton_unit.metres_per_unit)
-                                      : settings.rest_prior_weight;
+  if (!(settings.rest_prior_weight >= 0.0) && settings.rest_prior_weight != -1.0) {
+    return Status::Error("--rest_prior_weight: expected >= 0, or -1 (auto)");
+  }
+  const bool rest_auto = settings.rest_prior_weight == -1.0;
+  const double rest_mm = rest_auto ? kMeanPoseRestPriorWeight : settings.rest_prior_weight;
+  options->rest_rotation_weight =
+      skeleton_unit.known() ? rest_mm / (1000.0 * skeleton_unit.metres_per_unit) : rest_mm;
+  options->rest_prior_needs_reference = rest_auto;
   options->limit_weight = skeleton_unit.known()
                               ? settings.limit_weight / (1000.0 * skeleton_unit.metres_per_unit)
                               : settings.limit_weight;

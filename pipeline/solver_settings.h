@@ -33,7 +33,8 @@ struct SolverSettings {
   double marker_weight = 1.0;
   double prior_weight = 20.0;              // mm of marker error per radian.
   double prior_translation_weight = 0.0;   // Per skeleton unit.
-  double rest_prior_weight = 0.0;          // mm of marker error per radian away from rest.
+  double rest_prior_weight = -1.0;         // mm of marker error per radian away from rest; -1: auto
+                                           // (kMeanPoseRestPriorWeight toward a mean pose, else off).
   double limit_weight = 0.0;               // mm of marker error per radian past a limit.
   std::string smooth_order = "velocity";   // velocity | acceleration.
   double smooth_weight = 1.0;
@@ -53,6 +54,15 @@ inline constexpr char kSolverSettingNames[] =
     "gradient_tolerance,parameter_tolerance,num_threads,loss,loss_scale,marker_weight,"
     "prior_weight,prior_translation_weight,rest_prior_weight,limit_weight,smooth_order,smooth_weight,"
     "smooth_translation_weight,clip_function_tolerance,sparse_library,clip_solver,dls_lambda,dls_damping";
+
+// The rest prior's weight by default (rest_prior_weight = -1), mm per radian: toward the
+// subject's mean pose when the solve is given one (MarkerSolveOptions::rest_rotations), off
+// otherwise. Chosen by leave-one-marker-out on the five fitted takes (BENCHMARKS.md): 5
+// lowers every figure of every take (2 and 10 do too, 5 most often best) and of each CMU
+// subject on the other's take; and it keeps the Ceres frame solve out of the wrong minima
+// that a joint no marker constrains leaves open (cmu_02_05 on its own subject: marker RMS
+// 13.6 -> 4.6 mm, 1.3 s instead of 3.2).
+inline constexpr double kMeanPoseRestPriorWeight = 5.0;
 
 // Per-frame options (solver picks Ceres or DLS); the skeleton's unit converts the prior
 // and limit weights from mm.

@@ -125,7 +125,7 @@ class MarkerFrameSolver::Impl {
                                                                   : Eigen::Quaterniond::Identity();
       for (int i = 0; i < 4; ++i) rest_rotations_[4 * j + i] = q.coeffs()[i];
     }
-    if (options.rest_rotation_weight > 0.0) {
+    if (options.rest_rotation_weight > 0.0 && (given > 0 || !options.rest_prior_needs_reference)) {
       for (int j : solved_joints_) {
         rotation_priors_.emplace_back(new RotationPriorResidual(&rest_rotations_[4 * j], options.rest_rotation_weight));
         prior_joints_.push_back(j);

@@ -56,6 +56,9 @@ struct MarkerSolveOptions {
   // The rest prior's reference, one local rotation per joint (a subject's mean pose);
   // empty: zero rotations. Another size is an error at Solve.
   QuaternionVector rest_rotations;
+  // The rest prior applies only toward a given reference (empty rest_rotations: off): the
+  // default weight is meant for a subject's mean pose, not for zero rotations.
+  bool rest_prior_needs_reference = false;
   double limit_weight = 0.0;     // Per radian outside a joint's limits (ASF); 0 = off.
   ceres::Solver::Options ceres;  // Used when solver == kCeres.
   DlsOptions dls;                // Used when solver == kDls or kDlsGeneric.

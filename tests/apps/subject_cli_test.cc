@@ -26,9 +26,11 @@ TEST(SubjectCli, SolveWithSubjectEqualsExplicitFlags) {
   const std::string explicit_bvh = testing::TempPath("explicit.bvh");
   const std::string subject_bvh = testing::TempPath("subject.bvh");
   const std::string common = " --quiet --solver=dls --max_frames=40 --markers=" + take;
-  ASSERT_EQ(testing::RunCli("solve" + common + " --skeleton=" + asf + " --markerset=" + set +
+  const std::string no_rest = " --rest_prior_weight=0";
+  ASSERT_EQ(testing::RunCli("solve" + common + no_rest + " --skeleton=" + asf + " --markerset=" + set +
                                 " --axes=y,z,x --out=" + explicit_bvh, &output), 0) << output;
-  ASSERT_EQ(testing::RunCli("solve" + common + " --subject=" + subject + " --out=" + subject_bvh, &output), 0)
+  ASSERT_EQ(testing::RunCli("solve" + common + no_rest + " --subject=" + subject + " --out=" + subject_bvh, &output),
+            0)
       << output;
   const std::string a = testing::ReadTextFile(explicit_bvh);
   ASSERT_FALSE(a.empty());
@@ -41,7 +43,20 @@ TEST(SubjectCli, SolveWithSubjectEqualsExplicitFlags) {
                                 " --axes=y,z,x --out=" + explicit_bvh, &output), 0) << output;
   ASSERT_EQ(testing::RunCli("solve" + common + rest + " --subject=" + subject + " --out=" + subject_bvh, &output), 0)
       << output;
-  EXPECT_NE(testing::ReadTextFile(explicit_bvh), testing::ReadTextFile(subject_bvh));
+  const std::string toward_mean = testing::ReadTextFile(subject_bvh);
+  EXPECT_NE(testing::ReadTextFile(explicit_bvh), toward_mean);
+  // By default (-1) the prior is on at 5 toward a subject's mean pose, and off without one.
+  const std::string default_bvh = testing::TempPath("default.bvh");
+  ASSERT_EQ(testing::RunCli("solve" + common + " --subject=" + subject + " --out=" + default_bvh, &output), 0)
+      << output;
+  EXPECT_EQ(testing::ReadTextFile(default_bvh), toward_mean);
+  ASSERT_EQ(testing::RunCli("solve" + common + " --skeleton=" + asf + " --markerset=" + set + " --axes=y,z,x --out=" +
+                                default_bvh, &output), 0)
+      << output;
+  EXPECT_EQ(testing::ReadTextFile(default_bvh), a);
+  EXPECT_EQ(testing::RunCli("solve" + common + " --rest_prior_weight=-2 --subject=" + subject + " --out=" +
+                                default_bvh, &output), 1);
+  EXPECT_THAT(output, HasSubstr("--rest_prior_weight: expected >= 0, or -1 (auto)"));
 
   // Both ways of naming the model: an error naming both flags, no output.
   const std::string both = testing::TempPath("both.bvh");
