@@ -98,6 +98,7 @@ def test_template_labels_fit_a_take_of_another_protocol(cmu02, tmp_path):
     subject, _, report = mocapsolve.fit_skeleton(take, cmu02["subject"], axes="y,z,x", **options)
     assert len(subject.marker_labels) == 27
     assert "RASI" in subject.marker_labels and "RFWT" not in subject.marker_labels
+    assert "RWR" in subject.marker_labels and "LSH" not in subject.marker_labels
     assert report["template_labels"][0] == {"template": "LFWT", "take": "LASI"}
     assert len(report["template_labels"]) == 22
     cli, cli_report = str(tmp_path / "cli.json"), str(tmp_path / "cli_report.json")
