@@ -126,6 +126,11 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   int progress_round = -1, progress_iteration = -1;
   const SkeletonFitCallback callback = [&](const SkeletonFitEvent& e) {
     switch (e.kind) {
+      case SkeletonFitEvent::kTemplateLabels:
+        if (!FLAGS_quiet) {
+          std::fprintf(stderr, "fit_skeleton: template labels: %d pairs from %s\n", e.markers, e.text.c_str());
+        }
+        break;
       case SkeletonFitEvent::kAbsentMarkers:
         if (!FLAGS_quiet) std::fprintf(stderr, "fit_skeleton: not in the file, left out: %s\n", e.text.c_str());
         break;
@@ -232,12 +237,13 @@ extern const Command kFitSkeletonCommand = {
     "fit_skeleton", "fit a subject (bone lengths, marker attachments and offsets) to a take's markers",
     "mocapsolve fit_skeleton --template_subject=T.json --markers=IN.c3d|.trc --out_subject=S.json\n"
     "          [--out=FITTED.bvh] [--out_markerset=S.json] [--axes=x,y,z] [--attach_rounds=12]\n"
-    "          [--check=fail|warn|off] [--template_labels=T:TAKE,...|FILE] [--report=r.json]\n"
+    "          [--check=fail|warn|off] [--template_labels=auto|none|T:TAKE,...|FILE] [--report=r.json]\n"
     "   or: --skeleton=TEMPLATE.bvh|.asf --markerset=J.json instead of --template_subject\n\n"
     "For captures without a skeleton. Starts from a template subject (skeleton + marker set;\n"
     "--axes/--marker_scale describe the take's file) and fits on the markers the take shares\n"
     "with it by label (--template_labels renames template markers to the take's labels\n"
-    "where the take's protocol names the same landmark otherwise): per-frame pose solves (the first frame's root from the markers' own\n"
+    "where the take's protocol names the same landmark otherwise; by default a shipped map\n"
+    "when the take's labels are its protocol's): per-frame pose solves (the first frame's root from the markers' own\n"
     "geometry) alternate with a Gauss-Newton fit of bone-length scales and marker offsets.\n"
     "Then --attach_rounds times: every marker of the take is attached to the joint it moves\n"
     "least with (among joints whose bone it is within --max_skin_cm of) and the fit runs\n"

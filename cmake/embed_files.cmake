@@ -1,6 +1,7 @@
 # cmake -DOUTPUT=file.cc -DNAMES="kA|kB" -DINPUTS="a.js|b.css" -P embed_files.cmake
 # Writes a C++ source defining `extern const char kA[] = {..., 0};` for each input file
-# (its bytes, NUL-terminated), in namespace mocapsolve. Used for the viewer's page sources.
+# (its bytes, NUL-terminated), in namespace mocapsolve. Used for the viewer's page sources
+# and the shipped template label maps (examples/*_to_cmu_labels.txt).
 string(REPLACE "|" ";" NAMES "${NAMES}")
 string(REPLACE "|" ";" INPUTS "${INPUTS}")
 list(LENGTH NAMES count)

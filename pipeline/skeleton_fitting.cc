@@ -41,6 +41,12 @@ JsonObject ChecksJson(const SubjectChecks& checks) {
   return json;
 }
 
+// Whether template_labels names a map itself (pairs or a file), not auto or none.
+bool TemplateLabelsGiven(const SkeletonFitSettings& s) {
+  return !s.template_labels.empty() && s.template_labels != kTemplateLabelsAuto &&
+         s.template_labels != kTemplateLabelsNone;
+}
+
 }  // namespace
 
 Status ValidateSkeletonFitSettings(const SkeletonFitSettings& s) {
@@ -58,7 +64,7 @@ Status ValidateSkeletonFitSettings(const SkeletonFitSettings& s) {
   if (s.check != "fail" && s.check != "warn" && s.check != "off") {
     return Status::Error("--check: expected fail, warn or off");
   }
-  if (!s.template_labels.empty()) {
+  if (TemplateLabelsGiven(s)) {
     std::vector<TemplateLabel> labels;
     return ReadTemplateLabels(s.template_labels, &labels);
   }
@@ -107,12 +113,22 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   if (!status.ok()) return status;
   // The template's markers, those the map names under the take's labels.
   MarkerSet template_markers = templ.markers;
-  if (!settings.template_labels.empty()) {
+  if (settings.template_labels == kTemplateLabelsAuto) {
+    status = ChooseShippedTemplateLabels(templ.markers, file, &result->template_labels_map, &result->template_labels);
+  } else if (TemplateLabelsGiven(settings)) {
     status = ReadTemplateLabels(settings.template_labels, &result->template_labels);
-    if (status.ok()) {
-      status = RenameTemplateMarkers(result->template_labels, skeleton, file, markers_path, &template_markers);
-    }
+    const bool inline_pairs = settings.template_labels.find(':') != std::string::npos;
+    result->template_labels_map = inline_pairs ? "inline" : settings.template_labels;
+  }
+  if (!status.ok()) return status;
+  if (!result->template_labels.empty()) {
+    status = RenameTemplateMarkers(result->template_labels, skeleton, file, markers_path, &template_markers);
     if (!status.ok()) return status;
+    SkeletonFitEvent event;
+    event.kind = SkeletonFitEvent::kTemplateLabels;
+    event.text = result->template_labels_map;
+    event.markers = static_cast<int>(result->template_labels.size());
+    emit(event);
   }
   // A template set may name markers this take lacks: fit the ones it has.
   std::vector<MarkerSpec> present;
@@ -411,7 +427,7 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
   }
   JsonObject json;
   json.Add("markers", inputs.markers_path).Add("template", inputs.template_name)
-      .Add("template_labels", label_json)
+      .Add("template_labels", label_json).Add("template_labels_map", result.template_labels_map)
       .Add("frames", result.frames).Add("attach_rounds", result.attach_rounds).Add("kept_round", result.kept_round)
       .Add("seconds", result.seconds)
       .Add(result.unit_known ? "rms_mm" : "rms", result.report.rms.back() * mm)

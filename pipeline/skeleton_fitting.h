@@ -5,7 +5,8 @@
 // Round 0 fits the template's bone-length scales s_j in [min_bone_scale, max_bone_scale]
 // (left = right) and marker offsets (each within max_skin_cm of its bone) on the markers
 // the take shares with the template by label (after renaming template markers to the take's
-// labels by settings.template_labels, template_labels.h), alternating per-frame pose solves (the first
+// labels by settings.template_labels, template_labels.h; by default a shipped map that fits
+// the take, template_label_maps.h), alternating per-frame pose solves (the first
 // frame's root from the markers' geometry) with a damped Gauss-Newton step on (s, offsets).
 // Rounds r = 1..R then attach every marker of the take to the joint it moves least with
 // (CalibrateMarkers; the template's markers keep their joints and fitted offsets, so a
@@ -35,6 +36,7 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "pipeline/subject.h"
+#include "pipeline/template_label_maps.h"
 #include "pipeline/template_labels.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/skeleton_fit.h"
@@ -56,7 +58,9 @@ struct SkeletonFitSettings {
   double offset_prior = 0.0;
   double fit_outlier_mm = 200.0;  // 0 = off.
   std::string check = "fail";    // fail | warn | off.
-  std::string template_labels;   // TEMPLATE:TAKE pairs or their file (template_labels.h); "": none.
+  // TEMPLATE:TAKE pairs or their file (template_labels.h); "auto": a shipped map that fits the
+  // take (template_label_maps.h); "" or "none": none.
+  std::string template_labels = kTemplateLabelsAuto;
 };
 
 struct SettingHelp {
@@ -90,7 +94,9 @@ inline constexpr SettingHelp kSkeletonFitSettingHelp[] = {
               "the report), warn, off."},
     {"template_labels", "Template markers that are the take's under other labels: TEMPLATE:TAKE pairs "
                         "(RFWT:RASI,LFWT:LASI) or a file of them (examples/ais_to_cmu_labels.txt); round 0 fits "
-                        "them under the take's labels, which the fitted subject keeps. \"\": labels as they are."},
+                        "them under the take's labels, which the fitted subject keeps. auto: the first shipped map "
+                        "(examples/*_to_cmu_labels.txt) whose take labels are all in the take and whose template "
+                        "labels are all in the template but none in the take; \"\" or none: labels as they are."},
 };
 
 // The help of `name` in a table like the one above ("" if absent).
@@ -112,6 +118,7 @@ Status ValidateSkeletonFitSettings(const SkeletonFitSettings& settings);
 // What the fit reports while it runs, for a progress display.
 struct SkeletonFitEvent {
   enum Kind {
+    kTemplateLabels, // text: the label map applied (its file, "inline" or, for auto, the shipped file); markers: pairs.
     kAbsentMarkers,  // text: the template's labels the take lacks (left out).
     kRoundStart,     // round, rounds, markers, frames, iterations.
     kFrames,         // round, iteration (the pose solve's step: 0 before the first step, outlier passes included;
@@ -154,6 +161,7 @@ struct SkeletonFitResult {
   std::vector<SkeletonFitRound> rounds;
   std::vector<std::string> absent;  // Template labels the take lacks.
   std::vector<TemplateLabel> template_labels;  // The map applied (settings.template_labels).
+  std::string template_labels_map;  // Where it came from: its file, "inline", or "" (none applied).
   int frames = 0;           // Frames fitted.
   int attach_rounds = 0;    // Rounds asked for (after the -1 default).
   int kept_round = -1;

@@ -10,15 +10,19 @@ namespace mocapsolve {
 
 Status ReadTemplateLabels(const std::string& value, std::vector<TemplateLabel>* labels) {
   labels->clear();
-  const bool from_file = value.find(':') == std::string::npos;
-  std::string text = value;
-  if (from_file) {
-    Status status = ReadFileToString(value, &text);
-    if (!status.ok()) return Status::Error("--template_labels: " + status.message());
-  }
+  if (value.find(':') != std::string::npos) return ParseTemplateLabels(value, "", labels);
+  std::string text;
+  Status status = ReadFileToString(value, &text);
+  if (!status.ok()) return Status::Error("--template_labels: " + status.message());
+  return ParseTemplateLabels(text, value, labels);
+}
+
+Status ParseTemplateLabels(const std::string& text, const std::string& file, std::vector<TemplateLabel>* labels) {
+  labels->clear();
+  const bool from_file = !file.empty();
   // Where an error points: the flag, or the file and line.
   auto where = [&](int line) {
-    return from_file ? value + ":" + std::to_string(line) : std::string("--template_labels");
+    return from_file ? file + ":" + std::to_string(line) : std::string("--template_labels");
   };
   std::set<std::string> templ, take;
   int line = 1;
@@ -55,7 +59,7 @@ Status ReadTemplateLabels(const std::string& value, std::vector<TemplateLabel>* 
     }
     labels->push_back(std::move(label));
   }
-  if (labels->empty()) return Status::Error((from_file ? value : "--template_labels") + ": no TEMPLATE:TAKE pairs");
+  if (labels->empty()) return Status::Error((from_file ? file : "--template_labels") + ": no TEMPLATE:TAKE pairs");
   return Status::Ok();
 }
 

@@ -8,7 +8,8 @@
 //
 // Text: pairs TEMPLATE:TAKE separated by commas, spaces or newlines; '#' starts a comment
 // that runs to the end of its line. The setting's value is that text, or the path of a file
-// holding it (a value without ':' is a path). examples/ais_to_cmu_labels.txt is one.
+// holding it (a value without ':' is a path). examples/ais_to_cmu_labels.txt is one; the
+// shipped ones are also applied without a flag (template_label_maps.h).
 #ifndef MOCAPSOLVE_PIPELINE_TEMPLATE_LABELS_H_
 #define MOCAPSOLVE_PIPELINE_TEMPLATE_LABELS_H_
 
@@ -31,6 +32,10 @@ struct TemplateLabel {
 // line and name "--template_labels" or the file and line: a pair that is not TEMPLATE:TAKE,
 // a template or take label named twice, a file without pairs.
 Status ReadTemplateLabels(const std::string& value, std::vector<TemplateLabel>* labels);
+
+// The same for `text` itself: the pairs of the file `file` (named in errors with the line),
+// or inline pairs when `file` is "".
+Status ParseTemplateLabels(const std::string& text, const std::string& file, std::vector<TemplateLabel>* labels);
 
 // `markers` (the template's set on `skeleton`) with each mapped marker renamed to its take
 // label. Errors name the label: a template label the set lacks, a take label absent from

@@ -56,7 +56,9 @@ void BindSkeletonFitting(py::module_& m) {
       "progress: None, or a callable progress(event: dict) called (with the GIL) at each\n"
       "  round's start ('kind': 'round'), after each iteration ('iteration', with 'rms_mm'),\n"
       "  at each round's end ('round_done') and per frame of each pose solve ('frames',\n"
-      "  with 'frames_done' of 'frames'); keys 'round', 'rounds', 'iteration', 'seconds'.\n"
+      "  with 'frames_done' of 'frames'), and once before the rounds when a template label\n"
+      "  map is applied ('template_labels', 'text' its file); keys 'round', 'rounds',\n"
+      "  'iteration', 'seconds'.\n"
       "Keywords, the fit's options (SkeletonFitSettings):\n" +
       KeywordList(py::cast(SkeletonFitSettings()), kSkeletonFitSettingHelp) +
       "and the solver options of solve() (SolverSettings: solver='ceres'|'dls', max_iterations,\n"
@@ -131,6 +133,7 @@ void BindSkeletonFitting(py::module_& m) {
               case SkeletonFitEvent::kIteration: kind = "iteration"; break;
               case SkeletonFitEvent::kRoundDone: kind = "round_done"; break;
               case SkeletonFitEvent::kFrames: kind = "frames"; break;
+              case SkeletonFitEvent::kTemplateLabels: kind = "template_labels"; break;
               default: return;
             }
             py::gil_scoped_acquire acquire;
@@ -145,6 +148,7 @@ void BindSkeletonFitting(py::module_& m) {
             d["markers"] = e.markers;
             d["rms_mm"] = e.rms * mm;
             d["seconds"] = e.seconds;
+            d["text"] = e.text;  // template_labels: the map applied.
             try {
               progress(d);
             } catch (py::error_already_set& error) {

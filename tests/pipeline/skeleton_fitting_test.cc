@@ -90,11 +90,16 @@ TEST(FitSubjectToTake, ShortSquatFitReportsRoundsInOrder) {
       FitSubjectToTake(inputs, settings, solve, &result, [&](const SkeletonFitEvent& e) { events.push_back(e); });
   ASSERT_TRUE(status.ok()) << status.message();
 
-  // The template's markers the take lacks come first, then per round: start, the frames of
-  // each pose solve (1 + iterations of them) with the iterations between, and the end.
-  ASSERT_FALSE(events.empty());
-  EXPECT_EQ(events[0].kind, SkeletonFitEvent::kAbsentMarkers);
-  EXPECT_EQ(events[1].kind, SkeletonFitEvent::kRoundStart);
+  // The label map applied comes first (the take's labels are the 53-marker Vicon set's),
+  // then the template's markers the take lacks, then per round: start, the frames of each
+  // pose solve (1 + iterations of them) with the iterations between, and the end.
+  ASSERT_GE(events.size(), 3u);
+  EXPECT_EQ(events[0].kind, SkeletonFitEvent::kTemplateLabels);
+  EXPECT_EQ(events[0].text, "examples/vicon53_to_cmu_labels.txt");
+  EXPECT_EQ(events[0].markers, static_cast<int>(result.template_labels.size()));
+  EXPECT_EQ(result.template_labels_map, events[0].text);
+  EXPECT_EQ(events[1].kind, SkeletonFitEvent::kAbsentMarkers);
+  EXPECT_EQ(events[2].kind, SkeletonFitEvent::kRoundStart);
   int starts = 0, done = 0, iterations = 0, frame_events = 0;
   for (const SkeletonFitEvent& e : events) {
     starts += e.kind == SkeletonFitEvent::kRoundStart;
@@ -130,6 +135,53 @@ TEST(FitSubjectToTake, ShortSquatFitReportsRoundsInOrder) {
   }
   settings.check = "warn";
   EXPECT_TRUE(SkeletonFitCheckStatus(inputs, settings, result).ok());
+}
+
+// `--template_labels=auto` (the default) on the real takes, with CMU subject 2's marker set
+// as the template: the CMU-labelled takes get no map, the others their protocol's.
+TEST(FitSubjectToTake, AutoTemplateLabelsPickTheTakesProtocol) {
+  MOCAPSOLVE_DATA_FILE(asf, "amc/02.asf");
+  MOCAPSOLVE_DATA_FILE(amc, "amc/02_01.amc");
+  MOCAPSOLVE_DATA_FILE(c3d, "c3d/02_01.c3d");
+  SubjectCalibration calibrated;
+  ASSERT_NO_FATAL_FAILURE(CalibrateCmu02(asf, amc, c3d, &calibrated));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"c3d/02_01.c3d", ""},
+      {"c3d/cmu_02_05.c3d", ""},
+      {"c3d/squat.c3d", "examples/vicon53_to_cmu_labels.txt"},
+      {"c3d/nick_freeform_001.c3d", "examples/vicon53_to_cmu_labels.txt"},
+      {"c3d/JA1Gait35.c3d", "examples/ais_to_cmu_labels.txt"},
+  };
+  for (const auto& [relative, expected] : cases) {
+    MOCAPSOLVE_DATA_FILE(path, relative);
+    MarkerTrajectories take;
+    ASSERT_TRUE(ReadMarkerFile(path, &take).ok()) << path;
+    std::string name;
+    std::vector<TemplateLabel> labels;
+    ASSERT_TRUE(ChooseShippedTemplateLabels(calibrated.subject.markers, take, &name, &labels).ok());
+    EXPECT_EQ(name, expected) << relative;
+    EXPECT_EQ(labels.empty(), expected.empty()) << relative;
+  }
+  // "none" (and "") turn the choice off: squat's round 0 fits the 26 shared labels only.
+  MOCAPSOLVE_DATA_FILE(squat, "c3d/squat.c3d");
+  SkeletonFitInputs inputs;
+  inputs.templ = calibrated.subject;
+  inputs.markers_path = squat;
+  SkeletonFitSettings settings;
+  settings.fit_max_frames = 20;
+  settings.fit_iterations = 1;
+  settings.attach_rounds = 0;
+  settings.check = "off";
+  MarkerSolveOptions solve;
+  solve.solver = SolverKind::kDls;
+  for (const std::string& off : {std::string(kTemplateLabelsNone), std::string()}) {
+    settings.template_labels = off;
+    SkeletonFitResult result;
+    ASSERT_TRUE(FitSubjectToTake(inputs, settings, solve, &result).ok());
+    EXPECT_TRUE(result.template_labels.empty());
+    EXPECT_EQ(result.template_labels_map, "");
+    EXPECT_EQ(result.rounds[0].markers, 26);
+  }
 }
 
 // A template with the take's whole marker set (CMU subject 2 on its take 02_05): the

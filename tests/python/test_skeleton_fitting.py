@@ -47,7 +47,10 @@ def test_fit_skeleton_is_bit_identical_to_the_cli(cmu02, tmp_path):
     assert kinds.count("round") == 2 and kinds.count("round_done") == 2
     assert kinds.count("iteration") == 3 + 2
     assert kinds.count("frames") == 120 * (3 + 1 + 2 + 1)
-    assert all(e["frames"] == 120 for e in events)
+    # The shipped map the default template_labels="auto" applies, announced first.
+    assert events[0]["kind"] == "template_labels"
+    assert events[0]["text"] == report["template_labels_map"] == "examples/vicon53_to_cmu_labels.txt"
+    assert all(e["frames"] == 120 for e in events[1:])
 
 
 def test_fit_skeleton_from_skeleton_and_markerset_files(cmu02):
@@ -56,7 +59,9 @@ def test_fit_skeleton_from_skeleton_and_markerset_files(cmu02):
     subject, _, report = mocapsolve.fit_skeleton(squat, skeleton=cmu02["asf"], markerset=cmu02["markerset"],
                                                  axes="x,y,z", **options)
     assert report["template"] == cmu02["asf"] and report["attach_rounds"] == 0
-    assert len(subject.marker_labels) == 26  # The template's markers the take has.
+    # The template's markers the take has: 26 by label, and those the shipped map renames.
+    assert len(report["template_labels"]) == 8
+    assert len(subject.marker_labels) == 26 + 8
 
 
 def test_fit_skeleton_failing_its_checks_raises_the_cli_message(cmu02):
