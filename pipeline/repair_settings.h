@@ -62,7 +62,8 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
                                  const Skeleton& skeleton, RepairOptions* options);
 
 // A subject's mean pose (MarkerTake::mean_pose; empty: zero rotations) as the rest prior's
-// reference of every per-frame solve of the repair.
+// reference of the repair's naive solve (the take's solve). The tracker reference has no
+// rest prior (RepairOptionsFromSettings): it judges the samples.
 void SetRepairRestRotations(const QuaternionVector& mean_pose, RepairOptions* options);
 
 }  // namespace mocapsolve
