@@ -58,10 +58,9 @@ inline constexpr char kSolverSettingNames[] =
 // The rest prior's weight by default (rest_prior_weight = -1), mm per radian: toward the
 // subject's mean pose when the solve is given one (MarkerSolveOptions::rest_rotations), off
 // otherwise. Chosen by leave-one-marker-out on the five fitted takes (BENCHMARKS.md): 5
-// lowers every figure of every take (2 and 10 do too, 5 most often best) and of each CMU
-// subject on the other's take; and it keeps the Ceres frame solve out of the wrong minima
-// that a joint no marker constrains leaves open (cmu_02_05 on its own subject: marker RMS
-// 13.6 -> 4.6 mm, 1.3 s instead of 3.2).
+// lowers every figure of every take (1, 2 and 10 do too; 5 most often best) and each CMU
+// subject's median on the other's take. Directions no marker constrains then settle at the
+// subject's typical pose instead of wherever the solver's path left them.
 inline constexpr double kMeanPoseRestPriorWeight = 5.0;
 
 // Per-frame options (solver picks Ceres or DLS); the skeleton's unit converts the prior
