@@ -37,6 +37,8 @@ using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // Throws ValueError(status.message()) when the status is an error.
 void ThrowIfError(const Status& status);
+// (n, 4) x, y, z, w: the numpy form of n rotations (a pose's, a subject's mean pose).
+Array QuaternionArray(const QuaternionVector& rotations);
 // Throws OSError(ENOENT) naming the path when it does not exist or is not readable.
 void RequireReadable(const std::string& path);
 

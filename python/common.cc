@@ -6,6 +6,16 @@
 
 namespace mocapsolve::python {
 
+Array QuaternionArray(const QuaternionVector& rotations) {
+  Array out({static_cast<py::ssize_t>(rotations.size()), py::ssize_t{4}});
+  for (size_t j = 0; j < rotations.size(); ++j) {
+    const Eigen::Quaterniond& q = rotations[j];
+    out.mutable_at(j, 0) = q.x(); out.mutable_at(j, 1) = q.y();
+    out.mutable_at(j, 2) = q.z(); out.mutable_at(j, 3) = q.w();
+  }
+  return out;
+}
+
 void ThrowIfError(const Status& status) {
   if (!status.ok()) throw py::value_error(status.message());
 }

@@ -172,13 +172,7 @@ void BindIo(py::module_& m) {
       .def_property_readonly("amc_fps", [](const Subject& s) { return s.amc_fps; })
       .def_property_readonly("mean_pose", [](const Subject& s) -> py::object {
             if (s.mean_pose.empty()) return py::none();
-            Array out({static_cast<py::ssize_t>(s.mean_pose.size()), py::ssize_t{4}});
-            for (size_t j = 0; j < s.mean_pose.size(); ++j) {
-              const Eigen::Quaterniond& q = s.mean_pose[j];
-              out.mutable_at(j, 0) = q.x(); out.mutable_at(j, 1) = q.y();
-              out.mutable_at(j, 2) = q.z(); out.mutable_at(j, 3) = q.w();
-            }
-            return std::move(out);
+            return QuaternionArray(s.mean_pose);
           },
           "(joints, 4) x, y, z, w: each joint's mean local rotation over the take the subject was fitted or\n"
           "calibrated on (the rest prior's reference, rest_prior_weight), or None if the file has none.");

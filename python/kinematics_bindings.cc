@@ -161,15 +161,7 @@ void BindKinematics(py::module_& m) {
            "A pose of skeleton: rotations (joints, 4) x, y, z, w; translations (joints, 3) or the\n"
            "root's (3,) (the others keep their rest offsets), skeleton units.")
       .def_property("rotations",
-          [](const Pose& p) {
-            Array out({static_cast<py::ssize_t>(p.rotations.size()), py::ssize_t{4}});
-            for (size_t j = 0; j < p.rotations.size(); ++j) {
-              const auto& q = p.rotations[j];
-              out.mutable_at(j, 0) = q.x(); out.mutable_at(j, 1) = q.y();
-              out.mutable_at(j, 2) = q.z(); out.mutable_at(j, 3) = q.w();
-            }
-            return out;
-          },
+          [](const Pose& p) { return QuaternionArray(p.rotations); },
           [](Pose& p, const Array& a) {
             CheckShape(a, {static_cast<py::ssize_t>(p.rotations.size()), 4}, "rotations");
             for (size_t j = 0; j < p.rotations.size(); ++j) {
