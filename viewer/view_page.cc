@@ -99,7 +99,24 @@ std::vector<JsonValue> Strings(const std::vector<std::string>& texts) {
   return std::vector<JsonValue>(texts.begin(), texts.end());
 }
 
-// JSON inside <script>: "</" would end the element early.
+// JSON inside <script>: every '<' (in JSON text it can only stand inside a string) as the
+// escape \u003c, so that no "</script" ends the element early and no "<!--" followed by
+// "<script" switches the parser into the double-escaped state, which swallows the rest of
+// the page into the element (a marker label, joint or file name is enough).
+std::string JsonScriptSafe(const std::string& json) {
+  std::string out;
+  out.reserve(json.size());
+  for (const char c : json) {
+    if (c == '<') {
+      out += "\\u003c";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// Our own JavaScript inside <script>: "</" would end the element early.
 std::string ScriptSafe(std::string text) {
   for (size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) {
     text.replace(at, 2, "<\\/");
@@ -219,7 +236,7 @@ Status BuildViewPage(const ViewScene& scene, const std::string& runtime, std::st
       .Add("state_names", states).Add("markers", markers).Add("skeletons", skeletons)
       .Add("characters", characters).Add("intervals", intervals).Add("curves", curves);
 
-  std::string data = "<script type=\"application/json\" id=\"mv-meta\">" + ScriptSafe(meta.ToString(false)) +
+  std::string data = "<script type=\"application/json\" id=\"mv-meta\">" + JsonScriptSafe(meta.ToString(false)) +
                      "</script>\n";
   for (size_t i = 0; i < blobs.blobs().size(); ++i) {
     data += "<script type=\"application/octet-stream\" id=\"mv-blob-" + std::to_string(i) + "\">";

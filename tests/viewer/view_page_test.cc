@@ -14,6 +14,7 @@
 
 #include "io/csv_columns.h"
 #include "io/gzip.h"
+#include "io/json_reader.h"
 #include "tests/test_support.h"
 #include "viewer/repair_intervals.h"
 #include "viewer/view_scene.h"
@@ -79,7 +80,7 @@ TEST(ViewPage, EmbedsQuantizedPositionsStatesAndEscapedText) {
   EXPECT_THAT(html, HasSubstr("<title>a &lt;/script&gt; &lt;b&gt;</title>"));
   EXPECT_THAT(html, HasSubstr("/*runtime*/"));
   EXPECT_THAT(html, HasSubstr("window.mocapsolveView"));
-  EXPECT_THAT(html, HasSubstr("\"<\\/script>\""));  // The label cannot end the JSON's element.
+  EXPECT_THAT(html, HasSubstr("\"\\u003c/script>\""));  // The label cannot end the JSON's element.
   EXPECT_EQ(html.find("@DATA@"), std::string::npos);
   // Positions: int16 per axis around the box's centre, steps <= extent / 65534; NaN ->
   // -32768; gzip-compressed, each frame stored as its difference from the previous one.
@@ -94,6 +95,40 @@ TEST(ViewPage, EmbedsQuantizedPositionsStatesAndEscapedText) {
   EXPECT_NEAR(origin_x + step_x * q[0], 0.0, step_x);
   EXPECT_NEAR(origin_x + step_x * q[3], 3.5, step_x);
   EXPECT_EQ(Inflated(Between(html, "id=\"mv-blob-1\">", "</script>")), std::string("\0\0\1\2", 4));
+}
+
+// Text from files inside the page's JSON element: whatever a label or title holds, the
+// element ends at our own "</script>", holds no '<' at all (so neither "</script" nor
+// "<!--" with "<script", which would switch the HTML parser into the double-escaped state and
+// swallow the rest of the page), and parses back to the very same strings.
+TEST(ViewPage, ScriptDataCannotEndOrSwallowTheDataElement) {
+  const std::vector<std::string> hostile = {"<!--<script>", "</script>", "</SCRIPT ", "<!--", "-->", "<script>",
+                                            "a<b>&amp;\"q\"", "\x1b[31mred"};
+  ViewScene scene;
+  scene.title = "<!--<script>title";
+  scene.frame_rate = 30;
+  ViewMarkers markers;
+  markers.name = "<!--<script>";
+  markers.labels = hostile;
+  markers.num_frames = 1;
+  markers.positions.assign(3 * hostile.size(), 1.0f);
+  markers.states.assign(hostile.size(), 0);
+  scene.markers.push_back(markers);
+  std::string html;
+  ASSERT_TRUE(BuildViewPage(scene, "/*runtime*/", &html).ok());
+  const std::string data = Between(html, "id=\"mv-meta\">", "</script>");
+  EXPECT_EQ(data.find('<'), std::string::npos) << data;
+  JsonNode meta;
+  ASSERT_TRUE(ParseJson(data, "mv-meta", &meta).ok());
+  ASSERT_NE(meta.Find("title"), nullptr);
+  EXPECT_EQ(meta.Find("title")->string, scene.title);
+  const JsonNode* parsed = meta.Find("markers");
+  ASSERT_TRUE(parsed != nullptr && parsed->is_array() && parsed->items.size() == 1);
+  const JsonNode* labels = parsed->items[0].Find("labels");
+  ASSERT_TRUE(labels != nullptr && labels->items.size() == hostile.size());
+  for (size_t i = 0; i < hostile.size(); ++i) EXPECT_EQ(labels->items[i].string, hostile[i]);
+  // The element that follows the data is still there: the page was not swallowed.
+  EXPECT_THAT(html.substr(html.find("id=\"mv-meta\">")), HasSubstr("id=\"mv-blob-0\">"));
 }
 
 TEST(ViewPage, RefusesAnEmptySceneAndABadRate) {
