@@ -80,6 +80,20 @@ Status CheckGivenFlags(const Command& command) {
   return Status::Ok();
 }
 
+// No option of ours takes NaN or an infinity (gflags' strtod accepts "nan" and "inf", and
+// a NaN passes every `x < bound` check downstream): one message for every number flag.
+Status CheckFiniteFlags(const Command& command) {
+  std::vector<gflags::CommandLineFlagInfo> flags;
+  gflags::GetAllFlags(&flags);
+  for (const auto& flag : flags) {
+    if (flag.type != "double" || !IsOurFlag(flag) || !CommandReadsFlag(command, flag)) continue;
+    if (!std::isfinite(std::strtod(flag.current_value.c_str(), nullptr))) {
+      return Status::Error("--" + flag.name + ": expected a finite number, got '" + flag.current_value + "'");
+    }
+  }
+  return Status::Ok();
+}
+
 // The command's own defaults for the shared flags it overrides; an explicit flag still wins.
 void ApplyFlagOverrides(const Command& command) {
   for (const FlagOverride& o : command.flag_overrides) {
@@ -407,6 +421,7 @@ int main(int argc, char** argv) {
   mocapsolve::running_command = command;
   mocapsolve::SetStage("arguments");
   mocapsolve::Status status = mocapsolve::CheckGivenFlags(*command);
+  if (status.ok()) status = mocapsolve::CheckFiniteFlags(*command);
   if (status.ok()) status = mocapsolve::CheckReportPaths(positional);
   if (status.ok() && mocapsolve::NamesStandardOutput(*command, positional)) mocapsolve::ReserveStandardOutputForData();
   if (status.ok()) {

@@ -120,5 +120,38 @@ TEST(CommandFlags, SharedFlagsShowEachCommandsOwnDefault) {
   EXPECT_THAT(output, HasSubstr("\"solver\": \"ceres\""));
 }
 
+// The number flags each command's --help lists (type double).
+std::vector<std::string> NumberFlags(const std::string& command) {
+  std::string output;
+  EXPECT_EQ(testing::RunCli(command + " --help", &output), 0) << command;
+  std::vector<std::string> flags;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  --", 0) == 0 && line.find(" (double) ") != std::string::npos) {
+      flags.push_back(line.substr(4, line.find(' ', 4) - 4));
+    }
+  }
+  return flags;
+}
+
+// NaN and infinities pass every `x < bound` check: each number flag of each command refuses
+// them before any work, naming the flag (the probe found batch --take_timeout=nan,
+// pipeline --mapping_normal_weight=nan, repair --tracker_function_tolerance=nan accepted).
+TEST(CommandFlags, EveryNumberFlagRefusesNanAndInfinity) {
+  size_t checked = 0;
+  for (const std::string& command : Commands()) {
+    const std::vector<std::string> flags = NumberFlags(command);
+    for (size_t i = 0; i < flags.size(); ++i) {
+      const std::string value = i % 3 == 0 ? "nan" : i % 3 == 1 ? "inf" : "-inf";
+      std::string output;
+      EXPECT_EQ(testing::RunCli(command + " --" + flags[i] + "=" + value, &output), 1) << command << " " << flags[i];
+      EXPECT_THAT(output, HasSubstr("--" + flags[i] + ": expected a finite number")) << command << ": " << output;
+      EXPECT_EQ(output.find('\n'), output.size() - 1) << output;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 50u);
+}
+
 }  // namespace
 }  // namespace mocapsolve
