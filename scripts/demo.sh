@@ -109,6 +109,23 @@ if [ -f "$data_dir/c3d/cmu_02_05.c3d" ] && [ -f "$data_dir/gltf/Xbot.glb" ]; the
   echo "outputs: $out/pipeline_02_05/ (repaired.c3d, solved.bvh, Xbot.glb with the take as animation 'cmu_02_05', report.json)"
 fi
 
+# Every promised output must be there: a missing one fails the demo loudly (a step that
+# only warned, such as a page the viewer runtime could not write, is caught here).
+promised=(walk.bvh info.json walk_m_xyz.bvh walk_positions.csv walk_markers.c3d calibrated_markerset.json
+          solved_ceres.bvh solved_dls.bvh solved_clip.bvh walk_filtered.bvh walk_blend.bvh
+          walk_markers_damaged.c3d walk_markers_repaired.c3d repair.json evaluate.json leave_one_out.json
+          falloff.csv walk_edited.bvh walk_subject.json pipeline_walk/report.json pipeline_walk/solved.bvh
+          pipeline_walk/repaired.c3d pipeline_walk/view.html)
+[ -f "$data_dir/c3d/cmu_02_05.c3d" ] && [ -f "$data_dir/gltf/Xbot.glb" ] &&
+  promised+=(pipeline_02_05/report.json pipeline_02_05/Xbot.glb pipeline_02_05/view.html)
+[ -f "$gltf_dir/CesiumMan.glb" ] && [ -f "$gltf_dir/RiggedFigure.glb" ] && promised+=(riggedfigure_walk.glb)
+absent=()
+for file in "${promised[@]}"; do [ -s "$out/$file" ] || absent+=("$file"); done
+if [ ${#absent[@]} -gt 0 ]; then
+  echo "demo: FAILED: promised outputs missing in $out/: ${absent[*]}" >&2
+  exit 1
+fi
+
 echo
 echo "Done. Outputs in $out/:"
 ls -1 "$out" | sed 's/^/  /'

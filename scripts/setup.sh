@@ -47,8 +47,10 @@ fi
 [ "$only_install" -eq 0 ] || exit 0
 
 build_type=${MOCAPSOLVE_BUILD_TYPE:-Release}
+launcher=()  # ccache when present, as sanitize.sh and fuzz.sh use it: rebuilds of clones are quick
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 if [ ! -f build/CMakeCache.txt ]; then
-  cmake -S . -B build -DCMAKE_BUILD_TYPE="$build_type" ${MOCAPSOLVE_CMAKE_ARGS:-} >/dev/null
+  cmake -S . -B build -DCMAKE_BUILD_TYPE="$build_type" "${launcher[@]}" ${MOCAPSOLVE_CMAKE_ARGS:-} >/dev/null
 elif [ "$reconfigure" -eq 1 ]; then
   cmake -S . -B build >/dev/null  # Finds the peer libraries an earlier configure lacked.
 fi
@@ -62,6 +64,11 @@ grep -i 'warning' build/build.log | head -20 || true
 # The viewer's runtime (three.js bundle) and its browser test's driver, from npm into
 # build/tools/viewer. Without network `mocapsolve view` says how to retry, and the browser
 # tests skip.
-if ! scripts/viewer_tools.sh >/dev/null; then
-  echo "setup: warning: the viewer's npm packages could not be installed (scripts/viewer_tools.sh)" >&2
+# The viewer's pages are promised outputs of `pipeline` and `view`: without the runtime,
+# setup stops here and says what to run (MOCAPSOLVE_NO_VIEWER=1 builds without it).
+if [ "${MOCAPSOLVE_NO_VIEWER:-0}" != 1 ] && ! scripts/viewer_tools.sh >/dev/null; then
+  echo "setup: the viewer's npm packages could not be installed; check the network to the npm" \
+       "registry and run scripts/viewer_tools.sh, then this script again (or set MOCAPSOLVE_NO_VIEWER=1" \
+       "to build and test without the viewer: its pages and browser tests are then skipped)" >&2
+  exit 1
 fi

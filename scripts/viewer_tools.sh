@@ -6,7 +6,8 @@
 #   puppeteer-core (drives Debian's chromium in the browser test and benchmark).
 # Versions are pinned here. Idempotent: a second run installs nothing.
 #   scripts/viewer_tools.sh          install (exit 0), or 77 if node/npm are missing or the
-#                                    registry cannot be reached (a test treats it as "skip")
+#                                    registry cannot be reached after MOCAPSOLVE_NPM_ATTEMPTS
+#                                    tries with backoff (default 5; a test treats 77 as "skip")
 #   scripts/viewer_tools.sh --bundle only the bundle (three + esbuild), no puppeteer-core
 # Prints the tools folder on stdout.
 set -euo pipefail
@@ -32,10 +33,17 @@ for p in "${packages[@]}"; do
 done
 if [[ ${#missing[@]} -gt 0 ]]; then
   [[ -f "$dir/package.json" ]] || echo '{"name": "mocapsolve-viewer-tools", "private": true}' > "$dir/package.json"
-  if ! (cd "$dir" && npm install --no-audit --no-fund --loglevel=error --save-exact "${missing[@]}" >&2); then
-    echo "viewer_tools: cannot install ${missing[*]} from the npm registry" >&2
-    exit 77
-  fi
+  # A registry error is often transient (ECONNRESET, ETIMEDOUT): retry with backoff.
+  attempt=1
+  until (cd "$dir" && npm install --no-audit --no-fund --loglevel=error --save-exact "${missing[@]}" >&2); do
+    if [[ $attempt -ge ${MOCAPSOLVE_NPM_ATTEMPTS:-5} ]]; then
+      echo "viewer_tools: cannot install ${missing[*]} from the npm registry after $attempt attempts" >&2
+      exit 77
+    fi
+    echo "viewer_tools: npm install failed (attempt $attempt); retrying in $((attempt * 5)) s" >&2
+    sleep $((attempt * 5))
+    attempt=$((attempt + 1))
+  done
   rm -f "$dir/three.bundle.js"
 fi
 bundle="$dir/three.bundle.js"
