@@ -5,9 +5,12 @@
 #   scripts/sanitize.sh [--only=FOLDERS] [extra ctest arguments, e.g. -R Bvh]
 # --only=io,apps builds the CLI and only the tests of those tests/ folders (CMake targets
 # tests_io, tests_apps) and runs the tests labelled with them.
-# The build is made cheap, since it only has to find faults: -O1 with line tables only
-# (-g1: sanitizer reports keep file:line, without full debug info, which dominated compile
-# and link time), no benchmarks (so no peers) and no Python module; ccache when present.
+# The build is made cheap, since it only has to find faults: the code under test (library,
+# CLI) is instrumented at -O1 with line tables only (-g1: sanitizer reports keep file:line,
+# without full debug info, which dominated compile and link time); the test files are not
+# instrumented and compile with the Release flags, so that ccache serves them from the
+# Release build (CMakeLists.txt, mocapsolve_instrument); no benchmarks (so no peers) and no
+# Python module.
 # Executables are linked without PIE: a position-independent ASan build of the CLI carries
 # ~100 MB of relocations that the loader applies at every start (3.0 s per process here,
 # 0.5 s without), and the CLI tests start it thousands of times.
@@ -23,7 +26,7 @@ fi
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 if [ ! -f build-asan/CMakeCache.txt ]; then
-  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_EXE_LINKER_FLAGS=-no-pie \
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXE_LINKER_FLAGS=-no-pie \
     -DMOCAPSOLVE_SANITIZE=ON -DMOCAPSOLVE_BUILD_BENCHMARKS=OFF -DMOCAPSOLVE_PYTHON=OFF "${launcher[@]}" >/dev/null
 fi
 targets=()

@@ -9,12 +9,12 @@ packages=(build-essential cmake pkg-config libeigen3-dev libceres-dev libsuitesp
           libgoogle-glog-dev libgflags-dev libgtest-dev libgmock-dev libbenchmark-dev
           libtinygltf-dev libassimp-dev libnanoflann-dev libspectra-dev zlib1g-dev
           python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
-          python3-matplotlib python3-jsonschema python3-setuptools python3-venv python3-pip chromium)
+          python3-matplotlib python3-jsonschema python3-setuptools python3-venv python3-pip chromium ccache)
 # node and npm (for scripts/viewer_tools.sh and validate_gltf.sh) are taken as found: this
 # machine's come from NodeSource, whose nodejs bundles npm and conflicts with Debian's npm.
 # Opt-in: `setup.sh --fuzz` also installs what scripts/fuzz.sh needs (clang, libFuzzer)
 # and then only installs (the fuzz build is scripts/fuzz.sh's own, in build-fuzz/).
-fuzz_packages=(clang libclang-rt-14-dev libfuzzer-14-dev ccache)
+fuzz_packages=(clang libclang-rt-14-dev libfuzzer-14-dev)
 # Opt-in: `setup.sh --with-peers` also installs the peer kinematics libraries of the peers
 # benchmark (bench/peers: Orocos KDL, MuJoCo, DART; about 600 MB with DART's dependencies),
 # then reconfigures and builds as usual, so build/bin/mocapsolve_peers_bench appears.

@@ -183,12 +183,14 @@ int RunProgram(const std::string& program, const std::string& arguments, std::st
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+std::string CliPath() { return MOCAPSOLVE_CLI; }
+
 int RunCli(const std::string& arguments, std::string* output) {
-  return RunProgram(MOCAPSOLVE_CLI, arguments, output);
+  return RunProgram(CliPath(), arguments, output);
 }
 
 std::string BuiltProgramPath(const std::string& name) {
-  const std::string cli = MOCAPSOLVE_CLI;
+  const std::string cli = CliPath();
   const size_t slash = cli.rfind('/');
   return (slash == std::string::npos ? std::string(".") : cli.substr(0, slash)) + "/" + name;
 }

@@ -55,6 +55,10 @@ int CheckAnnotatedBadFiles(const std::string& extension,
 // byte inserted, or the rest cut), for robustness tests of parsers.
 std::string RandomlyDamaged(const std::string& text, const std::string& alphabet, std::mt19937* rng);
 
+// Path of the built CLI (build/bin/mocapsolve). The paths are compiled into
+// test_support.cc alone, so that every test file compiles the same in every build folder
+// (ccache serves the sanitized build's tests from the Release build's).
+std::string CliPath();
 // Runs the built CLI with arguments (shell-quoted by the caller); returns its exit code
 // and fills *output with stdout+stderr.
 int RunCli(const std::string& arguments, std::string* output);

@@ -243,7 +243,7 @@ TEST_F(BatchCli, TimeoutAndKilledBatch) {
   // A batch killed (SIGKILL) while takes run: every take folder has a record with its
   // outputs, or no record; no temporary files; the next run finishes the rest.
   const std::string killed = testing::TempPath("killed");
-  const std::string command = std::string(MOCAPSOLVE_CLI) + " batch --quiet --jobs=2 --manifest=" + manifest +
+  const std::string command = testing::CliPath() + " batch --quiet --jobs=2 --manifest=" + manifest +
                               " --out_dir=" + killed + " >/dev/null 2>&1 & pid=$!; sleep 0.2; kill -9 $pid; wait $pid";
   std::system(command.c_str());
   ::usleep(200000);  // The workers die with the batch (PR_SET_PDEATHSIG).

@@ -150,7 +150,7 @@ TEST_P(MalformedInputSweep, OneLineErrorOrSuccessNeverACrash) {
   }
   const std::string stem = std::filesystem::path(fixture.file).stem().string();
   const std::string extension = std::filesystem::path(fixture.file).extension().string();
-  const std::string cli = std::string("timeout -s KILL 60 ") + MOCAPSOLVE_CLI;
+  const std::string cli = std::string("timeout -s KILL 60 ") + testing::CliPath();
 
   // The good file itself must pass, or the sweep tests nothing.
   {

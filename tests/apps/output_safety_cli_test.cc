@@ -123,7 +123,7 @@ TEST_F(OutputSafety, FailedRunWritesAnErrorReport) {
 TEST_F(OutputSafety, DashWritesTextOutputsToStandardOutput) {
   const std::string err = testing::TempPath("stderr.txt");
   auto run_split = [&](const std::string& arguments, std::string* out) {
-    return testing::RunProgram("/bin/sh", "-c '" + std::string(MOCAPSOLVE_CLI) + " " + arguments + " 2>" + err + "'", out);
+    return testing::RunProgram("/bin/sh", "-c '" + testing::CliPath() + " " + arguments + " 2>" + err + "'", out);
   };
   std::string out;
   ASSERT_EQ(run_split("fk --motion=" + demo_ + " --out=-", &out), 0) << testing::ReadTextFile(err);
