@@ -31,6 +31,17 @@ std::string CsvNumber(double value) {
 // The take's page relative to the batch folder ("02_05/view.html"), or "".
 std::string ViewLink(const TakeRecord& r) { return r.figures.view.empty() ? "" : r.take + "/" + r.figures.view; }
 
+// The same as a link that no name can turn into a script or another site.
+std::string ViewUrl(const TakeRecord& r) { return r.figures.view.empty() ? "" : RelativeUrl({r.take, r.figures.view}); }
+
+// A take that has not ended (a summary written while the batch runs) is not listed.
+bool Ended(const TakeOutcome& outcome) { return !outcome.record.status.empty(); }
+
+int Pending(const BatchResult& result) {
+  return static_cast<int>(std::count_if(result.takes.begin(), result.takes.end(),
+                                        [](const TakeOutcome& t) { return !Ended(t); }));
+}
+
 std::string HtmlNumber(double value, const char* format) {
   if (std::isnan(value)) return "";
   char text[32];
@@ -41,8 +52,10 @@ std::string HtmlNumber(double value, const char* format) {
 }  // namespace
 
 std::string FormatSummaryJson(const BatchResult& result, const std::string& version) {
-  std::vector<JsonObject> takes;
+  // The takes' array as text, one take at a time (a tree of 10^5 objects costs ~1 KB each).
+  std::string takes = "[";
   for (const TakeOutcome& outcome : result.takes) {
+    if (!Ended(outcome)) continue;
     const TakeRecord& r = outcome.record;
     const TakeFigures& f = r.figures;
     std::vector<JsonObject> timings;
@@ -59,14 +72,23 @@ std::string FormatSummaryJson(const BatchResult& result, const std::string& vers
         .Add("gate_pass", f.gate_pass < 0 ? JsonValue() : JsonValue(f.gate_pass == 1))
         .Add("vertex_error", f.vertex_error).Add("foot_skating_cm_per_s", f.foot_skating_cm_s)
         .Add("view", ViewLink(r).empty() ? JsonValue() : JsonValue(ViewLink(r))).Add("key", r.key);
-    takes.push_back(o);
+    takes += (takes.size() > 1 ? ", " : "") + o.ToString(/*indent=*/false);
   }
+  takes += "]";
   JsonObject root;
   root.Add("format", "mocapsolve.batch_summary").Add("version", 1).Add("program_version", version)
       .Add("takes_total", static_cast<int>(result.takes.size())).Add("done", result.done)
-      .Add("failed", result.failed).Add("ran", result.ran).Add("skipped", result.skipped)
-      .Add("seconds", result.seconds).Add("batch_own_seconds", result.own_seconds).Add("takes", takes);
-  return root.ToString() + "\n";
+      .Add("failed", result.failed).Add("gate_failed", result.gate_failed).Add("pending", Pending(result))
+      .Add("ran", result.ran).Add("skipped", result.skipped)
+      .Add("seconds", result.seconds).Add("batch_own_seconds", result.own_seconds);
+  // The takes appended last as they are (JsonObject would copy their text three times).
+  std::string text = root.ToString();
+  text.pop_back();  // The closing '}'.
+  text.reserve(text.size() + takes.size() + 16);
+  text += ",\n  \"takes\": ";
+  text += takes;
+  text += "\n}\n";
+  return text;
 }
 
 std::string FormatSummaryCsv(const BatchResult& result) {
@@ -74,6 +96,7 @@ std::string FormatSummaryCsv(const BatchResult& result) {
       "take,status,ran,exit,exit_code,error,frames,wall_seconds,stage_seconds,naive_rms_mm,repaired_rms_mm,"
       "repaired_share,gate_pass,vertex_error,foot_skating_cm_per_s,view\n";
   for (const TakeOutcome& outcome : result.takes) {
+    if (!Ended(outcome)) continue;
     const TakeRecord& r = outcome.record;
     const TakeFigures& f = r.figures;
     std::string stages;
@@ -93,14 +116,17 @@ std::string FormatSummaryHtml(const BatchResult& result) {
       "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>mocapsolve batch</title>\n"
       "<style>body{font:14px system-ui,sans-serif;margin:1.5em}table{border-collapse:collapse}"
       "td,th{padding:3px 10px;border-bottom:1px solid #ddd;text-align:left}td.n{text-align:right}"
-      ".failed{color:#b00}</style></head><body>\n<h1>mocapsolve batch</h1>\n<p>" +
-      std::to_string(result.done) + " done, " + std::to_string(result.failed) + " failed of " +
-      std::to_string(result.takes.size()) + " takes.</p>\n<table>\n<tr><th>take</th><th>status</th><th>frames</th>"
-      "<th>marker RMS repaired (mm)</th><th>repaired share</th><th>gate</th><th>page</th><th>error</th></tr>\n";
+      ".failed,.gate_failed{color:#b00}</style></head><body>\n<h1>mocapsolve batch</h1>\n<p>" +
+      std::to_string(result.done) + " done, " + std::to_string(result.failed) + " failed (" +
+      std::to_string(result.gate_failed) + " of them at the quality gate), " + std::to_string(Pending(result)) +
+      " pending of " + std::to_string(result.takes.size()) +
+      " takes.</p>\n<table>\n<tr><th>take</th><th>status</th><th>frames</th><th>marker RMS repaired (mm)</th>"
+      "<th>repaired share</th><th>gate</th><th>page</th><th>error</th></tr>\n";
   for (const TakeOutcome& outcome : result.takes) {
+    if (!Ended(outcome)) continue;
     const TakeRecord& r = outcome.record;
     const TakeFigures& f = r.figures;
-    const std::string link = ViewLink(r);
+    const std::string link = ViewUrl(r);
     html += "<tr class=\"" + HtmlEscape(r.status) + "\"><td>" + HtmlEscape(r.take) + "</td><td>" + HtmlEscape(r.status) +
             "</td><td class=\"n\">" + std::to_string(f.frames) + "</td><td class=\"n\">" +
             HtmlNumber(f.repaired_rms_mm, "%.2f") + "</td><td class=\"n\">" +
@@ -114,9 +140,9 @@ std::string FormatSummaryHtml(const BatchResult& result) {
 
 Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version,
                          const std::string& base) {
-  Status status = WriteFileAtomically(out_dir + "/" + base + ".json", FormatSummaryJson(result, version));
-  if (status.ok()) status = WriteFileAtomically(out_dir + "/" + base + ".csv", FormatSummaryCsv(result));
-  return status.ok() ? WriteFileAtomically(out_dir + "/" + base + ".html", FormatSummaryHtml(result)) : status;
+  Status status = WriteFileAtomicallyNow(out_dir + "/" + base + ".json", FormatSummaryJson(result, version));
+  if (status.ok()) status = WriteFileAtomicallyNow(out_dir + "/" + base + ".csv", FormatSummaryCsv(result));
+  return status.ok() ? WriteFileAtomicallyNow(out_dir + "/" + base + ".html", FormatSummaryHtml(result)) : status;
 }
 
 Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest, BatchResult* result) {
@@ -153,6 +179,7 @@ Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest,
       if (!status.ok()) return status;
     }
     (r.status == "done" ? out.done : out.failed) += 1;
+    out.gate_failed += r.status == "gate_failed";
     ++out.skipped;
     out.takes.push_back(std::move(outcome));
   }
