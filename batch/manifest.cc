@@ -98,13 +98,15 @@ std::set<std::string> AllowedKeys(const BatchOptions& pipeline_options, bool is_
   return allowed;
 }
 
-// Checks the take's required fields and its name (defaulted from the markers file).
-Status FinishTake(const std::string& where, const std::vector<std::string>& reserved, BatchTake* take) {
+// Checks the take's required fields and its name (defaulted from the markers file);
+// `name_where` prefixes an error about the name.
+Status FinishTake(const std::string& where, const std::string& name_where, const std::vector<std::string>& reserved,
+                  BatchTake* take) {
   if (take->markers.empty()) return Status::Error(where + ": missing 'markers'");
   if (take->subject.empty()) return Status::Error(where + ": missing 'subject' (in the take or in defaults)");
   if (take->name.empty()) take->name = FileStem(take->markers);
   const Status status = CheckTakeName(take->name, reserved);
-  return status.ok() ? status : Status::Error(where + ".name: " + status.message());
+  return status.ok() ? status : Status::Error(name_where + ": " + status.message());
 }
 
 Status CheckUniqueNames(const std::vector<BatchTake>& takes, const std::string& file) {
@@ -242,7 +244,8 @@ Status ParseManifest(std::string_view text, const std::string& path, const Batch
     take.characters = defaults.characters;
     bool has_characters = false;
     status = ReadEntry(node, path, field, allowed, pipeline_options, folder, &take, &has_characters);
-    if (status.ok()) status = FinishTake(node.Where(path) + ": " + field, reserved, &take);
+    const std::string where = node.Where(path) + ": " + field;
+    if (status.ok()) status = FinishTake(where, where + ".name", reserved, &take);
     if (!status.ok()) return status;
     result.takes.push_back(std::move(take));
     Release(&node);  // The parsed take is no longer needed: peak memory is one copy of the takes.
@@ -284,7 +287,8 @@ Status ManifestFromGlob(const std::string& markers_glob, const std::string& subj
       const size_t slash = folder.find_last_of('/', folder.size() >= 2 ? folder.size() - 2 : 0);
       take.name = folder.substr(slash + 1, folder.size() - slash - 2) + "_" + take.name;
     }
-    Status status = FinishTake("--markers_glob: " + QuoteToken(path), {}, &take);
+    const std::string where = "--markers_glob: " + path;
+    Status status = FinishTake(where, where, {}, &take);
     if (!status.ok()) return status;
     result.takes.push_back(std::move(take));
   }

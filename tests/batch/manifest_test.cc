@@ -167,6 +167,12 @@ TEST_F(ManifestTest, GlobNamesSameFileNamesByFolder) {
   EXPECT_EQ(manifest.takes[0].name, "day1_walk");
   EXPECT_EQ(manifest.takes[1].name, "run");
   EXPECT_EQ(manifest.takes[2].name, "day2_walk");
+  // A matched file whose name cannot be a take's: the glob's error, naming the file.
+  testing::WriteTextFile(dir_ + "/g/day2/summary.html.c3d", "x");
+  const Status bad = ManifestFromGlob(dir_ + "/g/*/*.c3d", dir_ + "/S.json", {}, pipeline_, &manifest);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.message(), "--markers_glob: " + dir_ + "/g/day2/summary.html.c3d: the take name 'summary.html' is a "
+                           "file the batch writes or reads itself");
 }
 
 // The parser on text alone (the fuzz target's entry): any bytes give a manifest or a
