@@ -228,7 +228,10 @@ Status ParseManifest(std::string_view text, const std::string& path, const Batch
   result.defaults = defaults.overrides;
   result.default_subject = defaults.subject;
   result.default_characters = defaults.characters;
-  JsonNode* takes = const_cast<JsonNode*>(root.Find("takes"));
+  JsonNode* takes = nullptr;  // Not const: each take's node is released once read.
+  for (auto& [key, value] : root.members) {
+    if (key == "takes") takes = &value;
+  }
   if (takes == nullptr) return Status::Error(root.Where(path) + ": missing 'takes'");
   if (!takes->is_array() || takes->items.empty()) {
     return Status::Error(takes->Where(path) + ": takes: expected a non-empty array of takes");
