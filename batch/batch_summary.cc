@@ -52,8 +52,18 @@ std::string HtmlNumber(double value, const char* format) {
 }  // namespace
 
 std::string FormatSummaryJson(const BatchResult& result, const std::string& version) {
-  // The takes' array as text, one take at a time (a tree of 10^5 objects costs ~1 KB each).
-  std::string takes = "[";
+  JsonObject root;
+  root.Add("format", "mocapsolve.batch_summary").Add("version", 1).Add("program_version", version)
+      .Add("takes_total", static_cast<int>(result.takes.size())).Add("done", result.done)
+      .Add("failed", result.failed).Add("gate_failed", result.gate_failed).Add("pending", Pending(result))
+      .Add("ran", result.ran).Add("skipped", result.skipped)
+      .Add("seconds", result.seconds).Add("batch_own_seconds", result.own_seconds);
+  // The takes' array appended last, one take at a time, into the text itself (a JsonObject
+  // tree of 10^5 takes costs ~1 KB each, and copies the array's text three times).
+  std::string text = root.ToString();
+  text.pop_back();  // The closing '}'.
+  text += ",\n  \"takes\": [";
+  bool first = true;
   for (const TakeOutcome& outcome : result.takes) {
     if (!Ended(outcome)) continue;
     const TakeRecord& r = outcome.record;
@@ -72,22 +82,11 @@ std::string FormatSummaryJson(const BatchResult& result, const std::string& vers
         .Add("gate_pass", f.gate_pass < 0 ? JsonValue() : JsonValue(f.gate_pass == 1))
         .Add("vertex_error", f.vertex_error).Add("foot_skating_cm_per_s", f.foot_skating_cm_s)
         .Add("view", ViewLink(r).empty() ? JsonValue() : JsonValue(ViewLink(r))).Add("key", r.key);
-    takes += (takes.size() > 1 ? ", " : "") + o.ToString(/*indent=*/false);
+    text += first ? "" : ", ";
+    text += o.ToString(/*indent=*/false);
+    first = false;
   }
-  takes += "]";
-  JsonObject root;
-  root.Add("format", "mocapsolve.batch_summary").Add("version", 1).Add("program_version", version)
-      .Add("takes_total", static_cast<int>(result.takes.size())).Add("done", result.done)
-      .Add("failed", result.failed).Add("gate_failed", result.gate_failed).Add("pending", Pending(result))
-      .Add("ran", result.ran).Add("skipped", result.skipped)
-      .Add("seconds", result.seconds).Add("batch_own_seconds", result.own_seconds);
-  // The takes appended last as they are (JsonObject would copy their text three times).
-  std::string text = root.ToString();
-  text.pop_back();  // The closing '}'.
-  text.reserve(text.size() + takes.size() + 16);
-  text += ",\n  \"takes\": ";
-  text += takes;
-  text += "\n}\n";
+  text += "]\n}\n";
   return text;
 }
 
