@@ -74,14 +74,6 @@ Status WriteText(const std::string& path, const std::string& text) {
   return std::fclose(file) == 0 && ok ? Status::Ok() : Status::Error(path + ": cannot write the file");
 }
 
-// Keeps what the summary shows: a finished take costs the batch a few hundred bytes.
-void KeepSummaryFields(TakeRecord* record) {
-  std::vector<KeyInput>().swap(record->inputs);
-  std::string().swap(record->options_json);
-  std::string().swap(record->given_json);
-  std::vector<std::string>().swap(record->outputs);
-}
-
 bool IsFailure(const std::string& status) { return status == "failed" || status == "gate_failed"; }
 
 struct TakeState {
@@ -290,8 +282,7 @@ void BatchRun::Finish(int i, TakeRecord record, bool ran, Clock::time_point t0) 
   out_.failed += record.status != "done";
   out_.gate_failed += record.status == "gate_failed";
   (ran ? out_.ran : out_.skipped) += 1;
-  KeepSummaryFields(&record);
-  out_.takes[i].record = std::move(record);
+  out_.takes[i].record = SummaryOf(std::move(record));
   out_.takes[i].ran = ran;
   work_[i] = WorkerJob();
   own_ += Since(t0);
@@ -329,6 +320,19 @@ void BatchRun::Checkpoint() {
 }
 
 }  // namespace
+
+TakeSummary SummaryOf(TakeRecord&& record) {
+  TakeSummary summary;
+  summary.take = std::move(record.take);
+  summary.key = std::move(record.key);
+  summary.status = std::move(record.status);
+  summary.exit = std::move(record.exit);
+  summary.error = std::move(record.error);
+  summary.exit_code = record.exit_code;
+  summary.wall_seconds = record.wall_seconds;
+  summary.figures = std::move(record.figures);
+  return summary;
+}
 
 Status RunBatch(const BatchManifest& manifest, const BatchRunOptions& options,
                 const std::function<void(const BatchProgress&)>& progress, BatchResult* result) {

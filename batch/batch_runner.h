@@ -57,9 +57,18 @@ struct BatchRunOptions {
   std::function<void(const BatchResult&)> checkpoint;  // The partial result (optional).
 };
 
+// What the summary shows of a take's record (not its inputs, options or outputs): a batch
+// keeps one per take, so it stays small over 10^5 takes.
+struct TakeSummary {
+  std::string take, key, status, exit, error;  // As in TakeRecord; status "" = not ended.
+  int exit_code = 0;
+  double wall_seconds = 0.0;
+  TakeFigures figures;
+};
+TakeSummary SummaryOf(TakeRecord&& record);
+
 struct TakeOutcome {
-  TakeRecord record;        // Status "" while the take has not ended. Once ended, the
-                            // summary's fields only (no inputs, options or outputs).
+  TakeSummary record;
   bool ran = false;         // False: skipped, the record is the earlier run's.
 };
 

@@ -29,10 +29,10 @@ std::string CsvNumber(double value) {
 }
 
 // The take's page relative to the batch folder ("02_05/view.html"), or "".
-std::string ViewLink(const TakeRecord& r) { return r.figures.view.empty() ? "" : r.take + "/" + r.figures.view; }
+std::string ViewLink(const TakeSummary& r) { return r.figures.view.empty() ? "" : r.take + "/" + r.figures.view; }
 
 // The same as a link that no name can turn into a script or another site.
-std::string ViewUrl(const TakeRecord& r) { return r.figures.view.empty() ? "" : RelativeUrl({r.take, r.figures.view}); }
+std::string ViewUrl(const TakeSummary& r) { return r.figures.view.empty() ? "" : RelativeUrl({r.take, r.figures.view}); }
 
 // A take that has not ended (a summary written while the batch runs) is not listed.
 bool Ended(const TakeOutcome& outcome) { return !outcome.record.status.empty(); }
@@ -66,7 +66,7 @@ std::string FormatSummaryJson(const BatchResult& result, const std::string& vers
   bool first = true;
   for (const TakeOutcome& outcome : result.takes) {
     if (!Ended(outcome)) continue;
-    const TakeRecord& r = outcome.record;
+    const TakeSummary& r = outcome.record;
     const TakeFigures& f = r.figures;
     std::vector<JsonObject> timings;
     for (const StageTime& t : f.timings) {
@@ -96,7 +96,7 @@ std::string FormatSummaryCsv(const BatchResult& result) {
       "repaired_share,gate_pass,vertex_error,foot_skating_cm_per_s,view\n";
   for (const TakeOutcome& outcome : result.takes) {
     if (!Ended(outcome)) continue;
-    const TakeRecord& r = outcome.record;
+    const TakeSummary& r = outcome.record;
     const TakeFigures& f = r.figures;
     std::string stages;
     for (const StageTime& t : f.timings) stages += (stages.empty() ? "" : ";") + t.stage + "=" + CsvNumber(t.seconds);
@@ -123,7 +123,7 @@ std::string FormatSummaryHtml(const BatchResult& result) {
       "<th>repaired share</th><th>gate</th><th>page</th><th>error</th></tr>\n";
   for (const TakeOutcome& outcome : result.takes) {
     if (!Ended(outcome)) continue;
-    const TakeRecord& r = outcome.record;
+    const TakeSummary& r = outcome.record;
     const TakeFigures& f = r.figures;
     const std::string link = ViewUrl(r);
     html += "<tr class=\"" + HtmlEscape(r.status) + "\"><td>" + HtmlEscape(r.take) + "</td><td>" + HtmlEscape(r.status) +
@@ -164,7 +164,7 @@ Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest,
   BatchResult out;
   for (const std::string& name : names) {
     TakeOutcome outcome;
-    TakeRecord& r = outcome.record;
+    TakeRecord r;
     const std::string path = RecordPath(out_dir + "/" + name);
     struct stat st;
     if (::stat(path.c_str(), &st) != 0) {
@@ -177,8 +177,10 @@ Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest,
       Status status = ReadTakeRecord(path, &r);
       if (!status.ok()) return status;
     }
-    (r.status == "done" ? out.done : out.failed) += 1;
-    out.gate_failed += r.status == "gate_failed";
+    outcome.record = SummaryOf(std::move(r));
+    const std::string& status = outcome.record.status;
+    (status == "done" ? out.done : out.failed) += 1;
+    out.gate_failed += status == "gate_failed";
     ++out.skipped;
     out.takes.push_back(std::move(outcome));
   }
