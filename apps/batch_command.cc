@@ -15,6 +15,7 @@
 #include "batch/batch_runner.h"
 #include "batch/batch_summary.h"
 #include "batch/manifest.h"
+#include "batch/output_guard.h"
 #include "io/atomic_file.h"
 
 DECLARE_string(subject);    // apps/main.cc
@@ -62,7 +63,7 @@ Status ShardFromFlagOrSlurm(int* index, int* count) {
 
 void PrintFailures(const BatchResult& result) {
   for (const TakeOutcome& t : result.takes) {
-    if (t.record.status == "done") continue;
+    if (t.record.status == "done" || t.record.status.empty()) continue;
     std::printf("  %s: %s (exit %s): %s\n", t.record.take.c_str(), t.record.status.c_str(), t.record.exit.c_str(),
                 t.record.error.c_str());
   }
@@ -112,7 +113,8 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
   if (FLAGS_merge) {
     if (FLAGS_out_dir.empty()) return Status::Error("--merge needs --out_dir");
     BatchResult result;
-    status = CollectRecords(FLAGS_out_dir, &manifest, &result);
+    status = CheckBatchOutputs(manifest, FLAGS_out_dir, BatchOutputs(FLAGS_out_dir, "summary", "", ""));
+    if (status.ok()) status = CollectRecords(FLAGS_out_dir, &manifest, &result);
     if (status.ok()) status = WriteBatchSummary(FLAGS_out_dir, result, Version());
     if (!status.ok()) return status;
     std::printf("merged %zu takes: %d done, %d failed or missing\n", result.takes.size(), result.done,
@@ -121,21 +123,26 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
     if (result.failed > 0) SetExitCodeOnSuccess(2);
     return Status::Ok();
   }
+  int shard = 0, shards = 1;
+  status = ShardFromFlagOrSlurm(&shard, &shards);
+  if (!status.ok()) return status;
+  const std::string shard_name = shards == 1 ? "" : ".shard" + std::to_string(shard) + "of" + std::to_string(shards);
+  const std::string summary_base = "summary" + shard_name;
+  options.work_dir = FLAGS_out_dir.empty() ? "" : FLAGS_out_dir + "/.batch-work" + shard_name;
+  // Every output against every input, before anything is written.
+  status = CheckBatchOutputs(manifest, FLAGS_out_dir,
+                             BatchOutputs(FLAGS_out_dir, summary_base, options.work_dir, FLAGS_write_manifest));
+  if (!status.ok()) return status;
   if (!FLAGS_write_manifest.empty()) {
-    status = WriteFileAtomically(FLAGS_write_manifest, FormatManifest(manifest, pipeline_options));
+    // At once, not when the batch ends: a batch killed later still leaves its manifest.
+    status = WriteFileAtomicallyNow(FLAGS_write_manifest, FormatManifest(manifest, pipeline_options));
     if (!status.ok()) return status;
     if (FLAGS_out_dir.empty()) {
       std::printf("wrote %s (%zu takes)\n", FLAGS_write_manifest.c_str(), manifest.takes.size());
       return Status::Ok();
     }
   }
-
-  int shard = 0, shards = 1;
-  status = ShardFromFlagOrSlurm(&shard, &shards);
-  if (!status.ok()) return status;
   KeepShard(shard, shards, &manifest);
-  const std::string summary_base =
-      shards == 1 ? "summary" : "summary.shard" + std::to_string(shard) + "of" + std::to_string(shards);
   if (manifest.takes.empty()) {
     std::printf("batch: shard %d/%d has no takes\n", shard, shards);
     return Status::Ok();
@@ -148,6 +155,11 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
   options.limits.memory_mb = FLAGS_take_memory_mb;
   options.force = FLAGS_force;
   options.retry_failed = FLAGS_retry_failed;
+  const std::string version = Version();
+  options.checkpoint = [&options, &summary_base, &version](const BatchResult& partial) {
+    // A summary as takes end: a killed batch leaves one. (A failed write is retried next time.)
+    (void)WriteBatchSummary(options.out_dir, partial, version, summary_base);
+  };
   const bool quiet = FLAGS_quiet;
   BatchResult result;
   auto shown = std::chrono::steady_clock::now() - std::chrono::seconds(1);
@@ -167,9 +179,9 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
   status = WriteBatchSummary(options.out_dir, result, Version(), summary_base);
   if (!status.ok()) return status;
 
-  std::printf("batch: %zu takes in %.2f s: %d done, %d failed (%d ran, %d skipped as unchanged); batch's own "
-              "work %.1f ms\n", result.takes.size(), result.seconds, result.done, result.failed, result.ran,
-              result.skipped, 1000.0 * result.own_seconds);
+  std::printf("batch: %zu takes in %.2f s: %d done, %d failed (%d ran, %d skipped as unchanged); %d failed at the "
+              "quality gate; batch's own work %.1f ms\n", result.takes.size(), result.seconds, result.done,
+              result.failed, result.ran, result.skipped, result.gate_failed, 1000.0 * result.own_seconds);
   PrintFailures(result);
   std::printf("wrote %s/%s.json and .csv\n", options.out_dir.c_str(), summary_base.c_str());
   if (result.failed > 0) SetExitCodeOnSuccess(2);
@@ -192,13 +204,26 @@ extern const Command kBatchCommand = {
     "(and whose outputs exist), redoes the changed ones, and redoes failed ones only with\n"
     "--retry_failed. DIR/summary.json and DIR/summary.csv list every take (status, exit,\n"
     "error line, frames, timings, marker RMS, repaired share, gate, retarget error, foot\n"
-    "skating, the take's view.html); DIR/summary.html links every take's page. Killing the\n"
-    "batch loses at most the takes in flight.\n"
+    "skating, the take's view.html); DIR/summary.html links every take's page. The summaries\n"
+    "are rewritten as takes end (about once a second), so killing the batch loses at most\n"
+    "the takes in flight and leaves a summary of the others; --write_manifest is written at\n"
+    "the start. The takes' config files live in DIR/.batch-work, emptied at each start.\n"
+    "Take status: done; gate_failed (the take ran and its outputs are written, but its quality\n"
+    "gate failed: pipeline exit 3); failed (crash, timeout, bad input; also a take whose\n"
+    "markers, subject or character file is missing, unreadable or not a regular file: the\n"
+    "other takes still run).\n"
+    "With --markers_glob a take is named after its file without extension; files of the same\n"
+    "name in different folders are all named <folder>_<name> (e.g. day1/walk.c3d and\n"
+    "day2/walk.c3d: day1_walk, day2_walk).\n"
+    "Take names must be plain folder names: at most 255 bytes, no '/', no control\n"
+    "character, not starting with '.', not summary.json/.csv/.html, summary.shard* or the\n"
+    "manifest's own file name. No output may be an input (compared by file identity): the\n"
+    "batch refuses before writing anything.\n"
     "A batch split over machines (--shard=i/n, by default from a Slurm job array; see\n"
     "scripts/slurm/submit.sh) writes DIR/summary.shard<i>of<n>.json; --merge then builds\n"
     "DIR/summary.json from the takes' records.\n"
-    "Exit code: 0 every take done, 2 some failed (a failed quality gate counts), 1 bad\n"
-    "manifest or flags.",
+    "Exit code: 0 every take done, 2 some failed or gate_failed, 1 bad manifest or flags\n"
+    "(its form: JSON, keys, types, names) or an output that is an input.",
     __FILE__, RunBatchCommand, "subject,character,out_dir,quiet"};
 
 }  // namespace mocapsolve

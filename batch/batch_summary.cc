@@ -29,7 +29,18 @@ std::string CsvNumber(double value) {
 }
 
 // The take's page relative to the batch folder ("02_05/view.html"), or "".
-std::string ViewLink(const TakeRecord& r) { return r.figures.view.empty() ? "" : r.take + "/" + r.figures.view; }
+std::string ViewLink(const TakeSummary& r) { return r.figures.view.empty() ? "" : r.take + "/" + r.figures.view; }
+
+// The same as a link that no name can turn into a script or another site.
+std::string ViewUrl(const TakeSummary& r) { return r.figures.view.empty() ? "" : RelativeUrl({r.take, r.figures.view}); }
+
+// A take that has not ended (a summary written while the batch runs) is not listed.
+bool Ended(const TakeOutcome& outcome) { return !outcome.record.status.empty(); }
+
+int Pending(const BatchResult& result) {
+  return static_cast<int>(std::count_if(result.takes.begin(), result.takes.end(),
+                                        [](const TakeOutcome& t) { return !Ended(t); }));
+}
 
 std::string HtmlNumber(double value, const char* format) {
   if (std::isnan(value)) return "";
@@ -41,9 +52,21 @@ std::string HtmlNumber(double value, const char* format) {
 }  // namespace
 
 std::string FormatSummaryJson(const BatchResult& result, const std::string& version) {
-  std::vector<JsonObject> takes;
+  JsonObject root;
+  root.Add("format", "mocapsolve.batch_summary").Add("version", 1).Add("program_version", version)
+      .Add("takes_total", static_cast<int>(result.takes.size())).Add("done", result.done)
+      .Add("failed", result.failed).Add("gate_failed", result.gate_failed).Add("pending", Pending(result))
+      .Add("ran", result.ran).Add("skipped", result.skipped)
+      .Add("seconds", result.seconds).Add("batch_own_seconds", result.own_seconds);
+  // The takes' array appended last, one take at a time, into the text itself (a JsonObject
+  // tree of 10^5 takes costs ~1 KB each, and copies the array's text three times).
+  std::string text = root.ToString();
+  text.pop_back();  // The closing '}'.
+  text += ",\n  \"takes\": [";
+  bool first = true;
   for (const TakeOutcome& outcome : result.takes) {
-    const TakeRecord& r = outcome.record;
+    if (!Ended(outcome)) continue;
+    const TakeSummary& r = outcome.record;
     const TakeFigures& f = r.figures;
     std::vector<JsonObject> timings;
     for (const StageTime& t : f.timings) {
@@ -59,14 +82,12 @@ std::string FormatSummaryJson(const BatchResult& result, const std::string& vers
         .Add("gate_pass", f.gate_pass < 0 ? JsonValue() : JsonValue(f.gate_pass == 1))
         .Add("vertex_error", f.vertex_error).Add("foot_skating_cm_per_s", f.foot_skating_cm_s)
         .Add("view", ViewLink(r).empty() ? JsonValue() : JsonValue(ViewLink(r))).Add("key", r.key);
-    takes.push_back(o);
+    text += first ? "" : ", ";
+    text += o.ToString(/*indent=*/false);
+    first = false;
   }
-  JsonObject root;
-  root.Add("format", "mocapsolve.batch_summary").Add("version", 1).Add("program_version", version)
-      .Add("takes_total", static_cast<int>(result.takes.size())).Add("done", result.done)
-      .Add("failed", result.failed).Add("ran", result.ran).Add("skipped", result.skipped)
-      .Add("seconds", result.seconds).Add("batch_own_seconds", result.own_seconds).Add("takes", takes);
-  return root.ToString() + "\n";
+  text += "]\n}\n";
+  return text;
 }
 
 std::string FormatSummaryCsv(const BatchResult& result) {
@@ -74,7 +95,8 @@ std::string FormatSummaryCsv(const BatchResult& result) {
       "take,status,ran,exit,exit_code,error,frames,wall_seconds,stage_seconds,naive_rms_mm,repaired_rms_mm,"
       "repaired_share,gate_pass,vertex_error,foot_skating_cm_per_s,view\n";
   for (const TakeOutcome& outcome : result.takes) {
-    const TakeRecord& r = outcome.record;
+    if (!Ended(outcome)) continue;
+    const TakeSummary& r = outcome.record;
     const TakeFigures& f = r.figures;
     std::string stages;
     for (const StageTime& t : f.timings) stages += (stages.empty() ? "" : ";") + t.stage + "=" + CsvNumber(t.seconds);
@@ -93,14 +115,17 @@ std::string FormatSummaryHtml(const BatchResult& result) {
       "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>mocapsolve batch</title>\n"
       "<style>body{font:14px system-ui,sans-serif;margin:1.5em}table{border-collapse:collapse}"
       "td,th{padding:3px 10px;border-bottom:1px solid #ddd;text-align:left}td.n{text-align:right}"
-      ".failed{color:#b00}</style></head><body>\n<h1>mocapsolve batch</h1>\n<p>" +
-      std::to_string(result.done) + " done, " + std::to_string(result.failed) + " failed of " +
-      std::to_string(result.takes.size()) + " takes.</p>\n<table>\n<tr><th>take</th><th>status</th><th>frames</th>"
-      "<th>marker RMS repaired (mm)</th><th>repaired share</th><th>gate</th><th>page</th><th>error</th></tr>\n";
+      ".failed,.gate_failed{color:#b00}</style></head><body>\n<h1>mocapsolve batch</h1>\n<p>" +
+      std::to_string(result.done) + " done, " + std::to_string(result.failed) + " failed (" +
+      std::to_string(result.gate_failed) + " of them at the quality gate), " + std::to_string(Pending(result)) +
+      " pending of " + std::to_string(result.takes.size()) +
+      " takes.</p>\n<table>\n<tr><th>take</th><th>status</th><th>frames</th><th>marker RMS repaired (mm)</th>"
+      "<th>repaired share</th><th>gate</th><th>page</th><th>error</th></tr>\n";
   for (const TakeOutcome& outcome : result.takes) {
-    const TakeRecord& r = outcome.record;
+    if (!Ended(outcome)) continue;
+    const TakeSummary& r = outcome.record;
     const TakeFigures& f = r.figures;
-    const std::string link = ViewLink(r);
+    const std::string link = ViewUrl(r);
     html += "<tr class=\"" + HtmlEscape(r.status) + "\"><td>" + HtmlEscape(r.take) + "</td><td>" + HtmlEscape(r.status) +
             "</td><td class=\"n\">" + std::to_string(f.frames) + "</td><td class=\"n\">" +
             HtmlNumber(f.repaired_rms_mm, "%.2f") + "</td><td class=\"n\">" +
@@ -114,9 +139,9 @@ std::string FormatSummaryHtml(const BatchResult& result) {
 
 Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version,
                          const std::string& base) {
-  Status status = WriteFileAtomically(out_dir + "/" + base + ".json", FormatSummaryJson(result, version));
-  if (status.ok()) status = WriteFileAtomically(out_dir + "/" + base + ".csv", FormatSummaryCsv(result));
-  return status.ok() ? WriteFileAtomically(out_dir + "/" + base + ".html", FormatSummaryHtml(result)) : status;
+  Status status = WriteFileAtomicallyNow(out_dir + "/" + base + ".json", FormatSummaryJson(result, version));
+  if (status.ok()) status = WriteFileAtomicallyNow(out_dir + "/" + base + ".csv", FormatSummaryCsv(result));
+  return status.ok() ? WriteFileAtomicallyNow(out_dir + "/" + base + ".html", FormatSummaryHtml(result)) : status;
 }
 
 Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest, BatchResult* result) {
@@ -139,7 +164,7 @@ Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest,
   BatchResult out;
   for (const std::string& name : names) {
     TakeOutcome outcome;
-    TakeRecord& r = outcome.record;
+    TakeRecord r;
     const std::string path = RecordPath(out_dir + "/" + name);
     struct stat st;
     if (::stat(path.c_str(), &st) != 0) {
@@ -152,7 +177,10 @@ Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest,
       Status status = ReadTakeRecord(path, &r);
       if (!status.ok()) return status;
     }
-    (r.status == "done" ? out.done : out.failed) += 1;
+    outcome.record = SummaryOf(std::move(r));
+    const std::string& status = outcome.record.status;
+    (status == "done" ? out.done : out.failed) += 1;
+    out.gate_failed += status == "gate_failed";
     ++out.skipped;
     out.takes.push_back(std::move(outcome));
   }

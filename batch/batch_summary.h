@@ -6,7 +6,11 @@
 // skating (cm/s). The CSV has one row per take with the stages as "stage=seconds;..." in
 // one column; empty cells for figures a take did not produce. Each take's page
 // ("<take>/view.html", when the pipeline wrote one) is a field of both, and
-// DIR/summary.html is an index: one table row per take with a link to its page.
+// DIR/summary.html is an index: one table row per take with a link to its page (a
+// relative URL, RelativeUrl in io/html_escape.h: no take name makes it a script).
+// Status is "done", "gate_failed" (exit 3: ran, outputs kept), "failed" or, from
+// --merge, "missing". A summary written while the batch runs lists the takes that ended
+// and counts the others as "pending".
 #ifndef MOCAPSOLVE_BATCH_BATCH_SUMMARY_H_
 #define MOCAPSOLVE_BATCH_BATCH_SUMMARY_H_
 
@@ -22,7 +26,8 @@ std::string FormatSummaryJson(const BatchResult& result, const std::string& vers
 std::string FormatSummaryCsv(const BatchResult& result);
 std::string FormatSummaryHtml(const BatchResult& result);
 
-// The three files, atomically: DIR/<base>.json, DIR/<base>.csv and DIR/<base>.html.
+// The three files, each atomically and at once (not at the command's end):
+// DIR/<base>.json, DIR/<base>.csv and DIR/<base>.html.
 Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version,
                          const std::string& base = "summary");
 

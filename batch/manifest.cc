@@ -5,10 +5,15 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
+#include <map>
 #include <set>
+#include <unordered_set>
 
-#include "io/motion_file.h"
+#include "io/atomic_file.h"
 #include "io/json_writer.h"
+#include "io/motion_file.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -47,13 +52,11 @@ std::string JsonText(const JsonNode& node) {
 }
 
 // Reads the members of `object` (a take or "defaults") that are paths or options.
-Status ReadEntry(const JsonNode& object, const std::string& file, const std::string& field, bool is_take,
-                 const BatchOptions& pipeline_options, const std::string& folder, BatchTake* take,
-                 bool* has_characters) {
+// `allowed` are its keys (AllowedKeys).
+Status ReadEntry(const JsonNode& object, const std::string& file, const std::string& field,
+                 const std::set<std::string>& allowed, const BatchOptions& pipeline_options,
+                 const std::string& folder, BatchTake* take, bool* has_characters) {
   if (!object.is_object()) return Status::Error(object.Where(file) + ": " + field + ": expected an object");
-  std::set<std::string> allowed = {"subject", "characters"};
-  if (is_take) allowed.insert({"name", "markers"});
-  for (const auto& option : pipeline_options) allowed.insert(option.first);
   if (const auto* unknown = FindUnknownKey(object, allowed)) {
     return Status::Error(unknown->second.Where(file) + ": " + field + ": unknown key '" + unknown->first +
                          "' (expected: name, markers, subject, characters or a pipeline option; "
@@ -88,41 +91,93 @@ Status ReadEntry(const JsonNode& object, const std::string& file, const std::str
   return Status::Ok();
 }
 
-// Fills the take's resolved options and checks its name and files.
-Status FinishTake(const BatchOptions& pipeline_options, const BatchOptions& defaults, const std::string& where,
+std::set<std::string> AllowedKeys(const BatchOptions& pipeline_options, bool is_take) {
+  std::set<std::string> allowed = {"subject", "characters"};
+  if (is_take) allowed.insert({"name", "markers"});
+  for (const auto& option : pipeline_options) allowed.insert(option.first);
+  return allowed;
+}
+
+// Checks the take's required fields and its name (defaulted from the markers file);
+// `name_where` prefixes an error about the name.
+Status FinishTake(const std::string& where, const std::string& name_where, const std::vector<std::string>& reserved,
                   BatchTake* take) {
   if (take->markers.empty()) return Status::Error(where + ": missing 'markers'");
   if (take->subject.empty()) return Status::Error(where + ": missing 'subject' (in the take or in defaults)");
   if (take->name.empty()) take->name = FileStem(take->markers);
-  const std::string& name = take->name;
-  if (name == "." || name == ".." || name[0] == '.' || name.find('/') != std::string::npos ||
-      name == "summary.json" || name == "summary.csv") {
-    return Status::Error(where + ": name '" + name + "' is not a plain folder name");
-  }
-  std::vector<std::pair<std::string, std::string>> files = {{"markers", take->markers}, {"subject", take->subject}};
-  for (const std::string& c : take->characters) files.emplace_back("characters", c);
-  for (const auto& [field, path] : files) {
-    if (::access(path.c_str(), R_OK) != 0) return Status::Error(where + ": " + field + ": " + path + ": cannot read the file");
-  }
-  take->given = defaults;
-  for (const auto& [key, value] : take->overrides) SetOption(&take->given, key, value);
-  take->options = pipeline_options;
-  for (const auto& [key, value] : take->given) SetOption(&take->options, key, value);
-  return Status::Ok();
+  const Status status = CheckTakeName(take->name, reserved);
+  return status.ok() ? status : Status::Error(name_where + ": " + status.message());
 }
 
 Status CheckUniqueNames(const std::vector<BatchTake>& takes, const std::string& file) {
-  std::set<std::string> names;
+  std::unordered_set<std::string_view> names;
+  names.reserve(takes.size());
   for (size_t i = 0; i < takes.size(); ++i) {
     if (!names.insert(takes[i].name).second) {
-      return Status::Error(file + ": takes[" + std::to_string(i) + "]: the name '" + takes[i].name +
-                           "' is used twice (give the takes distinct \"name\"s)");
+      return Status::Error(file + ": takes[" + std::to_string(i) + "]: the name " + QuoteToken(takes[i].name) +
+                           " is used twice (give the takes distinct \"name\"s)");
     }
   }
   return Status::Ok();
 }
 
+// Frees what a parsed node holds (its members and strings), once it has been read.
+void Release(JsonNode* node) {
+  JsonNode empty;
+  empty.line = node->line;
+  empty.column = node->column;
+  std::swap(*node, empty);
+}
+
+// The names a take may not have besides the summaries: the manifest's own file name.
+std::vector<std::string> ReservedNames(const std::string& manifest_path) {
+  if (manifest_path.empty()) return {};
+  const size_t slash = manifest_path.find_last_of('/');
+  return {slash == std::string::npos ? manifest_path : manifest_path.substr(slash + 1)};
+}
+
 }  // namespace
+
+Status CheckTakeName(const std::string& name, const std::vector<std::string>& reserved) {
+  const std::string quoted = QuoteToken(name);
+  constexpr size_t kMaxName = 255;  // NAME_MAX: the name is a folder's.
+  if (name.empty()) return Status::Error("the take name is empty");
+  if (name.size() > kMaxName) {
+    return Status::Error("the take name " + quoted + " is " + std::to_string(name.size()) +
+                         " bytes long (at most 255: it names the take's folder)");
+  }
+  for (const char c : name) {
+    if (c == '/' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      return Status::Error("the take name " + quoted + " holds a '/' or a control character (it names the "
+                           "take's folder)");
+    }
+  }
+  if (name[0] == '.') return Status::Error("the take name " + quoted + " starts with '.' (not a plain folder name)");
+  const bool summary = name == "summary.json" || name == "summary.csv" || name == "summary.html" ||
+                       name.compare(0, 13, "summary.shard") == 0;
+  if (summary || std::find(reserved.begin(), reserved.end(), name) != reserved.end()) {
+    return Status::Error("the take name " + quoted + " is a file the batch writes or reads itself");
+  }
+  return Status::Ok();
+}
+
+std::string GivenOptionsJson(const BatchManifest& manifest, const BatchTake& take) {
+  if (take.overrides.empty()) return OptionsJson(manifest.defaults);
+  BatchOptions given = manifest.defaults;
+  for (const auto& [key, value] : take.overrides) SetOption(&given, key, value);
+  return OptionsJson(given);
+}
+
+std::string ResolvedOptionsJson(const BatchManifest& manifest, const BatchTake& take) {
+  BatchOptions options = manifest.pipeline;
+  for (const auto& [key, value] : manifest.defaults) SetOption(&options, key, value);
+  for (const auto& [key, value] : take.overrides) SetOption(&options, key, value);
+  return OptionsJson(options);
+}
+
+bool TakeGivesOption(const BatchManifest& manifest, const BatchTake& take, const std::string& key) {
+  return FindOption(manifest.defaults, key) != nullptr || FindOption(take.overrides, key) != nullptr;
+}
 
 std::string AbsolutePath(const std::string& path) {
   if (path.empty() || path[0] == '/') return path;
@@ -145,8 +200,15 @@ Status ParsePipelineOptions(const std::string& config_json, BatchOptions* option
 }
 
 Status ReadManifest(const std::string& path, const BatchOptions& pipeline_options, BatchManifest* manifest) {
+  std::string text;
+  Status status = ReadFileToString(path, &text);
+  return status.ok() ? ParseManifest(text, path, pipeline_options, manifest) : status;
+}
+
+Status ParseManifest(std::string_view text, const std::string& path, const BatchOptions& pipeline_options,
+                     BatchManifest* manifest) {
   JsonNode root;
-  Status status = ReadJsonFile(path, &root);
+  Status status = ParseJson(text, path, &root);
   if (!status.ok()) return status;
   if (!root.is_object()) return Status::Error(root.Where(path) + ": expected a manifest object");
   if (const auto* unknown = FindUnknownKey(root, {"defaults", "takes"})) {
@@ -155,32 +217,41 @@ Status ReadManifest(const std::string& path, const BatchOptions& pipeline_option
   }
   BatchManifest result;
   result.path = path;
+  result.pipeline = pipeline_options;
   const std::string folder = Folder(path);
   BatchTake defaults;
   if (const JsonNode* node = root.Find("defaults")) {
-    status = ReadEntry(*node, path, "defaults", false, pipeline_options, folder, &defaults,
-                       &result.has_default_characters);
+    status = ReadEntry(*node, path, "defaults", AllowedKeys(pipeline_options, false), pipeline_options, folder,
+                       &defaults, &result.has_default_characters);
     if (!status.ok()) return status;
   }
   result.defaults = defaults.overrides;
   result.default_subject = defaults.subject;
   result.default_characters = defaults.characters;
-  const JsonNode* takes = root.Find("takes");
+  JsonNode* takes = nullptr;  // Not const: each take's node is released once read.
+  for (auto& [key, value] : root.members) {
+    if (key == "takes") takes = &value;
+  }
   if (takes == nullptr) return Status::Error(root.Where(path) + ": missing 'takes'");
   if (!takes->is_array() || takes->items.empty()) {
     return Status::Error(takes->Where(path) + ": takes: expected a non-empty array of takes");
   }
+  const std::vector<std::string> reserved = ReservedNames(path);
+  const std::set<std::string> allowed = AllowedKeys(pipeline_options, true);
+  result.takes.reserve(takes->items.size());
   for (size_t i = 0; i < takes->items.size(); ++i) {
-    const JsonNode& node = takes->items[i];
+    JsonNode& node = takes->items[i];
     const std::string field = "takes[" + std::to_string(i) + "]";
     BatchTake take;
     take.subject = defaults.subject;
     take.characters = defaults.characters;
     bool has_characters = false;
-    status = ReadEntry(node, path, field, true, pipeline_options, folder, &take, &has_characters);
-    if (status.ok()) status = FinishTake(pipeline_options, result.defaults, node.Where(path) + ": " + field, &take);
+    status = ReadEntry(node, path, field, allowed, pipeline_options, folder, &take, &has_characters);
+    const std::string where = node.Where(path) + ": " + field;
+    if (status.ok()) status = FinishTake(where, where + ".name", reserved, &take);
     if (!status.ok()) return status;
     result.takes.push_back(std::move(take));
+    Release(&node);  // The parsed take is no longer needed: peak memory is one copy of the takes.
   }
   status = CheckUniqueNames(result.takes, path);
   if (!status.ok()) return status;
@@ -201,15 +272,26 @@ Status ManifestFromGlob(const std::string& markers_glob, const std::string& subj
   if (paths.empty()) return Status::Error("--markers_glob='" + markers_glob + "': no file matches");
   if (subject.empty()) return Status::Error("--markers_glob needs --subject");
   BatchManifest result;
+  result.pipeline = pipeline_options;
   result.default_subject = AbsolutePath(subject);
   for (const std::string& c : characters) result.default_characters.push_back(AbsolutePath(c));
   result.has_default_characters = !characters.empty();
+  std::map<std::string, int> stems;  // How many matches have each file stem.
+  for (const std::string& path : paths) ++stems[FileStem(path)];
+  result.takes.reserve(paths.size());
   for (const std::string& path : paths) {
     BatchTake take;
     take.markers = AbsolutePath(path);
     take.subject = result.default_subject;
     take.characters = result.default_characters;
-    Status status = FinishTake(pipeline_options, {}, "--markers_glob: " + path, &take);
+    take.name = FileStem(path);
+    if (stems[take.name] > 1) {  // Same name in other folders: "<folder>_<name>".
+      const std::string folder = Folder(take.markers);
+      const size_t slash = folder.find_last_of('/', folder.size() >= 2 ? folder.size() - 2 : 0);
+      take.name = folder.substr(slash + 1, folder.size() - slash - 2) + "_" + take.name;
+    }
+    const std::string where = "--markers_glob: " + path;
+    Status status = FinishTake(where, where, {}, &take);
     if (!status.ok()) return status;
     result.takes.push_back(std::move(take));
   }

@@ -12,15 +12,24 @@
 // keys of `mocapsolve pipeline --print_config`, of the same JSON type as there); a take's
 // own values override the defaults, which override the pipeline's. A take needs "markers"
 // and (itself or in defaults) "subject"; "name" defaults to the marker file's name without
-// extension and must be unique and a plain folder name (it is the take's output folder).
-// Relative paths are relative to the manifest's folder. Unknown keys and wrong types are
-// errors naming the file, line:column and field, e.g.
+// extension and must be unique and a plain folder name (it is the take's output folder):
+// not empty, at most 255 bytes, no '/', no control character (NUL included), not starting
+// with '.', and none of the batch's own files (summary.json/.csv/.html, summary.shard*,
+// the manifest's own file name). Relative paths are relative to the manifest's folder.
+// Unknown keys, wrong types and bad names are errors naming the file, line:column and
+// field (a name escaped by QuoteToken), e.g.
 //   M.json:7:22: takes[1]: unknown key 'filter_level' (expected: ...)
+// Only the manifest's form is checked here: whether a take's files exist and can be read
+// is the batch's business (such a take fails alone).
+// Memory: a take holds its name, paths and own overrides only (a few hundred bytes); the
+// options every take shares are kept once in the manifest and the per-take option sets
+// are made on demand (GivenOptionsJson, ResolvedOptionsJson).
 // Nothing here knows of flags or processes.
 #ifndef MOCAPSOLVE_BATCH_MANIFEST_H_
 #define MOCAPSOLVE_BATCH_MANIFEST_H_
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -37,18 +46,12 @@ struct BatchTake {
   std::string markers;                  // Resolved paths (relative to the working folder or absolute).
   std::string subject;
   std::vector<std::string> characters;
-  BatchOptions overrides;               // The options the take itself gives.
-  BatchOptions given;                   // The manifest's defaults with the take's overrides: what the
-                                        // worker's --config holds. (A config file sets flags, and the
-                                        // pipeline treats some set flags unlike their defaults:
-                                        // --solver given means that solver for repair and retarget,
-                                        // not given means DLS; so only given options are passed on.)
-  BatchOptions options;                 // Every pipeline option, resolved (the pipeline's defaults
-                                        // under the given ones), for the record.
+  BatchOptions overrides;               // The options the take itself gives (usually none).
 };
 
 struct BatchManifest {
   std::string path;                     // "" for a manifest built in memory.
+  BatchOptions pipeline;                // The pipeline's options and defaults.
   BatchOptions defaults;                // The manifest's "defaults" options only (not the pipeline's).
   std::string default_subject;
   std::vector<std::string> default_characters;
@@ -56,14 +59,35 @@ struct BatchManifest {
   std::vector<BatchTake> takes;
 };
 
+// The manifest's defaults with the take's overrides, as a one-line JSON object: what the
+// worker's --config holds. (A config file sets flags, and the pipeline treats some set
+// flags unlike their defaults: --solver given means that solver for repair and retarget,
+// not given means DLS; so only given options are passed on.)
+std::string GivenOptionsJson(const BatchManifest& manifest, const BatchTake& take);
+// Every pipeline option, resolved (the pipeline's defaults under the given ones), for the
+// record and the key.
+std::string ResolvedOptionsJson(const BatchManifest& manifest, const BatchTake& take);
+// True if the take's given options (defaults or overrides) hold `key`.
+bool TakeGivesOption(const BatchManifest& manifest, const BatchTake& take, const std::string& key);
+
+// Checks a take name (see above); `reserved` are further names the batch writes itself.
+// The error names the take (QuoteToken) and why, without a location.
+Status CheckTakeName(const std::string& name, const std::vector<std::string>& reserved = {});
+
 // The pipeline's options with their defaults, from the text of `pipeline --print_config`.
 Status ParsePipelineOptions(const std::string& config_json, BatchOptions* options);
 
 // Reads and validates a manifest; `pipeline_options` are the pipeline's keys and defaults.
 Status ReadManifest(const std::string& path, const BatchOptions& pipeline_options, BatchManifest* manifest);
+// The same on the manifest's text; `path` names it in messages and anchors relative paths.
+Status ParseManifest(std::string_view text, const std::string& path, const BatchOptions& pipeline_options,
+                     BatchManifest* manifest);
 
 // One take per file matching `markers_glob` (glob(3), sorted), all with `subject` and
-// `characters`: the common case. An error if nothing matches or two names collide.
+// `characters`: the common case. A take is named after its file without extension; files
+// of the same name in different folders are named "<folder>_<name>" (the folder's own
+// name) instead, all of them. An error if nothing matches, a name is not usable or two
+// names still collide.
 Status ManifestFromGlob(const std::string& markers_glob, const std::string& subject,
                         const std::vector<std::string>& characters, const BatchOptions& pipeline_options,
                         BatchManifest* manifest);

@@ -4,9 +4,6 @@
 
 namespace mocapsolve {
 
-namespace {
-
-// The skeleton file a subject names ("skeleton": "path"), resolved; "" when inline.
 std::string SubjectSkeletonPath(const std::string& subject_path) {
   JsonNode root;
   if (!ReadJsonFile(subject_path, &root).ok()) return "";  // The pipeline reports it.
@@ -17,18 +14,32 @@ std::string SubjectSkeletonPath(const std::string& subject_path) {
   return (slash == std::string::npos ? "" : subject_path.substr(0, slash + 1)) + skeleton->string;
 }
 
-}  // namespace
-
-Status ComputeTakeKey(const BatchTake& take, const std::string& version, TakeKey* key,
-                      std::map<std::string, uint64_t>* cache) {
+Status ComputeTakeKey(const BatchManifest& manifest, const BatchTake& take, const std::string& version,
+                      TakeKey* key, TakeKeyCache* cache) {
   TakeKey result;
   result.inputs.push_back({"markers", take.markers});
   result.inputs.push_back({"subject", take.subject});
-  const std::string skeleton = SubjectSkeletonPath(take.subject);
+  std::string skeleton;
+  if (cache == nullptr) {
+    skeleton = SubjectSkeletonPath(take.subject);
+  } else if (const auto found = cache->skeletons.find(take.subject); found != cache->skeletons.end()) {
+    skeleton = found->second;
+  } else {
+    skeleton = cache->skeletons[take.subject] = SubjectSkeletonPath(take.subject);
+  }
   if (!skeleton.empty()) result.inputs.push_back({"skeleton", skeleton});
   for (const std::string& c : take.characters) result.inputs.push_back({"character", c});
-  result.options_json = OptionsJson(take.options);
-  result.given_json = OptionsJson(take.given);
+  if (cache != nullptr && take.overrides.empty()) {  // The same for every such take: made once.
+    if (cache->options_json.empty()) {
+      cache->options_json = ResolvedOptionsJson(manifest, take);
+      cache->given_json = GivenOptionsJson(manifest, take);
+    }
+    result.options_json = cache->options_json;
+    result.given_json = cache->given_json;
+  } else {
+    result.options_json = ResolvedOptionsJson(manifest, take);
+    result.given_json = GivenOptionsJson(manifest, take);
+  }
   result.version = version;
   Fnv1a64 fnv;
   fnv.Update("mocapsolve.batch_key 1");
@@ -39,13 +50,15 @@ Status ComputeTakeKey(const BatchTake& take, const std::string& version, TakeKey
   fnv.Update(std::string_view("\0", 1));
   fnv.Update(result.given_json);
   for (KeyInput& input : result.inputs) {
-    const auto cached = cache != nullptr ? cache->find(input.path) : std::map<std::string, uint64_t>::iterator();
-    if (cache != nullptr && cached != cache->end()) {
+    // Markers are a take's own: only the shared files are cached.
+    const bool shared = cache != nullptr && input.role != "markers";
+    const auto cached = shared ? cache->hashes.find(input.path) : std::map<std::string, uint64_t>::iterator();
+    if (shared && cached != cache->hashes.end()) {
       input.hash = cached->second;
     } else {
       Status status = HashFile(input.path, &input.hash);
       if (!status.ok()) return Status::Error(input.role + ": " + status.message());
-      if (cache != nullptr) (*cache)[input.path] = input.hash;
+      if (shared) cache->hashes[input.path] = input.hash;
     }
     fnv.Update(std::string_view("\0", 1));
     fnv.Update(input.role);

@@ -1,7 +1,8 @@
 // A take's key: what decides whether a finished take must be redone.
 //
 //   key = FNV-1a 64 over ("mocapsolve.batch_key 1", the program version, the resolved
-//         options and the given ones (BatchTake::given) as their config-file JSON text,
+//         options and the given ones (ResolvedOptionsJson, GivenOptionsJson) as their
+//         config-file JSON text,
 //         and for each input in order its role and the FNV-1a 64 hash of its bytes)
 // with the inputs: the marker file, the subject file, the subject's skeleton file when
 // the subject names one (resolved against the subject's folder), and each character file.
@@ -32,16 +33,28 @@ struct KeyInput {
 
 struct TakeKey {
   std::vector<KeyInput> inputs;
-  std::string options_json;  // OptionsJson(take.options).
-  std::string given_json;    // OptionsJson(take.given): the worker's config.
+  std::string options_json;  // ResolvedOptionsJson(manifest, take).
+  std::string given_json;    // GivenOptionsJson(manifest, take): the worker's config.
   std::string version;
   uint64_t key = 0;
 };
 
-// `cache` (optional) maps a path to its hash for the length of one batch run: the
-// subject and character files every take shares are read once.
-Status ComputeTakeKey(const BatchTake& take, const std::string& version, TakeKey* key,
-                      std::map<std::string, uint64_t>* cache = nullptr);
+// The skeleton file a subject names ("skeleton": "path"), resolved against the subject's
+// folder; "" when the subject holds its skeleton or cannot be read (the pipeline says why).
+std::string SubjectSkeletonPath(const std::string& subject_path);
+
+// For the length of one batch run: the subject and character files every take shares are
+// read (hashed, and the subject's skeleton path found) once.
+struct TakeKeyCache {
+  std::map<std::string, uint64_t> hashes;       // Path -> content hash.
+  std::map<std::string, std::string> skeletons; // Subject path -> its skeleton path ("" none).
+  std::string given_json, options_json;         // Of the takes without overrides ("" = not yet).
+};
+
+// An input that cannot be read (missing, unreadable, not a regular file) is an error
+// naming its role and path. `cache` is optional.
+Status ComputeTakeKey(const BatchManifest& manifest, const BatchTake& take, const std::string& version,
+                      TakeKey* key, TakeKeyCache* cache = nullptr);
 
 }  // namespace mocapsolve
 

@@ -78,9 +78,7 @@ std::string FormatTakeRecord(const TakeRecord& r) {
 }
 
 Status WriteTakeRecord(const std::string& take_dir, const TakeRecord& record) {
-  StagedFile staged;
-  Status status = StagedFile::Create(RecordPath(take_dir), FormatTakeRecord(record), &staged);
-  return status.ok() ? staged.Publish() : status;
+  return WriteFileAtomicallyNow(RecordPath(take_dir), FormatTakeRecord(record));
 }
 
 Status ReadTakeRecord(const std::string& path, TakeRecord* record) {

@@ -1,6 +1,6 @@
 # Writes the seed corpora of the fuzz targets (python3 fuzz/make_seeds.py OUT_DIR): small
 # valid and nearly valid files of each format, made here (never copies of real captures).
-# OUT_DIR/<target>/<name>: bvh, asf, amc, c3d, trc, json, gltf, fbx.
+# OUT_DIR/<target>/<name>: bvh, asf, amc, c3d, trc, json, gltf, fbx, manifest.
 import base64, json, os, struct, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from c3d_min import c3d_bytes
@@ -127,6 +127,21 @@ put('json', 'edit.json', json.dumps({
 put('json', 'edits.json', json.dumps({
     "edits": [{"frame": 0, "joints": {"LeftUpLeg": {"rotation_offset_deg": [5, 0, 0]}}}]}))
 put('json', 'values.json', '{"a": [1, 2.5e3, -0.0, true, false, null, "s\\u00e9\\n"], "b": {}}')
+
+# Batch manifests (fuzz/manifest_fuzzer.cc knows the options filter_levels, gate_torso_deg,
+# reference, animation_only).
+put('manifest', 'manifest.json', json.dumps({
+    "defaults": {"subject": "S.json", "characters": ["Xbot.glb"], "filter_levels": 1},
+    "takes": [{"name": "02_05", "markers": "c3d/02_05.c3d"},
+              {"markers": "/data/t2.trc", "subject": "S2.json", "characters": [], "reference": "plain",
+               "animation_only": True}]}, indent=1))
+put('manifest', 'names.json', json.dumps({
+    "takes": [{"name": "javascript:alert(1)", "markers": "a.c3d", "subject": "S.json"},
+              {"name": "a\u0000b", "markers": "b.c3d", "subject": "S.json"},
+              {"name": "summary.html", "markers": "c.c3d", "subject": "S.json"}]}))
+put('manifest', 'duplicate.json', '{"takes": [{"markers": "a.c3d", "subject": "S.json"}, '
+    '{"markers": "x/a.c3d", "subject": "S.json"}]}')
+put('manifest', 'types.json', '{"defaults": {"filter_levels": "1"}, "takes": [{"markers": 3}]}')
 
 # glTF: a two-joint skinned triangle with a one-channel animation, as .gltf and .glb.
 def gltf_doc(embed_uri=True):

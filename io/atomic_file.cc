@@ -183,9 +183,7 @@ void ReserveStandardOutputForData() {
 
 Status WriteFileAtomically(const std::string& path, const std::string& contents) {
   if (FileTransaction* transaction = FileTransaction::Current()) return transaction->Stage(path, contents);
-  StagedFile staged;
-  Status status = StagedFile::Create(path, contents, &staged);
-  return status.ok() ? staged.Publish() : status;
+  return WriteFileAtomicallyNow(path, contents);
 }
 
 namespace {
@@ -196,19 +194,50 @@ void SetReadChunkObserverForTesting(void (*observer)(const std::string& path, si
   read_chunk_observer = observer;
 }
 
-Status ReadFileToString(const std::string& path, std::string* contents) {
-  struct stat st;
-  if (::stat(path.c_str(), &st) != 0) {
-    return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
+Status WriteFileAtomicallyNow(const std::string& path, const std::string& contents) {
+  StagedFile staged;
+  Status status = StagedFile::Create(path, contents, &staged);
+  return status.ok() ? staged.Publish() : status;
+}
+
+namespace {
+
+const char* FileKind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  return "a special file";
+}
+
+}  // namespace
+
+Status OpenRegularFile(const std::string& path, int* fd, struct stat* st) {
+  const int file = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (file < 0) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
+  if (::fstat(file, st) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::close(file);
+    return Status::Error(path + ": cannot open (" + reason + ")");
   }
-  if (S_ISDIR(st.st_mode)) return Status::Error(path + ": is a directory");
-  NoteInputFile(path);
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
+  if (!S_ISREG(st->st_mode)) {
+    ::close(file);
+    return Status::Error(path + ": is not a regular file (" + FileKind(st->st_mode) + ")");
+  }
+  ::fcntl(file, F_SETFL, ::fcntl(file, F_GETFL) & ~O_NONBLOCK);
+  *fd = file;
+  return Status::Ok();
+}
+
+Status ReadFileToString(const std::string& path, std::string* contents) {
   struct stat before;
-  const bool regular = ::fstat(fd, &before) == 0 && S_ISREG(before.st_mode);
+  int fd = -1;
+  Status status = OpenRegularFile(path, &fd, &before);
+  if (!status.ok()) return status;
+  NoteInputFile(path);
   std::string text;
-  if (regular) text.reserve(static_cast<size_t>(before.st_size));
+  text.reserve(static_cast<size_t>(before.st_size));
   char buffer[1 << 16];
   while (true) {
     const ssize_t n = ::read(fd, buffer, sizeof(buffer));
@@ -223,11 +252,11 @@ Status ReadFileToString(const std::string& path, std::string* contents) {
     if (read_chunk_observer != nullptr) read_chunk_observer(path, text.size());
   }
   struct stat after;
-  const bool changed = regular && (::fstat(fd, &after) != 0 || after.st_size != before.st_size ||
-                                   after.st_mtim.tv_sec != before.st_mtim.tv_sec ||
-                                   after.st_mtim.tv_nsec != before.st_mtim.tv_nsec ||
-                                   // (/proc files say 0 bytes and have more.)
-                                   (before.st_size > 0 && text.size() != static_cast<size_t>(before.st_size)));
+  const bool changed = ::fstat(fd, &after) != 0 || after.st_size != before.st_size ||
+                       after.st_mtim.tv_sec != before.st_mtim.tv_sec ||
+                       after.st_mtim.tv_nsec != before.st_mtim.tv_nsec ||
+                       // (/proc files say 0 bytes and have more.)
+                       (before.st_size > 0 && text.size() != static_cast<size_t>(before.st_size));
   ::close(fd);
   if (changed) {
     return Status::Error(path + ": the file changed while it was read (" + std::to_string(before.st_size) +

@@ -12,6 +12,8 @@
 #ifndef MOCAPSOLVE_IO_ATOMIC_FILE_H_
 #define MOCAPSOLVE_IO_ATOMIC_FILE_H_
 
+#include <sys/stat.h>
+
 #include <string>
 
 #include "kinematics/status.h"
@@ -20,6 +22,12 @@ namespace mocapsolve {
 
 Status WriteFileAtomically(const std::string& path, const std::string& contents);
 
+// Like WriteFileAtomically, but published at once even inside a FileTransaction (not at
+// its Commit, and not checked against its inputs): for files that record a command's
+// progress and must survive it being killed (a batch's take records and summaries). The
+// caller checks that the path is none of its inputs.
+Status WriteFileAtomicallyNow(const std::string& path, const std::string& contents);
+
 // True for "-", the output path that means the standard output.
 bool IsStandardOutput(const std::string& path);
 // Keeps the process's standard output for the outputs named "-" and sends everything
@@ -27,7 +35,15 @@ bool IsStandardOutput(const std::string& path);
 // the output alone. apps/main.cc calls it when a flag of the command is "-"; idempotent.
 void ReserveStandardOutputForData();
 
-// Reads a whole file; the error names the path. Inside a FileTransaction the file is
+// Opens an input file to read: with O_NONBLOCK, so that a FIFO without a writer cannot
+// block, then fstat; anything but a regular file (a folder, FIFO, socket or device) is an
+// error naming the path ("is not a regular file (a FIFO)"), as is a missing or unreadable
+// one. On success *fd is open (blocking again, close-on-exec) and *st describes it. The
+// one way io/ opens what it reads (ReadFileToString, HashFile), so no reader can hang
+// on a pipe.
+Status OpenRegularFile(const std::string& path, int* fd, struct stat* st);
+
+// Reads a whole file (OpenRegularFile); the error names the path. Inside a FileTransaction the file is
 // recorded as an input. A regular file that changes while it is read (its size or
 // modification time differs after the read, or fewer bytes came than it had: another
 // program writing or truncating it) is an error, not a silently shorter file.

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <memory>
 
+#include "io/atomic_file.h"
+
 namespace mocapsolve {
 
 void Fnv1a64::Update(std::string_view bytes) {
@@ -24,8 +26,10 @@ std::string HexHash(uint64_t hash) {
 }
 
 Status HashFile(const std::string& path, uint64_t* hash) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return Status::Error(path + ": cannot open the file");
+  int fd = -1;
+  struct stat st;
+  Status status = OpenRegularFile(path, &fd, &st);
+  if (!status.ok()) return status;
   constexpr size_t kChunk = 1 << 20;
   std::unique_ptr<char[]> buffer(new char[kChunk]);
   Fnv1a64 fnv;

@@ -25,7 +25,8 @@ class Fnv1a64 {
 // 16 lower-case hex digits.
 std::string HexHash(uint64_t hash);
 
-// The file's bytes hashed in 1 MB reads (not recorded as a command input).
+// The file's bytes hashed in 1 MB reads (not recorded as a command input); a missing,
+// unreadable or non-regular file (OpenRegularFile, io/atomic_file.h) is an error.
 Status HashFile(const std::string& path, uint64_t* hash);
 
 }  // namespace mocapsolve

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (fuzz/, clang + ASan + UBSan) in build-fuzz/ and runs them.
 #   scripts/fuzz.sh [TARGET] [--runs=N | --seconds=S] [-- extra libFuzzer flags]
-# TARGET: bvh, asf, amc, c3d, trc, json, gltf, fbx, or all (default). Default budget:
+# TARGET: bvh, asf, amc, c3d, trc, json, gltf, fbx, manifest, or all (default). Default budget:
 # --seconds=120 per target. Opt-in: needs clang and libFuzzer (scripts/setup.sh
 # --fuzz installs them). Each target keeps a growing corpus in build-fuzz/corpus/TARGET
 # (seeded by fuzz/make_seeds.py and by tests/data/bad's files of its format) and writes
@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-all=(bvh asf amc c3d trc json gltf fbx)
+all=(bvh asf amc c3d trc json gltf fbx manifest)
 targets=()
 budget=(-max_total_time=120)
 extra=()
@@ -53,6 +53,7 @@ for t in "${all[@]}"; do
   mkdir -p "build-fuzz/bad/$t"
   case "$t" in
     gltf) patterns=(bad_*.gltf bad_*.glb) ;;
+    manifest) patterns=(bad_manifest_*.json) ;;
     *) patterns=("bad_*.$t") ;;
   esac
   for p in "${patterns[@]}"; do

@@ -190,8 +190,10 @@ TEST_F(BatchCli, FaultsFailOnlyTheirTake) {
   EXPECT_THAT(rows["unwritable"].error, HasSubstr("not a folder"));
   EXPECT_EQ(rows["gate"].exit, "3");
   EXPECT_THAT(rows["gate"].error, HasSubstr("quality gate failed"));
+  EXPECT_EQ(rows["gate"].status, "gate_failed");  // It ran; its outputs are kept.
+  EXPECT_THAT(output, HasSubstr("; 1 failed at the quality gate"));
   for (const auto& [name, row] : rows) {
-    if (name != "ok") {
+    if (name != "ok" && name != "gate") {
       EXPECT_EQ(row.status, "failed") << name;
     }
     EXPECT_EQ(row.error.find('\n'), std::string::npos) << name;
@@ -299,6 +301,115 @@ TEST_F(BatchCli, ShardsAndMerge) {
   EXPECT_THAT(output, HasSubstr("--shard=2/2"));
 }
 
+// Every output is checked against every input by file identity before anything is written:
+// a subject named like the summary, a --write_manifest onto a marker file (directly, by a
+// symlink, by a hard link), a take folder holding an input, a manifest written where a
+// take's folder goes. Each: one line, exit 1, the input unchanged, nothing written.
+TEST_F(BatchCli, OutputsNeverReplaceInputs) {
+  const std::string out = testing::TempPath("guard");
+  ASSERT_EQ(std::system(("mkdir -p " + out + "/t1 " + out + "/.batch-work && cp " + dir_ + "/t4.c3d " + out +
+                         "/.batch-work/w.c3d && cp " + dir_ + "/S.json " + out + "/summary.csv && ln -s " +
+                         dir_ + "/S.json " + dir_ + "/link.json && ln " + dir_ + "/t2.c3d " + out +
+                         "/hard.c3d && cp " + dir_ + "/t3.c3d " + out + "/t1/inside.c3d").c_str()), 0);
+  const std::string subject_text = testing::ReadTextFile(out + "/summary.csv");
+  const std::string markers_text = testing::ReadTextFile(dir_ + "/t1.c3d");
+  const std::string glob = "batch --markers_glob='" + dir_ + "/t*.c3d' ";
+  struct Case {
+    std::string arguments, expected;
+  };
+  const std::vector<Case> cases = {
+      {glob + "--subject=" + out + "/summary.csv --out_dir=" + out,
+       "the summary " + out + "/summary.csv is the subject file of take 't1' (refusing to overwrite an input)"},
+      {glob + "--subject=" + dir_ + "/S.json --write_manifest=" + dir_ + "/t1.c3d",
+       "--write_manifest=" + dir_ + "/t1.c3d is the markers file of take 't1'"},
+      {glob + "--subject=" + dir_ + "/S.json --write_manifest=" + dir_ + "/link.json --out_dir=" + out,
+       "--write_manifest=" + dir_ + "/link.json is the subject file of take 't1'"},
+      {glob + "--subject=" + dir_ + "/S.json --write_manifest=" + out + "/hard.c3d",
+       "--write_manifest=" + out + "/hard.c3d is the markers file of take 't2'"},
+      {"batch --markers_glob='" + out + "/.batch-work/*.c3d' --subject=" + dir_ + "/S.json --out_dir=" + out,
+       "the work folder " + out + "/.batch-work holds the markers file of take 'w'"},
+      {glob + "--subject=" + dir_ + "/S.json --character=" + out + "/t1/inside.c3d --out_dir=" + out,
+       "the folder of take 't1' (" + out + "/t1) holds the character file of take 't1'"},
+      {glob + "--subject=" + dir_ + "/S.json --write_manifest=" + out + "/t3 --out_dir=" + out,
+       "the folder of take 't3' (" + out + "/t3) is also --write_manifest=" + out + "/t3"},
+  };
+  const std::vector<std::string> before = FolderFiles(out);
+  for (const Case& c : cases) {
+    std::string output;
+    EXPECT_EQ(testing::RunCli(c.arguments, &output), 1) << c.arguments << "\n" << output;
+    EXPECT_THAT(output, HasSubstr(c.expected)) << c.arguments;
+    EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+    EXPECT_EQ(FolderFiles(out), before) << c.arguments;
+    EXPECT_EQ(FolderFiles(out + "/t1"), std::vector<std::string>{"inside.c3d"});
+  }
+  EXPECT_EQ(testing::ReadTextFile(out + "/summary.csv"), subject_text);
+  EXPECT_EQ(testing::ReadTextFile(dir_ + "/t1.c3d"), markers_text);
+  EXPECT_EQ(testing::ReadTextFile(dir_ + "/S.json"), subject_text);
+}
+
+// A take whose input is missing, a FIFO (which would block any read) or a folder fails
+// alone with its one-line error, before any worker; the others run; exit 2. `info` on a
+// FIFO does not block either (every reader opens files the same way).
+TEST_F(BatchCli, TakesWithMissingOrIrregularInputsFailAlone) {
+  ASSERT_EQ(::mkfifo((dir_ + "/fifo.c3d").c_str(), 0600), 0);
+  ASSERT_EQ(std::system(("mkdir -p " + dir_ + "/folder.c3d").c_str()), 0);
+  const std::string manifest = Manifest(
+      "{\"markers\": \"t1.c3d\"}, {\"markers\": \"missing.c3d\"}, {\"markers\": \"fifo.c3d\"},\n"
+      "{\"markers\": \"folder.c3d\"}, {\"name\": \"fifo_subject\", \"markers\": \"t2.c3d\", \"subject\": "
+      "\"fifo.c3d\"}");
+  const std::string out = testing::TempPath("missing");
+  std::string output;
+  EXPECT_EQ(testing::RunCli("batch --quiet --take_timeout=60 --manifest=" + manifest + " --out_dir=" + out, &output),
+            2) << output;
+  auto rows = Summary(out);
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows["t1"].status, "done") << rows["t1"].error;
+  EXPECT_EQ(rows["missing"].error, "markers: " + dir_ + "/missing.c3d: cannot open (No such file or directory)");
+  EXPECT_EQ(rows["fifo"].error, "markers: " + dir_ + "/fifo.c3d: is not a regular file (a FIFO)");
+  EXPECT_EQ(rows["folder"].error, "markers: " + dir_ + "/folder.c3d: is not a regular file (a folder)");
+  EXPECT_EQ(rows["fifo_subject"].error, "subject: " + dir_ + "/fifo.c3d: is not a regular file (a FIFO)");
+  for (const char* name : {"missing", "fifo", "folder", "fifo_subject"}) {
+    EXPECT_EQ(rows[name].status, "failed") << name;
+    EXPECT_EQ(rows[name].exit, "1") << name;
+    EXPECT_FALSE(testing::FileExists(out + "/" + name)) << name;  // No worker, no folder.
+  }
+  EXPECT_EQ(testing::RunCli("info " + dir_ + "/fifo.c3d", &output), 1) << output;
+  EXPECT_THAT(output, HasSubstr(dir_ + "/fifo.c3d: is not a regular file (a FIFO)"));
+}
+
+// Bookkeeping of a batch killed mid-way: the manifest was written at the start, the
+// summary lists the takes that ended (the rest pending), the takes' configs sit in the
+// out folder's work folder (nothing in TMPDIR), and the next run clears them.
+TEST_F(BatchCli, KilledBatchLeavesManifestSummaryAndNoTemporaryFiles) {
+  const std::string out = testing::TempPath("bookkeeping");
+  const std::string tmp = testing::TempPath("tmpdir");
+  const std::string written = dir_ + "/written.json";
+  ASSERT_EQ(std::system(("mkdir -p " + tmp).c_str()), 0);
+  // Two slow takes after two quick ones; killed once the first summary appears.
+  const std::string command =
+      "TMPDIR=" + tmp + " " + testing::CliPath() + " batch --quiet --jobs=1 --markers_glob='" + dir_ +
+      "/t*.c3d' --subject=" + dir_ + "/S.json --write_manifest=" + written + " --out_dir=" + out +
+      " >/dev/null 2>&1 & pid=$!; for i in $(seq 600); do [ -f " + out +
+      "/summary.json ] && break; sleep 0.1; done; kill -9 $pid; wait $pid";
+  std::system(command.c_str());
+  ::usleep(200000);
+  EXPECT_TRUE(testing::FileExists(written));
+  JsonNode summary;
+  ASSERT_TRUE(ReadJsonFile(out + "/summary.json", &summary).ok());
+  const int listed = static_cast<int>(summary.Find("takes")->items.size());
+  EXPECT_GE(listed, 1);
+  EXPECT_EQ(listed + static_cast<int>(summary.Find("pending")->number), 4);
+  EXPECT_TRUE(testing::FileExists(out + "/summary.html"));
+  EXPECT_EQ(FolderFiles(tmp), std::vector<std::string>{});
+  // A stale config from the killed run is cleared by the next, which removes the folder.
+  testing::WriteTextFile(out + "/.batch-work/stale.json", "{}");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("batch --quiet --manifest=" + written + " --out_dir=" + out, &output), 0) << output;
+  EXPECT_FALSE(testing::FileExists(out + "/.batch-work"));
+  EXPECT_EQ(Summary(out).size(), 4u);
+  EXPECT_EQ(Summary(out)["t1"].status, "done");
+}
+
 TEST_F(BatchCli, BadManifestsNameFileAndField) {
   const std::string out = testing::TempPath("bad");
   std::string output;
@@ -307,10 +418,24 @@ TEST_F(BatchCli, BadManifestsNameFileAndField) {
   EXPECT_THAT(output, HasSubstr("M.json:2:"));
   EXPECT_THAT(output, HasSubstr("unknown key 'filter_level'"));
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
-  manifest = Manifest("{\"markers\": \"t1.c3d\"}, {\"markers\": \"no_such.c3d\"}");
-  EXPECT_EQ(testing::RunCli("batch --manifest=" + manifest + " --out_dir=" + out, &output), 1) << output;
-  EXPECT_THAT(output, HasSubstr("takes[1]: markers:"));
-  EXPECT_THAT(output, HasSubstr("no_such.c3d"));
+  // Names that cannot be a folder, or would be the batch's own files: the manifest's error,
+  // naming the take (escaped, never cut at a NUL) and the field, not a temporary path.
+  const std::vector<std::pair<std::string, std::string>> names = {
+      {"a\\u0000b", "takes[1].name: the take name 'a\\x00b'"},
+      {"summary.html", "takes[1].name: the take name 'summary.html' is a file the batch writes"},
+      {"..", "takes[1].name: the take name '..'"},
+      {"x/y", "takes[1].name: the take name 'x/y'"},
+      {std::string(300, 'n'), "takes[1].name: the take name '" + std::string(64, 'n') + "...' is 300 bytes long"}};
+  for (const auto& [name, expected] : names) {
+    manifest = Manifest("{\"name\": \"a\", \"markers\": \"t1.c3d\"}, {\"name\": \"" + name +
+                        "\", \"markers\": \"t2.c3d\"}");
+    EXPECT_EQ(testing::RunCli("batch --manifest=" + manifest + " --out_dir=" + out, &output), 1) << output;
+    EXPECT_THAT(output, HasSubstr(expected));
+    EXPECT_THAT(output, HasSubstr("M.json:2:"));
+    EXPECT_EQ(output.find(".batch-work"), std::string::npos) << output;  // No config path.
+    EXPECT_EQ(output.find("mocapsolve-batch"), std::string::npos) << output;
+    EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  }
   EXPECT_EQ(testing::RunCli("batch --manifest=" + dir_ + "/none.json --out_dir=" + out, &output), 1) << output;
   EXPECT_THAT(output, HasSubstr("none.json"));
   struct stat st;

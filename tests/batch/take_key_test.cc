@@ -51,9 +51,10 @@ TEST(TakeKey, ChangesWithContentsOptionsAndVersionOnly) {
   JsonNode number;
   number.type = JsonNode::Type::kNumber;
   number.number = 1;
-  take.options = {{"filter_levels", number}};
+  BatchManifest manifest;
+  manifest.pipeline = {{"filter_levels", number}};
   TakeKey key;
-  ASSERT_TRUE(ComputeTakeKey(take, "1.0", &key).ok());
+  ASSERT_TRUE(ComputeTakeKey(manifest, take, "1.0", &key).ok());
   ASSERT_EQ(key.inputs.size(), 3u);  // The subject's skeleton file counts.
   EXPECT_EQ(key.inputs[2].role, "skeleton");
 
@@ -61,18 +62,48 @@ TEST(TakeKey, ChangesWithContentsOptionsAndVersionOnly) {
   moved.markers = dir + "/b/take.c3d";
   moved.subject = dir + "/b/S.json";
   TakeKey other;
-  ASSERT_TRUE(ComputeTakeKey(moved, "1.0", &other).ok());
+  ASSERT_TRUE(ComputeTakeKey(manifest, moved, "1.0", &other).ok());
   EXPECT_EQ(other.key, key.key);
 
-  ASSERT_TRUE(ComputeTakeKey(take, "1.1", &other).ok());
+  ASSERT_TRUE(ComputeTakeKey(manifest, take, "1.1", &other).ok());
   EXPECT_NE(other.key, key.key);
   BatchTake changed = take;
-  changed.options[0].second.number = 2;
-  ASSERT_TRUE(ComputeTakeKey(changed, "1.0", &other).ok());
+  number.number = 2;
+  changed.overrides = {{"filter_levels", number}};
+  ASSERT_TRUE(ComputeTakeKey(manifest, changed, "1.0", &other).ok());
   EXPECT_NE(other.key, key.key);
   testing::WriteTextFile(dir + "/b/skeleton.bvh", "skeleton2");
-  ASSERT_TRUE(ComputeTakeKey(moved, "1.0", &other).ok());
+  ASSERT_TRUE(ComputeTakeKey(manifest, moved, "1.0", &other).ok());
   EXPECT_NE(other.key, key.key);
+}
+
+// Inputs that are not regular files fail the key at once (no read blocks on a FIFO), with
+// the role and path named; the cache does not hide a take's own markers file.
+TEST(TakeKey, RefusesFifosFoldersAndMissingFilesWithoutBlocking) {
+  const std::string dir = testing::TempPath("key_fifo");
+  ASSERT_EQ(std::system(("mkdir -p " + dir + "/folder.c3d && rm -f " + dir + "/fifo.c3d && mkfifo " + dir +
+                         "/fifo.c3d").c_str()), 0);
+  testing::WriteTextFile(dir + "/S.json", "{}");
+  testing::WriteTextFile(dir + "/ok.c3d", "x");
+  BatchManifest manifest;
+  TakeKeyCache cache;
+  BatchTake take;
+  take.subject = dir + "/S.json";
+  take.markers = dir + "/ok.c3d";
+  TakeKey key;
+  ASSERT_TRUE(ComputeTakeKey(manifest, take, "1.0", &key, &cache).ok());
+  for (const char* name : {"fifo.c3d", "folder.c3d", "missing.c3d"}) {
+    take.markers = dir + "/" + name;
+    const Status status = ComputeTakeKey(manifest, take, "1.0", &key, &cache);
+    ASSERT_FALSE(status.ok()) << name;
+    EXPECT_NE(status.message().find(std::string("markers: ") + dir + "/" + name), std::string::npos)
+        << status.message();
+  }
+  take.markers = dir + "/ok.c3d";
+  take.subject = dir + "/fifo.c3d";  // A FIFO subject: its skeleton is looked for too.
+  const Status status = ComputeTakeKey(manifest, take, "1.0", &key, &cache);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("is not a regular file (a FIFO)"), std::string::npos) << status.message();
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "io/atomic_file.h"
+#include "io/content_hash.h"
 #include "tests/test_support.h"
 
 namespace mocapsolve {
@@ -265,6 +266,32 @@ TEST(ReadFileToString, AnInputChangedDuringTheReadIsAnError) {
   WriteNow(path, text);  // Unchanged: read whole.
   ASSERT_TRUE(ReadFileToString(path, &read).ok());
   EXPECT_EQ(read, text);
+}
+
+// Every reader goes through OpenRegularFile: a FIFO (no writer: opening it for reading
+// would block for ever), a folder or a device is refused at once, naming the path and what
+// it is, and the content hash (a batch's keys) refuses the same.
+TEST(OpenRegularFile, RefusesFifosFoldersAndDevicesWithoutBlocking) {
+  const std::string fifo = testing::TempPath("pipe.c3d");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string text;
+  Status status = ReadFileToString(fifo, &text);
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.message(), fifo + ": is not a regular file (a FIFO)");
+  uint64_t hash = 0;
+  status = HashFile(fifo, &hash);
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.message(), fifo + ": is not a regular file (a FIFO)");
+  status = ReadFileToString(Folder(fifo), &text);
+  EXPECT_THAT(status.message(), HasSubstr("is not a regular file (a folder)"));
+  status = ReadFileToString("/dev/zero", &text);  // Would never end.
+  EXPECT_EQ(status.message(), "/dev/zero: is not a regular file (a character device)");
+  status = ReadFileToString(testing::TempPath("missing.json"), &text);
+  EXPECT_THAT(status.message(), HasSubstr("missing.json: cannot open (No such file or directory)"));
+  const std::string regular = testing::TempPath("ok.json");
+  testing::WriteTextFile(regular, "{}");
+  ASSERT_TRUE(ReadFileToString(regular, &text).ok());
+  EXPECT_EQ(text, "{}");
 }
 
 }  // namespace
