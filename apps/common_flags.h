@@ -32,8 +32,17 @@ DECLARE_string(target);
 DECLARE_string(axes);
 DECLARE_double(marker_scale);
 DECLARE_string(subject);
+DECLARE_bool(include_model_outputs);
+DECLARE_string(subject_prefix);
 
 namespace mocapsolve {
+
+// How marker files are read (io/marker_file.h MarkerReadOptions): main.cc gives these
+// flags to every command that reads marker files (those taking --markers, info, convert),
+// so no command lists them itself.
+inline constexpr char kMarkerReadFlags[] = "include_model_outputs,subject_prefix";
+// Makes those flags the options of every ReadMarkerFile call (main.cc, once flags are parsed).
+void SetMarkerReadOptionsFromFlags();
 
 // ReadMotionFile with --skeleton and --amc_fps, then --skeleton_units.
 Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion);

@@ -30,6 +30,14 @@ Status MarkerInfo(const std::string& path) {
     std::printf("%s%s", m ? ", " : " (", markers.label(m).c_str());
   }
   std::printf("%s\n", markers.num_markers() > 8 ? ", ...)" : markers.num_markers() ? ")" : "");
+  if (markers.model_outputs != nullptr) {
+    const MarkerTrajectories& outputs = markers.model_outputs->points;
+    std::printf("outputs:   %d model outputs, not markers", outputs.num_markers());
+    for (int m = 0; m < std::min(outputs.num_markers(), 4); ++m) {
+      std::printf("%s%s", m ? ", " : " (", outputs.label(m).c_str());
+    }
+    std::printf("%s\n", outputs.num_markers() > 4 ? ", ...)" : ")");
+  }
   std::printf("frames:    %d at %.6g fps (%.4g s), first frame %d\n", markers.num_frames(),
               markers.frame_rate, duration, markers.first_frame);
   std::printf("units:     %s\n", markers.unit.name.c_str());

@@ -55,8 +55,20 @@ std::string ShownDefault(const gflags::CommandLineFlagInfo& flag) {
 // The flags a command reads: those defined in its own file, and the shared ones (main.cc,
 // solver_flags.cc, ...) it lists. Its --help shows exactly these, and main refuses any other
 // of ours (glog's and gflags' own, such as --v, stay accepted everywhere).
+// The commands that read marker files: those taking --markers, and info and convert.
+bool ReadsMarkerFiles(const Command& command) {
+  const std::string name = command.name;
+  return name == "info" || name == "convert" ||
+         (command.shared_flags != nullptr &&
+          ("," + std::string(command.shared_flags) + ",").find(",markers,") != std::string::npos);
+}
+
 bool CommandReadsFlag(const Command& command, const gflags::CommandLineFlagInfo& flag) {
   if (flag.name == "quiet") return true;  // Common to every command (`mocapsolve --help`).
+  // How marker files are read: every command that reads one (the one list, kMarkerReadFlags).
+  if (("," + std::string(kMarkerReadFlags) + ",").find("," + flag.name + ",") != std::string::npos) {
+    return ReadsMarkerFiles(command);
+  }
   const bool own = EndsWith(flag.filename, command.source) || EndsWith(command.source, flag.filename);
   const bool common = command.shared_flags != nullptr &&
                       ("," + std::string(command.shared_flags) + ",").find("," + flag.name + ",") != std::string::npos;
@@ -139,6 +151,12 @@ DEFINE_string(skeleton_units, "", "Unit of a skeleton whose file does not state 
 DEFINE_string(motion, "", "Motion file: .bvh, .glb/.gltf, .fbx, or .amc with --skeleton=X.asf.");
 DEFINE_string(out, "", "Output file (its extension picks the format).");
 DEFINE_string(markers, "", "Marker file: .c3d or .trc.");
+DEFINE_bool(include_model_outputs, false, "C3D: read model outputs (POINT:ANGLES/FORCES/MOMENTS/POWERS/REACTIONS/"
+            "SCALARS, Plug-in Gait virtual points such as PELO, CentreOfMass) as markers; by default they are "
+            "left out of the markers and kept unchanged when the file is rewritten.");
+DEFINE_string(subject_prefix, "", "C3D with several subjects (SUBJECTS:LABEL_PREFIXES, 'Name:LASI' labels): read "
+              "this subject's points (name, 'Name:' or a SUBJECTS:NAMES entry), its prefix stripped; the other "
+              "subjects' points are ignored. Without it such a file is an error listing its subjects.");
 DEFINE_string(target, "", "Target character (.glb/.gltf): where retarget puts the motion; for convert, "
               "the character a motion is written into as a new animation (default: IN when IN is glTF; "
               "the motion's skeleton must have the character's joints).");
@@ -155,6 +173,13 @@ DEFINE_string(subject, "", "Subject file (.json, written by calibrate/fit_skelet
               "--markerset, --axes and --marker_scale.");
 
 namespace mocapsolve {
+
+void SetMarkerReadOptionsFromFlags() {
+  MarkerReadOptions options;
+  options.include_model_outputs = FLAGS_include_model_outputs;
+  options.subject_prefix = FLAGS_subject_prefix;
+  SetDefaultMarkerReadOptions(options);
+}
 
 Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
   MotionFileOptions options;
@@ -422,6 +447,7 @@ int main(int argc, char** argv) {
   mocapsolve::SetStage("arguments");
   mocapsolve::Status status = mocapsolve::CheckGivenFlags(*command);
   if (status.ok()) status = mocapsolve::CheckFiniteFlags(*command);
+  mocapsolve::SetMarkerReadOptionsFromFlags();
   if (status.ok()) status = mocapsolve::CheckReportPaths(positional);
   if (status.ok() && mocapsolve::NamesStandardOutput(*command, positional)) mocapsolve::ReserveStandardOutputForData();
   if (status.ok()) {

@@ -7,10 +7,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <utility>
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/c3d_points.h"
 #include "kinematics/quote_token.h"
 
 namespace mocapsolve {
@@ -112,6 +114,12 @@ class C3dParser {
   Status Count(const std::string& group, const std::string& name, bool* present,
                double* value) const;
   std::vector<std::string> Strings(const Parameter* p) const;
+  // A string list that may go on in NAME2, NAME3, ... (POINT:LABELS, POINT:ANGLES);
+  // *present tells whether NAME exists.
+  std::vector<std::string> StringChunks(const std::string& group, const std::string& name,
+                                        bool* present = nullptr) const;
+  // The labels (blank ones named "*<n>") and the point selection of c3d_points.h.
+  Status SelectPoints(int num_points, C3dPointSelection* selection) const;
 
   std::string_view bytes_;
   std::string file_;
@@ -229,6 +237,38 @@ std::vector<std::string> C3dParser::Strings(const Parameter* p) const {
     out.push_back(Trim(bytes_.substr(p->data_offset + i, width)));
   }
   return out;
+}
+
+std::vector<std::string> C3dParser::StringChunks(const std::string& group, const std::string& name,
+                                                 bool* present) const {
+  std::vector<std::string> out;
+  if (present != nullptr) *present = Find(group, name) != nullptr;
+  for (int chunk = 1;; ++chunk) {
+    const Parameter* p = Find(group, chunk == 1 ? name : name + std::to_string(chunk));
+    if (p == nullptr) break;
+    for (std::string& value : Strings(p)) out.push_back(std::move(value));
+  }
+  return out;
+}
+
+Status C3dParser::SelectPoints(int num_points, C3dPointSelection* selection) const {
+  C3dPointLists lists;
+  lists.labels = StringChunks("POINT", "LABELS");  // LABELS, LABELS2, ... (> 255 points).
+  lists.labels.resize(num_points);
+  for (int m = 0; m < num_points; ++m) {
+    if (lists.labels[m].empty()) lists.labels[m] = "*" + std::to_string(m + 1);
+  }
+  for (std::string& prefix : Strings(Find("SUBJECTS", "LABEL_PREFIXES"))) {
+    if (!prefix.empty()) lists.subject_prefixes.push_back(std::move(prefix));
+  }
+  lists.subject_names = Strings(Find("SUBJECTS", "NAMES"));
+  for (const std::string& kind : C3dModelOutputKinds()) {
+    bool present = false;
+    std::vector<std::string> labels = StringChunks("POINT", kind, &present);
+    if (present) lists.output_lists.emplace_back(kind, std::move(labels));
+  }
+  Status status = SelectC3dPoints(lists, options_.subject_prefix, options_.include_model_outputs, selection);
+  return status.ok() ? status : Status::Error(file_ + ": " + status.message());
 }
 
 Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
@@ -362,29 +402,33 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
                      " (room for " + std::to_string(available / frame_bytes) + " frames)");
   }
 
-  // Labels: LABELS, LABELS2, LABELS3, ...
-  std::vector<std::string> labels;
-  for (int chunk = 1; static_cast<int>(labels.size()) < num_points; ++chunk) {
-    const Parameter* p = Find("POINT", chunk == 1 ? "LABELS" : "LABELS" + std::to_string(chunk));
-    if (p == nullptr) break;
-    for (std::string& label : Strings(p)) labels.push_back(std::move(label));
-  }
-  labels.resize(num_points);
+  // Labels and which points are markers (c3d_points.h).
+  C3dPointSelection selection;
+  if (Status s = SelectPoints(num_points, &selection); !s.ok()) return s;
+  std::vector<std::string> marker_labels, output_labels, output_kinds;
+  std::vector<std::pair<int, int>> target(num_points, {-1, -1});  // (0 marker / 1 output, column).
   for (int m = 0; m < num_points; ++m) {
-    if (labels[m].empty()) labels[m] = "*" + std::to_string(m + 1);
+    if (selection.roles[m] == C3dPointSelection::Role::kMarker) {
+      target[m] = {0, static_cast<int>(marker_labels.size())};
+      marker_labels.push_back(selection.labels[m]);
+    } else if (selection.roles[m] == C3dPointSelection::Role::kModelOutput) {
+      target[m] = {1, static_cast<int>(output_labels.size())};
+      output_labels.push_back(selection.labels[m]);
+      output_kinds.push_back(selection.kinds[m]);
+    }
   }
-
-  if (Status status = MarkerTrajectories::CheckLabels(labels); !status.ok()) {
-    return Error("POINT:LABELS", status.message());
+  for (const auto* labels : {&marker_labels, &output_labels}) {
+    if (Status status = MarkerTrajectories::CheckLabels(*labels); !status.ok()) {
+      return Error("POINT:LABELS", status.message());
+    }
   }
-  MarkerTrajectories out(std::move(labels), static_cast<int>(num_frames));
-  out.frame_rate = rate;
-  out.first_frame = static_cast<int>(std::min<std::int64_t>(first, INT_MAX));
+  MarkerTrajectories out(std::move(marker_labels), static_cast<int>(num_frames));
+  MarkerTrajectories outputs(std::move(output_labels), static_cast<int>(num_frames));
+  out.frame_rate = outputs.frame_rate = rate;
+  out.first_frame = outputs.first_frame = static_cast<int>(std::min<std::int64_t>(first, INT_MAX));
   const std::vector<std::string> units = Strings(Find("POINT", "UNITS"));
-  out.unit = LengthUnitFromName(units.empty() ? "" : units[0]);
-  for (std::string& prefix : Strings(Find("SUBJECTS", "LABEL_PREFIXES"))) {
-    if (!prefix.empty()) out.subject_prefixes.push_back(std::move(prefix));
-  }
+  out.unit = outputs.unit = LengthUnitFromName(units.empty() ? "" : units[0]);
+  out.subject_prefixes = std::move(selection.subject_prefixes);
 
   C3dFileInfo found;
   found.processor = processor;
@@ -394,11 +438,18 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
   found.data_start_block = static_cast<int>(data_start_block);
   found.analog_values_per_frame = analog_values;
   found.analog_channels = analog_channels;
+  found.model_output_points = selection.num_model_outputs;
+  found.other_subject_points = selection.num_dropped;
+  for (const std::string& warning : selection.warnings) found.warnings.push_back(file_ + ": " + warning);
 
   std::uint64_t offset = data_offset;
   // Without points there is nothing to decode (and the frame count may be 2^31).
   for (int f = 0; num_points > 0 && f < num_frames; ++f) {
     for (int m = 0; m < num_points; ++m, offset += 4 * word_bytes) {
+      if (target[m].first < 0) continue;  // A point of another subject.
+      MarkerTrajectories& into = target[m].first == 0 ? out : outputs;
+      const int column = target[m].second;
+      const bool is_marker = target[m].first == 0;
       Eigen::Vector3d position;
       int residual_word;  // As int16; negative = invalid.
       if (float_storage) {
@@ -416,26 +467,32 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
         residual_word = decoder_.I16(offset + 6);
       }
       if (residual_word < 0 || !position.allFinite()) {
-        ++found.negative_residual_samples;
+        found.negative_residual_samples += is_marker;
         continue;  // Already missing.
       }
       if (position.cwiseAbs().maxCoeff() > MarkerTrajectories::kMaxCoordinate) {
         return Error("POINT data", "frame " + std::to_string(f + 1) + ", marker " +
-                                       QuoteToken(out.label(m)) + ": coordinate " +
+                                       QuoteToken(into.label(column)) + ": coordinate " +
                                        std::to_string(position.cwiseAbs().maxCoeff()) +
                                        " beyond +-1e9");
       }
       if (options_.zero_position_is_missing && (position.array() == 0.0).all()) {
-        ++found.zero_position_samples;
+        found.zero_position_samples += is_marker;
         continue;
       }
-      out.SetSample(f, m, position, static_cast<float>((residual_word & 0xff) * abs_scale),
-                    static_cast<std::uint8_t>((residual_word >> 8) & 0x7f));
+      into.SetSample(f, column, position, static_cast<float>((residual_word & 0xff) * abs_scale),
+                     static_cast<std::uint8_t>((residual_word >> 8) & 0x7f));
     }
     offset += analog_values * word_bytes;  // Analog samples are not read.
   }
+  if (outputs.num_markers() > 0) {
+    auto kept = std::make_shared<ModelOutputPoints>();
+    kept->kinds = std::move(output_kinds);
+    kept->points = std::move(outputs);
+    out.model_outputs = std::move(kept);
+  }
   *trajectories = std::move(out);
-  if (info != nullptr) *info = found;
+  if (info != nullptr) *info = std::move(found);
   return Status::Ok();
 }
 

@@ -45,6 +45,9 @@
 //                      "*<n>" (1-based, the Vicon convention for unlabelled points).
 // Subject prefixes come from SUBJECTS:LABEL_PREFIXES (empty entries dropped); labels
 // are kept raw, see marker_trajectories.h.
+// Which points are markers: duplicate labels numbered (RKNE, RKNE#2), one subject chosen
+// from a file of several, model outputs (POINT:ANGLES, ..., Plug-in Gait virtual points)
+// set apart in MarkerTrajectories::model_outputs: the rules are in c3d_points.h.
 //
 // Hostile files: the parameter pointer, every parameter record, the data start and
 // frames x frame size are checked against the file size before anything is read or
@@ -55,6 +58,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/status.h"
@@ -66,6 +70,11 @@ enum class C3dProcessor { kIntel = 84, kDec = 85, kSgiMips = 86 };
 struct C3dReadOptions {
   // Read an exactly (0,0,0) sample with a non-negative residual as missing.
   bool zero_position_is_missing = true;
+  // Read model outputs (c3d_points.h) as markers instead of setting them apart.
+  bool include_model_outputs = false;
+  // The subject whose points are read, its prefix stripped ("Daphnee", "Daphnee:" or a
+  // SUBJECTS:NAMES entry); "" = the file's only subject (several are an error).
+  std::string subject_prefix;
 };
 
 // What the reader found, for reports and tests.
@@ -79,6 +88,9 @@ struct C3dFileInfo {
   int analog_channels = 0;           // ANALOG:USED (0 when absent).
   int negative_residual_samples = 0; // Missing: negative residual word (or NaN coordinates).
   int zero_position_samples = 0;     // Missing because they were exactly (0,0,0).
+  int model_output_points = 0;       // Points set apart as model outputs.
+  int other_subject_points = 0;      // Points of the subjects not chosen (not read).
+  std::vector<std::string> warnings; // One line each, naming the file (duplicate labels, ...).
 };
 
 // Reads the file at path. *info is optional.

@@ -5,9 +5,11 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/c3d_points.h"
 
 namespace mocapsolve {
 namespace {
@@ -152,10 +154,41 @@ size_t MaxLength(const std::vector<std::string>& values) {
   return width;
 }
 
-}  // namespace
+// The POINT parameters that list model outputs: ("ANGLES", labels), ...
+using OutputLists = std::vector<std::pair<std::string, std::vector<std::string>>>;
 
-Status EncodeC3d(const MarkerTrajectories& trajectories, const std::string& file_name,
-                 std::string* bytes) {
+// The markers followed by the model outputs, as one set of points; *lists gets the
+// outputs' labels by kind (those of kind "" are recognised by name on reading).
+MarkerTrajectories WithModelOutputs(const MarkerTrajectories& markers, OutputLists* lists) {
+  const ModelOutputPoints& outputs = *markers.model_outputs;
+  std::vector<std::string> labels = markers.labels();
+  labels.insert(labels.end(), outputs.points.labels().begin(), outputs.points.labels().end());
+  MarkerTrajectories all(std::move(labels), markers.num_frames());
+  all.frame_rate = markers.frame_rate;
+  all.unit = markers.unit;
+  all.first_frame = markers.first_frame;
+  all.subject_prefixes = markers.subject_prefixes;
+  const int num_markers = markers.num_markers();
+  for (int f = 0; f < markers.num_frames(); ++f) {
+    for (int m = 0; m < all.num_markers(); ++m) {
+      const MarkerTrajectories& from = m < num_markers ? markers : outputs.points;
+      const int column = m < num_markers ? m : m - num_markers;
+      if (!from.valid(f, column)) continue;
+      all.SetSample(f, m, from.position(f, column), from.residual(f, column), from.camera_mask(f, column));
+    }
+  }
+  for (const std::string& kind : C3dModelOutputKinds()) {
+    std::vector<std::string> listed;
+    for (size_t i = 0; i < outputs.kinds.size(); ++i) {
+      if (outputs.kinds[i] == kind) listed.push_back(outputs.points.label(static_cast<int>(i)));
+    }
+    if (!listed.empty()) lists->emplace_back(kind, std::move(listed));
+  }
+  return all;
+}
+
+Status EncodePoints(const MarkerTrajectories& trajectories, const OutputLists& output_lists,
+                    const std::string& file_name, std::string* bytes) {
   const auto error = [&](const std::string& what) { return Status::Error(file_name + ": " + what); };
   const int num_markers = trajectories.num_markers();
   const int num_frames = trajectories.num_frames();
@@ -216,6 +249,7 @@ Status EncodeC3d(const MarkerTrajectories& trajectories, const std::string& file
       p.String(kPoint, "UNITS", trajectories.unit.name.substr(0, 255));
     }
     AddStrings(&p, kPoint, "LABELS", trajectories.labels(), MaxLength(trajectories.labels()));
+    for (const auto& [kind, labels] : output_lists) AddStrings(&p, kPoint, kind, labels, MaxLength(labels));
     p.Group(kAnalog, "ANALOG");
     p.Int16(kAnalog, "USED", 0);
     p.Float(kAnalog, "RATE", static_cast<float>(trajectories.frame_rate));
@@ -286,6 +320,20 @@ Status EncodeC3d(const MarkerTrajectories& trajectories, const std::string& file
   out.resize((out.size() + kBlockBytes - 1) / kBlockBytes * kBlockBytes, '\0');
   *bytes = std::move(out);
   return Status::Ok();
+}
+
+}  // namespace
+
+Status EncodeC3d(const MarkerTrajectories& trajectories, const std::string& file_name,
+                 std::string* bytes) {
+  const ModelOutputPoints* outputs = trajectories.model_outputs.get();
+  if (outputs == nullptr || outputs->points.num_markers() == 0 ||
+      outputs->points.num_frames() != trajectories.num_frames()) {
+    return EncodePoints(trajectories, {}, file_name, bytes);
+  }
+  OutputLists lists;
+  const MarkerTrajectories all = WithModelOutputs(trajectories, &lists);
+  return EncodePoints(all, lists, file_name, bytes);
 }
 
 Status WriteC3d(const std::string& path, const MarkerTrajectories& trajectories) {

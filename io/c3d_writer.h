@@ -17,6 +17,10 @@
 //                max(largest |coordinate| / 32000, largest residual / 255) so that no
 //                residual saturates and an int16 conversion of the file would not
 //                overflow; residuals thus come back within |POINT:SCALE| / 2.
+//   model outputs  MarkerTrajectories::model_outputs (read from a C3D, c3d_points.h) are
+//                written after the markers, unchanged (not rescaled or rotated), and listed
+//                again in POINT:ANGLES, FORCES, ... so they read back as model outputs.
+//                When their frame count is not the markers' (a cut take) they are left out.
 //   missing      coordinates 0 and residual word -1, so every C3D reader sees an invalid
 //                sample; missing samples are never written as real zeros.
 // Caveat: a *valid* sample exactly at (0,0,0) is written as such, and readers that treat

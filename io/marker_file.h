@@ -3,13 +3,31 @@
 #define MOCAPSOLVE_IO_MARKER_FILE_H_
 
 #include <string>
+#include <vector>
 
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/status.h"
 
 namespace mocapsolve {
 
+// How marker files are read (C3D only; TRC files have none of these): see c3d_points.h.
+struct MarkerReadOptions {
+  bool include_model_outputs = false;  // C3dReadOptions::include_model_outputs.
+  std::string subject_prefix;          // C3dReadOptions::subject_prefix.
+  // Receives the reader's warnings (duplicate labels renamed, model outputs set apart);
+  // null: each is printed to stderr as "warning: ...".
+  std::vector<std::string>* warnings = nullptr;
+};
+
+// The options ReadMarkerFile uses when given none: what the front end (apps/main.cc from
+// --include_model_outputs and --subject_prefix) set before the command ran, so every
+// command and library function that reads a marker file reads it the same way.
+void SetDefaultMarkerReadOptions(const MarkerReadOptions& options);
+const MarkerReadOptions& DefaultMarkerReadOptions();
+
 Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories);
+Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories,
+                      const MarkerReadOptions& options);
 Status WriteMarkerFile(const std::string& path, const MarkerTrajectories& trajectories);
 bool IsMarkerFile(const std::string& path);
 

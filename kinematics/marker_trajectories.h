@@ -20,10 +20,17 @@
 // (C3D SUBJECTS:LABEL_PREFIXES, "TakeoMonday:") are recorded in `subject_prefixes` so
 // FindMarker("LBWT") still finds the marker. Frame numbers: frame index f (0-based)
 // corresponds to the file's frame number first_frame + f (C3D field number; TRC Frame#).
+//
+// Model outputs: points a C3D file stores beside the markers (Vicon Nexus joint angles,
+// forces, moments, powers, centre of mass, Plug-in Gait virtual segment points) are not
+// markers. The C3D reader leaves them out of the markers and carries them in
+// `model_outputs` (read-only, shared between copies) so that a rewrite of the file keeps
+// them unchanged; nothing else looks at them.
 #ifndef MOCAPSOLVE_KINEMATICS_MARKER_TRAJECTORIES_H_
 #define MOCAPSOLVE_KINEMATICS_MARKER_TRAJECTORIES_H_
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,6 +42,8 @@
 
 namespace mocapsolve {
 
+struct ModelOutputPoints;
+
 class MarkerTrajectories {
  public:
   // Metadata (free to edit; see set_label for labels).
@@ -42,6 +51,8 @@ class MarkerTrajectories {
   LengthUnit unit;          // Of positions and residuals.
   int first_frame = 1;      // File frame number of frame index 0.
   std::vector<std::string> subject_prefixes;  // "TakeoMonday:", ...; may be empty.
+  // The file's non-marker points (see the header comment); null when there are none.
+  std::shared_ptr<const ModelOutputPoints> model_outputs;
 
   // Largest |coordinate| a reader accepts, in file units: 1e9 mm is 1000 km. Beyond it
   // squares and sums overflow or lose all precision (a TRC value of 1e308 became
@@ -110,6 +121,14 @@ class MarkerTrajectories {
   std::vector<std::uint8_t> valid_mask_;
   std::vector<float> residuals_;
   std::vector<std::uint8_t> camera_masks_;
+};
+
+// Points of a C3D file that are not markers, kept for rewriting the file.
+struct ModelOutputPoints {
+  // Per point, the POINT parameter that lists it ("ANGLES", "FORCES", "MOMENTS", "POWERS",
+  // "REACTIONS", "SCALARS"), or "" for a point recognised by its name only.
+  std::vector<std::string> kinds;
+  MarkerTrajectories points;  // Same frames as the markers; raw values (degrees, N, ...).
 };
 
 // Rescales positions and residuals into `to` and sets unit. Fails (and changes nothing)
