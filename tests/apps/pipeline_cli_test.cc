@@ -162,14 +162,14 @@ TEST_F(PipelineCli, BadInputsWriteNothing) {
   EXPECT_EQ(Pipeline("--markers=" + other + " --out_dir=" + dir, &output), 1);
   EXPECT_THAT(output, HasSubstr("other.trc"));
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
-  // A subject whose skeleton file is missing.
+  // A subject (written as older files are, the skeleton by path) whose skeleton file is missing.
   const std::string broken = testing::TempPath("broken_subject.json");
   {
     std::string text = testing::ReadTextFile(subject_);
-    const size_t key = text.find("\"skeleton\": \"");
+    const size_t key = text.find("  \"skeleton\": {"), end = text.find("  \"marker_files\"");
     ASSERT_NE(key, std::string::npos) << text.substr(0, 300);
-    const size_t value = key + 13, end = text.find('"', value);
-    text.replace(value, end - value, "no_such_skeleton.bvh");
+    ASSERT_NE(end, std::string::npos) << text.substr(0, 300);
+    text.replace(key, end - key, "  \"skeleton\": \"no_such_skeleton.bvh\",\n  \"skeleton_units\": \"cm\",\n");
     std::FILE* file = std::fopen(broken.c_str(), "w");
     std::fputs(text.c_str(), file);
     std::fclose(file);
