@@ -65,7 +65,7 @@ Status ViewPageOfTake(std::string* path) {
     const Status found = FindViewerRuntime(&runtime);
     if (found.ok()) {
       *path = ViewPagePath(FLAGS_out_dir);
-    } else if (!FLAGS_quiet) {
+    } else {  // A warning, not progress: printed with --quiet too.
       std::fprintf(stderr, "warning: pipeline: no view.html (--view=auto): %s\n", found.message().c_str());
     }
     return Status::Ok();

@@ -188,8 +188,7 @@ TEST_F(PipelineCli, ViewPageDefaultAndRequired) {
   setenv("MOCAPSOLVE_VIEWER_TOOLS", testing::TempPath("no_viewer_tools").c_str(), 1);
   std::string output;
   const std::string auto_dir = testing::TempPath("view_auto");
-  EXPECT_EQ(testing::RunCli("pipeline --subject=" + subject_ + " --markers=" + markers_ + " --out_dir=" + auto_dir,
-                            &output), 0) << output;
+  EXPECT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + auto_dir, &output), 0) << output;  // --quiet too.
   EXPECT_THAT(output, HasSubstr("warning: pipeline: no view.html (--view=auto)"));
   EXPECT_THAT(output, HasSubstr("scripts/viewer_tools.sh"));
   EXPECT_TRUE(testing::FileExists(auto_dir + "/solved.bvh"));
