@@ -11,6 +11,7 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/progress.h"
 #include "apps/config_flags.h"
 #include "batch/batch_runner.h"
 #include "batch/batch_summary.h"
@@ -160,21 +161,17 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
     // A summary as takes end: a killed batch leaves one. (A failed write is retried next time.)
     (void)WriteBatchSummary(options.out_dir, partial, version, summary_base);
   };
-  const bool quiet = FLAGS_quiet;
   BatchResult result;
-  auto shown = std::chrono::steady_clock::now() - std::chrono::seconds(1);
-  bool shown_last = false;
-  status = RunBatch(manifest, options, [quiet, &shown, &shown_last](const BatchProgress& p) {
-    const auto now = std::chrono::steady_clock::now();
+  ProgressLine line(FLAGS_quiet);  // In place on a terminal, a line every few seconds in a log.
+  status = RunBatch(manifest, options, [&line](const BatchProgress& p) {
     const bool last = p.done + p.failed == p.takes && p.running == 0;
-    if (quiet || shown_last || (!last && now - shown < std::chrono::milliseconds(200))) return;
-    shown = now;
-    shown_last = last;
-    std::fprintf(stderr, "\rbatch: %d/%d takes: %d done, %d failed, %d running, %d skipped; %.0f frames/s, "
-                 "ETA %.0f s   ", p.done + p.failed, p.takes, p.done, p.failed, p.running, p.skipped,
-                 p.seconds > 0 ? p.frames / p.seconds : 0.0, p.eta_seconds);
+    if (!line.Due(last)) return;
+    char text[256];
+    std::snprintf(text, sizeof(text), "batch: %d/%d takes: %d done, %d failed, %d running, %d skipped; %.0f "
+                  "frames/s, ETA %.0f s", p.done + p.failed, p.takes, p.done, p.failed, p.running, p.skipped,
+                  p.seconds > 0 ? p.frames / p.seconds : 0.0, p.eta_seconds);
+    line.Show(text, last);
   }, &result);
-  if (!quiet) std::fprintf(stderr, "\n");
   if (!status.ok()) return status;
   status = WriteBatchSummary(options.out_dir, result, Version(), summary_base);
   if (!status.ok()) return status;

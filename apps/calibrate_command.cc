@@ -28,10 +28,14 @@ namespace {
 
 Status RunCalibrate(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_motion.empty() || FLAGS_markers.empty() || FLAGS_out.empty()) {
-    return Status::Error("--motion, --markers and --out are required");
+  if (FLAGS_motion.empty() || FLAGS_markers.empty()) return Status::Error("--motion and --markers are required");
+  // The subject file holds the marker set too, so either output is enough.
+  if (FLAGS_out.empty() && FLAGS_out_subject.empty()) {
+    return Status::Error("--out=SET.json and/or --out_subject=S.json is required");
   }
-  if (!IsTextOutputPath(FLAGS_out, ".json")) return Status::Error(FLAGS_out + ": expected a .json output");
+  if (!FLAGS_out.empty() && !IsTextOutputPath(FLAGS_out, ".json")) {
+    return Status::Error(FLAGS_out + ": expected a .json output");
+  }
   const bool auto_attach = FLAGS_attach == "auto";
   if (!auto_attach && FileExtension(FLAGS_attach) != ".json") {
     return Status::Error("--attach='" + FLAGS_attach + "': expected auto or a marker set .json");
@@ -39,7 +43,9 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
   if (!FLAGS_out_subject.empty() && !IsTextOutputPath(FLAGS_out_subject, ".json")) {
     return Status::Error(FLAGS_out_subject + ": expected a .json subject file");
   }
-  if (FLAGS_out_subject == FLAGS_out) return Status::Error("--out and --out_subject name the same file");
+  if (!FLAGS_out.empty() && FLAGS_out_subject == FLAGS_out) {
+    return Status::Error("--out and --out_subject name the same file");
+  }
   for (const std::string& output : {FLAGS_out, FLAGS_out_subject}) {
     if (output.empty()) continue;
     for (const std::string& input :
@@ -86,8 +92,10 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
   const MarkerFileToModel& transform = calibration.transform;
   const std::vector<double>& axis_rms = calibration.axis_rms;
   SetStage("writing");
-  status = WriteMarkerSet(FLAGS_out, skeleton, result.marker_set, options.skeleton_path);
-  if (!status.ok()) return status;
+  if (!FLAGS_out.empty()) {
+    status = WriteMarkerSet(FLAGS_out, skeleton, result.marker_set, options.skeleton_path);
+    if (!status.ok()) return status;
+  }
   if (!FLAGS_out_subject.empty()) {
     status = WriteSubject(FLAGS_out_subject, calibration.subject);
     if (!status.ok()) return status;
@@ -127,13 +135,15 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
     per_marker.push_back(o);
   }
   for (const std::string& skipped : result.skipped) std::printf("skipped %s\n", skipped.c_str());
-  std::printf("calibrated %d markers over %d samples: RMS %s; wrote %s\n", result.marker_set.num_markers(),
-              result.samples, length(result.rms, false).c_str(), FLAGS_out.c_str());
+  std::printf("calibrated %d markers over %d samples: RMS %s", result.marker_set.num_markers(), result.samples,
+              length(result.rms, false).c_str());
+  std::printf(FLAGS_out.empty() ? "\n" : "; wrote %s\n", FLAGS_out.c_str());
 
   JsonObject report;
   report.Add("motion", FLAGS_motion)
       .Add("markers", FLAGS_markers)
       .Add("out", FLAGS_out)
+      .Add("out_subject", FLAGS_out_subject)
       .Add("attach", FLAGS_attach)
       .Add("axes", AxesName(transform.rotation))
       .Add("marker_scale", transform.scale)
@@ -163,7 +173,7 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
 extern const Command kCalibrateCommand = {
     "calibrate", "fit each marker's joint and offset from a solved motion and its markers",
     "mocapsolve calibrate --motion=FILE.bvh|FILE.amc [--skeleton=X.asf] --markers=FILE.c3d|.trc\n"
-    "          --out=markerset.json [--out_subject=S.json] [--attach=auto|SET.json] [--axes=x,y,z|auto]\n"
+    "          (--out=markerset.json | --out_subject=S.json | both) [--attach=auto|SET.json] [--axes=x,y,z|auto]\n"
     "          [--marker_scale=0] [--skeleton_units=cm] [--frame_offset=0] [--report=r.json]\n\n"
     "Marker frame k + frame_offset is matched to motion frame k. Marker samples are taken\n"
     "into the model's frame as x_model = marker_scale * A x_file, with A from --axes\n"
@@ -173,7 +183,8 @@ extern const Command kCalibrateCommand = {
     "each marker rides on the joint in whose frame it moves least, at its mean local\n"
     "position; with --attach=SET.json the joints come from the file and only offsets are\n"
     "re-estimated. Prints each marker's RMS (the floor for a solve on this motion) and\n"
-    "writes the marker set in skeleton units.\n"
+    "writes the marker set in skeleton units (--out), or a subject file holding it with the\n"
+    "skeleton, axes and units (--out_subject), or both.\n"
     "CMU (C3D from mocap.cs.cmu.edu with its ASF/AMC, e.g. 02_01): --axes=y,z,x, no frame\n"
     "offset, scale from the units (mm -> 1/0.45 inch): calibrated RMS 11.7 mm on 02_01.",
     __FILE__, RunCalibrate,

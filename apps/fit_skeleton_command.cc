@@ -158,9 +158,11 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
         }
         break;
       case SkeletonFitEvent::kRoundDone:
-        std::printf("round %d: %d markers, marker RMS %.2f -> %.2f %s\n", e.round, e.markers, e.rms_first * mm,
-                    e.rms * mm, unit);
-        std::fflush(stdout);
+        if (!FLAGS_quiet) {  // The report's "rounds" holds the same figures.
+          std::printf("round %d: %d markers, marker RMS %.2f -> %.2f %s\n", e.round, e.markers, e.rms_first * mm,
+                      e.rms * mm, unit);
+          std::fflush(stdout);
+        }
         break;
       case SkeletonFitEvent::kStopped:
         if (!FLAGS_quiet) {

@@ -11,6 +11,7 @@
 #include "apps/pyramid_flags.h"
 #include "apps/repair_flags.h"
 #include "apps/retarget_flags.h"
+#include "apps/view_flags.h"
 #include "apps/solver_flags.h"
 #include "io/atomic_file.h"
 #include "io/marker_file.h"
@@ -52,6 +53,31 @@ const std::string kPipelineOptionFlags =
                 "gate_repaired_share,gate_iteration_limit_share,gate_marker_offset_cm,gate_torso_deg,animation_only,") +
     kRepairFlagNames + "," + kSolverFlagNames + "," + kRetargetOptionFlagNames;
 
+// The take's page, as --view says: auto (the default) DIR/view.html when the viewer's
+// runtime is installed, else none with a warning (a batch on a machine without it still
+// delivers the takes); off: none; PAGE.html: that page, which was asked for, so a missing
+// runtime is an error before any work (exit 1, nothing written). *path: "" for none.
+Status ViewPageOfTake(std::string* path) {
+  path->clear();
+  if (FLAGS_view == "off") return Status::Ok();
+  if (FLAGS_view == "auto") {
+    std::string runtime;
+    const Status found = FindViewerRuntime(&runtime);
+    if (found.ok()) {
+      *path = ViewPagePath(FLAGS_out_dir);
+    } else {  // A warning, not progress: printed with --quiet too.
+      std::fprintf(stderr, "warning: pipeline: no view.html (--view=auto): %s\n", found.message().c_str());
+    }
+    return Status::Ok();
+  }
+  std::vector<std::string> inputs = {FLAGS_subject, FLAGS_markers};
+  for (const std::string& character : SplitCommaList(FLAGS_character)) inputs.push_back(character);
+  Status status = CheckViewFlag(inputs);
+  if (!status.ok()) return status;
+  *path = FLAGS_view;
+  return Status::Ok();
+}
+
 Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   if (!FLAGS_config.empty()) {
@@ -66,9 +92,12 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
     return Status::Error("--subject, --markers and --out_dir are required");
   }
   if (!IsMarkerFile(FLAGS_markers)) return Status::Error(FLAGS_markers + ": expected a .c3d or .trc");
+  std::string view_path;
+  Status status = ViewPageOfTake(&view_path);
+  if (!status.ok()) return status;
   Subject subject;
   SetStage("inputs");
-  Status status = ReadSubject(FLAGS_subject, &subject);
+  status = ReadSubject(FLAGS_subject, &subject);
   if (!status.ok()) return status;
 
   TakePipelineOptions options;
@@ -109,16 +138,13 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   report.Add("command", "pipeline").Add("version", Version()).Add("subject", FLAGS_subject).Add("config", FLAGS_config)
       .Add("animation_only", FLAGS_animation_only)
       .Add("options", JsonValue::Raw(ConfigJson(kPipelineOptionFlags)));
-  // DIR/view.html when the viewer's runtime is installed; otherwise say why not.
-  std::string runtime;
-  const Status view_runtime = FindViewerRuntime(&runtime);
-  report.Add("view", view_runtime.ok() ? JsonValue("view.html") : JsonValue());
-  if (!view_runtime.ok()) std::fprintf(stderr, "warning: pipeline: no view.html: %s\n", view_runtime.message().c_str());
+  const bool in_take_folder = view_path == ViewPagePath(FLAGS_out_dir);
+  report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
   SetStage("writing");
   status = MakeFolders(FLAGS_out_dir);
   GltfWriteOptions character_files;
   character_files.animation_only = FLAGS_animation_only;
-  if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report, view_runtime.ok(), character_files);
+  if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report, view_path, character_files);
   if (status.ok()) status = WriteReport(report);
   if (!status.ok()) return status;
 
@@ -134,9 +160,9 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
     std::printf("  %s: vertex error %.4f of height, foot skating %.2f -> %.2f cm/s\n", c.name.c_str(),
                 r.mean_position_error, c.result.source_plant_skating_cm_s, c.result.result_plant_skating_cm_s);
   }
-  std::printf("wrote %s (repaired markers, solved.bvh, %zu character file%s, report.json%s)\n",
+  std::printf("wrote %s (repaired markers, solved.bvh, %zu character file%s, report.json%s%s)\n",
               FLAGS_out_dir.c_str(), result.characters.size(), result.characters.size() == 1 ? "" : "s",
-              view_runtime.ok() ? ", view.html" : "");
+              view_path.empty() ? "" : ", ", in_take_folder ? "view.html" : view_path.c_str());
   if (!result.verdict.pass) {
     std::string failures;
     for (const std::string& f : result.verdict.failures) failures += (failures.empty() ? "" : "; ") + f;
@@ -150,14 +176,14 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
 }
 
 const std::string kPipelineFlags =
-    "subject,markers,character,out_dir,config,print_config,report,quiet," + kPipelineOptionFlags;
+    "subject,markers,character,out_dir,config,print_config,report,quiet,view," + kPipelineOptionFlags;
 
 }  // namespace
 
 extern const Command kPipelineCommand = {
     "pipeline", "one take end to end: markers -> repair and solve -> filter -> characters",
     "mocapsolve pipeline --subject=S.json --markers=TAKE.c3d|.trc [--character=C.glb[,C2.glb]] "
-    "--out_dir=DIR [--config=pipeline.json] [--report=r.json]\n"
+    "--out_dir=DIR [--view=auto|off|PAGE.html] [--config=pipeline.json] [--report=r.json]\n"
     "       mocapsolve pipeline --print_config [--config=pipeline.json]\n\n"
     "Runs the take through repair (thesis ch. 3: robust reference, gap detection and Hermite\n"
     "refill, re-solve), optional multiresolution filtering (--filter_levels), and retargeting\n"
@@ -166,13 +192,19 @@ extern const Command kPipelineCommand = {
     "DIR/solved.bvh, DIR/<character>.glb (the character file plus the take as a new\n"
     "animation; --animation_only: the character's skeleton, skin and the take, no meshes)\n"
     "and DIR/report.json (stage timings, marker residuals, repaired intervals,\n"
-    "retarget error, foot skating, the gate's verdict), all together or none.\n"
+    "retarget error, foot skating, the gate's verdict), all together or none, and the take's\n"
+    "browser page: --view=auto (default) DIR/view.html when the viewer's runtime is installed\n"
+    "(scripts/viewer_tools.sh), else a warning and no page; --view=PAGE.html requires it (a\n"
+    "missing runtime is an error); --view=off writes none.\n"
     "Exit code: 0 done, 1 bad input or a failed stage (nothing written), 3 the take failed\n"
     "the quality gate (outputs written, the report says why).",
     __FILE__, RunPipeline, kPipelineFlags.c_str(),
     // DLS unless told otherwise, as repair and retarget do; --print_config shows it and a
     // printed config read back with --config changes nothing.
     {{"solver", kRepairDefaultSolver,
-      "dls | dls_generic | ceres: who solves the per-frame problems of the repair and the retargets."}}};
+      "dls | dls_generic | ceres: who solves the per-frame problems of the repair and the retargets."},
+     {"view", "auto",
+      "The take's browser page: auto = DIR/view.html when the viewer's runtime is installed (else a "
+      "warning and no page); PAGE.html = that page, required (no runtime: an error, nothing written); off = none."}}};
 
 }  // namespace mocapsolve

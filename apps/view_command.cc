@@ -3,7 +3,10 @@
 //
 // Worlds: with a subject (--subject, or --skeleton and --markerset) the markers are mapped
 // onto the skeleton (--axes, units) and shown in its frame with the per-frame marker
-// residual of --motion (pipeline/take_view.h); without one, each file is shown in its own
+// residual of --motion (pipeline/take_view.h), whose rotations are first re-expressed on
+// the subject's skeleton (a BVH has no rest rotations: one written from an ASF subject
+// folds them into its angles; kinematics/motion_on_skeleton.h); a --compare motion of the
+// same skeleton is drawn there too. Without a subject, each file is shown in its own
 // unit with its up axis from --up (default: guessed per file, viewer/view_scene.h).
 #include <cstdio>
 
@@ -17,6 +20,7 @@
 #include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "kinematics/forward_kinematics.h"
+#include "kinematics/motion_on_skeleton.h"
 #include "pipeline/take_view.h"
 #include "problems/marker_repair/marker_repair.h"
 #include "viewer/repair_intervals.h"
@@ -130,6 +134,116 @@ Status AddFalloff(ViewScene* scene) {
   return Status::Ok();
 }
 
+// The world of a take mapped onto its subject (set by AddSubjectTake), for the files
+// drawn with it.
+struct TakeWorld {
+  bool active = false;
+  Skeleton skeleton;          // The subject's.
+  ViewTransform transform;    // TakeViewTransform.
+  double rms_mm = 0.0;        // The motion's marker residual over the take (TakeMarkerRmsMm).
+  int samples = 0;
+};
+
+// --markers mapped onto the subject (axes, units, label prefix) with --motion drawn on the
+// subject's skeleton and its marker residual; --compare markers mapped the same way.
+Status AddSubjectTake(const Skeleton& motion_skeleton, Motion* motion, bool compare_markers, ViewScene* scene,
+                      TakeWorld* world) {
+  MarkerTake take;
+  Status status = LoadMarkerTake(&take);
+  if (!status.ok()) return status;
+  const bool solved = !FLAGS_motion.empty();
+  if (solved) {
+    // The motion in the subject's frame: its file's skeleton may lack the subject's rest
+    // rotations (a BVH written by solve from an ASF subject folds them into the angles),
+    // so its rotations are re-expressed on the subject's skeleton before they are drawn
+    // and compared with the markers.
+    status = MotionOnSkeleton(motion_skeleton, *motion, take.skeleton, motion);
+    if (!status.ok()) return Status::Error(FLAGS_motion + ": " + status.message());
+  }
+  TakeViewInputs inputs;
+  inputs.skeleton = &take.skeleton;
+  inputs.markers = &take.markers;
+  inputs.observed = &take.observed;
+  inputs.motion = solved ? motion : nullptr;
+  inputs.frame_rate = take.trajectories.frame_rate > 0 ? take.trajectories.frame_rate : (solved ? motion->frame_rate : 0.0);
+  status = MakeTakeViewScene(inputs, scene);
+  if (status.ok()) status = TakeViewTransform(inputs, &world->transform);
+  if (!status.ok()) return status;
+  world->active = true;
+  world->rms_mm = TakeMarkerRmsMm(inputs, &world->samples);
+  if (compare_markers) {
+    Subject subject;
+    status = LoadSubjectFromFlags(&subject);
+    MarkerTake other;
+    if (status.ok()) status = LoadTakeForSubject(subject, FLAGS_compare, &other);
+    if (!status.ok()) return status;
+    std::vector<std::string> labels;
+    for (int m = 0; m < take.markers.num_markers(); ++m) labels.push_back(take.markers.label(m));
+    scene->markers.push_back(MakeViewMarkers(FileStem(FLAGS_compare) + " (compare)", labels, other.observed,
+                                             world->transform));
+  }
+  world->skeleton = std::move(take.skeleton);
+  return Status::Ok();
+}
+
+// Without a subject: --markers (and --compare markers) and --motion each in its own world.
+Status AddFileWorlds(const Skeleton& skeleton, const Motion& motion, bool compare_markers, ViewScene* scene) {
+  Status status = Status::Ok();
+  if (!FLAGS_markers.empty()) {
+    MarkerTrajectories trajectories;
+    status = ReadMarkerFile(FLAGS_markers, &trajectories);
+    if (!status.ok()) return status;
+    ViewTransform transform;
+    status = MarkerTransform(FLAGS_markers, trajectories, &transform);
+    if (!status.ok()) return status;
+    scene->notes.push_back(transform.note);
+    scene->frame_rate = trajectories.frame_rate;
+    scene->markers.push_back(MakeViewMarkers("markers", trajectories, transform));
+    if (compare_markers) {
+      MarkerTrajectories other;
+      status = ReadMarkerFile(FLAGS_compare, &other);
+      if (!status.ok()) return status;
+      ViewTransform other_transform;
+      status = MarkerTransform(FLAGS_compare, other, &other_transform);
+      if (!status.ok()) return status;
+      scene->markers.push_back(MakeViewMarkers(FileStem(FLAGS_compare) + " (compare)", other, other_transform));
+    }
+  }
+  if (!FLAGS_motion.empty()) {
+    ViewTransform motion_transform;
+    status = MotionTransform(FLAGS_motion, skeleton, motion, &motion_transform);
+    if (!status.ok()) return status;
+    scene->notes.push_back(motion_transform.note);
+    scene->skeletons.push_back(MakeViewSkeleton(FileStem(FLAGS_motion), skeleton, motion, motion_transform));
+    if (FLAGS_markers.empty()) scene->frame_rate = motion.frame_rate;
+  }
+  return Status::Ok();
+}
+
+// --compare=OTHER.bvh ghosted: in the take's world when it is a motion of the subject's
+// skeleton (as --motion), else in its own.
+Status AddCompareMotion(const TakeWorld& take, ViewScene* scene) {
+  Skeleton other_skeleton;
+  Motion other;
+  Status status = LoadViewMotion(FLAGS_compare, &other_skeleton, &other);
+  if (!status.ok()) return status;
+  const std::string name = FileStem(FLAGS_compare) + " (compare)";
+  Motion on_subject;
+  ViewSkeleton ghost;
+  if (take.active && MotionOnSkeleton(other_skeleton, other, take.skeleton, &on_subject).ok()) {
+    ghost = MakeViewSkeleton(name, take.skeleton, on_subject, take.transform);
+  } else {
+    ViewTransform transform;
+    status = MotionTransform(FLAGS_compare, other_skeleton, other, &transform);
+    if (!status.ok()) return status;
+    if (take.active) scene->notes.push_back(name + ": not the subject's skeleton; drawn in its own world");
+    ghost = MakeViewSkeleton(name, other_skeleton, other, transform);
+  }
+  ghost.ghost = true;
+  scene->skeletons.push_back(std::move(ghost));
+  return Status::Ok();
+}
+
 Status RunView(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   if (FLAGS_out.empty()) return Status::Error("--out=PAGE.html is required");
@@ -155,85 +269,17 @@ Status RunView(const std::vector<std::string>& arguments) {
   std::vector<std::string> names;
   Skeleton skeleton;
   Motion motion;
-  ViewTransform motion_transform;
   if (!FLAGS_motion.empty()) {
     status = LoadViewMotion(FLAGS_motion, &skeleton, &motion);
     if (!status.ok()) return status;
     names.push_back(FileStem(FLAGS_motion));
   }
-  if (!FLAGS_markers.empty() && HaveSubject()) {
-    MarkerTake take;
-    status = LoadMarkerTake(&take);
-    if (!status.ok()) return status;
-    const bool solved = !FLAGS_motion.empty();
-    if (solved && skeleton.num_joints() != take.skeleton.num_joints()) {
-      return Status::Error(FLAGS_motion + ": its skeleton has " + std::to_string(skeleton.num_joints()) +
-                           " joints, the subject's " + std::to_string(take.skeleton.num_joints()));
-    }
-    TakeViewInputs inputs;
-    inputs.skeleton = &take.skeleton;
-    inputs.markers = &take.markers;
-    inputs.observed = &take.observed;
-    inputs.motion = solved ? &motion : nullptr;
-    inputs.frame_rate = take.trajectories.frame_rate > 0 ? take.trajectories.frame_rate : (solved ? motion.frame_rate : 0.0);
-    status = MakeTakeViewScene(inputs, &scene);
-    if (!status.ok()) return status;
-    names.insert(names.begin(), FileStem(FLAGS_markers));
-    if (compare_markers) {
-      Subject subject;
-      status = LoadSubjectFromFlags(&subject);
-      MarkerTake other;
-      if (status.ok()) status = LoadTakeForSubject(subject, FLAGS_compare, &other);
-      if (!status.ok()) return status;
-      ViewTransform transform;
-      if (status.ok()) status = TakeViewTransform(inputs, &transform);
-      if (!status.ok()) return status;
-      std::vector<std::string> labels;
-      for (int m = 0; m < take.markers.num_markers(); ++m) labels.push_back(take.markers.label(m));
-      scene.markers.push_back(MakeViewMarkers(FileStem(FLAGS_compare) + " (compare)", labels, other.observed, transform));
-    }
-  } else {
-    if (!FLAGS_markers.empty()) {
-      MarkerTrajectories trajectories;
-      status = ReadMarkerFile(FLAGS_markers, &trajectories);
-      if (!status.ok()) return status;
-      ViewTransform transform;
-      status = MarkerTransform(FLAGS_markers, trajectories, &transform);
-      if (!status.ok()) return status;
-      scene.notes.push_back(transform.note);
-      scene.frame_rate = trajectories.frame_rate;
-      scene.markers.push_back(MakeViewMarkers("markers", trajectories, transform));
-      names.insert(names.begin(), FileStem(FLAGS_markers));
-      if (compare_markers) {
-        MarkerTrajectories other;
-        status = ReadMarkerFile(FLAGS_compare, &other);
-        if (!status.ok()) return status;
-        ViewTransform other_transform;
-        status = MarkerTransform(FLAGS_compare, other, &other_transform);
-        if (!status.ok()) return status;
-        scene.markers.push_back(MakeViewMarkers(FileStem(FLAGS_compare) + " (compare)", other, other_transform));
-      }
-    }
-    if (!FLAGS_motion.empty()) {
-      status = MotionTransform(FLAGS_motion, skeleton, motion, &motion_transform);
-      if (!status.ok()) return status;
-      scene.notes.push_back(motion_transform.note);
-      scene.skeletons.push_back(MakeViewSkeleton(FileStem(FLAGS_motion), skeleton, motion, motion_transform));
-      if (FLAGS_markers.empty()) scene.frame_rate = motion.frame_rate;
-    }
-  }
-  if (!FLAGS_compare.empty() && !compare_markers) {
-    Skeleton other_skeleton;
-    Motion other;
-    status = LoadViewMotion(FLAGS_compare, &other_skeleton, &other);
-    if (!status.ok()) return status;
-    ViewTransform transform;
-    status = MotionTransform(FLAGS_compare, other_skeleton, other, &transform);
-    if (!status.ok()) return status;
-    ViewSkeleton ghost = MakeViewSkeleton(FileStem(FLAGS_compare) + " (compare)", other_skeleton, other, transform);
-    ghost.ghost = true;
-    scene.skeletons.push_back(std::move(ghost));
-  }
+  if (!FLAGS_markers.empty()) names.insert(names.begin(), FileStem(FLAGS_markers));
+  TakeWorld take;
+  status = !FLAGS_markers.empty() && HaveSubject() ? AddSubjectTake(skeleton, &motion, compare_markers, &scene, &take)
+                                                   : AddFileWorlds(skeleton, motion, compare_markers, &scene);
+  if (status.ok() && !FLAGS_compare.empty() && !compare_markers) status = AddCompareMotion(take, &scene);
+  if (!status.ok()) return status;
   if (!FLAGS_repair_report.empty()) {
     ViewMarkers& markers = scene.markers[0];
     std::vector<ReportedInterval> detected, filled;
@@ -255,8 +301,10 @@ Status RunView(const std::vector<std::string>& arguments) {
   status = WriteViewPage(FLAGS_out, scene);
   if (!status.ok()) return status;
   if (!FLAGS_quiet) {
-    std::printf("view: %d frames, %zu marker sets, %zu skeletons, %zu characters; wrote %s\n", scene.num_frames(),
-                scene.markers.size(), scene.skeletons.size(), scene.characters.size(), FLAGS_out.c_str());
+    char residual[96] = "";
+    if (take.samples > 0) std::snprintf(residual, sizeof(residual), ", marker residual RMS %.4g mm", take.rms_mm);
+    std::printf("view: %d frames, %zu marker sets, %zu skeletons, %zu characters%s; wrote %s\n", scene.num_frames(),
+                scene.markers.size(), scene.skeletons.size(), scene.characters.size(), residual, FLAGS_out.c_str());
   }
   return Status::Ok();
 }

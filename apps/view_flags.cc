@@ -15,6 +15,11 @@ Status CheckViewFlag(const std::vector<std::string>& inputs) {
     Status status = CheckNotAnInput(FLAGS_view, input);
     if (!status.ok()) return status;
   }
+  // The page was asked for: a missing viewer runtime is an error now, before any work,
+  // not a page silently missing at the end.
+  std::string runtime;
+  Status status = FindViewerRuntime(&runtime);
+  if (!status.ok()) return Status::Error("--view=" + FLAGS_view + ": " + status.message());
   return Status::Ok();
 }
 

@@ -17,8 +17,9 @@ DECLARE_string(view);
 
 namespace mocapsolve {
 
-// Checks --view before any work: it must end in .html (case-insensitive) and must not
-// name one of `inputs`.
+// Checks --view before any work: it must end in .html (case-insensitive), must not name
+// one of `inputs`, and the viewer's runtime must be installed (the error says to run
+// scripts/viewer_tools.sh): a page asked for and not written is an error, never a warning.
 Status CheckViewFlag(const std::vector<std::string>& inputs);
 
 // Writes --view (if given) from the scene the make() callback builds (only called then).

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <set>
 #include <utility>
 
 #include <signal.h>
@@ -202,6 +203,64 @@ Eigen::Quaterniond SampleRotation(const aiQuatKey* keys, unsigned n, double tick
   return q(k0).slerp(s, q(k1)).normalized();
 }
 
+
+// The nodes the meshes' bones name (a skinned mesh's skeleton), in flattened order.
+std::vector<int> SkinnedBoneNodes(const aiScene* scene, const std::vector<FlatNode>& nodes) {
+  std::map<std::string, int> node_by_name;
+  for (int i = static_cast<int>(nodes.size()) - 1; i >= 0; --i) node_by_name[nodes[i].node->mName.C_Str()] = i;
+  std::vector<bool> bone(nodes.size(), false);
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    for (unsigned b = 0; mesh != nullptr && b < mesh->mNumBones; ++b) {
+      const auto it = node_by_name.find(mesh->mBones[b]->mName.C_Str());
+      if (it != node_by_name.end()) bone[it->second] = true;
+    }
+  }
+  std::vector<int> out;
+  for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {
+    if (bone[i]) out.push_back(i);
+  }
+  return out;
+}
+
+// Meshes, vertices and bones, and every mesh instance's vertices in the world (the nodes'
+// default transforms, file units).
+void CountMeshes(const aiScene* scene, const std::vector<FlatNode>& nodes, FbxInfo* info) {
+  std::vector<Eigen::Matrix4d> world(nodes.size());
+  long long instanced = 0;
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const Eigen::Matrix4d local = ToEigen(nodes[i].node->mTransformation);
+    world[i] = nodes[i].parent < 0 ? local : Eigen::Matrix4d(world[nodes[i].parent] * local);
+    for (unsigned k = 0; k < nodes[i].node->mNumMeshes; ++k) {
+      const unsigned m = nodes[i].node->mMeshes[k];
+      if (m < scene->mNumMeshes) instanced += scene->mMeshes[m]->mNumVertices;
+    }
+  }
+  info->meshes = static_cast<int>(scene->mNumMeshes);
+  std::set<std::string> bones;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    info->vertices += mesh->mNumVertices;
+    if (mesh->mNumBones > 0) ++info->skinned_meshes;
+    for (unsigned b = 0; b < mesh->mNumBones; ++b) bones.insert(mesh->mBones[b]->mName.C_Str());
+  }
+  info->bones = static_cast<int>(bones.size());
+  if (!(instanced <= 10000000)) return;  // The count is enough for a huge scene.
+  info->mesh_vertices.resize(3, instanced);
+  long long v = 0;
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    for (unsigned k = 0; k < nodes[i].node->mNumMeshes; ++k) {
+      const unsigned m = nodes[i].node->mMeshes[k];
+      if (m >= scene->mNumMeshes) continue;
+      const aiMesh* mesh = scene->mMeshes[m];
+      for (unsigned p = 0; p < mesh->mNumVertices; ++p, ++v) {
+        const aiVector3D& x = mesh->mVertices[p];
+        info->mesh_vertices.col(v) = (world[i] * Eigen::Vector4d(x.x, x.y, x.z, 1.0)).head<3>();
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOptions& options,
@@ -238,7 +297,13 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
   for (unsigned a = 0; a < scene->mNumAnimations; ++a) {
     out_info.animation_names.push_back(scene->mAnimations[a]->mName.C_Str());
   }
-  if (scene->mNumAnimations == 0) return Status::Error(path + ": has no animation");
+  CountMeshes(scene, nodes, &out_info);
+  if (scene->mNumAnimations == 0 && !options.skeleton_without_animation) {
+    return Status::Error(path + ": has no animation");
+  }
+  if (scene->mNumAnimations == 0 && !options.animation.empty()) {
+    return Status::Error(path + ": animation " + QuoteToken(options.animation) + " not found (the file has none)");
+  }
   int anim_index = 0;
   if (!options.animation.empty()) {
     anim_index = -1;
@@ -255,8 +320,9 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
       return Status::Error(path + ": animation " + QuoteToken(options.animation) + " not found (animations: " + names + ")");
     }
   }
-  const aiAnimation* anim = scene->mAnimations[anim_index];
-  const std::string where = path + ": animation " + std::to_string(anim_index);
+  const aiAnimation* anim = scene->mNumAnimations > 0 ? scene->mAnimations[anim_index] : nullptr;
+  const unsigned channels = anim != nullptr ? anim->mNumChannels : 0;
+  const std::string where = anim != nullptr ? path + ": animation " + std::to_string(anim_index) : path;
 
   const int nn = static_cast<int>(nodes.size());
   std::vector<Similarity> locals(nn);
@@ -273,9 +339,9 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
   // Channels to nodes (by name; the first node of that name).
   std::map<std::string, int> node_by_name;
   for (int i = nn - 1; i >= 0; --i) node_by_name[nodes[i].node->mName.C_Str()] = i;
-  std::vector<int> channel_node(anim->mNumChannels, -1);
+  std::vector<int> channel_node(channels, -1);
   std::vector<bool> animated(nn, false);
-  for (unsigned c = 0; c < anim->mNumChannels; ++c) {
+  for (unsigned c = 0; c < channels; ++c) {
     const aiNodeAnim* ch = anim->mChannels[c];
     auto it = node_by_name.find(ch->mNodeName.C_Str());
     if (it == node_by_name.end()) {
@@ -299,13 +365,17 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
   for (int i = 0; i < nn; ++i) {
     if (animated[i]) animated_nodes.push_back(i);
   }
+  if (anim == nullptr) animated_nodes = SkinnedBoneNodes(scene, nodes);  // No animation: the skins' bones.
   if (animated_nodes.empty()) {  // A static clip: every keyed node.
-    for (unsigned c = 0; c < anim->mNumChannels; ++c) {
+    for (unsigned c = 0; c < channels; ++c) {
       if (channel_node[c] >= 0) animated_nodes.push_back(channel_node[c]);
     }
     std::sort(animated_nodes.begin(), animated_nodes.end());
   }
-  if (animated_nodes.empty()) return Status::Error(where + ": animates no node");
+  if (animated_nodes.empty()) {
+    return Status::Error(anim != nullptr ? where + ": animates no node"
+                                         : path + ": has no animation and no skinned mesh (no skeleton to read)");
+  }
   // Root: lowest common ancestor of the animated nodes (inclusive).
   auto path_from_top = [&](int i) {
     std::vector<int> p;
@@ -359,6 +429,7 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
   rig.rest_rotations[0].normalize();
   Pose rest;
   gltf_internal::EvaluateRig(rig, locals, &rest, &rig.rest_scales);
+  out_info.default_pose = rest;
   const int nj = static_cast<int>(rig.joint_nodes.size());
   std::vector<JointSpec> specs(nj);
   for (int j = 0; j < nj; ++j) {
@@ -387,6 +458,17 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
   Skeleton out_skeleton;
   Status status = Skeleton::Create(std::move(specs), std::move(end_sites), unit, &out_skeleton);
   if (!status.ok()) return Status::Error(path + ": " + status.message());
+  if (anim == nullptr) {  // One frame: the nodes' default transforms (the bind pose as stored).
+    Motion still;
+    still.frame_rate = options.frame_rate > 0.0 ? options.frame_rate : 30.0;
+    still.frames.push_back(rest);
+    status = ValidateMotion(out_skeleton, still);
+    if (!status.ok()) return Status::Error(path + ": " + status.message());
+    *skeleton = std::move(out_skeleton);
+    *motion = std::move(still);
+    if (info != nullptr) *info = std::move(out_info);
+    return Status::Ok();
+  }
 
   // Sampling.
   const double ticks_per_second = anim->mTicksPerSecond > 0.0 ? anim->mTicksPerSecond : 25.0;

@@ -1,7 +1,8 @@
 // FBX reader (through assimp): the animated node hierarchy of an FBX as a Skeleton and
 // one animation as a Motion. Meant for skeleton-only mocap FBX files (the CMU clips in
-// shared/data/fbx: a Blender export of the cgspeed BVH); meshes, skins and cameras are
-// ignored.
+// shared/data/fbx: a Blender export of the cgspeed BVH); meshes and skins are only counted
+// (FbxInfo) and name the skeleton of a file without animation
+// (FbxReadOptions::skeleton_without_animation); cameras are ignored.
 //
 // Skeleton: the joints are the nodes with an animation channel in the chosen animation,
 // the nodes on the paths between them, and the root: the lowest common ancestor of all
@@ -47,6 +48,8 @@
 #include <string_view>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
@@ -56,12 +59,26 @@ namespace mocapsolve {
 struct FbxReadOptions {
   std::string animation;    // Name or index; "" = animation 0.
   double frame_rate = 0.0;  // 0 = the key rate if uniform, else 30.
+  // A file without animation (a rigged character) is an error unless this is set; then
+  // the skeleton is read from its skinned meshes' bones (the nodes the skins name, the
+  // nodes between them, their lowest common ancestor as the root, as above) and the
+  // motion is one frame: the nodes' default transforms, the bind pose as the file stores
+  // it (frame_rate, or 30). A file with neither animation nor skin is still an error.
+  bool skeleton_without_animation = false;
 };
 
 struct FbxInfo {
   std::vector<std::string> animation_names;
   double unit_scale_factor = 1.0;  // Centimetres per file unit (FBX UnitScaleFactor).
   std::vector<std::string> warnings;
+  int meshes = 0;                  // assimp meshes (one per material of an FBX geometry).
+  int skinned_meshes = 0;          // With bones.
+  long long vertices = 0;          // Over every mesh.
+  int bones = 0;                   // Distinct nodes the skins name.
+  // Every mesh instance's vertices in the world at the nodes' default transforms, file
+  // units (3 x #V; empty past 1e7 vertices).
+  Eigen::Matrix3Xd mesh_vertices;
+  Pose default_pose;  // The skeleton's pose at the nodes' default transforms (bind pose as stored).
 };
 
 Status ReadFbx(const std::string& path, const FbxReadOptions& options, Skeleton* skeleton,

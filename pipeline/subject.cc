@@ -189,20 +189,12 @@ Status ReadSubject(const std::string& path, Subject* subject) {
   return Interpret(path, root, subject);
 }
 
-std::string FormatSubject(const std::string& path, const Subject& subject) {
+std::string FormatSubject(const std::string& /*path*/, const Subject& subject) {
   std::string out = "{\n  \"format\": \"" + std::string(kFormat) + "\",\n  \"version\": 1,\n";
   if (!subject.name.empty()) out += "  \"name\": " + JsonQuote(subject.name) + ",\n";
-  if (!subject.skeleton_path.empty()) {
-    std::error_code error;
-    const fs::path target = fs::weakly_canonical(fs::absolute(subject.skeleton_path, error), error);
-    const fs::path base = fs::weakly_canonical(fs::absolute(Folder(path), error), error);
-    std::string relative = target.lexically_relative(base).string();
-    if (relative.empty() || error) relative = fs::absolute(subject.skeleton_path).string();
-    out += "  \"skeleton\": " + JsonQuote(relative) + ",\n";
-    out += "  \"skeleton_units\": " + JsonQuote(subject.skeleton.unit().name) + ",\n";
-  } else {
-    out += "  \"skeleton\": " + FormatSkeletonJson(subject.skeleton, 2) + ",\n";
-  }
+  // Inline always: a subject file copied elsewhere still holds its skeleton (a path,
+  // which old files hold, would break when the file moves without its skeleton).
+  out += "  \"skeleton\": " + FormatSkeletonJson(subject.skeleton, 2) + ",\n";
   out += "  \"marker_files\": {\"axes\": " + JsonQuote(subject.axes) + ", \"scale\": " +
          JsonValue(subject.marker_scale).text() + ", \"label_prefix\": " + JsonQuote(subject.label_prefix) + "},\n";
   out += "  \"amc_fps\": " + JsonValue(subject.amc_fps).text() + ",\n";

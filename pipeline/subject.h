@@ -2,8 +2,9 @@
 //
 // A subject holds what every command on that actor's takes needs and would otherwise
 // take as flags (--skeleton, --skeleton_units, --markerset, --axes, --marker_scale):
-//   - the skeleton: a file (ASF/BVH/glTF, path relative to the subject file) or, for a
-//     fitted skeleton that exists nowhere else, the Skeleton inline (io/skeleton_json.h);
+//   - the skeleton, inline (io/skeleton_json.h), so the file can be copied anywhere; older
+//     or hand-written files may name a skeleton file instead (ASF/BVH/glTF, a path
+//     relative to the subject file), which is still read;
 //   - the calibrated marker set, inline (io/marker_set_file.h's format);
 //   - how marker files map onto the skeleton: axes (as --axes spells them), the marker
 //     unit -> skeleton unit scale (0: from the files' declared units), and an optional
@@ -14,8 +15,9 @@
 //   {
 //     "format": "mocapsolve.subject", "version": 1,
 //     "name": "cmu02",                          optional
-//     "skeleton": "../amc/02.asf",              a path relative to this file, or an inline
-//                                               skeleton object (io/skeleton_json.h)
+//     "skeleton": {"units": "in", ...},         an inline skeleton object (io/skeleton_json.h;
+//                                               what WriteSubject writes), or a path relative
+//                                               to this file ("../amc/02.asf"; read only)
 //     "skeleton_units": "cm",                   optional, with a path: the unit of a file
 //                                               that states none (BVH)
 //     "markerset": {"format": "mocapsolve.markerset", ...},   inline, required
@@ -50,8 +52,8 @@ namespace mocapsolve {
 struct Subject {
   std::string name;
   Skeleton skeleton;           // As loaded (the file's, or the inline one); unit known.
-  std::string skeleton_path;   // As resolved on read (empty: inline). WriteSubject writes it
-                               // relative to the subject file, else the skeleton inline.
+  std::string skeleton_path;   // The file it was read from (empty: inline); informational:
+                               // WriteSubject always writes the skeleton inline.
   MarkerSet markers;
   std::string axes = "x,y,z";  // Marker file axes -> skeleton axes (ParseAxes).
   double marker_scale = 0.0;   // Marker file units -> skeleton units; 0: from the units.
@@ -77,9 +79,9 @@ struct SubjectFiles {
 // Reads the skeleton (its unit must then be known) and the marker set.
 Status LoadSubjectFromFiles(const SubjectFiles& files, Subject* subject);
 
-// Writes atomically; a skeleton_path is written relative to the subject file's folder.
+// Writes atomically, the skeleton inline (whatever skeleton_path says).
 Status WriteSubject(const std::string& path, const Subject& subject);
-// The file text WriteSubject writes to `path` (path only resolves skeleton_path).
+// The file text WriteSubject writes to `path`.
 std::string FormatSubject(const std::string& path, const Subject& subject);
 
 // A take of markers with its model.

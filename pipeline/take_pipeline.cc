@@ -268,7 +268,8 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
 }
 
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
-                        const JsonObject& report, bool write_view, const GltfWriteOptions& character_files) {
+                        const JsonObject& report, const std::string& view_path,
+                        const GltfWriteOptions& character_files) {
   Status status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
   if (status.ok()) status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved, BvhWriteOptions());
   for (const CharacterOutput& c : result.characters) {
@@ -277,10 +278,10 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
                                     CharacterOutputPath(out_dir, c.name, c.path), character_files);
   }
   if (status.ok()) status = WriteFileAtomically(InFolder(out_dir, "report.json"), report.ToString() + "\n");
-  if (status.ok() && write_view) {
+  if (status.ok() && !view_path.empty()) {
     ViewScene scene;
     status = MakeTakeResultView(inputs, result, &scene);
-    if (status.ok()) status = WriteViewPage(ViewPagePath(out_dir), scene);
+    if (status.ok()) status = WriteViewPage(view_path, scene);
   }
   return status.ok() ? status : Status::Error("write: " + status.message());
 }

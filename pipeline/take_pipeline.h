@@ -16,7 +16,8 @@
 //                                             animation named after the take (or, animation
 //                                             only, its skeleton, skin and the take: io/gltf_writer.h),
 //   DIR/report.json                           every stage's timings and quality figures,
-//   DIR/view.html                             the take's browser page (when asked),
+//   DIR/view.html                             the take's browser page (when asked; the
+//                                             pipeline command's --view=auto default),
 // each atomically (inside the command's FileTransaction, all together). Errors name the
 // stage and the file. Knows nothing of flags or processes.
 #ifndef MOCAPSOLVE_PIPELINE_TAKE_PIPELINE_H_
@@ -103,13 +104,14 @@ std::string CharacterOutputPath(const std::string& out_dir, const std::string& c
 JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result);
 
 // Writes the outputs above, and `report` (TakeReport plus what the caller adds) as
-// DIR/report.json; with write_view also DIR/view.html, the take's page (pipeline/take_view.h:
-// the repaired markers coloured by reason, the solve, the residual curve, each character
-// playing the take beside it), which needs the viewer's runtime (viewer/view_page.h).
+// DIR/report.json; with a view_path (usually ViewPagePath(out_dir); "" = none) also the
+// take's page there (pipeline/take_view.h: the repaired markers coloured by reason, the
+// solve, the residual curve, each character playing the take beside it), which needs the
+// viewer's runtime (viewer/view_page.h): without it, an error and nothing written.
 // character_files: how DIR/<character>.glb is written (animation_only: without the
 // character's meshes; the page always embeds whole characters).
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
-                        const JsonObject& report, bool write_view = false,
+                        const JsonObject& report, const std::string& view_path = "",
                         const GltfWriteOptions& character_files = {});
 // DIR/view.html.
 std::string ViewPagePath(const std::string& out_dir);

@@ -22,6 +22,24 @@ std::vector<ViewInterval> RepairViewIntervals(const RepairReport& report) {
   return RepairedViewIntervals(Reported(report.detected), Reported(report.filled));
 }
 
+double TakeMarkerRmsMm(const TakeViewInputs& inputs, int* samples) {
+  const auto* shown = inputs.repaired != nullptr ? inputs.repaired : inputs.observed;
+  double sum_sq = 0.0;
+  int total = 0;
+  if (inputs.skeleton != nullptr && inputs.markers != nullptr && inputs.motion != nullptr && shown != nullptr) {
+    const int frames = std::min<int>(inputs.motion->num_frames(), static_cast<int>(shown->size()));
+    for (int f = 0; f < frames; ++f) {
+      int count = 0;
+      const double rms = RmsMarkerError(*inputs.skeleton, *inputs.markers, inputs.motion->frames[f], (*shown)[f], &count);
+      sum_sq += rms * rms * count;
+      total += count;
+    }
+  }
+  if (samples != nullptr) *samples = total;
+  const double mm = inputs.skeleton != nullptr ? inputs.skeleton->unit().metres_per_unit * 1000.0 : 0.0;
+  return total > 0 ? std::sqrt(sum_sq / total) * mm : 0.0;
+}
+
 Status TakeViewTransform(const TakeViewInputs& inputs, ViewTransform* transform) {
   if (inputs.skeleton == nullptr) return Status::Error("view: no skeleton");
   const auto* shown = inputs.repaired != nullptr ? inputs.repaired : inputs.observed;

@@ -44,6 +44,10 @@ struct TakeViewInputs {
 std::vector<ViewInterval> RepairViewIntervals(const RepairReport& report);
 
 Status MakeTakeViewScene(const TakeViewInputs& inputs, ViewScene* scene);
+// The RMS over every marker sample shown (repaired when given, else observed) of
+// |x_model - x_marker| in mm, over the frames the motion has, as solve reports it; 0
+// without a motion or markers. *samples (optional) counts the samples.
+double TakeMarkerRmsMm(const TakeViewInputs& inputs, int* samples = nullptr);
 // The take's world (as above), for other files shown with it (--compare).
 Status TakeViewTransform(const TakeViewInputs& inputs, ViewTransform* transform);
 

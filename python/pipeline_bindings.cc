@@ -66,7 +66,7 @@ void BindPipeline(py::module_& m) {
               status = MakeFolders(out_dir);
               GltfWriteOptions character_files;
               character_files.animation_only = animation_only;
-              if (status.ok()) status = WriteTakeOutputs(out_dir, inputs, *result, report, /*write_view=*/false,
+              if (status.ok()) status = WriteTakeOutputs(out_dir, inputs, *result, report, /*view_path=*/"",
                                                          character_files);
             }
           }

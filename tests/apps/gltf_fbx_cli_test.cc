@@ -1,12 +1,15 @@
-// The CLI on glTF and FBX input: info, convert to BVH (FK of the BVH equals FK of the
-// source), fk, and --animation selection.
+// The CLI on glTF and FBX input: info (also of characters without animation), convert to
+// BVH (FK of the BVH equals FK of the source), fk, and --animation selection.
 #include <string>
+#include <utility>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "io/bvh_reader.h"
 #include "io/motion_file.h"
 #include "kinematics/forward_kinematics.h"
+#include "tests/gltf_test_files.h"
 #include "tests/test_support.h"
 
 namespace mocapsolve {
@@ -68,6 +71,87 @@ TEST(GltfFbxCli, InfoAndFk) {
   MOCAPSOLVE_DATA_FILE(bvh, "bvh/16_15.bvh");
   EXPECT_EQ(testing::RunCli("info " + bvh + " --animation=1", &output), 1) << output;
   EXPECT_NE(output.find("applies to .glb/.gltf/.fbx only"), std::string::npos) << output;
+}
+
+using ::testing::HasSubstr;
+
+// A rigged character without animation (the most common asset): info describes it and
+// tells its bind pose from the upper arms.
+TEST(GltfFbxCli, InfoOnACharacterWithoutAnimation) {
+  const struct {
+    double arm_degrees;
+    const char* kind;
+  } cases[] = {{0.0, "T-pose"}, {40.0, "A-pose"}, {85.0, "other"}, {-20.0, "other"}};
+  for (const auto& c : cases) {
+    const std::string path = testing::TempPath("character.gltf"), report = testing::TempPath("character.json");
+    testing::WriteTestCharacter(path, c.arm_degrees);
+    std::string output;
+    ASSERT_EQ(testing::RunCli("info " + path + " --report=" + report, &output), 0) << output;
+    EXPECT_THAT(output, HasSubstr("joints:    19 (+0 end sites), root 'Hips'")) << output;
+    EXPECT_THAT(output, HasSubstr("level 1: 3 joints: Spine, LeftUpLeg, RightUpLeg")) << output;
+    EXPECT_THAT(output, HasSubstr("level 2: 3 joints: Spine1, LeftLeg, RightLeg")) << output;
+    EXPECT_THAT(output, HasSubstr("meshes:    1 (1 skinned), 1 primitives, 21 vertices")) << output;
+    EXPECT_THAT(output, HasSubstr("skins:     1; skin 0 'body': 21 vertices skinned")) << output;
+    EXPECT_THAT(output, HasSubstr("height:    1.750 m (bind-pose mesh, along +Y)")) << output;
+    EXPECT_THAT(output, HasSubstr(std::string("bind pose: ") + c.kind)) << output;
+    EXPECT_THAT(output, HasSubstr("animations: none")) << output;
+    if (std::string(c.kind) != "other") {
+      EXPECT_THAT(output, HasSubstr("LeftArm -> LeftForeArm")) << output;
+      char angles[64];
+      std::snprintf(angles, sizeof(angles), "upper arms %.1f and %.1f deg below horizontal", c.arm_degrees,
+                    c.arm_degrees);
+      EXPECT_THAT(output, HasSubstr(angles)) << output;
+    }
+    const std::string json = testing::ReadTextFile(report);
+    EXPECT_THAT(json, HasSubstr(std::string("\"bind_pose\": \"") + c.kind + "\""));
+    EXPECT_THAT(json, HasSubstr("\"animations\": []"));
+    EXPECT_THAT(json, HasSubstr("\"root\": \"Hips\""));
+  }
+  // --animation on a file without one: one line, exit 1.
+  const std::string path = testing::TempPath("character.gltf");
+  std::string output;
+  EXPECT_EQ(testing::RunCli("info " + path + " --animation=Walk", &output), 1);
+  EXPECT_EQ(output, "mocapsolve info: " + path + ": --animation=Walk: the file has no animation\n");
+}
+
+// The same character as an FBX without animation: the skeleton from its skin's bones.
+TEST(GltfFbxCli, InfoOnAnFbxCharacterWithoutAnimation) {
+  for (const auto& [degrees, kind] : {std::pair<double, std::string>{0.0, "T-pose"}, {40.0, "A-pose"}}) {
+    const std::string path = testing::TempPath("character.fbx"), report = testing::TempPath("fbx_character.json");
+    testing::WriteTestCharacterFbx(path, degrees);
+    std::string output;
+    ASSERT_EQ(testing::RunCli("info " + path + " --report=" + report, &output), 0) << output;
+    EXPECT_THAT(output, HasSubstr("meshes:    1 (1 skinned), 21 vertices; 19 bones")) << output;
+    EXPECT_THAT(output, HasSubstr("joints:    19 (+0 end sites), root 'Hips'")) << output;
+    EXPECT_THAT(output, HasSubstr("height:    1.750 m (175 cm) (bind-pose mesh, along +Y)")) << output;
+    EXPECT_THAT(output, HasSubstr("bind pose: " + kind)) << output;
+    EXPECT_THAT(output, HasSubstr("animations: none")) << output;
+    EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"bind_pose\": \"" + kind + "\""));
+  }
+  // Motion commands still need an animation.
+  std::string output;
+  EXPECT_EQ(testing::RunCli("convert " + testing::TempPath("character.fbx") + " " + testing::TempPath("c.bvh"), &output),
+            1);
+  EXPECT_THAT(output, HasSubstr("has no animation"));
+}
+
+// The shared characters (and two skeleton files): each described, the bind poses as their
+// files have them (CesiumMan and RiggedFigure: Z up, arms 27 deg down).
+TEST(GltfFbxCli, InfoOnTheSharedCharacters) {
+  const struct {
+    const char* file;
+    const char* kind;
+  } cases[] = {{"gltf/Xbot.glb", "T-pose"},          {"gltf/CesiumMan.glb", "A-pose (upper arms 26.9"},
+               {"gltf/RiggedFigure.glb", "A-pose"},  {"gltf/RobotExpressive.glb", "T-pose"},
+               {"gltf/Fox.glb", "other"},            {"amc/02.asf", "T-pose"},
+               {"bvh/16_15.bvh", "other (upper arms 90.0 and 90.0"}};  // Its zero pose: arms down.
+  for (const auto& c : cases) {
+    MOCAPSOLVE_DATA_FILE(path, c.file);
+    std::string output;
+    ASSERT_EQ(testing::RunCli("info " + path, &output), 0) << output;
+    EXPECT_THAT(output, HasSubstr("height:")) << output;
+    EXPECT_THAT(output, HasSubstr(std::string("bind pose: ") + c.kind)) << output;
+  }
 }
 
 TEST(GltfFbxCli, SkeletonFilesAndWarnings) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -128,6 +129,37 @@ TEST_F(MarkersCalibrateCli, AutoMarkersToC3dAndTrcCalibrateBack) {
     EXPECT_EQ(fixed.marker(m).attachments[0].joint, written.marker(m).attachments[0].joint);
     EXPECT_LT((fixed.marker(m).attachments[0].offset - written.marker(m).attachments[0].offset).norm(), 1e-6);
   }
+}
+
+// --out_subject alone is enough (the subject holds the marker set), and the subject
+// holds its skeleton inline: copied into another folder, without the BVH it was
+// calibrated on, it still solves the take.
+TEST_F(MarkersCalibrateCli, SubjectAloneAndCopiedElsewhere) {
+  std::string output;
+  const std::string c3d = testing::TempPath("subject_walk.c3d");
+  ASSERT_EQ(testing::RunCli("markers --quiet --motion=" + demo_ + " --skeleton_units=cm --markerset=auto:3 --out=" +
+                            c3d, &output), 0) << output;
+  const std::string subject = testing::TempPath("calibrated/S.json"), report = testing::TempPath("subject_cal.json");
+  std::filesystem::create_directories(testing::TempPath("calibrated"));
+  ASSERT_EQ(testing::RunCli("calibrate --quiet --motion=" + demo_ + " --skeleton_units=cm --markers=" + c3d +
+                            " --out_subject=" + subject + " --report=" + report, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("wrote subject " + subject));
+  EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"out\": \"\""));
+  const std::string text = testing::ReadTextFile(subject);
+  EXPECT_THAT(text, HasSubstr("\"skeleton\": {"));
+  EXPECT_EQ(text.find("walk.bvh"), std::string::npos);
+
+  const std::string copy = testing::TempPath("elsewhere/deeper/S.json");
+  std::filesystem::create_directories(testing::TempPath("elsewhere/deeper"));
+  std::filesystem::copy_file(subject, copy, std::filesystem::copy_options::overwrite_existing);
+  const std::string solved = testing::TempPath("elsewhere/solved.bvh");
+  ASSERT_EQ(testing::RunCli("solve --quiet --subject=" + copy + " --markers=" + c3d + " --out=" + solved, &output), 0)
+      << output;
+  EXPECT_TRUE(testing::FileExists(solved));
+
+  // Neither output: one line, exit 1.
+  EXPECT_EQ(testing::RunCli("calibrate --quiet --motion=" + demo_ + " --skeleton_units=cm --markers=" + c3d, &output), 1);
+  EXPECT_EQ(output, "mocapsolve calibrate: --out=SET.json and/or --out_subject=S.json is required\n");
 }
 
 TEST_F(MarkersCalibrateCli, NoiseIsInMillimetresAndSeeded) {

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -162,14 +163,14 @@ TEST_F(PipelineCli, BadInputsWriteNothing) {
   EXPECT_EQ(Pipeline("--markers=" + other + " --out_dir=" + dir, &output), 1);
   EXPECT_THAT(output, HasSubstr("other.trc"));
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
-  // A subject whose skeleton file is missing.
+  // A subject (written as older files are, the skeleton by path) whose skeleton file is missing.
   const std::string broken = testing::TempPath("broken_subject.json");
   {
     std::string text = testing::ReadTextFile(subject_);
-    const size_t key = text.find("\"skeleton\": \"");
+    const size_t key = text.find("  \"skeleton\": {"), end = text.find("  \"marker_files\"");
     ASSERT_NE(key, std::string::npos) << text.substr(0, 300);
-    const size_t value = key + 13, end = text.find('"', value);
-    text.replace(value, end - value, "no_such_skeleton.bvh");
+    ASSERT_NE(end, std::string::npos) << text.substr(0, 300);
+    text.replace(key, end - key, "  \"skeleton\": \"no_such_skeleton.bvh\",\n  \"skeleton_units\": \"cm\",\n");
     std::FILE* file = std::fopen(broken.c_str(), "w");
     std::fputs(text.c_str(), file);
     std::fclose(file);
@@ -178,6 +179,42 @@ TEST_F(PipelineCli, BadInputsWriteNothing) {
                             &output), 1);
   EXPECT_THAT(output, HasSubstr("broken_subject.json"));
   EXPECT_FALSE(FolderExists(dir));
+}
+
+// The take's page: by default (--view=auto) written when the viewer's runtime is installed
+// and skipped with a warning when it is not; asked for (--view=PAGE.html) without the
+// runtime, an error before any work and nothing written; --view=off, none.
+TEST_F(PipelineCli, ViewPageDefaultAndRequired) {
+  setenv("MOCAPSOLVE_VIEWER_TOOLS", testing::TempPath("no_viewer_tools").c_str(), 1);
+  std::string output;
+  const std::string auto_dir = testing::TempPath("view_auto");
+  EXPECT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + auto_dir, &output), 0) << output;  // --quiet too.
+  EXPECT_THAT(output, HasSubstr("warning: pipeline: no view.html (--view=auto)"));
+  EXPECT_THAT(output, HasSubstr("scripts/viewer_tools.sh"));
+  EXPECT_TRUE(testing::FileExists(auto_dir + "/solved.bvh"));
+  EXPECT_FALSE(testing::FileExists(auto_dir + "/view.html"));
+  EXPECT_THAT(testing::ReadTextFile(auto_dir + "/report.json"), HasSubstr("\"view\": null"));
+
+  const std::string asked_dir = testing::TempPath("view_asked");
+  EXPECT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + asked_dir + " --view=" + asked_dir + "/view.html",
+                     &output), 1);
+  EXPECT_THAT(output, HasSubstr("--view=" + asked_dir + "/view.html: the viewer's three.js runtime is not installed"));
+  EXPECT_THAT(output, HasSubstr("scripts/viewer_tools.sh"));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  EXPECT_FALSE(FolderExists(asked_dir));
+  // The same for the commands whose --view asks for a page.
+  const std::string solved = testing::TempPath("view_asked.bvh");
+  EXPECT_EQ(testing::RunCli("solve --quiet --subject=" + subject_ + " --markers=" + markers_ + " --out=" + solved +
+                            " --view=" + testing::TempPath("solve.html"), &output), 1);
+  EXPECT_THAT(output, HasSubstr("scripts/viewer_tools.sh"));
+  EXPECT_FALSE(testing::FileExists(solved));
+
+  const std::string off_dir = testing::TempPath("view_off");
+  EXPECT_EQ(testing::RunCli("pipeline --subject=" + subject_ + " --markers=" + markers_ + " --out_dir=" + off_dir +
+                            " --view=off", &output), 0) << output;
+  EXPECT_THAT(output, ::testing::Not(HasSubstr("warning")));
+  EXPECT_FALSE(testing::FileExists(off_dir + "/view.html"));
+  unsetenv("MOCAPSOLVE_VIEWER_TOOLS");
 }
 
 // Real data: CMU subject 2 calibrated once on 02_01, then 02_05 (1854 frames) onto Xbot

@@ -227,6 +227,19 @@ TEST_F(SolveCli, EvaluateSmallErrorsReportsRecallAndPrecision) {
   EXPECT_THAT(output, HasSubstr("--white_noise_mm"));
 }
 
+// Progress when stderr is not a terminal (a log file, as here): plain lines, no carriage
+// returns piling up on one line; the last state once.
+TEST_F(SolveCli, ProgressInALogIsPlainLines) {
+  std::string output;
+  ASSERT_EQ(testing::RunCli("solve --solver=dls --skeleton=" + demo_ + " --skeleton_units=cm --markers=" + markers_ +
+                            " --markerset=" + set_ + " --out=" + testing::TempPath("logged.bvh"), &output), 0) << output;
+  EXPECT_EQ(output.find('\r'), std::string::npos) << output;
+  const size_t line = output.find("solve (dls): ");
+  ASSERT_NE(line, std::string::npos) << output;
+  EXPECT_EQ(output.find("solve (dls): ", line + 1), std::string::npos) << output;  // A short run: the last state only.
+  EXPECT_THAT(output.substr(line, output.find('\n', line) - line), HasSubstr("ETA 0.0 s"));
+}
+
 TEST_F(SolveCli, FitSkeletonWritesTheSkeletonAndTheMarkerSet) {
   const std::string bvh = testing::TempPath("fitted.bvh"), set = testing::TempPath("fitted.json");
   std::string output;
@@ -235,6 +248,7 @@ TEST_F(SolveCli, FitSkeletonWritesTheSkeletonAndTheMarkerSet) {
                             " --out_markerset=" + set, &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("marker RMS"));
   EXPECT_THAT(output, HasSubstr("checks: marker RMS"));
+  EXPECT_THAT(output, ::testing::Not(HasSubstr("round 0:")));  // --quiet silences the rounds.
   // The fitted pair solves the markers again.
   ASSERT_EQ(testing::RunCli("solve --quiet --skeleton=" + bvh + " --skeleton_units=cm --markers=" + markers_ +
                             " --markerset=" + set + " --out=" + testing::TempPath("refit.bvh"), &output), 0) << output;

@@ -203,6 +203,85 @@ TEST_F(ViewCli, PagesDrawInTheBrowser) {
                               "{\"path\": \"" + motion_page + "\", \"moving\": [10, 80]}]}\n");
 }
 
+// A stand-in for the three.js runtime (what the page embeds does not matter here), so the
+// figures `view` prints can be tested without scripts/viewer_tools.sh. Unset on exit.
+class StubRuntime {
+ public:
+  StubRuntime() {
+    const std::string dir = testing::TempPath("stub_tools");
+    std::filesystem::create_directories(dir);
+    testing::WriteTextFile(dir + "/three.bundle.js", "// stub\n");
+    setenv("MOCAPSOLVE_VIEWER_TOOLS", dir.c_str(), 1);
+  }
+  ~StubRuntime() { unsetenv("MOCAPSOLVE_VIEWER_TOOLS"); }
+};
+
+// The "marker residual RMS X mm" of a `view` run's summary line, or -1.
+double ViewResidualMm(const std::string& output) {
+  const std::string key = "marker residual RMS ";
+  const size_t at = output.find(key);
+  return at == std::string::npos ? -1.0 : std::atof(output.c_str() + at + key.size());
+}
+
+// The per-frame solve's RMS marker residual (mm) from its --report.
+double SolveResidualMm(const std::string& report_path) {
+  JsonNode root;
+  if (!ReadJsonFile(report_path, &root).ok()) return -1.0;
+  const JsonNode* per_frame = root.Find("per_frame");
+  const JsonNode* rms = per_frame != nullptr ? per_frame->Find("rms_marker_residual") : nullptr;
+  return rms != nullptr ? rms->number : -1.0;
+}
+
+// `view --motion=solved.bvh` over an ASF skeleton (whose rest rotations the BVH folds into
+// its angles) draws the motion the solve computed: the residual it shows is the solve's.
+TEST(ViewSubjectMotion, ResidualOfASolvedBvhOverAnAsfIsTheSolves) {
+  const std::string dir = testing::SourcePath("tests/data/good");
+  const std::string asf = dir + "/small.asf", amc = dir + "/small.amc";
+  const std::string set = testing::TempPath("small_set.json"), c3d = testing::TempPath("small.c3d");
+  const std::string solved = testing::TempPath("small_solved.bvh"), report = testing::TempPath("small_solve.json");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("markers --quiet --motion=" + amc + " --skeleton=" + asf + " --markerset=auto:3 "
+                            "--write_markerset=" + set + " --out=" + c3d, &output), 0) << output;
+  const std::string model = " --skeleton=" + asf + " --markerset=" + set + " --markers=" + c3d;
+  ASSERT_EQ(testing::RunCli("solve --quiet --solver=dls" + model + " --out=" + solved + " --report=" + report, &output),
+            0) << output;
+  const double solve_mm = SolveResidualMm(report);
+  ASSERT_GE(solve_mm, 0.0) << testing::ReadTextFile(report);
+  StubRuntime stub;
+  ASSERT_EQ(testing::RunCli("view" + model + " --motion=" + solved + " --out=" + testing::TempPath("small.html"),
+                            &output), 0) << output;
+  EXPECT_NEAR(ViewResidualMm(output), solve_mm, 1e-3 + 1e-3 * solve_mm) << output;
+  // A motion of another skeleton: one line naming the motion file and the joint.
+  const std::string demo = testing::TempPath("small_other.bvh");
+  ASSERT_EQ(testing::RunCli("generate --demo_out=" + demo + " --frames=3 --fps=30", &output), 0) << output;
+  EXPECT_EQ(testing::RunCli("view" + model + " --motion=" + demo + " --out=" + testing::TempPath("other.html"), &output),
+            1);
+  EXPECT_THAT(output, HasSubstr(demo + ": its skeleton has"));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+}
+
+// The README's recipe: calibrate 02_01 into a subject, solve, view the solve with the
+// subject: the residual is the solve's (it was 340 mm, the skeleton on its side).
+TEST(ViewRealData, ReadmeRecipeResidualIsTheSolves) {
+  MOCAPSOLVE_DATA_FILE(asf, "amc/02.asf");
+  MOCAPSOLVE_DATA_FILE(amc, "amc/02_01.amc");
+  MOCAPSOLVE_DATA_FILE(c3d, "c3d/02_01.c3d");
+  const std::string subject = testing::TempPath("recipe_S02.json"), solved = testing::TempPath("recipe_s.bvh");
+  const std::string report = testing::TempPath("recipe_solve.json");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("calibrate --quiet --motion=" + amc + " --skeleton=" + asf + " --markers=" + c3d +
+                            " --axes=y,z,x --out_subject=" + subject, &output), 0) << output;
+  ASSERT_EQ(testing::RunCli("solve --quiet --subject=" + subject + " --markers=" + c3d + " --max_frames=60 --out=" +
+                            solved + " --report=" + report, &output), 0) << output;
+  const double solve_mm = SolveResidualMm(report);
+  ASSERT_GT(solve_mm, 0.0);
+  EXPECT_LT(solve_mm, 20.0);
+  StubRuntime stub;
+  ASSERT_EQ(testing::RunCli("view --subject=" + subject + " --markers=" + c3d + " --motion=" + solved + " --out=" +
+                            testing::TempPath("recipe.html"), &output), 0) << output;
+  EXPECT_NEAR(ViewResidualMm(output), solve_mm, 0.01 * solve_mm) << output;
+}
+
 // Real data: CMU 02_01 through the pipeline onto Xbot; its view.html plays the character
 // beside the solve.
 TEST(ViewRealData, PipelinePageWithCharacter) {

@@ -1,4 +1,4 @@
-// Subject files (pipeline/subject.h): a round trip with the skeleton inline and by path,
+// Subject files (pipeline/subject.h): a round trip with the skeleton inline, old files by path,
 // and bad files whose one-line errors name the file and the field.
 #include "pipeline/subject.h"
 
@@ -149,6 +149,37 @@ std::string Edited(const std::string& text, const std::string& from, const std::
   return text.substr(0, at) + to + text.substr(at + from.size());
 }
 
+// A subject written from a skeleton file holds the skeleton inline: copied to another
+// folder (without the skeleton file), it still loads.
+TEST(Subject, WrittenSkeletonIsInlineSoACopyElsewhereLoads) {
+  Subject subject = MakeSubject();
+  subject.skeleton = MakeDemoSkeleton();
+  subject.markers = MakeSyntheticMarkerSet(subject.skeleton, 2, 5);
+  const std::string bvh = testing::TempPath("skel_inline/walk.bvh");
+  std::filesystem::create_directories(std::filesystem::path(bvh).parent_path());
+  ASSERT_TRUE(WriteBvh(bvh, subject.skeleton, MakeDemoWalk(subject.skeleton, 2, 30.0), BvhWriteOptions()).ok());
+  subject.skeleton_path = bvh;  // Where it came from: not written.
+  const std::string path = testing::TempPath("subjects_inline/s.json");
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  ASSERT_TRUE(WriteSubject(path, subject).ok());
+  const std::string text = testing::ReadTextFile(path);
+  EXPECT_THAT(text, HasSubstr("\"skeleton\": {"));
+  EXPECT_EQ(text.find("walk.bvh"), std::string::npos);
+  EXPECT_EQ(text.find("skeleton_units"), std::string::npos);
+
+  const std::string copy = testing::TempPath("elsewhere/deeper/s.json");
+  std::filesystem::create_directories(std::filesystem::path(copy).parent_path());
+  std::filesystem::copy_file(path, copy, std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::remove(bvh);
+  Subject read;
+  const Status status = ReadSubject(copy, &read);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_TRUE(read.skeleton_path.empty());
+  ExpectSameSkeleton(subject.skeleton, read.skeleton);
+  ExpectSameMarkers(subject.markers, read.markers);
+}
+
+// Older subject files name their skeleton by a path relative to themselves: still read.
 TEST(Subject, SkeletonPathRelativeToTheSubjectFile) {
   Subject subject = MakeSubject();
   subject.skeleton = MakeDemoSkeleton();
@@ -157,22 +188,30 @@ TEST(Subject, SkeletonPathRelativeToTheSubjectFile) {
   std::filesystem::create_directories(std::filesystem::path(bvh).parent_path());
   Motion motion = MakeDemoWalk(subject.skeleton, 2, 30.0);
   ASSERT_TRUE(WriteBvh(bvh, subject.skeleton, motion, BvhWriteOptions()).ok());
-  subject.skeleton_path = bvh;
   const std::string path = testing::TempPath("subjects/s.json");
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-  ASSERT_TRUE(WriteSubject(path, subject).ok());
-  const std::string text = testing::ReadTextFile(path);
-  EXPECT_THAT(text, HasSubstr("\"skeleton\": \"../skel/walk.bvh\""));
-  EXPECT_THAT(text, HasSubstr("\"skeleton_units\": \"cm\""));  // A BVH states none.
+  // The inline skeleton replaced by a path, as older files hold it.
+  std::string text = FormatSubject(path, subject);
+  const size_t begin = text.find("  \"skeleton\": {");
+  const size_t end = text.find("  \"marker_files\"");
+  ASSERT_NE(begin, std::string::npos);
+  ASSERT_NE(end, std::string::npos);
+  text.replace(begin, end - begin, "  \"skeleton\": \"../skel/walk.bvh\",\n  \"skeleton_units\": \"cm\",\n");
+  std::ofstream(path) << text;
   Subject read;
   const Status status = ReadSubject(path, &read);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(read.skeleton.unit().metres_per_unit, 0.01);
+  EXPECT_EQ(read.skeleton_path, testing::TempPath("subjects/../skel/walk.bvh"));
   ASSERT_EQ(read.skeleton.num_joints(), subject.skeleton.num_joints());
   for (int j = 0; j < read.skeleton.num_joints(); ++j) {
     EXPECT_LT((read.skeleton.offset(j) - subject.skeleton.offset(j)).norm(), 1e-5);  // BVH: 6 digits.
   }
   ExpectSameMarkers(subject.markers, read.markers);
+  // Written again: inline.
+  const std::string again = testing::TempPath("subjects/again.json");
+  ASSERT_TRUE(WriteSubject(again, read).ok());
+  EXPECT_EQ(testing::ReadTextFile(again).find("walk.bvh"), std::string::npos);
 
   // The skeleton file gone: the error names the subject file, the field and the path.
   const std::string moved = Edited(text, "../skel/walk.bvh", "../skel/nowhere.bvh");
