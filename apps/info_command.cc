@@ -247,16 +247,22 @@ Status FbxFileInfo(const std::string& path) {
   return WriteReport(report);
 }
 
+// The file, its unit and its skeleton in the rest pose: what a skeleton or motion file
+// says first.
+void DescribeSkeletonFile(const std::string& path, const Skeleton& skeleton, JsonObject* report) {
+  report->Add("file", path);
+  std::printf("file:      %s\n", path.c_str());
+  DescribeUnit(skeleton.unit());
+  DescribeSkeleton(skeleton, RestPose(skeleton), Eigen::Matrix3Xd(3, 0), report);
+}
+
 // A skeleton file without motion (.asf): the skeleton in its rest pose.
 Status SkeletonInfo(const std::string& path) {
   Skeleton skeleton;
   Status status = LoadSkeleton(path, &skeleton);
   if (!status.ok()) return status;
   JsonObject report;
-  report.Add("file", path);
-  std::printf("file:      %s\n", path.c_str());
-  DescribeUnit(skeleton.unit());
-  DescribeSkeleton(skeleton, RestPose(skeleton), Eigen::Matrix3Xd(3, 0), &report);
+  DescribeSkeletonFile(path, skeleton, &report);
   std::printf("frames:    none (a skeleton file)\n");
   return WriteReport(report);
 }
@@ -277,10 +283,7 @@ Status RunInfo(const std::vector<std::string>& arguments) {
   status = ReadAnimationNames(path, &clips);
   if (!status.ok()) return status;
   JsonObject report;
-  report.Add("file", path);
-  std::printf("file:      %s\n", path.c_str());
-  DescribeUnit(skeleton.unit());
-  DescribeSkeleton(skeleton, RestPose(skeleton), Eigen::Matrix3Xd(3, 0), &report);
+  DescribeSkeletonFile(path, skeleton, &report);
   if (!clips.empty()) DescribeAnimations(clips, &report);
   DescribeMotion(motion, &report);
   return WriteReport(report);

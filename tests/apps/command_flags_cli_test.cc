@@ -33,16 +33,25 @@ std::vector<std::string> Commands() {
   return names;
 }
 
-// The flags a command's --help lists.
-std::set<std::string> HelpFlags(const std::string& command) {
+// The flags a command's --help lists ("  --NAME (TYPE) default: ..."), with their types.
+std::map<std::string, std::string> HelpFlagTypes(const std::string& command) {
   std::string output;
   EXPECT_EQ(testing::RunCli(command + " --help", &output), 0) << command;
-  std::set<std::string> flags;
+  std::map<std::string, std::string> flags;
   std::istringstream lines(output);
   for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("  --", 0) == 0) flags.insert(line.substr(4, line.find(' ', 4) - 4));
+    if (line.rfind("  --", 0) != 0) continue;
+    const size_t name_end = line.find(' ', 4), type_start = line.find('(', name_end) + 1;
+    flags[line.substr(4, name_end - 4)] = line.substr(type_start, line.find(')', type_start) - type_start);
   }
   return flags;
+}
+
+// The flags a command's --help lists.
+std::set<std::string> HelpFlags(const std::string& command) {
+  std::set<std::string> names;
+  for (const auto& [name, type] : HelpFlagTypes(command)) names.insert(name);
+  return names;
 }
 
 TEST(CommandFlags, AFlagACommandDoesNotReadIsRefused) {
@@ -120,16 +129,11 @@ TEST(CommandFlags, SharedFlagsShowEachCommandsOwnDefault) {
   EXPECT_THAT(output, HasSubstr("\"solver\": \"ceres\""));
 }
 
-// The number flags each command's --help lists (type double).
+// The number flags a command's --help lists (type double).
 std::vector<std::string> NumberFlags(const std::string& command) {
-  std::string output;
-  EXPECT_EQ(testing::RunCli(command + " --help", &output), 0) << command;
   std::vector<std::string> flags;
-  std::istringstream lines(output);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("  --", 0) == 0 && line.find(" (double) ") != std::string::npos) {
-      flags.push_back(line.substr(4, line.find(' ', 4) - 4));
-    }
+  for (const auto& [name, type] : HelpFlagTypes(command)) {
+    if (type == "double") flags.push_back(name);
   }
   return flags;
 }
