@@ -57,6 +57,10 @@ Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories,
 
 Status WriteMarkerFile(const std::string& path, const MarkerTrajectories& trajectories) {
   const std::string ext = FileExtension(path);
+  // Nothing a reader would refuse (the C3D writer alone refused only float overflow).
+  if (ext == ".c3d" || ext == ".trc") {
+    if (Status status = trajectories.CheckReadable(); !status.ok()) return Status::Error(path + ": " + status.message());
+  }
   if (ext == ".c3d") return WriteC3d(path, trajectories);
   if (ext == ".trc") return WriteTrc(path, trajectories);
   return Status::Error(path + ": unknown marker format " + QuoteToken(ext) + " (expected .c3d or .trc)");

@@ -28,18 +28,28 @@ Status ValidateMotion(const Skeleton& skeleton, const Motion& motion) {
   if (!(motion.frame_rate > 0.0) || !std::isfinite(motion.frame_rate)) {
     return Status::Error("frame rate must be positive");
   }
-  const size_t nj = skeleton.num_joints();
   for (int f = 0; f < motion.num_frames(); ++f) {
-    const Pose& pose = motion.frames[f];
-    if (pose.translations.size() != nj || pose.rotations.size() != nj) {
-      return Status::Error("frame " + std::to_string(f) + ": pose has the wrong joint count");
-    }
-    for (size_t j = 0; j < nj; ++j) {
-      if (!pose.translations[j].allFinite() || !pose.rotations[j].coeffs().allFinite() ||
-          std::abs(pose.rotations[j].norm() - 1.0) > 1e-6) {
-        return Status::Error("frame " + std::to_string(f) + ", joint '" + skeleton.name(j) +
-                             "': non-finite value or non-unit rotation");
-      }
+    Status status = ValidatePose(skeleton, motion.frames[f], "frame " + std::to_string(f));
+    if (!status.ok()) return status;
+  }
+  return Status::Ok();
+}
+
+Status CheckFrameRate(double rate, const std::string& what) {
+  if (rate > 0.0 && std::isfinite(rate)) return Status::Ok();
+  return Status::Error(what + ": frame rate " + std::to_string(rate) + " is not a positive number");
+}
+
+Status ValidatePose(const Skeleton& skeleton, const Pose& pose, const std::string& where) {
+  const size_t nj = skeleton.num_joints();
+  if (pose.translations.size() != nj || pose.rotations.size() != nj) {
+    return Status::Error(where + ": pose has the wrong joint count (" + std::to_string(pose.rotations.size()) +
+                         ", skeleton " + std::to_string(nj) + ")");
+  }
+  for (size_t j = 0; j < nj; ++j) {
+    if (!pose.translations[j].allFinite() || !pose.rotations[j].coeffs().allFinite() ||
+        std::abs(pose.rotations[j].norm() - 1.0) > 1e-6) {
+      return Status::Error(where + ", joint '" + skeleton.name(j) + "': non-finite value or non-unit rotation");
     }
   }
   return Status::Ok();

@@ -16,6 +16,7 @@
 
 #include <memory>
 #include <string>
+#include <typeinfo>
 #include <vector>
 
 #include <Eigen/Core>
@@ -62,6 +63,25 @@ void SyncMask(MarkerTrajectories* markers);
 Array MotionRotations(const Motion& motion);
 Array MotionTranslations(const Motion& motion);
 Array RootTranslations(const Motion& motion);
+// ValueError (ValidateMotion's / ValidatePose's message) unless motion / pose fits skeleton:
+// every function where a skeleton meets a motion or pose checks this first.
+void CheckMotion(const Skeleton& skeleton, const Motion& motion);
+void CheckPose(const Skeleton& skeleton, const Pose& pose, const char* what);
+// ValueError naming `what` unless every value is finite.
+void CheckFinite(const Array& array, const char* what);
+
+// The object behind a pointer or holder parameter. pybind11's conversion pass loads None
+// into a parameter of a bound class's pointer or holder type (shared_ptr) as null, so each
+// such parameter goes through this: TypeError "name: expected a T, got None".
+std::string BoundTypeName(const std::type_info& type);
+template <class T>
+T& Required(T* object, const char* name) {
+  if (object == nullptr) throw py::type_error(std::string(name) + ": expected a " + BoundTypeName(typeid(T)) + ", got None");
+  return *object;
+}
+template <class T>
+T& Required(const std::shared_ptr<T>& object, const char* name) { return Required(object.get(), name); }
+
 // Checks an array's shape against (frames?, dims...) with -1 for any; error names `what`.
 void CheckShape(const Array& array, const std::vector<py::ssize_t>& shape, const char* what);
 

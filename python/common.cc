@@ -116,6 +116,28 @@ Array RootTranslations(const Motion& motion) {
   return out;
 }
 
+void CheckMotion(const Skeleton& skeleton, const Motion& motion) {
+  ThrowIfError(ValidateMotion(skeleton, motion));
+}
+
+void CheckPose(const Skeleton& skeleton, const Pose& pose, const char* what) {
+  ThrowIfError(ValidatePose(skeleton, pose, what));
+}
+
+void CheckFinite(const Array& array, const char* what) {
+  const double* p = array.data();
+  for (py::ssize_t i = 0; i < array.size(); ++i) {
+    if (!std::isfinite(p[i])) throw py::value_error(std::string(what) + ": expected finite values");
+  }
+}
+
+std::string BoundTypeName(const std::type_info& type) {
+  const py::detail::type_info* info = py::detail::get_type_info(type);
+  std::string name = info != nullptr ? info->type->tp_name : type.name();
+  if (info == nullptr) py::detail::clean_type_id(name);
+  return name.substr(name.rfind('.') + 1);  // "mocapsolve._core.Subject" -> "Subject".
+}
+
 void CheckShape(const Array& array, const std::vector<py::ssize_t>& shape, const char* what) {
   bool ok = array.ndim() == static_cast<py::ssize_t>(shape.size());
   for (size_t i = 0; ok && i < shape.size(); ++i) ok = shape[i] < 0 || array.shape(i) == shape[i];

@@ -23,6 +23,7 @@ MarkersPtr MakeMarkers(const Array& positions, const std::vector<std::string>& l
                        const std::string& units) {
   CheckShape(positions, {-1, static_cast<py::ssize_t>(labels.size()), 3}, "positions");
   ThrowIfError(MarkerTrajectories::CheckLabels(labels));
+  ThrowIfError(CheckFrameRate(rate, "rate"));
   auto markers = std::make_shared<MarkerTrajectories>(labels, static_cast<int>(positions.shape(0)));
   markers->frame_rate = rate;
   markers->unit = LengthUnitFromName(units);
@@ -35,6 +36,7 @@ MarkersPtr MakeMarkers(const Array& positions, const std::vector<std::string>& l
       markers->SetSample(f, m, Eigen::Vector3d(p(f, m, 0), p(f, m, 1), p(f, m, 2)));
     }
   }
+  if (Status status = markers->CheckReadable(); !status.ok()) throw py::value_error("positions: " + status.message());
   return markers;
 }
 
@@ -51,7 +53,11 @@ void BindIo(py::module_& m) {
            "name per marker; rate: frames per second; units: of the positions (mm, cm, m, in; default mm).")
       .def_property_readonly("positions", &PositionsView)
       .def_property_readonly("labels", &MarkerTrajectories::labels)
-      .def_readwrite("rate", &MarkerTrajectories::frame_rate, "Frames per second.")
+      .def_property("rate", [](const MarkerTrajectories& t) { return t.frame_rate; },
+                    [](MarkerTrajectories& t, double rate) {
+                      ThrowIfError(CheckFrameRate(rate, "rate"));
+                      t.frame_rate = rate;
+                    }, "Frames per second (> 0, finite).")
       .def_property_readonly("units", [](const MarkerTrajectories& t) { return t.unit.name; })
       .def_property_readonly("metres_per_unit", [](const MarkerTrajectories& t) { return t.unit.metres_per_unit; })
       .def_readwrite("first_frame", &MarkerTrajectories::first_frame, "File frame number of frame 0.")

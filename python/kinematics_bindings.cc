@@ -1,9 +1,12 @@
 // kinematics: Skeleton, Motion, Pose, FK, characters (glTF skin), skinning, Jacobians.
+#include <cmath>
+
 #include "io/gltf_reader.h"
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/kinematic_jacobians.h"
 #include "kinematics/skinning.h"
 #include "python/bindings.h"
+
 
 namespace mocapsolve::python {
 namespace {
@@ -26,6 +29,7 @@ Pose PoseFromArrays(const Skeleton& skeleton, const Array& rotations, const Arra
     auto t = translations.unchecked<2>();
     for (py::ssize_t j = 0; j < joints; ++j) pose.translations[j] = Eigen::Vector3d(t(j, 0), t(j, 1), t(j, 2));
   }
+  CheckPose(skeleton, pose, "pose");
   return pose;
 }
 
@@ -64,9 +68,22 @@ Motion MakeMotion(const Skeleton& skeleton, const Array& rotations, const Array&
   return motion;
 }
 
+// ValueError naming `what` unless every row of (..., 4) rotations is a finite unit
+// quaternion (to 1e-6, ValidateMotion's tolerance).
+void CheckUnitQuaternions(const Array& rotations, const char* what) {
+  const double* q = rotations.data();
+  for (py::ssize_t i = 0; i + 4 <= rotations.size(); i += 4, q += 4) {
+    const double norm = Eigen::Vector4d(q[0], q[1], q[2], q[3]).norm();
+    if (!std::isfinite(norm) || std::abs(norm - 1.0) > 1e-6) {
+      throw py::value_error(std::string(what) + ": expected finite unit quaternions (x, y, z, w)");
+    }
+  }
+}
+
 void SetRotations(Motion* motion, const Array& rotations) {
   const py::ssize_t joints = motion->frames.empty() ? 0 : motion->frames[0].rotations.size();
   CheckShape(rotations, {motion->num_frames(), joints, 4}, "rotations");
+  CheckUnitQuaternions(rotations, "rotations");
   auto r = rotations.unchecked<3>();
   for (int f = 0; f < motion->num_frames(); ++f) {
     for (py::ssize_t j = 0; j < joints; ++j) {
@@ -82,6 +99,7 @@ void SetTranslations(Motion* motion, const Array& translations, bool root_only) 
   } else {
     CheckShape(translations, {motion->num_frames(), joints, 3}, "translations");
   }
+  CheckFinite(translations, root_only ? "root_translations" : "translations");
   const double* t = translations.data();
   for (int f = 0; f < motion->num_frames(); ++f) {
     if (root_only) {
@@ -93,10 +111,6 @@ void SetTranslations(Motion* motion, const Array& translations, bool root_only) 
       motion->frames[f].translations[j] = Eigen::Vector3d(p[0], p[1], p[2]);
     }
   }
-}
-
-void CheckMotion(const Skeleton& skeleton, const Motion& motion) {
-  ThrowIfError(ValidateMotion(skeleton, motion));
 }
 
 Array Matrix3XToArray(const Eigen::Matrix3Xd& m) {
@@ -111,12 +125,17 @@ Eigen::VectorXi JointIndices(const Skeleton& skeleton, py::object joint) {
     if (j < 0) throw py::value_error("unknown joint '" + joint.cast<std::string>() + "'");
     return Eigen::VectorXi::Constant(1, j);
   }
-  const int j = joint.cast<int>();
-  if (j < 0 || j >= skeleton.num_joints()) {
-    throw py::index_error("joint " + std::to_string(j) + " out of range [0, " +
+  if (!py::isinstance<py::int_>(joint) || py::isinstance<py::bool_>(joint)) {
+    throw py::type_error("joint: expected a joint index or name, got " +
+                         std::string(py::str(joint.get_type().attr("__name__"))));
+  }
+  int overflow = 0;
+  const long long index = PyLong_AsLongLongAndOverflow(joint.ptr(), &overflow);
+  if (overflow != 0 || index < 0 || index >= skeleton.num_joints()) {
+    throw py::index_error("joint " + std::string(py::repr(joint)) + " out of range [0, " +
                           std::to_string(skeleton.num_joints()) + ")");
   }
-  return Eigen::VectorXi::Constant(1, j);
+  return Eigen::VectorXi::Constant(1, static_cast<int>(index));
 }
 
 }  // namespace
@@ -164,6 +183,7 @@ void BindKinematics(py::module_& m) {
           [](const Pose& p) { return QuaternionArray(p.rotations); },
           [](Pose& p, const Array& a) {
             CheckShape(a, {static_cast<py::ssize_t>(p.rotations.size()), 4}, "rotations");
+            CheckUnitQuaternions(a, "rotations");
             for (size_t j = 0; j < p.rotations.size(); ++j) {
               p.rotations[j] = Eigen::Quaterniond(a.at(j, 3), a.at(j, 0), a.at(j, 1), a.at(j, 2));
             }
@@ -184,14 +204,19 @@ void BindKinematics(py::module_& m) {
            py::arg("rate"),
            "A motion of skeleton: rotations (frames, joints, 4) x, y, z, w; translations (frames, 3)\n"
            "for the root (the others keep their rest offsets) or (frames, joints, 3); rate in frames per second.")
-      .def_readwrite("rate", &Motion::frame_rate)
+      .def_property("rate", [](const Motion& mo) { return mo.frame_rate; },
+                    [](Motion& mo, double rate) {
+                      ThrowIfError(CheckFrameRate(rate, "rate"));
+                      mo.frame_rate = rate;
+                    }, "Frames per second (> 0, finite).")
       .def_property_readonly("num_frames", &Motion::num_frames)
-      .def_property("rotations", &MotionRotations, &SetRotations, "(frames, joints, 4) x, y, z, w.")
+      .def_property("rotations", &MotionRotations, [](Motion& mo, const Array& a) { SetRotations(&mo, a); },
+                    "(frames, joints, 4) x, y, z, w.")
       .def_property("translations", &MotionTranslations,
-                    [](Motion* mo, const Array& a) { SetTranslations(mo, a, false); },
+                    [](Motion& mo, const Array& a) { SetTranslations(&mo, a, false); },
                     "(frames, joints, 3) local translations, file units.")
       .def_property("root_translations", &RootTranslations,
-                    [](Motion* mo, const Array& a) { SetTranslations(mo, a, true); },
+                    [](Motion& mo, const Array& a) { SetTranslations(&mo, a, true); },
                     "(frames, 3) the root's position, file units.")
       .def("pose", [](const Motion& mo, int f) {
             if (f < 0 || f >= mo.num_frames()) throw py::index_error("frame out of range");
@@ -239,9 +264,7 @@ void BindKinematics(py::module_& m) {
 
   m.def("joint_position_jacobian", [](const Skeleton& skeleton, const Pose& pose, py::object joint) {
         const int j = JointIndices(skeleton, joint)[0];
-        if (static_cast<int>(pose.rotations.size()) != skeleton.num_joints()) {
-          throw py::value_error("pose: expected " + std::to_string(skeleton.num_joints()) + " joints");
-        }
+        CheckPose(skeleton, pose, "pose");
         FkData fk(skeleton);
         ForwardKinematics(skeleton, pose, &fk);
         PoseJacobian jacobian(3, PoseTangentSize(skeleton));
@@ -259,6 +282,7 @@ void BindKinematics(py::module_& m) {
   m.def("retract_pose", [](const Pose& pose, const Array& tangent) {
         Pose out = pose;
         CheckShape(tangent, {static_cast<py::ssize_t>(3 + 3 * pose.rotations.size())}, "tangent");
+        CheckFinite(tangent, "tangent");
         Eigen::VectorXd d = Eigen::Map<const Eigen::VectorXd>(tangent.data(), tangent.shape(0));
         RetractPose(d, &out);
         return out;
@@ -328,9 +352,7 @@ void BindKinematics(py::module_& m) {
   m.def("skinned_vertex_jacobians", [](const GltfCharacter& character, const Pose& pose, int vertex) {
         const SkinnedMesh& mesh = character.mesh;
         if (vertex < 0 || vertex >= mesh.num_vertices()) throw py::index_error("vertex out of range");
-        if (static_cast<int>(pose.rotations.size()) != character.skeleton.num_joints()) {
-          throw py::value_error("pose: expected " + std::to_string(character.skeleton.num_joints()) + " joints");
-        }
+        CheckPose(character.skeleton, pose, "pose");
         FkData fk(character.skeleton);
         ForwardKinematics(character.skeleton, pose, &fk);
         std::vector<Eigen::Isometry3d> transforms;

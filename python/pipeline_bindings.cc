@@ -14,11 +14,12 @@ namespace mocapsolve::python {
 
 void BindPipeline(py::module_& m) {
   const QualityGate gate;  // The defaults, as the CLI's flags take them.
-  m.def("pipeline", [](SubjectPtr subject, const std::string& markers, const std::vector<std::string>& characters,
+  m.def("pipeline", [](SubjectPtr subject_arg, const std::string& markers, const std::vector<std::string>& characters,
                        const std::string& out_dir, const std::string& take_name, int filter_levels, double kernel_a,
                        double tension, double gate_naive_rms_mm, double gate_repaired_rms_mm,
                        double gate_repaired_share, double gate_iteration_limit_share, double gate_marker_offset_cm,
                        double gate_torso_deg, bool animation_only, const py::kwargs& keywords) {
+        const Subject* subject = &Required(subject_arg, "subject");
         RepairSettings repair_settings;
         SolverSettings solver_settings;
         solver_settings.solver = kRepairDefaultSolver;  // The pipeline solves with DLS by default.
@@ -50,7 +51,7 @@ void BindPipeline(py::module_& m) {
         if (!options.IsValid(&error)) throw py::value_error(error);
         TakeInputs inputs;
         inputs.name = take_name.empty() ? FileStem(markers) : take_name;
-        inputs.subject = subject.get();
+        inputs.subject = subject;
         inputs.markers_path = markers;
         inputs.character_paths = characters;
         auto result = std::make_shared<TakeResult>();

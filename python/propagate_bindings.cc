@@ -45,6 +45,7 @@ void BindPropagate(py::module_& m) {
 
   m.def("falloff", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& method,
                       const py::kwargs& keywords) {
+        CheckMotion(skeleton, motion);
         FalloffSettings falloff_settings;
         ApplyKeywords(keywords, {py::cast(&falloff_settings, py::return_value_policy::reference)},
                       kFalloffSettingNames);
@@ -118,6 +119,7 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
       "joint's frame, R' = R exp(v))}, root_translation_offset (3,) in skeleton units.");
 
   m.def("read_edits", [](const std::string& path, const Skeleton& skeleton, const Motion& motion) {
+        CheckMotion(skeleton, motion);
         RequireReadable(path);
         std::vector<EditFileEntry> entries;
         ThrowIfError(ReadEditFile(path, skeleton, &entries));
@@ -143,6 +145,7 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
 
   m.def("propagate", [](const Skeleton& skeleton, const Motion& motion, const std::vector<PoseEdit>& edits,
                         const std::vector<Array>& weights) {
+        CheckMotion(skeleton, motion);
         std::vector<Eigen::VectorXd> w;
         for (const Array& a : weights) {
           CheckShape(a, {motion.num_frames()}, "weights");
@@ -162,6 +165,7 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
 
   m.def("ik_edit", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& ik_target,
                       double ik_root_weight, const py::kwargs& keywords) {
+        CheckMotion(skeleton, motion);
         const SolverSettings settings = SettingsFromKeywords(keywords, nullptr);
         if (frame < 0 || frame >= motion.num_frames()) {
           throw py::value_error("--frame: expected 0 <= frame < " + std::to_string(motion.num_frames()) +
@@ -205,6 +209,7 @@ ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc") +
   m.def("edit_weights", [](const Skeleton& skeleton, const Motion& motion, const std::vector<PoseEdit>& edits,
                            const std::string& method, double harmonic_ground, double spline_width,
                            const std::string& sparse_library, const py::kwargs& keywords) {
+        CheckMotion(skeleton, motion);
         FalloffSettings falloff_settings;
         ApplyKeywords(keywords, {py::cast(&falloff_settings, py::return_value_policy::reference)},
                       kFalloffSettingNames);

@@ -86,6 +86,7 @@ void BindPyramid(py::module_& m) {
         pyramid.options = Options(static_cast<int>(laplacian.size()), kernel_a, tension);
         for (const Array& l : laplacian) pyramid.laplacian.push_back(ArrayToSignal(l, "laplacian"));
         pyramid.gaussian.push_back(ArrayToSignal(top, "top"));
+        ThrowIfError(CheckPyramidShape(pyramid));  // ReconstructSignal trusts the sizes.
         ThrowIfError(CheckBandWeights(weights, pyramid.levels(), "weights"));
         Signal out;
         ReconstructSignal(pyramid, weights, &out);
@@ -150,6 +151,7 @@ void BindPyramid(py::module_& m) {
       "\nkernel_a: the cubic Cardinal spline kernel's a (default 0.4); tension: the spline's tension (default 0).");
 
   m.def("velocity_jumps", [](const Skeleton& skeleton, const Motion& motion) {
+        CheckMotion(skeleton, motion);
         return VelocityJumps(skeleton, motion);
       }, py::arg("skeleton"), py::arg("motion"), "Per-frame joint velocity jumps of motion on skeleton (signal/motion_blend.h).");
 }

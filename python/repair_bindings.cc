@@ -58,7 +58,8 @@ void BindRepair(py::module_& m) {
       "SolverSettings), is invalid for a skeleton in skeleton_units (mm, cm, m, in).");
   m.attr("REPAIR_OPTION_NAMES") = std::string(kRepairSettingNames);
 
-  m.def("repair", [](SubjectPtr subject, py::object markers, const py::kwargs& keywords) {
+  m.def("repair", [](SubjectPtr subject_arg, py::object markers, const py::kwargs& keywords) {
+        const Subject* subject = &Required(subject_arg, "subject");
         RepairSettings repair_settings;
         SolverSettings solver_settings;
         solver_settings.solver = kRepairDefaultSolver;
@@ -211,7 +212,8 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
       "noise; keywords: the CorruptionSettings). Returns (damaged markers, (frames, markers)\n"
       "int8 mask of the damage kind per sample, 0 = untouched; signal/marker_corruption.h).");
 
-  m.def("evaluate", [](SubjectPtr subject, py::object markers, int trials, const py::kwargs& keywords) {
+  m.def("evaluate", [](SubjectPtr subject_arg, py::object markers, int trials, const py::kwargs& keywords) {
+        const Subject* subject = &Required(subject_arg, "subject");
         RepairSettings repair_settings;
         SolverSettings solver_settings;
         solver_settings.solver = kRepairDefaultSolver;

@@ -2,6 +2,7 @@
 // solves through Ceres or DLS, and a frame-by-frame solver for Python loops.
 #include <chrono>
 #include <cmath>
+#include <mutex>
 
 #include "io/motion_file.h"
 #include "io/marker_file.h"
@@ -19,7 +20,11 @@ namespace mocapsolve::python {
 
 MarkerTakePtr TakeArgument(const Subject& subject, py::object markers) {
   if (py::isinstance<MarkerTake>(markers)) return markers.cast<MarkerTakePtr>();
-  const std::string path = py::str(markers);
+  if (!py::isinstance<py::str>(markers) && !py::hasattr(markers, "__fspath__")) {
+    throw py::type_error("markers: expected a Take or a .c3d/.trc path, got " +
+                         std::string(py::str(markers.get_type().attr("__name__"))));
+  }
+  const std::string path = py::str(py::module_::import("os").attr("fspath")(markers));
   RequireReadable(path);
   auto take = std::make_shared<MarkerTake>();
   Status status = Status::Ok();
@@ -78,36 +83,32 @@ py::dict ClipReportDict(const ClipSolveReport& clip, const LengthUnit& unit) {
 class FrameSolver {
  public:
   FrameSolver(SubjectPtr subject, const py::kwargs& keywords) : subject_(std::move(subject)) {
+    Required(subject_, "subject");
     settings_ = SettingsFromKeywords(keywords, nullptr);
     ThrowIfError(MarkerSolveOptionsFromSettings(settings_, subject_->skeleton.unit(), &options_));
     options_.rest_rotations = subject_->mean_pose;
     solver_ = std::make_unique<MarkerFrameSolver>(subject_->skeleton, subject_->markers, options_);
-    observed_.resize(subject_->markers.num_markers());
   }
 
-  FrameSolveReport Solve(const Array& observed, Pose* pose) {
-    CheckShape(observed, {subject_->markers.num_markers(), 3}, "observed");
-    CheckPose(*pose);
-    const double* p = observed.data();
-    for (size_t m = 0; m < observed_.size(); ++m, p += 3) observed_[m] = Eigen::Vector3d(p[0], p[1], p[2]);
+  // Threads sharing one solver take turns (MarkerFrameSolver keeps per-solve workspace);
+  // the lock is taken with the GIL released, so other solvers and Python code run meanwhile.
+  FrameSolveReport Solve(const Array& observed, Pose* pose_arg) {
+    Pose& pose = Required(pose_arg, "pose");
+    const std::vector<Eigen::Vector3d> frame = Frame(observed);
+    CheckPoseShape(pose);
     FrameSolveReport report;
     Status status = Status::Ok();
     {
       py::gil_scoped_release release;
-      status = solver_->Solve(observed_, pose, &report);
+      std::lock_guard<std::mutex> lock(mutex_);
+      status = solver_->Solve(frame, &pose, &report);
     }
     ThrowIfError(status);
     return report;
   }
 
   Pose InitialPose(const Array& observed, bool root_from_markers) {
-    CheckShape(observed, {subject_->markers.num_markers(), 3}, "observed");
-    std::vector<Eigen::Vector3d> frame(subject_->markers.num_markers());
-    const double* p = observed.data();
-    for (auto& x : frame) {
-      x = Eigen::Vector3d(p[0], p[1], p[2]);
-      p += 3;
-    }
+    const std::vector<Eigen::Vector3d> frame = Frame(observed);
     Pose pose = RestPose(subject_->skeleton);
     Status status = Status::Ok();
     {
@@ -122,17 +123,27 @@ class FrameSolver {
   const SolverSettings& settings() const { return settings_; }
 
  private:
-  void CheckPose(const Pose& pose) const {
-    if (static_cast<int>(pose.rotations.size()) != subject_->skeleton.num_joints()) {
-      throw py::value_error("pose: expected " + std::to_string(subject_->skeleton.num_joints()) + " joints");
+  // observed (markers, 3) as one frame's samples (non-finite = missing, as the solver reads).
+  std::vector<Eigen::Vector3d> Frame(const Array& observed) const {
+    CheckShape(observed, {subject_->markers.num_markers(), 3}, "observed");
+    std::vector<Eigen::Vector3d> frame(subject_->markers.num_markers());
+    const double* p = observed.data();
+    for (auto& x : frame) {
+      x = Eigen::Vector3d(p[0], p[1], p[2]);
+      p += 3;
     }
+    return frame;
   }
+
+  // The warm start: the subject's joint count and finite unit rotations (a NaN pose would
+  // come back NaN).
+  void CheckPoseShape(const Pose& pose) const { CheckPose(subject_->skeleton, pose, "pose"); }
 
   SubjectPtr subject_;
   SolverSettings settings_;
   MarkerSolveOptions options_;
   std::unique_ptr<MarkerFrameSolver> solver_;
-  std::vector<Eigen::Vector3d> observed_;
+  std::mutex mutex_;  // Held (without the GIL) while solver_ solves.
 };
 
 }  // namespace
@@ -192,13 +203,15 @@ void BindSolve(py::module_& m) {
       .def_property_readonly("num_frames", [](const MarkerTake& t) { return static_cast<int>(t.observed.size()); })
       .def_property_readonly("rate", [](const MarkerTake& t) { return t.trajectories.frame_rate; });
 
-  m.def("load_take", [](SubjectPtr subject, const std::string& path) {
+  m.def("load_take", [](SubjectPtr subject_arg, const std::string& path) {
+        const Subject* subject = &Required(subject_arg, "subject");
         return TakeArgument(*subject, py::str(path));
       }, py::arg("subject"), py::arg("markers"),
       "Reads markers (a .c3d/.trc path) and maps them onto subject (label prefix, axes, scale):\n"
       "a Take with .observed (frames, markers, 3) in the skeleton's frame and units.");
 
-  m.def("solve", [](SubjectPtr subject, py::object markers, int max_frames, const py::kwargs& keywords) {
+  m.def("solve", [](SubjectPtr subject_arg, py::object markers, int max_frames, const py::kwargs& keywords) {
+        const Subject* subject = &Required(subject_arg, "subject");
         const SolverSettings settings = SettingsFromKeywords(keywords, nullptr);
         if (settings.mode != "frame" && settings.mode != "clip") {
           throw py::value_error("--mode: unknown '" + settings.mode + "' (frame, clip)");

@@ -113,6 +113,34 @@ void ReconstructSignal(const LaplacianPyramid& pyramid, const std::vector<double
   }
 }
 
+Status CheckPyramidShape(const LaplacianPyramid& pyramid) {
+  const int levels = pyramid.levels();
+  if (levels < 1) return Status::Error("laplacian: expected at least one band");
+  if (pyramid.gaussian.empty()) return Status::Error("top: missing");
+  const Eigen::Index n = pyramid.laplacian[0].rows(), cols = pyramid.laplacian[0].cols();
+  const int max_levels = n > (1 << 30) ? 31 : MaxPyramidLevels(static_cast<int>(n));
+  if (levels > max_levels) {
+    return Status::Error("laplacian: " + std::to_string(levels) + " bands are too many for " + std::to_string(n) +
+                         " samples in laplacian[0] (at most " + std::to_string(max_levels) + ")");
+  }
+  if (cols < 1) return Status::Error("laplacian[0]: no channels");
+  auto check = [&](const Signal& s, int level, const std::string& name) {
+    const int rows = PyramidLevelSize(static_cast<int>(n), level);
+    if (s.rows() != rows || s.cols() != cols) {
+      return Status::Error(name + ": shape (" + std::to_string(s.rows()) + ", " + std::to_string(s.cols()) +
+                           "), expected (" + std::to_string(rows) + ", " + std::to_string(cols) +
+                           ") for a pyramid of " + std::to_string(n) + " samples");
+    }
+    if (!s.allFinite()) return Status::Error(name + ": non-finite samples");
+    return Status::Ok();
+  };
+  for (int l = 0; l < levels; ++l) {
+    Status status = check(pyramid.laplacian[l], l, "laplacian[" + std::to_string(l) + "]");
+    if (!status.ok()) return status;
+  }
+  return check(pyramid.top(), levels, "top");
+}
+
 std::vector<double> DropFinestBands(int levels, int dropped) {
   std::vector<double> weights(levels + 1, 1.0);
   for (int l = 0; l < dropped && l < levels; ++l) weights[l] = 0.0;

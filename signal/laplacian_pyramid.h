@@ -76,6 +76,13 @@ Status BuildLaplacianPyramid(const Signal& signal, const PyramidOptions& options
 void ReconstructSignal(const LaplacianPyramid& pyramid, const std::vector<double>& weights,
                        Signal* out, Signal* scratch = nullptr);
 
+// Error naming the band (laplacian[l], top) unless the pyramid has BuildLaplacianPyramid's shape: N >= 1
+// bands, N <= MaxPyramidLevels(n) for n = laplacian[0].rows(), laplacian[l] of
+// PyramidLevelSize(n, l) rows, the top (gaussian.back()) of PyramidLevelSize(n, N), every
+// band and the top as many columns (>= 1) as laplacian[0], and finite samples. ReconstructSignal assumes it
+// (a pyramid assembled from user arrays must pass this first).
+Status CheckPyramidShape(const LaplacianPyramid& pyramid);
+
 // Weights of a pyramid with `levels` bands that drop the `dropped` finest bands
 // (w_0..w_{dropped-1} = 0, the rest 1): data filtering (paper section 5).
 std::vector<double> DropFinestBands(int levels, int dropped);

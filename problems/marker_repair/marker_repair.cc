@@ -238,6 +238,17 @@ bool RepairOptions::IsValid(std::string* error) const {
   return true;
 }
 
+Status CheckRepairObservations(const MarkerSet& markers, const Observations& observed) {
+  if (observed.empty()) return Status::Error("the take has no frames (nothing to repair)");
+  for (size_t f = 0; f < observed.size(); ++f) {
+    if (observed[f].size() != static_cast<size_t>(markers.num_markers())) {
+      return Status::Error("frame " + std::to_string(f) + ": " + std::to_string(observed[f].size()) +
+                           " markers, the marker set has " + std::to_string(markers.num_markers()));
+    }
+  }
+  return Status::Ok();
+}
+
 Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
                      const RepairOptions& options, Observations* repaired, Motion* motion,
                      RepairReport* report, RepairIntermediates* intermediates, const RepairProgress& progress) {
@@ -250,6 +261,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
                      Motion* motion, RepairReport* report, RepairIntermediates* intermediates,
                      const RepairProgress& progress) {
   if (std::string error; !options.IsValid(&error)) return Status::Error(error);
+  if (Status status = CheckRepairObservations(markers, observed); !status.ok()) return status;
   if (unlabelled.num_tracks() > 0 && unlabelled.points.size() != observed.size()) {
     return Status::Error("unlabelled points: " + std::to_string(unlabelled.points.size()) + " frames, markers " +
                          std::to_string(observed.size()));

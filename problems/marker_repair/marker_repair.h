@@ -163,6 +163,10 @@ std::vector<std::vector<Eigen::Vector3d>> TrajectoryObservations(const MarkerTra
 // around the re-solve.
 using RepairProgress = std::function<void(const std::string& stage, int done, int total)>;
 
+// Error unless observed has >= 1 frame, each of the marker set's size (checked first by
+// RepairMarkers and EvaluateRepair: a take of 0 frames has nothing to solve or repair).
+Status CheckRepairObservations(const MarkerSet& markers, const std::vector<std::vector<Eigen::Vector3d>>& observed);
+
 // observed[f][m]: marker m of the set at frame f (NaN = missing). Writes the repaired
 // observations (same layout), the re-solved motion, and the report.
 Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers,

@@ -117,6 +117,7 @@ Status EvaluateRepair(const Skeleton& skeleton, const MarkerSet& markers, const 
                       const RepairOptions& options, std::vector<RepairEvaluationRow>* rows,
                       const UnlabelledDamage* unlabelled) {
   rows->clear();
+  if (Status status = CheckRepairObservations(markers, clean); !status.ok()) return status;
   UnlabelledPoints points;
   if (unlabelled != nullptr && unlabelled->tracks.num_markers() > 0) {
     if (unlabelled->tracks.num_frames() != static_cast<int>(clean.size()) ||
@@ -206,6 +207,7 @@ Status EvaluateRepair(const Skeleton& skeleton, const MarkerSet& markers, const 
 Status EvaluateRepairTrial(const Skeleton& skeleton, const MarkerSet& markers, const MarkerObservations& clean,
                            const CorruptionOptions& damage, const RepairOptions& options,
                            std::vector<RepairEvaluationRow>* rows) {
+  if (Status status = CheckRepairObservations(markers, clean); !status.ok()) return status;
   MarkerTrajectories x = ObservationTrajectories(markers, clean);
   x.unit = skeleton.unit();
   CorruptionMask mask;

@@ -1,5 +1,6 @@
 #include "kinematics/forward_kinematics.h"
 
+#include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -72,6 +73,29 @@ TEST(ForwardKinematics, ClipPositionsPerFrame) {
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.message().find("frame 2"), std::string::npos);
   EXPECT_NE(status.message().find("head"), std::string::npos);
+}
+
+// ValidatePose (what ValidateMotion checks per frame): joint count, then finite unit values.
+TEST(ValidatePose, NamesTheJointCountOrTheBadJoint) {
+  const Skeleton s = testing::MakeTestSkeleton();
+  std::mt19937 rng(3);
+  Pose pose = testing::RandomPose(s, &rng);
+  EXPECT_TRUE(ValidatePose(s, pose, "pose").ok());
+  Pose short_pose = pose;
+  short_pose.rotations.pop_back();
+  short_pose.translations.pop_back();
+  Status status = ValidatePose(s, short_pose, "pose");
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("joint count"), std::string::npos) << status.message();
+  pose.translations[1].x() = std::nan("");
+  status = ValidatePose(s, pose, "pose");
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.message().rfind("pose, joint '", 0), 0u) << status.message();
+  EXPECT_FALSE(CheckFrameRate(0.0, "rate").ok());
+  EXPECT_FALSE(CheckFrameRate(std::nan(""), "rate").ok());
+  EXPECT_FALSE(CheckFrameRate(-30.0, "rate").ok());
+  EXPECT_FALSE(CheckFrameRate(HUGE_VAL, "rate").ok());
+  EXPECT_TRUE(CheckFrameRate(120.0, "rate").ok());
 }
 
 }  // namespace

@@ -189,5 +189,24 @@ TEST(MarkerRepair, OptionsRejectNonFiniteAndNegativeValues) {
   EXPECT_FALSE(clip.IsValid(&error));
 }
 
+// A take of 0 frames (or frames of the wrong marker count) is refused with one line, not
+// solved into an empty motion that later stages index (the CLI and Python crashed).
+TEST(MarkerRepair, RejectsATakeWithoutFramesOrOfTheWrongMarkerCount) {
+  const testing::DemoTake take = testing::MakeDemoTake(4, 30.0, 3);
+  const RepairOptions options = testing::DemoRepairOptions(ReferenceKind::kTracker);
+  std::vector<std::vector<Eigen::Vector3d>> repaired;
+  Motion motion;
+  RepairReport report;
+  Status status = RepairMarkers(take.skeleton, take.markers, {}, options, &repaired, &motion, &report);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("no frames"), std::string::npos) << status.message();
+  EXPECT_EQ(status.message().find('\n'), std::string::npos);
+  std::vector<std::vector<Eigen::Vector3d>> short_frame = take.clean;
+  short_frame[2].pop_back();
+  status = RepairMarkers(take.skeleton, take.markers, short_frame, options, &repaired, &motion, &report);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("frame 2"), std::string::npos) << status.message();
+}
+
 }  // namespace
 }  // namespace mocapsolve

@@ -116,6 +116,9 @@ TEST(RepairEvaluation, RejectsMismatchedInputs) {
   CorruptionMask mask(3, std::vector<char>(markers.num_markers(), 0));
   std::vector<RepairEvaluationRow> rows;
   EXPECT_FALSE(EvaluateRepair(skeleton, markers, clean, corrupted, mask, RepairOptions(), &rows).ok());
+  const Status none = EvaluateRepairTrial(skeleton, markers, {}, CorruptionOptions(), RepairOptions(), &rows);
+  ASSERT_FALSE(none.ok());
+  EXPECT_NE(none.message().find("no frames"), std::string::npos) << none.message();
 }
 
 }  // namespace

@@ -164,5 +164,33 @@ TEST(LaplacianPyramid, SinusoidLandsInItsBand) {
   }
 }
 
+// A pyramid assembled from outside (the Python bands) must have Build's sizes before
+// ReconstructSignal runs: a mismatched band corrupted the heap, a wrong top was upsampled.
+TEST(LaplacianPyramid, CheckPyramidShapeRejectsEveryMismatch) {
+  Signal signal(100, 7);
+  for (Eigen::Index i = 0; i < signal.size(); ++i) signal.data()[i] = std::sin(0.1 * static_cast<double>(i));
+  PyramidOptions options;
+  options.levels = 3;
+  LaplacianPyramid good;
+  ASSERT_TRUE(BuildLaplacianPyramid(signal, options, &good).ok());
+  EXPECT_TRUE(CheckPyramidShape(good).ok());
+  auto bad = [&](auto change) {
+    LaplacianPyramid p = good;
+    change(&p);
+    const Status status = CheckPyramidShape(p);
+    return !status.ok() && status.message().find('\n') == std::string::npos;
+  };
+  EXPECT_TRUE(bad([](LaplacianPyramid* p) { p->gaussian.back() = Signal::Zero(25, 7); }));    // Top too long.
+  EXPECT_TRUE(bad([](LaplacianPyramid* p) { p->gaussian.back() = Signal::Zero(13, 6); }));    // Channels.
+  EXPECT_TRUE(bad([](LaplacianPyramid* p) { p->laplacian[1] = Signal::Zero(49, 7); }));       // A band.
+  EXPECT_TRUE(bad([](LaplacianPyramid* p) { p->laplacian[0] = Signal::Zero(2, 7); }));        // Too short.
+  EXPECT_TRUE(bad([](LaplacianPyramid* p) { p->laplacian.clear(); }));                        // No band.
+  EXPECT_TRUE(bad([](LaplacianPyramid* p) { p->gaussian.clear(); }));                         // No top.
+  EXPECT_TRUE(bad([](LaplacianPyramid* p) { p->laplacian[2](0, 0) = std::nan(""); }));       // NaN.
+  EXPECT_TRUE(bad([](LaplacianPyramid* p) {                                                  // Too many.
+    p->laplacian.assign(8, Signal::Zero(5, 7));
+  }));
+}
+
 }  // namespace
 }  // namespace mocapsolve
