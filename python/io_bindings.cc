@@ -77,19 +77,31 @@ void BindIo(py::module_& m) {
                std::to_string(t.num_markers()) + " markers, " + t.unit.name + ">";
       });
 
-  m.def("read_markers", [](const std::string& path) {
+  m.def("read_markers", [](const std::string& path, bool include_model_outputs, const std::string& subject_prefix) {
         RequireReadable(path);
         auto markers = std::make_shared<MarkerTrajectories>();
+        MarkerReadOptions options;
+        options.include_model_outputs = include_model_outputs;
+        options.subject_prefix = subject_prefix;
+        std::vector<std::string> warnings;
+        options.warnings = &warnings;
         Status status = Status::Ok();
         {
           py::gil_scoped_release release;
-          status = ReadMarkerFile(path, markers.get());
+          status = ReadMarkerFile(path, markers.get(), options);
         }
         ThrowIfError(status);
+        for (const std::string& warning : warnings) PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1);
         return markers;
-      }, py::arg("path"),
+      }, py::arg("path"), py::arg("include_model_outputs") = false, py::arg("subject_prefix") = "",
       "Reads the .c3d or .trc file at path: Markers with .positions (frames, markers, 3; NaN where\n"
-      "missing), .labels, .rate (Hz) and .units (the file's; nothing is rescaled).");
+      "missing), .labels, .rate (Hz) and .units (the file's; nothing is rescaled).\n"
+      "include_model_outputs: also read a C3D's model outputs (points listed by POINT:ANGLES,\n"
+      "FORCES, MOMENTS, POWERS, REACTIONS, SCALARS, and Plug-in Gait's virtual points) as markers\n"
+      "(default False: they are set apart, with a warning).\n"
+      "subject_prefix: in a C3D of several subjects ('Daphnee:LASI', 'boite:M1'), the subject whose\n"
+      "points are read, prefix stripped (default '': required when the file has several).\n"
+      "Duplicate labels are numbered (RKNE, RKNE#2) with a warning (warnings.warn).");
   m.def("write_markers", [](const std::string& path, MarkerTrajectories& markers) {
         SyncMask(&markers);
         py::gil_scoped_release release;

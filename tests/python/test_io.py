@@ -125,3 +125,27 @@ def test_gltf_animation_round_trip(tmp_path):
     a = mocapsolve.forward_kinematics(skeleton, motion)
     b = mocapsolve.forward_kinematics(skeleton2, motion2)
     assert a.shape == b.shape and np.abs(a - b).max() < 1e-5  # Metres; floats in the file.
+
+
+def _vendor_c3d(tmp_path, labels):
+    """A small C3D with these labels (fuzz/c3d_min.py), point i at x = 1000 + i."""
+    import sys
+    sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "fuzz"))
+    import c3d_min
+    frames = [[(1000.0 + i, 0.0, 0.0) for i in range(len(labels))] for _ in range(3)]
+    path = tmp_path / "vendor.c3d"
+    path.write_bytes(c3d_min.c3d_bytes(labels, frames))
+    return str(path)
+
+
+def test_read_markers_picks_a_subject_and_numbers_duplicates(tmp_path):
+    path = _vendor_c3d(tmp_path, ["Daphnee:LASI", "boite:M1", "Daphnee:RASI", "Daphnee:LASI"])
+    # Two subjects and no choice: one line that lists them.
+    with pytest.raises(ValueError, match="subject_prefix"):
+        mocapsolve.read_markers(path)
+    with pytest.warns(UserWarning, match="LASI"):
+        markers = mocapsolve.read_markers(path, subject_prefix="Daphnee")
+    assert list(markers.labels) == ["LASI", "RASI", "LASI#2"]
+    assert markers.positions[0, :, 0].tolist() == [1000.0, 1002.0, 1003.0]  # The file's points 0, 2, 3.
+    with pytest.raises(ValueError, match="nobody"):
+        mocapsolve.read_markers(path, subject_prefix="nobody")
