@@ -196,17 +196,39 @@ void SetReadChunkObserverForTesting(void (*observer)(const std::string& path, si
   read_chunk_observer = observer;
 }
 
+namespace {
+
+std::string NotARegularFile(mode_t mode) {
+  const char* kind = S_ISFIFO(mode) ? "a FIFO" : S_ISCHR(mode) ? "a character device" : S_ISBLK(mode) ? "a block device"
+                     : S_ISSOCK(mode) ? "a socket" : "something else";
+  return std::string("is ") + kind + ", not a regular file (inputs are read whole)";
+}
+
+}  // namespace
+
 Status ReadFileToString(const std::string& path, std::string* contents) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) {
     return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
   }
   if (S_ISDIR(st.st_mode)) return Status::Error(path + ": is a directory");
+  // Only regular files (and /dev/stdin, read to its end): a FIFO blocked `info` forever
+  // and /dev/zero never ends. The open does not block (O_NONBLOCK, cleared below), and
+  // the check is on the opened file, so a path swapped for a FIFO after the stat is no
+  // better.
+  const bool standard_input = path == "/dev/stdin";
+  if (!S_ISREG(st.st_mode) && !standard_input) return Status::Error(path + ": " + NotARegularFile(st.st_mode));
   NoteInputFile(path);
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) return Status::Error(path + ": cannot open (" + std::strerror(errno) + ")");
   struct stat before;
   const bool regular = ::fstat(fd, &before) == 0 && S_ISREG(before.st_mode);
+  if (!regular && !standard_input) {
+    ::close(fd);
+    return Status::Error(path + ": " + NotARegularFile(before.st_mode));
+  }
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags >= 0) (void)::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
   std::string text;
   if (regular) text.reserve(static_cast<size_t>(before.st_size));
   char buffer[1 << 16];
