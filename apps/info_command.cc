@@ -7,6 +7,7 @@
 #include "apps/common_flags.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -24,15 +25,17 @@ Status MarkerInfo(const std::string& path) {
   }
   const double duration = markers.frame_rate > 0 && markers.num_frames() > 0
                               ? (markers.num_frames() - 1) / markers.frame_rate : 0.0;
-  std::printf("file:      %s\n", path.c_str());
+  // Names from the file (and the path) go through TerminalText: a label holding ESC
+  // must not drive the terminal.
+  std::printf("file:      %s\n", TerminalText(path).c_str());
   std::printf("markers:   %d", markers.num_markers());
   for (int m = 0; m < std::min(markers.num_markers(), 8); ++m) {
-    std::printf("%s%s", m ? ", " : " (", markers.label(m).c_str());
+    std::printf("%s%s", m ? ", " : " (", TerminalText(markers.label(m)).c_str());
   }
   std::printf("%s\n", markers.num_markers() > 8 ? ", ...)" : markers.num_markers() ? ")" : "");
   std::printf("frames:    %d at %.6g fps (%.4g s), first frame %d\n", markers.num_frames(),
               markers.frame_rate, duration, markers.first_frame);
-  std::printf("units:     %s\n", markers.unit.name.c_str());
+  std::printf("units:     %s\n", TerminalText(markers.unit.name).c_str());
   std::printf("missing:   %d of %d samples, %d gap runs\n", markers.CountMissing(),
               markers.num_frames() * markers.num_markers(), gap_runs);
   JsonObject report;
@@ -59,13 +62,13 @@ Status RunInfo(const std::vector<std::string>& arguments) {
   }
   if (motion.frames.empty()) lo = hi = Eigen::Vector3d::Zero();
   const LengthUnit& unit = skeleton.unit();
-  std::printf("file:      %s\n", path.c_str());
+  std::printf("file:      %s\n", TerminalText(path).c_str());
   std::printf("joints:    %d (+%zu end sites), root '%s'\n", skeleton.num_joints(),
-              skeleton.end_sites().size(), skeleton.name(0).c_str());
+              skeleton.end_sites().size(), TerminalText(skeleton.name(0)).c_str());
   std::printf("frames:    %d at %.6g fps (%.4g s)\n", motion.num_frames(), motion.frame_rate,
               motion.duration_seconds());
   if (unit.known()) {
-    std::printf("units:     %s (%.6g m per unit)\n", unit.name.c_str(), unit.metres_per_unit);
+    std::printf("units:     %s (%.6g m per unit)\n", TerminalText(unit.name).c_str(), unit.metres_per_unit);
   } else {
     std::printf("units:     not stated by the file (lengths below are in file units)\n");
   }
@@ -74,7 +77,7 @@ Status RunInfo(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
   if (!clips.empty()) {
     std::printf("clips:     %zu:", clips.size());
-    for (size_t k = 0; k < clips.size(); ++k) std::printf("%s %zu '%s'", k ? "," : "", k, clips[k].c_str());
+    for (size_t k = 0; k < clips.size(); ++k) std::printf("%s %zu '%s'", k ? "," : "", k, TerminalText(clips[k]).c_str());
     std::printf(" (pick one with --animation=NAME or index)\n");
   }
   std::printf("root path: min (%.4g, %.4g, %.4g) max (%.4g, %.4g, %.4g) extent (%.4g, %.4g, %.4g)\n",

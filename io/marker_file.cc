@@ -2,6 +2,7 @@
 
 #include "io/c3d_reader.h"
 #include "io/c3d_writer.h"
+#include "io/input_limits.h"
 #include "io/motion_file.h"
 #include "io/trc_reader.h"
 #include "io/trc_writer.h"
@@ -16,9 +17,15 @@ bool IsMarkerFile(const std::string& path) {
 
 Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories) {
   const std::string ext = FileExtension(path);
-  if (ext == ".c3d") return ReadC3d(path, trajectories);
-  if (ext == ".trc") return ReadTrc(path, trajectories);
-  return Status::Error(path + ": unknown marker format " + QuoteToken(ext) + " (expected .c3d or .trc)");
+  Status status = ext == ".c3d"   ? ReadC3d(path, trajectories)
+                  : ext == ".trc" ? ReadTrc(path, trajectories)
+                                  : Status::Error(path + ": unknown marker format " + QuoteToken(ext) +
+                                                  " (expected .c3d or .trc)");
+  if (!status.ok()) return status;
+  // What every writer can represent (io/input_limits.h): a rate of 1e308 or 1e-310 is
+  // refused here, not written as NaN or 0.
+  status = CheckMarkerBounds(*trajectories);
+  return status.ok() ? status : Status::Error(path + ": " + status.message());
 }
 
 Status WriteMarkerFile(const std::string& path, const MarkerTrajectories& trajectories) {
@@ -26,6 +33,19 @@ Status WriteMarkerFile(const std::string& path, const MarkerTrajectories& trajec
   if (ext == ".c3d") return WriteC3d(path, trajectories);
   if (ext == ".trc") return WriteTrc(path, trajectories);
   return Status::Error(path + ": unknown marker format " + QuoteToken(ext) + " (expected .c3d or .trc)");
+}
+
+Status RequireMarkerData(const std::string& path, const MarkerTrajectories& trajectories) {
+  if (trajectories.num_frames() == 0) {
+    return Status::Error(path + ": the take has no frames (this command needs at least one)");
+  }
+  if (trajectories.num_markers() == 0) {
+    return Status::Error(path + ": the take has no markers (this command needs at least one)");
+  }
+  if (trajectories.CountMissing() == static_cast<long long>(trajectories.num_frames()) * trajectories.num_markers()) {
+    return Status::Error(path + ": every sample of the take is missing (this command needs at least one)");
+  }
+  return Status::Ok();
 }
 
 }  // namespace mocapsolve
