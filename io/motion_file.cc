@@ -78,7 +78,10 @@ Status ReadSkeletonFile(const std::string& path, Skeleton* skeleton, AsfInfo* as
 
 Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
                       Skeleton* skeleton, Motion* motion) {
-  return CheckRead(path, ReadMotionFileUnchecked(path, options, skeleton, motion), *skeleton, motion);
+  Status status = ReadMotionFileUnchecked(path, options, skeleton, motion);
+  // An .amc's skeleton comes from its .asf: name that file for the skeleton's offsets.
+  if (FileExtension(path) == ".amc") status = CheckRead(options.skeleton_path, status, *skeleton, nullptr);
+  return CheckRead(path, status, *skeleton, motion);
 }
 
 namespace {
