@@ -78,8 +78,10 @@ Status RunBlend(const std::vector<std::string>& arguments) {
   Skeleton skeleton_a, skeleton_b;
   Motion a, b, blended;
   status = LoadMotion(FLAGS_a, &skeleton_a, &a);
+  if (status.ok()) status = RequireFrames(FLAGS_a, a);
   if (!status.ok()) return status;
   status = LoadMotion(FLAGS_b, &skeleton_b, &b);
+  if (status.ok()) status = RequireFrames(FLAGS_b, b);
   if (!status.ok()) return status;
   if (skeleton_a.num_joints() != skeleton_b.num_joints()) {
     return Status::Error(FLAGS_b + ": " + std::to_string(skeleton_b.num_joints()) +

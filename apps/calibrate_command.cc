@@ -6,6 +6,7 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "kinematics/quote_token.h"
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
@@ -60,9 +61,11 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
   Motion motion;
   SetStage("inputs");
   Status status = LoadMotion(FLAGS_motion, &skeleton, &motion);
+  if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
   if (!status.ok()) return status;
   MarkerTrajectories trajectories;
   status = ReadMarkerFile(FLAGS_markers, &trajectories);
+  if (status.ok()) status = RequireMarkerData(FLAGS_markers, trajectories);
   if (!status.ok()) return status;
   MarkerSet attachments;
   if (!auto_attach) {
@@ -126,15 +129,15 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
     for (const MarkerAttachment& a : spec.attachments) joints += (joints.empty() ? "" : "+") + skeleton.name(a.joint);
     std::string runner = "-";
     if (m.runner_up >= 0) runner = skeleton.name(m.runner_up) + " (" + length(m.runner_up_rms, false) + ")";
-    std::printf("%-12s %-14s %7d %s %s  %s\n", m.label.c_str(), joints.c_str(), m.frames,
-                length(m.rms, true).c_str(), length(m.max_error, true).c_str(), runner.c_str());
+    std::printf("%-12s %-14s %7d %s %s  %s\n", TerminalText(m.label).c_str(), TerminalText(joints).c_str(), m.frames,
+                length(m.rms, true).c_str(), length(m.max_error, true).c_str(), TerminalText(runner).c_str());
     JsonObject o;
     o.Add("label", m.label).Add("joint", joints).Add("frames", m.frames).Add("rms", m.rms)
         .Add("max_error", m.max_error);
     if (mm > 0.0) o.Add("rms_mm", m.rms * mm);
     per_marker.push_back(o);
   }
-  for (const std::string& skipped : result.skipped) std::printf("skipped %s\n", skipped.c_str());
+  for (const std::string& skipped : result.skipped) std::printf("skipped %s\n", TerminalText(skipped).c_str());
   std::printf("calibrated %d markers over %d samples: RMS %s", result.marker_set.num_markers(), result.samples,
               length(result.rms, false).c_str());
   std::printf(FLAGS_out.empty() ? "\n" : "; wrote %s\n", FLAGS_out.c_str());

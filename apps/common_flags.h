@@ -8,6 +8,8 @@
 #include <gflags/gflags.h>
 
 #include "io/json_writer.h"
+#include "io/marker_file.h"
+#include "io/motion_file.h"
 #include "kinematics/marker_set.h"
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/motion.h"
@@ -67,8 +69,11 @@ Status LoadSubjectFromFlags(Subject* subject);
 // Checks that the flags name a take (--markers and --subject, or --markers, --skeleton
 // and --markerset) and lists its input files (for CheckNotAnInput).
 Status MarkerTakeInputs(std::vector<std::string>* inputs);
-// LoadSubjectFromFlags, then LoadTakeForSubject on --markers.
+// LoadSubjectFromFlags, then LoadTakeForSubject on --markers, then RequireMarkerData.
 Status LoadMarkerTake(MarkerTake* take);
+
+// Commands that compute on frames (every one but info and convert) refuse a take without
+// any: RequireFrames (io/motion_file.h), RequireMarkerData (io/marker_file.h).
 
 // Writes the report to --report if set (atomically), in the envelope every report shares
 // (docs/schemas/report.schema.json).

@@ -76,6 +76,9 @@ Status ConvertMarkers(const std::string& in, const std::string& out) {
   MarkerTrajectories markers;
   status = ReadMarkerFile(in, &markers);
   if (!status.ok()) return status;
+  if (markers.num_markers() == 0) {
+    return Status::Error(in + ": the take has no markers (a marker file needs at least one)");
+  }
   if (!FLAGS_out_units.empty()) {
     const LengthUnit unit = LengthUnitFromName(FLAGS_out_units);
     if (!unit.known()) return Status::Error("--out_units='" + FLAGS_out_units + "': expected mm, cm, m or in");

@@ -27,6 +27,7 @@ Status RunCorrupt(const std::vector<std::string>& arguments) {
   }
   MarkerTrajectories markers;
   Status status = ReadMarkerFile(FLAGS_markers, &markers);
+  if (status.ok()) status = RequireMarkerData(FLAGS_markers, markers);
   if (!status.ok()) return status;
   CorruptionOptions options;
   status = CorruptionOptionsFromFlags(markers.unit, &options);

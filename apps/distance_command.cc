@@ -92,6 +92,7 @@ Status RunDistance(const std::vector<std::string>& arguments) {
   Skeleton skeleton;
   Motion motion;
   status = LoadMotion(FLAGS_motion, &skeleton, &motion);
+  if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
   if (!status.ok()) return status;
   const int n = motion.num_frames();
   if (n < 3) return Status::Error(FLAGS_motion + ": a falloff needs at least 3 frames, got " + std::to_string(n));

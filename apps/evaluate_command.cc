@@ -6,6 +6,7 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "kinematics/quote_token.h"
 #include "apps/corruption_flags.h"
 #include "apps/progress.h"
 #include "apps/repair_flags.h"
@@ -65,7 +66,7 @@ Status RunLeaveOneOut(const MarkerTake& take) {
   std::string csv = "marker,samples,mean,median,p95,max,unit\n";
   std::vector<JsonObject> rows;
   auto row = [&](const std::string& label, const PredictionErrorSummary& e) {
-    std::printf("| %s | %d | %.2f | %.2f | %.2f | %.2f |\n", label.c_str(), e.samples, e.mean * mm, e.median * mm,
+    std::printf("| %s | %d | %.2f | %.2f | %.2f | %.2f |\n", TerminalText(label).c_str(), e.samples, e.mean * mm, e.median * mm,
                 e.p95 * mm, e.max * mm);
     char line[256];
     std::snprintf(line, sizeof(line), "%s,%d,%.6g,%.6g,%.6g,%.6g,%s\n", label.c_str(), e.samples, e.mean * mm,

@@ -49,6 +49,7 @@ Status FilterFromFlags(const char* command, int levels, const std::vector<double
     Skeleton skeleton;
     Motion motion, filtered;
     status = LoadMotion(FLAGS_motion, &skeleton, &motion);
+    if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
     if (!status.ok()) return status;
     status = FilterMotion(motion, options, weights, &filtered);
     if (!status.ok()) return Status::Error(FLAGS_motion + ": " + status.message());
@@ -61,6 +62,7 @@ Status FilterFromFlags(const char* command, int levels, const std::vector<double
     if (!IsMarkerFile(FLAGS_out)) return Status::Error(FLAGS_out + ": expected a .c3d or .trc");
     MarkerTrajectories trajectories, filtered;
     status = ReadMarkerFile(FLAGS_markers, &trajectories);
+    if (status.ok()) status = RequireMarkerData(FLAGS_markers, trajectories);
     if (!status.ok()) return status;
     status = FilterMarkers(trajectories, options, weights, &filtered);
     if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());

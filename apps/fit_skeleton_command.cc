@@ -10,6 +10,7 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "kinematics/quote_token.h"
 #include "apps/progress.h"
 #include "apps/solver_flags.h"
 #include "io/bvh_writer.h"
@@ -193,7 +194,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   std::printf("bone scales:");
   for (int j = 1; j < fitted.num_joints(); ++j) {
     if (std::abs(result.report.bone_scales[j] - 1.0) > 1e-9) {
-      std::printf(" %s %.3f", fitted.name(j).c_str(), result.report.bone_scales[j]);
+      std::printf(" %s %.3f", TerminalText(fitted.name(j)).c_str(), result.report.bone_scales[j]);
     }
   }
   const int outliers = result.outlier_samples;

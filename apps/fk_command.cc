@@ -24,6 +24,7 @@ Status RunFk(const std::vector<std::string>& arguments) {
   Skeleton skeleton;
   Motion motion;
   status = LoadMotion(FLAGS_motion, &skeleton, &motion);
+  if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
   if (!status.ok()) return status;
 
   std::string csv = "frame,joint,x,y,z\n";

@@ -13,6 +13,7 @@
 #include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "kinematics/bind_pose_shape.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -30,23 +31,25 @@ Status MarkerInfo(const std::string& path) {
   }
   const double duration = markers.frame_rate > 0 && markers.num_frames() > 0
                               ? (markers.num_frames() - 1) / markers.frame_rate : 0.0;
-  std::printf("file:      %s\n", path.c_str());
+  // Names from the file (and the path) go through TerminalText: a label holding ESC
+  // must not drive the terminal.
+  std::printf("file:      %s\n", TerminalText(path).c_str());
   std::printf("markers:   %d", markers.num_markers());
   for (int m = 0; m < std::min(markers.num_markers(), 8); ++m) {
-    std::printf("%s%s", m ? ", " : " (", markers.label(m).c_str());
+    std::printf("%s%s", m ? ", " : " (", TerminalText(markers.label(m)).c_str());
   }
   std::printf("%s\n", markers.num_markers() > 8 ? ", ...)" : markers.num_markers() ? ")" : "");
   if (markers.model_outputs != nullptr) {
     const MarkerTrajectories& outputs = markers.model_outputs->points;
     std::printf("outputs:   %d model outputs, not markers", outputs.num_markers());
     for (int m = 0; m < std::min(outputs.num_markers(), 4); ++m) {
-      std::printf("%s%s", m ? ", " : " (", outputs.label(m).c_str());
+      std::printf("%s%s", m ? ", " : " (", TerminalText(outputs.label(m)).c_str());
     }
     std::printf("%s\n", outputs.num_markers() > 4 ? ", ...)" : ")");
   }
   std::printf("frames:    %d at %.6g fps (%.4g s), first frame %d\n", markers.num_frames(),
               markers.frame_rate, duration, markers.first_frame);
-  std::printf("units:     %s\n", markers.unit.name.c_str());
+  std::printf("units:     %s\n", TerminalText(markers.unit.name).c_str());
   std::printf("missing:   %d of %d samples, %d gap runs\n", markers.CountMissing(),
               markers.num_frames() * markers.num_markers(), gap_runs);
   JsonObject report;
@@ -74,7 +77,7 @@ std::string LengthText(double length, const LengthUnit& unit) {
   if (unit.known() && unit.metres_per_unit == 1.0) {
     std::snprintf(text, sizeof(text), "%.3f m", length);
   } else if (unit.known()) {
-    std::snprintf(text, sizeof(text), "%.3f m (%.4g %s)", length * unit.metres_per_unit, length, unit.name.c_str());
+    std::snprintf(text, sizeof(text), "%.3f m (%.4g %s)", length * unit.metres_per_unit, length, TerminalText(unit.name).c_str());
   } else {
     std::snprintf(text, sizeof(text), "%.4g file units (the file states no unit)", length);
   }
@@ -86,12 +89,12 @@ std::string LengthText(double length, const LengthUnit& unit) {
 void DescribeSkeleton(const Skeleton& skeleton, const Pose& bind_pose, const Eigen::Matrix3Xd& vertices,
                       JsonObject* report) {
   std::printf("joints:    %d (+%zu end sites), root '%s'\n", skeleton.num_joints(), skeleton.end_sites().size(),
-              skeleton.name(0).c_str());
+              TerminalText(skeleton.name(0)).c_str());
   const std::vector<std::vector<std::string>> levels = JointLevels(skeleton, 2);
   std::string levels_json = "[";
   for (size_t d = 1; d < levels.size(); ++d) {
     std::printf("  level %zu: %zu joint%s:", d, levels[d].size(), levels[d].size() == 1 ? "" : "s");
-    for (size_t k = 0; k < levels[d].size() && k < 12; ++k) std::printf("%s %s", k ? "," : "", levels[d][k].c_str());
+    for (size_t k = 0; k < levels[d].size() && k < 12; ++k) std::printf("%s %s", k ? "," : "", TerminalText(levels[d][k]).c_str());
     std::printf("%s\n", levels[d].size() > 12 ? ", ..." : "");
   }
   for (size_t d = 0; d < levels.size(); ++d) {
@@ -132,7 +135,7 @@ void DescribeSkeleton(const Skeleton& skeleton, const Pose& bind_pose, const Eig
 
 void DescribeUnit(const LengthUnit& unit) {
   if (unit.known()) {
-    std::printf("units:     %s (%.6g m per unit)\n", unit.name.c_str(), unit.metres_per_unit);
+    std::printf("units:     %s (%.6g m per unit)\n", TerminalText(unit.name).c_str(), unit.metres_per_unit);
   } else {
     std::printf("units:     not stated by the file (lengths are in file units)\n");
   }
@@ -143,7 +146,7 @@ void DescribeAnimations(const std::vector<std::string>& clips, JsonObject* repor
     std::printf("animations: none\n");
   } else {
     std::printf("animations: %zu:", clips.size());
-    for (size_t k = 0; k < clips.size(); ++k) std::printf("%s %zu '%s'", k ? "," : "", k, clips[k].c_str());
+    for (size_t k = 0; k < clips.size(); ++k) std::printf("%s %zu '%s'", k ? "," : "", k, TerminalText(clips[k]).c_str());
     std::printf(" (pick one with --animation=NAME or index)\n");
   }
   report->Add("animations", std::vector<JsonValue>(clips.begin(), clips.end()));
@@ -193,11 +196,11 @@ Status CharacterInfo(const std::string& path) {
   if (contents.skins > 0) {
     status = ReadGltfCharacter(document, {}, &character);
     if (!status.ok()) return status;
-    for (const std::string& warning : character.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    for (const std::string& warning : character.warnings) std::fprintf(stderr, "warning: %s\n", TerminalText(warning).c_str());
   }
   JsonObject report;
   report.Add("file", path);
-  std::printf("file:      %s\n", path.c_str());
+  std::printf("file:      %s\n", TerminalText(path).c_str());
   std::printf("meshes:    %d (%d skinned), %d primitives, %lld vertices; %d node%s\n", contents.meshes,
               contents.skinned_meshes, contents.primitives, contents.vertices, contents.nodes,
               contents.nodes == 1 ? "" : "s");
@@ -209,7 +212,7 @@ Status CharacterInfo(const std::string& path) {
     return WriteReport(report);
   }
   std::printf("skins:     %d; skin 0%s%s%s: %d vertices skinned\n", contents.skins,
-              contents.skin_names[0].empty() ? "" : " '", contents.skin_names[0].c_str(),
+              contents.skin_names[0].empty() ? "" : " '", TerminalText(contents.skin_names[0]).c_str(),
               contents.skin_names[0].empty() ? "" : "'", character.mesh.num_vertices());
   report.Add("skinned_vertices", character.mesh.num_vertices());
   DescribeUnit(character.skeleton.unit());
@@ -231,10 +234,10 @@ Status FbxFileInfo(const std::string& path) {
   FbxInfo info;
   Status status = ReadFbx(path, options, &skeleton, &motion, &info);
   if (!status.ok()) return status;
-  for (const std::string& warning : info.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  for (const std::string& warning : info.warnings) std::fprintf(stderr, "warning: %s\n", TerminalText(warning).c_str());
   JsonObject report;
   report.Add("file", path);
-  std::printf("file:      %s\n", path.c_str());
+  std::printf("file:      %s\n", TerminalText(path).c_str());
   std::printf("meshes:    %d (%d skinned), %lld vertices; %d bones\n", info.meshes, info.skinned_meshes, info.vertices,
               info.bones);
   report.Add("meshes", info.meshes).Add("skinned_meshes", info.skinned_meshes)
@@ -251,7 +254,7 @@ Status FbxFileInfo(const std::string& path) {
 // says first.
 void DescribeSkeletonFile(const std::string& path, const Skeleton& skeleton, JsonObject* report) {
   report->Add("file", path);
-  std::printf("file:      %s\n", path.c_str());
+  std::printf("file:      %s\n", TerminalText(path).c_str());
   DescribeUnit(skeleton.unit());
   DescribeSkeleton(skeleton, RestPose(skeleton), Eigen::Matrix3Xd(3, 0), report);
 }

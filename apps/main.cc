@@ -1,7 +1,10 @@
 // mocapsolve: motion-capture problems as nonlinear least squares.
 #include <cmath>
 #include <cstdio>
+#include <cerrno>
 #include <cstring>
+#include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -15,6 +18,7 @@
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
+#include "kinematics/quote_token.h"
 #include "kinematics/marker_trajectories.h"
 
 namespace mocapsolve {
@@ -190,7 +194,7 @@ Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
   std::vector<std::string> warnings;
   options.warnings = &warnings;
   Status status = ReadMotionFile(path, options, skeleton, motion);
-  for (const std::string& warning : warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  for (const std::string& warning : warnings) std::fprintf(stderr, "warning: %s\n", TerminalText(warning).c_str());
   return status.ok() ? ApplySkeletonUnits(skeleton) : status;
 }
 
@@ -247,11 +251,27 @@ Status MarkerTakeInputs(std::vector<std::string>* inputs) {
   return Status::Ok();
 }
 
+namespace {
+
+// RequireMarkerData, and at least one sample of the marker set's markers.
+Status RequireTakeData(const std::string& path, const MarkerTake& take) {
+  if (Status status = RequireMarkerData(path, take.trajectories); !status.ok()) return status;
+  for (const std::vector<Eigen::Vector3d>& frame : take.observed) {
+    for (const Eigen::Vector3d& position : frame) {
+      if (position.allFinite()) return Status::Ok();
+    }
+  }
+  return Status::Error(path + ": no marker of the marker set is observed in any frame");
+}
+
+}  // namespace
+
 Status LoadMarkerTake(MarkerTake* take) {
   Subject subject;
   Status status = LoadSubjectFromFlags(&subject);
   if (!status.ok()) return status;
-  return LoadTakeForSubject(subject, FLAGS_markers, take);
+  status = LoadTakeForSubject(subject, FLAGS_markers, take);
+  return status.ok() ? RequireTakeData(FLAGS_markers, *take) : status;
 }
 
 Status LoadObservations(const std::string& path, const Skeleton& skeleton, const MarkerSet& markers,
@@ -264,6 +284,7 @@ Status LoadObservations(const std::string& path, const Skeleton& skeleton, const
   subject.marker_scale = FLAGS_marker_scale;
   MarkerTake take;
   Status status = LoadTakeForSubject(subject, path, &take);
+  if (status.ok()) status = RequireTakeData(path, take);
   if (!status.ok()) return status;
   *trajectories = std::move(take.trajectories);
   *transform = take.transform;
@@ -388,6 +409,40 @@ void SetExitCodeOnSuccess(int code) { exit_code_on_success = code; }
 
 const char* Version() { return MOCAPSOLVE_VERSION; }
 
+namespace {
+
+// What the command printed must have reached stdout: `info x.bvh > /dev/full` fails at
+// the flush, and is then an error (exit 1), before any output file is published.
+Status FlushStandardOutput() {
+  errno = 0;
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return Status::Ok();
+  const int error = errno;
+  return Status::Error(std::string("writing the standard output failed (") +
+                       (error != 0 ? std::strerror(error) : "write error") + ")");
+}
+
+// The command and the publication of its outputs, with a last line of defence: an
+// exception no reader caught (std::bad_alloc from a size a check missed, ...) is a
+// one-line error and exit 1 like any other, not an abort (exit 134) or a core dump.
+Status RunCommand(const Command& command, const std::vector<std::string>& positional, FileTransaction* files) {
+  try {
+    SetStage("run");
+    Status status = command.run(positional);
+    if (status.ok()) status = FlushStandardOutput();
+    if (status.ok()) {
+      SetStage("outputs");
+      status = files->Commit();
+    }
+    return status;
+  } catch (const std::bad_alloc&) {
+    return Status::Error("out of memory (stage " + running_stage + "); an input asks for more than this machine has");
+  } catch (const std::exception& e) {
+    return Status::Error(std::string("internal error (stage ") + running_stage + "): " + e.what());
+  }
+}
+
+}  // namespace
+
 Status CheckNotAnInput(const std::string& output, const std::string& input) {
   if (output == input || SameFile(output, input)) {
     return Status::Error(output + ": output would overwrite the input " + input);
@@ -450,17 +505,17 @@ int main(int argc, char** argv) {
   mocapsolve::SetMarkerReadOptionsFromFlags();
   if (status.ok()) status = mocapsolve::CheckReportPaths(positional);
   if (status.ok() && mocapsolve::NamesStandardOutput(*command, positional)) mocapsolve::ReserveStandardOutputForData();
-  if (status.ok()) {
-    mocapsolve::SetStage("run");
-    status = command->run(positional);
-  }
-  if (status.ok()) {
-    mocapsolve::SetStage("outputs");
-    status = files.Commit();
-  }
+  if (status.ok()) status = mocapsolve::RunCommand(*command, positional, &files);
   if (!status.ok()) mocapsolve::WriteFailureReport(command->name, status.message(), positional, files);
   if (!status.ok()) {
-    std::fprintf(stderr, "mocapsolve %s: %s\n", command->name, status.message().c_str());
+    // One line, whatever a message quotes from a file or an argument.
+    std::fprintf(stderr, "mocapsolve %s: %s\n", command->name, mocapsolve::TerminalText(status.message()).c_str());
+    return 1;
+  }
+  // Closing stdout can still fail (NFS, a full pipe buffer flushed late).
+  if (std::fclose(stdout) != 0) {
+    std::fprintf(stderr, "mocapsolve %s: closing the standard output failed (%s)\n", command->name,
+                 std::strerror(errno));
     return 1;
   }
   return mocapsolve::exit_code_on_success;

@@ -107,6 +107,7 @@ Status RunMarkers(const std::vector<std::string>& arguments) {
   Skeleton skeleton;
   Motion motion;
   Status status = LoadMotion(FLAGS_motion, &skeleton, &motion);
+  if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
   if (!status.ok()) return status;
   MarkerSet marker_set;
   if (auto_set) {

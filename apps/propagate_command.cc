@@ -134,6 +134,7 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
   Motion motion;
   SetStage("inputs");
   status = LoadMotion(FLAGS_motion, &skeleton, &motion);
+  if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
   if (!status.ok()) return status;
   const int num_frames = motion.num_frames();
   FalloffOptions falloff;

@@ -73,11 +73,15 @@ Status MarkerTransform(const std::string& path, const MarkerTrajectories& t, Vie
 // LoadMotion, except that --skeleton (which may be the subject's, for the markers) only
 // goes with an .amc: a BVH or glTF motion carries its own skeleton.
 Status LoadViewMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
-  if (FileExtension(path) == ".amc") return LoadMotion(path, skeleton, motion);
+  if (FileExtension(path) == ".amc") {
+    Status status = LoadMotion(path, skeleton, motion);
+    return status.ok() ? RequireFrames(path, *motion) : status;
+  }
   MotionFileOptions options;
   options.animation = FLAGS_animation;
   options.sample_rate = FLAGS_sample_fps;
   Status status = ReadMotionFile(path, options, skeleton, motion);
+  if (status.ok()) status = RequireFrames(path, *motion);
   return status.ok() ? ApplySkeletonUnits(skeleton) : status;
 }
 
@@ -192,6 +196,7 @@ Status AddFileWorlds(const Skeleton& skeleton, const Motion& motion, bool compar
   if (!FLAGS_markers.empty()) {
     MarkerTrajectories trajectories;
     status = ReadMarkerFile(FLAGS_markers, &trajectories);
+    if (status.ok()) status = RequireMarkerData(FLAGS_markers, trajectories);
     if (!status.ok()) return status;
     ViewTransform transform;
     status = MarkerTransform(FLAGS_markers, trajectories, &transform);
@@ -202,6 +207,7 @@ Status AddFileWorlds(const Skeleton& skeleton, const Motion& motion, bool compar
     if (compare_markers) {
       MarkerTrajectories other;
       status = ReadMarkerFile(FLAGS_compare, &other);
+      if (status.ok()) status = RequireMarkerData(FLAGS_compare, other);
       if (!status.ok()) return status;
       ViewTransform other_transform;
       status = MarkerTransform(FLAGS_compare, other, &other_transform);

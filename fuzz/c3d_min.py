@@ -14,8 +14,9 @@ def _group(group_id, name):
 def _floats(values):
     return struct.pack('<%df' % len(values), *values)
 
-def c3d_bytes(labels, frames, rate=120.0, point_rate=None, units='mm', header_rate=None):
-    """frames: list of frames, each a list of (x, y, z) or None (missing) per label."""
+def c3d_bytes(labels, frames, rate=120.0, point_rate=None, units='mm', header_rate=None, trial_end=None):
+    """frames: list of frames, each a list of (x, y, z) or None (missing) per label.
+    trial_end: if given, TRIAL:ACTUAL_START_FIELD 1 and ACTUAL_END_FIELD trial_end (32 bits)."""
     n = len(labels)
     width = max([4] + [len(l) for l in labels])
     label_data = b''.join(l.encode().ljust(width) for l in labels)
@@ -26,6 +27,10 @@ def c3d_bytes(labels, frames, rate=120.0, point_rate=None, units='mm', header_ra
     params += _param(1, 'DATA_START', 2, [], struct.pack('<h', 3))
     params += _param(1, 'LABELS', -1, [width, n], label_data)
     params += _param(1, 'UNITS', -1, [len(units)], units.encode())
+    if trial_end is not None:
+        params += _group(3, 'TRIAL')
+        params += _param(3, 'ACTUAL_START_FIELD', 2, [2], struct.pack('<HH', 1, 0))
+        params += _param(3, 'ACTUAL_END_FIELD', 2, [2], struct.pack('<HH', trial_end & 0xffff, trial_end >> 16))
     params += b'\0\0'  # End: an entry with an empty name.
     param_block = struct.pack('<BBBB', 1, 0x50, 1, 84) + params
     assert len(param_block) <= 512, 'parameters exceed one block'

@@ -14,13 +14,16 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/input_limits.h"
 #include "kinematics/quote_token.h"
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
 namespace {
 
-constexpr double kMinFrameTime = 1e-6;  // Seconds; 1 MHz.
+// Seconds: 1e-6 (1 MHz) to 1000 (io/input_limits.h's frame rates).
+constexpr double kMinFrameTime = 1.0 / kMaxFrameRate;
+constexpr double kMaxFrameTime = 1.0 / kMinFrameRate;
 
 // Whitespace within a line; '\n' ends a line and is handled separately so that line
 // numbers stay right. '\r' is plain whitespace, which makes CRLF files read like LF ones.
@@ -316,8 +319,8 @@ Status BvhParser::ParseJointHeader(const Token& keyword, int parent) {
 Status BvhParser::ParseOffset(Eigen::Vector3d* offset) {
   for (int i = 0; i < 3; ++i) {
     const Token token = Next();
-    if (!ParseFiniteDouble(token.text, &(*offset)[i])) {
-      return Expected("a finite number (OFFSET " + std::string(1, static_cast<char>('x' + i)) +
+    if (!ParseFiniteDouble(token.text, &(*offset)[i]) || !(std::abs((*offset)[i]) <= kMaxCoordinate)) {
+      return Expected("a number within +-1e9 (OFFSET " + std::string(1, static_cast<char>('x' + i)) +
                           ")",
                       token);
     }
@@ -371,9 +374,10 @@ Status BvhParser::ParseMotion(Motion* motion) {
   const Token time_token = Next();
   double frame_time = 0.0;
   // Below a microsecond (1e-320 parses as a finite denormal) the frame rate would be
-  // absurd or infinite.
-  if (!ParseFiniteDouble(time_token.text, &frame_time) || !(frame_time >= kMinFrameTime)) {
-    return Expected("a frame time of at least 1e-6 seconds", time_token);
+  // absurd or infinite; above 1000 s (1e308) no writer can represent it.
+  if (!ParseFiniteDouble(time_token.text, &frame_time) || !(frame_time >= kMinFrameTime) ||
+      !(frame_time <= kMaxFrameTime)) {
+    return Expected("a frame time of 1e-6 to 1000 seconds", time_token);
   }
   {
     const std::string_view rest = RestOfLine();
@@ -504,10 +508,12 @@ Status BvhParser::ParseFrameLine(const char* line_begin, const char* line_end, i
     if (*p == '+' && p + 1 < line_end && (p[1] == '.' || (p[1] >= '0' && p[1] <= '9'))) ++p;
     double& value = values[count];
     const auto [ptr, ec] = std::from_chars(p, line_end, value);
-    if (ec != std::errc() || (ptr < line_end && !IsBlank(*ptr)) || !std::isfinite(value)) {
+    // Positions (and angles) beyond io/input_limits.h's kMaxCoordinate: a root at 1e308
+    // was accepted, and `markers` wrote the frame as missing.
+    if (ec != std::errc() || (ptr < line_end && !IsBlank(*ptr)) || !(std::abs(value) <= kMaxCoordinate)) {
       const char* token_end = token_begin;
       while (token_end < line_end && !IsBlank(*token_end)) ++token_end;
-      return Error(line, "expected a finite number (frame " + std::to_string(frame + 1) +
+      return Error(line, "expected a number within +-1e9 (frame " + std::to_string(frame + 1) +
                              ", " + ColumnWhere(count) + "), got " +
                              QuoteToken(std::string_view(token_begin, token_end - token_begin)));
     }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/input_limits.h"
 
 namespace mocapsolve {
 namespace {
@@ -273,7 +274,11 @@ Status CheckBvhWritable(const Skeleton& skeleton, const Motion& motion,
   if (Status s = ValidateMotion(skeleton, motion); !s.ok()) {
     return Status::Error("cannot write BVH: " + s.message());
   }
-  // Scaled lengths must stay finite, or the file would hold "inf".
+  // What the readers accept (io/input_limits.h): the frame time 1 / rate, and lengths
+  // times scale (a frame time of 1e308 was written as a rate of 0).
+  if (Status s = CheckMotionBounds(skeleton, motion, options.scale); !s.ok()) {
+    return Status::Error("cannot write BVH: " + s.message());
+  }
   double largest = 0.0;
   for (int j = 0; j < skeleton.num_joints(); ++j) {
     largest = std::max(largest, skeleton.offset(j).cwiseAbs().maxCoeff());

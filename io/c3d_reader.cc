@@ -13,6 +13,7 @@
 
 #include "io/atomic_file.h"
 #include "io/c3d_points.h"
+#include "io/input_limits.h"
 #include "kinematics/quote_token.h"
 
 namespace mocapsolve {
@@ -101,6 +102,14 @@ class C3dParser {
   Status Parse(MarkerTrajectories* trajectories, C3dFileInfo* info);
 
  private:
+  struct FrameLayout {
+    std::int64_t first = 0, last = 0, count = 0;
+    int analog_values = 0, analog_channels = 0;
+  };
+  Status FrameRate(double* rate) const;
+  Status DataStart(int parameter_block, std::uint64_t* block, std::uint64_t* offset) const;
+  Status ParseFrameLayout(int num_points, bool float_storage, std::uint64_t data_offset,
+                          std::uint64_t data_start_block, FrameLayout* layout) const;
   Status Error(const std::string& where, const std::string& what) const {
     return Status::Error(file_ + ": " + where + ": " + what);
   }
@@ -271,6 +280,117 @@ Status C3dParser::SelectPoints(int num_points, C3dPointSelection* selection) con
   return status.ok() ? status : Status::Error(file_ + ": " + status.message());
 }
 
+// The frame rate: POINT:RATE when present (it must then be valid itself: NaN, 0 or -120
+// is an error naming it, not a silent fallback), else header words 11-12; within
+// io/input_limits.h's bounds either way.
+Status C3dParser::FrameRate(double* rate) const {
+  double value = 0.0;
+  *rate = decoder_.F32(20);
+  std::string rate_field = "header words 11-12 (frame rate)";
+  if (const Parameter* point_rate = Find("POINT", "RATE"); point_rate != nullptr) {
+    *rate = Number(point_rate, false, &value) ? value : std::nan("");  // Number: finite only.
+    rate_field = "POINT:RATE";
+  }
+  if (!(*rate > 0.0) || !std::isfinite(*rate)) {
+    return Error(rate_field, "frame rate " + ShortNumber(*rate) + " is not a positive number");
+  }
+  if (Status s = CheckFrameRate(*rate, "frame rate"); !s.ok()) return Error(rate_field, s.message());
+  return Status::Ok();
+}
+
+// The data start: POINT:DATA_START when present, else header word 9; after the
+// parameter section and within the file. *offset is its byte offset.
+Status C3dParser::DataStart(int parameter_block, std::uint64_t* block, std::uint64_t* offset) const {
+  bool present = false;
+  double value = 0.0;
+  std::uint64_t data_start_block = decoder_.U16(16);
+  std::string data_start_field = "header word 9 (data start)";
+  if (Status s = Count("POINT", "DATA_START", &present, &value); !s.ok()) return s;
+  if (present) {
+    data_start_block = static_cast<std::uint64_t>(value);
+    data_start_field = "POINT:DATA_START";
+  }
+  if (data_start_block <= static_cast<std::uint64_t>(parameter_block)) {
+    return Error(data_start_field, "data start block " + std::to_string(data_start_block) +
+                                       " is not after the parameter section (block " +
+                                       std::to_string(parameter_block) + ")");
+  }
+  const std::uint64_t data_offset = (data_start_block - 1) * kBlockBytes;
+  if (data_offset > bytes_.size()) {
+    return Error(data_start_field, "data start block " + std::to_string(data_start_block) +
+                                       " (byte " + std::to_string(data_offset) +
+                                       ") is beyond the end of the file (" +
+                                       std::to_string(bytes_.size()) + " bytes)");
+  }
+  *block = data_start_block;
+  *offset = data_offset;
+  return Status::Ok();
+}
+
+// The frames: first and last (header words 4-5, or the 32-bit TRIAL fields beyond
+// 65535), their count bounded by kMaxFrames and by the bytes after the data start, and
+// the analog values per frame that share those bytes.
+Status C3dParser::ParseFrameLayout(int num_points, bool float_storage, std::uint64_t data_offset,
+                                   std::uint64_t data_start_block, FrameLayout* layout) const {
+  std::int64_t first = decoder_.U16(6), last = decoder_.U16(8);
+  std::string frames_field = "header words 4-5 (first/last frame)";
+  const Parameter* start_field = Find("TRIAL", "ACTUAL_START_FIELD");
+  const Parameter* end_field = Find("TRIAL", "ACTUAL_END_FIELD");
+  if (start_field && end_field && start_field->type == 2 && end_field->type == 2 &&
+      start_field->count >= 2 && end_field->count >= 2) {
+    const auto field32 = [&](const Parameter* p) {
+      return std::int64_t{decoder_.U16(p->data_offset)} +
+             (std::int64_t{decoder_.U16(p->data_offset + 2)} << 16);
+    };
+    const std::int64_t trial_first = field32(start_field), trial_last = field32(end_field);
+    if (trial_first > 65535 || trial_last > 65535) {  // Beyond what the header holds.
+      first = trial_first;
+      last = trial_last;
+      frames_field = "TRIAL:ACTUAL_START_FIELD/ACTUAL_END_FIELD";
+    }
+  }
+  const std::int64_t num_frames = last - first + 1;
+  if (num_frames < 0 || num_frames > INT_MAX) {
+    return Error(frames_field, "first frame " + std::to_string(first) + ", last frame " +
+                                   std::to_string(last) + " give no valid frame count");
+  }
+  // The data bounds the count below, unless frames take no bytes (no points, no analog):
+  // then only this does, or a 1 KB file could ask for 2^31 frames.
+  if (num_frames > kMaxFrames) {
+    return Error(frames_field, "frames " + std::to_string(first) + ".." + std::to_string(last) + " (" +
+                                   std::to_string(num_frames) + ") are more than the " +
+                                   std::to_string(kMaxFrames) + " a take may have");
+  }
+  // Analog samples are skipped, but they set the frame size: a header count that is not
+  // a whole number of samples of ANALOG:USED channels means header and parameters
+  // disagree about the layout.
+  const int analog_values = decoder_.U16(4);
+  int analog_channels = 0;
+  bool present = false;
+  double value = 0.0;
+  if (Status s = Count("ANALOG", "USED", &present, &value); !s.ok()) return s;
+  if (present) analog_channels = static_cast<int>(value);
+  if (analog_channels > 0 && analog_values % analog_channels != 0) {
+    return Error("header word 3 (analog values per frame)",
+                 std::to_string(analog_values) + " is not a multiple of ANALOG:USED " +
+                     std::to_string(analog_channels));
+  }
+  const std::uint64_t word_bytes = float_storage ? 4 : 2;
+  const std::uint64_t frame_bytes = (4ull * num_points + analog_values) * word_bytes;
+  const std::uint64_t available = bytes_.size() - data_offset;
+  if (frame_bytes > 0 && static_cast<std::uint64_t>(num_frames) > available / frame_bytes) {
+    return Error(frames_field,
+                 "frames " + std::to_string(first) + ".." + std::to_string(last) + " (" +
+                     std::to_string(num_frames) + " x " + std::to_string(frame_bytes) +
+                     " bytes) do not fit in the " + std::to_string(available) +
+                     " bytes after data start block " + std::to_string(data_start_block) +
+                     " (room for " + std::to_string(available / frame_bytes) + " frames)");
+  }
+
+  *layout = {first, last, num_frames, analog_values, analog_channels};
+  return Status::Ok();
+}
+
 Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
   const std::uint64_t size = bytes_.size();
   if (size < kBlockBytes) {
@@ -317,90 +437,24 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
   double scale = decoder_.F32(12);
   if (Number(Find("POINT", "SCALE"), false, &value)) scale = value;
   if (!std::isfinite(scale) || scale == 0.0) {
-    return Error("POINT:SCALE", "scale " + std::to_string(scale) +
+    return Error("POINT:SCALE", "scale " + ShortNumber(scale) +
                                     " is zero or not finite (its sign selects int or float storage)");
   }
   const bool float_storage = scale < 0.0;
   const double abs_scale = std::abs(scale);
-  // The frame rate: POINT:RATE when present (it must then be valid itself: NaN, 0 or
-  // -120 is an error naming it, not a silent fallback), else header words 11-12.
-  double rate = decoder_.F32(20);
-  std::string rate_field = "header words 11-12 (frame rate)";
-  if (const Parameter* point_rate = Find("POINT", "RATE"); point_rate != nullptr) {
-    rate = Number(point_rate, false, &value) ? value : std::nan("");  // Number: finite only.
-    rate_field = "POINT:RATE";
-  }
-  if (!(rate > 0.0) || !std::isfinite(rate)) {
-    return Error(rate_field, "frame rate " + std::to_string(rate) + " is not a positive number");
-  }
+  double rate = 0.0;
+  if (Status s = FrameRate(&rate); !s.ok()) return s;
 
-  // Data start.
-  std::uint64_t data_start_block = decoder_.U16(16);
-  std::string data_start_field = "header word 9 (data start)";
-  if (Status s = Count("POINT", "DATA_START", &present, &value); !s.ok()) return s;
-  if (present) {
-    data_start_block = static_cast<std::uint64_t>(value);
-    data_start_field = "POINT:DATA_START";
-  }
-  if (data_start_block <= static_cast<std::uint64_t>(parameter_block)) {
-    return Error(data_start_field, "data start block " + std::to_string(data_start_block) +
-                                       " is not after the parameter section (block " +
-                                       std::to_string(parameter_block) + ")");
-  }
-  const std::uint64_t data_offset = (data_start_block - 1) * kBlockBytes;
-  if (data_offset > size) {
-    return Error(data_start_field, "data start block " + std::to_string(data_start_block) +
-                                       " (byte " + std::to_string(data_offset) +
-                                       ") is beyond the end of the file (" +
-                                       std::to_string(size) + " bytes)");
-  }
+  std::uint64_t data_start_block = 0, data_offset = 0;
+  if (Status s = DataStart(parameter_block, &data_start_block, &data_offset); !s.ok()) return s;
 
-  // Frames.
-  std::int64_t first = decoder_.U16(6), last = decoder_.U16(8);
-  std::string frames_field = "header words 4-5 (first/last frame)";
-  const Parameter* start_field = Find("TRIAL", "ACTUAL_START_FIELD");
-  const Parameter* end_field = Find("TRIAL", "ACTUAL_END_FIELD");
-  if (start_field && end_field && start_field->type == 2 && end_field->type == 2 &&
-      start_field->count >= 2 && end_field->count >= 2) {
-    const auto field32 = [&](const Parameter* p) {
-      return std::int64_t{decoder_.U16(p->data_offset)} +
-             (std::int64_t{decoder_.U16(p->data_offset + 2)} << 16);
-    };
-    const std::int64_t trial_first = field32(start_field), trial_last = field32(end_field);
-    if (trial_first > 65535 || trial_last > 65535) {  // Beyond what the header holds.
-      first = trial_first;
-      last = trial_last;
-      frames_field = "TRIAL:ACTUAL_START_FIELD/ACTUAL_END_FIELD";
-    }
+  FrameLayout frames;
+  if (Status s = ParseFrameLayout(num_points, float_storage, data_offset, data_start_block, &frames); !s.ok()) {
+    return s;
   }
-  const std::int64_t num_frames = last - first + 1;
-  if (num_frames < 0 || num_frames > INT_MAX) {
-    return Error(frames_field, "first frame " + std::to_string(first) + ", last frame " +
-                                   std::to_string(last) + " give no valid frame count");
-  }
-  // Analog samples are skipped, but they set the frame size: a header count that is not
-  // a whole number of samples of ANALOG:USED channels means header and parameters
-  // disagree about the layout.
-  const int analog_values = decoder_.U16(4);
-  int analog_channels = 0;
-  if (Status s = Count("ANALOG", "USED", &present, &value); !s.ok()) return s;
-  if (present) analog_channels = static_cast<int>(value);
-  if (analog_channels > 0 && analog_values % analog_channels != 0) {
-    return Error("header word 3 (analog values per frame)",
-                 std::to_string(analog_values) + " is not a multiple of ANALOG:USED " +
-                     std::to_string(analog_channels));
-  }
+  const std::int64_t first = frames.first, num_frames = frames.count;
+  const int analog_values = frames.analog_values, analog_channels = frames.analog_channels;
   const std::uint64_t word_bytes = float_storage ? 4 : 2;
-  const std::uint64_t frame_bytes = (4ull * num_points + analog_values) * word_bytes;
-  const std::uint64_t available = size - data_offset;
-  if (frame_bytes > 0 && static_cast<std::uint64_t>(num_frames) > available / frame_bytes) {
-    return Error(frames_field,
-                 "frames " + std::to_string(first) + ".." + std::to_string(last) + " (" +
-                     std::to_string(num_frames) + " x " + std::to_string(frame_bytes) +
-                     " bytes) do not fit in the " + std::to_string(available) +
-                     " bytes after data start block " + std::to_string(data_start_block) +
-                     " (room for " + std::to_string(available / frame_bytes) + " frames)");
-  }
 
   // Labels and which points are markers (c3d_points.h).
   C3dPointSelection selection;
@@ -473,8 +527,7 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
       if (position.cwiseAbs().maxCoeff() > MarkerTrajectories::kMaxCoordinate) {
         return Error("POINT data", "frame " + std::to_string(f + 1) + ", marker " +
                                        QuoteToken(into.label(column)) + ": coordinate " +
-                                       std::to_string(position.cwiseAbs().maxCoeff()) +
-                                       " beyond +-1e9");
+                                       ShortNumber(position.cwiseAbs().maxCoeff()) + " beyond +-1e9");
       }
       if (options_.zero_position_is_missing && (position.array() == 0.0).all()) {
         found.zero_position_samples += is_marker;

@@ -10,6 +10,7 @@
 
 #include "io/atomic_file.h"
 #include "io/c3d_points.h"
+#include "io/input_limits.h"
 
 namespace mocapsolve {
 namespace {
@@ -195,9 +196,9 @@ Status EncodePoints(const MarkerTrajectories& trajectories, const OutputLists& o
   if (num_markers > 65535) {
     return error(std::to_string(num_markers) + " markers; C3D holds at most 65535 points");
   }
-  if (!(trajectories.frame_rate > 0.0) || !std::isfinite(trajectories.frame_rate)) {
-    return error("frame rate " + std::to_string(trajectories.frame_rate) + " is not positive");
-  }
+  // What the readers accept (io/input_limits.h): a rate of 1e308 was stored as a float
+  // inf (read back NaN), one of 1e-310 as 0.
+  if (Status s = CheckMarkerBounds(trajectories); !s.ok()) return error(s.message());
   if (trajectories.first_frame < 0) {
     return error("first frame " + std::to_string(trajectories.first_frame) + " is negative");
   }
@@ -217,10 +218,6 @@ Status EncodePoints(const MarkerTrajectories& trajectories, const OutputLists& o
     for (int m = 0; m < num_markers; ++m) {
       if (!trajectories.valid(f, m)) continue;
       const Eigen::Vector3d p = trajectories.position(f, m);
-      if (p.cwiseAbs().maxCoeff() > std::numeric_limits<float>::max()) {
-        return error("frame " + std::to_string(f) + ", marker '" + trajectories.label(m) +
-                     "': coordinate outside float range");
-      }
       max_coordinate = std::max(max_coordinate, p.cwiseAbs().maxCoeff());
       max_residual = std::max(max_residual, static_cast<double>(trajectories.residual(f, m)));
     }

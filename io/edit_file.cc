@@ -4,6 +4,7 @@
 #include <set>
 
 #include "io/atomic_file.h"
+#include "io/input_limits.h"
 #include "io/json_reader.h"
 #include "kinematics/quote_token.h"
 
@@ -41,6 +42,12 @@ class Interpreter {
       if (!node.items[i].is_number()) {
         return Error(node.items[i], field + "[" + std::to_string(i) + "]",
                      std::string("expected a number, got ") + JsonTypeName(node.items[i].type));
+      }
+      // Offsets and angles beyond io/input_limits.h's coordinates would only make a
+      // motion no writer can hold (the BVH writer refused it, naming the output).
+      if (!(std::abs(node.items[i].number) <= kMaxCoordinate)) {
+        return Error(node.items[i], field + "[" + std::to_string(i) + "]",
+                     ShortNumber(node.items[i].number) + " is beyond +-" + ShortNumber(kMaxCoordinate));
       }
       (*v)[i] = node.items[i].number;
     }

@@ -1,5 +1,7 @@
 #include "io/gltf_reader.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -24,7 +26,6 @@ using gltf_internal::ReadAccessor;
 using gltf_internal::Rig;
 using gltf_internal::Similarity;
 using gltf_internal::kMaxSampleRate;
-using gltf_internal::ShortNumber;
 
 // Images are never decoded: their encoded bytes (PNG, JPEG, ... from a buffer view, an
 // external file or a data: URI) are kept in Image::image (as_is), so that a writer can
@@ -296,11 +297,33 @@ Status ReadMeshes(const tinygltf::Model& model, const std::string& file, int ski
 
 }  // namespace
 
+// tinygltf's reader of external buffers and images: through the readers' common open
+// path (ReadFileToString), so that a buffer URI naming a FIFO or /dev/zero is refused
+// like any other input instead of blocking or reading forever.
+// (tinygltf's own FileExists opens the file, which blocks on a FIFO.)
+static bool ExternalFileExists(const std::string& path, void*) {
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+static bool ReadExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  std::string bytes;
+  const Status status = ReadFileToString(path, &bytes);
+  if (!status.ok()) {
+    if (err != nullptr) *err += status.message() + "\n";
+    return false;
+  }
+  out->assign(bytes.begin(), bytes.end());
+  return true;
+}
+
 Status GltfDocument::Parse(const std::string& bytes, const std::string& name_for_errors,
                            const std::string& base_dir, GltfDocument* document) {
   auto model = std::make_shared<tinygltf::Model>();
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&KeepImageBytes, nullptr);
+  loader.SetFsCallbacks({&ExternalFileExists, &tinygltf::ExpandFilePath, &ReadExternalFile,
+                         &tinygltf::WriteWholeFile, nullptr});
   std::string err, warn;
   bool ok = false;
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
@@ -309,6 +332,12 @@ Status GltfDocument::Parse(const std::string& bytes, const std::string& name_for
     if (bytes.size() < 12) {
       return Status::Error(name_for_errors + ": GLB: " + std::to_string(bytes.size()) +
                            " bytes, shorter than the 12-byte header");
+    }
+    uint32_t version = 0;
+    std::memcpy(&version, bytes.data() + 4, 4);
+    if (version != 2) {  // tinygltf reads any version as glTF 2.
+      return Status::Error(name_for_errors + ": GLB: header version " + std::to_string(version) +
+                           ", expected 2 (glTF 2.0)");
     }
     uint32_t declared = 0;
     std::memcpy(&declared, bytes.data() + 8, 4);
@@ -762,7 +791,9 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
     }
     const double spacing = gltf_internal::KeySpacing(spacings);
     rate = spacing > 0.0 ? 1.0 / spacing : 30.0;
-    if (std::abs(rate - std::round(rate)) < 1e-3) rate = std::round(rate);
+    // Float key times carry a relative error of ~6e-8: a 1 MHz clip's keys give
+    // 1000000.0025 fps, which is 1e6 (and within kMaxSampleRate).
+    if (std::abs(rate - std::round(rate)) < std::max(1e-3, 1e-7 * rate)) rate = std::round(rate);
   }
   // Key times 1e-39 s apart would give 1e39 fps (and no int frame count).
   if (!(rate > 0.0 && rate <= kMaxSampleRate)) {

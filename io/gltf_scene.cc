@@ -172,7 +172,10 @@ Status BuildNodeGraph(const tinygltf::Model& model, const std::string& file, Nod
                              std::to_string(child) + " out of range (" + std::to_string(n) +
                              " nodes)");
       }
-      if (child == i || g.parent[child] != -1) {
+      if (child == i) {
+        return Status::Error(file + ": " + NodeLabel(model, i) + ": is its own child (the node graph must be a forest)");
+      }
+      if (g.parent[child] != -1) {
         return Status::Error(file + ": " + NodeLabel(model, child) +
                              ": has more than one parent (the node graph must be a forest)");
       }
@@ -486,12 +489,6 @@ void EvaluateRig(const Rig& rig, const std::vector<Similarity>& locals, Pose* po
     pose->translations[j] = parent_scale * c.translation;
     pose->rotations[j] = (rig.rest_rotations[j].conjugate() * c.rotation).normalized();
   }
-}
-
-std::string ShortNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
 }
 
 }  // namespace mocapsolve::gltf_internal

@@ -12,7 +12,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "io/input_limits.h"
 #include "kinematics/motion.h"
+#include "kinematics/quote_token.h"
 #include "kinematics/status.h"
 
 namespace tinygltf {
@@ -59,12 +61,11 @@ double UniformScale(const Eigen::Vector3d& scale, bool* exact);
 // else 0 (no common key rate).
 double KeySpacing(const std::vector<double>& spacings);
 
-// Highest frame rate a glTF or FBX animation is sampled at (the BVH reader's 1e-6 s
-// frame time): keys a denormal apart must not become 1e39 fps.
-constexpr double kMaxSampleRate = 1e6;
+// Highest frame rate a glTF or FBX animation is sampled at (io/input_limits.h, the
+// BVH reader's 1e-6 s frame time): keys a denormal apart must not become 1e39 fps.
+constexpr double kMaxSampleRate = kMaxFrameRate;
 
-// A number for a message: "%.6g" ("1e+39", not to_string's 40 digits).
-std::string ShortNumber(double value);
+using mocapsolve::ShortNumber;  // kinematics/quote_token.h
 
 // Reads accessor `index` as doubles, `components` values per element (1 SCALAR, 3 VEC3,
 // 4 VEC4, 16 MAT4), with the given allowed component types (TINYGLTF_COMPONENT_TYPE_*),

@@ -11,6 +11,7 @@
 #include <tiny_gltf.h>
 
 #include "io/atomic_file.h"
+#include "io/input_limits.h"
 #include "io/gltf_scene.h"
 #include "io/motion_file.h"
 #include "kinematics/quote_token.h"
@@ -375,6 +376,11 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
     return Status::Error(file + ": animation " + QuoteToken(animation_name) + ": frame rate must be positive");
   }
   if (motion.frames.empty()) return Status::Error(file + ": animation " + QuoteToken(animation_name) + " has no frames");
+  // What the readers accept (io/input_limits.h): a frame time of 1e308 wrote a time
+  // accessor whose "max" was inf, JSON null.
+  if (Status s = CheckMotionBounds(skeleton, motion); !s.ok()) {
+    return Status::Error(file + ": animation " + QuoteToken(animation_name) + ": " + s.message());
+  }
   Status status = ValidateMotion(skeleton, motion);
   if (!status.ok()) return Status::Error(file + ": animation " + QuoteToken(animation_name) + ": " + status.message());
 

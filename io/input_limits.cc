@@ -1,5 +1,9 @@
 #include "io/input_limits.h"
 
+#include <cmath>
+
+#include "kinematics/quote_token.h"
+
 namespace mocapsolve {
 
 int JsonNestingDepth(std::string_view text, int limit) {
@@ -45,6 +49,61 @@ int FbxBraceDepth(std::string_view text, int limit) {
     }
   }
   return deepest;
+}
+
+Status CheckFrameRate(double rate, const std::string& field) {
+  if (rate >= kMinFrameRate && rate <= kMaxFrameRate) return Status::Ok();
+  return Status::Error(field + " " + ShortNumber(rate) + " is outside " + ShortNumber(kMinFrameRate) + ".." +
+                       ShortNumber(kMaxFrameRate) + " Hz");
+}
+
+Status CheckCoordinates(const Eigen::Vector3d& value, const std::string& field) {
+  for (int k = 0; k < 3; ++k) {
+    if (!(std::abs(value[k]) <= kMaxCoordinate)) {
+      return Status::Error(field + ": " + ShortNumber(value[k]) + " is beyond +-" + ShortNumber(kMaxCoordinate));
+    }
+  }
+  return Status::Ok();
+}
+
+Status CheckUnitScale(double scale, const std::string& field) {
+  if (scale == 0.0 || (scale >= 1.0 / kMaxUnitScale && scale <= kMaxUnitScale)) return Status::Ok();
+  return Status::Error(field + ": " + ShortNumber(scale) + " is outside " + ShortNumber(1.0 / kMaxUnitScale) + ".." +
+                       ShortNumber(kMaxUnitScale) + " (0: from the units)");
+}
+
+Status CheckMotionBounds(const Skeleton& skeleton, const Motion& motion, double scale) {
+  if (Status s = CheckFrameRate(motion.frame_rate, "frame rate"); !s.ok()) return s;
+  for (int j = 0; j < skeleton.num_joints(); ++j) {
+    const std::string field = "joint " + QuoteToken(skeleton.name(j)) + " offset";
+    if (Status s = CheckCoordinates(skeleton.offset(j) * scale, field); !s.ok()) return s;
+  }
+  for (const EndSite& site : skeleton.end_sites()) {
+    const std::string field = "end site " + QuoteToken(site.name) + " offset";
+    if (Status s = CheckCoordinates(site.offset * scale, field); !s.ok()) return s;
+  }
+  for (int f = 0; f < motion.num_frames(); ++f) {
+    const Pose& pose = motion.frames[f];
+    for (size_t j = 0; j < pose.translations.size(); ++j) {
+      if (((pose.translations[j] * scale).array().abs() <= kMaxCoordinate).all()) continue;  // NaN fails.
+      const std::string name = static_cast<int>(j) < skeleton.num_joints() ? skeleton.name(static_cast<int>(j)) : "?";
+      const std::string field = "frame " + std::to_string(f) + ", joint " + QuoteToken(name) + " translation";
+      return CheckCoordinates(pose.translations[j] * scale, field);
+    }
+  }
+  return Status::Ok();
+}
+
+Status CheckMarkerBounds(const MarkerTrajectories& trajectories) {
+  if (Status s = CheckFrameRate(trajectories.frame_rate, "frame rate"); !s.ok()) return s;
+  for (int f = 0; f < trajectories.num_frames(); ++f) {
+    for (int m = 0; m < trajectories.num_markers(); ++m) {
+      if (!trajectories.valid(f, m) || (trajectories.position(f, m).array().abs() <= kMaxCoordinate).all()) continue;
+      const std::string field = "frame " + std::to_string(f) + ", marker " + QuoteToken(trajectories.label(m));
+      return CheckCoordinates(trajectories.position(f, m), field);
+    }
+  }
+  return Status::Ok();
 }
 
 }  // namespace mocapsolve

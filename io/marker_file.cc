@@ -4,6 +4,7 @@
 
 #include "io/c3d_reader.h"
 #include "io/c3d_writer.h"
+#include "io/input_limits.h"
 #include "io/motion_file.h"
 #include "io/trc_reader.h"
 #include "io/trc_writer.h"
@@ -36,12 +37,13 @@ Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories)
 Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories,
                       const MarkerReadOptions& options) {
   const std::string ext = FileExtension(path);
+  Status status = Status::Ok();
   if (ext == ".c3d") {
     C3dReadOptions c3d;
     c3d.include_model_outputs = options.include_model_outputs;
     c3d.subject_prefix = options.subject_prefix;
     C3dFileInfo info;
-    Status status = ReadC3d(path, trajectories, &info, c3d);
+    status = ReadC3d(path, trajectories, &info, c3d);
     for (const std::string& warning : info.warnings) {
       if (options.warnings != nullptr) {
         options.warnings->push_back(warning);
@@ -49,21 +51,40 @@ Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories,
         std::fprintf(stderr, "warning: %s\n", warning.c_str());
       }
     }
-    return status;
+  } else if (ext == ".trc") {
+    status = ReadTrc(path, trajectories);
+  } else {
+    status = Status::Error(path + ": unknown marker format " + QuoteToken(ext) + " (expected .c3d or .trc)");
   }
-  if (ext == ".trc") return ReadTrc(path, trajectories);
-  return Status::Error(path + ": unknown marker format " + QuoteToken(ext) + " (expected .c3d or .trc)");
+  if (!status.ok()) return status;
+  // What every writer can represent (io/input_limits.h): a rate of 1e308 or 1e-310 is
+  // refused here, not written as NaN or 0.
+  status = CheckMarkerBounds(*trajectories);
+  return status.ok() ? status : Status::Error(path + ": " + status.message());
 }
 
 Status WriteMarkerFile(const std::string& path, const MarkerTrajectories& trajectories) {
   const std::string ext = FileExtension(path);
   // Nothing a reader would refuse (the C3D writer alone refused only float overflow).
   if (ext == ".c3d" || ext == ".trc") {
-    if (Status status = trajectories.CheckReadable(); !status.ok()) return Status::Error(path + ": " + status.message());
+    if (Status status = CheckMarkerBounds(trajectories); !status.ok()) return Status::Error(path + ": " + status.message());
   }
   if (ext == ".c3d") return WriteC3d(path, trajectories);
   if (ext == ".trc") return WriteTrc(path, trajectories);
   return Status::Error(path + ": unknown marker format " + QuoteToken(ext) + " (expected .c3d or .trc)");
+}
+
+Status RequireMarkerData(const std::string& path, const MarkerTrajectories& trajectories) {
+  if (trajectories.num_frames() == 0) {
+    return Status::Error(path + ": the take has no frames (this command needs at least one)");
+  }
+  if (trajectories.num_markers() == 0) {
+    return Status::Error(path + ": the take has no markers (this command needs at least one)");
+  }
+  if (trajectories.CountMissing() == static_cast<long long>(trajectories.num_frames()) * trajectories.num_markers()) {
+    return Status::Error(path + ": every sample of the take is missing (this command needs at least one)");
+  }
+  return Status::Ok();
 }
 
 }  // namespace mocapsolve

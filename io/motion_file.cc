@@ -11,6 +11,7 @@
 #include "io/bvh_reader.h"
 #include "io/fbx_reader.h"
 #include "io/gltf_reader.h"
+#include "io/input_limits.h"
 
 namespace mocapsolve {
 
@@ -53,7 +54,39 @@ Status ReadAnimationNames(const std::string& path, std::vector<std::string>* nam
   return Status::Ok();
 }
 
+namespace {
+
+// Every motion format's reader, then one check of what every writer can represent
+// (io/input_limits.h), so that no format lets a rate of 1e-308 Hz or a root at 1e308 in.
+Status CheckRead(const std::string& path, Status read, const Skeleton& skeleton, const Motion* motion) {
+  if (!read.ok()) return read;
+  Motion skeleton_only;
+  skeleton_only.frame_rate = kMaxFrameRate;
+  Status status = CheckMotionBounds(skeleton, motion != nullptr ? *motion : skeleton_only);
+  return status.ok() ? status : Status::Error(path + ": " + status.message());
+}
+
+Status ReadSkeletonFileUnchecked(const std::string& path, Skeleton* skeleton, AsfInfo* asf_info);
+Status ReadMotionFileUnchecked(const std::string& path, const MotionFileOptions& options,
+                               Skeleton* skeleton, Motion* motion);
+
+}  // namespace
+
 Status ReadSkeletonFile(const std::string& path, Skeleton* skeleton, AsfInfo* asf_info) {
+  return CheckRead(path, ReadSkeletonFileUnchecked(path, skeleton, asf_info), *skeleton, nullptr);
+}
+
+Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
+                      Skeleton* skeleton, Motion* motion) {
+  Status status = ReadMotionFileUnchecked(path, options, skeleton, motion);
+  // An .amc's skeleton comes from its .asf: name that file for the skeleton's offsets.
+  if (FileExtension(path) == ".amc") status = CheckRead(options.skeleton_path, status, *skeleton, nullptr);
+  return CheckRead(path, status, *skeleton, motion);
+}
+
+namespace {
+
+Status ReadSkeletonFileUnchecked(const std::string& path, Skeleton* skeleton, AsfInfo* asf_info) {
   const std::string ext = FileExtension(path);
   if (ext == ".bvh") {
     Motion ignored;
@@ -83,8 +116,8 @@ Status ReadSkeletonFile(const std::string& path, Skeleton* skeleton, AsfInfo* as
                        "' (expected .bvh, .asf, .glb, .gltf or .fbx)");
 }
 
-Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
-                      Skeleton* skeleton, Motion* motion) {
+Status ReadMotionFileUnchecked(const std::string& path, const MotionFileOptions& options,
+                               Skeleton* skeleton, Motion* motion) {
   const std::string ext = FileExtension(path);
   const bool animated_format = ext == ".glb" || ext == ".gltf" || ext == ".fbx";
   if (!animated_format && (!options.animation.empty() || options.sample_rate != 0.0)) {
@@ -137,6 +170,7 @@ Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
     if (!(options.amc_frame_rate > 0.0)) {
       return Status::Error("--amc_fps must be positive");
     }
+    if (Status s = CheckFrameRate(options.amc_frame_rate, "--amc_fps"); !s.ok()) return s;
     AsfInfo info;
     Status status = ReadAsf(options.skeleton_path, skeleton, &info);
     if (!status.ok()) return status;
@@ -144,6 +178,13 @@ Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
   }
   return Status::Error(path + ": unknown motion format '" + ext +
                        "' (expected .bvh, .amc, .glb, .gltf or .fbx)");
+}
+
+}  // namespace
+
+Status RequireFrames(const std::string& path, const Motion& motion) {
+  if (motion.num_frames() > 0) return Status::Ok();
+  return Status::Error(path + ": the motion has no frames (this command needs at least one)");
 }
 
 Status SetSkeletonUnits(const std::string& name, Skeleton* skeleton) {

@@ -44,6 +44,10 @@ Status ReadAnimationNames(const std::string& path, std::vector<std::string>* nam
 // keyword are called) if the name is unknown or the file states another unit.
 Status SetSkeletonUnits(const std::string& name, Skeleton* skeleton);
 
+// Commands and pipelines that compute on frames refuse a motion without any, naming the
+// file: "<path>: the motion has no frames (this command needs at least one)".
+Status RequireFrames(const std::string& path, const Motion& motion);
+
 // Lower-case extension with the dot (".bvh"), or "".
 std::string FileExtension(const std::string& path);
 // The name check of a text output (.bvh, .csv, .json, .svg, .html): `path` has

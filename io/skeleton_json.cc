@@ -6,7 +6,9 @@
 #include <utility>
 #include <vector>
 
+#include "io/input_limits.h"
 #include "io/json_writer.h"
+#include "kinematics/quote_token.h"
 
 namespace mocapsolve {
 namespace {
@@ -39,6 +41,9 @@ class SkeletonInterpreter {
     values->clear();
     for (const JsonNode& item : node->items) {
       if (!item.is_number()) return Error(item, name + ": expected numbers");
+      if (name == "offset" && !(std::abs(item.number) <= kMaxCoordinate)) {  // io/input_limits.h
+        return Error(item, name + ": " + ShortNumber(item.number) + " is beyond +-" + ShortNumber(kMaxCoordinate));
+      }
       values->push_back(item.number);
     }
     return Status::Ok();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/input_limits.h"
 #include "kinematics/quote_token.h"
 
 namespace mocapsolve {
@@ -128,6 +129,7 @@ Status ParseTrc(std::string_view text, const std::string& file_name,
   if (!ParseNumber(cell, &rate) || !(rate > 0.0) || !std::isfinite(rate)) {
     return error(3, "DataRate " + QuoteToken(cell) + " is not a positive number");
   }
+  if (Status s = CheckFrameRate(rate, "DataRate"); !s.ok()) return error(3, s.message());  // io/input_limits.h
   if (!header_value("NumFrames", &cell)) return error(3, "missing NumFrames");
   if (!ParseNumber(cell, &frames_value) || frames_value < 0 || frames_value > INT_MAX ||
       frames_value != std::floor(frames_value)) {

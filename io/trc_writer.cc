@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "io/atomic_file.h"
+#include "io/input_limits.h"
 #include "kinematics/quote_token.h"
 
 namespace mocapsolve {
@@ -48,9 +49,7 @@ Status FormatTrc(const MarkerTrajectories& trajectories, const std::string& file
   if (!trajectories.unit.known()) {
     return error("unit " + QuoteToken(trajectories.unit.name) + " is unknown; TRC needs Units (mm, cm or m)");
   }
-  if (!(trajectories.frame_rate > 0.0) || !std::isfinite(trajectories.frame_rate)) {
-    return error("frame rate " + std::to_string(trajectories.frame_rate) + " is not positive");
-  }
+  if (Status s = CheckMarkerBounds(trajectories); !s.ok()) return error(s.message());  // io/input_limits.h
   for (int m = 0; m < trajectories.num_markers(); ++m) {
     const std::string& label = trajectories.label(m);
     if (label.empty() || label.find_first_of("\t\r\n") != std::string::npos ||

@@ -23,23 +23,6 @@ Status MarkerTrajectories::CheckLabels(const std::vector<std::string>& labels) {
   return Status::Ok();
 }
 
-Status MarkerTrajectories::CheckReadable() const {
-  if (!(frame_rate > 0.0) || !std::isfinite(frame_rate)) {
-    return Status::Error("frame rate " + std::to_string(frame_rate) + " is not a positive number");
-  }
-  for (int f = 0; f < num_frames(); ++f) {
-    for (int m = 0; m < num_markers(); ++m) {
-      if (!valid(f, m)) continue;
-      const double largest = position(f, m).cwiseAbs().maxCoeff();
-      if (largest > kMaxCoordinate) {
-        return Status::Error("frame " + std::to_string(f + 1) + ", marker " + QuoteToken(label(m)) +
-                             ": coordinate " + std::to_string(largest) + " beyond +-1e9");
-      }
-    }
-  }
-  return Status::Ok();
-}
-
 MarkerTrajectories::MarkerTrajectories(std::vector<std::string> labels, int num_frames)
     : num_frames_(std::max(num_frames, 0)), labels_(std::move(labels)) {
   const Eigen::Index samples = static_cast<Eigen::Index>(num_frames_) * num_markers();

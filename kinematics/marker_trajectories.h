@@ -61,10 +61,6 @@ class MarkerTrajectories {
   // Labels a reader may build trajectories from: no label repeated (a repeated label
   // would make FindMarker ambiguous). The error names the first repeat, quoted.
   static Status CheckLabels(const std::vector<std::string>& labels);
-  // What a reader would refuse of these trajectories, so writers refuse it too: a frame
-  // rate that is not positive and finite, a valid sample beyond +-kMaxCoordinate. The
-  // message is the C3D reader's ("frame F, marker 'L': coordinate V beyond +-1e9", F 1-based).
-  Status CheckReadable() const;
 
   MarkerTrajectories() = default;
   // #F frames of the labelled markers, every sample missing.

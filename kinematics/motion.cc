@@ -35,11 +35,6 @@ Status ValidateMotion(const Skeleton& skeleton, const Motion& motion) {
   return Status::Ok();
 }
 
-Status CheckFrameRate(double rate, const std::string& what) {
-  if (rate > 0.0 && std::isfinite(rate)) return Status::Ok();
-  return Status::Error(what + ": frame rate " + std::to_string(rate) + " is not a positive number");
-}
-
 Status ValidatePose(const Skeleton& skeleton, const Pose& pose, const std::string& where) {
   const size_t nj = skeleton.num_joints();
   if (pose.translations.size() != nj || pose.rotations.size() != nj) {

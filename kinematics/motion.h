@@ -46,9 +46,6 @@ void MakeSignContinuous(Motion* motion);
 // Checks sizes against the skeleton and that every value is finite and every rotation
 // a unit quaternion (to 1e-6); the message names the first bad frame and joint.
 Status ValidateMotion(const Skeleton& skeleton, const Motion& motion);
-// A frame rate every reader accepts: positive and finite. The error, as the C3D reader's:
-// "<what>: frame rate R is not a positive number".
-Status CheckFrameRate(double rate, const std::string& what);
 // The same for one pose; the message starts with `where` ("frame 3", "pose").
 Status ValidatePose(const Skeleton& skeleton, const Pose& pose, const std::string& where);
 

@@ -110,6 +110,7 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   take_mapping.label_prefix.clear();
   MarkerTrajectories file;
   status = ReadMarkerFile(markers_path, &file);
+  if (status.ok()) status = RequireMarkerData(markers_path, file);
   if (!status.ok()) return status;
   // The template's markers, those the map names under the take's labels.
   MarkerSet template_markers = templ.markers;

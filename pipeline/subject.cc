@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "io/atomic_file.h"
+#include "io/input_limits.h"
 #include "io/json_reader.h"
 #include "io/json_writer.h"
 #include "io/marker_file.h"
@@ -161,6 +162,10 @@ Status Interpret(const std::string& path, const JsonNode& root, Subject* subject
       if (!scale->is_number() || !(scale->number >= 0.0)) {
         return error(*scale, "marker_files.scale: expected a number >= 0 (0: from the units)");
       }
+      // 1e308 scaled every sample to inf: "no marker observed in any frame".
+      if (Status bound = CheckUnitScale(scale->number, "marker_files.scale"); !bound.ok()) {
+        return error(*scale, bound.message());
+      }
       result.marker_scale = scale->number;
     }
     if (const JsonNode* prefix = files->Find("label_prefix")) {
@@ -170,6 +175,7 @@ Status Interpret(const std::string& path, const JsonNode& root, Subject* subject
   }
   if (const JsonNode* fps = root.Find("amc_fps")) {
     if (!fps->is_number() || !(fps->number > 0.0)) return error(*fps, "amc_fps: expected a number > 0");
+    if (Status bound = CheckFrameRate(fps->number, "amc_fps"); !bound.ok()) return error(*fps, bound.message());
     result.amc_fps = fps->number;
   }
   if (const JsonNode* mean = root.Find("mean_pose")) {
@@ -257,6 +263,9 @@ Status LoadTakeForSubject(const Subject& subject, const std::string& markers_pat
   }
   status = ParseAxes(subject.axes, &result.transform.rotation);
   if (!status.ok()) return Status::Error("axes: " + status.message());
+  if (Status bound = CheckUnitScale(subject.marker_scale, "marker scale"); subject.marker_scale > 0.0 && !bound.ok()) {
+    return bound;
+  }
   if (subject.marker_scale > 0.0) {
     result.transform.scale = subject.marker_scale;
   } else if (subject.marker_scale < 0.0 || !std::isfinite(subject.marker_scale)) {

@@ -2,6 +2,7 @@
 #include "io/bvh_writer.h"
 #include "io/gltf_reader.h"
 #include "io/gltf_writer.h"
+#include "io/input_limits.h"
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
@@ -36,7 +37,7 @@ MarkersPtr MakeMarkers(const Array& positions, const std::vector<std::string>& l
       markers->SetSample(f, m, Eigen::Vector3d(p(f, m, 0), p(f, m, 1), p(f, m, 2)));
     }
   }
-  if (Status status = markers->CheckReadable(); !status.ok()) throw py::value_error("positions: " + status.message());
+  if (Status status = CheckMarkerBounds(*markers); !status.ok()) throw py::value_error("positions: " + status.message());
   return markers;
 }
 

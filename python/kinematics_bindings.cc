@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "io/gltf_reader.h"
+#include "io/input_limits.h"
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/kinematic_jacobians.h"
 #include "kinematics/skinning.h"

@@ -422,7 +422,7 @@ TEST(C3dWriter, RejectsWhatC3dCannotHold) {
   ExpectOneLineError(EncodeC3d(long_label, "out.c3d", &bytes), "out.c3d", "255");
   MarkerTrajectories huge = Synthetic(1, 1);
   huge.SetSample(0, 0, Eigen::Vector3d(1e300, 0, 0));
-  ExpectOneLineError(EncodeC3d(huge, "out.c3d", &bytes), "out.c3d", "float range");
+  ExpectOneLineError(EncodeC3d(huge, "out.c3d", &bytes), "out.c3d", "1e+300 is beyond +-1e+09");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -483,15 +483,16 @@ TEST_F(C3dBadInput, FrameCountLargerThanTheData) {
   ExpectOneLineError(Parse(bytes, &t_), "bad.c3d", "TRIAL:ACTUAL_START_FIELD");
 }
 
-TEST_F(C3dBadInput, NoPointsAndAHugeTrialFrameCountIsQuick) {
+// Frames of no points take no bytes, so the data cannot bound their count: kMaxFrames
+// does (2^31 - 1 of them crashed convert, corrupt and view with bad_alloc).
+TEST_F(C3dBadInput, NoPointsAndAHugeTrialFrameCountIsRefused) {
   MarkerTrajectories empty(std::vector<std::string>{}, 3);
   empty.frame_rate = 100.0;
   std::string bytes = Encode(empty);
+  ASSERT_TRUE(Parse(bytes, &t_).ok());
+  EXPECT_EQ(t_.num_frames(), 3);
   PutU16(&bytes, ParameterValueOffset(bytes, "ACTUAL_END_FIELD") + 2, 0x7fff);
-  const Status status = Parse(bytes, &t_);
-  ASSERT_TRUE(status.ok()) << status.message();
-  EXPECT_EQ(t_.num_markers(), 0);
-  EXPECT_GT(t_.num_frames(), 2000000000);
+  ExpectOneLineError(Parse(bytes, &t_), "bad.c3d", "a take may have");
   PutU16(&bytes, ParameterValueOffset(bytes, "ACTUAL_END_FIELD") + 2, 0xffff);
   ExpectOneLineError(Parse(bytes, &t_), "bad.c3d", "no valid frame count");
 }

@@ -634,7 +634,8 @@ TEST(GltfReaderTiny, SeveralRootsGetTheirCommonAncestorOrASyntheticRoot) {
 TEST(GltfBadFiles, AnnotatedBadFilesFailWithOneLine) {
   int checked = 0;
   for (const char* name : {"bad_gltf_accessor_range.gltf", "bad_gltf_skin_joint.gltf", "bad_gltf_ibm_count.gltf",
-                           "bad_gltf_weight_joint.gltf", "bad_gltf_truncated.glb"}) {
+                           "bad_gltf_weight_joint.gltf", "bad_gltf_truncated.glb", "bad_gltf_version.glb",
+                           "bad_gltf_self_child.gltf", "bad_gltf_node_cycle.gltf"}) {
     const std::string path = testing::SourcePath(std::string("tests/data/bad/") + name);
     std::string bytes;
     ASSERT_TRUE(ReadFileToString(path, &bytes).ok()) << path;
@@ -655,7 +656,7 @@ TEST(GltfBadFiles, AnnotatedBadFilesFailWithOneLine) {
     EXPECT_EQ(output, "mocapsolve info: " + status.message() + "\n");
     ++checked;
   }
-  EXPECT_EQ(checked, 5);
+  EXPECT_EQ(checked, 8);
 }
 
 // Damaged copies of the tiny file (JSON) and of a GLB written from it never crash, and

@@ -1,7 +1,11 @@
 // Hostile input (issue 15): the files of tests/data/bad/make_bad_hostile.py and their
 // in-memory variants give one-line errors naming the file and the cause, cheaply.
+#include <sys/stat.h>
+
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -92,7 +96,7 @@ TEST(HostileInput, BvhFrameTimeDenormal) {
   const std::string path = Bad("bad_frame_time_tiny.bvh");
   Skeleton skeleton;
   Motion motion;
-  ExpectOneLineError(ReadBvh(path, &skeleton, &motion), path, "frame time of at least 1e-6");
+  ExpectOneLineError(ReadBvh(path, &skeleton, &motion), path, "frame time of 1e-6 to 1000 seconds");
 }
 
 TEST(HostileInput, BvhNested2000Deep) {
@@ -165,11 +169,65 @@ TEST(HostileInput, C3dCoordinateBeyondSaneMagnitude) {
   MarkerTrajectories trajectories({"A"}, 1);
   trajectories.frame_rate = 100;
   trajectories.unit = LengthUnitFromName("mm");
-  trajectories.SetSample(0, 0, Eigen::Vector3d(1e30, 0, 0));
+  trajectories.SetSample(0, 0, Eigen::Vector3d(1, 0, 0));
   std::string bytes;
   ASSERT_TRUE(EncodeC3d(trajectories, "huge.c3d", &bytes).ok());
+  // The writer refuses 1e38 (io/input_limits.h), so put it in the file: the first
+  // float of the data (float storage; header word 9 is the data start block).
+  const size_t data = (static_cast<std::uint8_t>(bytes[16]) + 256 * static_cast<std::uint8_t>(bytes[17]) - 1) * 512;
+  const float huge = 1e38f;
+  std::memcpy(&bytes[data], &huge, 4);
   MarkerTrajectories back;
-  ExpectOneLineError(ParseC3d(bytes, "huge.c3d", &back), "huge.c3d", "beyond +-1e9");
+  // As %g: "1e+38", not std::to_string's 39 digits.
+  ExpectOneLineError(ParseC3d(bytes, "huge.c3d", &back), "huge.c3d", "coordinate 1e+38 beyond +-1e9");
+}
+
+// Values no writer can represent (io/input_limits.h), refused by the reader with the field.
+TEST(HostileInput, RatesAndCoordinatesBeyondWhatWritersHold) {
+  Skeleton skeleton;
+  Motion motion;
+  ExpectOneLineError(ReadBvh(Bad("bad_frame_time_huge.bvh"), &skeleton, &motion), Bad("bad_frame_time_huge.bvh"),
+                     "expected a frame time of 1e-6 to 1000 seconds, got '1e308'");
+  ExpectOneLineError(ReadBvh(Bad("bad_root_position_huge.bvh"), &skeleton, &motion),
+                     Bad("bad_root_position_huge.bvh"),
+                     "expected a number within +-1e9 (frame 2, joint 'Hips' Xposition), got '1e308'");
+  MarkerTrajectories trajectories;
+  ExpectOneLineError(ReadTrc(Bad("bad_trc_rate_huge.trc"), &trajectories), Bad("bad_trc_rate_huge.trc"),
+                     "DataRate 1e+308 is outside 0.001..1e+06 Hz");
+  ExpectOneLineError(ReadTrc(Bad("bad_trc_rate_denormal.trc"), &trajectories), Bad("bad_trc_rate_denormal.trc"),
+                     "DataRate 1e-310 is outside 0.001..1e+06 Hz");
+}
+
+// 0 points and frames 1..2^31-1 in 1 KB: the data bounds nothing, kMaxFrames does.
+TEST(HostileInput, C3dWithoutPointsClaimingBillionsOfFrames) {
+  MarkerTrajectories trajectories;
+  const auto start = std::chrono::steady_clock::now();
+  ExpectOneLineError(ReadC3d(Bad("bad_c3d_no_points_huge_frames.c3d"), &trajectories),
+                     Bad("bad_c3d_no_points_huge_frames.c3d"), "(2147483647) are more than the 16777216 a take may have");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+}
+
+// A FIFO blocked `info` forever, /dev/zero never ends: the readers' common open path
+// (ReadFileToString, through OpenRegularFile) refuses anything but a regular file, without
+// opening it in a way that blocks; tinygltf's external buffers go through it too.
+TEST(HostileInput, NonRegularFilesAreRefusedWithoutBlocking) {
+  const std::string fifo = testing::TempPath("take.bvh");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto start = std::chrono::steady_clock::now();
+  std::string bytes;
+  ExpectOneLineError(ReadFileToString(fifo, &bytes), fifo, "is not a regular file (a FIFO)");
+  Skeleton skeleton;
+  Motion motion;
+  ExpectOneLineError(ReadBvh(fifo, &skeleton, &motion), fifo, "is a FIFO");
+  ExpectOneLineError(ReadFileToString("/dev/zero", &bytes), "/dev/zero", "(a character device)");
+  const std::string buffer_fifo = testing::TempPath("buffer.bin");
+  ASSERT_EQ(::mkfifo(buffer_fifo.c_str(), 0600), 0);
+  const std::string gltf = testing::TempPath("external.gltf");
+  testing::WriteTextFile(gltf, "{\"asset\": {\"version\": \"2.0\"}, \"buffers\": [{\"uri\": \"buffer.bin\", "
+                               "\"byteLength\": 4}]}");
+  GltfDocument document;
+  EXPECT_FALSE(GltfDocument::Read(gltf, &document).ok());
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
 }
 
 TEST(HostileInput, NamesInMessagesAreEscapedAndCut) {

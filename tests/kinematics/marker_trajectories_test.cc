@@ -143,23 +143,5 @@ TEST(LengthUnitFromName, CommonSpellings) {
   EXPECT_FALSE(LengthUnitFromName("").known());
 }
 
-// What writers refuse because readers would: a bad rate, a coordinate beyond +-1e9.
-TEST(MarkerTrajectories, CheckReadableRefusesWhatReadersRefuse) {
-  MarkerTrajectories t({"A", "B"}, 2);
-  t.frame_rate = 100.0;
-  t.SetSample(0, 0, Eigen::Vector3d(1, 2, 3));
-  EXPECT_TRUE(t.CheckReadable().ok());
-  t.SetSample(1, 1, Eigen::Vector3d(0, 1e308, 0));
-  const Status status = t.CheckReadable();
-  ASSERT_FALSE(status.ok());
-  EXPECT_NE(status.message().find("frame 2, marker 'B'"), std::string::npos) << status.message();
-  EXPECT_NE(status.message().find("beyond +-1e9"), std::string::npos) << status.message();
-  t.SetMissing(1, 1);
-  for (double rate : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
-    t.frame_rate = rate;
-    EXPECT_FALSE(t.CheckReadable().ok()) << rate;
-  }
-}
-
 }  // namespace
 }  // namespace mocapsolve

@@ -59,3 +59,22 @@ binc=b3+b'\0'*((4-len(b3)%4)%4)
 total=12+8+len(js)+8+len(binc)
 glb=struct.pack('<4sII',b'glTF',2,total)+struct.pack('<I4s',len(js),b'JSON')+js+struct.pack('<I4s',len(binc),b'BIN\0')+binc
 open(B+'bad_gltf_truncated.glb','wb').write(glb[:len(glb)-100])
+# 6. GLB whose header states version 7: tinygltf read it as glTF 2 (`info` and `convert`
+# exited 0). The same valid file, whole, with only the version changed.
+d["asset"]["extras"]["expect-error"]="GLB: header version 7, expected 2 (glTF 2.0)"
+js=json.dumps(d,separators=(',',':')).encode()
+js+=b' '*((4-len(js)%4)%4)
+total=12+8+len(js)+8+len(binc)
+glb=struct.pack('<4sII',b'glTF',7,total)+struct.pack('<I4s',len(js),b'JSON')+js+struct.pack('<I4s',len(binc),b'BIN\0')+binc
+open(B+'bad_gltf_version.glb','wb').write(glb)
+# 7. a node that is its own child, and 8. two nodes each the other's child: hierarchies
+# with a cycle, refused where the node graph is built (as ASF's :hierarchy is).
+skin=[{"joints":[0,1],"inverseBindMatrices":0}]
+ibm=[{"bufferView":0,"componentType":5126,"count":2,"type":"MAT4"}]
+ibm_view=[{"buffer":0,"byteOffset":0,"byteLength":128}]
+d=base("node 1 'child': is its own child",b,ibm,ibm_view,skin,
+       nodes=[{"name":"root","children":[1]},{"name":"child","children":[1]}])
+open(B+'bad_gltf_self_child.gltf','w').write(json.dumps(d,indent=1)+"\n")
+d=base("is in a cycle of children",b,ibm,ibm_view,skin,
+       nodes=[{"name":"root"},{"name":"a","children":[2]},{"name":"b","children":[1]}])
+open(B+'bad_gltf_node_cycle.gltf','w').write(json.dumps(d,indent=1)+"\n")

@@ -123,3 +123,20 @@ struct.pack_into('<f', b, times_offset + 4, 1e-39)
 doc['buffers'][0]['uri'] = prefix + base64.b64encode(bytes(b)).decode()
 doc['accessors'][4]['max'] = [1e-39]
 write('bad_gltf_key_rate.gltf', json.dumps(doc) + '\n')
+
+# C3D of 0 points whose TRIAL fields claim frames 1..2^31-1 (1 KB): `info` passed, then
+# convert, corrupt and view aborted with std::bad_alloc and filter ran until killed.
+# Frames of no points take no bytes, so the data cannot bound their count: kMaxFrames
+# (io/input_limits.h) does.
+write('bad_c3d_no_points_huge_frames.c3d', c3d_bytes([], [], trial_end=2**31 - 1))
+
+# Numbers a writer cannot represent (io/input_limits.h): a TRC rate of 1e308 was written
+# to C3D as a float inf (read back NaN) and one of 1e-310 as 0; a BVH frame time of 1e308
+# became a glTF time accessor with "max": [null]; a BVH root at 1e308 was read and
+# `markers` wrote its frame as missing.
+write('bad_trc_rate_huge.trc', trc(['LASI'], [['1', '2', '3']], 'bad_trc_rate_huge.trc').replace('100\t100\t1', '1e308\t1e308\t1', 1))
+write('bad_trc_rate_denormal.trc', trc(['LASI'], [['1', '2', '3']], 'bad_trc_rate_denormal.trc').replace('100\t100\t1', '1e-310\t1e-310\t1', 1))
+bvh = ('HIERARCHY\nROOT Hips\n{\n\tOFFSET 0 0 0\n\tCHANNELS 3 Xposition Yposition Zposition\n'
+       '\tEnd Site\n\t{\n\t\tOFFSET 0 1 0\n\t}\n}\nMOTION\nFrames: 2\nFrame Time: %s\n0 0 0\n%s 0 0\n')
+write('bad_frame_time_huge.bvh', bvh % ('1e308', '0'))
+write('bad_root_position_huge.bvh', bvh % ('0.01', '1e308'))
