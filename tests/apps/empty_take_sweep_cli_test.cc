@@ -107,7 +107,7 @@ class EmptyTakeSweep : public ::testing::Test {
     const std::string command = Replaced(Replaced(Replaced(pattern, "IN", dir_ + "/" + name), "OUT", out), "DIR", dir_);
     std::string output;
     const auto start = std::chrono::steady_clock::now();
-    const int code = testing::RunProgram(std::string("timeout -s KILL 60 ") + MOCAPSOLVE_CLI, command, &output);
+    const int code = testing::RunProgram(std::string("timeout -s KILL 60 ") + testing::CliPath(), command, &output);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     SCOPED_TRACE(command + "\n" + output);
     EXPECT_EQ(code, 1);

@@ -43,7 +43,7 @@ TEST(TerminalOutput, AFailedWriteOfStandardOutputIsAnError) {
   const std::string bvh = testing::SourcePath("tests/data/good/small.bvh");
   std::string output;
   // Braces: stdout to /dev/full, stderr (RunProgram's 2>&1) to the test.
-  EXPECT_EQ(testing::RunProgram(std::string("{ ") + MOCAPSOLVE_CLI, "info " + bvh + " > /dev/full; }", &output), 1);
+  EXPECT_EQ(testing::RunProgram(std::string("{ ") + testing::CliPath(), "info " + bvh + " > /dev/full; }", &output), 1);
   EXPECT_THAT(output, HasSubstr("writing the standard output failed (No space left on device)"));
   EXPECT_EQ(CountLines(output), 1) << output;
 }
@@ -55,7 +55,7 @@ TEST(TerminalOutput, AFifoIsRefusedNotWaitedOn) {
   for (const std::string command : {"info " + fifo, "convert " + fifo + " " + testing::TempPath("out.c3d")}) {
     std::string output;
     const auto start = std::chrono::steady_clock::now();
-    EXPECT_EQ(testing::RunProgram(std::string("timeout -s KILL 20 ") + MOCAPSOLVE_CLI, command, &output), 1) << output;
+    EXPECT_EQ(testing::RunProgram(std::string("timeout -s KILL 20 ") + testing::CliPath(), command, &output), 1) << output;
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
     EXPECT_THAT(output, HasSubstr(fifo + ": is not a regular file (a FIFO)"));
     EXPECT_EQ(CountLines(output), 1) << output;
