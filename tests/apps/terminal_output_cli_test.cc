@@ -52,7 +52,7 @@ TEST(TerminalOutput, AFailedWriteOfStandardOutputIsAnError) {
 TEST(TerminalOutput, AFifoIsRefusedNotWaitedOn) {
   const std::string fifo = testing::TempPath("take.trc");
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  for (const std::string command : {"info " + fifo, "convert " + fifo + " " + testing::TempPath("out.c3d")}) {
+  for (const std::string& command : {"info " + fifo, "convert " + fifo + " " + testing::TempPath("out.c3d")}) {
     std::string output;
     const auto start = std::chrono::steady_clock::now();
     EXPECT_EQ(testing::RunProgram(std::string("timeout -s KILL 20 ") + testing::CliPath(), command, &output), 1) << output;
