@@ -100,7 +100,7 @@ pid_t Spawn(const WorkerJob& job, const WorkerLimits& limits, int crash_signal, 
     ::setpgid(0, 0);
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != parent) ::_exit(127);
-    const int null_fd = ::open("/dev/null", O_RDONLY);
+    const int null_fd = ::open("/dev/null", O_RDWR);  // stdin, and stdout when not kept: written to.
     if (null_fd >= 0) ::dup2(null_fd, 0);
     ::dup2(stdout_fd >= 0 ? stdout_fd : null_fd, 1);
     ::dup2(pipe_fds[1], 2);

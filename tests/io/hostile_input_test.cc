@@ -148,7 +148,7 @@ TEST(HostileInput, DuplicateMarkerLabels) {
   ExpectOneLineError(ReadTrc(trc, &trajectories), trc, "marker label 'LBWT' is used twice (markers 1 and 3)");
   // A C3D's repeated label is numbered instead (real Motion Analysis files carry them;
   // io/c3d_points.h), with a warning naming it.
-  const std::string c3d = Bad("bad_c3d_duplicate_labels.c3d");
+  const std::string c3d = Bad("quirk_c3d_duplicate_labels.c3d");
   C3dFileInfo info;
   ASSERT_TRUE(ReadC3d(c3d, &trajectories, &info).ok());
   EXPECT_EQ(trajectories.labels(), (std::vector<std::string>{"LBWT", "RBWT", "LBWT#2"}));
@@ -218,7 +218,7 @@ TEST(HostileInput, NonRegularFilesAreRefusedWithoutBlocking) {
   ExpectOneLineError(ReadFileToString(fifo, &bytes), fifo, "is not a regular file (a FIFO)");
   Skeleton skeleton;
   Motion motion;
-  ExpectOneLineError(ReadBvh(fifo, &skeleton, &motion), fifo, "is a FIFO");
+  ExpectOneLineError(ReadBvh(fifo, &skeleton, &motion), fifo, "is not a regular file (a FIFO)");
   ExpectOneLineError(ReadFileToString("/dev/zero", &bytes), "/dev/zero", "(a character device)");
   const std::string buffer_fifo = testing::TempPath("buffer.bin");
   ASSERT_EQ(::mkfifo(buffer_fifo.c_str(), 0600), 0);

@@ -62,7 +62,8 @@ write('bad_duplicate_labels.trc', trc(['LBWT', 'RBWT', 'LBWT'], [
 frames = [[(1.0, 2.0, 3.0), (4.0, 5.0, 6.0)]]
 for name, rate in (('nan', float('nan')), ('zero', 0.0), ('negative', -120.0)):
     write('bad_c3d_rate_%s.c3d' % name, c3d_bytes(['LBWT', 'RBWT'], frames, point_rate=rate))
-write('bad_c3d_duplicate_labels.c3d', c3d_bytes(['LBWT', 'RBWT', 'LBWT'], [frames[0] + [(7.0, 8.0, 9.0)]]))
+# A quirk, not an error: real Motion Analysis files repeat labels; read with them numbered.
+write('quirk_c3d_duplicate_labels.c3d', c3d_bytes(['LBWT', 'RBWT', 'LBWT'], [frames[0] + [(7.0, 8.0, 9.0)]]))
 
 # Marker sets whose joint names hold an escaped newline / 20,000 characters: the error
 # printed on two lines / echoed the whole name. Now quoted, escaped and cut at 64 bytes.
