@@ -9,13 +9,15 @@
 #include <vector>
 
 #include "kinematics/status.h"
+#include "settings/option.h"
 
 namespace mocapsolve {
 
-// A shared flag whose default or meaning differs for one command (--solver is dls for
-// repair and retarget, --method is green for distance): main.cc makes `default_value` the
-// flag's default before parsing, so the run and --help agree, and --help shows
-// `description` (when not empty) in place of the shared text.
+// A gflags-defined shared flag whose default or meaning differs for one command (--method
+// is green for distance): main.cc makes `default_value` the flag's default before parsing,
+// so the run and --help agree, and --help shows `description` (when not empty) in place of
+// the shared text. Declared options (Command::options) need none of this: a command
+// declares its own default with OptionGroup::WithDefault.
 struct FlagOverride {
   std::string name;
   std::string default_value;
@@ -32,6 +34,10 @@ struct Command {
   // The shared flags (defined in apps/main.cc, solver_flags.cc, ...) the command reads,
   // comma-separated: its --help lists them and main refuses the others (nullptr: none).
   const char* shared_flags = nullptr;
+  // The declared options the command reads (settings/option.h), groups in priority order:
+  // main.cc registers them as this run's flags, the command's own (--help lists them); a
+  // name two groups declare is the first group's.
+  std::vector<std::vector<Option>> options = {};
   std::vector<FlagOverride> flag_overrides = {};
 };
 

@@ -1,9 +1,9 @@
 #include "apps/corruption_flags.h"
 
-#include "pipeline/corruption_settings.h"
+#include "settings/corruption_settings.h"
 
 namespace {
-// The flags' defaults are the settings' (pipeline/corruption_settings.h): one source.
+// The flags' defaults are the settings' (settings/corruption_settings.h): one source.
 const mocapsolve::CorruptionSettings kDefault;
 }  // namespace
 

@@ -6,7 +6,7 @@
 
 #include "kinematics/status.h"
 #include "kinematics/units.h"
-#include "pipeline/corruption_settings.h"
+#include "settings/corruption_settings.h"
 #include "signal/marker_corruption.h"
 
 DECLARE_int32(corrupt_seed);

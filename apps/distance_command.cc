@@ -288,6 +288,7 @@ extern const Command kDistanceCommand = {
     "motion,out,plot,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet,sigma,sigma_scale,"
     "eigenpairs,region,diffusion_steps,knn,isomap_knn,falloff_kernel,feature_joints,joint_weights,"
     "temporal_weight",
+    {},
     {{"method", "green",
       "green | diffusion | isomap, comma-separated for several: the distances to compute (the first fills "
       "distance,weight; the others add columns)."},

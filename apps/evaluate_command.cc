@@ -39,18 +39,16 @@ Status RunLeaveOneOut(const MarkerTake& take) {
   Status status = MarkerSolveOptionsFromFlags(skeleton.unit(), &options.frame);
   if (!status.ok()) return status;
   options.frame.rest_rotations = take.mean_pose;
-  if (FLAGS_mode != "frame" && FLAGS_mode != "clip") {
-    return Status::Error("--mode: unknown '" + FLAGS_mode + "' (frame, clip)");
-  }
-  options.clip = FLAGS_mode == "clip";
+  const SolverSettings solver = SolverSettingsFromFlags();
+  options.clip = solver.mode == "clip";
   if (options.clip) {
     status = ClipSolveOptionsFromFlags(&options.clip_options);
     if (!status.ok()) return status;
     options.clip_options.ceres.num_threads = 1;  // The markers are the parallel work.
   }
-  options.num_threads = FLAGS_num_threads;
+  options.num_threads = solver.num_threads;
   LeaveOneOutReport result;
-  Progress progress("leave one out (" + FLAGS_solver + ", " + FLAGS_mode + ")", markers.num_markers(), FLAGS_quiet,
+  Progress progress("leave one out (" + solver.solver + ", " + solver.mode + ")", markers.num_markers(), FLAGS_quiet,
                     "markers");
   status = LeaveOneMarkerOut(skeleton, markers, take.observed, options, &result,
                              [&](int done) { progress.Update(done); });
@@ -60,7 +58,7 @@ Status RunLeaveOneOut(const MarkerTake& take) {
   const double mm = known ? skeleton.unit().metres_per_unit * 1000.0 : 1.0;
   const char* unit = known ? "mm" : "skeleton units";
   std::printf("%d frames, %d markers; each marker predicted by the %s solve of the others (%s), in %s\n",
-              static_cast<int>(take.observed.size()), markers.num_markers(), FLAGS_mode.c_str(), FLAGS_solver.c_str(),
+              static_cast<int>(take.observed.size()), markers.num_markers(), solver.mode.c_str(), solver.solver.c_str(),
               unit);
   std::printf("| marker | samples | mean | median | 95th pct | max |\n|---|---|---|---|---|---|\n");
   std::string csv = "marker,samples,mean,median,p95,max,unit\n";
@@ -86,8 +84,8 @@ Status RunLeaveOneOut(const MarkerTake& take) {
     if (!status.ok()) return status;
   }
   JsonObject report;
-  report.Add("markers", FLAGS_markers).Add("method", "leave_one_out").Add("mode", FLAGS_mode)
-      .Add("solver", FLAGS_solver).Add("frames", static_cast<int>(take.observed.size())).Add("unit", unit)
+  report.Add("markers", FLAGS_markers).Add("method", "leave_one_out").Add("mode", solver.mode)
+      .Add("solver", solver.solver).Add("frames", static_cast<int>(take.observed.size())).Add("unit", unit)
       .Add("seconds", result.seconds).Add("all", all).Add("per_marker", rows);
   return WriteReport(report);
 }
@@ -318,7 +316,7 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
 
 const std::string kEvaluateFlags = std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,"
                                                "report,quiet,method,white_noise_mm,") +
-                                   kCorruptionFlagNames + "," + kRepairFlagNames + "," + kSolverFlagNames;
+                                   kCorruptionFlagNames + "," + kRepairFlagNames;
 
 }  // namespace
 
@@ -345,13 +343,15 @@ extern const Command kEvaluateCommand = {
     "(after --white_noise_mm of noise) and prints the repair's recall and precision on them, the\n"
     "latter also without the samples it flags on the undamaged take (the take's own glitches).",
     __FILE__, RunEvaluate, kEvaluateFlags.c_str(),
+    {RepairSolverOptions()
+         .WithDefault("num_threads", "2",
+                      "Threads: leave_one_out solves this many markers at once; repair runs its solves on two "
+                      "threads when >= 2. Speed only: the results do not depend on it.")
+         .options()},
     {{"method", "repair",
       "repair: damage the markers and score repair against the usual fills (Table 1); leave_one_out: "
       "predict each marker from the solve of the others, on the take as it is; small_errors: recall and precision "
       "of the repair's detections on 1-4 cm jumps and jitter."},
-     {"solver", kRepairDefaultSolver, ""},
-     {"num_threads", "2",
-      "Threads: leave_one_out solves this many markers at once; repair runs its solves on two threads when "
-      ">= 2. Speed only: the results do not depend on it."}}};
+    }};
 
 }  // namespace mocapsolve

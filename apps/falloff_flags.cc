@@ -2,10 +2,10 @@
 
 #include <gflags/gflags.h>
 
-#include "pipeline/falloff_settings.h"
+#include "settings/falloff_settings.h"
 
 namespace {
-// The flags' defaults are the settings' (pipeline/falloff_settings.h): one source.
+// The flags' defaults are the settings' (settings/falloff_settings.h): one source.
 const mocapsolve::FalloffSettings kDefault;
 }  // namespace
 

@@ -6,7 +6,7 @@
 #define MOCAPSOLVE_APPS_FALLOFF_FLAGS_H_
 
 #include "kinematics/status.h"
-#include "pipeline/falloff_settings.h"
+#include "settings/falloff_settings.h"
 #include "problems/edit_propagation/falloff.h"
 
 namespace mocapsolve {

@@ -231,8 +231,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
 }
 
 const std::string kFitFlags =
-    std::string("template_subject,skeleton,skeleton_units,amc_fps,markers,markerset,axes,marker_scale,out,out_subject,report,quiet,") +
-    kSolverFlagNames;
+    std::string("template_subject,skeleton,skeleton_units,amc_fps,markers,markerset,axes,marker_scale,out,out_subject,report,quiet");
 
 }  // namespace
 
@@ -257,6 +256,6 @@ extern const Command kFitSkeletonCommand = {
     "own, left/right bone lengths within 5 %, and the marker RMS within 25 mm;\n"
     "--check=fail (default) exits 1 when one fails.\n"
     "Writes the subject (skeleton inline), and optionally the solved motion and marker set.",
-    __FILE__, RunFitSkeleton, kFitFlags.c_str()};
+    __FILE__, RunFitSkeleton, kFitFlags.c_str(), {SolverOptions().options()}};
 
 }  // namespace mocapsolve

@@ -13,6 +13,7 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/option_flags.h"
 #include "io/atomic_file.h"
 #include "io/file_transaction.h"
 #include "io/marker_file.h"
@@ -105,6 +106,43 @@ Status CheckFiniteFlags(const Command& command) {
     if (flag.type != "double" || !IsOurFlag(flag) || !CommandReadsFlag(command, flag)) continue;
     if (!std::isfinite(std::strtod(flag.current_value.c_str(), nullptr))) {
       return Status::Error("--" + flag.name + ": expected a finite number, got '" + flag.current_value + "'");
+    }
+  }
+  return Status::Ok();
+}
+
+// The options the command declares become this run's flags, the command's own (a name
+// two of its groups declare: the first group's).
+void RegisterCommandOptions(const Command& command) {
+  for (const std::vector<Option>& group : command.options) {
+    std::vector<Option> fresh;
+    for (const Option& option : group) {
+      gflags::CommandLineFlagInfo existing;
+      if (!gflags::GetCommandLineFlagInfo(option.name.c_str(), &existing)) fresh.push_back(option);
+    }
+    RegisterOptionFlags(fresh, command.source);
+  }
+}
+
+// A flag only other commands declare is not a flag of this run at all; say so as
+// CheckGivenFlags does for the others, not with gflags' "unknown command line flag".
+Status CheckOtherCommandsOptions(const Command& command, int argc, char** argv) {
+  for (int i = 2; i < argc; ++i) {
+    const std::string argument = argv[i];
+    if (argument == "--") break;
+    if (argument.size() < 2 || argument[0] != '-') continue;
+    const std::string flag = argument.substr(argument[1] == '-' ? 2 : 1);
+    const std::string name = flag.substr(0, flag.find('='));
+    gflags::CommandLineFlagInfo registered;
+    if (gflags::GetCommandLineFlagInfo(name.c_str(), &registered)) continue;
+    for (const Command& other : AllCommands()) {
+      for (const std::vector<Option>& group : other.options) {
+        for (const Option& option : group) {
+          if (name != option.name && name != "no" + option.name) continue;
+          return Status::Error("--" + option.name + ": not a flag of `" + command.name + "` (mocapsolve " +
+                               command.name + " --help lists its flags)");
+        }
+      }
     }
   }
   return Status::Ok();
@@ -472,7 +510,13 @@ int main(int argc, char** argv) {
                  argv[1]);
     return 1;
   }
+  mocapsolve::RegisterCommandOptions(*command);
   mocapsolve::ApplyFlagOverrides(*command);
+  const mocapsolve::Status foreign = mocapsolve::CheckOtherCommandsOptions(*command, argc, argv);
+  if (!foreign.ok()) {
+    std::fprintf(stderr, "mocapsolve %s: %s\n", command->name, mocapsolve::TerminalText(foreign.message()).c_str());
+    return 1;
+  }
   for (int i = 2; i < argc; ++i) {
     if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0 ||
         std::strcmp(argv[i], "--helpshort") == 0) {
@@ -501,6 +545,7 @@ int main(int argc, char** argv) {
   mocapsolve::running_command = command;
   mocapsolve::SetStage("arguments");
   mocapsolve::Status status = mocapsolve::CheckGivenFlags(*command);
+  if (status.ok()) status = mocapsolve::CheckOptionFlags(command->options);
   if (status.ok()) status = mocapsolve::CheckFiniteFlags(*command);
   mocapsolve::SetMarkerReadOptionsFromFlags();
   if (status.ok()) status = mocapsolve::CheckReportPaths(positional);

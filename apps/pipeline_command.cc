@@ -7,6 +7,7 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "apps/config_flags.h"
+#include "apps/option_flags.h"
 #include "apps/progress.h"
 #include "apps/pyramid_flags.h"
 #include "apps/repair_flags.h"
@@ -46,12 +47,15 @@ DEFINE_double(gate_torso_deg, mocapsolve::QualityGate().max_torso_error_deg, "Qu
               "(degrees, mean over the take) of the head and pelvis markers' own; 0 = no check.");
 
 namespace mocapsolve {
+
+extern const Command kPipelineCommand;  // Below: its declared options check --config's values.
+
 namespace {
 
 const std::string kPipelineOptionFlags =
     std::string("take_name,filter_levels,kernel_a,tension,gate_naive_rms_mm,gate_repaired_rms_mm,"
                 "gate_repaired_share,gate_iteration_limit_share,gate_marker_offset_cm,gate_torso_deg,animation_only,") +
-    kRepairFlagNames + "," + kSolverFlagNames + "," + kRetargetOptionFlagNames;
+    kRepairFlagNames + "," + SolverOptions().Names() + "," + kRetargetOptionFlagNames;
 
 // The take's page, as --view says: auto (the default) DIR/view.html when the viewer's
 // runtime is installed, else none with a warning (a batch on a machine without it still
@@ -82,6 +86,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   if (!FLAGS_config.empty()) {
     Status status = ApplyConfigFile(FLAGS_config, kPipelineOptionFlags);
+    if (status.ok()) status = CheckOptionFlags(kPipelineCommand.options);
     if (!status.ok()) return status;
   }
   if (FLAGS_print_config) {
@@ -201,9 +206,11 @@ extern const Command kPipelineCommand = {
     __FILE__, RunPipeline, kPipelineFlags.c_str(),
     // DLS unless told otherwise, as repair and retarget do; --print_config shows it and a
     // printed config read back with --config changes nothing.
-    {{"solver", kRepairDefaultSolver,
-      "dls | dls_generic | ceres: who solves the per-frame problems of the repair and the retargets."},
-     {"view", "auto",
+    {RepairSolverOptions()
+         .WithDefault("solver", "dls",
+                      "dls | dls_generic | ceres: who solves the per-frame problems of the repair and the retargets.")
+         .options()},
+    {{"view", "auto",
       "The take's browser page: auto = DIR/view.html when the viewer's runtime is installed (else a "
       "warning and no page); PAGE.html = that page, required (no runtime: an error, nothing written); off = none."}}};
 

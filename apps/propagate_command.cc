@@ -88,7 +88,7 @@ EditWeightSettings EditWeightSettingsFromFlags() {
   EditWeightSettings settings;
   settings.harmonic_ground = FLAGS_harmonic_ground;
   settings.spline_width = FLAGS_spline_width;
-  settings.sparse_library = FLAGS_sparse_library;
+  settings.sparse_library = SolverSettingsFromFlags().sparse_library;
   return settings;
 }
 
@@ -189,9 +189,9 @@ Status RunPropagate(const std::vector<std::string>& arguments) {
     if (!status.ok()) return status;
     edits.push_back(std::move(edit));
     std::printf("IK edit at frame %d (%s): %d iterations, max target error %.4g skeleton units\n",
-                FLAGS_frame, FLAGS_solver.c_str(), ik.solve.iterations, ik.max_target_error);
+                FLAGS_frame, SolverSettingsFromFlags().solver.c_str(), ik.solve.iterations, ik.max_target_error);
     edit_report.Add("source", "ik_target").Add("ik_target", FLAGS_ik_target)
-        .Add("solver", FLAGS_solver).Add("ik_iterations", ik.solve.iterations)
+        .Add("solver", SolverSettingsFromFlags().solver).Add("ik_iterations", ik.solve.iterations)
         .Add("ik_max_target_error", ik.max_target_error).Add("ik_final_cost", ik.solve.final_cost);
   }
   std::vector<int> frames;
@@ -337,8 +337,9 @@ extern const Command kPropagateCommand = {
     "frames so the feet stay put.",
     __FILE__, RunPropagate,
     "motion,out,report,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,quiet,sigma,sigma_scale,eigenpairs,region,"
-    "knn,falloff_kernel,feature_joints,joint_weights,temporal_weight,solver,prior_weight,"
-    "max_iterations,marker_weight,dls_lambda,dls_damping,frame,sparse_library,view",
+    "knn,falloff_kernel,feature_joints,joint_weights,temporal_weight,frame,view",
+    // The IK edit's solve and the harmonic falloff's sparse solve.
+    {SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,sparse_library").options()},
     {{"method", "green", "green | harmonic | spline: the falloff that carries the edit to the other frames."}}};
 
 }  // namespace mocapsolve

@@ -174,7 +174,7 @@ Status RunRepair(const std::vector<std::string>& arguments) {
 
 const std::string kRepairFlags =
     std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet,view,") +
-    kRepairFlagNames + "," + kSolverFlagNames;
+    kRepairFlagNames;
 
 }  // namespace
 
@@ -189,9 +189,6 @@ extern const Command kRepairCommand = {
     "(--assign_unlabelled; they leave their unlabelled columns in --out_markers);\n"
     "trimming, small tracks and small gaps; Hermite refill from the reference; re-solve.\n"
     "Samples never marked bad are written as they were read. Prints per-stage timings.",
-    __FILE__, RunRepair, kRepairFlags.c_str(),
-    {{"solver", kRepairDefaultSolver,
-      "dls | dls_generic | ceres: who solves the per-frame steps (the naive solve Y and the re-solve); "
-      "dls, the lean tree kernel, is the default here."}}};
+    __FILE__, RunRepair, kRepairFlags.c_str(), {RepairSolverOptions().options()}};
 
 }  // namespace mocapsolve

@@ -5,7 +5,7 @@
 #include "apps/solver_flags.h"
 
 namespace {
-// The flags' defaults are the settings' (pipeline/repair_settings.h): one source.
+// The flags' defaults are the settings' (settings/repair_settings.h): one source.
 const mocapsolve::RepairSettings kDefault;
 }  // namespace
 
@@ -113,9 +113,7 @@ RepairSettings RepairSettingsFromFlags() {
 }
 
 Status RepairOptionsFromFlags(const Skeleton& skeleton, RepairOptions* options) {
-  SolverSettings solver = SolverSettingsFromFlags();
-  if (gflags::GetCommandLineFlagInfoOrDie("solver").is_default) solver.solver = kRepairDefaultSolver;
-  return RepairOptionsFromSettings(RepairSettingsFromFlags(), solver, skeleton, options);
+  return RepairOptionsFromSettings(RepairSettingsFromFlags(), SolverSettingsFromFlags(), skeleton, options);
 }
 
 }  // namespace mocapsolve

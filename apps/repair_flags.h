@@ -7,7 +7,7 @@
 
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
-#include "pipeline/repair_settings.h"
+#include "settings/repair_settings.h"
 #include "problems/marker_repair/marker_repair.h"
 
 DECLARE_string(reference);
@@ -17,7 +17,7 @@ namespace mocapsolve {
 // Comma-separated names of the repair flags, for Command::shared_flags style help.
 inline constexpr const char* kRepairFlagNames = kRepairSettingNames;
 
-// The flags as settings (pipeline/repair_settings.h).
+// The flags as settings (settings/repair_settings.h).
 RepairSettings RepairSettingsFromFlags();
 
 // Thresholds in cm and degrees are converted with the skeleton's unit (which must be

@@ -19,7 +19,7 @@
 #include "io/json_reader.h"
 #include "kinematics/rotation.h"
 #include "io/motion_file.h"
-#include "pipeline/retarget_settings.h"
+#include "settings/retarget_settings.h"
 #include "problems/retarget/retarget_character.h"
 
 // Shared with other commands: the retarget options (apps/retarget_flags.cc, also read by
@@ -283,7 +283,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   return WriteReport(report);
 }
 
-const std::string kRetargetFlags = std::string("target,out,report,quiet,solver,max_frames,limit_weight,skeleton,amc_fps,view,"
+const std::string kRetargetFlags = std::string("target,out,report,quiet,max_frames,skeleton,amc_fps,view,"
                                                "animation_only,") +
                                    kRetargetOptionFlagNames;
 
@@ -306,11 +306,6 @@ extern const Command kRetargetCommand = {
     "on the target file an application already has (Blender: scripts/apply_animation_gltf.py).\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
-    __FILE__, RunRetarget, kRetargetFlags.c_str(),
-    {{"solver", RetargetSettings().solver,
-      "dls | dls_generic | ceres: who minimizes each frame's vertex residuals (dls: the lean kernel, eq. 18)."},
-     {"limit_weight", "0",
-      "Soft joint limits of the source skeleton's joints as they map to the target (ASF 'limits'): the "
-      "weight of 1 radian beyond a limit against vertex residuals of 1 per sigma; 0 = off."}}};
+    __FILE__, RunRetarget, kRetargetFlags.c_str(), {RetargetSolverOptions().options()}};
 
 }  // namespace mocapsolve

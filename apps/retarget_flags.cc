@@ -1,6 +1,6 @@
 #include "apps/retarget_flags.h"
 
-#include "pipeline/retarget_settings.h"
+#include "settings/retarget_settings.h"
 
 #include <algorithm>
 #include <string>
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "apps/config_flags.h"
+#include "apps/option_flags.h"
 #include "apps/solver_flags.h"
 
 DECLARE_double(limit_weight);   // apps/solver_flags.cc: soft joint limits, where the skeleton has them.
@@ -15,7 +16,7 @@ DECLARE_double(limit_weight);   // apps/solver_flags.cc: soft joint limits, wher
 DECLARE_string(foot_joints);
 
 namespace {
-// The flags' defaults are the settings' (pipeline/retarget_settings.h): one source.
+// The flags' defaults are the settings' (settings/retarget_settings.h): one source.
 const mocapsolve::RetargetSettings kDefault;
 }  // namespace
 
@@ -52,8 +53,10 @@ namespace mocapsolve {
 
 Status RetargetOptionsFromFlags(CharacterRetargetOptions* options) {
   RetargetSettings s;
-  if (!gflags::GetCommandLineFlagInfoOrDie("solver").is_default) s.solver = FLAGS_solver;
-  s.limit_weight = FLAGS_limit_weight;
+  // --solver and --limit_weight: retarget's own (RetargetSolverOptions), or in pipeline the
+  // marker solver's of the same names (dls by default there too).
+  Status status = ReadOptionFlags(RetargetSolverOptions(), &s);
+  if (!status.ok()) return status;
   s.joint_map = FLAGS_joint_map;
   s.plant_feet = FLAGS_plant_feet;
   s.plant_weight = FLAGS_plant_weight;

@@ -6,7 +6,7 @@
 #include <gflags/gflags.h>
 
 #include "kinematics/status.h"
-#include "pipeline/retarget_settings.h"
+#include "settings/retarget_settings.h"
 #include "problems/retarget/retarget_character.h"
 
 DECLARE_string(joint_map);

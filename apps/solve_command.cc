@@ -40,9 +40,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   }
   checked = CheckViewFlag(inputs);
   if (!checked.ok()) return checked;
-  if (FLAGS_mode != "frame" && FLAGS_mode != "clip") {
-    return Status::Error("--mode: unknown '" + FLAGS_mode + "' (frame, clip)");
-  }
+  const SolverSettings solver = SolverSettingsFromFlags();
   MarkerTake take;
   SetStage("inputs");
   Status status = LoadMarkerTake(&take);
@@ -57,7 +55,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
   frame_options.rest_rotations = take.mean_pose;
   ClipSolveOptions clip_options;
-  if (FLAGS_mode == "clip") {
+  if (solver.mode == "clip") {
     status = ClipSolveOptionsFromFlags(&clip_options);
     if (!status.ok()) return status;
   }
@@ -68,7 +66,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   Motion motion;
   motion.frame_rate = trajectories.frame_rate;
   SequenceSolveReport sequence;
-  Progress progress("solve (" + FLAGS_solver + ")", static_cast<int>(observed.size()), FLAGS_quiet);
+  Progress progress("solve (" + solver.solver + ")", static_cast<int>(observed.size()), FLAGS_quiet);
   SetStage("solve");
   status = SolveSequence(skeleton, markers, observed, frame_options, RestPose(skeleton), &motion,
                          &sequence, [&](int done) { progress.Update(done); });
@@ -78,7 +76,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   const double to_output = mm_per_unit > 0.0 ? mm_per_unit : 1.0;
   std::printf("per-frame (%s): %d frames in %.3f s (%.0f frames/s), %ld iterations, RMS marker "
               "residual %.4g %s (worst frame %.4g), unsolved frames %d, at iteration limit %d\n",
-              FLAGS_solver.c_str(), sequence.frames, sequence.solve_seconds,
+              solver.solver.c_str(), sequence.frames, sequence.solve_seconds,
               sequence.solve_seconds > 0 ? sequence.frames / sequence.solve_seconds : 0.0,
               sequence.total_iterations, sequence.rms_marker_error * to_output, unit,
               sequence.max_frame_rms * to_output, sequence.unsolved_frames,
@@ -89,8 +87,8 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   } else {
     report.Add("subject", FLAGS_subject);
   }
-  report.Add("markers", FLAGS_markers).Add("out", FLAGS_out).Add("solver", FLAGS_solver)
-      .Add("mode", FLAGS_mode).Add("frames", sequence.frames)
+  report.Add("markers", FLAGS_markers).Add("out", FLAGS_out).Add("solver", solver.solver)
+      .Add("mode", solver.mode).Add("frames", sequence.frames)
       .Add("marker_to_skeleton_scale", transform.scale).Add("residual_unit", unit);
   JsonObject frame_json;
   frame_json.Add("seconds", sequence.solve_seconds)
@@ -103,7 +101,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
       .Add("total_final_cost", sequence.total_final_cost);
   report.Add("per_frame", frame_json);
 
-  if (FLAGS_mode == "clip") {
+  if (solver.mode == "clip") {
     ClipSolveReport clip;
     if (!FLAGS_quiet) std::fprintf(stderr, "clip solve: %zu frames as one problem...\n", observed.size());
     SetStage("clip solve");
@@ -151,7 +149,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
   std::printf("wrote %s\n", FLAGS_out.c_str());
   if (!FLAGS_plot.empty()) {
-    PlotSeries rms{"per-frame " + FLAGS_solver, {}};
+    PlotSeries rms{"per-frame " + solver.solver, {}};
     for (double v : sequence.frame_rms) rms.y.push_back(v * to_output);
     status = WriteFileAtomically(FLAGS_plot, LinePlotSvg("RMS marker residual per frame: " + FLAGS_markers,
                                                         "frame", std::string("RMS residual (") + unit + ")",
@@ -175,7 +173,7 @@ Status RunSolve(const std::vector<std::string>& arguments) {
 
 const std::string kSolveFlags =
     std::string("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,plot,residuals_csv,"
-                "max_frames,view,") + kSolverFlagNames;
+                "max_frames,view");
 
 }  // namespace
 
@@ -189,6 +187,6 @@ extern const Command kSolveCommand = {
     "refines all frames as one sparse problem with smoothness. Missing markers are simply\n"
     "left out. Prints the RMS marker residual, iterations and time; --report writes them,\n"
     "--residuals_csv the residual of every frame of the written motion (--plot draws it).",
-    __FILE__, RunSolve, kSolveFlags.c_str()};
+    __FILE__, RunSolve, kSolveFlags.c_str(), {SolverOptions().options()}};
 
 }  // namespace mocapsolve

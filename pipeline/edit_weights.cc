@@ -9,6 +9,7 @@
 #include "problems/edit_propagation/harmonic_falloff.h"
 #include "problems/edit_propagation/pose_features.h"
 #include "problems/edit_propagation/spline_falloff.h"
+#include "settings/solver_settings.h"
 
 namespace mocapsolve {
 namespace {
@@ -66,12 +67,10 @@ Status HarmonicWeights(const Skeleton& skeleton, const Motion& motion, const Fal
   const double mean_degree = degree_sum / (end - begin);
   HarmonicOptions options;
   options.ground_weight = settings.harmonic_ground * mean_degree;
-  if (settings.sparse_library == "suite_sparse") {
-    options.sparse_library = ceres::SUITE_SPARSE;
-  } else if (settings.sparse_library != "eigen_sparse") {
-    return Status::Error("--sparse_library: expected eigen_sparse or suite_sparse, got '" +
-                         settings.sparse_library + "'");
-  }
+  // The solver's declared --sparse_library (settings/solver_settings.h): its check and message.
+  Status checked = SolverOptions().Only("sparse_library").options()[0].Check(settings.sparse_library);
+  if (!checked.ok()) return checked;
+  if (settings.sparse_library == "suite_sparse") options.sparse_library = ceres::SUITE_SPARSE;
   std::string error;
   if (!options.IsValid(&error)) return Status::Error("--harmonic_ground/--sparse_library: " + error);
   // The region's ends are labelled 0 where the region cuts the clip (so the weights reach 0

@@ -8,7 +8,7 @@
 #include "io/gltf_writer.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
-#include "pipeline/repair_settings.h"
+#include "settings/repair_settings.h"
 #include "pipeline/take_view.h"
 #include "problems/marker_solve/subject_checks.h"
 #include "signal/motion_pyramid.h"

@@ -6,7 +6,7 @@
 //   - a Status error becomes ValueError with the same one-line message as the CLI, or
 //     OSError when an input file does not exist (naming the file);
 //   - options come as keyword arguments named like the CLI's flags, applied onto the
-//     library's settings structs (pipeline/solver_settings.h, pipeline/repair_settings.h)
+//     library's settings structs (settings/solver_settings.h, settings/repair_settings.h)
 //     whose conversion validates them as the CLI does;
 //   - arrays are float64 numpy arrays; marker positions are a view on the C++ storage
 //     (frames, markers, 3), motions are copied (a Motion is not one contiguous block).

@@ -3,9 +3,9 @@
 #include "io/atomic_file.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
-#include "pipeline/repair_settings.h"
+#include "settings/repair_settings.h"
 #include "pipeline/quality_gate.h"
-#include "pipeline/retarget_settings.h"
+#include "settings/retarget_settings.h"
 #include "pipeline/take_pipeline.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
@@ -21,14 +21,13 @@ void BindPipeline(py::module_& m) {
                        double gate_torso_deg, bool animation_only, const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");
         RepairSettings repair_settings;
-        SolverSettings solver_settings;
-        solver_settings.solver = kRepairDefaultSolver;  // The pipeline solves with DLS by default.
+        SolverSettings solver_settings = RepairSolverOptions().Defaults();  // DLS, as the CLI's pipeline.
         RetargetSettings retarget_settings;
         ApplyKeywords(keywords,
                       {py::cast(&repair_settings, py::return_value_policy::reference),
                        py::cast(&solver_settings, py::return_value_policy::reference),
                        py::cast(&retarget_settings, py::return_value_policy::reference)},
-                      std::string(kRepairSettingNames) + "," + kSolverSettingNames + "," + kRetargetSettingNames);
+                      std::string(kRepairSettingNames) + "," + SolverOptions().Names() + "," + kRetargetSettingNames);
         if (!IsMarkerFile(markers)) throw py::value_error(markers + ": expected a .c3d or .trc");
         RequireReadable(markers);
         for (const std::string& path : characters) RequireReadable(path);
@@ -108,7 +107,7 @@ animation_only: each <character>.glb then holds the character's skeleton, skin a
 take only, no meshes (as the CLI's --animation_only).
 Returns a dict: 'solved' (Motion), 'repaired_markers' (Markers), 'characters' {name:
 Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", [] { SolverSettings s; s.solver = kRepairDefaultSolver; return py::cast(s); }(), kSolverSettingNames) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), kRetargetSettingNames)).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), kRetargetSettingNames)).c_str());
 }
 
 }  // namespace mocapsolve::python

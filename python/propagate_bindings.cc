@@ -4,8 +4,8 @@
 
 #include "io/edit_file.h"
 #include "pipeline/edit_weights.h"
-#include "pipeline/falloff_settings.h"
-#include "pipeline/solver_settings.h"
+#include "settings/falloff_settings.h"
+#include "settings/solver_settings.h"
 #include "problems/edit_propagation/falloff.h"
 #include "problems/edit_propagation/ik_edit.h"
 #include "problems/edit_propagation/pose_edit.h"
@@ -204,7 +204,7 @@ Every other keyword is a solver option of solve() (SolverSettings: solver='ceres
 max_iterations, prior_weight, ...).
 Returns (edit, report): a PoseEdit for propagate() and a dict (ik_iterations,
 ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc") +
-       KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()), kSolverSettingNames)).c_str());
+       KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()), SolverOptions().Names())).c_str());
 
   m.def("edit_weights", [](const Skeleton& skeleton, const Motion& motion, const std::vector<PoseEdit>& edits,
                            const std::string& method, double harmonic_ground, double spline_width,

@@ -1,6 +1,6 @@
 // Marker repair (thesis chapter 3): the repair settings (the CLI's flags) and repair().
-#include "pipeline/corruption_settings.h"
-#include "pipeline/repair_settings.h"
+#include "settings/corruption_settings.h"
+#include "settings/repair_settings.h"
 #include "problems/marker_repair/repair_evaluation.h"
 #include "problems/marker_repair/marker_repair.h"
 #include "python/bindings.h"
@@ -25,7 +25,7 @@ py::list IntervalList(const std::vector<RepairInterval>& intervals, const Marker
 }
 
 std::string RepairOptionNames() {
-  return std::string(kRepairSettingNames) + "," + kSolverSettingNames;
+  return std::string(kRepairSettingNames) + "," + SolverOptions().Names();
 }
 
 }  // namespace
@@ -61,8 +61,7 @@ void BindRepair(py::module_& m) {
   m.def("repair", [](SubjectPtr subject_arg, py::object markers, const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");
         RepairSettings repair_settings;
-        SolverSettings solver_settings;
-        solver_settings.solver = kRepairDefaultSolver;
+        SolverSettings solver_settings = RepairSolverOptions().Defaults();
         ApplyKeywords(keywords,
                       {py::cast(&repair_settings, py::return_value_policy::reference),
                        py::cast(&solver_settings, py::return_value_policy::reference)},
@@ -165,7 +164,7 @@ to)], mean_distance_before_mm, mean_distance_after_mm}; 'unlabelled_assigned': {
 unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and 'filled' lists of
 {marker, first_frame, last_frame, what}, 'timings', 'rms_*_mm', 'repaired_observed'
 (frames, set markers, 3) in skeleton units). Releases the GIL while repairing.)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", [] { SolverSettings s; s.solver = kRepairDefaultSolver; return py::cast(s); }(), kSolverSettingNames)).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names())).c_str());
 
   py::class_<CorruptionSettings> damage(m, "CorruptionSettings",
       "The synthetic damage's options, one per flag of `mocapsolve corrupt`/`evaluate` (same\n"
@@ -215,8 +214,7 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
   m.def("evaluate", [](SubjectPtr subject_arg, py::object markers, int trials, const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");
         RepairSettings repair_settings;
-        SolverSettings solver_settings;
-        solver_settings.solver = kRepairDefaultSolver;
+        SolverSettings solver_settings = RepairSolverOptions().Defaults();
         CorruptionSettings damage_settings;
         ApplyKeywords(keywords,
                       {py::cast(&repair_settings, py::return_value_policy::reference),
@@ -275,7 +273,7 @@ solver and corruption options. Returns one dict per trial and method, the column
 evaluate's --table_csv (errors against the solve of the clean markers).
 subject: a Subject; markers: a .c3d/.trc path or a Take; trials: how many damaged copies
 (default 1, up to 1000).)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", [] { SolverSettings s; s.solver = kRepairDefaultSolver; return py::cast(s); }(), kSolverSettingNames) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), kCorruptionSettingNames)).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), kCorruptionSettingNames)).c_str());
 }
 
 }  // namespace mocapsolve::python

@@ -4,7 +4,7 @@
 #include "io/bvh_writer.h"
 #include "io/gltf_writer.h"
 #include "io/motion_file.h"
-#include "pipeline/retarget_settings.h"
+#include "settings/retarget_settings.h"
 #include "problems/retarget/retarget_character.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"

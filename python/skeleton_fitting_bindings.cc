@@ -6,7 +6,7 @@
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
 #include "pipeline/skeleton_fitting.h"
-#include "pipeline/solver_settings.h"
+#include "settings/solver_settings.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
@@ -70,7 +70,7 @@ void BindSkeletonFitting(py::module_& m) {
       "['checks']['passed'] False). Bad options raise ValueError with the CLI's message, a\n"
       "missing file OSError. Releases the GIL while fitting.\n" +
       KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()),
-                      kSolverSettingNames);
+                      SolverOptions().Names());
   m.def("fit_skeleton", [](const std::string& markers, py::object template_subject, py::object skeleton,
                            py::object markerset, const std::string& skeleton_units, const std::string& axes,
                            double marker_scale, double amc_fps, py::object progress, const py::kwargs& keywords) {
@@ -79,7 +79,7 @@ void BindSkeletonFitting(py::module_& m) {
         ApplyKeywords(keywords,
                       {py::cast(&fit, py::return_value_policy::reference),
                        py::cast(&solver, py::return_value_policy::reference)},
-                      std::string(kSkeletonFitSettingNames) + "," + kSolverSettingNames);
+                      std::string(kSkeletonFitSettingNames) + "," + SolverOptions().Names());
         ThrowIfError(ValidateSkeletonFitSettings(fit));
         SkeletonFitInputs inputs;
         inputs.markers_path = markers;

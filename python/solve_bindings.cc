@@ -7,7 +7,7 @@
 #include "io/motion_file.h"
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
-#include "pipeline/solver_settings.h"
+#include "settings/solver_settings.h"
 #include "pipeline/subject_calibration.h"
 #include "problems/marker_solve/marker_clip_solver.h"
 #include "problems/marker_solve/marker_frame_solver.h"
@@ -39,7 +39,7 @@ MarkerTakePtr TakeArgument(const Subject& subject, py::object markers) {
 SolverSettings SettingsFromKeywords(const py::kwargs& keywords, const char* default_solver) {
   SolverSettings settings;
   if (default_solver != nullptr) settings.solver = default_solver;
-  ApplyKeywords(keywords, {py::cast(&settings, py::return_value_policy::reference)}, kSolverSettingNames);
+  ApplyKeywords(keywords, {py::cast(&settings, py::return_value_policy::reference)}, SolverOptions().Names());
   return settings;
 }
 
@@ -175,19 +175,13 @@ void BindSolve(py::module_& m) {
       "skeleton_units (mm, cm, m, in; default cm: the prior and limit weights are in mm).");
   settings.def("as_dict", [](py::object self) {
         py::dict d;
-        for (const std::string& name : [] {
-               std::vector<std::string> names;
-               std::string all = kSolverSettingNames, item;
-               for (char c : all + ",") {
-                 if (c == ',') { names.push_back(item); item.clear(); } else { item += c; }
-               }
-               return names;
-             }()) {
+        for (const Option& option : SolverOptions().options()) {
+          const std::string& name = option.name;
           d[name.c_str()] = self.attr(name.c_str());
         }
         return d;
       }, "The settings by flag name (what `mocapsolve solve --print_config`-style files hold).");
-  m.attr("SOLVER_OPTION_NAMES") = std::string(kSolverSettingNames);
+  m.attr("SOLVER_OPTION_NAMES") = std::string(SolverOptions().Names());
 
   py::class_<MarkerTake, MarkerTakePtr>(m, "Take",
       "A marker file mapped onto a subject: .observed (frames, set markers, 3) in the skeleton's\n"
@@ -276,7 +270,7 @@ Returns (motion, report): the motion on the subject's skeleton and a dict with t
 report's figures ('per_frame': seconds, iterations, rms_marker_residual (mm), frame_rms
 (frames,) array in mm, ...; 'clip' with mode='clip'). Releases the GIL while solving.
 A bad option raises ValueError with the CLI's message; an unknown one TypeError.)doc") +
-       KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()), kSolverSettingNames)).c_str());
+       KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()), SolverOptions().Names())).c_str());
 
   py::class_<FrameSolveReport>(m, "FrameSolveReport", "One frame's solve.")
       .def_readonly("initial_cost", &FrameSolveReport::initial_cost)

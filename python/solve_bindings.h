@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "pipeline/solver_settings.h"
+#include "settings/solver_settings.h"
 #include "pipeline/subject.h"
 #include "problems/marker_solve/sequence_solver.h"
 #include "python/bindings.h"

@@ -1,5 +1,7 @@
 // Every command refuses the flags it does not read (issue 17: `info --solver=foo` used to
 // exit 0), and its --help lists the ones it accepts: one rule in apps/main.cc decides both.
+#include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <sstream>
@@ -8,6 +10,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "settings/repair_settings.h"
+#include "settings/retarget_settings.h"
+#include "settings/solver_settings.h"
 #include "tests/test_support.h"
 
 namespace mocapsolve {
@@ -127,6 +132,81 @@ TEST(CommandFlags, SharedFlagsShowEachCommandsOwnDefault) {
   // A given value still wins.
   testing::RunCli("pipeline --print_config --solver=ceres", &output);
   EXPECT_THAT(output, HasSubstr("\"solver\": \"ceres\""));
+}
+
+// The text a command's --help gives for a flag (the line under "  --NAME (TYPE) default: ...").
+std::string HelpText(const std::string& help, const std::string& flag) {
+  const size_t at = help.find("  --" + flag + " (");
+  if (at == std::string::npos) return "";
+  const size_t start = help.find("\n      ", at) + 7;
+  return help.substr(start, help.find('\n', start) - start);
+}
+
+// Every option a command declares (settings/option.h) is that command's flag with the
+// declaration's type, default, text and check, and a config key of pipeline: the
+// declarations are the one source of each surface.
+TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
+  struct Use {
+    std::string command;
+    std::vector<Option> options;
+  };
+  const std::vector<Use> uses = {
+      {"solve", SolverOptions().options()},
+      {"fit_skeleton", SolverOptions().options()},
+      {"bench", SolverOptions().options()},
+      {"repair", RepairSolverOptions().options()},
+      {"evaluate", RepairSolverOptions().options()},
+      {"pipeline", RepairSolverOptions().options()},
+      {"retarget", RetargetSolverOptions().options()},
+      {"propagate", SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,"
+                                         "sparse_library").options()}};
+  for (const Use& use : uses) {
+    std::string help;
+    ASSERT_EQ(testing::RunCli(use.command + " --help", &help), 0) << use.command;
+    const std::map<std::string, std::string> types = HelpFlagTypes(use.command);
+    for (const Option& option : use.options) {
+      const std::string where = use.command + " --" + option.name;
+      ASSERT_EQ(types.count(option.name), 1u) << where;
+      EXPECT_EQ(types.at(option.name), OptionTypeName(option.type)) << where;
+      std::string shown = option.default_value;
+      if (option.type == OptionType::kString) shown = "\"" + shown + "\"";
+      if (option.type == OptionType::kDouble) {
+        char text[32];
+        std::snprintf(text, sizeof(text), "%g", std::stod(option.default_value));
+        shown = text;
+      }
+      EXPECT_EQ(HelpDefault(use.command, option.name), shown) << where;
+      // The command's own text where it declares one (pipeline's --solver), else the group's.
+      const std::string text = HelpText(help, option.name);
+      if (!option.unit.empty()) EXPECT_THAT(text, HasSubstr("[" + option.unit + "]")) << where;
+      if (use.command != "pipeline" && use.command != "evaluate") EXPECT_EQ(text, option.Description()) << where;
+      // The declaration's check, with its message, before any work.
+      std::string output;
+      if (!option.choices.empty()) {
+        EXPECT_EQ(testing::RunCli(use.command + " --" + option.name + "=bogus_value", &output), 1) << where;
+        EXPECT_THAT(output, HasSubstr("--" + option.name + ": unknown 'bogus_value' (")) << output;
+      }
+      if (std::isfinite(option.min)) {
+        const std::string below = OptionNumberText(option.min - 1);
+        EXPECT_EQ(testing::RunCli(use.command + " --" + option.name + "=" + below, &output), 1) << where;
+        EXPECT_THAT(output, HasSubstr("--" + option.name + ": expected a value >= ")) << output;
+      }
+    }
+  }
+  // pipeline's config keys: every declared option, its default as --print_config writes it.
+  std::string config;
+  ASSERT_EQ(testing::RunCli("pipeline --print_config", &config), 0) << config;
+  for (const Option& option : RepairSolverOptions().options()) {
+    const std::string value = option.type == OptionType::kString ? "\"" + option.default_value + "\""
+                                                                 : option.default_value;
+    EXPECT_THAT(config, HasSubstr("\"" + option.name + "\": " + value)) << option.name;
+  }
+  // A config file's bad value gets the flag's message.
+  const std::string file = testing::TempPath("bad_config.json");
+  testing::WriteTextFile(file, "{\"dls_damping\": \"none\"}");
+  std::string output;
+  EXPECT_EQ(testing::RunCli("pipeline --print_config --config=" + file, &output), 1);
+  EXPECT_THAT(output, HasSubstr("--dls_damping: unknown 'none' (adaptive, fixed)")) << output;
 }
 
 // The number flags a command's --help lists (type double).

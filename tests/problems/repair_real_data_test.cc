@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "pipeline/repair_settings.h"
+#include "settings/repair_settings.h"
 #include "pipeline/subject.h"
 #include "problems/marker_repair/marker_repair.h"
 #include "problems/marker_repair/small_error_evaluation.h"

@@ -1,4 +1,4 @@
-#include "pipeline/falloff_settings.h"
+#include "settings/falloff_settings.h"
 
 #include <cmath>
 #include <cstdlib>

@@ -4,8 +4,8 @@
 // --joint_weights, --temporal_weight; same defaults), and their one conversion into
 // FalloffOptions (problems/edit_propagation/falloff.h). The command line
 // (apps/falloff_flags.cc) and the Python module both call it. Knows nothing of gflags.
-#ifndef MOCAPSOLVE_PIPELINE_FALLOFF_SETTINGS_H_
-#define MOCAPSOLVE_PIPELINE_FALLOFF_SETTINGS_H_
+#ifndef MOCAPSOLVE_SETTINGS_FALLOFF_SETTINGS_H_
+#define MOCAPSOLVE_SETTINGS_FALLOFF_SETTINGS_H_
 
 #include <string>
 
@@ -37,4 +37,4 @@ Status FalloffOptionsFromSettings(const FalloffSettings& settings, int num_frame
 
 }  // namespace mocapsolve
 
-#endif  // MOCAPSOLVE_PIPELINE_FALLOFF_SETTINGS_H_
+#endif  // MOCAPSOLVE_SETTINGS_FALLOFF_SETTINGS_H_

@@ -3,8 +3,8 @@
 // and their one conversion into CorruptionOptions (signal/marker_corruption.h) in a
 // length unit. The command line (apps/corruption_flags.cc) and the Python module both
 // call it. Knows nothing of gflags.
-#ifndef MOCAPSOLVE_PIPELINE_CORRUPTION_SETTINGS_H_
-#define MOCAPSOLVE_PIPELINE_CORRUPTION_SETTINGS_H_
+#ifndef MOCAPSOLVE_SETTINGS_CORRUPTION_SETTINGS_H_
+#define MOCAPSOLVE_SETTINGS_CORRUPTION_SETTINGS_H_
 
 #include "kinematics/status.h"
 #include "kinematics/units.h"
@@ -49,4 +49,4 @@ Status CorruptionOptionsFromSettings(const CorruptionSettings& settings, const L
 
 }  // namespace mocapsolve
 
-#endif  // MOCAPSOLVE_PIPELINE_CORRUPTION_SETTINGS_H_
+#endif  // MOCAPSOLVE_SETTINGS_CORRUPTION_SETTINGS_H_

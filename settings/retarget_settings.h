@@ -3,13 +3,14 @@
 // into CharacterRetargetOptions (problems/retarget/retarget_character.h), reading the
 // blend mask and joint map files they name. The command line (apps/retarget_flags.cc)
 // and the Python module both call it. Knows nothing of gflags.
-#ifndef MOCAPSOLVE_PIPELINE_RETARGET_SETTINGS_H_
-#define MOCAPSOLVE_PIPELINE_RETARGET_SETTINGS_H_
+#ifndef MOCAPSOLVE_SETTINGS_RETARGET_SETTINGS_H_
+#define MOCAPSOLVE_SETTINGS_RETARGET_SETTINGS_H_
 
 #include <string>
 
 #include "kinematics/status.h"
 #include "problems/retarget/retarget_character.h"
+#include "settings/option.h"
 
 namespace mocapsolve {
 
@@ -40,8 +41,12 @@ inline constexpr char kRetargetSettingNames[] =
     "blend_mask,mapping_normal_weight,transfer_normals,normal_weight,smoothness,contact_height,"
     "ceres_trust_radius";
 
+// Who solves the retarget and its joint limits, declared once: `retarget`'s --solver and
+// --limit_weight. (pipeline reads the marker solver's options of the same names.)
+const OptionGroup<RetargetSettings>& RetargetSolverOptions();
+
 Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRetargetOptions* options);
 
 }  // namespace mocapsolve
 
-#endif  // MOCAPSOLVE_PIPELINE_RETARGET_SETTINGS_H_
+#endif  // MOCAPSOLVE_SETTINGS_RETARGET_SETTINGS_H_

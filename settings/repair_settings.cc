@@ -1,10 +1,18 @@
-#include "pipeline/repair_settings.h"
+#include "settings/repair_settings.h"
 
 #include <cmath>
 
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
+
+const OptionGroup<SolverSettings>& RepairSolverOptions() {
+  static const OptionGroup<SolverSettings>* const group = new OptionGroup<SolverSettings>(SolverOptions().WithDefault(
+      "solver", "dls",
+      "dls | dls_generic | ceres: who solves the per-frame steps (the naive solve Y and the re-solve); "
+      "dls, the lean tree kernel, is the default here."));
+  return *group;
+}
 
 void SetRepairRestRotations(const QuaternionVector& mean_pose, RepairOptions* options) {
   options->naive.rest_rotations = mean_pose;

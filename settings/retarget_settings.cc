@@ -1,4 +1,4 @@
-#include "pipeline/retarget_settings.h"
+#include "settings/retarget_settings.h"
 
 #include <string>
 #include <utility>
@@ -8,6 +8,18 @@
 #include "io/json_reader.h"
 
 namespace mocapsolve {
+
+const OptionGroup<RetargetSettings>& RetargetSolverOptions() {
+  using S = RetargetSettings;
+  static const OptionGroup<S>* const group = &(*new OptionGroup<S>())
+      .Add(&S::solver, "solver",
+           "dls | dls_generic | ceres: who minimizes each frame's vertex residuals (dls: the lean kernel, eq. 18).",
+           {"dls", "dls_generic", "ceres"})
+      .Add(&S::limit_weight, "limit_weight", "1/rad",
+           "Soft joint limits of the source skeleton's joints as they map to the target (ASF 'limits'): the "
+           "weight of 1 radian beyond a limit against vertex residuals of 1 per sigma; 0 = off.", 0);
+  return *group;
+}
 namespace {
 
 Status ReadBlendMask(const std::string& path, std::vector<std::string>* joints) {
@@ -50,6 +62,8 @@ Status ReadJointMap(const std::string& path, std::vector<std::pair<std::string, 
 }  // namespace
 
 Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRetargetOptions* options_out) {
+  Status checked = RetargetSolverOptions().Validate(settings);
+  if (!checked.ok()) return checked;
   CharacterRetargetOptions& options = *options_out;
   RetargetSolveOptions& solve = options.clip.solve;
   if (!ParseRetargetSolverKind(settings.solver, &solve.solver)) {

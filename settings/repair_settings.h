@@ -3,14 +3,14 @@
 // one conversion into RepairOptions in the skeleton's units. The command line
 // (apps/repair_flags.cc) and the Python module both call RepairOptionsFromSettings, so
 // defaults, validation and messages are one. Knows nothing of gflags.
-#ifndef MOCAPSOLVE_PIPELINE_REPAIR_SETTINGS_H_
-#define MOCAPSOLVE_PIPELINE_REPAIR_SETTINGS_H_
+#ifndef MOCAPSOLVE_SETTINGS_REPAIR_SETTINGS_H_
+#define MOCAPSOLVE_SETTINGS_REPAIR_SETTINGS_H_
 
 #include <string>
 
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
-#include "pipeline/solver_settings.h"
+#include "settings/solver_settings.h"
 #include "problems/marker_repair/marker_repair.h"
 
 namespace mocapsolve {
@@ -53,11 +53,12 @@ inline constexpr char kRepairSettingNames[] =
     "small_track,small_gap,vel_clamp,edge_samples,fill,fill_samples,refit_reference,refit_rough_factor,"
     "rough_extension_factor,reference,reference_loss,reference_loss_cm,tracker_prior_weight,tracker_translation_prior,tracker_function_tolerance";
 
-// Repair solves every frame two or three times: its solver is DLS unless the user chose.
-inline constexpr char kRepairDefaultSolver[] = "dls";
+// Repair solves every frame two or three times: its solver options are the solver's
+// (SolverOptions) with DLS by default; pipeline declares these too.
+const OptionGroup<SolverSettings>& RepairSolverOptions();
 
-// `solver` holds the naive solve's settings (the caller sets solver.solver to
-// kRepairDefaultSolver when the user did not choose). The skeleton's unit must be known.
+// `solver` holds the naive solve's settings (RepairSolverOptions' defaults when the user
+// did not choose). The skeleton's unit must be known.
 Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSettings& solver,
                                  const Skeleton& skeleton, RepairOptions* options);
 
@@ -68,4 +69,4 @@ void SetRepairRestRotations(const QuaternionVector& mean_pose, RepairOptions* op
 
 }  // namespace mocapsolve
 
-#endif  // MOCAPSOLVE_PIPELINE_REPAIR_SETTINGS_H_
+#endif  // MOCAPSOLVE_SETTINGS_REPAIR_SETTINGS_H_

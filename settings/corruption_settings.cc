@@ -1,4 +1,4 @@
-#include "pipeline/corruption_settings.h"
+#include "settings/corruption_settings.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,18 +1,19 @@
-// SolverSettings: the marker solver's knobs as the user names them (one field per flag of
-// `mocapsolve solve`, same name, same default, same units: mm for the prior and limit
-// weights), and their one conversion into MarkerSolveOptions / ClipSolveOptions.
+// SolverSettings: the marker solver's knobs as the user names them (one field per option,
+// declared once in SolverOptions(): name, unit, help, check), and their one conversion into
+// MarkerSolveOptions / ClipSolveOptions.
 //
-// The command line (apps/solver_flags.cc) fills a SolverSettings from its gflags, the
-// Python module (python/) from keyword arguments, a config file through the flags; all
-// of them then call the functions below, so defaults, validation and error messages
-// ("--solver: unknown 'x' (ceres, dls)") are one and the same. Knows nothing of gflags.
-#ifndef MOCAPSOLVE_PIPELINE_SOLVER_SETTINGS_H_
-#define MOCAPSOLVE_PIPELINE_SOLVER_SETTINGS_H_
+// The command line (apps/option_flags.h) makes its flags from the declarations, the Python
+// module (python/) its keywords; both fill a SolverSettings and call the functions below,
+// which check it against the declarations first, so defaults, validation and messages
+// ("--solver: unknown 'x' (ceres, dls, dls_generic)") are one and the same.
+#ifndef MOCAPSOLVE_SETTINGS_SOLVER_SETTINGS_H_
+#define MOCAPSOLVE_SETTINGS_SOLVER_SETTINGS_H_
 
 #include <string>
 
 #include "kinematics/status.h"
 #include "kinematics/units.h"
+#include "settings/option.h"
 #include "problems/marker_solve/marker_clip_solver.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 
@@ -47,13 +48,10 @@ struct SolverSettings {
   bool verbose = false;                    // Ceres prints every iteration (--v=1).
 };
 
-// The settings' names, comma-separated, in the order above (verbose excluded): the flags
-// of `mocapsolve solve` they come from.
-inline constexpr char kSolverSettingNames[] =
-    "solver,mode,linear_solver,trust_region,max_iterations,function_tolerance,"
-    "gradient_tolerance,parameter_tolerance,num_threads,loss,loss_scale,marker_weight,"
-    "prior_weight,prior_translation_weight,rest_prior_weight,limit_weight,smooth_order,smooth_weight,"
-    "smooth_translation_weight,clip_function_tolerance,sparse_library,clip_solver,dls_lambda,dls_damping";
+// The options, declared once (name, unit, help, check; the defaults are the fields'
+// initializers above): the flags of every command that solves markers, the Python
+// keywords of solve() and friends, the keys of config files and reports.
+const OptionGroup<SolverSettings>& SolverOptions();
 
 // The rest prior's weight by default (rest_prior_weight = -1), mm per radian: toward the
 // subject's mean pose when the solve is given one (MarkerSolveOptions::rest_rotations), off
@@ -74,4 +72,4 @@ Status ClipSolveOptionsFromSettings(const SolverSettings& settings, ClipSolveOpt
 
 }  // namespace mocapsolve
 
-#endif  // MOCAPSOLVE_PIPELINE_SOLVER_SETTINGS_H_
+#endif  // MOCAPSOLVE_SETTINGS_SOLVER_SETTINGS_H_
