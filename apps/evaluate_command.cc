@@ -309,14 +309,14 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
   JsonObject report;
   report.Add("markers", FLAGS_markers).Add("method", "repair").Add("frames", static_cast<int>(clean.size()))
       .Add("trials", FLAGS_trials)
-      .Add("first_seed", FLAGS_corrupt_seed).Add("reference", FLAGS_reference).Add("methods", json_rows)
+      .Add("first_seed", FLAGS_corrupt_seed).Add("reference", RepairSettingsFromFlags().reference).Add("methods", json_rows)
       .Add("position_error_ratio_to_ours", ratios);
   return WriteReport(report);
 }
 
 const std::string kEvaluateFlags = std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,"
                                                "report,quiet,method,white_noise_mm,") +
-                                   kCorruptionFlagNames + "," + kRepairFlagNames;
+                                   kCorruptionFlagNames;
 
 }  // namespace
 
@@ -347,7 +347,8 @@ extern const Command kEvaluateCommand = {
          .WithDefault("num_threads", "2",
                       "Threads: leave_one_out solves this many markers at once; repair runs its solves on two "
                       "threads when >= 2. Speed only: the results do not depend on it.")
-         .options()},
+         .options(),
+     RepairSettingOptions().options()},
     {{"method", "repair",
       "repair: damage the markers and score repair against the usual fills (Table 1); leave_one_out: "
       "predict each marker from the solve of the others, on the take as it is; small_errors: recall and precision "

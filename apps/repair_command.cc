@@ -155,7 +155,7 @@ Status RunRepair(const std::vector<std::string>& arguments) {
       .Add("unlabelled_removed_samples", unlabelled_removed).Add("detected", intervals(report.detected)).Add("filled", intervals(report.filled))
       .Add("timings", timings).Add("rms_naive_mm", report.naive_rms * mm)
       .Add("rms_reference_mm", report.reference_rms * mm).Add("rms_repaired_mm", report.repaired_rms * mm)
-      .Add("resolved_frames", report.resolved_frames).Add("reference", FLAGS_reference);
+      .Add("resolved_frames", report.resolved_frames).Add("reference", RepairSettingsFromFlags().reference);
   status = WriteViewFlag([&](ViewScene* scene) {
     TakeViewInputs view;
     view.title = "repair: " + FileStem(FLAGS_markers);
@@ -172,9 +172,7 @@ Status RunRepair(const std::vector<std::string>& arguments) {
   return WriteReport(json);
 }
 
-const std::string kRepairFlags =
-    std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet,view,") +
-    kRepairFlagNames;
+const char kRepairFlags[] = "subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet,view";
 
 }  // namespace
 
@@ -189,6 +187,6 @@ extern const Command kRepairCommand = {
     "(--assign_unlabelled; they leave their unlabelled columns in --out_markers);\n"
     "trimming, small tracks and small gaps; Hermite refill from the reference; re-solve.\n"
     "Samples never marked bad are written as they were read. Prints per-stage timings.",
-    __FILE__, RunRepair, kRepairFlags.c_str(), {RepairSolverOptions().options()}};
+    __FILE__, RunRepair, kRepairFlags, {RepairSettingOptions().options(), RepairSolverOptions().options()}};
 
 }  // namespace mocapsolve

@@ -10,14 +10,9 @@
 #include "settings/repair_settings.h"
 #include "problems/marker_repair/marker_repair.h"
 
-DECLARE_string(reference);
-
 namespace mocapsolve {
 
-// Comma-separated names of the repair flags, for Command::shared_flags style help.
-inline constexpr const char* kRepairFlagNames = kRepairSettingNames;
-
-// The flags as settings (settings/repair_settings.h).
+// The declared repair options (RepairSettingOptions) as this run's flags made them.
 RepairSettings RepairSettingsFromFlags();
 
 // Thresholds in cm and degrees are converted with the skeleton's unit (which must be

@@ -25,7 +25,7 @@ py::list IntervalList(const std::vector<RepairInterval>& intervals, const Marker
 }
 
 std::string RepairOptionNames() {
-  return std::string(kRepairSettingNames) + "," + SolverOptions().Names();
+  return RepairSettingOptions().Names() + "," + SolverOptions().Names();
 }
 
 }  // namespace
@@ -56,7 +56,7 @@ void BindRepair(py::module_& m) {
       }, py::arg("solver") = SolverSettings(), py::arg("skeleton_units") = "cm",
       "Raises ValueError (the CLI's message) if a value, or one of the solver's (solver: a\n"
       "SolverSettings), is invalid for a skeleton in skeleton_units (mm, cm, m, in).");
-  m.attr("REPAIR_OPTION_NAMES") = std::string(kRepairSettingNames);
+  m.attr("REPAIR_OPTION_NAMES") = RepairSettingOptions().Names();
 
   m.def("repair", [](SubjectPtr subject_arg, py::object markers, const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");
@@ -164,7 +164,7 @@ to)], mean_distance_before_mm, mean_distance_after_mm}; 'unlabelled_assigned': {
 unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and 'filled' lists of
 {marker, first_frame, last_frame, what}, 'timings', 'rms_*_mm', 'repaired_observed'
 (frames, set markers, 3) in skeleton units). Releases the GIL while repairing.)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names())).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names())).c_str());
 
   py::class_<CorruptionSettings> damage(m, "CorruptionSettings",
       "The synthetic damage's options, one per flag of `mocapsolve corrupt`/`evaluate` (same\n"
@@ -273,7 +273,7 @@ solver and corruption options. Returns one dict per trial and method, the column
 evaluate's --table_csv (errors against the solve of the clean markers).
 subject: a Subject; markers: a .c3d/.trc path or a Take; trials: how many damaged copies
 (default 1, up to 1000).)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), kRepairSettingNames) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), kCorruptionSettingNames)).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), kCorruptionSettingNames)).c_str());
 }
 
 }  // namespace mocapsolve::python

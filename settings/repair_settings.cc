@@ -6,6 +6,110 @@
 
 namespace mocapsolve {
 
+const OptionGroup<RepairSettings>& RepairSettingOptions() {
+  using S = RepairSettings;
+  static const OptionGroup<S>* const group = &(*new OptionGroup<S>())
+      .Add(&S::dp_max_cm, "dp_max_cm", "cm",
+           "A joint farther than this (cm) from the robust reference is bad "
+           "(thesis 3.4.2: 10 cm).")
+      .Add(&S::dr_max_deg, "dr_max_deg", "deg",
+           "A joint turned more than this (degrees) from the reference is bad "
+           "(thesis: 30).")
+      .Add(&S::outlier_cm, "outlier_cm", "cm",
+           "With --outliers=fixed, a marker sample farther than this (cm) from its "
+           "reconstruction on the reference is an outlier (chapter 3's rule); with robust, the cap "
+           "of every marker's gate.")
+      .Add(&S::outliers, "outliers",
+           "How outliers are found: robust (each marker judged against its own "
+           "typical residual over the take: gate = median deviation + --outlier_mads MADs, at "
+           "least --outlier_min_cm, at most --outlier_cm; finds 1-4 cm jumps on markers that are "
+           "normally within mm and spares markers on loose tissue or with an offset error) | fixed "
+           "(--outlier_cm from the reconstruction).",
+           {"robust", "fixed"})
+      .Add(&S::outlier_mads, "outlier_mads", "",
+           "Robust outlier gate: robust standard deviations (1.4826 MAD) "
+           "past the marker's median deviation.")
+      .Add(&S::outlier_min_cm, "outlier_min_cm", "cm",
+           "Robust outlier gate: never below this (cm).")
+      .Add(&S::undo_swaps, "undo_swaps",
+           "Find label swaps (a sample far from its own marker's prediction and "
+           "close to that of a nearby marker left without a good sample) and relabel them "
+           "instead of cutting and refilling; reported as 'swaps'.")
+      .Add(&S::swap_radius_cm, "swap_radius_cm", "cm",
+           "Markers whose predicted positions are this close (cm) may "
+           "swap labels.")
+      .Add(&S::swap_min_frames, "swap_min_frames", "frames",
+           "A swap must persist this many consecutive frames.")
+      .Add(&S::assign_unlabelled, "assign_unlabelled",
+           "Label unlabelled points (C3D '*52'): a point becomes the "
+           "sample of a missing marker where it lies within the marker's gate around its prediction "
+           "and continues the marker's track, one to one per frame; reported as 'unlabelled_assigned'.")
+      .Add(&S::unlabelled_min_cm, "unlabelled_min_cm", "cm",
+           "Unlabelled assignment gate (the marker's median deviation + "
+           "--outlier_mads MADs): never below this (cm).")
+      .Add(&S::unlabelled_max_cm, "unlabelled_max_cm", "cm",
+           "Unlabelled assignment gate: never above this (cm).")
+      .Add(&S::unlabelled_min_frames, "unlabelled_min_frames", "frames",
+           "An assigned run of frames that continues no observed "
+           "sample of the marker needs at least this many frames.")
+      .Add(&S::trim_max, "trim_max", "frames",
+           "Frames trimmed at most on each side of a gap (thesis: 120).")
+      .Add(&S::small_track, "small_track", "frames",
+           "Valid runs of at most this many frames between gaps are dropped.")
+      .Add(&S::small_gap, "small_gap", "frames",
+           "Gaps of at most this many frames are filled by a plain cubic.")
+      .Add(&S::vel_clamp, "vel_clamp", "cm/frame",
+           "Clamp of the offset velocity at gap edges, in cm per frame "
+           "(the thesis' 0.25; its unit is not stated, its data are in cm).")
+      .Add(&S::edge_samples, "edge_samples", "samples",
+           "Samples beyond each gap edge that the refill's offset velocity is "
+           "fitted to (a least-squares line; 2 = the thesis' one-sided difference, which a jittery "
+           "marker throws off; 1 = no offset velocity: the fill blends the two edge offsets, "
+           "which measured best on real takes, BENCHMARKS.md).")
+      .Add(&S::fill, "fill",
+           "How a gap is filled from the reference X^: kriging (the offset from "
+           "X^ modelled per marker as mean + exponentially correlated process + white noise, "
+           "estimated from the take; the fill is its conditional mean given --fill_samples samples "
+           "on each side) | blend (X^ plus a blend from one edge's offset to the other's, Algorithm 3).",
+           {"blend", "kriging"})
+      .Add(&S::fill_samples, "fill_samples", "samples",
+           "--fill=kriging: offset samples conditioned on per gap side.")
+      .Add(&S::refit_reference, "refit_reference",
+           "With --reference=tracker: refit X^ without the samples found "
+           "bad (it leaned toward them) and fill smooth bad runs (fly-off, ghost) and gaps from it; "
+           "rough runs (noise, jitter) are filled from X^ as solved.")
+      .Add(&S::refit_rough_factor, "refit_rough_factor", "",
+           "A bad run is rough when its median |second "
+           "difference| exceeds this many times the marker's own.")
+      .Add(&S::rough_extension_factor, "rough_extension_factor", "",
+           "A rough bad run is extended over the "
+           "samples beside it whose residual |second difference| exceeds this many times the marker's "
+           "median and a tenth of the gates' floor (a noise run cut whole; at most --trim_max per side; "
+           "0: off).")
+      .Add(&S::reference, "reference",
+           "The robust reference Y^: tracker (frame by frame, robust loss, "
+           "pulled toward the previous frame; runs beside the naive solve) | clip (the "
+           "whole-clip solve with a robust loss and smoothness; ~10x slower).",
+           {"tracker", "clip"})
+      .Add(&S::reference_loss, "reference_loss",
+           "Robust loss of the reference solve: cauchy | huber.")
+      .Add(&S::reference_loss_cm, "reference_loss_cm", "cm",
+           "Where the reference solve's loss bends (cm).")
+      .Add(&S::tracker_prior_weight, "tracker_prior_weight", "mm/rad",
+           "Tracker reference: pull of each joint rotation toward "
+           "the previous frame, mm per radian (the naive solve's is --prior_weight).")
+      .Add(&S::tracker_translation_prior, "tracker_translation_prior", "",
+           "Tracker reference: pull of the root translation "
+           "toward the previous frame (residual per unit of displacement).")
+      .Add(&S::tracker_function_tolerance, "tracker_function_tolerance", "",
+           "Tracker reference: stop when the relative cost "
+           "change is below this. The reference only has to show where the markers broke: on "
+           "02_01 1e-4 instead of 1e-6 leaves the repaired solve as good (0.170 vs 0.176 cm) and "
+           "makes repair 1.6x faster.")
+;
+  return *group;
+}
+
 const OptionGroup<SolverSettings>& RepairSolverOptions() {
   static const OptionGroup<SolverSettings>* const group = new OptionGroup<SolverSettings>(SolverOptions().WithDefault(
       "solver", "dls",
@@ -20,6 +124,8 @@ void SetRepairRestRotations(const QuaternionVector& mean_pose, RepairOptions* op
 
 Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSettings& solver,
                                  const Skeleton& skeleton, RepairOptions* options) {
+  Status checked = RepairSettingOptions().Validate(settings);
+  if (!checked.ok()) return checked;
   if (!skeleton.unit().known()) {
     return Status::Error("the skeleton's unit is unknown; give --skeleton_units");
   }

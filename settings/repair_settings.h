@@ -47,11 +47,9 @@ struct RepairSettings {
   double tracker_function_tolerance = 1e-4;
 };
 
-inline constexpr char kRepairSettingNames[] =
-    "dp_max_cm,dr_max_deg,outlier_cm,outliers,outlier_mads,outlier_min_cm,undo_swaps,swap_radius_cm,"
-    "swap_min_frames,assign_unlabelled,unlabelled_min_cm,unlabelled_max_cm,unlabelled_min_frames,trim_max,"
-    "small_track,small_gap,vel_clamp,edge_samples,fill,fill_samples,refit_reference,refit_rough_factor,"
-    "rough_extension_factor,reference,reference_loss,reference_loss_cm,tracker_prior_weight,tracker_translation_prior,tracker_function_tolerance";
+// The options, declared once (name, unit, help, check; the defaults are the fields'
+// initializers above): the flags of repair, evaluate and pipeline, Python's keywords.
+const OptionGroup<RepairSettings>& RepairSettingOptions();
 
 // Repair solves every frame two or three times: its solver options are the solver's
 // (SolverOptions) with DLS by default; pipeline declares these too.

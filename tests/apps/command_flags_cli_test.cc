@@ -157,6 +157,9 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
       {"repair", RepairSolverOptions().options()},
       {"evaluate", RepairSolverOptions().options()},
       {"pipeline", RepairSolverOptions().options()},
+      {"repair", RepairSettingOptions().options()},
+      {"evaluate", RepairSettingOptions().options()},
+      {"pipeline", RepairSettingOptions().options()},
       {"retarget", RetargetSolverOptions().options()},
       {"propagate", SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,"
                                          "sparse_library").options()}};
@@ -196,7 +199,10 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
   // pipeline's config keys: every declared option, its default as --print_config writes it.
   std::string config;
   ASSERT_EQ(testing::RunCli("pipeline --print_config", &config), 0) << config;
-  for (const Option& option : RepairSolverOptions().options()) {
+  std::vector<Option> pipeline_options = RepairSolverOptions().options();
+  pipeline_options.insert(pipeline_options.end(), RepairSettingOptions().options().begin(),
+                          RepairSettingOptions().options().end());
+  for (const Option& option : pipeline_options) {
     const std::string value = option.type == OptionType::kString ? "\"" + option.default_value + "\""
                                                                  : option.default_value;
     EXPECT_THAT(config, HasSubstr("\"" + option.name + "\": " + value)) << option.name;

@@ -112,6 +112,8 @@ TEST(Option, TheDeclaredGroupsAreWellFormed) {
   repair_defaults.solver = "dls";
   ExpectWellDeclared(RepairSolverOptions(), repair_defaults);
   ExpectWellDeclared(RetargetSolverOptions(), RetargetSettings());
+  ExpectWellDeclared(RepairSettingOptions(), RepairSettings());
+  EXPECT_EQ(RepairSettingOptions().options().size(), 29u);
 }
 
 TEST(Option, TheSettingsConversionsCheckAgainstTheDeclarations) {
