@@ -83,7 +83,7 @@ Status RunCorrupt(const std::vector<std::string>& arguments) {
     if (k < 4 || counts[k] > 0) summary += std::string(summary.empty() ? "" : ", ") + std::to_string(counts[k]) + " " + kDamageKindNames[k];
   }
   std::printf("wrote %s: samples damaged: %s (seed %d)%s%s\n", FLAGS_out.c_str(), summary.c_str(),
-              FLAGS_corrupt_seed, FLAGS_mask_out.empty() ? "" : "; mask in ", FLAGS_mask_out.c_str());
+              CorruptionSettingsFromFlags().corrupt_seed, FLAGS_mask_out.empty() ? "" : "; mask in ", FLAGS_mask_out.c_str());
   JsonObject report;
   report.Add("markers", FLAGS_markers).Add("out", FLAGS_out);
   for (int k = 0; k < kNumDamageKinds; ++k) report.Add(std::string(kDamageKindNames[k]) + "_samples", counts[k]);
@@ -93,7 +93,7 @@ Status RunCorrupt(const std::vector<std::string>& arguments) {
   return WriteReport(report);
 }
 
-const std::string kCorruptFlags = std::string("markers,out,report,") + kCorruptionFlagNames;
+const char kCorruptFlags[] = "markers,out,report";
 
 }  // namespace
 
@@ -103,6 +103,6 @@ extern const Command kCorruptCommand = {
     "[--corrupt_seed=1] [--gaps=10 ...]\n\n"
     "Writes a corrupted copy and, with --mask_out, which samples were damaged and how.\n"
     "Distances are in mm (converted with the file's unit); frames are frame indices.",
-    __FILE__, RunCorrupt, kCorruptFlags.c_str()};
+    __FILE__, RunCorrupt, kCorruptFlags, {CorruptionSettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -1,4 +1,5 @@
-// The damage knobs `corrupt` and `evaluate` share (gflags, defined in corruption_flags.cc).
+// The damage knobs `corrupt` and `evaluate` share (declared once in
+// settings/corruption_settings.h, made flags by main.cc).
 #ifndef MOCAPSOLVE_APPS_CORRUPTION_FLAGS_H_
 #define MOCAPSOLVE_APPS_CORRUPTION_FLAGS_H_
 
@@ -9,11 +10,10 @@
 #include "settings/corruption_settings.h"
 #include "signal/marker_corruption.h"
 
-DECLARE_int32(corrupt_seed);
-
 namespace mocapsolve {
 
-inline constexpr const char* kCorruptionFlagNames = kCorruptionSettingNames;
+// The declared damage options (CorruptionSettingOptions) as this run's flags made them.
+CorruptionSettings CorruptionSettingsFromFlags();
 
 // Distances in mm converted to `unit` (which must be known).
 Status CorruptionOptionsFromFlags(const LengthUnit& unit, CorruptionOptions* options);

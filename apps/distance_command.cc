@@ -284,11 +284,8 @@ extern const Command kDistanceCommand = {
     "other cycles, the second difference at the edit and where the weight drops below 0.5/0.05.\n"
     "--plot writes the distance curves (1 - weight) of every method and --sweep sigma as SVG.",
     __FILE__, RunDistance,
-    // The falloff flags are kFalloffFlagNames (apps/falloff_flags.h).
-    "motion,out,plot,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet,sigma,sigma_scale,"
-    "eigenpairs,region,diffusion_steps,knn,isomap_knn,falloff_kernel,feature_joints,joint_weights,"
-    "temporal_weight",
-    {},
+    "motion,out,plot,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet",
+    {FalloffSettingOptions().options()},
     {{"method", "green",
       "green | diffusion | isomap, comma-separated for several: the distances to compute (the first fills "
       "distance,weight; the others add columns)."},

@@ -101,7 +101,7 @@ Status RunSmallErrors(const MarkerTake& take) {
   SetRepairRestRotations(take.mean_pose, &options);  // As --method=repair and `mocapsolve repair`.
   if (!(FLAGS_white_noise_mm >= 0.0)) return Status::Error("--white_noise_mm: expected >= 0");
   SmallErrorRecipe recipe = DefaultSmallErrorRecipe(skeleton.unit().metres_per_unit, FLAGS_white_noise_mm);
-  recipe.seed = static_cast<uint32_t>(FLAGS_corrupt_seed);
+  recipe.seed = static_cast<uint32_t>(CorruptionSettingsFromFlags().corrupt_seed);
   SmallErrorScore score;
   status = EvaluateSmallErrors(skeleton, take.markers, take.observed, options, recipe, FLAGS_trials, &score);
   if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
@@ -146,7 +146,7 @@ Status RunSmallErrors(const MarkerTake& take) {
   }
   JsonObject report;
   report.Add("markers", FLAGS_markers).Add("method", "small_errors").Add("frames", nf).Add("trials", FLAGS_trials)
-      .Add("first_seed", FLAGS_corrupt_seed).Add("white_noise_mm", FLAGS_white_noise_mm)
+      .Add("first_seed", CorruptionSettingsFromFlags().corrupt_seed).Add("white_noise_mm", FLAGS_white_noise_mm)
       .Add("damaged", static_cast<double>(score.damaged)).Add("flagged", static_cast<double>(score.flagged))
       .Add("true_positive", static_cast<double>(score.true_positive)).Add("own", static_cast<double>(score.own))
       .Add("own_damaged", static_cast<double>(score.own_damaged)).Add("recall", score.Recall())
@@ -192,7 +192,7 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
                     "marker_max_mm,damaged_samples,covered_samples,velocity_jump_mm_per_frame,seconds\n";
   Progress trials_progress("evaluate", FLAGS_trials, FLAGS_quiet, "trials");
   for (int trial = 0; trial < FLAGS_trials; ++trial) {
-    damage.seed = static_cast<uint32_t>(FLAGS_corrupt_seed + trial);
+    damage.seed = static_cast<uint32_t>(CorruptionSettingsFromFlags().corrupt_seed + trial);
     std::vector<RepairEvaluationRow> rows;
     status = EvaluateRepairTrial(skeleton, markers, clean, damage, options, &rows);
     if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
@@ -309,14 +309,13 @@ Status RunEvaluate(const std::vector<std::string>& arguments) {
   JsonObject report;
   report.Add("markers", FLAGS_markers).Add("method", "repair").Add("frames", static_cast<int>(clean.size()))
       .Add("trials", FLAGS_trials)
-      .Add("first_seed", FLAGS_corrupt_seed).Add("reference", RepairSettingsFromFlags().reference).Add("methods", json_rows)
+      .Add("first_seed", CorruptionSettingsFromFlags().corrupt_seed).Add("reference", RepairSettingsFromFlags().reference).Add("methods", json_rows)
       .Add("position_error_ratio_to_ours", ratios);
   return WriteReport(report);
 }
 
 const std::string kEvaluateFlags = std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,"
-                                               "report,quiet,method,white_noise_mm,") +
-                                   kCorruptionFlagNames;
+                                               "report,quiet,method,white_noise_mm");
 
 }  // namespace
 
@@ -348,7 +347,7 @@ extern const Command kEvaluateCommand = {
                       "Threads: leave_one_out solves this many markers at once; repair runs its solves on two "
                       "threads when >= 2. Speed only: the results do not depend on it.")
          .options(),
-     RepairSettingOptions().options()},
+     RepairSettingOptions().options(), CorruptionSettingOptions().options()},
     {{"method", "repair",
       "repair: damage the markers and score repair against the usual fills (Table 1); leave_one_out: "
       "predict each marker from the solve of the others, on the take as it is; small_errors: recall and precision "

@@ -11,9 +11,6 @@
 
 namespace mocapsolve {
 
-// The flags' names, comma-separated, for Command::shared_flags.
-inline constexpr const char* kFalloffFlagNames = kFalloffSettingNames;
-
 // Options from the flags; the message names the bad flag. --region is parsed against
 // num_frames ("a:b", either side may be empty; b exclusive).
 Status FalloffOptionsFromFlags(int num_frames, FalloffOptions* options);

@@ -336,10 +336,11 @@ extern const Command kPropagateCommand = {
     "Reports the largest drift of feet planted in the source; --keep_contacts re-solves those\n"
     "frames so the feet stay put.",
     __FILE__, RunPropagate,
-    "motion,out,report,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,quiet,sigma,sigma_scale,eigenpairs,region,"
-    "knn,falloff_kernel,feature_joints,joint_weights,temporal_weight,frame,view",
+    "motion,out,report,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,quiet,frame,view",
     // The IK edit's solve and the harmonic falloff's sparse solve.
-    {SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,sparse_library").options()},
+    {SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,sparse_library").options(),
+     FalloffSettingOptions().Only("sigma,sigma_scale,eigenpairs,region,knn,falloff_kernel,feature_joints,joint_weights,"
+                                  "temporal_weight").options()},
     {{"method", "green", "green | harmonic | spline: the falloff that carries the edit to the other frames."}}};
 
 }  // namespace mocapsolve

@@ -41,14 +41,14 @@ void BindPropagate(py::module_& m) {
         ThrowIfError(FalloffOptionsFromSettings(s, num_frames, &options));
       }, py::arg("num_frames"),
       "Raises ValueError (the CLI's message) if a value is invalid for a clip of num_frames frames.");
-  m.attr("FALLOFF_OPTION_NAMES") = std::string(kFalloffSettingNames);
+  m.attr("FALLOFF_OPTION_NAMES") = FalloffSettingOptions().Names();
 
   m.def("falloff", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& method,
                       const py::kwargs& keywords) {
         CheckMotion(skeleton, motion);
         FalloffSettings falloff_settings;
         ApplyKeywords(keywords, {py::cast(&falloff_settings, py::return_value_policy::reference)},
-                      kFalloffSettingNames);
+                      FalloffSettingOptions().Names());
         FalloffMethod kind;
         if (!ParseFalloffMethod(method, &kind)) {
           throw py::value_error("--method: expected green, diffusion or isomap, got '" + method + "'");
@@ -79,7 +79,7 @@ FalloffSettings (sigma, sigma_scale, eigenpairs, region='a:b', diffusion_steps, 
 isomap_knn, falloff_kernel, feature_joints, joint_weights, temporal_weight).
 Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
 'region', 'sigma', 'eigenpairs', 'sparse_kernel'.)doc") +
-       KeywordDefaults("Falloff keywords and defaults (FalloffSettings)", py::cast(FalloffSettings()), kFalloffSettingNames)).c_str());
+       KeywordDefaults("Falloff keywords and defaults (FalloffSettings)", py::cast(FalloffSettings()), FalloffSettingOptions().Names())).c_str());
 
   m.def("spline_falloff", [](int num_frames, int frame, double spline_width, int region_begin, int region_end) {
         if (!(spline_width > 0.0) || !std::isfinite(spline_width)) {
@@ -212,7 +212,7 @@ ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc") +
         CheckMotion(skeleton, motion);
         FalloffSettings falloff_settings;
         ApplyKeywords(keywords, {py::cast(&falloff_settings, py::return_value_policy::reference)},
-                      kFalloffSettingNames);
+                      FalloffSettingOptions().Names());
         if (method != "green" && method != "harmonic" && method != "spline") {
           throw py::value_error("--method: expected green, harmonic or spline, got '" + method + "'");
         }
@@ -264,7 +264,7 @@ Other keywords: the FalloffSettings (sigma, sigma_scale, eigenpairs, region='a:b
 falloff_kernel, feature_joints, joint_weights, temporal_weight; as falloff()).
 Returns (weights, report): the list of arrays and the CLI report's 'falloff' dict.
 Releases the GIL.)doc") +
-       KeywordDefaults("Falloff keywords and defaults (FalloffSettings)", py::cast(FalloffSettings()), kFalloffSettingNames)).c_str());
+       KeywordDefaults("Falloff keywords and defaults (FalloffSettings)", py::cast(FalloffSettings()), FalloffSettingOptions().Names())).c_str());
 }
 
 }  // namespace mocapsolve::python

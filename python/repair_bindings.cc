@@ -185,11 +185,11 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
         ThrowIfError(CorruptionOptionsFromSettings(s, LengthUnitFromName(units), &options));
       }, py::arg("units") = "mm",
       "Raises ValueError (the CLI's message) if a value is invalid for markers in units (mm, cm, m, in).");
-  m.attr("CORRUPTION_OPTION_NAMES") = std::string(kCorruptionSettingNames);
+  m.attr("CORRUPTION_OPTION_NAMES") = CorruptionSettingOptions().Names();
 
   m.def("corrupt", [](MarkerTrajectories& markers, const py::kwargs& keywords) {
         CorruptionSettings settings;
-        ApplyKeywords(keywords, {py::cast(&settings, py::return_value_policy::reference)}, kCorruptionSettingNames);
+        ApplyKeywords(keywords, {py::cast(&settings, py::return_value_policy::reference)}, CorruptionSettingOptions().Names());
         CorruptionOptions options;
         ThrowIfError(CorruptionOptionsFromSettings(settings, markers.unit, &options));
         SyncMask(&markers);
@@ -220,7 +220,7 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
                       {py::cast(&repair_settings, py::return_value_policy::reference),
                        py::cast(&solver_settings, py::return_value_policy::reference),
                        py::cast(&damage_settings, py::return_value_policy::reference)},
-                      RepairOptionNames() + "," + kCorruptionSettingNames);
+                      RepairOptionNames() + "," + CorruptionSettingOptions().Names());
         if (trials < 1 || trials > 1000) throw py::value_error("--trials: expected 1..1000");
         const Skeleton& skeleton = subject->skeleton;
         RepairOptions options;
@@ -273,7 +273,7 @@ solver and corruption options. Returns one dict per trial and method, the column
 evaluate's --table_csv (errors against the solve of the clean markers).
 subject: a Subject; markers: a .c3d/.trc path or a Take; trials: how many damaged copies
 (default 1, up to 1000).)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), kCorruptionSettingNames)).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), CorruptionSettingOptions().Names())).c_str());
 }
 
 }  // namespace mocapsolve::python

@@ -9,6 +9,7 @@
 #include "kinematics/status.h"
 #include "kinematics/units.h"
 #include "signal/marker_corruption.h"
+#include "settings/option.h"
 
 namespace mocapsolve {
 
@@ -38,10 +39,9 @@ struct CorruptionSettings {
   int unlabel_length = 30;        // Frames of each.
 };
 
-inline constexpr char kCorruptionSettingNames[] =
-    "corrupt_seed,gaps,gap_min,gap_max,cluster_gaps,cluster_radius_mm,fly_off_frames,fly_off_mm,"
-    "swaps,swap_length,swap_radius_mm,noisy_markers,noise_length,noise_sigma_mm,swaps_in_gaps,jitter_markers,"
-    "jitter_length,jitter_mm,ghosts,ghost_length,ghost_mm,unlabels,unlabel_length";
+// The options, declared once (name, unit, help, check; the defaults are the fields'
+// initializers above): the flags of corrupt and evaluate, Python's keywords.
+const OptionGroup<CorruptionSettings>& CorruptionSettingOptions();
 
 // Distances in mm converted to `unit` (which must be known).
 Status CorruptionOptionsFromSettings(const CorruptionSettings& settings, const LengthUnit& unit,

@@ -6,6 +6,41 @@
 #include <vector>
 
 namespace mocapsolve {
+
+const OptionGroup<FalloffSettings>& FalloffSettingOptions() {
+  using S = FalloffSettings;
+  static const OptionGroup<S>* const group = &(*new OptionGroup<S>())
+      .Add(&S::sigma, "sigma", "rad",
+           "Kernel width of eq. 1 in pose-vector units (radians); 0 = auto: "
+           "--sigma_scale times the median frame-to-frame pose distance.")
+      .Add(&S::sigma_scale, "sigma_scale", "",
+           "Auto sigma = this times the median frame-to-frame pose distance.")
+      .Add(&S::eigenpairs, "eigenpairs", "eigenpairs",
+           "Terms of the Green's function sum (eq. 3): the smallest nonzero "
+           "eigenpairs of the pose Laplacian; 0 = all (dense kernel only).")
+      .Add(&S::region, "region",
+           "Edited region a:b (frames, b exclusive; either side may be empty): "
+           "weights are normalized over it and are 0 outside. Empty = the whole clip.")
+      .Add(&S::diffusion_steps, "diffusion_steps", "steps",
+           "Diffusion-map steps t for --method=diffusion.")
+      .Add(&S::knn, "knn", "poses",
+           "Nearest poses per frame in the sparse (kNN) kernel.")
+      .Add(&S::isomap_knn, "isomap_knn", "poses",
+           "Nearest poses per frame in the ISOMAP graph (--method=isomap).")
+      .Add(&S::falloff_kernel, "falloff_kernel",
+           "auto (sparse kNN kernel above 1000 frames), dense or sparse.",
+           {"auto", "dense", "sparse"})
+      .Add(&S::feature_joints, "feature_joints",
+           "Comma-separated joints of the pose vector; empty = every "
+           "rotating joint.")
+      .Add(&S::joint_weights, "joint_weights",
+           "Comma-separated weights, one per --feature_joints entry.")
+      .Add(&S::temporal_weight, "temporal_weight", "",
+           "Adds temporal_weight * time (s) to the pose vector "
+           "(radians per second; section 3.1's temporal distance term).")
+;
+  return *group;
+}
 namespace {
 
 std::vector<std::string> SplitCommas(const std::string& text) {
@@ -36,6 +71,8 @@ bool ParseInt(const std::string& text, int* value) {
 }  // namespace
 
 Status FalloffOptionsFromSettings(const FalloffSettings& settings, int num_frames, FalloffOptions* options) {
+  Status checked = FalloffSettingOptions().Validate(settings);
+  if (!checked.ok()) return checked;
   options->sigma = settings.sigma;
   options->sigma_scale = settings.sigma_scale;
   options->eigenpairs = settings.eigenpairs;

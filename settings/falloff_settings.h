@@ -11,6 +11,7 @@
 
 #include "kinematics/status.h"
 #include "problems/edit_propagation/falloff.h"
+#include "settings/option.h"
 
 namespace mocapsolve {
 
@@ -28,9 +29,9 @@ struct FalloffSettings {
   double temporal_weight = 0.0; // Radians per second.
 };
 
-inline constexpr char kFalloffSettingNames[] =
-    "sigma,sigma_scale,eigenpairs,region,diffusion_steps,knn,isomap_knn,falloff_kernel,feature_joints,"
-    "joint_weights,temporal_weight";
+// The options, declared once (name, unit, help, check; the defaults are the fields'
+// initializers above): the flags of distance and propagate, Python's keywords.
+const OptionGroup<FalloffSettings>& FalloffSettingOptions();
 
 // The message names the bad flag; region is parsed against num_frames.
 Status FalloffOptionsFromSettings(const FalloffSettings& settings, int num_frames, FalloffOptions* options);

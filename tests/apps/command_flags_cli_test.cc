@@ -10,6 +10,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "settings/corruption_settings.h"
+#include "settings/falloff_settings.h"
 #include "settings/repair_settings.h"
 #include "settings/retarget_settings.h"
 #include "settings/solver_settings.h"
@@ -160,6 +162,11 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
       {"repair", RepairSettingOptions().options()},
       {"evaluate", RepairSettingOptions().options()},
       {"pipeline", RepairSettingOptions().options()},
+      {"corrupt", CorruptionSettingOptions().options()},
+      {"evaluate", CorruptionSettingOptions().options()},
+      {"distance", FalloffSettingOptions().options()},
+      {"propagate", FalloffSettingOptions().Only("sigma,sigma_scale,eigenpairs,region,knn,falloff_kernel,"
+                                                 "feature_joints,joint_weights,temporal_weight").options()},
       {"retarget", RetargetSolverOptions().options()},
       {"propagate", SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,"
                                          "sparse_library").options()}};

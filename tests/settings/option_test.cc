@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "settings/corruption_settings.h"
+#include "settings/falloff_settings.h"
 #include "settings/repair_settings.h"
 #include "settings/retarget_settings.h"
 #include "settings/solver_settings.h"
@@ -114,6 +116,8 @@ TEST(Option, TheDeclaredGroupsAreWellFormed) {
   ExpectWellDeclared(RetargetSolverOptions(), RetargetSettings());
   ExpectWellDeclared(RepairSettingOptions(), RepairSettings());
   EXPECT_EQ(RepairSettingOptions().options().size(), 29u);
+  ExpectWellDeclared(CorruptionSettingOptions(), CorruptionSettings());
+  ExpectWellDeclared(FalloffSettingOptions(), FalloffSettings());
 }
 
 TEST(Option, TheSettingsConversionsCheckAgainstTheDeclarations) {
