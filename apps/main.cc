@@ -5,6 +5,7 @@
 #include <cstring>
 #include <exception>
 #include <new>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -114,11 +115,18 @@ Status CheckFiniteFlags(const Command& command) {
 // The options the command declares become this run's flags, the command's own (a name
 // two of its groups declare: the first group's).
 void RegisterCommandOptions(const Command& command) {
+  std::set<std::string> registered;
   for (const std::vector<Option>& group : command.options) {
     std::vector<Option> fresh;
     for (const Option& option : group) {
+      if (registered.count(option.name)) continue;
       gflags::CommandLineFlagInfo existing;
-      if (!gflags::GetCommandLineFlagInfo(option.name.c_str(), &existing)) fresh.push_back(option);
+      // A declared option that is also a DEFINE_* somewhere would be that flag, silently.
+      CHECK(!gflags::GetCommandLineFlagInfo(option.name.c_str(), &existing))
+          << "--" << option.name << " is declared for `" << command.name << "` and also defined in "
+          << existing.filename;
+      registered.insert(option.name);
+      fresh.push_back(option);
     }
     RegisterOptionFlags(fresh, command.source);
   }

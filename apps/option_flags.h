@@ -24,14 +24,14 @@ void RegisterOptionFlags(const std::vector<Option>& options, const char* source)
 // check: one message per option whatever the surface (a Python keyword gets the same).
 Status CheckOptionFlags(const std::vector<std::vector<Option>>& groups);
 
-// The flag values of the group's options (as parsed, or set by --config) into `settings`;
-// an option this run did not register keeps the group's default.
+// The flag values of the group's options (as parsed, or set by --config) into their fields
+// of `settings` (other fields untouched); an option this run did not register gets the
+// group's default.
 template <class Settings>
 Status ReadOptionFlags(const OptionGroup<Settings>& group, Settings* settings) {
-  *settings = group.Defaults();
   for (const Option& option : group.options()) {
     std::string text;
-    if (!gflags::GetCommandLineOption(option.name.c_str(), &text)) continue;
+    if (!gflags::GetCommandLineOption(option.name.c_str(), &text)) text = option.default_value;
     Status status = group.Set(option.name, text, settings);
     if (!status.ok()) return status;
   }

@@ -55,7 +55,7 @@ namespace {
 const std::string kPipelineOptionFlags =
     std::string("take_name,filter_levels,kernel_a,tension,gate_naive_rms_mm,gate_repaired_rms_mm,"
                 "gate_repaired_share,gate_iteration_limit_share,gate_marker_offset_cm,gate_torso_deg,animation_only,") +
-    RepairSettingOptions().Names() + "," + SolverOptions().Names() + "," + kRetargetOptionFlagNames;
+    RepairSettingOptions().Names() + "," + SolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints";
 
 // The take's page, as --view says: auto (the default) DIR/view.html when the viewer's
 // runtime is installed, else none with a warning (a batch on a machine without it still
@@ -210,7 +210,7 @@ extern const Command kPipelineCommand = {
          .WithDefault("solver", "dls",
                       "dls | dls_generic | ceres: who solves the per-frame problems of the repair and the retargets.")
          .options(),
-     RepairSettingOptions().options()},
+     RepairSettingOptions().options(), RetargetSettingOptions().options()},
     {{"view", "auto",
       "The take's browser page: auto = DIR/view.html when the viewer's runtime is installed (else a "
       "warning and no page); PAGE.html = that page, required (no runtime: an error, nothing written); off = none."}}};

@@ -70,7 +70,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   if (FLAGS_out.empty() && FLAGS_out_bvh.empty()) return Status::Error("--out or --out_bvh is required");
   for (const std::string& out : {FLAGS_out, FLAGS_out_bvh, FLAGS_report}) {
     if (out.empty()) continue;
-    for (const std::string& in : {FLAGS_source, FLAGS_target, FLAGS_skeleton, FLAGS_joint_map}) {
+    for (const std::string& in : {FLAGS_source, FLAGS_target, FLAGS_skeleton, RetargetSettingsFromFlags().joint_map}) {
       if (in.empty()) continue;
       Status status = CheckNotAnInput(out, in);
       if (!status.ok()) return status;
@@ -83,7 +83,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
   if (FLAGS_animation_only && (FLAGS_out.empty() || out_bvh)) {
     return Status::Error("--animation_only: applies to a .glb/.gltf --out");
   }
-  Status status = CheckViewFlag({FLAGS_source, FLAGS_target, FLAGS_skeleton, FLAGS_joint_map});
+  Status status = CheckViewFlag({FLAGS_source, FLAGS_target, FLAGS_skeleton, RetargetSettingsFromFlags().joint_map});
   if (!status.ok()) return status;
   CharacterRetargetOptions options;
   status = RetargetOptionsFromFlags(&options);
@@ -248,7 +248,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
       .Add("frame_rate", motion.frame_rate)
       .Add("iterations", solve.iterations)
       .Add("lambda", solve.lambda)
-      .Add("subsample", FLAGS_subsample)
+      .Add("subsample", RetargetSettingsFromFlags().subsample)
       .Add("source_vertices", use_source_mesh ? source_character.mesh.num_vertices() : 0)
       .Add("target_vertices", target.mesh.num_vertices())
       .Add("source_joints", source_joints.num_joints())
@@ -285,7 +285,7 @@ Status RunRetarget(const std::vector<std::string>& arguments) {
 
 const std::string kRetargetFlags = std::string("target,out,report,quiet,max_frames,skeleton,amc_fps,view,"
                                                "animation_only,") +
-                                   kRetargetOptionFlagNames;
+                                   "foot_joints";
 
 }  // namespace
 
@@ -306,6 +306,6 @@ extern const Command kRetargetCommand = {
     "on the target file an application already has (Blender: scripts/apply_animation_gltf.py).\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
-    __FILE__, RunRetarget, kRetargetFlags.c_str(), {RetargetSolverOptions().options()}};
+    __FILE__, RunRetarget, kRetargetFlags.c_str(), {RetargetSolverOptions().options(), RetargetSettingOptions().options()}};
 
 }  // namespace mocapsolve

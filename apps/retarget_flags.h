@@ -1,5 +1,6 @@
-// The retargeting knobs `retarget` and `pipeline` share (gflags, defined here), turned
-// into CharacterRetargetOptions in one place.
+// The retargeting knobs `retarget` and `pipeline` share (declared once in
+// settings/retarget_settings.h, made flags by main.cc), turned into CharacterRetargetOptions
+// in one place.
 #ifndef MOCAPSOLVE_APPS_RETARGET_FLAGS_H_
 #define MOCAPSOLVE_APPS_RETARGET_FLAGS_H_
 
@@ -9,19 +10,16 @@
 #include "settings/retarget_settings.h"
 #include "problems/retarget/retarget_character.h"
 
-DECLARE_string(joint_map);
-DECLARE_int32(subsample);
 // Not a retargeting knob but how the result is delivered (io/gltf_writer.h); retarget and
 // pipeline read it.
 DECLARE_bool(animation_only);
 
 namespace mocapsolve {
 
-// Comma-separated names of the retarget option flags (Command::shared_flags style).
-inline constexpr const char* kRetargetOptionFlagNames = kRetargetSettingNames;
-
-// From the flags above, --solver (dls | dls_generic | ceres; dls when not given) and
-// --limit_weight; reads the --blend_mask and --joint_map files.
+// The declared retarget options (RetargetSolverOptions, RetargetSettingOptions; in
+// pipeline --solver and --limit_weight are the marker solver's) and --foot_joints.
+RetargetSettings RetargetSettingsFromFlags();
+// Those settings as options; reads the --blend_mask and --joint_map files.
 Status RetargetOptionsFromFlags(CharacterRetargetOptions* options);
 
 }  // namespace mocapsolve

@@ -27,7 +27,7 @@ void BindPipeline(py::module_& m) {
                       {py::cast(&repair_settings, py::return_value_policy::reference),
                        py::cast(&solver_settings, py::return_value_policy::reference),
                        py::cast(&retarget_settings, py::return_value_policy::reference)},
-                      RepairSettingOptions().Names() + "," + SolverOptions().Names() + "," + kRetargetSettingNames);
+                      RepairSettingOptions().Names() + "," + SolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints");
         if (!IsMarkerFile(markers)) throw py::value_error(markers + ": expected a .c3d or .trc");
         RequireReadable(markers);
         for (const std::string& path : characters) RequireReadable(path);
@@ -107,7 +107,7 @@ animation_only: each <character>.glb then holds the character's skeleton, skin a
 take only, no meshes (as the CLI's --animation_only).
 Returns a dict: 'solved' (Motion), 'repaired_markers' (Markers), 'characters' {name:
 Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), kRetargetSettingNames)).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), RetargetSettingOptions().Names() + ",foot_joints")).c_str());
 }
 
 }  // namespace mocapsolve::python

@@ -29,7 +29,7 @@ void BindRetarget(py::module_& m) {
         CharacterRetargetOptions options;
         ThrowIfError(RetargetOptionsFromSettings(s, &options));
       }, "Raises ValueError (the CLI's message) if a value is invalid.");
-  m.attr("RETARGET_OPTION_NAMES") = std::string("solver,limit_weight,") + kRetargetSettingNames;
+  m.attr("RETARGET_OPTION_NAMES") = RetargetSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints";
 
   m.def("retarget", [](const std::string& source, const std::string& target, py::object skeleton,
                        bool source_mesh, const std::string& source_animation, double frame_rate,
@@ -37,7 +37,7 @@ void BindRetarget(py::module_& m) {
                        bool animation_only, const py::kwargs& keywords) {
         RetargetSettings retarget_settings;
         ApplyKeywords(keywords, {py::cast(&retarget_settings, py::return_value_policy::reference)},
-                      std::string("solver,limit_weight,") + kRetargetSettingNames);
+                      RetargetSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints");
         CharacterRetargetOptions options;
         ThrowIfError(RetargetOptionsFromSettings(retarget_settings, &options));
         if (max_frames < 0) throw py::value_error("--max_frames: must be >= 0");
@@ -146,7 +146,7 @@ Keywords: the RetargetSettings (solver='dls', iterations=10,
 lambda=5, subsample=128, plant_feet=True, joint_map='map.json', ...).
 Returns (target character, motion on the target skeleton, report dict). Releases the GIL.)doc") +
        KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()),
-                       std::string("solver,limit_weight,") + kRetargetSettingNames)).c_str());
+                       RetargetSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints")).c_str());
 }
 
 }  // namespace mocapsolve::python

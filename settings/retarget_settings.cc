@@ -9,6 +9,52 @@
 
 namespace mocapsolve {
 
+const OptionGroup<RetargetSettings>& RetargetSettingOptions() {
+  using S = RetargetSettings;
+  static const OptionGroup<S>* const group = &(*new OptionGroup<S>())
+      .Add(&S::joint_map, "joint_map",
+           "JSON {\"joints\": {\"<source joint>\": \"<target joint>\"}}: overrides "
+           "of the automatic joint map (names; used to bind a skeleton-only source and for the plants).")
+      .Add(&S::plant_feet, "plant_feet",
+           "Keep the target's feet planted where the source's foot joints are in "
+           "contact (an IK term in each frame's solve).")
+      .Add(&S::plant_weight, "plant_weight", "",
+           "Weight of a planted foot joint (per sigma of position error, as a "
+           "position-tracked vertex has 1); 0 = off.")
+      .Add(&S::plant_height, "plant_height", "source heights",
+           "Foot contact: source foot joint at most this high above its lowest "
+           "point (fraction of the source height).")
+      .Add(&S::plant_speed, "plant_speed", "source heights/s",
+           "Foot contact: source foot joint slower than this (source heights/s).")
+      .Add(&S::subsample, "subsample", "vertices per sample",
+           "Subsampling ratio #V : #tracked vertices of the source mesh.")
+      .Add(&S::iterations, "iterations", "iterations",
+           "Solver iterations per frame.")
+      .Add(&S::lambda, "lambda", "",
+           "DLS damping (thesis eq. 18).")
+      .Add(&S::blend_mask, "blend_mask",
+           "auto (hands, feet, toes, head by position; the rest by normals) "
+           "or a JSON file {\"position_joints\": [target joint names]}.")
+      .Add(&S::mapping_normal_weight, "mapping_normal_weight", "heights per unit normal",
+           "Normals in the mesh mapping's nearest-neighbour distance "
+           "(heights per unit normal difference); 0 = positions only (thesis eq. 11).")
+      .Add(&S::transfer_normals, "transfer_normals",
+           "Normal goals: the target vertex's rest normal turned by the "
+           "source vertex's skinning (true) or the source's skinned normal itself (false, eq. 16).")
+      .Add(&S::normal_weight, "normal_weight", "",
+           "Weight of the normal residuals (positions: 1 per sigma).")
+      .Add(&S::smoothness, "smoothness", "1/rad",
+           "Weight of a pull toward the previous frame (per radian); 0 = off.")
+      .Add(&S::contact_height, "contact_height", "target heights",
+           "Foot contact: height above the rest floor, fraction of the "
+           "target height (for the foot-skating figures).")
+      .Add(&S::ceres_trust_radius, "ceres_trust_radius", "",
+           "Ceres' initial trust region radius (its default is 1e4; ~1 "
+           "converges better within a few iterations on the cross-character cases).")
+;
+  return *group;
+}
+
 const OptionGroup<RetargetSettings>& RetargetSolverOptions() {
   using S = RetargetSettings;
   static const OptionGroup<S>* const group = &(*new OptionGroup<S>())
@@ -63,6 +109,7 @@ Status ReadJointMap(const std::string& path, std::vector<std::pair<std::string, 
 
 Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRetargetOptions* options_out) {
   Status checked = RetargetSolverOptions().Validate(settings);
+  if (checked.ok()) checked = RetargetSettingOptions().Validate(settings);
   if (!checked.ok()) return checked;
   CharacterRetargetOptions& options = *options_out;
   RetargetSolveOptions& solve = options.clip.solve;

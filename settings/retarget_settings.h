@@ -35,11 +35,10 @@ struct RetargetSettings {
   double ceres_trust_radius = 1.0;
 };
 
-// The option names (solver and limit_weight belong to the solver's flags).
-inline constexpr char kRetargetSettingNames[] =
-    "joint_map,plant_feet,plant_weight,plant_height,plant_speed,foot_joints,subsample,iterations,lambda,"
-    "blend_mask,mapping_normal_weight,transfer_normals,normal_weight,smoothness,contact_height,"
-    "ceres_trust_radius";
+// The options, declared once (name, unit, help, check; the defaults are the fields'
+// initializers above): the flags of retarget and pipeline, Python's keywords. Not yet
+// foot_joints, which propagate also defines (as a gflags flag of its own).
+const OptionGroup<RetargetSettings>& RetargetSettingOptions();
 
 // Who solves the retarget and its joint limits, declared once: `retarget`'s --solver and
 // --limit_weight. (pipeline reads the marker solver's options of the same names.)

@@ -168,6 +168,8 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
       {"propagate", FalloffSettingOptions().Only("sigma,sigma_scale,eigenpairs,region,knn,falloff_kernel,"
                                                  "feature_joints,joint_weights,temporal_weight").options()},
       {"retarget", RetargetSolverOptions().options()},
+      {"retarget", RetargetSettingOptions().options()},
+      {"pipeline", RetargetSettingOptions().options()},
       {"propagate", SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,"
                                          "sparse_library").options()}};
   for (const Use& use : uses) {

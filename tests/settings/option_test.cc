@@ -114,6 +114,7 @@ TEST(Option, TheDeclaredGroupsAreWellFormed) {
   repair_defaults.solver = "dls";
   ExpectWellDeclared(RepairSolverOptions(), repair_defaults);
   ExpectWellDeclared(RetargetSolverOptions(), RetargetSettings());
+  ExpectWellDeclared(RetargetSettingOptions(), RetargetSettings());
   ExpectWellDeclared(RepairSettingOptions(), RepairSettings());
   EXPECT_EQ(RepairSettingOptions().options().size(), 29u);
   ExpectWellDeclared(CorruptionSettingOptions(), CorruptionSettings());
