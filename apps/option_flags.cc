@@ -1,14 +1,17 @@
 #include "apps/option_flags.h"
 
 #include <cstdint>
+#include <deque>
 
 namespace mocapsolve {
 
 void RegisterOptionFlags(const std::vector<Option>& options, const char* source) {
+  // gflags keeps the name and help pointers for the life of the process (it never frees a
+  // flag); a deque never moves its strings, and holds them reachable (no leak reported).
+  static std::deque<std::string>* const texts = new std::deque<std::string>();
   for (const Option& option : options) {
-    // gflags keeps the pointers for the life of the process (it never frees a flag).
-    const char* name = (new std::string(option.name))->c_str();
-    const char* help = (new std::string(option.Description()))->c_str();
+    const char* name = texts->emplace_back(option.name).c_str();
+    const char* help = texts->emplace_back(option.Description()).c_str();
     const std::string& value = option.default_value;
     switch (option.type) {
       case OptionType::kBool:
