@@ -94,6 +94,6 @@ static const std::string kBenchFlags = std::string("report,quiet,axes,marker_sca
 extern const Command kBenchCommand = {"bench", "the solver comparison harness (time, iterations, "
                                       "cost, error per solver)",
                                       kBenchUsage.c_str(), __FILE__, RunBench, kBenchFlags.c_str(),
-                                      {SolverOptions().options()}};
+                                      {SolverOptions().Without("mode").options()}};
 
 }  // namespace mocapsolve

@@ -347,6 +347,7 @@ extern const Command kEvaluateCommand = {
                       "Threads: leave_one_out solves this many markers at once; repair runs its solves on two "
                       "threads when >= 2. Speed only: the results do not depend on it.")
          .options(),
+     SolverOptions().Only("mode").options(),  // leave_one_out's frame or clip solve.
      RepairSettingOptions().options(), CorruptionSettingOptions().options()},
     {{"method", "repair",
       "repair: damage the markers and score repair against the usual fills (Table 1); leave_one_out: "

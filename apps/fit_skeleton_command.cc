@@ -256,6 +256,6 @@ extern const Command kFitSkeletonCommand = {
     "own, left/right bone lengths within 5 %, and the marker RMS within 25 mm;\n"
     "--check=fail (default) exits 1 when one fails.\n"
     "Writes the subject (skeleton inline), and optionally the solved motion and marker set.",
-    __FILE__, RunFitSkeleton, kFitFlags.c_str(), {SolverOptions().options()}};
+    __FILE__, RunFitSkeleton, kFitFlags.c_str(), {SolverOptions().Without("mode").options()}};
 
 }  // namespace mocapsolve

@@ -55,7 +55,7 @@ namespace {
 const std::string kPipelineOptionFlags =
     std::string("take_name,filter_levels,kernel_a,tension,gate_naive_rms_mm,gate_repaired_rms_mm,"
                 "gate_repaired_share,gate_iteration_limit_share,gate_marker_offset_cm,gate_torso_deg,animation_only,") +
-    RepairSettingOptions().Names() + "," + SolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints";
+    RepairSettingOptions().Names() + "," + RepairSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints";
 
 // The take's page, as --view says: auto (the default) DIR/view.html when the viewer's
 // runtime is installed, else none with a warning (a batch on a machine without it still

@@ -105,6 +105,15 @@ class OptionGroup {
     return part;
   }
 
+  // This group without the options named in `names` (comma-separated).
+  OptionGroup Without(const std::string& names) const {
+    std::string kept;
+    for (const Option& option : options_) {
+      if (("," + names + ",").find("," + option.name + ",") == std::string::npos) kept += option.name + ",";
+    }
+    return Only(kept);
+  }
+
   const std::vector<Option>& options() const { return options_; }
   // The names, comma-separated, in declaration order.
   std::string Names() const {

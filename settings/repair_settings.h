@@ -52,7 +52,8 @@ struct RepairSettings {
 const OptionGroup<RepairSettings>& RepairSettingOptions();
 
 // Repair solves every frame two or three times: its solver options are the solver's
-// (SolverOptions) with DLS by default; pipeline declares these too.
+// (SolverOptions) with DLS by default, without --mode (repair has its own --reference);
+// pipeline declares these too.
 const OptionGroup<SolverSettings>& RepairSolverOptions();
 
 // `solver` holds the naive solve's settings (RepairSolverOptions' defaults when the user

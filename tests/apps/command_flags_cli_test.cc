@@ -154,10 +154,11 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
   };
   const std::vector<Use> uses = {
       {"solve", SolverOptions().options()},
-      {"fit_skeleton", SolverOptions().options()},
-      {"bench", SolverOptions().options()},
+      {"fit_skeleton", SolverOptions().Without("mode").options()},
+      {"bench", SolverOptions().Without("mode").options()},
       {"repair", RepairSolverOptions().options()},
       {"evaluate", RepairSolverOptions().options()},
+      {"evaluate", SolverOptions().Only("mode").options()},
       {"pipeline", RepairSolverOptions().options()},
       {"repair", RepairSettingOptions().options()},
       {"evaluate", RepairSettingOptions().options()},
@@ -204,6 +205,12 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
         EXPECT_THAT(output, HasSubstr("--" + option.name + ": expected a value >= ")) << output;
       }
     }
+  }
+  // --mode only where a command reads it (solve; evaluate's leave_one_out).
+  for (const char* command : {"pipeline", "repair", "fit_skeleton", "bench"}) {
+    std::string output;
+    EXPECT_EQ(testing::RunCli(std::string(command) + " --mode=clip", &output), 1) << command;
+    EXPECT_THAT(output, HasSubstr("--mode: not a flag of `" + std::string(command) + "`")) << output;
   }
   // pipeline's config keys: every declared option, its default as --print_config writes it.
   std::string config;

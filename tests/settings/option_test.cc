@@ -82,6 +82,7 @@ TEST(Option, ACommandDeclaresItsOwnDefaultOrAPart) {
   EXPECT_EQ(group.Defaults().kind, "b");
   EXPECT_EQ(KnobOptions().Defaults().kind, "a");
   EXPECT_EQ(KnobOptions().Only("kind,on").Names(), "on,kind");
+  EXPECT_EQ(KnobOptions().Without("kind,on").Names(), "count,weight");
 }
 
 TEST(Option, NumbersAreWrittenAsPeopleWriteThem) {
