@@ -246,12 +246,20 @@ Status WriteSubject(const std::string& path, const Subject& subject) {
 }
 
 Status LoadTakeForSubject(const Subject& subject, const std::string& markers_path, MarkerTake* take) {
+  MarkerTrajectories trajectories;
+  Status status = ReadMarkerFile(markers_path, &trajectories);
+  if (!status.ok()) return status;
+  return TakeForSubject(subject, std::move(trajectories), markers_path, take);
+}
+
+Status TakeForSubject(const Subject& subject, MarkerTrajectories trajectories, const std::string& markers_path,
+                      MarkerTake* take) {
   MarkerTake result;
   result.skeleton = subject.skeleton;
   result.markers = subject.markers;
   result.mean_pose = subject.mean_pose;
-  Status status = ReadMarkerFile(markers_path, &result.trajectories);
-  if (!status.ok()) return status;
+  result.trajectories = std::move(trajectories);
+  Status status = Status::Ok();
   MarkerTrajectories matched = result.trajectories;
   if (!subject.label_prefix.empty()) {
     const std::string& prefix = subject.label_prefix;

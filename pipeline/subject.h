@@ -103,6 +103,10 @@ struct MarkerTake {
 // stripped, axes and scale applied, observed[f][m] gathered for every marker of the set
 // (an error names the ones the file lacks), and the unlabelled points kept.
 Status LoadTakeForSubject(const Subject& subject, const std::string& markers_path, MarkerTake* take);
+// The same for markers already in memory (Python's Markers, a corrupted copy); `name`
+// stands for the file in messages.
+Status TakeForSubject(const Subject& subject, MarkerTrajectories trajectories, const std::string& name,
+                      MarkerTake* take);
 
 // The inverse for outputs: the take's file as read, with every sample of the set's
 // markers that differs from the observation (repaired[f][m], skeleton frame and units)

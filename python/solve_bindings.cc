@@ -20,8 +20,15 @@ namespace mocapsolve::python {
 
 MarkerTakePtr TakeArgument(const Subject& subject, py::object markers) {
   if (py::isinstance<MarkerTake>(markers)) return markers.cast<MarkerTakePtr>();
+  if (py::isinstance<MarkerTrajectories>(markers)) {  // What read_markers() and corrupt() return.
+    MarkerTrajectories trajectories = markers.cast<const MarkerTrajectories&>();
+    SyncMask(&trajectories);
+    auto take = std::make_shared<MarkerTake>();
+    ThrowIfError(TakeForSubject(subject, std::move(trajectories), "markers", take.get()));
+    return take;
+  }
   if (!py::isinstance<py::str>(markers) && !py::hasattr(markers, "__fspath__")) {
-    throw py::type_error("markers: expected a Take or a .c3d/.trc path, got " +
+    throw py::type_error("markers: expected a Take, Markers or a .c3d/.trc path, got " +
                          std::string(py::str(markers.get_type().attr("__name__"))));
   }
   const std::string path = py::str(py::module_::import("os").attr("fspath")(markers));

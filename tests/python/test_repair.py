@@ -86,3 +86,20 @@ def test_repair_pulls_toward_the_subjects_mean_pose_as_the_cli(cmu02, tmp_path):
     ours = str(tmp_path / "py.bvh")
     mocapsolve.write_motion(ours, subject.skeleton, motion)
     assert open(ours).read() == open(cli_motion).read()
+
+
+def test_repair_takes_the_markers_corrupt_returns(cmu02, tmp_path):
+    # corrupt() returns Markers; repair() and solve() take them as they take a path, and the
+    # result is the same as repairing the damaged copy written to a file and read back.
+    subject = mocapsolve.read_subject(cmu02["subject"])
+    damaged, _ = mocapsolve.corrupt(mocapsolve.read_markers(cmu02["c3d"]), gaps=3, corrupt_seed=5)
+    path = str(tmp_path / "damaged.c3d")
+    mocapsolve.write_markers(path, damaged)
+    from_memory = mocapsolve.repair(subject, mocapsolve.read_markers(path))
+    from_file = mocapsolve.repair(subject, path)
+    assert np.array_equal(from_memory[1].rotations, from_file[1].rotations)
+    assert np.array_equal(from_memory[0].positions, from_file[0].positions, equal_nan=True)
+    motion, _ = mocapsolve.solve(subject, damaged, solver="dls", max_frames=5)
+    assert motion.num_frames == 5
+    with pytest.raises(TypeError, match="expected a Take, Markers or a .c3d/.trc path"):
+        mocapsolve.repair(subject, 42)
