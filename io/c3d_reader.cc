@@ -106,6 +106,12 @@ class C3dParser {
     std::int64_t first = 0, last = 0, count = 0;
     int analog_values = 0, analog_channels = 0;
   };
+  // The header's key byte and parameter block, and the processor type the parameter
+  // section names (which decodes every number after it).
+  Status ParseHeader(int* parameter_block, C3dProcessor* processor) const;
+  // One point's x, y, z and residual word (as int16; negative = invalid) at `offset`.
+  void DecodePoint(std::uint64_t offset, bool float_storage, double scale, Eigen::Vector3d* position,
+                   int* residual_word) const;
   Status FrameRate(double* rate) const;
   Status DataStart(int parameter_block, std::uint64_t* block, std::uint64_t* offset) const;
   Status ParseFrameLayout(int num_points, bool float_storage, std::uint64_t data_offset,
@@ -391,7 +397,7 @@ Status C3dParser::ParseFrameLayout(int num_points, bool float_storage, std::uint
   return Status::Ok();
 }
 
-Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
+Status C3dParser::ParseHeader(int* parameter_block_out, C3dProcessor* processor) const {
   const std::uint64_t size = bytes_.size();
   if (size < kBlockBytes) {
     return Error("header", "file is " + std::to_string(size) +
@@ -419,9 +425,36 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
                  std::to_string(processor_byte) +
                      " is not 84 (Intel), 85 (DEC) or 86 (SGI/MIPS)");
   }
-  const auto processor = static_cast<C3dProcessor>(processor_byte);
+  *parameter_block_out = parameter_block;
+  *processor = static_cast<C3dProcessor>(processor_byte);
+  return Status::Ok();
+}
+
+void C3dParser::DecodePoint(std::uint64_t offset, bool float_storage, double scale, Eigen::Vector3d* position,
+                            int* residual_word) const {
+  if (float_storage) {
+    for (int k = 0; k < 3; ++k) (*position)[k] = decoder_.F32(offset + 4 * k);
+    const double r = std::trunc(decoder_.F32(offset + 12));
+    if (!(r >= 0.0)) {  // Negative or NaN.
+      *residual_word = -1;
+    } else {
+      // Low 16 bits of the integer, as int16 (65535.0 -> -1).
+      const auto bits = static_cast<std::uint32_t>(std::min(r, 4294967295.0));
+      *residual_word = static_cast<std::int16_t>(static_cast<std::uint16_t>(bits & 0xffffu));
+    }
+  } else {
+    for (int k = 0; k < 3; ++k) (*position)[k] = decoder_.I16(offset + 2 * k) * scale;
+    *residual_word = decoder_.I16(offset + 6);
+  }
+}
+
+Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
+  int parameter_block = 0;
+  C3dProcessor processor;
+  Status status = ParseHeader(&parameter_block, &processor);
+  if (!status.ok()) return status;
   decoder_ = Decoder(bytes_, processor);
-  Status status = ParseParameters(section);
+  status = ParseParameters((static_cast<std::uint64_t>(parameter_block) - 1) * kBlockBytes);
   if (!status.ok()) return status;
 
   // Points per frame.
@@ -506,20 +539,7 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
       const bool is_marker = target[m].first == 0;
       Eigen::Vector3d position;
       int residual_word;  // As int16; negative = invalid.
-      if (float_storage) {
-        for (int k = 0; k < 3; ++k) position[k] = decoder_.F32(offset + 4 * k);
-        const double r = std::trunc(decoder_.F32(offset + 12));
-        if (!(r >= 0.0)) {  // Negative or NaN.
-          residual_word = -1;
-        } else {
-          // Low 16 bits of the integer, as int16 (65535.0 -> -1).
-          const auto bits = static_cast<std::uint32_t>(std::min(r, 4294967295.0));
-          residual_word = static_cast<std::int16_t>(static_cast<std::uint16_t>(bits & 0xffffu));
-        }
-      } else {
-        for (int k = 0; k < 3; ++k) position[k] = decoder_.I16(offset + 2 * k) * scale;
-        residual_word = decoder_.I16(offset + 6);
-      }
+      DecodePoint(offset, float_storage, scale, &position, &residual_word);
       if (residual_word < 0 || !position.allFinite()) {
         found.negative_residual_samples += is_marker;
         continue;  // Already missing.
