@@ -650,6 +650,109 @@ void SampleTrack(const Track& track, double t, double* out) {
   }
 }
 
+// Channel `ci` of animation `index` as a track to sample (*kept). Not kept: morph weights,
+// nodes outside the rig, and scales; a uniform scale constant over the clip goes into
+// `graph` instead, any other scale is ignored with a note.
+Status ReadChannelTrack(const tinygltf::Model& model, const std::string& file, int index, size_t ci,
+                        const std::vector<bool>& relevant, NodeGraph* graph, std::vector<std::string>* notes,
+                        Track* track_out, bool* kept) {
+  *kept = false;
+  const tinygltf::Animation& anim = model.animations[index];
+  const std::string where = file + ": animation " + std::to_string(index);
+  const tinygltf::AnimationChannel& ch = anim.channels[ci];
+  const std::string cw = where + ": channel " + std::to_string(ci);
+  if (ch.target_node < 0 || ch.target_node >= static_cast<int>(model.nodes.size())) {
+    return Status::Error(cw + ": target node " + std::to_string(ch.target_node) + " out of range");
+  }
+  if (ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size())) {
+    return Status::Error(cw + ": sampler " + std::to_string(ch.sampler) + " out of range");
+  }
+  Track track;
+  track.node = ch.target_node;
+  if (ch.target_path == "translation") {
+    track.path = Path::kTranslation;
+    track.components = 3;
+  } else if (ch.target_path == "rotation") {
+    track.path = Path::kRotation;
+    track.components = 4;
+  } else if (ch.target_path == "scale") {
+    track.path = Path::kScale;
+    track.components = 3;
+  } else if (ch.target_path == "weights") {
+    return Status::Ok();  // Morph target weights: not skeletal.
+  } else {
+    return Status::Error(cw + ": unknown target path " + QuoteToken(ch.target_path));
+  }
+  if (!relevant[ch.target_node]) return Status::Ok();
+  const tinygltf::AnimationSampler& sampler = anim.samplers[ch.sampler];
+  const std::string sw = "animation " + std::to_string(index) + ": sampler " + std::to_string(ch.sampler);
+  if (sampler.interpolation == "STEP") {
+    track.interpolation = Interpolation::kStep;
+  } else if (sampler.interpolation == "LINEAR" || sampler.interpolation.empty()) {
+    track.interpolation = Interpolation::kLinear;
+  } else if (sampler.interpolation == "CUBICSPLINE") {
+    track.interpolation = Interpolation::kCubic;
+  } else {
+    return Status::Error(file + ": " + sw + ": unknown interpolation " + QuoteToken(sampler.interpolation));
+  }
+  size_t num_keys = 0, num_values = 0;
+  Status status = ReadAccessor(model, sampler.input, 1, kFloat, file, sw + ": input", &track.times, &num_keys);
+  if (!status.ok()) return status;
+  status = ReadAccessor(model, sampler.output, track.components,
+                        track.path == Path::kRotation ? kRotationTypes : kFloat, file,
+                        sw + ": output", &track.values, &num_values);
+  if (!status.ok()) return status;
+  if (num_keys == 0) return Status::Error(file + ": " + sw + ": input has no keys");
+  for (size_t k = 1; k < num_keys; ++k) {
+    if (!(track.times[k] > track.times[k - 1])) {
+      return Status::Error(file + ": " + sw + ": input times not increasing at key " + std::to_string(k));
+    }
+  }
+  const size_t expected = num_keys * (track.interpolation == Interpolation::kCubic ? 3 : 1);
+  if (num_values != expected) {
+    return Status::Error(file + ": " + sw + ": output has " + std::to_string(num_values) +
+                         " elements, expected " + std::to_string(expected));
+  }
+  if (track.path == Path::kRotation) {
+    for (size_t k = 0; k < expected; ++k) {
+      const Eigen::Map<const Eigen::Vector4d> q(&track.values[4 * k]);
+      const bool tangent = track.interpolation == Interpolation::kCubic && k % 3 != 1;
+      if (!tangent && !(q.norm() > 1e-6)) {
+        return Status::Error(file + ": " + sw + ": output " + std::to_string(k) + " is a zero quaternion");
+      }
+    }
+  }
+  if (track.path == Path::kScale) {
+    // Used only if uniform and constant over the clip (values and zero tangents).
+    bool ok = true;
+    double first = 0.0;
+    for (size_t k = 0; k < num_keys && ok; ++k) {
+      const size_t e = track.interpolation == Interpolation::kCubic ? 3 * k + 1 : k;
+      const Eigen::Vector3d s(track.values[3 * e], track.values[3 * e + 1], track.values[3 * e + 2]);
+      bool exact = true;
+      const double u = gltf_internal::UniformScale(s, &exact);
+      if (k == 0) first = u;
+      ok = exact && std::abs(u - first) <= 1e-5 * first;
+      if (track.interpolation == Interpolation::kCubic) {
+        for (int i = 0; i < 3; ++i) {
+          ok = ok && track.values[3 * (3 * k) + i] == 0.0 && track.values[3 * (3 * k + 2) + i] == 0.0;
+        }
+      }
+    }
+    if (!ok) {
+      notes->push_back(where + ": channel " + std::to_string(ci) + ": scale of node " +
+                       std::to_string(ch.target_node) +
+                       " is not uniform and constant; ignored (node default kept)");
+      return Status::Ok();
+    }
+    graph->local[track.node].scale = first;
+    return Status::Ok();
+  }
+  *kept = true;
+  *track_out = std::move(track);
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& character,
@@ -684,96 +787,11 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
   std::vector<Track> tracks;
   std::vector<std::string> notes;
   for (size_t ci = 0; ci < anim.channels.size(); ++ci) {
-    const tinygltf::AnimationChannel& ch = anim.channels[ci];
-    const std::string cw = where + ": channel " + std::to_string(ci);
-    if (ch.target_node < 0 || ch.target_node >= static_cast<int>(model.nodes.size())) {
-      return Status::Error(cw + ": target node " + std::to_string(ch.target_node) + " out of range");
-    }
-    if (ch.sampler < 0 || ch.sampler >= static_cast<int>(anim.samplers.size())) {
-      return Status::Error(cw + ": sampler " + std::to_string(ch.sampler) + " out of range");
-    }
     Track track;
-    track.node = ch.target_node;
-    if (ch.target_path == "translation") {
-      track.path = Path::kTranslation;
-      track.components = 3;
-    } else if (ch.target_path == "rotation") {
-      track.path = Path::kRotation;
-      track.components = 4;
-    } else if (ch.target_path == "scale") {
-      track.path = Path::kScale;
-      track.components = 3;
-    } else if (ch.target_path == "weights") {
-      continue;  // Morph target weights: not skeletal.
-    } else {
-      return Status::Error(cw + ": unknown target path " + QuoteToken(ch.target_path));
-    }
-    if (!relevant[ch.target_node]) continue;
-    const tinygltf::AnimationSampler& sampler = anim.samplers[ch.sampler];
-    const std::string sw = "animation " + std::to_string(index) + ": sampler " + std::to_string(ch.sampler);
-    if (sampler.interpolation == "STEP") {
-      track.interpolation = Interpolation::kStep;
-    } else if (sampler.interpolation == "LINEAR" || sampler.interpolation.empty()) {
-      track.interpolation = Interpolation::kLinear;
-    } else if (sampler.interpolation == "CUBICSPLINE") {
-      track.interpolation = Interpolation::kCubic;
-    } else {
-      return Status::Error(file + ": " + sw + ": unknown interpolation " + QuoteToken(sampler.interpolation));
-    }
-    size_t num_keys = 0, num_values = 0;
-    status = ReadAccessor(model, sampler.input, 1, kFloat, file, sw + ": input", &track.times, &num_keys);
+    bool kept = false;
+    status = ReadChannelTrack(model, file, index, ci, relevant, &graph, &notes, &track, &kept);
     if (!status.ok()) return status;
-    status = ReadAccessor(model, sampler.output, track.components,
-                          track.path == Path::kRotation ? kRotationTypes : kFloat, file,
-                          sw + ": output", &track.values, &num_values);
-    if (!status.ok()) return status;
-    if (num_keys == 0) return Status::Error(file + ": " + sw + ": input has no keys");
-    for (size_t k = 1; k < num_keys; ++k) {
-      if (!(track.times[k] > track.times[k - 1])) {
-        return Status::Error(file + ": " + sw + ": input times not increasing at key " + std::to_string(k));
-      }
-    }
-    const size_t expected = num_keys * (track.interpolation == Interpolation::kCubic ? 3 : 1);
-    if (num_values != expected) {
-      return Status::Error(file + ": " + sw + ": output has " + std::to_string(num_values) +
-                           " elements, expected " + std::to_string(expected));
-    }
-    if (track.path == Path::kRotation) {
-      for (size_t k = 0; k < expected; ++k) {
-        const Eigen::Map<const Eigen::Vector4d> q(&track.values[4 * k]);
-        const bool tangent = track.interpolation == Interpolation::kCubic && k % 3 != 1;
-        if (!tangent && !(q.norm() > 1e-6)) {
-          return Status::Error(file + ": " + sw + ": output " + std::to_string(k) + " is a zero quaternion");
-        }
-      }
-    }
-    if (track.path == Path::kScale) {
-      // Used only if uniform and constant over the clip (values and zero tangents).
-      bool ok = true;
-      double first = 0.0;
-      for (size_t k = 0; k < num_keys && ok; ++k) {
-        const size_t e = track.interpolation == Interpolation::kCubic ? 3 * k + 1 : k;
-        const Eigen::Vector3d s(track.values[3 * e], track.values[3 * e + 1], track.values[3 * e + 2]);
-        bool exact = true;
-        const double u = gltf_internal::UniformScale(s, &exact);
-        if (k == 0) first = u;
-        ok = exact && std::abs(u - first) <= 1e-5 * first;
-        if (track.interpolation == Interpolation::kCubic) {
-          for (int i = 0; i < 3; ++i) {
-            ok = ok && track.values[3 * (3 * k) + i] == 0.0 && track.values[3 * (3 * k + 2) + i] == 0.0;
-          }
-        }
-      }
-      if (!ok) {
-        notes.push_back(where + ": channel " + std::to_string(ci) + ": scale of node " +
-                        std::to_string(ch.target_node) +
-                        " is not uniform and constant; ignored (node default kept)");
-        continue;
-      }
-      graph.local[track.node].scale = first;
-      continue;
-    }
-    tracks.push_back(std::move(track));
+    if (kept) tracks.push_back(std::move(track));
   }
   // Time range and frame rate.
   double t0 = 0.0, t1 = 0.0;
