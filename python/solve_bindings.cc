@@ -86,6 +86,17 @@ py::dict ClipReportDict(const ClipSolveReport& clip, const LengthUnit& unit) {
   return d;
 }
 
+// What FrameSolver.solve returns: the frame's report, its residual in mm under the name and
+// unit solve()'s report uses (skeleton units, said so, when the skeleton's unit is unknown).
+struct FrameSolveResult {
+  FrameSolveReport report;
+  LengthUnit unit;
+  double rms_marker_residual() const {
+    return unit.known() ? report.rms_marker_error * unit.metres_per_unit * 1000.0 : report.rms_marker_error;
+  }
+  std::string residual_unit() const { return unit.known() ? "mm" : "skeleton units"; }
+};
+
 // The per-frame solver of a subject, for loops in Python (the pose is updated in place).
 class FrameSolver {
  public:
@@ -99,19 +110,20 @@ class FrameSolver {
 
   // Threads sharing one solver take turns (MarkerFrameSolver keeps per-solve workspace);
   // the lock is taken with the GIL released, so other solvers and Python code run meanwhile.
-  FrameSolveReport Solve(const Array& observed, Pose* pose_arg) {
+  FrameSolveResult Solve(const Array& observed, Pose* pose_arg) {
     Pose& pose = Required(pose_arg, "pose");
     const std::vector<Eigen::Vector3d> frame = Frame(observed);
     CheckPoseShape(pose);
-    FrameSolveReport report;
+    FrameSolveResult result;
+    result.unit = subject_->skeleton.unit();
     Status status = Status::Ok();
     {
       py::gil_scoped_release release;
       std::lock_guard<std::mutex> lock(mutex_);
-      status = solver_->Solve(frame, &pose, &report);
+      status = solver_->Solve(frame, &pose, &result.report);
     }
     ThrowIfError(status);
-    return report;
+    return result;
   }
 
   Pose InitialPose(const Array& observed, bool root_from_markers) {
@@ -279,14 +291,19 @@ report's figures ('per_frame': seconds, iterations, rms_marker_residual (mm), fr
 A bad option raises ValueError with the CLI's message; an unknown one TypeError.)doc") +
        KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(SolverSettings()), SolverOptions().Names())).c_str());
 
-  py::class_<FrameSolveReport>(m, "FrameSolveReport", "One frame's solve.")
-      .def_readonly("initial_cost", &FrameSolveReport::initial_cost)
-      .def_readonly("final_cost", &FrameSolveReport::final_cost)
-      .def_readonly("iterations", &FrameSolveReport::iterations)
-      .def_readonly("usable", &FrameSolveReport::usable)
-      .def_readonly("markers_used", &FrameSolveReport::markers_used)
-      .def_readonly("rms_marker_error", &FrameSolveReport::rms_marker_error, "Skeleton units.")
-      .def_readonly("brief", &FrameSolveReport::brief);
+  py::class_<FrameSolveResult>(m, "FrameSolveReport", "One frame's solve.")
+      .def_property_readonly("initial_cost", [](const FrameSolveResult& r) { return r.report.initial_cost; })
+      .def_property_readonly("final_cost", [](const FrameSolveResult& r) { return r.report.final_cost; })
+      .def_property_readonly("iterations", [](const FrameSolveResult& r) { return r.report.iterations; })
+      .def_property_readonly("usable", [](const FrameSolveResult& r) { return r.report.usable; })
+      .def_property_readonly("markers_used", [](const FrameSolveResult& r) { return r.report.markers_used; })
+      .def_property_readonly("rms_marker_residual", &FrameSolveResult::rms_marker_residual,
+                             "RMS marker residual in residual_unit (mm when the skeleton's unit is known), "
+                             "as solve()'s report names it.")
+      .def_property_readonly("residual_unit", &FrameSolveResult::residual_unit)
+      .def_property_readonly("rms_marker_error", [](const FrameSolveResult& r) { return r.report.rms_marker_error; },
+                             "The same in skeleton units (kept for older scripts).")
+      .def_property_readonly("brief", [](const FrameSolveResult& r) { return r.report.brief; });
 
   py::class_<FrameSolver>(m, "FrameSolver",
       "One subject's per-frame marker solver (the one solve() runs over a take), for loops in\n"

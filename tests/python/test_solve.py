@@ -57,13 +57,18 @@ def test_frame_solver_loop_equals_solve(cmu02):
     assert observed.shape == (take.num_frames, len(subject.marker_labels), 3)
     solver = mocapsolve.FrameSolver(subject, solver="dls")
     pose = solver.initial_pose(observed[0])
-    rotations = []
+    rotations, residuals = [], []
     for f in range(10):
         report = solver.solve(observed[f], pose)
         assert report.usable
         rotations.append(pose.rotations)
-    motion, _ = mocapsolve.solve(subject, take, solver="dls", max_frames=10)
+        residuals.append(report.rms_marker_residual)
+    motion, summary = mocapsolve.solve(subject, take, solver="dls", max_frames=10)
     assert np.array_equal(np.array(rotations), motion.rotations)
+    # The loop's residuals are solve()'s, in the same unit under the same name (mm).
+    assert report.residual_unit == summary["per_frame"]["residual_unit"] == "mm"
+    assert np.allclose(residuals, summary["per_frame"]["frame_rms"], rtol=1e-9)
+    assert report.rms_marker_residual == pytest.approx(report.rms_marker_error * 1000 * 0.0254 / 0.45, rel=1e-9)
 
 
 def test_bad_options_raise_the_cli_message(cmu02):
