@@ -8,8 +8,7 @@ namespace mocapsolve {
 
 Status FalloffOptionsFromFlags(int num_frames, FalloffOptions* options) {
   FalloffSettings s;
-  Status status = ReadOptionFlags(FalloffSettingOptions(), &s);
-  if (!status.ok()) return status;
+  ReadOptionFlags(FalloffSettingOptions(), &s);
   return FalloffOptionsFromSettings(s, num_frames, options);
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <gflags/gflags.h>
+#include <glog/logging.h>
 
 #include "kinematics/status.h"
 #include "settings/option.h"
@@ -26,16 +27,16 @@ Status CheckOptionFlags(const std::vector<std::vector<Option>>& groups);
 
 // The flag values of the group's options (as parsed, or set by --config) into their fields
 // of `settings` (other fields untouched); an option this run did not register gets the
-// group's default.
+// group's default. CheckOptionFlags passed every value before any command reads one, so a
+// value failing here is a bug.
 template <class Settings>
-Status ReadOptionFlags(const OptionGroup<Settings>& group, Settings* settings) {
+void ReadOptionFlags(const OptionGroup<Settings>& group, Settings* settings) {
   for (const Option& option : group.options()) {
     std::string text;
     if (!gflags::GetCommandLineOption(option.name.c_str(), &text)) text = option.default_value;
-    Status status = group.Set(option.name, text, settings);
-    if (!status.ok()) return status;
+    const Status status = group.Set(option.name, text, settings);
+    CHECK(status.ok()) << status.message();
   }
-  return Status::Ok();
 }
 
 }  // namespace mocapsolve

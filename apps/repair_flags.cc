@@ -1,7 +1,5 @@
 #include "apps/repair_flags.h"
 
-#include <glog/logging.h>
-
 #include "apps/option_flags.h"
 
 #include "apps/solver_flags.h"
@@ -10,9 +8,7 @@ namespace mocapsolve {
 
 RepairSettings RepairSettingsFromFlags() {
   RepairSettings settings;
-  // main.cc checked every declared option's value as it parsed the command line.
-  const Status status = ReadOptionFlags(RepairSettingOptions(), &settings);
-  CHECK(status.ok()) << status.message();
+  ReadOptionFlags(RepairSettingOptions(), &settings);
   return settings;
 }
 

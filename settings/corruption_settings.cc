@@ -58,8 +58,7 @@ const OptionGroup<CorruptionSettings>& CorruptionSettingOptions() {
            "Runs in which a marker's samples lose their label: they move to a new "
            "unlabelled track (*1, *2, ...), as points a labeller could not name.")
       .Add(&S::unlabel_length, "unlabel_length", "frames",
-           "Frames of each unlabelled run.")
-;
+           "Frames of each unlabelled run.");
   return *group;
 }
 

@@ -37,8 +37,7 @@ const OptionGroup<FalloffSettings>& FalloffSettingOptions() {
            "Comma-separated weights, one per --feature_joints entry.")
       .Add(&S::temporal_weight, "temporal_weight", "",
            "Adds temporal_weight * time (s) to the pose vector "
-           "(radians per second; section 3.1's temporal distance term).")
-;
+           "(radians per second; section 3.1's temporal distance term).");
   return *group;
 }
 namespace {
@@ -79,10 +78,10 @@ Status FalloffOptionsFromSettings(const FalloffSettings& settings, int num_frame
   options->diffusion_steps = settings.diffusion_steps;
   options->knn = settings.knn;
   options->isomap_knn = settings.isomap_knn;
-  if (settings.falloff_kernel == "auto") options->kernel = KernelMode::kAuto;
-  else if (settings.falloff_kernel == "dense") options->kernel = KernelMode::kDense;
-  else if (settings.falloff_kernel == "sparse") options->kernel = KernelMode::kSparse;
-  else return Status::Error("--falloff_kernel: expected auto, dense or sparse, got '" + settings.falloff_kernel + "'");
+  // One of the declared choices (checked above).
+  options->kernel = settings.falloff_kernel == "dense"    ? KernelMode::kDense
+                    : settings.falloff_kernel == "sparse" ? KernelMode::kSparse
+                                                          : KernelMode::kAuto;
   options->region_begin = 0;
   options->region_end = -1;
   if (!settings.region.empty()) {

@@ -105,8 +105,7 @@ const OptionGroup<RepairSettings>& RepairSettingOptions() {
            "Tracker reference: stop when the relative cost "
            "change is below this. The reference only has to show where the markers broke: on "
            "02_01 1e-4 instead of 1e-6 leaves the repaired solve as good (0.170 vs 0.176 cm) and "
-           "makes repair 1.6x faster.")
-;
+           "makes repair 1.6x faster.");
   return *group;
 }
 
@@ -136,13 +135,8 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
   Status status = MarkerSolveOptionsFromSettings(solver, skeleton.unit(), &options->naive);
   if (status.ok()) status = ClipSolveOptionsFromSettings(solver, &options->reference);
   if (!status.ok()) return status;
-  if (settings.reference == "tracker") {
-    options->reference_kind = ReferenceKind::kTracker;
-  } else if (settings.reference == "clip") {
-    options->reference_kind = ReferenceKind::kClip;
-  } else {
-    return Status::Error("--reference: unknown '" + settings.reference + "' (tracker, clip)");
-  }
+  // The string options are one of their declared choices (checked above).
+  options->reference_kind = settings.reference == "clip" ? ReferenceKind::kClip : ReferenceKind::kTracker;
   options->reference.loss = settings.reference_loss;
   options->reference.loss_scale = settings.reference_loss_cm * units_per_cm;
   // Threads change the speed only, never the result (a batch runs takes side by side, one each).
@@ -160,9 +154,6 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
   options->dp_max = settings.dp_max_cm * units_per_cm;
   options->dr_max_rad = DegToRad(settings.dr_max_deg);
   options->outlier_distance = settings.outlier_cm * units_per_cm;
-  if (settings.outliers != "robust" && settings.outliers != "fixed") {
-    return Status::Error("--outliers: unknown '" + settings.outliers + "' (robust, fixed)");
-  }
   options->robust_outliers = settings.outliers == "robust";
   options->outlier_mads = settings.outlier_mads;
   options->outlier_min_distance = settings.outlier_min_cm * units_per_cm;
@@ -178,13 +169,7 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
   options->small_gap = settings.small_gap;
   options->velocity_clamp = settings.vel_clamp * units_per_cm;
   options->edge_samples = settings.edge_samples;
-  if (settings.fill == "blend") {
-    options->fill = GapFillKind::kBlend;
-  } else if (settings.fill == "kriging") {
-    options->fill = GapFillKind::kKriging;
-  } else {
-    return Status::Error("--fill: unknown '" + settings.fill + "' (blend, kriging)");
-  }
+  options->fill = settings.fill == "blend" ? GapFillKind::kBlend : GapFillKind::kKriging;
   options->fill_samples = settings.fill_samples;
   options->refit_reference = settings.refit_reference;
   options->refit_rough_factor = settings.refit_rough_factor;

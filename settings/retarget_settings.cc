@@ -50,8 +50,7 @@ const OptionGroup<RetargetSettings>& RetargetSettingOptions() {
            "target height (for the foot-skating figures).")
       .Add(&S::ceres_trust_radius, "ceres_trust_radius", "",
            "Ceres' initial trust region radius (its default is 1e4; ~1 "
-           "converges better within a few iterations on the cross-character cases).")
-;
+           "converges better within a few iterations on the cross-character cases).");
   return *group;
 }
 

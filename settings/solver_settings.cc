@@ -125,9 +125,6 @@ Status DlsOptionsFromSettings(const SolverSettings& settings, double function_to
   options->gradient_tolerance = settings.gradient_tolerance;
   options->parameter_tolerance = settings.parameter_tolerance;
   options->lambda = settings.dls_lambda;
-  if (settings.dls_damping != "adaptive" && settings.dls_damping != "fixed") {
-    return Status::Error("--dls_damping: unknown '" + settings.dls_damping + "' (adaptive, fixed)");
-  }
   options->adaptive_damping = settings.dls_damping == "adaptive";
   return Status::Ok();
 }
@@ -179,29 +176,18 @@ Status ClipSolveOptionsFromSettings(const SolverSettings& settings, ClipSolveOpt
   if (!status.ok()) return status;
   options->ceres.num_threads = std::max(settings.num_threads, 1);
   options->ceres.function_tolerance = settings.clip_function_tolerance;
-  if (settings.clip_solver != "ceres" && settings.clip_solver != "dls") {
-    return Status::Error("--clip_solver: unknown '" + settings.clip_solver + "' (ceres, dls)");
-  }
   options->solver = settings.clip_solver;
   options->dls = DefaultClipDlsOptions();
   status = DlsOptionsFromSettings(settings, settings.clip_function_tolerance, &options->dls);
   if (!status.ok()) return status;
-  if (!ceres::StringToSparseLinearAlgebraLibraryType(settings.sparse_library,
-                                                     &options->ceres.sparse_linear_algebra_library_type)) {
-    return Status::Error("--sparse_library: unknown '" + settings.sparse_library +
-                         "' (eigen_sparse, suite_sparse)");
-  }
+  // One of the declared choices (checked above), each a Ceres name.
+  ceres::StringToSparseLinearAlgebraLibraryType(settings.sparse_library,
+                                                &options->ceres.sparse_linear_algebra_library_type);
   options->marker_weight = settings.marker_weight;
   options->loss = settings.loss;
   options->loss_scale = settings.loss_scale;
-  if (settings.smooth_order == "velocity") {
-    options->smoothness_order = SmoothnessOrder::kVelocity;
-  } else if (settings.smooth_order == "acceleration") {
-    options->smoothness_order = SmoothnessOrder::kAcceleration;
-  } else {
-    return Status::Error("--smooth_order: unknown '" + settings.smooth_order +
-                         "' (velocity, acceleration)");
-  }
+  options->smoothness_order =
+      settings.smooth_order == "acceleration" ? SmoothnessOrder::kAcceleration : SmoothnessOrder::kVelocity;
   options->rotation_smoothness = settings.smooth_weight;
   options->translation_smoothness = settings.smooth_translation_weight;
   std::string error;

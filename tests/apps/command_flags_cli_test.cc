@@ -101,15 +101,20 @@ TEST(CommandFlags, AFlagACommandDoesNotReadIsRefused) {
   EXPECT_EQ(testing::RunCli("generate --v=0 --demo_out=" + testing::TempPath("walk.bvh"), &output), 0) << output;
 }
 
-// The default a command's --help shows for a flag, "" if it does not list it.
-std::string HelpDefault(const std::string& command, const std::string& flag) {
-  std::string output;
-  testing::RunCli(command + " --help", &output);
+// The default a --help text shows for a flag, "" if it does not list it.
+std::string DefaultInHelp(const std::string& output, const std::string& flag) {
   const std::string key = "  --" + flag + " (";
   const size_t at = output.find(key);
   if (at == std::string::npos) return "";
   const size_t start = output.find("default: ", at) + 9;
   return output.substr(start, output.find('\n', start) - start);
+}
+
+// The default a command's --help shows for a flag.
+std::string HelpDefault(const std::string& command, const std::string& flag) {
+  std::string output;
+  testing::RunCli(command + " --help", &output);
+  return DefaultInHelp(output, flag);
 }
 
 // A shared flag shows, for each command, the default that command applies (issue 17:
@@ -188,11 +193,15 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
         std::snprintf(text, sizeof(text), "%g", std::stod(option.default_value));
         shown = text;
       }
-      EXPECT_EQ(HelpDefault(use.command, option.name), shown) << where;
+      EXPECT_EQ(DefaultInHelp(help, option.name), shown) << where;
       // The command's own text where it declares one (pipeline's --solver), else the group's.
       const std::string text = HelpText(help, option.name);
-      if (!option.unit.empty()) EXPECT_THAT(text, HasSubstr("[" + option.unit + "]")) << where;
-      if (use.command != "pipeline" && use.command != "evaluate") EXPECT_EQ(text, option.Description()) << where;
+      if (!option.unit.empty()) {
+        EXPECT_THAT(text, HasSubstr("[" + option.unit + "]")) << where;
+      }
+      if (use.command != "pipeline" && use.command != "evaluate") {
+        EXPECT_EQ(text, option.Description()) << where;
+      }
       // The declaration's check, with its message, before any work.
       std::string output;
       if (!option.choices.empty()) {
