@@ -255,6 +255,7 @@ Status LoadTakeForSubject(const Subject& subject, const std::string& markers_pat
 Status TakeForSubject(const Subject& subject, MarkerTrajectories trajectories, const std::string& markers_path,
                       MarkerTake* take) {
   MarkerTake result;
+  result.name = markers_path;
   result.skeleton = subject.skeleton;
   result.markers = subject.markers;
   result.mean_pose = subject.mean_pose;

@@ -86,6 +86,7 @@ std::string FormatSubject(const std::string& path, const Subject& subject);
 
 // A take of markers with its model.
 struct MarkerTake {
+  std::string name;  // The marker file's path (or what stands for it in messages).
   Skeleton skeleton;
   MarkerSet markers;
   QuaternionVector mean_pose;       // The subject's (empty if it has none).

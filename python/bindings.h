@@ -27,6 +27,7 @@
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
+#include "io/json_writer.h"
 #include "kinematics/status.h"
 #include "pipeline/subject.h"
 
@@ -47,6 +48,8 @@ void RequireReadable(const std::string& path);
 // that has it; an unknown name raises TypeError naming it and the accepted names.
 void ApplyKeywords(const py::kwargs& keywords, const std::vector<py::object>& settings,
                    const std::string& accepted);
+// A task's report (what the CLI's --report writes) as Python dicts and lists.
+py::object ReportToPython(const JsonObject& report);
 // Whether a keyword of that name was given.
 bool HasKeyword(const py::kwargs& keywords, const char* name);
 

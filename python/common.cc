@@ -54,6 +54,10 @@ void ApplyKeywords(const py::kwargs& keywords, const std::vector<py::object>& se
   }
 }
 
+py::object ReportToPython(const JsonObject& report) {
+  return py::module_::import("json").attr("loads")(report.ToString(/*indent=*/false));
+}
+
 bool HasKeyword(const py::kwargs& keywords, const char* name) { return keywords.contains(name); }
 
 void SyncMask(MarkerTrajectories* markers) {

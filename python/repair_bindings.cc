@@ -1,8 +1,9 @@
-// Marker repair (thesis chapter 3): the repair settings (the CLI's flags) and repair().
+// Marker repair (thesis chapter 3): the repair and damage settings, repair(), evaluate() and corrupt().
 #include "settings/corruption_settings.h"
 #include "settings/repair_settings.h"
-#include "problems/marker_repair/repair_evaluation.h"
 #include "problems/marker_repair/marker_repair.h"
+#include "tasks/evaluate_task.h"
+#include "tasks/repair_task.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
@@ -10,19 +11,6 @@
 namespace mocapsolve::python {
 namespace {
 
-py::list IntervalList(const std::vector<RepairInterval>& intervals, const MarkerSet& markers) {
-  py::list list;
-  for (const RepairInterval& i : intervals) {
-    py::dict d;
-    d["marker"] = markers.label(i.marker);
-    d["marker_index"] = i.marker;
-    d["first_frame"] = i.first;
-    d["last_frame"] = i.last;
-    d["what"] = i.what;
-    list.append(d);
-  }
-  return list;
-}
 
 std::string RepairOptionNames() {
   return RepairSettingOptions().Names() + "," + SolverOptions().Names();
@@ -60,88 +48,23 @@ void BindRepair(py::module_& m) {
 
   m.def("repair", [](SubjectPtr subject_arg, py::object markers, const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");
-        RepairSettings repair_settings;
-        SolverSettings solver_settings = RepairSolverOptions().Defaults();
+        RepairConfig config;
         ApplyKeywords(keywords,
-                      {py::cast(&repair_settings, py::return_value_policy::reference),
-                       py::cast(&solver_settings, py::return_value_policy::reference)},
+                      {py::cast(&config.repair, py::return_value_policy::reference),
+                       py::cast(&config.solver, py::return_value_policy::reference)},
                       RepairOptionNames());
-        const Skeleton& skeleton = subject->skeleton;
-        RepairOptions options;
-        ThrowIfError(RepairOptionsFromSettings(repair_settings, solver_settings, skeleton, &options));
         const MarkerTakePtr take = TakeArgument(*subject, markers);
-        SetRepairRestRotations(take->mean_pose, &options);  // As `mocapsolve repair`.
-        std::vector<std::vector<Eigen::Vector3d>> repaired;
-        Motion motion;
-        RepairReport report;
-        RepairIntermediates intermediates;
-        auto out = std::make_shared<MarkerTrajectories>();
-        int rewritten = 0;
+        RepairResult result;
         Status status = Status::Ok();
         {
           py::gil_scoped_release release;
-          status = RepairMarkers(skeleton, subject->markers, take->observed, take->unlabelled, options, &repaired,
-                                 &motion, &report, &intermediates);
-          if (status.ok()) {
-            motion.frame_rate = take->trajectories.frame_rate;
-            *out = WithRepairedSamples(*take, repaired, &rewritten, report.unlabelled);
-          }
+          status = RunRepair(*take, config, nullptr, &result);
         }
-        if (!status.ok()) {
-          const std::string where = py::isinstance<py::str>(markers) ? std::string(py::str(markers)) + ": " : "";
-          throw py::value_error(where + status.message());
-        }
-        const double mm = skeleton.unit().metres_per_unit * 1000.0;
-        py::dict d;
-        d["frames"] = static_cast<int>(take->observed.size());
-        py::list swaps;
-        for (const MarkerSwap& swap : report.swaps) {
-          py::dict o;
-          o["first_frame"] = swap.first;
-          o["last_frame"] = swap.last;
-          py::list renamed;
-          for (const auto& [from, to] : swap.from_to) {
-            renamed.append(py::make_tuple(subject->markers.label(from), subject->markers.label(to)));
-          }
-          o["markers_renamed_from_to"] = renamed;
-          o["mean_distance_before_mm"] = swap.distance_before * mm;
-          o["mean_distance_after_mm"] = swap.distance_after * mm;
-          swaps.append(o);
-        }
-        d["swaps"] = swaps;
-        py::list assigned;
-        for (const UnlabelledAssignment& a : report.unlabelled) {
-          py::dict o;
-          o["marker"] = subject->markers.label(a.marker);
-          o["unlabelled"] = take->unlabelled.names[a.track];
-          o["first_frame"] = a.first;
-          o["last_frame"] = a.last;
-          o["frames"] = a.last - a.first + 1;
-          o["mean_distance_mm"] = a.mean_distance * mm;
-          assigned.append(o);
-        }
-        d["unlabelled_assigned"] = assigned;
-        d["detected"] = IntervalList(report.detected, subject->markers);
-        d["filled"] = IntervalList(report.filled, subject->markers);
-        py::list timings;
-        for (const RepairStageTime& t : report.timings) {
-          py::dict o;
-          o["stage"] = t.stage;
-          o["seconds"] = t.seconds;
-          timings.append(o);
-        }
-        d["timings"] = timings;
-        d["rms_naive_mm"] = report.naive_rms * mm;
-        d["rms_reference_mm"] = report.reference_rms * mm;
-        d["rms_repaired_mm"] = report.repaired_rms * mm;
-        d["resolved_frames"] = report.resolved_frames;
-        d["reference"] = repair_settings.reference;
-        d["trimmed_samples"] = report.trimmed_samples;
-        d["removed_track_samples"] = report.removed_track_samples;
-        d["polynomial_samples"] = report.polynomial_samples;
-        d["rewritten_samples"] = rewritten;
-        d["repaired_observed"] = ObservationsToArray(repaired);
-        return py::make_tuple(out, std::move(motion), d);
+        ThrowIfError(status);
+        py::dict report = ReportToPython(result.report);
+        report["repaired_observed"] = ObservationsToArray(result.repaired);
+        return py::make_tuple(std::make_shared<MarkerTrajectories>(std::move(result.markers)), std::move(result.motion),
+                              report);
       }, py::arg("subject"), py::arg("markers"),
       (std::string(R"doc(Finds broken marker intervals against a robust reference and refills them, as
 `mocapsolve repair` (thesis chapter 3).
@@ -159,8 +82,9 @@ tracker_translation_prior=0, tracker_function_tolerance=1e-4) and the solver opt
 solve() (solver defaults to 'dls' here, as in the CLI).
 Returns (markers, motion, report): the input file's markers with the repaired samples (its
 own axes and unit: what --out_markers writes), the motion solved from them, and the
-report as a dict ('swaps': {first_frame, last_frame, markers_renamed_from_to: [(from,
-to)], mean_distance_before_mm, mean_distance_after_mm}; 'unlabelled_assigned': {marker,
+report as a dict, what `mocapsolve repair --report` writes ('swaps': {first_frame,
+last_frame, markers_renamed_from_to: [{from, to}], mean_distance_before_mm,
+mean_distance_after_mm}; 'unlabelled_assigned': {marker,
 unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and 'filled' lists of
 {marker, first_frame, last_frame, what}, 'timings', 'rms_*_mm', 'repaired_observed'
 (frames, set markers, 3) in skeleton units). Releases the GIL while repairing.)doc") +
@@ -211,69 +135,43 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
       "noise; keywords: the CorruptionSettings). Returns (damaged markers, (frames, markers)\n"
       "int8 mask of the damage kind per sample, 0 = untouched; signal/marker_corruption.h).");
 
-  m.def("evaluate", [](SubjectPtr subject_arg, py::object markers, int trials, const py::kwargs& keywords) {
+  m.def("evaluate", [](SubjectPtr subject_arg, py::object markers, const std::string& method, int trials,
+                       double white_noise_mm, const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");
-        RepairSettings repair_settings;
-        SolverSettings solver_settings = RepairSolverOptions().Defaults();
-        CorruptionSettings damage_settings;
+        EvaluateConfig config;
+        config.method = method;
+        config.trials = trials;
+        config.white_noise_mm = white_noise_mm;
         ApplyKeywords(keywords,
-                      {py::cast(&repair_settings, py::return_value_policy::reference),
-                       py::cast(&solver_settings, py::return_value_policy::reference),
-                       py::cast(&damage_settings, py::return_value_policy::reference)},
+                      {py::cast(&config.repair, py::return_value_policy::reference),
+                       py::cast(&config.solver, py::return_value_policy::reference),
+                       py::cast(&config.damage, py::return_value_policy::reference)},
                       RepairOptionNames() + "," + CorruptionSettingOptions().Names());
-        if (trials < 1 || trials > 1000) throw py::value_error("--trials: expected 1..1000");
-        const Skeleton& skeleton = subject->skeleton;
-        RepairOptions options;
-        ThrowIfError(RepairOptionsFromSettings(repair_settings, solver_settings, skeleton, &options));
-        CorruptionOptions damage;
-        ThrowIfError(CorruptionOptionsFromSettings(damage_settings, skeleton.unit(), &damage));
         const MarkerTakePtr take = TakeArgument(*subject, markers);
-        SetRepairRestRotations(take->mean_pose, &options);  // As `mocapsolve evaluate`.
-        const double cm = skeleton.unit().metres_per_unit * 100.0, mm = cm * 10.0;
-        py::list out;
-        for (int trial = 0; trial < trials; ++trial) {
-          damage.seed = static_cast<uint32_t>(damage_settings.corrupt_seed + trial);
-          std::vector<RepairEvaluationRow> rows;
-          Status status = Status::Ok();
-          {
-            py::gil_scoped_release release;
-            status = EvaluateRepairTrial(skeleton, subject->markers, take->observed, damage, options, &rows);
-          }
-          ThrowIfError(status);
-          for (const RepairEvaluationRow& r : rows) {
-            py::dict d;
-            d["trial"] = trial;
-            d["seed"] = damage.seed;
-            d["method"] = r.method;
-            d["joint_position_cm"] = r.joint_position_error * cm;
-            d["joint_rotation_deg"] = r.joint_rotation_error * 180.0 / 3.14159265358979323846;
-            d["marker_mean_mm"] = r.marker_error_mean * mm;
-            d["marker_rms_mm"] = r.marker_error_rms * mm;
-            d["marker_max_mm"] = r.marker_error_max * mm;
-            d["damaged_samples"] = r.damaged_samples;
-            d["covered_samples"] = r.covered_samples;
-            d["velocity_jump_mm_per_frame"] = r.velocity_jump * mm;
-            d["seconds"] = r.seconds;
-            for (int k = 0; k < kNumDamageKinds; ++k) {
-              const std::string kind = kDamageKindNames[k];
-              d[(kind + "_mean_mm").c_str()] = r.kind_error[k] * mm;
-              d[(kind + "_samples").c_str()] = r.kind_samples[k];
-              d[(kind + "_recall").c_str()] = r.Recall(k);
-            }
-            d["precision"] = r.Precision();
-            out.append(d);
-          }
+        EvaluateResult result;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = RunEvaluate(*take, config, nullptr, &result);
         }
-        return out;
-      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("trials") = 1,
-      (std::string(R"doc(The thesis' Table 1 on synthetic damage, as `mocapsolve evaluate`: per trial (seeds
-corrupt_seed, corrupt_seed + 1, ...) the clean markers are damaged and refilled by every
-method (original, polynomial, linear, PCA, reference only, ours). Keywords: the repair,
-solver and corruption options. Returns one dict per trial and method, the columns of
-evaluate's --table_csv (errors against the solve of the clean markers).
-subject: a Subject; markers: a .c3d/.trc path or a Take; trials: how many damaged copies
-(default 1, up to 1000).)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), CorruptionSettingOptions().Names())).c_str());
+        ThrowIfError(status);
+        return ReportToPython(result.report);
+      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("method") = "repair", py::arg("trials") = 1,
+      py::arg("white_noise_mm") = 0.0,
+      (std::string(R"doc(Scores marker repair on a take, as `mocapsolve evaluate`; returns the dict its --report
+writes. method:
+  'repair' (default): the thesis' Table 1 on synthetic damage: per trial (seeds
+    corrupt_seed, corrupt_seed + 1, ...) the clean markers are damaged and refilled by
+    every method (original, polynomial, linear, PCA, reference only, ours); 'methods'
+    holds each method's mean over the trials, 'per_trial' one row per trial and method
+    (the columns of --table_csv and more; errors against the solve of the clean markers);
+  'leave_one_out': each marker predicted by the solve of the others ('per_marker', 'all');
+  'small_errors': recall and precision on 1-4 cm jumps and jitter ('seeds'), after
+    white_noise_mm of noise.
+subject: a Subject; markers: a .c3d/.trc path, Markers or a Take; trials: how many damaged
+copies (default 1, up to 1000). Keywords: the repair, solver (num_threads=2 here) and
+corruption options. Releases the GIL.)doc") +
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(EvaluateSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), CorruptionSettingOptions().Names())).c_str());
 }
 
 }  // namespace mocapsolve::python

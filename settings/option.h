@@ -18,6 +18,7 @@
 #define MOCAPSOLVE_SETTINGS_OPTION_H_
 
 #include <limits>
+#include <cstdlib>
 #include <string>
 #include <utility>
 #include <variant>
@@ -135,7 +136,9 @@ class OptionGroup {
   // Settings() with this group's defaults.
   Settings Defaults() const {
     Settings settings;
-    for (const Option& option : options_) Set(option.name, option.default_value, &settings);
+    for (const Option& option : options_) {
+      if (!Set(option.name, option.default_value, &settings).ok()) std::abort();  // A declaration's own bug.
+    }
     return settings;
   }
 

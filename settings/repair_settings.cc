@@ -119,6 +119,15 @@ const OptionGroup<SolverSettings>& RepairSolverOptions() {
   return *group;
 }
 
+const OptionGroup<SolverSettings>& EvaluateSolverOptions() {
+  static const OptionGroup<SolverSettings>* const group = new OptionGroup<SolverSettings>(
+      RepairSolverOptions().WithDefault(
+          "num_threads", "2",
+          "Threads: leave_one_out solves this many markers at once; repair runs its solves on two threads when "
+          ">= 2. Speed only: the results do not depend on it."));
+  return *group;
+}
+
 void SetRepairRestRotations(const QuaternionVector& mean_pose, RepairOptions* options) {
   options->naive.rest_rotations = mean_pose;
 }

@@ -55,6 +55,8 @@ const OptionGroup<RepairSettings>& RepairSettingOptions();
 // (SolverOptions) with DLS by default, without --mode (repair has its own --reference);
 // pipeline declares these too.
 const OptionGroup<SolverSettings>& RepairSolverOptions();
+// `evaluate`'s: RepairSolverOptions on two threads by default (its solves are the work).
+const OptionGroup<SolverSettings>& EvaluateSolverOptions();
 
 // `solver` holds the naive solve's settings (RepairSolverOptions' defaults when the user
 // did not choose). The skeleton's unit must be known.

@@ -45,11 +45,14 @@ def test_repair_options_and_errors(cmu02):
 
 
 def test_evaluate_matches_the_cli_table(cmu02, tmp_path):
+    # evaluate() returns what `mocapsolve evaluate --report` writes (one task under both).
     subject = mocapsolve.read_subject(cmu02["subject"])
-    rows = mocapsolve.evaluate(subject, cmu02["c3d"], trials=1, gaps=4)
+    report = mocapsolve.evaluate(subject, cmu02["c3d"], trials=1, gaps=4)
     csv = str(tmp_path / "table.csv")
+    cli_report = str(tmp_path / "cli.json")
     run_cli("evaluate", "--subject=" + cmu02["subject"], "--markers=" + cmu02["c3d"], "--trials=1", "--gaps=4",
-            "--table_csv=" + csv)
+            "--table_csv=" + csv, "--report=" + cli_report)
+    rows = report["per_trial"]
     lines = open(csv).read().splitlines()
     header = lines[0].split(",")
     assert len(lines) - 1 == len(rows)
@@ -58,6 +61,26 @@ def test_evaluate_matches_the_cli_table(cmu02, tmp_path):
         assert values["method"] == row["method"]
         for key in ("joint_position_cm", "marker_rms_mm", "velocity_jump_mm_per_frame"):
             assert float(values[key]) == float("%.6g" % row[key]), (row["method"], key)
+    expected = json.load(open(cli_report))
+    for key in ("methods", "position_error_ratio_to_ours", "first_seed", "trials", "frames"):
+        assert key in report and key in expected, key
+    ours = lambda r: [m for m in r["methods"] if m["method"] == "ours"][0]
+    assert ours(report)["joint_position_cm"] == pytest.approx(ours(expected)["joint_position_cm"], rel=1e-12)
+
+
+def test_evaluate_has_every_method_of_the_cli(cmu02, tmp_path):
+    subject = mocapsolve.read_subject(cmu02["subject"])
+    loo = mocapsolve.evaluate(subject, cmu02["c3d"], method="leave_one_out", num_threads=2)
+    cli_report = str(tmp_path / "loo.json")
+    run_cli("evaluate", "--method=leave_one_out", "--subject=" + cmu02["subject"], "--markers=" + cmu02["c3d"],
+            "--report=" + cli_report)
+    expected = json.load(open(cli_report))
+    assert loo["unit"] == "mm" and len(loo["per_marker"]) == len(subject.marker_labels)
+    assert loo["all"]["median"] == pytest.approx(expected["all"]["median"], rel=1e-9)
+    with pytest.raises(ValueError, match="--method: expected repair, leave_one_out or small_errors"):
+        mocapsolve.evaluate(subject, cmu02["c3d"], method="magic")
+    with pytest.raises(ValueError, match="--trials"):
+        mocapsolve.evaluate(subject, cmu02["c3d"], trials=0)
 
 
 def test_corrupt_damages_markers():
