@@ -15,6 +15,7 @@
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
+#include "tasks/solve_task.h"
 
 namespace mocapsolve::python {
 
@@ -43,48 +44,13 @@ MarkerTakePtr TakeArgument(const Subject& subject, py::object markers) {
   return take;
 }
 
-SolverSettings SettingsFromKeywords(const py::kwargs& keywords, const char* default_solver) {
+SolverSettings SettingsFromKeywords(const py::kwargs& keywords) {
   SolverSettings settings;
-  if (default_solver != nullptr) settings.solver = default_solver;
   ApplyKeywords(keywords, {py::cast(&settings, py::return_value_policy::reference)}, SolverOptions().Names());
   return settings;
 }
 
-py::dict SequenceReportDict(const SequenceSolveReport& report, const LengthUnit& unit) {
-  const double mm = unit.known() ? unit.metres_per_unit * 1000.0 : 1.0;
-  py::dict d;
-  d["frames"] = report.frames;
-  d["seconds"] = report.solve_seconds;
-  d["frames_per_second"] = report.solve_seconds > 0 ? report.frames / report.solve_seconds : 0.0;
-  d["iterations"] = report.total_iterations;
-  d["rms_marker_residual"] = report.rms_marker_error * mm;
-  d["max_frame_rms"] = report.max_frame_rms * mm;
-  d["unsolved_frames"] = report.unsolved_frames;
-  d["frames_at_iteration_limit"] = report.unconverged_frames;
-  d["total_final_cost"] = report.total_final_cost;
-  Array rms({static_cast<py::ssize_t>(report.frame_rms.size())});
-  for (size_t f = 0; f < report.frame_rms.size(); ++f) rms.mutable_at(f) = report.frame_rms[f] * mm;
-  d["frame_rms"] = rms;
-  d["residual_unit"] = unit.known() ? "mm" : "skeleton units";
-  return d;
-}
-
 namespace {
-
-py::dict ClipReportDict(const ClipSolveReport& clip, const LengthUnit& unit) {
-  const double mm = unit.known() ? unit.metres_per_unit * 1000.0 : 1.0;
-  py::dict d;
-  d["solver"] = clip.solver;
-  d["seconds"] = clip.solve_seconds;
-  d["iterations"] = clip.iterations;
-  d["parameters"] = clip.parameters;
-  d["residual_blocks"] = clip.residual_blocks;
-  d["initial_cost"] = clip.initial_cost;
-  d["final_cost"] = clip.final_cost;
-  d["rms_marker_residual"] = clip.rms_marker_error * mm;
-  d["brief"] = clip.brief;
-  return d;
-}
 
 // What FrameSolver.solve returns: the frame's report, its residual in mm under the name and
 // unit solve()'s report uses (skeleton units, said so, when the skeleton's unit is unknown).
@@ -102,7 +68,7 @@ class FrameSolver {
  public:
   FrameSolver(SubjectPtr subject, const py::kwargs& keywords) : subject_(std::move(subject)) {
     Required(subject_, "subject");
-    settings_ = SettingsFromKeywords(keywords, nullptr);
+    settings_ = SettingsFromKeywords(keywords);
     ThrowIfError(MarkerSolveOptionsFromSettings(settings_, subject_->skeleton.unit(), &options_));
     options_.rest_rotations = subject_->mean_pose;
     solver_ = std::make_unique<MarkerFrameSolver>(subject_->skeleton, subject_->markers, options_);
@@ -225,64 +191,43 @@ void BindSolve(py::module_& m) {
 
   m.def("solve", [](SubjectPtr subject_arg, py::object markers, int max_frames, const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");
-        const SolverSettings settings = SettingsFromKeywords(keywords, nullptr);
-        if (settings.mode != "frame" && settings.mode != "clip") {
-          throw py::value_error("--mode: unknown '" + settings.mode + "' (frame, clip)");
-        }
-        const Skeleton& skeleton = subject->skeleton;
-        MarkerSolveOptions frame_options;
-        ThrowIfError(MarkerSolveOptionsFromSettings(settings, skeleton.unit(), &frame_options));
-        frame_options.rest_rotations = subject->mean_pose;
-        ClipSolveOptions clip_options;
-        if (settings.mode == "clip") ThrowIfError(ClipSolveOptionsFromSettings(settings, &clip_options));
-        if (max_frames < 0) throw py::value_error("--max_frames must be >= 0");
+        SolveConfig config;
+        config.solver = SettingsFromKeywords(keywords);
+        config.max_frames = max_frames;
         const MarkerTakePtr take = TakeArgument(*subject, markers);
-        std::vector<std::vector<Eigen::Vector3d>> cut;
-        const bool shorten = max_frames > 0 && static_cast<int>(take->observed.size()) > max_frames;
-        if (shorten) cut.assign(take->observed.begin(), take->observed.begin() + max_frames);
-        const auto& observed = shorten ? cut : take->observed;
-        Motion motion;
-        motion.frame_rate = take->trajectories.frame_rate;
-        SequenceSolveReport sequence;
-        ClipSolveReport clip;
+        SolveResult result;
         Status status = Status::Ok();
         double seconds_in_cpp = 0.0;
         {
           py::gil_scoped_release release;
           const auto start = std::chrono::steady_clock::now();
-          status = SolveSequence(skeleton, subject->markers, observed, frame_options, RestPose(skeleton),
-                                 &motion, &sequence);
-          if (status.ok() && settings.mode == "clip") {
-            status = SolveClip(skeleton, subject->markers, observed, clip_options, &motion, &clip);
-          }
+          status = RunSolve(*take, config, SolveProgress(), &result);
           seconds_in_cpp = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         }
-        if (!status.ok()) {
-          const std::string where = py::isinstance<py::str>(markers) ? std::string(py::str(markers)) + ": " : "";
-          throw py::value_error(where + status.message());
-        }
-        py::dict report;
-        report["solver"] = settings.solver;
-        report["mode"] = settings.mode;
-        report["frames"] = sequence.frames;
-        report["marker_to_skeleton_scale"] = take->transform.scale;
+        ThrowIfError(status);
+        py::dict report = ReportToPython(result.report);
         report["seconds_in_cpp"] = seconds_in_cpp;  // The solve functions' own time (for overheads).
-        report["per_frame"] = SequenceReportDict(sequence, skeleton.unit());
-        if (settings.mode == "clip") report["clip"] = ClipReportDict(clip, skeleton.unit());
-        return py::make_tuple(std::move(motion), report);
+        const LengthUnit& unit = subject->skeleton.unit();
+        const double scale = unit.known() ? unit.metres_per_unit * 1000.0 : 1.0;
+        Array rms({static_cast<py::ssize_t>(result.per_frame.frame_rms.size())});
+        for (size_t f = 0; f < result.per_frame.frame_rms.size(); ++f) {
+          rms.mutable_at(f) = result.per_frame.frame_rms[f] * scale;
+        }
+        report["per_frame"]["frame_rms"] = rms;
+        return py::make_tuple(std::move(result.motion), report);
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("max_frames") = 0,
       (std::string(R"doc(Joint angles from markers, as `mocapsolve solve`.
 
 subject: a Subject (read_subject or subject()); markers: a .c3d/.trc path or a Take.
 max_frames: solve only the first N frames (0 = all).
 Every other keyword is a solver option named like the CLI flag (SolverSettings), e.g.
-  solver='ceres'|'dls', mode='frame'|'clip', linear_solver='dense_qr', max_iterations=50,
+  solver='dls'|'dls_generic'|'ceres', mode='frame'|'clip', linear_solver='dense_qr', max_iterations=50,
   function_tolerance=1e-6, gradient_tolerance=1e-10, parameter_tolerance=1e-8,
   num_threads=2 (clip), loss='none'|'huber'|'cauchy', loss_scale=1.0, marker_weight=1.0,
   prior_weight=20.0 (mm per radian), prior_translation_weight=0,
   rest_prior_weight=-1 (5 toward the subject's mean pose if it has one, else off), limit_weight=0,
   smooth_order='velocity'|'acceleration', smooth_weight=1, smooth_translation_weight=0.1,
-  clip_function_tolerance=1e-6, sparse_library='eigen_sparse', clip_solver='ceres'|'dls',
+  clip_function_tolerance=1e-6, sparse_library='eigen_sparse', clip_solver='dls'|'dls_generic'|'ceres',
   dls_lambda=1e-3,
   dls_damping='adaptive'|'fixed'.
 Returns (motion, report): the motion on the subject's skeleton and a dict with the CLI

@@ -1,0 +1,104 @@
+#include "tasks/solve_task.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "kinematics/forward_kinematics.h"
+
+namespace mocapsolve {
+namespace {
+
+// Skeleton units -> the reports' residual unit: mm when the skeleton's unit is known.
+double ResidualScale(const Skeleton& skeleton) {
+  return skeleton.unit().known() ? skeleton.unit().metres_per_unit * 1000.0 : 1.0;
+}
+
+const char* ResidualUnit(const Skeleton& skeleton) { return skeleton.unit().known() ? "mm" : "skeleton units"; }
+
+}  // namespace
+
+Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolveProgress& progress,
+                SolveResult* result) {
+  *result = SolveResult();
+  const SolverSettings& solver = config.solver;
+  if (config.max_frames < 0) return Status::Error("--max_frames: expected a value >= 0, got " +
+                                                  std::to_string(config.max_frames));
+  const Skeleton& skeleton = take.skeleton;
+  MarkerSolveOptions frame_options;  // Validates every solver option.
+  Status status = MarkerSolveOptionsFromSettings(solver, skeleton.unit(), &frame_options);
+  if (!status.ok()) return status;
+  frame_options.rest_rotations = take.mean_pose;
+  ClipSolveOptions clip_options;
+  if (solver.mode == "clip") {
+    status = ClipSolveOptionsFromSettings(solver, &clip_options);
+    if (!status.ok()) return status;
+  }
+  const int total = static_cast<int>(take.observed.size());
+  result->frames = config.max_frames > 0 ? std::min(config.max_frames, total) : total;
+  std::vector<std::vector<Eigen::Vector3d>> cut;
+  if (result->frames < total) cut.assign(take.observed.begin(), take.observed.begin() + result->frames);
+  const auto& observed = result->frames < total ? cut : take.observed;
+
+  result->motion.frame_rate = take.trajectories.frame_rate;
+  SequenceSolveReport& sequence = result->per_frame;
+  status = SolveSequence(skeleton, take.markers, observed, frame_options, RestPose(skeleton), &result->motion,
+                         &sequence, progress.frames);
+  if (!status.ok()) return Status::Error(take.name + ": " + status.message());
+  const double scale = ResidualScale(skeleton);
+  result->report.Add("solver", solver.solver).Add("mode", solver.mode).Add("frames", sequence.frames)
+      .Add("marker_to_skeleton_scale", take.transform.scale).Add("residual_unit", ResidualUnit(skeleton));
+  JsonObject frame_json;
+  frame_json.Add("seconds", sequence.solve_seconds)
+      .Add("frames_per_second", sequence.solve_seconds > 0 ? sequence.frames / sequence.solve_seconds : 0.0)
+      .Add("iterations", static_cast<double>(sequence.total_iterations))
+      .Add("rms_marker_residual", sequence.rms_marker_error * scale)
+      .Add("max_frame_rms", sequence.max_frame_rms * scale)
+      .Add("unsolved_frames", sequence.unsolved_frames)
+      .Add("frames_at_iteration_limit", sequence.unconverged_frames)
+      .Add("total_final_cost", sequence.total_final_cost).Add("residual_unit", ResidualUnit(skeleton));
+  result->report.Add("per_frame", frame_json);
+  if (progress.per_frame_done) progress.per_frame_done(sequence);
+  if (solver.mode != "clip") return Status::Ok();
+
+  ClipSolveReport& clip = result->clip;
+  status = SolveClip(skeleton, take.markers, observed, clip_options, &result->motion, &clip);
+  if (!status.ok()) return Status::Error(take.name + ": " + status.message());
+  JsonObject clip_json;
+  clip_json.Add("solver", clip.solver).Add("seconds", clip.solve_seconds).Add("iterations", clip.iterations)
+      .Add("parameters", clip.parameters).Add("residual_blocks", clip.residual_blocks)
+      .Add("initial_cost", clip.initial_cost).Add("final_cost", clip.final_cost)
+      .Add("rms_marker_residual", clip.rms_marker_error * scale).Add("brief", clip.brief);
+  result->report.Add("clip", clip_json);
+  return Status::Ok();
+}
+
+std::string FrameResidualsCsv(const MarkerTake& take, int frames, const Motion& motion) {
+  const Skeleton& skeleton = take.skeleton;
+  const bool known = skeleton.unit().known();
+  const double scale = ResidualScale(skeleton);
+  std::string csv = std::string("frame,time_s,markers_observed,rms_") + (known ? "mm" : "units") + ",max_" +
+                    (known ? "mm" : "units") + "\n";
+  FkData fk(skeleton);
+  const double rate = motion.frame_rate > 0 ? motion.frame_rate : 0.0;
+  for (int f = 0; f < frames; ++f) {
+    ForwardKinematics(skeleton, motion.frames[f], &fk);
+    int count = 0;
+    double sum = 0.0, worst = 0.0;
+    for (int m = 0; m < take.markers.num_markers(); ++m) {
+      if (!take.observed[f][m].allFinite()) continue;
+      const double e = (take.markers.Position(m, fk) - take.observed[f][m]).norm() * scale;
+      sum += e * e;
+      worst = std::max(worst, e);
+      ++count;
+    }
+    char line[160];
+    std::snprintf(line, sizeof(line), "%d,%.6g,%d,%.6g,%.6g\n", f, rate > 0 ? f / rate : 0.0, count,
+                  count > 0 ? std::sqrt(sum / count) : 0.0, worst);
+    csv += line;
+  }
+  return csv;
+}
+
+}  // namespace mocapsolve

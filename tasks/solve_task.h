@@ -1,0 +1,54 @@
+// `solve` as one function: joint angles from a take's markers, per frame (warm-started,
+// problems/marker_solve/sequence_solver.h) and with mode=clip refined as one problem
+// (problems/marker_solve/marker_clip_solver.h), the subject's mean pose as the rest prior's
+// reference. The CLI (apps/solve_command.cc: flags, BVH, plots) and Python's solve() both
+// call it.
+#ifndef MOCAPSOLVE_TASKS_SOLVE_TASK_H_
+#define MOCAPSOLVE_TASKS_SOLVE_TASK_H_
+
+#include <functional>
+#include <string>
+
+#include "io/json_writer.h"
+#include "kinematics/motion.h"
+#include "kinematics/status.h"
+#include "pipeline/subject.h"
+#include "problems/marker_solve/marker_clip_solver.h"
+#include "problems/marker_solve/sequence_solver.h"
+#include "settings/solver_settings.h"
+
+namespace mocapsolve {
+
+struct SolveConfig {
+  SolverSettings solver;
+  int max_frames = 0;  // Solve only the first N frames (0 = all).
+};
+
+struct SolveProgress {
+  std::function<void(int frames_done)> frames;  // During the per-frame solve.
+  // After it (before the clip solve with mode=clip): its report, skeleton units.
+  std::function<void(const SequenceSolveReport&)> per_frame_done;
+};
+
+struct SolveResult {
+  int frames = 0;          // Solved: the take's, or max_frames.
+  Motion motion;           // On the take's skeleton, at the file's frame rate.
+  SequenceSolveReport per_frame;  // Skeleton units.
+  ClipSolveReport clip;           // mode=clip.
+  // What --report records: the residuals in mm (residual_unit; skeleton units when the
+  // skeleton's unit is unknown), seconds.
+  JsonObject report;
+};
+
+// Errors: invalid options (naming the option), or a take that cannot be solved (naming
+// take.name).
+Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolveProgress& progress,
+                SolveResult* result);
+
+// The motion's marker residual frame by frame (the first `frames` of the take), as CSV:
+// frame, time (s), markers observed, RMS and max residual (mm, or skeleton units).
+std::string FrameResidualsCsv(const MarkerTake& take, int frames, const Motion& motion);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_TASKS_SOLVE_TASK_H_
