@@ -204,12 +204,7 @@ extern const Command kPipelineCommand = {
     "Exit code: 0 done, 1 bad input or a failed stage (nothing written), 3 the take failed\n"
     "the quality gate (outputs written, the report says why).",
     __FILE__, RunPipeline, kPipelineFlags.c_str(),
-    // DLS unless told otherwise, as repair and retarget do; --print_config shows it and a
-    // printed config read back with --config changes nothing.
-    {RepairSolverOptions()
-         .WithDefault("solver", "dls",
-                      "dls | dls_generic | ceres: who solves the per-frame problems of the repair and the retargets.")
-         .options(),
+    {RepairSolverOptions().options(),
      RepairSettingOptions().options(), RetargetSettingOptions().options()},
     {{"view", "auto",
       "The take's browser page: auto = DIR/view.html when the viewer's runtime is installed (else a "

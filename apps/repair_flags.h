@@ -16,7 +16,7 @@ namespace mocapsolve {
 RepairSettings RepairSettingsFromFlags();
 
 // Thresholds in cm and degrees are converted with the skeleton's unit (which must be
-// known). The naive solve takes the solver flags (--solver defaults to dls here).
+// known). The naive solve takes the solver flags.
 Status RepairOptionsFromFlags(const Skeleton& skeleton, RepairOptions* options);
 
 }  // namespace mocapsolve

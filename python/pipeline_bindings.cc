@@ -101,13 +101,13 @@ paths), check the quality gate (gate_* as the CLI's flags; 0 turns a check off):
 take_name: the take's name in the report ('' = the marker file's stem).
 filter_levels: the multiresolution filter's levels (0 = off), with kernel_a (the Cardinal
 spline kernel's a, default 0.4) and tension (default 0).
-Keywords: the repair, solver (solver='dls' by default) and retarget options.
+Keywords: the repair, solver and retarget options.
 out_dir: also write repaired markers, solved.bvh, <character>.glb and report.json there;
 animation_only: each <character>.glb then holds the character's skeleton, skin and the
 take only, no meshes (as the CLI's --animation_only).
 Returns a dict: 'solved' (Motion), 'repaired_markers' (Markers), 'characters' {name:
 Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), RetargetSettingOptions().Names() + ",foot_joints")).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), RetargetSettingOptions().Names() + ",foot_joints")).c_str());
 }
 
 }  // namespace mocapsolve::python

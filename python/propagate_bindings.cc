@@ -166,7 +166,7 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
   m.def("ik_edit", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& ik_target,
                       double ik_root_weight, const py::kwargs& keywords) {
         CheckMotion(skeleton, motion);
-        const SolverSettings settings = SettingsFromKeywords(keywords, nullptr);
+        const SolverSettings settings = SettingsFromKeywords(keywords);
         if (frame < 0 || frame >= motion.num_frames()) {
           throw py::value_error("--frame: expected 0 <= frame < " + std::to_string(motion.num_frames()) +
                                 " with --ik_target, got " + std::to_string(frame));
@@ -200,7 +200,7 @@ skeleton, motion: the clip (read_motion). frame: the edited frame (0-based).
 ik_target: 'JOINT:x,y,z' (world, skeleton units), several separated by ';'.
 ik_root_weight: pull of the root translation toward the original, per skeleton unit
   (default 1.0; 0 lets the root slide freely).
-Every other keyword is a solver option of solve() (SolverSettings: solver='ceres'|'dls',
+Every other keyword is a solver option of solve() (SolverSettings: solver='dls'|'dls_generic'|'ceres',
 max_iterations, prior_weight, ...).
 Returns (edit, report): a PoseEdit for propagate() and a dict (ik_iterations,
 ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc") +

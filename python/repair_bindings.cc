@@ -79,7 +79,7 @@ refit_reference=True, refit_rough_factor=3, rough_extension_factor=6,
 reference='tracker'|'clip',
 reference_loss='cauchy', reference_loss_cm=1, tracker_prior_weight=20,
 tracker_translation_prior=0, tracker_function_tolerance=1e-4) and the solver options of
-solve() (solver defaults to 'dls' here, as in the CLI).
+solve().
 Returns (markers, motion, report): the input file's markers with the repaired samples (its
 own axes and unit: what --out_markers writes), the motion solved from them, and the
 report as a dict, what `mocapsolve repair --report` writes ('swaps': {first_frame,
@@ -88,7 +88,7 @@ mean_distance_after_mm}; 'unlabelled_assigned': {marker,
 unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and 'filled' lists of
 {marker, first_frame, last_frame, what}, 'timings', 'rms_*_mm', 'repaired_observed'
 (frames, set markers, 3) in skeleton units). Releases the GIL while repairing.)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names())).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names())).c_str());
 
   py::class_<CorruptionSettings> damage(m, "CorruptionSettings",
       "The synthetic damage's options, one per flag of `mocapsolve corrupt`/`evaluate` (same\n"
@@ -171,7 +171,7 @@ writes. method:
 subject: a Subject; markers: a .c3d/.trc path, Markers or a Take; trials: how many damaged
 copies (default 1, up to 1000). Keywords: the repair, solver (num_threads=2 here) and
 corruption options. Releases the GIL.)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings; solver 'dls' here)", py::cast(EvaluateSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), CorruptionSettingOptions().Names())).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(EvaluateSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), CorruptionSettingOptions().Names())).c_str());
 }
 
 }  // namespace mocapsolve::python

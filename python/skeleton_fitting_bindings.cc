@@ -61,7 +61,7 @@ void BindSkeletonFitting(py::module_& m) {
       "  'iteration', 'seconds'.\n"
       "Keywords, the fit's options (SkeletonFitSettings):\n" +
       KeywordList(py::cast(SkeletonFitSettings()), kSkeletonFitSettingHelp) +
-      "and the solver options of solve() (SolverSettings: solver='ceres'|'dls', max_iterations,\n"
+      "and the solver options of solve() (SolverSettings: solver='dls'|'dls_generic'|'ceres', max_iterations,\n"
       "prior_weight, ...).\n\n"
       "Returns (subject, motion, report): the fitted Subject (skeleton inline), the motion\n"
       "solved on it over the fitted frames, and the report dict of `--report` (rounds, kept\n"

@@ -111,11 +111,7 @@ const OptionGroup<RepairSettings>& RepairSettingOptions() {
 
 const OptionGroup<SolverSettings>& RepairSolverOptions() {
   static const OptionGroup<SolverSettings>* const group = new OptionGroup<SolverSettings>(
-      SolverOptions()
-          .WithDefault("solver", "dls",
-                       "dls | dls_generic | ceres: who solves the per-frame steps (the naive solve Y and the "
-                       "re-solve); dls, the lean tree kernel, is the default here.")
-          .Without("mode"));
+      SolverOptions().Without("mode"));
   return *group;
 }
 

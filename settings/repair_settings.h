@@ -52,10 +52,10 @@ struct RepairSettings {
 const OptionGroup<RepairSettings>& RepairSettingOptions();
 
 // Repair solves every frame two or three times: its solver options are the solver's
-// (SolverOptions) with DLS by default, without --mode (repair has its own --reference);
-// pipeline declares these too.
+// (SolverOptions) without --mode (repair has its own --reference); pipeline declares
+// these too.
 const OptionGroup<SolverSettings>& RepairSolverOptions();
-// `evaluate`'s: RepairSolverOptions on two threads by default (its solves are the work).
+// `evaluate`'s: RepairSolverOptions with --num_threads told in its terms (markers at once).
 const OptionGroup<SolverSettings>& EvaluateSolverOptions();
 
 // `solver` holds the naive solve's settings (RepairSolverOptions' defaults when the user

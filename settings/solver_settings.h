@@ -20,7 +20,7 @@
 namespace mocapsolve {
 
 struct SolverSettings {
-  std::string solver = "ceres";            // ceres | dls.
+  std::string solver = "dls";              // dls | dls_generic | ceres.
   std::string mode = "frame";              // frame | clip (read by the callers).
   std::string linear_solver;               // Ceres' name; "" = the problem's default.
   std::string trust_region = "levenberg_marquardt";

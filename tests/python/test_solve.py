@@ -90,7 +90,7 @@ def test_bad_options_raise_the_cli_message(cmu02):
 
 def test_settings_defaults_are_the_cli_defaults():
     s = mocapsolve.SolverSettings()
-    assert s.solver == "ceres" and s.max_iterations == 50 and s.prior_weight == 20.0
+    assert s.solver == "dls" and s.max_iterations == 50 and s.prior_weight == 20.0
     assert list(s.as_dict()) == mocapsolve.SOLVER_OPTION_NAMES.split(",")
     s.solver = "bogus"
     with pytest.raises(ValueError, match="--solver: unknown 'bogus'"):
