@@ -17,8 +17,19 @@ def test_retarget_matches_the_cli(tmp_path):
     assert motion.num_frames == 8 and report["source_kind"] == "skeleton"
     assert character.num_vertices > 0
     cli = str(tmp_path / "cli.bvh")
-    run_cli("retarget", "--source=" + bvh, "--target=" + glb, "--max_frames=8", "--out=" + cli)
+    cli_report = str(tmp_path / "cli.json")
+    run_cli("retarget", "--source=" + bvh, "--target=" + glb, "--max_frames=8", "--out=" + cli,
+            "--report=" + cli_report)
     assert open(ours).read() == open(cli).read()
+    # One task under both: the report is the --report's, less the envelope and output flags.
+    expected = json.load(open(cli_report))
+    timing = {"setup_seconds", "solve_seconds", "ms_per_frame"}
+    for key, value in report.items():
+        if key not in timing:
+            assert expected[key] == value, key
+    assert report["joint_map"] and report["per_frame_position_error"]
+    with pytest.raises(ValueError, match="--source_skin: applies to a skinned glTF source only"):
+        mocapsolve.retarget(bvh, glb, max_frames=2, source_skin="0")
 
 
 def test_pipeline_on_one_take_matches_the_cli(cmu02, tmp_path):
