@@ -22,14 +22,17 @@
 #include "kinematics/status.h"
 #include "problems/edit_propagation/falloff.h"
 #include "problems/edit_propagation/ik_edit.h"
+#include "settings/propagate_settings.h"
+#include "settings/solver_settings.h"
 
 namespace mocapsolve {
 
-// The flags of `mocapsolve propagate` that only these weights read (same names, defaults).
+// The options of `mocapsolve propagate` that only these weights read (declared in
+// settings/propagate_settings.h and settings/solver_settings.h; the same defaults).
 struct EditWeightSettings {
-  double harmonic_ground = 0.002;             // Fraction of the pose graph's mean degree.
-  double spline_width = 30.0;                 // Frames.
-  std::string sparse_library = "eigen_sparse";  // eigen_sparse | suite_sparse (harmonic solve).
+  double harmonic_ground = PropagateSettings().harmonic_ground;  // Fraction of the graph's mean degree.
+  double spline_width = PropagateSettings().spline_width;        // Frames.
+  std::string sparse_library = SolverSettings().sparse_library;  // eigen_sparse | suite_sparse.
 };
 
 struct EditWeights {

@@ -13,9 +13,16 @@
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
+#include "settings/propagate_settings.h"
+#include "tasks/propagate_task.h"
 
 namespace mocapsolve::python {
 namespace {
+
+// propagate()'s keywords: its own options, the falloff's and the IK solve's (as the CLI).
+std::string PropagateKeywordNames() {
+  return PropagateSettingOptions().Names() + "," + FalloffSettingOptions().Names() + "," + SolverOptions().Names();
+}
 
 Array VectorToArray(const Eigen::VectorXd& v) {
   Array out({py::ssize_t{v.size()}});
@@ -163,6 +170,65 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
       "Propagates edits (PoseEdits) through motion on skeleton (eq. 5): weights[k] (frames,) is edit k's falloff\n"
       "(falloff()['weight'] or spline_falloff()). Returns the edited motion.");
 
+  py::class_<PropagateSettings> propagate_settings(m, "PropagateSettings",
+      "`mocapsolve propagate`'s own options (the IK edit's root pull, the harmonic and spline\n"
+      "falloffs, the foot contacts); same names, defaults and units as its flags.");
+  propagate_settings.def(py::init<>(), "Every option at the CLI's default.");
+#define MOCAPSOLVE_FIELD(name) propagate_settings.def_readwrite(#name, &PropagateSettings::name)
+  MOCAPSOLVE_FIELD(ik_root_weight); MOCAPSOLVE_FIELD(harmonic_ground); MOCAPSOLVE_FIELD(spline_width);
+  MOCAPSOLVE_FIELD(keep_contacts); MOCAPSOLVE_FIELD(contact_height_cm); MOCAPSOLVE_FIELD(contact_speed_cm);
+  MOCAPSOLVE_FIELD(contact_prior_cm); MOCAPSOLVE_FIELD(contact_blend_s); MOCAPSOLVE_FIELD(compare_falloffs);
+#undef MOCAPSOLVE_FIELD
+  m.attr("PROPAGATE_OPTION_NAMES") = PropagateSettingOptions().Names();
+
+  m.def("propagate", [](const Skeleton& skeleton, const Motion& motion, const std::string& edit,
+                        const std::string& ik_target, int frame, const std::string& method,
+                        const std::string& foot_joints, const py::kwargs& keywords) {
+        CheckMotion(skeleton, motion);
+        PropagateConfig config;
+        config.edit = edit;
+        config.ik_target = ik_target;
+        config.frame = frame;
+        config.method = method;
+        config.foot_joints = foot_joints;
+        ApplyKeywords(keywords,
+                      {py::cast(&config.propagate, py::return_value_policy::reference),
+                       py::cast(&config.falloff, py::return_value_policy::reference),
+                       py::cast(&config.solver, py::return_value_policy::reference)},
+                      PropagateKeywordNames());
+        if (!edit.empty()) RequireReadable(edit);
+        PropagateResult result;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = RunPropagate(skeleton, motion, config, nullptr, &result);
+        }
+        ThrowIfError(status);
+        py::list weights;
+        for (const Eigen::VectorXd& w : result.weights.weights) weights.append(VectorToArray(w));
+        py::dict report = ReportToPython(result.report);
+        report["weights"] = weights;
+        return py::make_tuple(std::move(result.propagated), report);
+      }, py::arg("skeleton"), py::arg("motion"), py::kw_only(), py::arg("edit") = "", py::arg("ik_target") = "",
+      py::arg("frame") = -1, py::arg("method") = "green", py::arg("foot_joints") = "",
+      (std::string(R"doc(An edit propagated through a clip, as `mocapsolve propagate` (the whole command:
+edits, falloff, propagation, foot contacts).
+
+skeleton, motion: the clip (read_motion). Exactly one of edit (an edit file, .json) and
+ik_target ('JOINT:x,y,z' in world skeleton units at frame; several separated by ';').
+frame: the IK edit's frame (with edit: checked against a one-edit file; -1 = not given).
+method: 'green' (default), 'harmonic' or 'spline'. foot_joints: comma-separated foot
+joints for the contacts ('' = names with foot, toe or ankle).
+Keywords: the PropagateSettings (keep_contacts=True holds planted feet), the
+FalloffSettings and the IK solve's SolverSettings, as the CLI's flags.
+Returns (motion, report): the propagated motion and what `propagate --report` writes
+('edit', 'falloff', 'contacts' with max_drift_cm_without_keep / _with_keep, ...), plus
+'weights': one (frames,) array per edit. Releases the GIL.)doc") +
+       KeywordDefaults("Propagate keywords and defaults (PropagateSettings)", py::cast(PropagateSettings()),
+                       PropagateSettingOptions().Names()) +
+       KeywordDefaults("Falloff keywords and defaults (FalloffSettings)", py::cast(FalloffSettings()),
+                       FalloffSettingOptions().Names())).c_str());
+
   m.def("ik_edit", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& ik_target,
                       double ik_root_weight, const py::kwargs& keywords) {
         CheckMotion(skeleton, motion);
@@ -175,7 +241,9 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
         ThrowIfError(ParseIkTargets(ik_target, skeleton, &targets));
         MarkerSolveOptions solve;
         ThrowIfError(MarkerSolveOptionsFromSettings(settings, skeleton.unit(), &solve));
-        if (!(ik_root_weight >= 0.0)) throw py::value_error("--ik_root_weight must be >= 0");
+        PropagateSettings checked;
+        checked.ik_root_weight = ik_root_weight;
+        ThrowIfError(PropagateSettingOptions().Validate(checked));
         solve.prior_translation_weight = ik_root_weight;
         PoseEdit edit;
         IkEditReport ik;

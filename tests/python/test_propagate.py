@@ -98,3 +98,29 @@ def test_ik_and_weight_errors_carry_the_cli_message(tmp_path):
         _, output = run_cli("propagate", "--motion=" + bvh, "--skeleton_units=cm", "--frame=200",
                             "--out=" + str(tmp_path / "o.bvh"), *flags, expect=1)
         assert "mocapsolve propagate: " + str(error.value) in output, flags
+
+
+def test_propagate_command_with_keep_contacts_matches_the_cli(tmp_path):
+    # propagate(skeleton, motion, ik_target=..., keep_contacts=True) is `mocapsolve propagate`:
+    # one task under both, so the motion is the CLI's bit for bit and the report its --report.
+    bvh = data_file("bvh/16_15.bvh")
+    skeleton, motion = mocapsolve.read_motion(bvh, skeleton_units="cm")
+    edited, report = mocapsolve.propagate(skeleton, motion, ik_target="lhand:32,105,50", frame=200,
+                                          keep_contacts=True, max_iterations=20)
+    ours = str(tmp_path / "py.bvh")
+    mocapsolve.write_motion(ours, skeleton, edited)
+    cli, cli_report = str(tmp_path / "cli.bvh"), str(tmp_path / "cli.json")
+    run_cli("propagate", "--motion=" + bvh, "--skeleton_units=cm", "--ik_target=lhand:32,105,50", "--frame=200",
+            "--keep_contacts", "--max_iterations=20", "--out=" + cli, "--report=" + cli_report)
+    assert open(ours).read() == open(cli).read()
+    expected = json.load(open(cli_report))
+    contacts = report["contacts"]
+    assert contacts["max_drift_cm_with_keep"] < contacts["max_drift_cm_without_keep"]
+    for key in ("max_drift_cm_without_keep", "max_drift_cm_with_keep", "contact_frames"):
+        assert contacts[key] == expected["contacts"][key], key
+    assert report["edit"]["ik_iterations"] == expected["edit"]["ik_iterations"]
+    assert len(report["weights"]) == 1 and report["weights"][0].shape == (motion.num_frames,)
+    with pytest.raises(ValueError, match="give exactly one of --edit"):
+        mocapsolve.propagate(skeleton, motion)
+    with pytest.raises(ValueError, match="--contact_prior_cm: expected a value >= 0"):
+        mocapsolve.propagate(skeleton, motion, ik_target="lhand:32,105,50", frame=200, contact_prior_cm=-1)

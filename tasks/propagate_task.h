@@ -1,0 +1,63 @@
+// `propagate` as one function (Dean, Lewis & Chalmers 2018, eqs. 4-5;
+// problems/edit_propagation/): the edit of one or more frames (an edit file, or an IK solve
+// moving joints to points) carried to every frame of the region with a falloff (green,
+// harmonic or spline; pipeline/edit_weights.h), the feet planted in the source measured
+// and, with keep_contacts, held. The CLI (apps/propagate_command.cc) and Python's
+// propagate(skeleton, motion, edit=... | ik_target=...) both call it.
+#ifndef MOCAPSOLVE_TASKS_PROPAGATE_TASK_H_
+#define MOCAPSOLVE_TASKS_PROPAGATE_TASK_H_
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "io/json_writer.h"
+#include "kinematics/motion.h"
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+#include "pipeline/edit_weights.h"
+#include "settings/falloff_settings.h"
+#include "settings/propagate_settings.h"
+#include "settings/solver_settings.h"
+
+namespace mocapsolve {
+
+struct PropagateConfig {
+  std::string edit;          // An edit file (.json, io/edit_file.h); or
+  std::string ik_target;     // JOINT:x,y,z[;...] (world, skeleton units) at `frame`.
+  int frame = -1;            // Required with ik_target; with edit, checked against a one-edit file (-1: not given).
+  std::string method = "green";  // green | harmonic | spline.
+  std::string foot_joints;   // Comma-separated; "" = names with foot, toe or ankle.
+  PropagateSettings propagate;
+  FalloffSettings falloff;
+  SolverSettings solver;     // The IK solve's; sparse_library: the harmonic solve's.
+};
+
+struct FalloffComparison {
+  std::string method;
+  double correlation = 0.0, max_difference = 0.0;
+};
+
+struct PropagateResult {
+  Motion propagated;
+  std::vector<int> frames;            // The edited frames.
+  int region_begin = 0, region_end = 0;
+  EditWeights weights;                // One (frames,) field per edit.
+  bool ik = false;
+  IkEditReport ik_report;             // Skeleton units.
+  std::vector<FalloffComparison> comparisons;  // compare_falloffs.
+  bool contacts_found = false;        // Foot contacts detected (drift measured).
+  int contact_frames = 0;
+  double drift_cm_before = 0.0, drift_cm_after = 0.0;  // after: with keep_contacts.
+  bool unit_assumed = false;          // The skeleton's unit unknown: cm assumed.
+  JsonObject report;                  // What --report records.
+};
+
+// Errors name the option or the edit file's entry. contact_progress (optional): frames of
+// the contact re-solve done, and the total.
+Status RunPropagate(const Skeleton& skeleton, const Motion& motion, const PropagateConfig& config,
+                    const std::function<void(int done, int total)>& contact_progress, PropagateResult* result);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_TASKS_PROPAGATE_TASK_H_
