@@ -1,11 +1,8 @@
 // mocapsolve batch: `pipeline` over many takes, each in its own worker process, resumable
 // (batch/batch_runner.h); the summary of every take in DIR/summary.json and .csv.
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <string>
 #include <cstdlib>
-#include <thread>
+#include <string>
 
 #include <gflags/gflags.h>
 
@@ -13,11 +10,8 @@
 #include "apps/common_flags.h"
 #include "apps/progress.h"
 #include "apps/config_flags.h"
-#include "batch/batch_runner.h"
-#include "batch/batch_summary.h"
-#include "batch/manifest.h"
-#include "batch/output_guard.h"
-#include "io/atomic_file.h"
+#include "batch/worker_process.h"
+#include "tasks/batch_task.h"
 
 DECLARE_string(subject);    // apps/main.cc
 DECLARE_string(character);  // apps/main.cc
@@ -50,8 +44,8 @@ DEFINE_bool(retry_failed, false, "Redo the takes that failed in an earlier run (
 namespace mocapsolve {
 namespace {
 
-// --shard, or the Slurm job array's task.
-Status ShardFromFlagOrSlurm(int* index, int* count) {
+// --shard, or the Slurm job array's task ("" = the whole batch).
+std::string ShardFromFlagOrSlurm() {
   std::string text = FLAGS_shard;
   const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
   const char* tasks = std::getenv("SLURM_ARRAY_TASK_COUNT");
@@ -59,7 +53,7 @@ Status ShardFromFlagOrSlurm(int* index, int* count) {
     const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
     text = std::to_string(std::atoi(id) - (min != nullptr ? std::atoi(min) : 0)) + "/" + tasks;
   }
-  return ParseShard(text, index, count);
+  return text;
 }
 
 void PrintFailures(const BatchResult& result) {
@@ -72,98 +66,26 @@ void PrintFailures(const BatchResult& result) {
 
 Status RunBatchCommand(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_merge && FLAGS_manifest.empty()) {
-    if (FLAGS_out_dir.empty()) return Status::Error("--merge needs --out_dir");
-    BatchResult result;
-    Status status = CollectRecords(FLAGS_out_dir, nullptr, &result);
-    if (status.ok()) status = WriteBatchSummary(FLAGS_out_dir, result, Version());
-    if (!status.ok()) return status;
-    std::printf("merged %zu take records: %d done, %d failed\n", result.takes.size(), result.done, result.failed);
-    PrintFailures(result);
-    if (result.failed > 0) SetExitCodeOnSuccess(2);
-    return Status::Ok();
-  }
-  if (FLAGS_manifest.empty() == FLAGS_markers_glob.empty()) {
-    return Status::Error("give either --manifest or --markers_glob (with --subject)");
-  }
-  if (FLAGS_out_dir.empty() && FLAGS_write_manifest.empty()) return Status::Error("--out_dir is required");
-  if (FLAGS_take_timeout < 0 || FLAGS_take_memory_mb < 0 || FLAGS_jobs < 0 || FLAGS_take_threads < 0) {
-    return Status::Error("--jobs, --take_threads, --take_timeout and --take_memory_mb must not be negative");
-  }
-  BatchRunOptions options;
-  options.executable = SelfExecutable();
-  options.version = Version();
-  // The pipeline's own options and defaults: the keys a manifest may hold.
-  std::string config;
-  Status status = RunAndCapture({options.executable, "pipeline", "--print_config"}, &config);
-  BatchOptions pipeline_options;
-  if (status.ok()) status = ParsePipelineOptions(config, &pipeline_options);
-  if (!status.ok()) return status;
-
-  BatchManifest manifest;
-  if (!FLAGS_manifest.empty()) {
-    if (!FLAGS_subject.empty() || !FLAGS_character.empty()) {
-      return Status::Error("--subject and --character go with --markers_glob; a manifest names its own");
-    }
-    status = ReadManifest(FLAGS_manifest, pipeline_options, &manifest);
-  } else {
-    status = ManifestFromGlob(FLAGS_markers_glob, FLAGS_subject, SplitCommaList(FLAGS_character), pipeline_options,
-                              &manifest);
-  }
-  if (!status.ok()) return status;
-  if (FLAGS_merge) {
-    if (FLAGS_out_dir.empty()) return Status::Error("--merge needs --out_dir");
-    BatchResult result;
-    status = CheckBatchOutputs(manifest, FLAGS_out_dir, BatchOutputs(FLAGS_out_dir, "summary", "", ""));
-    if (status.ok()) status = CollectRecords(FLAGS_out_dir, &manifest, &result);
-    if (status.ok()) status = WriteBatchSummary(FLAGS_out_dir, result, Version());
-    if (!status.ok()) return status;
-    std::printf("merged %zu takes: %d done, %d failed or missing\n", result.takes.size(), result.done,
-                result.failed);
-    PrintFailures(result);
-    if (result.failed > 0) SetExitCodeOnSuccess(2);
-    return Status::Ok();
-  }
-  int shard = 0, shards = 1;
-  status = ShardFromFlagOrSlurm(&shard, &shards);
-  if (!status.ok()) return status;
-  const std::string shard_name = shards == 1 ? "" : ".shard" + std::to_string(shard) + "of" + std::to_string(shards);
-  const std::string summary_base = "summary" + shard_name;
-  options.work_dir = FLAGS_out_dir.empty() ? "" : FLAGS_out_dir + "/.batch-work" + shard_name;
-  // Every output against every input, before anything is written.
-  status = CheckBatchOutputs(manifest, FLAGS_out_dir,
-                             BatchOutputs(FLAGS_out_dir, summary_base, options.work_dir, FLAGS_write_manifest));
-  if (!status.ok()) return status;
-  if (!FLAGS_write_manifest.empty()) {
-    // At once, not when the batch ends: a batch killed later still leaves its manifest.
-    status = WriteFileAtomicallyNow(FLAGS_write_manifest, FormatManifest(manifest, pipeline_options));
-    if (!status.ok()) return status;
-    if (FLAGS_out_dir.empty()) {
-      std::printf("wrote %s (%zu takes)\n", FLAGS_write_manifest.c_str(), manifest.takes.size());
-      return Status::Ok();
-    }
-  }
-  KeepShard(shard, shards, &manifest);
-  if (manifest.takes.empty()) {
-    std::printf("batch: shard %d/%d has no takes\n", shard, shards);
-    return Status::Ok();
-  }
-  options.out_dir = FLAGS_out_dir;
-  const int cores = std::max(1u, std::thread::hardware_concurrency());
-  options.jobs = FLAGS_jobs > 0 ? FLAGS_jobs : cores;
-  options.take_threads = FLAGS_take_threads > 0 ? FLAGS_take_threads : std::max(1, cores / options.jobs);
-  options.limits.timeout_seconds = FLAGS_take_timeout;
-  options.limits.memory_mb = FLAGS_take_memory_mb;
-  options.force = FLAGS_force;
-  options.retry_failed = FLAGS_retry_failed;
-  const std::string version = Version();
-  options.checkpoint = [&options, &summary_base, &version](const BatchResult& partial) {
-    // A summary as takes end: a killed batch leaves one. (A failed write is retried next time.)
-    (void)WriteBatchSummary(options.out_dir, partial, version, summary_base);
-  };
-  BatchResult result;
+  BatchInputs inputs;
+  inputs.manifest = FLAGS_manifest;
+  inputs.markers_glob = FLAGS_markers_glob;
+  inputs.subject = FLAGS_subject;
+  inputs.characters = SplitCommaList(FLAGS_character);
+  inputs.out_dir = FLAGS_out_dir;
+  inputs.write_manifest = FLAGS_write_manifest;
+  inputs.jobs = FLAGS_jobs;
+  inputs.take_threads = FLAGS_take_threads;
+  inputs.take_timeout = FLAGS_take_timeout;
+  inputs.take_memory_mb = FLAGS_take_memory_mb;
+  inputs.force = FLAGS_force;
+  inputs.retry_failed = FLAGS_retry_failed;
+  inputs.merge = FLAGS_merge;
+  inputs.shard = ShardFromFlagOrSlurm();
+  inputs.executable = SelfExecutable();
+  inputs.version = Version();
   ProgressLine line(FLAGS_quiet);  // In place on a terminal, a line every few seconds in a log.
-  status = RunBatch(manifest, options, [&line](const BatchProgress& p) {
+  BatchTaskResult task;
+  Status status = RunBatchTask(inputs, [&line](const BatchProgress& p) {
     const bool last = p.done + p.failed == p.takes && p.running == 0;
     if (!line.Due(last)) return;
     char text[256];
@@ -171,16 +93,31 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
                   "frames/s, ETA %.0f s", p.done + p.failed, p.takes, p.done, p.failed, p.running, p.skipped,
                   p.seconds > 0 ? p.frames / p.seconds : 0.0, p.eta_seconds);
     line.Show(text, last);
-  }, &result);
+  }, &task);
   if (!status.ok()) return status;
-  status = WriteBatchSummary(options.out_dir, result, Version(), summary_base);
-  if (!status.ok()) return status;
-
-  std::printf("batch: %zu takes in %.2f s: %d done, %d failed (%d ran, %d skipped as unchanged); %d failed at the "
-              "quality gate; batch's own work %.1f ms\n", result.takes.size(), result.seconds, result.done,
-              result.failed, result.ran, result.skipped, result.gate_failed, 1000.0 * result.own_seconds);
+  const BatchResult& result = task.result;
+  switch (task.kind) {
+    case BatchTaskResult::Kind::kManifestOnly:
+      std::printf("wrote %s (%d takes)\n", FLAGS_write_manifest.c_str(), task.manifest_takes);
+      return Status::Ok();
+    case BatchTaskResult::Kind::kEmptyShard:
+      std::printf("batch: shard %d/%d has no takes\n", task.shard, task.shards);
+      return Status::Ok();
+    case BatchTaskResult::Kind::kMerged:
+      std::printf("merged %zu %s: %d done, %d failed%s\n", result.takes.size(),
+                  FLAGS_manifest.empty() ? "take records" : "takes", result.done, result.failed,
+                  FLAGS_manifest.empty() ? "" : " or missing");
+      break;
+    case BatchTaskResult::Kind::kRan:
+      std::printf("batch: %zu takes in %.2f s: %d done, %d failed (%d ran, %d skipped as unchanged); %d failed at "
+                  "the quality gate; batch's own work %.1f ms\n", result.takes.size(), result.seconds, result.done,
+                  result.failed, result.ran, result.skipped, result.gate_failed, 1000.0 * result.own_seconds);
+      break;
+  }
   PrintFailures(result);
-  std::printf("wrote %s/%s.json and .csv\n", options.out_dir.c_str(), summary_base.c_str());
+  if (task.kind == BatchTaskResult::Kind::kRan) {
+    std::printf("wrote %s/%s.json and .csv\n", FLAGS_out_dir.c_str(), task.summary_base.c_str());
+  }
   if (result.failed > 0) SetExitCodeOnSuccess(2);
   return Status::Ok();
 }

@@ -1,5 +1,10 @@
 // The pipeline on one take (pipeline/take_pipeline.h): repair and solve, optional
 // filtering, retargeting onto each character, the quality gate; outputs optionally written.
+// And batch(): the pipeline over many takes in worker processes (tasks/batch_task.h).
+#include <cstdlib>
+
+#include "batch/batch_summary.h"
+#include "batch/worker_process.h"
 #include "io/atomic_file.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
@@ -9,8 +14,38 @@
 #include "pipeline/take_pipeline.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
+#include "tasks/batch_task.h"
 
 namespace mocapsolve::python {
+namespace {
+
+// The CLI the batch's workers run: `executable`, else $MOCAPSOLVE_CLI, else `mocapsolve` on
+// PATH, else the build tree's (build/bin/mocapsolve beside build/python/mocapsolve/).
+std::string BatchExecutable(const std::string& executable) {
+  if (!executable.empty()) return executable;
+  if (const char* cli = std::getenv("MOCAPSOLVE_CLI"); cli != nullptr && *cli != 0) return cli;
+  const py::object on_path = py::module_::import("shutil").attr("which")("mocapsolve");
+  if (!on_path.is_none()) return py::str(on_path);
+  const py::module_ os_path = py::module_::import("os.path");
+  const py::object package = os_path.attr("dirname")(py::module_::import("mocapsolve").attr("__file__"));
+  const std::string built = py::str(os_path.attr("join")(package, "..", "..", "bin", "mocapsolve"));
+  if (py::bool_(os_path.attr("exists")(built))) return built;
+  throw py::value_error("batch: no mocapsolve executable for the workers: pass executable=, set MOCAPSOLVE_CLI "
+                        "or put mocapsolve on PATH");
+}
+
+// Its version, as its --version prints it ("mocapsolve 0.1.0"): part of every take's key.
+std::string ExecutableVersion(const std::string& executable) {
+  std::string text;
+  ThrowIfError(RunAndCapture({executable, "--version"}, &text));
+  const std::string prefix = "mocapsolve ";
+  if (text.compare(0, prefix.size(), prefix) != 0) {
+    throw py::value_error(executable + ": not a mocapsolve executable (--version printed '" + text + "')");
+  }
+  return text.substr(prefix.size(), text.find_first_of("\r\n") - prefix.size());
+}
+
+}  // namespace
 
 void BindPipeline(py::module_& m) {
   const QualityGate gate;  // The defaults, as the CLI's flags take them.
@@ -108,6 +143,67 @@ take only, no meshes (as the CLI's --animation_only).
 Returns a dict: 'solved' (Motion), 'repaired_markers' (Markers), 'characters' {name:
 Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc") +
        KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), RetargetSettingOptions().Names() + ",foot_joints")).c_str());
+
+  m.def("batch", [](const std::string& manifest, const std::string& markers_glob, const std::string& subject,
+                    const std::vector<std::string>& characters, const std::string& out_dir,
+                    const std::string& write_manifest, int jobs, int take_threads, double take_timeout,
+                    int take_memory_mb, bool force, bool retry_failed, bool merge, const std::string& shard,
+                    const std::string& executable) {
+        BatchInputs inputs;
+        inputs.manifest = manifest;
+        inputs.markers_glob = markers_glob;
+        inputs.subject = subject;
+        inputs.characters = characters;
+        inputs.out_dir = out_dir;
+        inputs.write_manifest = write_manifest;
+        inputs.jobs = jobs;
+        inputs.take_threads = take_threads;
+        inputs.take_timeout = take_timeout;
+        inputs.take_memory_mb = take_memory_mb;
+        inputs.force = force;
+        inputs.retry_failed = retry_failed;
+        inputs.merge = merge;
+        inputs.shard = shard;
+        inputs.executable = BatchExecutable(executable);
+        inputs.version = ExecutableVersion(inputs.executable);
+        BatchTaskResult task;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = RunBatchTask(inputs, nullptr, &task);
+        }
+        ThrowIfError(status);
+        py::dict out;
+        const char* kinds[] = {"ran", "merged", "manifest_only", "empty_shard"};
+        out["kind"] = kinds[static_cast<int>(task.kind)];
+        out["done"] = task.result.done;
+        out["failed"] = task.result.failed;
+        out["summary"] = py::module_::import("json").attr("loads")(FormatSummaryJson(task.result, inputs.version));
+        out["summary_base"] = task.summary_base;
+        return out;
+      }, py::kw_only(), py::arg("manifest") = "", py::arg("markers_glob") = "", py::arg("subject") = "",
+      py::arg("characters") = std::vector<std::string>(), py::arg("out_dir") = "", py::arg("write_manifest") = "",
+      py::arg("jobs") = 0, py::arg("take_threads") = 0, py::arg("take_timeout") = 0.0, py::arg("take_memory_mb") = 0,
+      py::arg("force") = false, py::arg("retry_failed") = false, py::arg("merge") = false, py::arg("shard") = "",
+      py::arg("executable") = "",
+      R"doc(Many takes through the pipeline, as `mocapsolve batch` (the same task): each take in
+its own worker process running `executable pipeline`, resumable (a take whose key of
+inputs, options and version matches is skipped).
+
+manifest: a batch manifest (.json; docs/batch.md), or markers_glob: one take per matching
+marker file (quote nothing: a pattern string) with subject (a subject .json path) and
+characters (.glb paths). out_dir: where each take's folder and summary.json/.csv go.
+write_manifest: also write the batch's manifest there (alone: without out_dir).
+jobs: takes at once (0 = the cores); take_threads: threads per take (0 = the cores over
+jobs); take_timeout: seconds (0 = no limit); take_memory_mb: address-space limit per take
+(0 = none). force: redo every take; retry_failed: redo the failed ones; merge: only
+rebuild the summary from the takes' records; shard: 'i/n' runs the takes at positions
+p % n == i. executable: the CLI the workers run ('' = $MOCAPSOLVE_CLI, else mocapsolve on
+PATH, else the build tree's).
+Returns a dict: 'kind' ('ran', 'merged', 'manifest_only', 'empty_shard'), 'done',
+'failed' (takes; a failed take is not an exception), 'summary' (summary.json's contents),
+'summary_base'. Bad flags or a bad manifest raise ValueError with the CLI's message.
+Releases the GIL.)doc");
 }
 
 }  // namespace mocapsolve::python

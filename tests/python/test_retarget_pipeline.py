@@ -59,3 +59,25 @@ def test_retarget_animation_only_matches_the_cli(tmp_path):
     assert data[:4] == b"glTF" and len(data) < os.path.getsize(glb) / 20
     with pytest.raises(ValueError, match="animation_only"):
         mocapsolve.retarget(bvh, glb, max_frames=8, out=str(tmp_path / "x.bvh"), animation_only=True)
+
+
+def test_batch_runs_the_cli_batch_task(cmu02, tmp_path):
+    # batch() is `mocapsolve batch` (one task): the same take folders, summary and keys, so a
+    # CLI re-run over the Python batch's folder skips the take as unchanged.
+    import shutil
+    takes = tmp_path / "takes"
+    takes.mkdir()
+    shutil.copy(cmu02["c3d"], str(takes / "walk.c3d"))
+    out = str(tmp_path / "out")
+    result = mocapsolve.batch(markers_glob=str(takes / "*.c3d"), subject=cmu02["subject"], out_dir=out, jobs=1)
+    assert result["kind"] == "ran" and result["done"] == 1 and result["failed"] == 0, result
+    assert result["summary"]["takes"][0]["take"] == "walk"
+    assert os.path.exists(os.path.join(out, "walk", "solved.bvh"))
+    assert json.load(open(os.path.join(out, "summary.json")))["takes"][0]["status"] == "done"
+    _, output = run_cli("batch", "--markers_glob=" + str(takes / "*.c3d"), "--subject=" + cmu02["subject"],
+                        "--out_dir=" + out, "--jobs=1")
+    assert "1 skipped as unchanged" in output, output
+    merged = mocapsolve.batch(merge=True, out_dir=out)
+    assert merged["kind"] == "merged" and merged["done"] == 1
+    with pytest.raises(ValueError, match="give either --manifest or --markers_glob"):
+        mocapsolve.batch(out_dir=out)

@@ -1,0 +1,53 @@
+// `batch` as one function: `pipeline` over many takes (a manifest, or a glob of marker files
+// with one subject and characters), each take in its own worker process running
+// `executable pipeline` (batch/batch_runner.h), resumable by each take's key; or, with
+// merge, the summary rebuilt from the takes' records. The CLI (apps/batch_command.cc:
+// flags, the progress line) and Python's batch() both call it.
+#ifndef MOCAPSOLVE_TASKS_BATCH_TASK_H_
+#define MOCAPSOLVE_TASKS_BATCH_TASK_H_
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "batch/batch_runner.h"
+#include "kinematics/status.h"
+
+namespace mocapsolve {
+
+struct BatchInputs {
+  std::string manifest;                 // Batch manifest (.json); or
+  std::string markers_glob;             // one take per matching marker file, all with
+  std::string subject;                  // this subject and
+  std::vector<std::string> characters;  // these characters.
+  std::string out_dir;
+  std::string write_manifest;  // Also write the batch's manifest here (alone: without out_dir).
+  int jobs = 0;                // Takes at once; 0 = the cores.
+  int take_threads = 0;        // Threads per take; 0 = the cores over jobs, at least 1.
+  double take_timeout = 0.0;   // Seconds; 0 = no limit.
+  int take_memory_mb = 0;      // RLIMIT_AS per take; 0 = no limit.
+  bool force = false;          // Redo every take.
+  bool retry_failed = false;   // Redo the takes that failed before.
+  bool merge = false;          // Only rebuild the summary from the records.
+  std::string shard;           // "i/n": the takes at positions p % n == i; "" = all.
+  std::string executable;      // The mocapsolve CLI the workers run.
+  std::string version;         // Its version (part of every take's key).
+};
+
+struct BatchTaskResult {
+  enum class Kind { kRan, kMerged, kManifestOnly, kEmptyShard };
+  Kind kind = Kind::kRan;
+  BatchResult result;
+  int shard = 0, shards = 1;
+  std::string summary_base;  // "summary" or "summary.shard<i>of<n>" (DIR/<base>.json, .csv).
+  int manifest_takes = 0;    // Takes in the written manifest (kManifestOnly).
+};
+
+// Errors: bad flags, a bad manifest (naming the file and field), an output that is an
+// input; a failed take is not an error (result.failed counts them).
+Status RunBatchTask(const BatchInputs& inputs, const std::function<void(const BatchProgress&)>& progress,
+                    BatchTaskResult* result);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_TASKS_BATCH_TASK_H_
