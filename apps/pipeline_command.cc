@@ -19,7 +19,6 @@
 #include "io/motion_file.h"
 #include "pipeline/quality_gate.h"
 #include "pipeline/take_pipeline.h"
-#include "viewer/view_page.h"
 
 DECLARE_string(subject);  // apps/main.cc
 
@@ -33,18 +32,6 @@ DEFINE_string(take_name, "", "The take's name: the characters' new animation (de
               "file's name without extension).");
 DEFINE_int32(filter_levels, 0, "Filter the solved motion: drop the N finest bands of its Laplacian "
              "pyramid (as `filter --levels=N`); 0 = no filtering.");
-DEFINE_double(gate_naive_rms_mm, mocapsolve::QualityGate().max_naive_rms_mm, "Quality gate: the plain solve's marker RMS (mm) at most this "
-              "(a marker set that does not fit the actor shows here); 0 = no check.");
-DEFINE_double(gate_repaired_rms_mm, mocapsolve::QualityGate().max_repaired_rms_mm, "Quality gate: the repaired solve's marker RMS (mm) at most "
-              "this; 0 = no check.");
-DEFINE_double(gate_repaired_share, mocapsolve::QualityGate().max_repaired_share, "Quality gate: at most this share of the subject's marker "
-              "samples repaired; 0 = no check.");
-DEFINE_double(gate_iteration_limit_share, mocapsolve::QualityGate().max_iteration_limit_share, "Quality gate: at most this share of frames whose "
-              "solve stopped at --max_iterations; 0 = no check.");
-DEFINE_double(gate_marker_offset_cm, mocapsolve::QualityGate().max_marker_offset_cm, "Quality gate: no marker of the subject farther than this "
-              "(cm) from its bone (skin distance; CMU subject 2's own calibration puts RBAC 20.7 cm from upperback); 0 = no check.");
-DEFINE_double(gate_torso_deg, mocapsolve::QualityGate().max_torso_error_deg, "Quality gate: the solved pelvis-to-head direction within this "
-              "(degrees, mean over the take) of the head and pelvis markers' own; 0 = no check.");
 
 namespace mocapsolve {
 
@@ -53,33 +40,23 @@ extern const Command kPipelineCommand;  // Below: its declared options check --c
 namespace {
 
 const std::string kPipelineOptionFlags =
-    std::string("take_name,filter_levels,kernel_a,tension,gate_naive_rms_mm,gate_repaired_rms_mm,"
-                "gate_repaired_share,gate_iteration_limit_share,gate_marker_offset_cm,gate_torso_deg,animation_only,") +
+    std::string("take_name,filter_levels,kernel_a,tension,") + QualityGateOptions().Names() + ",animation_only," +
     RepairSettingOptions().Names() + "," + RepairSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints";
 
-// The take's page, as --view says: auto (the default) DIR/view.html when the viewer's
-// runtime is installed, else none with a warning (a batch on a machine without it still
-// delivers the takes); off: none; PAGE.html: that page, which was asked for, so a missing
-// runtime is an error before any work (exit 1, nothing written). *path: "" for none.
+// The take's page, as --view says (TakeViewPath; a PAGE.html must be no input). *path: ""
+// for none.
 Status ViewPageOfTake(std::string* path) {
-  path->clear();
-  if (FLAGS_view == "off") return Status::Ok();
-  if (FLAGS_view == "auto") {
-    std::string runtime;
-    const Status found = FindViewerRuntime(&runtime);
-    if (found.ok()) {
-      *path = ViewPagePath(FLAGS_out_dir);
-    } else {  // A warning, not progress: printed with --quiet too.
-      std::fprintf(stderr, "warning: pipeline: no view.html (--view=auto): %s\n", found.message().c_str());
-    }
-    return Status::Ok();
+  if (FLAGS_view != "auto" && FLAGS_view != "off") {
+    std::vector<std::string> inputs = {FLAGS_subject, FLAGS_markers};
+    for (const std::string& character : SplitCommaList(FLAGS_character)) inputs.push_back(character);
+    Status status = CheckViewFlag(inputs);
+    if (!status.ok()) return status;
   }
-  std::vector<std::string> inputs = {FLAGS_subject, FLAGS_markers};
-  for (const std::string& character : SplitCommaList(FLAGS_character)) inputs.push_back(character);
-  Status status = CheckViewFlag(inputs);
-  if (!status.ok()) return status;
-  *path = FLAGS_view;
-  return Status::Ok();
+  std::string warning;
+  Status status = TakeViewPath(FLAGS_view, FLAGS_out_dir, path, &warning);
+  // A warning, not progress: printed with --quiet too.
+  if (!warning.empty()) std::fprintf(stderr, "warning: pipeline: %s\n", warning.c_str());
+  return status;
 }
 
 Status RunPipeline(const std::vector<std::string>& arguments) {
@@ -111,12 +88,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
   options.filter_levels = FLAGS_filter_levels;
   options.filter = PyramidOptionsFromFlags(FLAGS_filter_levels);
-  options.gate.max_naive_rms_mm = FLAGS_gate_naive_rms_mm;
-  options.gate.max_repaired_rms_mm = FLAGS_gate_repaired_rms_mm;
-  options.gate.max_repaired_share = FLAGS_gate_repaired_share;
-  options.gate.max_iteration_limit_share = FLAGS_gate_iteration_limit_share;
-  options.gate.max_marker_offset_cm = FLAGS_gate_marker_offset_cm;
-  options.gate.max_torso_error_deg = FLAGS_gate_torso_deg;
+  ReadOptionFlags(QualityGateOptions(), &options.gate);
   std::string error;
   if (!options.IsValid(&error)) return Status::Error(error);
 
@@ -205,7 +177,7 @@ extern const Command kPipelineCommand = {
     "the quality gate (outputs written, the report says why).",
     __FILE__, RunPipeline, kPipelineFlags.c_str(),
     {RepairSolverOptions().options(),
-     RepairSettingOptions().options(), RetargetSettingOptions().options()},
+     RepairSettingOptions().options(), RetargetSettingOptions().options(), QualityGateOptions().options()},
     {{"view", "auto",
       "The take's browser page: auto = DIR/view.html when the viewer's runtime is installed (else a "
       "warning and no page); PAGE.html = that page, required (no runtime: an error, nothing written); off = none."}}};

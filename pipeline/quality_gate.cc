@@ -14,6 +14,27 @@ std::string Number(double value) {
 
 }  // namespace
 
+const OptionGroup<QualityGate>& QualityGateOptions() {
+  using G = QualityGate;
+  static const OptionGroup<G>* const group = &(*new OptionGroup<G>())
+      .Add(&G::max_naive_rms_mm, "gate_naive_rms_mm", "mm",
+           "Quality gate: the plain solve's marker RMS (mm) at most this (a marker set that does not fit the actor "
+           "shows here); 0 = no check.")
+      .Add(&G::max_repaired_rms_mm, "gate_repaired_rms_mm", "mm",
+           "Quality gate: the repaired solve's marker RMS (mm) at most this; 0 = no check.")
+      .Add(&G::max_repaired_share, "gate_repaired_share", "",
+           "Quality gate: at most this share of the subject's marker samples repaired; 0 = no check.")
+      .Add(&G::max_iteration_limit_share, "gate_iteration_limit_share", "",
+           "Quality gate: at most this share of frames whose solve stopped at --max_iterations; 0 = no check.")
+      .Add(&G::max_marker_offset_cm, "gate_marker_offset_cm", "cm",
+           "Quality gate: no marker of the subject farther than this (cm) from its bone (skin distance; CMU "
+           "subject 2's own calibration puts RBAC 20.7 cm from upperback); 0 = no check.")
+      .Add(&G::max_torso_error_deg, "gate_torso_deg", "degrees",
+           "Quality gate: the solved pelvis-to-head direction within this (degrees, mean over the take) of the "
+           "head and pelvis markers' own; 0 = no check.");
+  return *group;
+}
+
 bool QualityGate::IsValid(std::string* error) const {
   for (double value : {max_naive_rms_mm, max_repaired_rms_mm, max_repaired_share, max_iteration_limit_share,
                        max_marker_offset_cm, max_torso_error_deg}) {

@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "settings/option.h"
+
 namespace mocapsolve {
 
 struct QualityGate {
@@ -54,6 +56,10 @@ struct QualityVerdict {
 };
 
 QualityVerdict CheckQuality(const QualityGate& gate, const QualityFigures& figures);
+
+// The thresholds as options, declared once (--gate_naive_rms_mm, ...; the defaults are the
+// fields' initializers): pipeline's flags and config keys, Python's pipeline() keywords.
+const OptionGroup<QualityGate>& QualityGateOptions();
 
 }  // namespace mocapsolve
 

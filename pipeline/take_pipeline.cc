@@ -243,6 +243,25 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
 
 std::string ViewPagePath(const std::string& out_dir) { return InFolder(out_dir, "view.html"); }
 
+Status TakeViewPath(const std::string& view, const std::string& out_dir, std::string* path, std::string* warning) {
+  path->clear();
+  warning->clear();
+  if (view == "off") return Status::Ok();
+  std::string runtime;
+  const Status found = FindViewerRuntime(&runtime);
+  if (view == "auto") {
+    if (found.ok()) {
+      *path = ViewPagePath(out_dir);
+    } else {
+      *warning = "no view.html (--view=auto): " + found.message();
+    }
+    return Status::Ok();
+  }
+  if (!found.ok()) return Status::Error("--view=" + view + ": " + found.message());
+  *path = view;
+  return Status::Ok();
+}
+
 Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, ViewScene* scene) {
   TakeViewInputs view;
   view.title = inputs.name;

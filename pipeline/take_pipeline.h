@@ -115,6 +115,11 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
                         const GltfWriteOptions& character_files = {});
 // DIR/view.html.
 std::string ViewPagePath(const std::string& out_dir);
+// The take's page as `view` asks (pipeline --view, Python's view=): "auto" = DIR/view.html
+// when the viewer's runtime is installed, else none and *warning says why (a batch on a
+// machine without it still delivers its takes); "off" = none; a path = that page, asked
+// for, so a missing runtime is an error. *path: "" for none.
+Status TakeViewPath(const std::string& view, const std::string& out_dir, std::string* path, std::string* warning);
 // The page WriteTakeOutputs writes.
 Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, ViewScene* scene);
 

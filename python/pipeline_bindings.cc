@@ -48,21 +48,32 @@ std::string ExecutableVersion(const std::string& executable) {
 }  // namespace
 
 void BindPipeline(py::module_& m) {
-  const QualityGate gate;  // The defaults, as the CLI's flags take them.
+  py::class_<QualityGate> gate(m, "QualityGate",
+      "The pipeline's quality gate thresholds, one per flag of `mocapsolve pipeline` (gate_*:\n"
+      "same names, defaults and units; 0 turns a check off). pipeline() takes them as keywords.");
+  gate.def(py::init<>(), "Every threshold at the CLI's default.");
+  gate.def_readwrite("gate_naive_rms_mm", &QualityGate::max_naive_rms_mm)
+      .def_readwrite("gate_repaired_rms_mm", &QualityGate::max_repaired_rms_mm)
+      .def_readwrite("gate_repaired_share", &QualityGate::max_repaired_share)
+      .def_readwrite("gate_iteration_limit_share", &QualityGate::max_iteration_limit_share)
+      .def_readwrite("gate_marker_offset_cm", &QualityGate::max_marker_offset_cm)
+      .def_readwrite("gate_torso_deg", &QualityGate::max_torso_error_deg);
   m.def("pipeline", [](SubjectPtr subject_arg, const std::string& markers, const std::vector<std::string>& characters,
                        const std::string& out_dir, const std::string& take_name, int filter_levels, double kernel_a,
-                       double tension, double gate_naive_rms_mm, double gate_repaired_rms_mm,
-                       double gate_repaired_share, double gate_iteration_limit_share, double gate_marker_offset_cm,
-                       double gate_torso_deg, bool animation_only, const py::kwargs& keywords) {
+                       double tension, bool animation_only, const std::string& view, const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");
         RepairSettings repair_settings;
-        SolverSettings solver_settings = RepairSolverOptions().Defaults();  // DLS, as the CLI's pipeline.
+        SolverSettings solver_settings = RepairSolverOptions().Defaults();
         RetargetSettings retarget_settings;
+        QualityGate gate_settings;
         ApplyKeywords(keywords,
                       {py::cast(&repair_settings, py::return_value_policy::reference),
                        py::cast(&solver_settings, py::return_value_policy::reference),
-                       py::cast(&retarget_settings, py::return_value_policy::reference)},
-                      RepairSettingOptions().Names() + "," + SolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints");
+                       py::cast(&retarget_settings, py::return_value_policy::reference),
+                       py::cast(&gate_settings, py::return_value_policy::reference)},
+                      RepairSettingOptions().Names() + "," + SolverOptions().Names() + "," +
+                          RetargetSettingOptions().Names() + ",foot_joints," + QualityGateOptions().Names());
+        ThrowIfError(QualityGateOptions().Validate(gate_settings));
         if (!IsMarkerFile(markers)) throw py::value_error(markers + ": expected a .c3d or .trc");
         RequireReadable(markers);
         for (const std::string& path : characters) RequireReadable(path);
@@ -75,14 +86,12 @@ void BindPipeline(py::module_& m) {
         options.filter.kernel.a = kernel_a;
         options.filter.tension = tension;
         options.filter.levels = filter_levels;
-        options.gate.max_naive_rms_mm = gate_naive_rms_mm;
-        options.gate.max_repaired_rms_mm = gate_repaired_rms_mm;
-        options.gate.max_repaired_share = gate_repaired_share;
-        options.gate.max_iteration_limit_share = gate_iteration_limit_share;
-        options.gate.max_marker_offset_cm = gate_marker_offset_cm;
-        options.gate.max_torso_error_deg = gate_torso_deg;
+        options.gate = gate_settings;
         std::string error;
         if (!options.IsValid(&error)) throw py::value_error(error);
+        std::string view_path, warning;
+        if (!out_dir.empty()) ThrowIfError(TakeViewPath(view, out_dir, &view_path, &warning));
+        if (!warning.empty()) py::module_::import("warnings").attr("warn")("pipeline: " + warning);
         TakeInputs inputs;
         inputs.name = take_name.empty() ? FileStem(markers) : take_name;
         inputs.subject = subject;
@@ -95,14 +104,15 @@ void BindPipeline(py::module_& m) {
           py::gil_scoped_release release;
           status = RunTakePipeline(inputs, options, result.get());
           if (status.ok()) {
-            const JsonObject report = TakeReport(inputs, *result);
+            JsonObject report = TakeReport(inputs, *result);
+            const bool in_take_folder = view_path == ViewPagePath(out_dir);
+            report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
             report_text = report.ToString();
             if (!out_dir.empty()) {
               status = MakeFolders(out_dir);
               GltfWriteOptions character_files;
               character_files.animation_only = animation_only;
-              if (status.ok()) status = WriteTakeOutputs(out_dir, inputs, *result, report, /*view_path=*/"",
-                                                         character_files);
+              if (status.ok()) status = WriteTakeOutputs(out_dir, inputs, *result, report, view_path, character_files);
             }
           }
         }
@@ -119,30 +129,24 @@ void BindPipeline(py::module_& m) {
         return out;
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("characters") = std::vector<std::string>(),
       py::arg("out_dir") = "", py::arg("take_name") = "", py::arg("filter_levels") = 0, py::arg("kernel_a") = 0.4,
-      py::arg("tension") = 0.0, py::arg("gate_naive_rms_mm") = gate.max_naive_rms_mm, py::arg("gate_repaired_rms_mm") = gate.max_repaired_rms_mm,
-      py::arg("gate_repaired_share") = gate.max_repaired_share, py::arg("gate_iteration_limit_share") = gate.max_iteration_limit_share,
-      py::arg("gate_marker_offset_cm") = gate.max_marker_offset_cm, py::arg("gate_torso_deg") = gate.max_torso_error_deg, py::arg("animation_only") = false,
+      py::arg("tension") = 0.0, py::arg("animation_only") = false, py::arg("view") = "auto",
       (std::string(R"doc(One take end to end, as `mocapsolve pipeline`: repair and solve the markers (a .c3d/.trc
 path) of the subject, filter (filter_levels > 0), retarget onto each character (.glb
-paths), check the quality gate (gate_* as the CLI's flags; 0 turns a check off):
-  gate_naive_rms_mm (default 30): the plain solve's marker RMS at most this, mm;
-  gate_repaired_rms_mm (default 20): the repaired solve's marker RMS at most this, mm;
-  gate_repaired_share (default 0.25): at most this share of marker samples repaired;
-  gate_iteration_limit_share (default 0.2): at most this share of frames whose solve
-    stopped at max_iterations;
-  gate_marker_offset_cm (default 25): no marker farther than this from its bone, cm;
-  gate_torso_deg (default 15): the solved pelvis-to-head direction within this (degrees,
-    mean) of the head and pelvis markers' own.
+paths), check the quality gate (the gate_* keywords, a QualityGate: see below).
 take_name: the take's name in the report ('' = the marker file's stem).
 filter_levels: the multiresolution filter's levels (0 = off), with kernel_a (the Cardinal
 spline kernel's a, default 0.4) and tension (default 0).
-Keywords: the repair, solver and retarget options.
-out_dir: also write repaired markers, solved.bvh, <character>.glb and report.json there;
+Keywords: the repair, solver, retarget and quality gate options.
+out_dir: also write repaired markers, solved.bvh, <character>.glb and report.json there,
+and the take's page: view='auto' (default) DIR/view.html when the viewer's runtime is
+installed (else a warning), 'off' none, or a PAGE.html path (the runtime then required);
 animation_only: each <character>.glb then holds the character's skeleton, skin and the
 take only, no meshes (as the CLI's --animation_only).
 Returns a dict: 'solved' (Motion), 'repaired_markers' (Markers), 'characters' {name:
 Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc") +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), RetargetSettingOptions().Names() + ",foot_joints")).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), RetargetSettingOptions().Names() + ",foot_joints") +
+       KeywordDefaults("Quality gate keywords and defaults (QualityGate; 0 turns a check off)", py::cast(QualityGate()),
+                       QualityGateOptions().Names())).c_str());
 
   m.def("batch", [](const std::string& manifest, const std::string& markers_glob, const std::string& subject,
                     const std::vector<std::string>& characters, const std::string& out_dir,

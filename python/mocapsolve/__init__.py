@@ -7,7 +7,16 @@ command line's flags (``mocapsolve solve --help``); a bad value raises ValueErro
 the command line's message, a missing input file OSError naming it. Solves release the
 GIL, so a ThreadPoolExecutor over takes uses every core.
 """
-from ._core import *  # noqa: F401,F403
-from ._core import __doc__ as _core_doc  # noqa: F401
+import os as _os
+
+# The viewer's runtime (pipeline's view.html) is found beside the CLI (build/tools/viewer);
+# in the build tree this package sits in build/python/mocapsolve/, so point there unless
+# MOCAPSOLVE_VIEWER_TOOLS already says where it is.
+_tools = _os.path.join(_os.path.dirname(_os.path.abspath(__file__)), "..", "..", "tools", "viewer")
+if "MOCAPSOLVE_VIEWER_TOOLS" not in _os.environ and _os.path.exists(_os.path.join(_tools, "three.bundle.js")):
+    _os.environ["MOCAPSOLVE_VIEWER_TOOLS"] = _os.path.normpath(_tools)
+
+from ._core import *  # noqa: E402,F401,F403
+from ._core import __doc__ as _core_doc  # noqa: E402,F401
 
 __version__ = "0.1.0"

@@ -43,6 +43,17 @@ def test_pipeline_on_one_take_matches_the_cli(cmu02, tmp_path):
         assert open(os.path.join(out_py, name), "rb").read() == open(os.path.join(out_cli, name), "rb").read(), name
     expected = json.load(open(os.path.join(out_cli, "report.json")))
     assert result["report"]["quality_gate"] == expected["quality_gate"]
+    # The take's page as the CLI's --view=auto: written beside the outputs when the viewer's
+    # runtime is installed, else a warning; the report says which.
+    assert result["report"]["view"] == expected["view"]
+    if expected["view"]:
+        assert os.path.exists(os.path.join(out_py, "view.html"))
+    # The gate's thresholds are declared keywords (QualityGate), as the CLI's flags.
+    strict = mocapsolve.pipeline(subject, cmu02["c3d"], gate_repaired_rms_mm=0.001)
+    assert not strict["passed"] and "repaired marker RMS" in strict["failures"][0]
+    assert mocapsolve.QualityGate().gate_repaired_rms_mm == 20.0
+    with pytest.raises(TypeError, match="gate_rms"):
+        mocapsolve.pipeline(subject, cmu02["c3d"], gate_rms=3)
 
 
 def test_retarget_animation_only_matches_the_cli(tmp_path):
