@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
 """Writes docs/commands/: one page per command, made from `mocapsolve <command> --help`
 (whose flags, defaults, units and texts come from the option declarations, settings/), and
-an index. With --check, compares instead and exits 1 naming the pages that differ, so the
-pages cannot drift from the code (ctest docs.commands).
+an index; and docs/schemas/options/<command>.schema.json: the JSON Schema of the "options"
+block of the command's --report (every flag but --report, with its type and default). With
+--check, compares instead and exits 1 naming the files that differ, so neither can drift
+from the code (ctest docs.commands).
 
 usage: make_command_docs.py --cli=build/bin/mocapsolve [--out=docs/commands] [--check]
 """
 import argparse
+import json
 import os
 import re
 import subprocess
@@ -30,6 +33,33 @@ def commands(cli):
     return listed
 
 
+FLAG_ROW = r"^  --(\S+) \((\w+)\) default: (.*)\n      (.*)$"
+JSON_TYPES = {"bool": "boolean", "int32": "integer", "int64": "integer", "uint32": "integer", "uint64": "integer",
+              "double": "number", "string": "string"}
+
+
+def options_schema(cli, name):
+    """The schema of the command's report's "options": its flags (not --report), typed."""
+    flag_text = run(cli, name, "--help").partition("\nflags:\n")[2]
+    properties = {}
+    for flag, kind, default, meaning in re.findall(FLAG_ROW, flag_text, re.M):
+        if flag == "report":
+            continue
+        value = json.loads(default) if kind == "string" else {"true": True, "false": False}.get(default)
+        if value is None:
+            value = float(default) if kind == "double" else int(default)
+        properties[flag] = {"type": JSON_TYPES[kind], "default": value, "description": meaning}
+    schema = {"$schema": "http://json-schema.org/draft-07/schema#",
+              "$id": "options/%s.schema.json" % name,
+              "title": "mocapsolve %s --report: options" % name,
+              "description": "The options in force, as the report records them: every flag of the command but "
+                             "--report. Made by scripts/make_command_docs.py from `mocapsolve %s --help` (the "
+                             "option declarations); do not edit." % name,
+              "type": "object", "properties": properties, "required": sorted(properties),
+              "additionalProperties": False}
+    return json.dumps(schema, indent=2) + "\n"
+
+
 def page(cli, name, summary):
     text = run(cli, name, "--help")
     usage, _, flag_text = text.partition("\nflags:\n")
@@ -39,7 +69,7 @@ def page(cli, name, summary):
              "```", synopsis.strip(), "```", ""]
     if explanation.strip():
         lines += [explanation.strip(), ""]
-    rows = re.findall(r"^  --(\S+) \((\w+)\) default: (.*)\n      (.*)$", flag_text, re.M)
+    rows = re.findall(FLAG_ROW, flag_text, re.M)
     if rows:
         lines += ["| flag | type | default | unit | meaning |", "|---|---|---|---|---|"]
         for flag, kind, default, meaning in rows:
@@ -57,7 +87,9 @@ def page(cli, name, summary):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cli", required=True)
-    parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "..", "docs", "commands"))
+    docs = os.path.join(os.path.dirname(__file__), "..", "docs")
+    parser.add_argument("--out", default=os.path.join(docs, "commands"))
+    parser.add_argument("--schemas", default=os.path.join(docs, "schemas", "options"))
     parser.add_argument("--check", action="store_true")
     args = parser.parse_args()
     listed = commands(args.cli)
@@ -67,11 +99,14 @@ def main():
         ["# Commands", "", "One page per command, made from its `--help` (the option declarations); "
          "`mocapsolve <command> --help` prints the same.", "", "| command | what it does |", "|---|---|"] +
         ["| [%s](%s.md) | %s |" % (name, name, summary) for name, summary in listed] + [""])}
+    pages = {os.path.join(args.out, file_name): text for file_name, text in pages.items()}
     for name, summary in listed:
-        pages[name + ".md"] = page(args.cli, name, summary)
+        pages[os.path.join(args.out, name + ".md")] = page(args.cli, name, summary)
+        pages[os.path.join(args.schemas, name + ".schema.json")] = options_schema(args.cli, name)
+    os.makedirs(args.schemas, exist_ok=True)
     stale = []
-    for file_name, text in sorted(pages.items()):
-        path = os.path.join(args.out, file_name)
+    for path, text in sorted(pages.items()):
+        file_name = os.path.relpath(path, docs)
         old = open(path).read() if os.path.exists(path) else None
         if old == text:
             continue
@@ -81,7 +116,8 @@ def main():
             with open(path, "w") as f:
                 f.write(text)
     if args.check and stale:
-        sys.exit("docs/commands is stale (%s); run scripts/make_command_docs.py --cli=build/bin/mocapsolve"
+        sys.exit("docs/commands or docs/schemas/options is stale (%s); run scripts/make_command_docs.py "
+                 "--cli=build/bin/mocapsolve"
                  % ", ".join(stale))
 
 

@@ -102,6 +102,9 @@ def test_success_report_follows_the_command_schema(demo, command):
         document = json.load(f)
     validator(command).validate(document)
     assert document["status"] == "ok" and document["command"] == command
+    # Its options block: every flag the command declares, typed as declared
+    # (docs/schemas/options/, made from the declarations by scripts/make_command_docs.py).
+    jsonschema.Draft7Validator(schema("options/" + command)).validate(document["options"])
     # The inputs it read, with their sizes and hashes.
     for entry in document["inputs"]:
         assert os.path.getsize(os.path.join(os.getcwd(), entry["path"])) == entry["bytes"]
@@ -115,6 +118,10 @@ def test_success_report_of_real_data_commands(demo, cmu02, command):
         document = json.load(f)
     validator(command).validate(document)
     assert document["status"] == "ok" and document["command"] == command
+    options = schema("options/" + command)
+    if command == "pipeline":  # Its options block is its config file: the option flags only.
+        options["required"] = sorted(document["options"])
+    jsonschema.Draft7Validator(options).validate(document["options"])
 
 
 @pytest.mark.parametrize("command", sorted(FAILURE))
