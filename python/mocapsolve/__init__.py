@@ -20,3 +20,24 @@ from ._core import *  # noqa: E402,F401,F403
 from ._core import __doc__ as _core_doc  # noqa: E402,F401
 
 __version__ = "0.1.0"
+
+
+def _naming_the_command(command, function):
+    """function, whose ValueError names the command as the CLI's one-line error does:
+    'mocapsolve repair: --reference: unknown ...' in Python and on the command line alike."""
+    import functools
+
+    @functools.wraps(function)
+    def call(*args, **kwargs):
+        try:
+            return function(*args, **kwargs)
+        except ValueError as error:
+            raise ValueError("mocapsolve %s: %s" % (command, error)) from None
+    return call
+
+
+# The functions named after commands (one task under both front ends).
+for _command in ("solve", "repair", "corrupt", "evaluate", "calibrate", "fit_skeleton", "retarget", "propagate",
+                 "pipeline", "batch"):
+    globals()[_command] = _naming_the_command(_command, globals()[_command])
+del _command

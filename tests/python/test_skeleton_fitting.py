@@ -71,7 +71,7 @@ def test_fit_skeleton_failing_its_checks_raises_the_cli_message(cmu02):
         mocapsolve.fit_skeleton(squat, cmu02["subject"], **options)
     code, output = run_cli("fit_skeleton", "--template_subject=" + cmu02["subject"], "--markers=" + squat,
                            "--out_subject=" + os.devnull + ".json", *cli_flags(options), expect=1)
-    assert "mocapsolve fit_skeleton: " + str(error.value) in output
+    assert str(error.value) in output
 
 
 @pytest.mark.parametrize("keyword,flag", [
@@ -89,7 +89,7 @@ def test_bad_options_raise_the_cli_message(cmu02, tmp_path, keyword, flag):
         mocapsolve.fit_skeleton(squat, cmu02["subject"], **keyword)
     _, output = run_cli("fit_skeleton", "--template_subject=" + cmu02["subject"], "--markers=" + squat,
                         "--out_subject=" + str(tmp_path / "s.json"), flag, expect=1)
-    assert output.strip() == "mocapsolve fit_skeleton: " + str(error.value)
+    assert output.strip() == str(error.value)
 
 
 def test_template_labels_fit_a_take_of_another_protocol(cmu02, tmp_path):
