@@ -406,7 +406,7 @@ Status RunRetargetProblem(const std::string& solver, const BenchSettings& settin
 }
 
 // Marker repair (issue 4) of a damaged take: markers as for marker_solve, damaged with
-// the corruption flags (--gaps, --swaps, ...; seed --corrupt_seed), repaired with the
+// the corruption flags (--gaps, --swaps, ...; seed --seed), repaired with the
 // repair flags; the solver is the reference kind (tracker or clip). Timed: the whole
 // RepairMarkers call; the notes give the stages of the median run (thesis Table 2).
 Status RunMarkerRepairProblem(const std::string& solver, const BenchSettings& settings,

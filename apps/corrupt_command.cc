@@ -83,7 +83,7 @@ Status RunCorrupt(const std::vector<std::string>& arguments) {
     if (k < 4 || counts[k] > 0) summary += std::string(summary.empty() ? "" : ", ") + std::to_string(counts[k]) + " " + kDamageKindNames[k];
   }
   std::printf("wrote %s: samples damaged: %s (seed %d)%s%s\n", FLAGS_out.c_str(), summary.c_str(),
-              CorruptionSettingsFromFlags().corrupt_seed, FLAGS_mask_out.empty() ? "" : "; mask in ", FLAGS_mask_out.c_str());
+              CorruptionSettingsFromFlags().seed, FLAGS_mask_out.empty() ? "" : "; mask in ", FLAGS_mask_out.c_str());
   JsonObject report;
   report.Add("markers", FLAGS_markers).Add("out", FLAGS_out);
   for (int k = 0; k < kNumDamageKinds; ++k) report.Add(std::string(kDamageKindNames[k]) + "_samples", counts[k]);
@@ -100,7 +100,7 @@ const char kCorruptFlags[] = "markers,out,report";
 extern const Command kCorruptCommand = {
     "corrupt", "damage clean markers (gaps, occlusions, fly-offs, swaps, noise) with a truth mask",
     "mocapsolve corrupt --markers=CLEAN.c3d|.trc --out=CORRUPTED.c3d|.trc [--mask_out=mask.csv] "
-    "[--corrupt_seed=1] [--gaps=10 ...]\n\n"
+    "[--seed=1] [--gaps=10 ...]\n\n"
     "Writes a corrupted copy and, with --mask_out, which samples were damaged and how.\n"
     "Distances are in mm (converted with the file's unit); frames are frame indices.",
     __FILE__, RunCorrupt, kCorruptFlags, {CorruptionSettingOptions().options()}};

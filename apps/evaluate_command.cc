@@ -14,7 +14,7 @@
 #include "io/atomic_file.h"
 #include "tasks/evaluate_task.h"
 
-DEFINE_int32(trials, 1, "Damage draws to average over (seeds --corrupt_seed, +1, ...).");
+DEFINE_int32(trials, 1, "Damage draws to average over (seeds --seed, +1, ...).");
 DEFINE_string(table_csv, "", "Also write the table as CSV (repair: one row per method and trial; leave_one_out: one "
               "row per marker).");
 DEFINE_double(white_noise_mm, 0.0, "--method=small_errors: white noise (mm per axis) added to every sample before "
@@ -196,7 +196,7 @@ const std::string kEvaluateFlags = std::string("subject,skeleton,skeleton_units,
 extern const Command kEvaluateCommand = {
     "evaluate", "score marker repair against linear, polynomial, PCA and reference-only fills",
     "mocapsolve evaluate (--skeleton=S --markerset=J.json | --subject=S.json) --markers=CLEAN.c3d|.trc [--trials=N] "
-    "[--corrupt_seed=1 --gaps=10 ...] [--table_csv=t.csv] [--report=r.json]\n"
+    "[--seed=1 --gaps=10 ...] [--table_csv=t.csv] [--report=r.json]\n"
     "       mocapsolve evaluate --method=leave_one_out (--subject=S.json | ...) --markers=TAKE.c3d|.trc "
     "[--mode=frame|clip] [--table_csv=t.csv]\n"
     "       mocapsolve evaluate --method=small_errors (--subject=S.json | ...) --markers=TAKE.c3d|.trc [--trials=5] "

@@ -76,7 +76,7 @@ if [[ "${1:-}" == "--screenshots" || "${1:-}" == "--screenshots_only" ]]; then
   "$ms" generate --demo_out=demo.bvh --frames=240 --fps=30 >/dev/null
   "$ms" markers --quiet --motion=demo.bvh --skeleton_units=cm --markerset=auto:3 --write_markerset=demo_set.json \
     --out=demo.c3d >/dev/null
-  "$ms" corrupt --quiet --markers=demo.c3d --out=damaged.c3d --corrupt_seed=4 --gaps=5 --cluster_gaps=1 >/dev/null
+  "$ms" corrupt --quiet --markers=demo.c3d --out=damaged.c3d --seed=4 --gaps=5 --cluster_gaps=1 >/dev/null
   "$ms" repair --quiet --skeleton=demo.bvh --skeleton_units=cm --markerset=demo_set.json --markers=damaged.c3d \
     --out_markers=repaired.c3d --report=repair.json --view=repair.html >/dev/null
   repair_frame=$(node -e 'const r=require("./repair.json");const f=r.filled[0];console.log(Math.round((f.first_frame+f.last_frame)/2))')

@@ -7,6 +7,8 @@
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
 #include "python/bindings.h"
+#include "python/keyword_docs.h"
+#include "tasks/markers_task.h"
 
 namespace mocapsolve::python {
 namespace {
@@ -226,6 +228,55 @@ void BindIo(py::module_& m) {
   m.def("write_subject", [](const std::string& path, const Subject& subject) {
         ThrowIfError(WriteSubject(path, subject));
       }, py::arg("path"), py::arg("subject"), "Writes subject to path, a subject .json file (atomically).");
+
+  py::class_<SyntheticMarkerSettings> synthetic(m, "SyntheticMarkerSettings",
+      "How `mocapsolve markers` writes synthetic markers, one per flag (noise_mm, seed, units;\n"
+      "same defaults). markers() takes them as keywords.");
+  synthetic.def(py::init<>(), "Every option at the CLI's default.");
+  synthetic.def_readwrite("noise_mm", &SyntheticMarkerSettings::noise_mm)
+      .def_readwrite("seed", &SyntheticMarkerSettings::seed)
+      .def_readwrite("units", &SyntheticMarkerSettings::units);
+  m.def("markers", [](const Skeleton& skeleton, const Motion& motion, const std::string& markerset,
+                      const std::string& axes, double marker_scale, const py::kwargs& keywords) {
+        CheckMotion(skeleton, motion);
+        MarkersConfig config;
+        config.markerset = markerset;
+        config.axes = axes;
+        config.marker_scale = marker_scale;
+        ApplyKeywords(keywords, {py::cast(&config.markers, py::return_value_policy::reference)},
+                      SyntheticMarkerOptions().Names());
+        if (markerset.compare(0, 5, "auto:") != 0) RequireReadable(markerset);
+        MarkersResult result;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = RunMarkers(skeleton, motion, "the motion", config, nullptr, &result);
+        }
+        ThrowIfError(status);
+        if (!result.warning.empty()) py::module_::import("warnings").attr("warn")(result.warning);
+        auto subject = std::make_shared<Subject>();
+        subject->name = "synthetic";
+        subject->skeleton = skeleton;
+        subject->markers = result.marker_set;
+        subject->axes = axes;
+        subject->marker_scale = marker_scale;
+        return py::make_tuple(std::make_shared<MarkerTrajectories>(std::move(result.trajectories)),
+                              SubjectPtr(subject), ReportToPython(result.report));
+      }, py::arg("skeleton"), py::arg("motion"), py::arg("markerset") = "auto:3", py::kw_only(),
+      py::arg("axes") = "x,y,z", py::arg("marker_scale") = 0.0,
+      (std::string(R"doc(Synthetic markers from a motion, as `mocapsolve markers` (thesis eq. 9: each marker's
+position after FK), optionally with Gaussian noise.
+
+skeleton, motion: the clip (read_motion). markerset: 'auto:N' (N markers around every bone,
+deterministic for the seed; 'auto:N:SEED' fixes the set's own seed) or a marker set .json
+path. axes, marker_scale: the written file's axes and scale, as for solve() (the file from
+the model: x_file = A^T x_model / scale; marker_scale 0 = from the units).
+Keywords: noise_mm (standard deviation per coordinate, mm), seed, units (of the markers
+when the skeleton states its unit: mm, cm, m, in).
+Returns (markers, subject, report): the Markers (what --out writes), a Subject holding the
+skeleton and the marker set used (solve(subject, markers) recovers the motion), and the
+--report dict.)doc") + KeywordDefaults("Keywords and defaults (SyntheticMarkerSettings)", py::cast(SyntheticMarkerSettings()),
+                                       SyntheticMarkerOptions().Names())).c_str());
 }
 
 }  // namespace mocapsolve::python

@@ -95,7 +95,7 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
       "names and defaults; distances in mm).");
   damage.def(py::init<>(), "Every option at the CLI's default.");
 #define MOCAPSOLVE_FIELD(name) damage.def_readwrite(#name, &CorruptionSettings::name)
-  MOCAPSOLVE_FIELD(corrupt_seed); MOCAPSOLVE_FIELD(gaps); MOCAPSOLVE_FIELD(gap_min); MOCAPSOLVE_FIELD(gap_max);
+  MOCAPSOLVE_FIELD(seed); MOCAPSOLVE_FIELD(gaps); MOCAPSOLVE_FIELD(gap_min); MOCAPSOLVE_FIELD(gap_max);
   MOCAPSOLVE_FIELD(cluster_gaps); MOCAPSOLVE_FIELD(cluster_radius_mm); MOCAPSOLVE_FIELD(fly_off_frames);
   MOCAPSOLVE_FIELD(fly_off_mm); MOCAPSOLVE_FIELD(swaps); MOCAPSOLVE_FIELD(swap_length);
   MOCAPSOLVE_FIELD(swap_radius_mm); MOCAPSOLVE_FIELD(noisy_markers); MOCAPSOLVE_FIELD(noise_length);
@@ -161,7 +161,7 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
       (std::string(R"doc(Scores marker repair on a take, as `mocapsolve evaluate`; returns the dict its --report
 writes. method:
   'repair' (default): the thesis' Table 1 on synthetic damage: per trial (seeds
-    corrupt_seed, corrupt_seed + 1, ...) the clean markers are damaged and refilled by
+    seed, seed + 1, ...) the clean markers are damaged and refilled by
     every method (original, polynomial, linear, PCA, reference only, ours); 'methods'
     holds each method's mean over the trials, 'per_trial' one row per trial and method
     (the columns of --table_csv and more; errors against the solve of the clean markers);

@@ -10,7 +10,7 @@ namespace mocapsolve {
 const OptionGroup<CorruptionSettings>& CorruptionSettingOptions() {
   using S = CorruptionSettings;
   static const OptionGroup<S>* const group = &(*new OptionGroup<S>())
-      .Add(&S::corrupt_seed, "corrupt_seed", "",
+      .Add(&S::seed, "seed", "",
            "Seed of every random draw of the damage.")
       .Add(&S::gaps, "gaps", "gaps",
            "Gaps on random markers.")
@@ -90,7 +90,7 @@ Status CorruptionOptionsFromSettings(const CorruptionSettings& settings, const L
     }
   }
   const double per_mm = 0.001 / unit.metres_per_unit;
-  options->seed = static_cast<uint32_t>(settings.corrupt_seed);
+  options->seed = static_cast<uint32_t>(settings.seed);
   options->gaps = settings.gaps;
   options->gap_min = settings.gap_min;
   options->gap_max = settings.gap_max;

@@ -14,7 +14,7 @@
 namespace mocapsolve {
 
 struct CorruptionSettings {
-  int corrupt_seed = 1;
+  int seed = 1;
   int gaps = 10;
   int gap_min = 10;               // Frames.
   int gap_max = 60;

@@ -62,7 +62,7 @@ Status SmallErrors(const MarkerTake& take, const EvaluateConfig& config, Evaluat
   if (!status.ok()) return status;
   SmallErrorRecipe& recipe = result->recipe;
   recipe = DefaultSmallErrorRecipe(take.skeleton.unit().metres_per_unit, config.white_noise_mm);
-  recipe.seed = static_cast<uint32_t>(config.damage.corrupt_seed);
+  recipe.seed = static_cast<uint32_t>(config.damage.seed);
   SmallErrorScore& score = result->small_errors;
   status = EvaluateSmallErrors(take.skeleton, take.markers, take.observed, options, recipe, config.trials, &score);
   if (!status.ok()) return Status::Error(take.name + ": " + status.message());
@@ -75,7 +75,7 @@ Status SmallErrors(const MarkerTake& take, const EvaluateConfig& config, Evaluat
     seeds.push_back(o);
   }
   result->report.Add("method", "small_errors").Add("frames", static_cast<int>(take.observed.size()))
-      .Add("trials", config.trials).Add("first_seed", config.damage.corrupt_seed)
+      .Add("trials", config.trials).Add("first_seed", config.damage.seed)
       .Add("white_noise_mm", config.white_noise_mm).Add("damaged", static_cast<double>(score.damaged))
       .Add("flagged", static_cast<double>(score.flagged)).Add("true_positive", static_cast<double>(score.true_positive))
       .Add("own", static_cast<double>(score.own)).Add("own_damaged", static_cast<double>(score.own_damaged))
@@ -139,7 +139,7 @@ Status RepairTable(const MarkerTake& take, const EvaluateConfig& config,
                       "marker_max_mm,damaged_samples,covered_samples,velocity_jump_mm_per_frame,seconds\n";
   std::vector<JsonObject> per_trial;
   for (int trial = 0; trial < config.trials; ++trial) {
-    damage.seed = static_cast<uint32_t>(config.damage.corrupt_seed + trial);
+    damage.seed = static_cast<uint32_t>(config.damage.seed + trial);
     std::vector<RepairEvaluationRow> rows;
     status = EvaluateRepairTrial(take.skeleton, take.markers, take.observed, damage, options, &rows);
     if (!status.ok()) return Status::Error(take.name + ": " + status.message());
@@ -177,7 +177,7 @@ Status RepairTable(const MarkerTake& take, const EvaluateConfig& config,
     }
   }
   result->report.Add("method", "repair").Add("frames", static_cast<int>(take.observed.size()))
-      .Add("trials", config.trials).Add("first_seed", config.damage.corrupt_seed)
+      .Add("trials", config.trials).Add("first_seed", config.damage.seed)
       .Add("reference", config.repair.reference).Add("methods", methods)
       .Add("position_error_ratio_to_ours", ratios).Add("per_trial", per_trial);
   return Status::Ok();

@@ -30,7 +30,7 @@ namespace mocapsolve {
 
 struct EvaluateConfig {
   std::string method = "repair";  // repair | leave_one_out | small_errors.
-  int trials = 1;                 // Damage draws (seeds damage.corrupt_seed, +1, ...): 1..1000.
+  int trials = 1;                 // Damage draws (seeds damage.seed, +1, ...): 1..1000.
   double white_noise_mm = 0.0;    // small_errors: noise (mm per axis) added before the damage.
   RepairSettings repair;
   SolverSettings solver = EvaluateSolverOptions().Defaults();  // mode: leave_one_out's solve.

@@ -23,7 +23,7 @@ TEST(ConvertMarkers, C3dToTrcAndBackWithUnitsAndAxes) {
                             " --write_markerset=" + testing::TempPath("set.json"), &output), 0) << output;
   // A gap, so that missing samples are seen to survive.
   const std::string damaged = testing::TempPath("damaged.c3d");
-  ASSERT_EQ(testing::RunCli("corrupt --markers=" + c3d + " --out=" + damaged + " --corrupt_seed=3 --mask_out=" +
+  ASSERT_EQ(testing::RunCli("corrupt --markers=" + c3d + " --out=" + damaged + " --seed=3 --mask_out=" +
                             testing::TempPath("truth.csv"), &output), 0) << output;
   const std::string trc = testing::TempPath("walk.trc"), back = testing::TempPath("back.c3d");
   ASSERT_EQ(testing::RunCli("convert " + damaged + " " + trc, &output), 0) << output;

@@ -185,7 +185,7 @@ def target_table(fx):
         "filter": lambda d: ms.filter(markers_positions(d) if d.chance(0.5) else motion_from(d),
                                       levels=d.rng.choice([1, 2, 3])),
         "bands": lambda d: ms.bands(markers_positions(d), [d.number() for _ in range(d.rng.randrange(4))]),
-        "corrupt": lambda d: ms.corrupt(markers_positions(d), corrupt_seed=d.rng.randrange(100)),
+        "corrupt": lambda d: ms.corrupt(markers_positions(d), seed=d.rng.randrange(100)),
         "Pose.__init__": lambda d: ms.Pose(fx.skeleton, d.array([J, 4], quats),
                                            d.array([3] if d.chance(0.5) else [J, 3])),
         "Pose.rotations": lambda d: set_attr(rest.copy(), "rotations", d.array([J, 4], quats)),

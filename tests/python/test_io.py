@@ -149,3 +149,22 @@ def test_read_markers_picks_a_subject_and_numbers_duplicates(tmp_path):
     assert markers.positions[0, :, 0].tolist() == [1000.0, 1002.0, 1003.0]  # The file's points 0, 2, 3.
     with pytest.raises(ValueError, match="nobody"):
         mocapsolve.read_markers(path, subject_prefix="nobody")
+
+
+def test_markers_matches_the_cli_and_its_subject_solves_back(tmp_path):
+    # markers() is `mocapsolve markers` (one task): the same file, and a subject to solve with.
+    walk = str(tmp_path / "walk.bvh")
+    run_cli("generate", "--demo_out=" + walk, "--frames=30", "--fps=30")
+    skeleton, motion = mocapsolve.read_motion(walk, skeleton_units="cm")
+    markers, subject, report = mocapsolve.markers(skeleton, motion, "auto:3", noise_mm=0.5, seed=4)
+    ours = str(tmp_path / "py.c3d")
+    mocapsolve.write_markers(ours, markers)
+    cli = str(tmp_path / "cli.c3d")
+    run_cli("markers", "--motion=" + walk, "--skeleton_units=cm", "--markerset=auto:3", "--noise_mm=0.5",
+            "--seed=4", "--out=" + cli)
+    assert open(ours, "rb").read() == open(cli, "rb").read()
+    assert report["markers"] == len(subject.marker_labels) and report["noise_mm"] == 0.5
+    solved, summary = mocapsolve.solve(subject, markers)
+    assert summary["per_frame"]["rms_marker_residual"] < 2.0  # mm: the noise, not the model.
+    with pytest.raises(ValueError, match="mocapsolve markers: --units: unknown 'furlong'"):
+        mocapsolve.markers(skeleton, motion, units="furlong")

@@ -86,7 +86,7 @@ def test_evaluate_has_every_method_of_the_cli(cmu02, tmp_path):
 
 def test_corrupt_damages_markers():
     markers = mocapsolve.read_markers(data_file("c3d/02_01.c3d"))
-    damaged, kinds = mocapsolve.corrupt(markers, gaps=5, corrupt_seed=7)
+    damaged, kinds = mocapsolve.corrupt(markers, gaps=5, seed=7)
     assert kinds.shape == markers.positions.shape[:2] and (kinds != 0).any()
     assert np.isnan(damaged.positions).sum() > np.isnan(markers.positions).sum()
     with pytest.raises(ValueError, match="--gap_min/--gap_max"):
@@ -116,7 +116,7 @@ def test_repair_takes_the_markers_corrupt_returns(cmu02, tmp_path):
     # corrupt() returns Markers; repair() and solve() take them as they take a path, and the
     # result is the same as repairing the damaged copy written to a file and read back.
     subject = mocapsolve.read_subject(cmu02["subject"])
-    damaged, _ = mocapsolve.corrupt(mocapsolve.read_markers(cmu02["c3d"]), gaps=3, corrupt_seed=5)
+    damaged, _ = mocapsolve.corrupt(mocapsolve.read_markers(cmu02["c3d"]), gaps=3, seed=5)
     path = str(tmp_path / "damaged.c3d")
     mocapsolve.write_markers(path, damaged)
     from_memory = mocapsolve.repair(subject, mocapsolve.read_markers(path))
