@@ -54,6 +54,7 @@ extern const Command kBandsCommand = {
     "with each band scaled: G'_0 = w_N G_N + sum w_l L_l (Huang, Boulic & Thalmann, eq. 7);\n"
     "w_0 weights the finest band. All ones returns the input (to rounding).",
     __FILE__, RunBands,
-    "motion,markers,out,kernel_a,tension,skeleton,skeleton_units,amc_fps,report,quiet"};
+    "motion,markers,out,skeleton,skeleton_units,amc_fps,report,quiet",
+    {PyramidSettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -71,9 +71,8 @@ Status RunBlend(const std::vector<std::string>& arguments) {
   if (FLAGS_blend_levels < 0 || FLAGS_blend_levels > 30) {
     return Status::Error("--blend_levels must be in [0, 30]");
   }
-  options.pyramid = PyramidOptionsFromFlags(FLAGS_blend_levels);
-  status = options.pyramid.Validate();
-  if (!status.ok()) return Status::Error("--kernel_a/--tension: " + status.message());
+  status = PyramidOptionsFromFlags(FLAGS_blend_levels, &options.pyramid);
+  if (!status.ok()) return status;
 
   Skeleton skeleton_a, skeleton_b;
   Motion a, b, blended;
@@ -145,6 +144,7 @@ extern const Command kBlendCommand = {
     "(B's sign matched to A's at START) and renormalized (nlerp). Prints the largest\n"
     "velocity jump near the window and in each input.",
     __FILE__, RunBlend,
-    "out,kernel_a,tension,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet"};
+    "out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet",
+    {PyramidSettingOptions().options()}};
 
 }  // namespace mocapsolve

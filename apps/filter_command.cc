@@ -7,6 +7,7 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/option_flags.h"
 #include "apps/pyramid_flags.h"
 #include "io/bvh_writer.h"
 #include "io/marker_file.h"
@@ -15,19 +16,17 @@
 
 DEFINE_int32(levels, 2, "Pyramid levels N; the N finest bands are dropped (each level halves "
              "the rate: 2^N frames is the shortest period kept).");
-DEFINE_double(kernel_a, 0.4, "Centre weight a of the 5-tap generating kernel (b = 1/4, "
-              "c = 1/4 - a/2; eq. 1), in [0.25, 0.75].");
-DEFINE_double(tension, 0.0, "Tension of the cubic Cardinal spline of EXPAND, in [0, 1] "
-              "(0 = Catmull-Rom).");
 
 namespace mocapsolve {
 
-PyramidOptions PyramidOptionsFromFlags(int levels) {
-  PyramidOptions options;
-  options.kernel.a = FLAGS_kernel_a;
-  options.tension = FLAGS_tension;
-  options.levels = levels;
-  return options;
+PyramidSettings PyramidSettingsFromFlags() {
+  PyramidSettings settings;
+  ReadOptionFlags(PyramidSettingOptions(), &settings);
+  return settings;
+}
+
+Status PyramidOptionsFromFlags(int levels, PyramidOptions* options) {
+  return PyramidOptionsFromSettings(PyramidSettingsFromFlags(), levels, options);
 }
 
 Status FilterFromFlags(const char* command, int levels, const std::vector<double>& weights) {
@@ -38,12 +37,12 @@ Status FilterFromFlags(const char* command, int levels, const std::vector<double
   const std::string& input = FLAGS_motion.empty() ? FLAGS_markers : FLAGS_motion;
   Status status = CheckNotAnInput(FLAGS_out, input);
   if (!status.ok()) return status;
-  const PyramidOptions options = PyramidOptionsFromFlags(levels);
-  status = options.Validate();
-  if (!status.ok()) return Status::Error("--kernel_a/--tension/--levels: " + status.message());
+  PyramidOptions options;
+  status = PyramidOptionsFromFlags(levels, &options);
+  if (!status.ok()) return status;
   JsonObject report;
   report.Add("command", command).Add("in", input).Add("out", FLAGS_out).Add("levels", levels)
-      .Add("kernel_a", FLAGS_kernel_a).Add("tension", FLAGS_tension);
+      .Add("kernel_a", options.kernel.a).Add("tension", options.tension);
   if (!FLAGS_motion.empty()) {
     if (!IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh");
     Skeleton skeleton;
@@ -106,6 +105,7 @@ extern const Command kFilterCommand = {
     "Thalmann, section 5). Rotations are filtered as sign-continuous quaternions and\n"
     "renormalized, positions and markers per channel; missing marker samples stay missing. A\n"
     "motion is written as BVH, markers as C3D or TRC (by --out's extension).",
-    __FILE__, RunFilter, "motion,markers,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet"};
+    __FILE__, RunFilter, "motion,markers,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet",
+    {PyramidSettingOptions().options()}};
 
 }  // namespace mocapsolve

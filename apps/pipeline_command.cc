@@ -40,7 +40,7 @@ extern const Command kPipelineCommand;  // Below: its declared options check --c
 namespace {
 
 const std::string kPipelineOptionFlags =
-    std::string("take_name,filter_levels,kernel_a,tension,") + QualityGateOptions().Names() + ",animation_only," +
+    std::string("take_name,filter_levels,") + PyramidSettingOptions().Names() + "," + QualityGateOptions().Names() + ",animation_only," +
     RepairSettingOptions().Names() + "," + RepairSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints";
 
 // The take's page, as --view says (TakeViewPath; a PAGE.html must be no input). *path: ""
@@ -87,7 +87,8 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (status.ok()) status = RetargetOptionsFromFlags(&options.retarget);
   if (!status.ok()) return status;
   options.filter_levels = FLAGS_filter_levels;
-  options.filter = PyramidOptionsFromFlags(FLAGS_filter_levels);
+  if (status.ok()) status = PyramidOptionsFromFlags(FLAGS_filter_levels, &options.filter);
+  if (!status.ok()) return status;
   ReadOptionFlags(QualityGateOptions(), &options.gate);
   std::string error;
   if (!options.IsValid(&error)) return Status::Error(error);
@@ -177,7 +178,8 @@ extern const Command kPipelineCommand = {
     "the quality gate (outputs written, the report says why).",
     __FILE__, RunPipeline, kPipelineFlags.c_str(),
     {RepairSolverOptions().options(),
-     RepairSettingOptions().options(), RetargetSettingOptions().options(), QualityGateOptions().options()},
+     RepairSettingOptions().options(), RetargetSettingOptions().options(), QualityGateOptions().options(),
+     PyramidSettingOptions().options()},
     {{"view", "auto",
       "The take's browser page: auto = DIR/view.html when the viewer's runtime is installed (else a "
       "warning and no page); PAGE.html = that page, required (no runtime: an error, nothing written); off = none."}}};

@@ -12,6 +12,7 @@
 #include "pipeline/quality_gate.h"
 #include "settings/retarget_settings.h"
 #include "pipeline/take_pipeline.h"
+#include "settings/pyramid_settings.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
 #include "tasks/batch_task.h"
@@ -83,9 +84,7 @@ void BindPipeline(py::module_& m) {
         retarget_settings.limit_weight = solver_settings.limit_weight;
         ThrowIfError(RetargetOptionsFromSettings(retarget_settings, &options.retarget));
         options.filter_levels = filter_levels;
-        options.filter.kernel.a = kernel_a;
-        options.filter.tension = tension;
-        options.filter.levels = filter_levels;
+        ThrowIfError(PyramidOptionsFromSettings(PyramidSettings{kernel_a, tension}, filter_levels, &options.filter));
         options.gate = gate_settings;
         std::string error;
         if (!options.IsValid(&error)) throw py::value_error(error);
@@ -128,8 +127,8 @@ void BindPipeline(py::module_& m) {
         out["report"] = py::module_::import("json").attr("loads")(report_text);
         return out;
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("characters") = std::vector<std::string>(),
-      py::arg("out_dir") = "", py::arg("take_name") = "", py::arg("filter_levels") = 0, py::arg("kernel_a") = 0.4,
-      py::arg("tension") = 0.0, py::arg("animation_only") = false, py::arg("view") = "auto",
+      py::arg("out_dir") = "", py::arg("take_name") = "", py::arg("filter_levels") = 0, py::arg("kernel_a") = PyramidSettings().kernel_a,
+      py::arg("tension") = PyramidSettings().tension, py::arg("animation_only") = false, py::arg("view") = "auto",
       (std::string(R"doc(One take end to end, as `mocapsolve pipeline`: repair and solve the markers (a .c3d/.trc
 path) of the subject, filter (filter_levels > 0), retarget onto each character (.glb
 paths), check the quality gate (the gate_* keywords, a QualityGate: see below).

@@ -4,19 +4,20 @@
 #include "signal/motion_blend.h"
 #include "signal/motion_pyramid.h"
 #include "python/bindings.h"
+#include "settings/pyramid_settings.h"
 
 namespace mocapsolve::python {
 namespace {
 
+// The declared --kernel_a and --tension (settings/pyramid_settings.h), checked as the CLI does.
 PyramidOptions Options(int levels, double kernel_a, double tension) {
   PyramidOptions options;
-  options.kernel.a = kernel_a;
-  options.tension = tension;
-  options.levels = levels;
-  const Status status = options.Validate();
-  if (!status.ok()) throw py::value_error("--kernel_a/--tension/--levels: " + status.message());
+  ThrowIfError(PyramidOptionsFromSettings(PyramidSettings{kernel_a, tension}, levels, &options));
   return options;
 }
+
+// Their defaults, from the same declaration.
+const PyramidSettings kPyramidDefaults;
 
 Array SignalToArray(const Signal& s) {
   Array out({py::ssize_t{s.rows()}, py::ssize_t{s.cols()}});
@@ -74,7 +75,7 @@ void BindPyramid(py::module_& m) {
         for (const Signal& s : pyramid.laplacian) laplacian.append(SignalToArray(s));
         for (const Signal& s : pyramid.gaussian) gaussian.append(SignalToArray(s));
         return py::make_tuple(laplacian, gaussian);
-      }, py::arg("signal"), py::arg("levels") = 0, py::arg("kernel_a") = 0.4, py::arg("tension") = 0.0,
+      }, py::arg("signal"), py::arg("levels") = 0, py::arg("kernel_a") = kPyramidDefaults.kernel_a, py::arg("tension") = kPyramidDefaults.tension,
       "Laplacian pyramid of a (samples, channels) signal (Burt & Adelson; EXPAND by cubic\n"
       "Cardinal splines): (laplacian, gaussian), lists of arrays L_0..L_{N-1} and G_1..G_N.\n"
       "levels=0: as many as the signal allows."
@@ -91,8 +92,8 @@ void BindPyramid(py::module_& m) {
         Signal out;
         ReconstructSignal(pyramid, weights, &out);
         return SignalToArray(out);
-      }, py::arg("laplacian"), py::arg("top"), py::arg("weights"), py::arg("kernel_a") = 0.4,
-      py::arg("tension") = 0.0,
+      }, py::arg("laplacian"), py::arg("top"), py::arg("weights"), py::arg("kernel_a") = kPyramidDefaults.kernel_a,
+      py::arg("tension") = kPyramidDefaults.tension,
       "Collapses a pyramid with each band scaled: w_N G_N + sum w_l L_l (Huang et al. eq. 7).\n"
       "laplacian: the arrays L_0..L_{N-1} of laplacian_pyramid(); top: G_N; weights: N + 1\n"
       "numbers w_0..w_N."
@@ -101,7 +102,7 @@ void BindPyramid(py::module_& m) {
   m.def("filter", [](py::object data, int levels, double kernel_a, double tension) {
         if (levels < 1 || levels > 30) throw py::value_error("--levels must be in [1, 30]");
         return FilterAny(data, levels, DropFinestBands(levels, levels), kernel_a, tension);
-      }, py::arg("data"), py::arg("levels") = 2, py::arg("kernel_a") = 0.4, py::arg("tension") = 0.0,
+      }, py::arg("data"), py::arg("levels") = 2, py::arg("kernel_a") = kPyramidDefaults.kernel_a, py::arg("tension") = kPyramidDefaults.tension,
       "Multiresolution low-pass filter of a Motion or Markers, as `mocapsolve filter`: the\n"
       "pyramid of `levels` levels collapsed without its `levels` finest bands. Returns the\n"
       "same type (missing marker samples stay missing). data: a Motion or Markers."
@@ -110,7 +111,7 @@ void BindPyramid(py::module_& m) {
   m.def("bands", [](py::object data, const std::vector<double>& weights, double kernel_a, double tension) {
         const std::vector<double> w = Weights(weights);
         return FilterAny(data, static_cast<int>(w.size()) - 1, w, kernel_a, tension);
-      }, py::arg("data"), py::arg("weights"), py::arg("kernel_a") = 0.4, py::arg("tension") = 0.0,
+      }, py::arg("data"), py::arg("weights"), py::arg("kernel_a") = kPyramidDefaults.kernel_a, py::arg("tension") = kPyramidDefaults.tension,
       "Band editing of a Motion or Markers, as `mocapsolve bands`: N + 1 weights (w_0 the\n"
       "finest band, w_N the top Gaussian) scale the bands of an N-level pyramid of data."
       "\nkernel_a: the cubic Cardinal spline kernel's a (default 0.4); tension: the spline's tension (default 0).");
@@ -129,11 +130,7 @@ void BindPyramid(py::module_& m) {
         } else {
           throw py::value_error("--method: expected multires or weighted, got '" + method + "'");
         }
-        options.pyramid.kernel.a = kernel_a;
-        options.pyramid.tension = tension;
-        options.pyramid.levels = levels;
-        const Status valid = options.pyramid.Validate();
-        if (!valid.ok()) throw py::value_error("--kernel_a/--tension: " + valid.message());
+        options.pyramid = Options(levels, kernel_a, tension);
         Motion out;
         Status status = Status::Ok();
         {
@@ -144,7 +141,7 @@ void BindPyramid(py::module_& m) {
         return out;
       }, py::arg("a"), py::arg("b"), py::kw_only(), py::arg("b_offset"), py::arg("transition_start"),
       py::arg("transition_end"), py::arg("method") = "multires", py::arg("blend_levels") = 4,
-      py::arg("kernel_a") = 0.4, py::arg("tension") = 0.0,
+      py::arg("kernel_a") = kPyramidDefaults.kernel_a, py::arg("tension") = kPyramidDefaults.tension,
       "Blends motion b into a over A's frames [transition_start, transition_end] (b's frame 0\n"
       "at A's frame b_offset), as `mocapsolve blend`: method 'multires' (band by band,\n"
       "blend_levels levels, 0 = as many as fit) or 'weighted' (a plain weighted sum)."
