@@ -6,6 +6,7 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/option_flags.h"
 #include "kinematics/quote_token.h"
 #include "apps/corruption_flags.h"
 #include "apps/progress.h"
@@ -14,11 +15,8 @@
 #include "io/atomic_file.h"
 #include "tasks/evaluate_task.h"
 
-DEFINE_int32(trials, 1, "Damage draws to average over (seeds --seed, +1, ...).");
 DEFINE_string(table_csv, "", "Also write the table as CSV (repair: one row per method and trial; leave_one_out: one "
               "row per marker).");
-DEFINE_double(white_noise_mm, 0.0, "--method=small_errors: white noise (mm per axis) added to every sample before "
-              "the damage, and to the undamaged take the own detections come from (a noise-free synthetic take: 1).");
 DECLARE_string(method);  // apps/blend_command.cc; here repair | leave_one_out | small_errors.
 
 namespace mocapsolve {
@@ -53,7 +51,7 @@ void PrintSmallErrors(const MarkerTake& take, const EvaluateConfig& config, cons
   const int nf = static_cast<int>(take.observed.size()), nm = take.markers.num_markers();
   std::printf("%d frames, %d markers; per seed %d jumps of 1-4 cm (1-%d frames) and %d runs of 2 cm jitter, white "
               "noise %.2f mm\n", nf, nm, recipe.jumps, recipe.jump_max_frames, recipe.jitter_runs,
-              config.white_noise_mm);
+              config.evaluate.white_noise_mm);
   std::printf("| seed | damaged | flagged | found | recall | precision | own flagged (damaged) | precision without own "
               "|\n|---|---|---|---|---|---|---|---|\n");
   for (const SmallErrorSeedScore& s : score.seeds) {
@@ -90,7 +88,7 @@ void PrintRepairTable(const MarkerTake& take, const EvaluateConfig& config, cons
   const std::vector<RepairEvaluationRow>& mean_rows = result.mean_rows;
   const double cm = take.skeleton.unit().metres_per_unit * 100.0, mm = cm * 10.0;
   std::printf("%d frames, %d markers, %d trial(s); errors against the solve of the clean markers\n",
-              static_cast<int>(take.observed.size()), take.markers.num_markers(), config.trials);
+              static_cast<int>(take.observed.size()), take.markers.num_markers(), config.evaluate.trials);
   std::printf("| method | joint pos (cm) | joint rot (deg) | damaged markers mean / RMS / max (mm) | covered "
               "| velocity jump (mm/frame) | time (s) |\n|---|---|---|---|---|---|---|\n");
   for (const RepairEvaluationRow& r : mean_rows) {
@@ -148,15 +146,13 @@ Status EvaluateMain(const std::vector<std::string>& arguments) {
   if (!checked.ok()) return checked;
   EvaluateConfig config;
   config.method = FLAGS_method;
-  config.trials = FLAGS_trials;
-  config.white_noise_mm = FLAGS_white_noise_mm;
+  ReadOptionFlags(EvaluateSettingOptions(), &config.evaluate);
   config.repair = RepairSettingsFromFlags();
   config.solver = SolverSettingsFromFlags();
   config.damage = CorruptionSettingsFromFlags();
   if (config.method != "repair" && config.method != "leave_one_out" && config.method != "small_errors") {
     return Status::Error("--method: expected repair, leave_one_out or small_errors, got '" + config.method + "'");
   }
-  if (config.trials < 1 || config.trials > 1000) return Status::Error("--trials: expected 1..1000");
   if (!FLAGS_table_csv.empty()) {
     for (const std::string& in : inputs) {
       Status status = CheckNotAnInput(FLAGS_table_csv, in);
@@ -171,7 +167,7 @@ Status EvaluateMain(const std::vector<std::string>& arguments) {
     progress = std::make_unique<Progress>("leave one out (" + config.solver.solver + ", " + config.solver.mode + ")",
                                           take.markers.num_markers(), FLAGS_quiet, "markers");
   } else if (config.method == "repair") {
-    progress = std::make_unique<Progress>("evaluate", config.trials, FLAGS_quiet, "trials");
+    progress = std::make_unique<Progress>("evaluate", config.evaluate.trials, FLAGS_quiet, "trials");
   }
   EvaluateResult result;
   status = RunEvaluate(take, config, [&](int done, int) { if (progress) progress->Update(done); }, &result);
@@ -189,7 +185,7 @@ Status EvaluateMain(const std::vector<std::string>& arguments) {
 }
 
 const std::string kEvaluateFlags = std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,"
-                                               "report,quiet,method,white_noise_mm");
+                                               "report,quiet,method");
 
 }  // namespace
 
@@ -218,7 +214,7 @@ extern const Command kEvaluateCommand = {
     __FILE__, EvaluateMain, kEvaluateFlags.c_str(),
     {EvaluateSolverOptions().options(),
      SolverOptions().Only("mode").options(),  // leave_one_out's frame or clip solve.
-     RepairSettingOptions().options(), CorruptionSettingOptions().options()},
+     RepairSettingOptions().options(), CorruptionSettingOptions().options(), EvaluateSettingOptions().options()},
     {{"method", "repair",
       "repair: damage the markers and score repair against the usual fills (Table 1); leave_one_out: "
       "predict each marker from the solve of the others, on the take as it is; small_errors: recall and precision "

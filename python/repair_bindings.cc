@@ -135,18 +135,23 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
       "noise; keywords: the CorruptionSettings). Returns (damaged markers, (frames, markers)\n"
       "int8 mask of the damage kind per sample, 0 = untouched; signal/marker_corruption.h).");
 
-  m.def("evaluate", [](SubjectPtr subject_arg, py::object markers, const std::string& method, int trials,
-                       double white_noise_mm, const py::kwargs& keywords) {
+  py::class_<EvaluateSettings> evaluate(m, "EvaluateSettings",
+      "`mocapsolve evaluate`'s own options, one per flag (trials, white_noise_mm; same defaults).");
+  evaluate.def(py::init<>(), "Every option at the CLI's default.");
+  evaluate.def_readwrite("trials", &EvaluateSettings::trials)
+      .def_readwrite("white_noise_mm", &EvaluateSettings::white_noise_mm);
+  m.def("evaluate", [](SubjectPtr subject_arg, py::object markers, const std::string& method,
+                       const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");
         EvaluateConfig config;
         config.method = method;
-        config.trials = trials;
-        config.white_noise_mm = white_noise_mm;
         ApplyKeywords(keywords,
-                      {py::cast(&config.repair, py::return_value_policy::reference),
+                      {py::cast(&config.evaluate, py::return_value_policy::reference),
+                       py::cast(&config.repair, py::return_value_policy::reference),
                        py::cast(&config.solver, py::return_value_policy::reference),
                        py::cast(&config.damage, py::return_value_policy::reference)},
-                      RepairOptionNames() + "," + CorruptionSettingOptions().Names());
+                      EvaluateSettingOptions().Names() + "," + RepairOptionNames() + "," +
+                          CorruptionSettingOptions().Names());
         const MarkerTakePtr take = TakeArgument(*subject, markers);
         EvaluateResult result;
         Status status = Status::Ok();
@@ -156,8 +161,7 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
         }
         ThrowIfError(status);
         return ReportToPython(result.report);
-      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("method") = "repair", py::arg("trials") = 1,
-      py::arg("white_noise_mm") = 0.0,
+      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("method") = "repair",
       (std::string(R"doc(Scores marker repair on a take, as `mocapsolve evaluate`; returns the dict its --report
 writes. method:
   'repair' (default): the thesis' Table 1 on synthetic damage: per trial (seeds
@@ -168,9 +172,11 @@ writes. method:
   'leave_one_out': each marker predicted by the solve of the others ('per_marker', 'all');
   'small_errors': recall and precision on 1-4 cm jumps and jitter ('seeds'), after
     white_noise_mm of noise.
-subject: a Subject; markers: a .c3d/.trc path, Markers or a Take; trials: how many damaged
-copies (default 1, up to 1000). Keywords: the repair, solver (num_threads=2 here) and
-corruption options. Releases the GIL.)doc") +
+subject: a Subject; markers: a .c3d/.trc path, Markers or a Take. Keywords: the evaluate
+options (trials: how many damaged copies, default 1, up to 1000; white_noise_mm), the
+repair, solver and corruption options. Releases the GIL.)doc") +
+       KeywordDefaults("Evaluate keywords and defaults (EvaluateSettings)", py::cast(EvaluateSettings()),
+                       EvaluateSettingOptions().Names()) +
        KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(EvaluateSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), CorruptionSettingOptions().Names())).c_str());
 }
 

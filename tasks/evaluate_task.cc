@@ -55,16 +55,15 @@ Status LeaveOneOut(const MarkerTake& take, const EvaluateConfig& config,
 }
 
 Status SmallErrors(const MarkerTake& take, const EvaluateConfig& config, EvaluateResult* result) {
-  if (!(config.white_noise_mm >= 0.0)) return Status::Error("--white_noise_mm: expected >= 0");
   RepairConfig repair{config.repair, config.solver};
   RepairOptions options;
   Status status = RepairOptionsForTake(take, repair, &options);
   if (!status.ok()) return status;
   SmallErrorRecipe& recipe = result->recipe;
-  recipe = DefaultSmallErrorRecipe(take.skeleton.unit().metres_per_unit, config.white_noise_mm);
+  recipe = DefaultSmallErrorRecipe(take.skeleton.unit().metres_per_unit, config.evaluate.white_noise_mm);
   recipe.seed = static_cast<uint32_t>(config.damage.seed);
   SmallErrorScore& score = result->small_errors;
-  status = EvaluateSmallErrors(take.skeleton, take.markers, take.observed, options, recipe, config.trials, &score);
+  status = EvaluateSmallErrors(take.skeleton, take.markers, take.observed, options, recipe, config.evaluate.trials, &score);
   if (!status.ok()) return Status::Error(take.name + ": " + status.message());
   std::vector<JsonObject> seeds;
   for (const SmallErrorSeedScore& s : score.seeds) {
@@ -75,8 +74,8 @@ Status SmallErrors(const MarkerTake& take, const EvaluateConfig& config, Evaluat
     seeds.push_back(o);
   }
   result->report.Add("method", "small_errors").Add("frames", static_cast<int>(take.observed.size()))
-      .Add("trials", config.trials).Add("first_seed", config.damage.seed)
-      .Add("white_noise_mm", config.white_noise_mm).Add("damaged", static_cast<double>(score.damaged))
+      .Add("trials", config.evaluate.trials).Add("first_seed", config.damage.seed)
+      .Add("white_noise_mm", config.evaluate.white_noise_mm).Add("damaged", static_cast<double>(score.damaged))
       .Add("flagged", static_cast<double>(score.flagged)).Add("true_positive", static_cast<double>(score.true_positive))
       .Add("own", static_cast<double>(score.own)).Add("own_damaged", static_cast<double>(score.own_damaged))
       .Add("recall", score.Recall()).Add("precision", score.Precision())
@@ -138,7 +137,7 @@ Status RepairTable(const MarkerTake& take, const EvaluateConfig& config,
   result->table_csv = "trial,seed,method,joint_position_cm,joint_rotation_deg,marker_mean_mm,marker_rms_mm,"
                       "marker_max_mm,damaged_samples,covered_samples,velocity_jump_mm_per_frame,seconds\n";
   std::vector<JsonObject> per_trial;
-  for (int trial = 0; trial < config.trials; ++trial) {
+  for (int trial = 0; trial < config.evaluate.trials; ++trial) {
     damage.seed = static_cast<uint32_t>(config.damage.seed + trial);
     std::vector<RepairEvaluationRow> rows;
     status = EvaluateRepairTrial(take.skeleton, take.markers, take.observed, damage, options, &rows);
@@ -147,7 +146,7 @@ Status RepairTable(const MarkerTake& take, const EvaluateConfig& config,
     if (means.empty()) means.assign(rows.size(), RepairEvaluationRow());
     for (size_t i = 0; i < rows.size(); ++i) {
       const RepairEvaluationRow& r = rows[i];
-      Accumulate(r, 1.0 / config.trials, &means[i]);
+      Accumulate(r, 1.0 / config.evaluate.trials, &means[i]);
       char line[512];
       std::snprintf(line, sizeof(line), "%d,%u,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%.6g,%.4g\n", trial, damage.seed,
                     r.method.c_str(), r.joint_position_error * cm, r.joint_rotation_error * kDegreesPerRadian,
@@ -161,7 +160,7 @@ Status RepairTable(const MarkerTake& take, const EvaluateConfig& config,
       result->trial_of_row.push_back(trial);
       result->seed_of_row.push_back(damage.seed);
     }
-    if (progress) progress(trial + 1, config.trials);
+    if (progress) progress(trial + 1, config.evaluate.trials);
   }
   std::vector<JsonObject> methods;
   const RepairEvaluationRow* ours = nullptr;
@@ -177,7 +176,7 @@ Status RepairTable(const MarkerTake& take, const EvaluateConfig& config,
     }
   }
   result->report.Add("method", "repair").Add("frames", static_cast<int>(take.observed.size()))
-      .Add("trials", config.trials).Add("first_seed", config.damage.seed)
+      .Add("trials", config.evaluate.trials).Add("first_seed", config.damage.seed)
       .Add("reference", config.repair.reference).Add("methods", methods)
       .Add("position_error_ratio_to_ours", ratios).Add("per_trial", per_trial);
   return Status::Ok();
@@ -188,7 +187,8 @@ Status RepairTable(const MarkerTake& take, const EvaluateConfig& config,
 Status RunEvaluate(const MarkerTake& take, const EvaluateConfig& config,
                    const std::function<void(int done, int total)>& progress, EvaluateResult* result) {
   *result = EvaluateResult();
-  if (config.trials < 1 || config.trials > 1000) return Status::Error("--trials: expected 1..1000");
+  Status status = EvaluateSettingOptions().Validate(config.evaluate);
+  if (!status.ok()) return status;
   if (config.method == "leave_one_out") return LeaveOneOut(take, config, progress, result);
   if (config.method == "small_errors") return SmallErrors(take, config, result);
   if (config.method == "repair") return RepairTable(take, config, progress, result);

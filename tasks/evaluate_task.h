@@ -23,6 +23,7 @@
 #include "problems/marker_repair/small_error_evaluation.h"
 #include "problems/marker_solve/leave_one_out.h"
 #include "settings/corruption_settings.h"
+#include "settings/evaluate_settings.h"
 #include "settings/repair_settings.h"
 #include "settings/solver_settings.h"
 
@@ -30,8 +31,7 @@ namespace mocapsolve {
 
 struct EvaluateConfig {
   std::string method = "repair";  // repair | leave_one_out | small_errors.
-  int trials = 1;                 // Damage draws (seeds damage.seed, +1, ...): 1..1000.
-  double white_noise_mm = 0.0;    // small_errors: noise (mm per axis) added before the damage.
+  EvaluateSettings evaluate;       // trials (seeds damage.seed, +1, ...), white_noise_mm.
   RepairSettings repair;
   SolverSettings solver = EvaluateSolverOptions().Defaults();  // mode: leave_one_out's solve.
   CorruptionSettings damage;
