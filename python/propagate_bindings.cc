@@ -14,6 +14,7 @@
 #include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
 #include "settings/propagate_settings.h"
+#include "tasks/distance_task.h"
 #include "tasks/propagate_task.h"
 
 namespace mocapsolve::python {
@@ -87,6 +88,46 @@ isomap_knn, falloff_kernel, feature_joints, joint_weights, temporal_weight).
 Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
 'region', 'sigma', 'eigenpairs', 'sparse_kernel'.)doc") +
        KeywordDefaults("Falloff keywords and defaults (FalloffSettings)", py::cast(FalloffSettings()), FalloffSettingOptions().Names())).c_str());
+
+  m.def("distance", [](const Skeleton& skeleton, const Motion& motion, int frame, const std::string& method,
+                       const std::string& sweep, const py::kwargs& keywords) {
+        CheckMotion(skeleton, motion);
+        DistanceConfig config;
+        config.frame = frame;
+        config.methods = method;
+        config.sweep = sweep;
+        ApplyKeywords(keywords, {py::cast(&config.falloff, py::return_value_policy::reference)},
+                      FalloffSettingOptions().Names());
+        DistanceResult result;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = RunDistance(skeleton, motion, "the motion", config, &result);
+        }
+        ThrowIfError(status);
+        py::dict report = ReportToPython(result.report);
+        py::dict weights, distances;
+        for (size_t k = 0; k < result.methods.size(); ++k) {
+          weights[result.method_names[k].c_str()] = VectorToArray(result.methods[k].weight);
+          distances[result.method_names[k].c_str()] = VectorToArray(result.methods[k].distance);
+        }
+        py::list swept;
+        for (const Falloff& f : result.swept) swept.append(VectorToArray(f.weight));
+        report["weights"] = weights;
+        report["distances"] = distances;
+        report["sweep_weights"] = swept;
+        return report;
+      }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("method") = "green", py::kw_only(),
+      py::arg("sweep") = "",
+      (std::string(R"doc(The pose-space distance and falloff of an edit at `frame` of motion (on skeleton; as
+read_motion returns them), as `mocapsolve distance`: method 'green', 'diffusion' or 'isomap', or several comma-separated; sweep: comma-separated
+extra sigmas for Green's weights. Keywords: the FalloffSettings.
+Returns the dict its --report writes (the clip's period, the weight at the same and
+opposite phase of the other cycles, per method the second difference at the edit and
+where the weight ends, ...) plus 'weights' and 'distances' {method: (frames,) array} and
+'sweep_weights' (one (frames,) array per sigma). Releases the GIL.)doc") +
+       KeywordDefaults("Falloff keywords and defaults (FalloffSettings)", py::cast(FalloffSettings()),
+                       FalloffSettingOptions().Names())).c_str());
 
   m.def("spline_falloff", [](int num_frames, int frame, double spline_width, int region_begin, int region_end) {
         if (!(spline_width > 0.0) || !std::isfinite(spline_width)) {

@@ -124,3 +124,21 @@ def test_propagate_command_with_keep_contacts_matches_the_cli(tmp_path):
         mocapsolve.propagate(skeleton, motion)
     with pytest.raises(ValueError, match="--contact_prior_cm: expected a value >= 0"):
         mocapsolve.propagate(skeleton, motion, ik_target="lhand:32,105,50", frame=200, contact_prior_cm=-1)
+
+
+def test_distance_is_the_cli_command(tmp_path):
+    # distance() is `mocapsolve distance` (one task): the same curves and report.
+    bvh = data_file("bvh/16_15.bvh")
+    skeleton, motion = mocapsolve.read_motion(bvh, skeleton_units="cm")
+    report = mocapsolve.distance(skeleton, motion, 200, "green,isomap", sweep="0.5")
+    csv, cli_report = str(tmp_path / "d.csv"), str(tmp_path / "d.json")
+    run_cli("distance", "--motion=" + bvh, "--skeleton_units=cm", "--frame=200", "--method=green,isomap",
+            "--sweep=0.5", "--out=" + csv, "--report=" + cli_report)
+    rows = np.genfromtxt(csv, delimiter=",", names=True)
+    assert np.allclose(rows["weight"], report["weights"]["green"], rtol=1e-8, atol=1e-12)
+    assert np.allclose(rows["weight_sigma_05"], report["sweep_weights"][0], rtol=1e-8, atol=1e-12)
+    expected = json.load(open(cli_report))
+    assert report["period_frames"] == expected["period_frames"]
+    assert [m["end_after_0.05"] for m in report["methods"]] == [m["end_after_0.05"] for m in expected["methods"]]
+    with pytest.raises(ValueError, match="mocapsolve distance: --method: expected green, diffusion or isomap"):
+        mocapsolve.distance(skeleton, motion, 200, "cubic")
