@@ -182,12 +182,30 @@ void BindSolve(py::module_& m) {
       .def_property_readonly("num_frames", [](const MarkerTake& t) { return static_cast<int>(t.observed.size()); })
       .def_property_readonly("rate", [](const MarkerTake& t) { return t.trajectories.frame_rate; });
 
-  m.def("load_take", [](SubjectPtr subject_arg, const std::string& path) {
+  m.def("load_take", [](SubjectPtr subject_arg, py::object markers, const std::string& skeleton,
+                        const std::string& markerset, const std::string& axes, double marker_scale,
+                        const std::string& skeleton_units) {
+        if (subject_arg == nullptr && !skeleton.empty() && !markerset.empty()) {
+          RequireReadable(skeleton);
+          RequireReadable(markerset);
+          SubjectFiles files;  // As the CLI's --skeleton, --markerset, --axes, ... assemble one.
+          files.skeleton_path = skeleton;
+          files.markerset_path = markerset;
+          files.axes = axes;
+          files.marker_scale = marker_scale;
+          files.skeleton_units = skeleton_units;
+          subject_arg = std::make_shared<Subject>();
+          ThrowIfError(LoadSubjectFromFiles(files, subject_arg.get()));
+        }
         const Subject* subject = &Required(subject_arg, "subject");
-        return TakeArgument(*subject, py::str(path));
-      }, py::arg("subject"), py::arg("markers"),
-      "Reads markers (a .c3d/.trc path) and maps them onto subject (label prefix, axes, scale):\n"
-      "a Take with .observed (frames, markers, 3) in the skeleton's frame and units.");
+        return TakeArgument(*subject, markers);
+      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("skeleton") = "", py::arg("markerset") = "",
+      py::arg("axes") = "x,y,z", py::arg("marker_scale") = 0.0, py::arg("skeleton_units") = "",
+      "Reads markers (a .c3d/.trc path, or Markers) and maps them onto subject (label prefix,\n"
+      "axes, scale): a Take with .observed (frames, markers, 3) in the skeleton's frame and units.\n"
+      "subject: a Subject, or None with skeleton (.bvh/.asf path) and markerset (.json path) to\n"
+      "assemble one as the CLI's flags do (axes: marker file -> skeleton axes; marker_scale:\n"
+      "marker units -> skeleton units, 0 = from the units; skeleton_units: a BVH's unit).");
 
   m.def("solve", [](SubjectPtr subject_arg, py::object markers, int max_frames, const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");

@@ -122,3 +122,12 @@ def test_solve_releases_the_gil(cmu02):
             longest, last = max(longest, now - last), now
         seconds = future.result()[1]["seconds_in_cpp"]
     assert longest < 0.5 * seconds, (longest, seconds)
+
+
+def test_load_take_without_a_subject_object(cmu02):
+    # load_take(None, ..., skeleton=, markerset=) assembles the subject as the CLI's flags do.
+    by_files = mocapsolve.load_take(None, cmu02["c3d"], skeleton=cmu02["asf"], markerset=cmu02["markerset"],
+                                    axes="y,z,x")
+    subject = mocapsolve.subject(cmu02["asf"], cmu02["markerset"], axes="y,z,x")
+    by_subject = mocapsolve.load_take(subject, mocapsolve.read_markers(cmu02["c3d"]))
+    assert np.array_equal(by_files.observed, by_subject.observed, equal_nan=True)
