@@ -133,4 +133,28 @@ Status ComputeEditWeights(const std::string& method, const Skeleton& skeleton, c
 }
 
 
+Status ReadPoseEdits(const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                     std::vector<PoseEdit>* edits, std::vector<EditFileEntry>* entries) {
+  std::vector<EditFileEntry> read;
+  Status status = ReadEditFile(path, skeleton, &read);
+  if (!status.ok()) return status;
+  edits->clear();
+  for (const EditFileEntry& entry : read) {
+    if (entry.frame >= motion.num_frames()) {
+      return Status::Error(entry.where + ": frame: " + std::to_string(entry.frame) +
+                           " is past the motion's last frame " + std::to_string(motion.num_frames() - 1));
+    }
+    PoseOffsets offsets;
+    offsets.frame = entry.frame;
+    offsets.rotation_offsets = entry.rotation_offsets_rad;
+    offsets.root_translation_offset = entry.root_translation_offset;
+    PoseEdit edit;
+    status = MakeEdit(motion, offsets, &edit);
+    if (!status.ok()) return Status::Error(entry.where + ": " + status.message());
+    edits->push_back(std::move(edit));
+  }
+  if (entries != nullptr) *entries = std::move(read);
+  return Status::Ok();
+}
+
 }  // namespace mocapsolve

@@ -21,7 +21,9 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "problems/edit_propagation/falloff.h"
+#include "io/edit_file.h"
 #include "problems/edit_propagation/ik_edit.h"
+#include "problems/edit_propagation/pose_edit.h"
 #include "settings/propagate_settings.h"
 #include "settings/solver_settings.h"
 
@@ -48,6 +50,12 @@ Status ComputeEditWeights(const std::string& method, const Skeleton& skeleton, c
 
 // "JOINT:x,y,z[;JOINT:x,y,z...]" (world, skeleton units) -> targets; errors name --ik_target.
 Status ParseIkTargets(const std::string& text, const Skeleton& skeleton, std::vector<IkTarget>* targets);
+
+// The edits of an edit file (io/edit_file.h) applied to the motion's frames; *entries
+// (optional) receives the file's entries (their `where` for later messages). Errors name
+// the file, line and field (a frame past the motion's end included).
+Status ReadPoseEdits(const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                     std::vector<PoseEdit>* edits, std::vector<EditFileEntry>* entries = nullptr);
 
 }  // namespace mocapsolve
 

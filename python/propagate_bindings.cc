@@ -169,23 +169,8 @@ where the weight ends, ...) plus 'weights' and 'distances' {method: (frames,) ar
   m.def("read_edits", [](const std::string& path, const Skeleton& skeleton, const Motion& motion) {
         CheckMotion(skeleton, motion);
         RequireReadable(path);
-        std::vector<EditFileEntry> entries;
-        ThrowIfError(ReadEditFile(path, skeleton, &entries));
         std::vector<PoseEdit> edits;
-        for (const EditFileEntry& entry : entries) {
-          if (entry.frame >= motion.num_frames()) {
-            throw py::value_error(entry.where + ": frame: " + std::to_string(entry.frame) +
-                                  " is past the motion's last frame " + std::to_string(motion.num_frames() - 1));
-          }
-          PoseOffsets offsets;
-          offsets.frame = entry.frame;
-          offsets.rotation_offsets = entry.rotation_offsets_rad;
-          offsets.root_translation_offset = entry.root_translation_offset;
-          PoseEdit edit;
-          const Status status = MakeEdit(motion, offsets, &edit);
-          if (!status.ok()) throw py::value_error(entry.where + ": " + status.message());
-          edits.push_back(std::move(edit));
-        }
+        ThrowIfError(ReadPoseEdits(path, skeleton, motion, &edits));
         return edits;
       }, py::arg("path"), py::arg("skeleton"), py::arg("motion"),
       "The edits of the edit file at path (.json, io/edit_file.h; joints named as in skeleton)\n"

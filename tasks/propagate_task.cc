@@ -4,7 +4,6 @@
 #include <utility>
 
 #include "io/comma_list.h"
-#include "io/edit_file.h"
 #include "problems/edit_propagation/foot_contacts.h"
 #include "problems/edit_propagation/pose_edit.h"
 
@@ -21,25 +20,11 @@ double Correlation(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 Status EditsFromFile(const Skeleton& skeleton, const Motion& motion, const PropagateConfig& config,
                      std::vector<PoseEdit>* edits, JsonObject* report) {
   std::vector<EditFileEntry> entries;
-  Status status = ReadEditFile(config.edit, skeleton, &entries);
+  Status status = ReadPoseEdits(config.edit, skeleton, motion, edits, &entries);
   if (!status.ok()) return status;
   if (config.frame >= 0 && (entries.size() != 1 || entries[0].frame != config.frame)) {
     return Status::Error(entries[0].where + ": frame: the file edits frame " + std::to_string(entries[0].frame) +
                          (entries.size() > 1 ? " and others" : "") + ", but --frame=" + std::to_string(config.frame));
-  }
-  for (const EditFileEntry& entry : entries) {
-    if (entry.frame >= motion.num_frames()) {
-      return Status::Error(entry.where + ": frame: " + std::to_string(entry.frame) +
-                           " is past the motion's last frame " + std::to_string(motion.num_frames() - 1));
-    }
-    PoseOffsets offsets;
-    offsets.frame = entry.frame;
-    offsets.rotation_offsets = entry.rotation_offsets_rad;
-    offsets.root_translation_offset = entry.root_translation_offset;
-    PoseEdit edit;
-    status = MakeEdit(motion, offsets, &edit);
-    if (!status.ok()) return Status::Error(entry.where + ": " + status.message());
-    edits->push_back(std::move(edit));
   }
   report->Add("source", config.edit);
   return Status::Ok();
