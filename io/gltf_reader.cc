@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -295,6 +296,35 @@ Status ReadMeshes(const tinygltf::Model& model, const std::string& file, int ski
   return Status::Ok();
 }
 
+// Unit vertex normals (3 x #V) of a triangle list over `positions` (3 x #V): each
+// triangle's (b - a) x (c - a) (its normal times twice its area, glTF's counter-clockwise
+// winding facing out) summed over the vertices at the same position (so a mesh stored
+// per face, as Fox is, gets smooth normals where its faces meet), then normalized; +y
+// where the sum vanishes (a vertex on no triangle, degenerate triangles only).
+Eigen::Matrix3Xd AreaWeightedNormals(const Eigen::Matrix3Xd& positions, const std::vector<int>& triangles) {
+  const Eigen::Index nv = positions.cols();
+  std::map<std::array<double, 3>, int> slot_of_position;
+  std::vector<int> slot(nv);
+  for (Eigen::Index v = 0; v < nv; ++v) {
+    const std::array<double, 3> key = {positions(0, v), positions(1, v), positions(2, v)};
+    slot[v] = slot_of_position.emplace(key, static_cast<int>(slot_of_position.size())).first->second;
+  }
+  Eigen::Matrix3Xd sums = Eigen::Matrix3Xd::Zero(3, static_cast<Eigen::Index>(slot_of_position.size()));
+  for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    const Eigen::Vector3d a = positions.col(triangles[t]), b = positions.col(triangles[t + 1]),
+                          c = positions.col(triangles[t + 2]);
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    for (int k = 0; k < 3; ++k) sums.col(slot[triangles[t + k]]) += n;
+  }
+  Eigen::Matrix3Xd normals(3, nv);
+  for (Eigen::Index v = 0; v < nv; ++v) {
+    const Eigen::Vector3d n = sums.col(slot[v]);
+    const double length = n.norm();
+    normals.col(v) = length > 0.0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::UnitY();
+  }
+  return normals;
+}
+
 }  // namespace
 
 // tinygltf's reader of external buffers and images: through the readers' common open
@@ -531,6 +561,11 @@ Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& op
       const double len = n.norm();
       spec.rest_normals.col(v) = len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitY();
     }
+  }
+  if (normals.empty() && !triangles.empty()) {
+    spec.rest_normals = AreaWeightedNormals(spec.rest_positions, triangles);
+    out.warnings.push_back(file + ": skin " + std::to_string(out.skin) +
+                           ": the mesh has no normals; area-weighted vertex normals computed from its triangles");
   }
   spec.joint_from_bind.resize(nj);
   for (int j = 0; j < nj; ++j) spec.joint_from_bind[j] = world_bind[j].inverse();

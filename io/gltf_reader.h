@@ -38,7 +38,10 @@
 // POSITION, NORMAL, JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1 (u8/u16 joints; float or
 // normalized u8/u16 weights), sparse accessors, indices (u8/u16/u32, or none). Joints
 // with zero weight are dropped (an out-of-range joint index is an error only with a
-// non-zero weight). Per glTF, the mesh node's own transform is ignored.
+// non-zero weight). Per glTF, the mesh node's own transform is ignored. A mesh without
+// NORMAL (Fox) gets area-weighted vertex normals from its triangles (the sum of the
+// adjacent triangles' cross products over the vertices at one bind position, normalized),
+// with a warning saying so.
 //   Bind data: glTF skins with v(t) = sum_b w_b G_b(t) IBM_b v0 (G_b the joint node's world
 // matrix, scale included). Write IBM_b^-1 = [k_b Q_b | p_b] (uniform scale k_b, rotation
 // Q_b) and c_b for joint b's accumulated node scale; then G_b(t) = W_b(t) * scale(c_b) with

@@ -159,6 +159,8 @@ Status RunRetarget(const RetargetInputs& inputs, const RetargetConfig& config,
   const RetargetCharacter target_view = {&t.skeleton, &t.mesh, t.bind_pose, t.rest_pose};
   status = RetargetMotionOntoCharacter(source_view, motion, target_view, options, &result->retarget, progress);
   if (!status.ok()) return Status::Error(inputs.source + " -> " + inputs.target + ": " + status.message());
+  // What the reader approximated or made up (normals computed, scales) is part of the answer.
+  for (const std::string& warning : t.warnings) result->retarget.notes.push_back(warning);
   result->setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
                           result->retarget.clip.solve_seconds;
   result->report = RetargetReportJson(inputs, options, config, *result);

@@ -17,6 +17,7 @@
 #include "io/motion_file.h"
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/skinning.h"
+#include "tests/gltf_test_files.h"
 #include "tests/test_support.h"
 
 namespace mocapsolve {
@@ -626,6 +627,35 @@ TEST(GltfReaderTiny, SeveralRootsGetTheirCommonAncestorOrASyntheticRoot) {
   status = ReadGltfCharacter(doc, options, &c);
   ASSERT_FALSE(status.ok());
   EXPECT_EQ(status.message(), "tiny.gltf: no skin named 'nope' (skins: '', 'two_roots', 'two_trees')");
+}
+
+// A mesh without NORMAL (as Fox has) gets area-weighted vertex normals and a warning: the
+// test character is stored per face with one vertex per joint, so each vertex lies on one
+// triangle and its normal is that triangle's (b - a) x (c - a), normalized.
+TEST(GltfReaderTiny, AMeshWithoutNormalsGetsAreaWeightedNormals) {
+  const std::string path = testing::TempPath("no_normals.gltf");
+  testing::WriteTestCharacter(path, 30.0);
+  ASSERT_EQ(testing::ReadTextFile(path).find("NORMAL"), std::string::npos);
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(path, GltfReadOptions(), &c).ok());
+  ASSERT_TRUE(c.mesh.has_normals());
+  bool warned = false;
+  for (const std::string& w : c.warnings) warned |= w.find("area-weighted vertex normals") != std::string::npos;
+  EXPECT_TRUE(warned);
+  const Eigen::Matrix3Xd& x = c.mesh.rest_positions();
+  int checked = 0;
+  for (Eigen::Index t = 0; t < c.triangles.cols(); ++t) {
+    const Eigen::Vector3d n = (x.col(c.triangles(1, t)) - x.col(c.triangles(0, t)))
+                                  .cross(x.col(c.triangles(2, t)) - x.col(c.triangles(0, t)));
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d got = c.mesh.rest_normals().col(c.triangles(k, t));
+      EXPECT_NEAR(got.norm(), 1.0, 1e-12);
+      if (n.norm() < 1e-9) continue;  // Collinear joints: no area, +y.
+      EXPECT_LT((got - n.normalized()).norm(), 1e-9) << "triangle " << t;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 0);
 }
 
 // tests/data/bad/bad_gltf_*: each fails (through ReadMotionFile, as `mocapsolve info`
