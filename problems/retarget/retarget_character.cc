@@ -6,6 +6,7 @@
 
 #include "kinematics/forward_kinematics.h"
 #include "problems/edit_propagation/foot_contacts.h"
+#include "problems/retarget/own_skeleton.h"
 #include "problems/retarget/skeleton_binding.h"
 
 namespace mocapsolve {
@@ -53,6 +54,8 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
 
   Status map_status = BuildJointMap(*source.skeleton, target_skeleton, options.joint_map, &out.joint_map);
   if (!map_status.ok()) return map_status;
+  double own_scale = 1.0;
+  out.own_skeleton = IsSameSkeleton(*source.skeleton, target_skeleton, out.joint_map, &own_scale);
 
   RetargetSetupOptions setup_options = options.setup;
   setup_options.target_world_from_bind = WorldFromBindRotation(target_skeleton, target_bind, target_rest);
@@ -89,6 +92,15 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
 
   RetargetClipOptions clip = options.clip;
   if (clip.start_pose.rotations.empty()) clip.start_pose = target_rest;
+  bool plant_feet = options.plant_feet;
+  if (out.own_skeleton) {
+    clip.warm_start = TransferOwnMotion(*source.skeleton, motion, target_skeleton, out.joint_map, own_scale);
+    clip.run_solver = false;
+    plant_feet = false;
+    out.notes.push_back("the source is the target's own skeleton (same joints, hierarchy and rest offsets" +
+                        (std::abs(own_scale - 1.0) > 1e-9 ? Format(", scale %g", own_scale) : std::string()) +
+                        "): its motion is transferred joint by joint, exactly (no vertex solve, no re-planting)");
+  }
   clip.first_frame_solves = options.first_frame_solves;
   clip.solve.plant_joints.clear();
   clip.plant_contacts.clear();
@@ -121,7 +133,7 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
       for (size_t k = 0; k < contacts.joints.size(); ++k) {
         const int t = out.joint_map.target_of_source[contacts.joints[k]];
         contact_targets.push_back(t);
-        if (!options.plant_feet) continue;  // Contacts for the skating figures only.
+        if (!plant_feet) continue;  // Contacts for the skating figures only.
         clip.solve.plant_joints.push_back(t);
         clip.plant_contacts.push_back(contacts.in_contact[k]);
         out.plant_joints.push_back(target_skeleton.name(t));

@@ -12,6 +12,12 @@
 // Y-up or Z-up, T-pose or A-pose; the output motion is on the target skeleton in its
 // units, at the source's frame rate.
 //
+// Own skeleton: when the source skeleton is the target's (same joints, hierarchy and rest
+// offsets up to a scale; own_skeleton.h), whatever the source's kind, the result is the
+// source motion on the target's joints (TransferOwnMotion, after the up-axis turn), exact:
+// the vertex tracking is not run (its figures are measured at that motion), nor the foot
+// plants (the transfer adds no skating), and the notes say so.
+//
 // Foot plants (options.plant_feet): contacts of the source's foot joints (AutoFootJoints,
 // or options.foot_joints) by DetectFootContacts (edit_propagation/foot_contacts.h): height
 // above the joint's lowest point <= contact_height * h_s and speed <= contact_speed * h_s
@@ -71,6 +77,9 @@ struct CharacterRetargetResult {
   RetargetSetup setup;
   JointMap joint_map;
   bool skeleton_only = false;
+  // The source is the target's own skeleton (own_skeleton.h): the result is the source
+  // motion transferred joint by joint (exact), not solved; the feet are not re-planted.
+  bool own_skeleton = false;
   double height_ratio = 1.0;        // Target units per source unit.
   double mean_bone_angle_deg = 0.0;  // Skeleton only: aligned rest bones vs the target's.
   std::vector<std::string> plant_joints;  // Target joints planted (none with plant_feet off).

@@ -95,7 +95,22 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
       pose.translations.size() != pose.rotations.size()) {
     return Status::Error("retarget: the start pose does not match the target skeleton");
   }
-  pose = RecenteredStartPose(target_skeleton, target_mesh, setup, goals.positions[0], pose);
+  const bool warm_started = !options.warm_start.frames.empty();
+  if (!options.run_solver && !warm_started) return Status::Error("retarget: no solve and no warm start");
+  if (warm_started) {
+    if (options.warm_start.num_frames() != nf) {
+      return Status::Error("retarget: the warm start has " + std::to_string(options.warm_start.num_frames()) +
+                           " frames, the source " + std::to_string(nf));
+    }
+    for (const Pose& p : options.warm_start.frames) {
+      if (static_cast<int>(p.rotations.size()) != target_skeleton.num_joints() ||
+          p.translations.size() != p.rotations.size()) {
+        return Status::Error("retarget: the warm start does not match the target skeleton");
+      }
+    }
+  } else {
+    pose = RecenteredStartPose(target_skeleton, target_mesh, setup, goals.positions[0], pose);
+  }
   const int np = static_cast<int>(options.solve.plant_joints.size());
   if (static_cast<int>(options.plant_contacts.size()) != np) {
     return Status::Error("retarget: plant contacts given for " + std::to_string(options.plant_contacts.size()) +
@@ -123,9 +138,15 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
       anchor_needed |= options.plant_contacts[p][f] && !anchored[p];
     }
     if (np > 0) solver.SetPlants(anchors, active);
-    for (int repeat = 0; repeat < (f == 0 ? std::max(1, options.first_frame_solves) : 1); ++repeat) {
+    if (warm_started) pose = options.warm_start.frames[f];
+    const int solves = !options.run_solver ? 0 : f == 0 ? std::max(1, options.first_frame_solves) : 1;
+    for (int repeat = 0; repeat < solves; ++repeat) {
       const Status status = solver.Solve(goals.positions[f], goals.normals[f], &pose, &report);
       if (!status.ok()) return Status::Error(status.message() + " (frame " + std::to_string(f) + ")");
+    }
+    if (solves == 0) {
+      TrackedVertexErrors(target_skeleton, target_mesh, setup, pose, goals.positions[f], goals.normals[f],
+                          &report.mean_position_error, &report.mean_normal_angle);
     }
     if (anchor_needed) {
       ForwardKinematics(target_skeleton, pose, &plant_fk);

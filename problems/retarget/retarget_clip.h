@@ -3,7 +3,7 @@
 //
 // Loop: goals for every frame (retarget_setup.h: ComputeRetargetGoals, which also gives
 // sigma), then per frame RetargetFrameSolver::Solve warm-started from the previous
-// frame's solution. Frame 0 starts from options.start_pose (default: the skeleton's
+// frame's solution (or from options.warm_start's pose of that frame). Frame 0 starts from options.start_pose (default: the skeleton's
 // RestPose; for glTF characters pass the bind pose) with the root moved so that the
 // centroid of the tracked target vertices lands on the centroid of the frame's position
 // goals; the root translation is then solved with everything else (it is not copied
@@ -51,6 +51,15 @@ struct RetargetClipOptions {
   // start pose may be far from the source's (another facing, a T-pose against a walk),
   // and every later frame starts from it.
   int first_frame_solves = 1;
+  // Per-frame warm starts on the target skeleton (one pose per source frame), e.g. the
+  // source's own motion when it is the target's skeleton (retarget_character.h): frame f
+  // starts from warm_start.frames[f] (not re-centred; start_pose is then unused), and the
+  // pose's non-root translations are kept (the solve moves rotations and the root only).
+  // Empty: frame f starts from frame f - 1's solution.
+  Motion warm_start;
+  // false: no solve, the warm start is the answer (its figures are measured as they are;
+  // final_cost and iterations 0). Requires a warm start.
+  bool run_solver = true;
 };
 
 struct RetargetFrameFigures {
