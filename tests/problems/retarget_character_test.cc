@@ -1,8 +1,10 @@
 // RetargetMotionOntoCharacter on the shared glTF characters (skipped without the data):
 // a character's own animation exported as BVH (a skeleton-only source) and retargeted
-// back onto that character reproduces it: joint world positions within 1 % of the
-// character's height on average (Soldier's Walk, CesiumMan's walk), with the foot plants
-// on (measured: 0.24 % for Soldier).
+// back onto that character reproduces it: the source is recognised as the target's own
+// skeleton (own_skeleton.h) and transferred joint by joint, so joint world positions agree
+// to the BVH's 6 digits (Soldier's Walk, CesiumMan's walk; every character and clip:
+// retarget_self_round_trip_test.cc). Before the transfer the vertex solve left 0.24 %
+// on average for Soldier.
 #include "problems/retarget/retarget_character.h"
 
 #include <algorithm>
@@ -64,11 +66,12 @@ TEST(RetargetCharacterTest, SoldierWalkRoundTripsThroughBvh) {
   RoundTripThroughBvh(path, "Walk", 24, &trip);
   if (HasFatalFailure()) return;
   EXPECT_TRUE(trip.result.skeleton_only);
+  EXPECT_TRUE(trip.result.own_skeleton);
   EXPECT_NEAR(trip.result.height_ratio, 1.0, 1e-3);
-  EXPECT_LT(trip.mean_error, 0.01);
-  // Soldier walks in place (its feet slide back under it), so no contact is detected;
-  // the plants are measured on CMU's walk (tests/apps/retarget_cli_test.cc).
-  EXPECT_EQ(trip.result.plant_joints.size(), 4u);
+  EXPECT_LT(trip.mean_error, 1e-5);
+  // Its own skeleton: nothing is re-planted (the transfer adds no skating); the plants
+  // are measured on CMU's walk (tests/apps/retarget_cli_test.cc).
+  EXPECT_TRUE(trip.result.plant_joints.empty());
 }
 
 TEST(RetargetCharacterTest, CesiumManWalkRoundTripsThroughBvh) {
@@ -76,8 +79,9 @@ TEST(RetargetCharacterTest, CesiumManWalkRoundTripsThroughBvh) {
   RoundTrip trip;
   RoundTripThroughBvh(path, "", 24, &trip);
   if (HasFatalFailure()) return;
+  EXPECT_TRUE(trip.result.own_skeleton);
   EXPECT_NEAR(trip.result.height_ratio, 1.0, 1e-3);
-  EXPECT_LT(trip.mean_error, 0.01);
+  EXPECT_LT(trip.mean_error, 1e-5);
 }
 
 }  // namespace
