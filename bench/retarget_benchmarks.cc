@@ -138,7 +138,7 @@ Pose StartPose(const Case& c) {
 
 void RunFrames(benchmark::State& state, int which) {
   const int ratio = static_cast<int>(state.range(0));
-  const RetargetSolverKind kind = static_cast<RetargetSolverKind>(state.range(1));
+  const SolverKind kind = static_cast<SolverKind>(state.range(1));
   const Case& c = GetCase(which, ratio);
   if (!c.status.ok()) return state.SkipWithError(c.status.message().c_str());
   RetargetSolveOptions options;
@@ -168,8 +168,8 @@ void RunFrames(benchmark::State& state, int which) {
     if (++f == kLoopFrames) f = 0;
   }
   // The case in words (the arguments are codes): solver, and Ceres' trust radius.
-  state.SetLabel(std::string(RetargetSolverName(kind)) + ", 1:" + std::to_string(state.range(0)) + " vertices" +
-                 (kind == RetargetSolverKind::kCeres ? ", trust radius 1e" + std::to_string(state.range(2)) : ""));
+  state.SetLabel(std::string(SolverKindName(kind)) + ", 1:" + std::to_string(state.range(0)) + " vertices" +
+                 (kind == SolverKind::kCeres ? ", trust radius 1e" + std::to_string(state.range(2)) : ""));
   state.counters["tracked"] = static_cast<double>(c.setup.tracked.size());
   state.counters["joints"] = c.target.skeleton.num_joints();
   state.counters["vertex_error"] = error;
@@ -187,9 +187,9 @@ void RatiosAndSolvers(benchmark::internal::Benchmark* b) {
   // solver 0 = dls, 2 = ceres; radius = log10 of Ceres' initial trust region (4: its
   // default, 0: radius 1, which the retarget command uses).
   for (int ratio : {128, 64, 32}) {
-    b->Args({ratio, static_cast<int>(RetargetSolverKind::kDls), 0});
-    b->Args({ratio, static_cast<int>(RetargetSolverKind::kCeres), 4});
-    b->Args({ratio, static_cast<int>(RetargetSolverKind::kCeres), 0});
+    b->Args({ratio, static_cast<int>(SolverKind::kDls), 0});
+    b->Args({ratio, static_cast<int>(SolverKind::kCeres), 4});
+    b->Args({ratio, static_cast<int>(SolverKind::kCeres), 0});
   }
   b->ArgNames({"ratio", "solver", "radius"})->Unit(benchmark::kMillisecond)->MinTime(0.3);
 }

@@ -112,7 +112,7 @@ Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRe
   if (!checked.ok()) return checked;
   CharacterRetargetOptions& options = *options_out;
   RetargetSolveOptions& solve = options.clip.solve;
-  if (!ParseRetargetSolverKind(settings.solver, &solve.solver)) {
+  if (!ParseSolverKind(settings.solver, &solve.solver)) {
     return Status::Error("--solver: unknown solver '" + settings.solver + "' (dls, dls_generic, ceres)");
   }
   if (settings.subsample < 1) return Status::Error("--subsample: must be >= 1");

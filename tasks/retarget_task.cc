@@ -77,7 +77,7 @@ JsonObject RetargetReportJson(const RetargetInputs& inputs, const CharacterRetar
       .Add("source_animation", inputs.source_animation)
       .Add("source_kind", retarget.skeleton_only ? "skeleton" : "mesh")
       .Add("target", inputs.target)
-      .Add("solver", RetargetSolverName(solve.solver))
+      .Add("solver", SolverKindName(solve.solver))
       .Add("frames", frames)
       .Add("frame_rate", task.source_motion.frame_rate)
       .Add("iterations", solve.iterations)

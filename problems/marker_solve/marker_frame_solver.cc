@@ -14,22 +14,6 @@
 
 namespace mocapsolve {
 
-bool ParseSolverKind(const std::string& name, SolverKind* kind) {
-  if (name == "ceres") return *kind = SolverKind::kCeres, true;
-  if (name == "dls") return *kind = SolverKind::kDls, true;
-  if (name == "dls_generic") return *kind = SolverKind::kDlsGeneric, true;
-  return false;
-}
-
-const char* SolverKindName(SolverKind kind) {
-  switch (kind) {
-    case SolverKind::kCeres: return "ceres";
-    case SolverKind::kDls: return "dls";
-    case SolverKind::kDlsGeneric: return "dls_generic";
-  }
-  return "?";
-}
-
 bool MarkerSolveOptions::IsValid(std::string* error) const {
   // Every weight finite (NaN or inf would reach Ceres, which then logs and fails).
   if (!(marker_weight > 0.0) || !std::isfinite(marker_weight)) {

@@ -36,17 +36,12 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "solvers/dls_solver.h"
+#include "solvers/solver_kind.h"
 
 namespace mocapsolve {
 
-enum class SolverKind { kCeres, kDls, kDlsGeneric };
-
-// "ceres", "dls", "dls_generic"; false on an unknown name.
-bool ParseSolverKind(const std::string& name, SolverKind* kind);
-const char* SolverKindName(SolverKind kind);
-
 struct MarkerSolveOptions {
-  SolverKind solver = SolverKind::kCeres;
+  SolverKind solver = SolverKind::kDls;  // As every command's --solver.
   double marker_weight = 1.0;
   std::string loss = "none";     // none | huber | cauchy
   double loss_scale = 1.0;       // Skeleton units (the residual size where the loss bends).

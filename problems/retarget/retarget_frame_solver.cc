@@ -55,22 +55,6 @@ class ScaledEuclideanManifold : public ceres::Manifold {
 
 }  // namespace
 
-bool ParseRetargetSolverKind(const std::string& name, RetargetSolverKind* kind) {
-  if (name == "dls") return *kind = RetargetSolverKind::kDls, true;
-  if (name == "dls_generic") return *kind = RetargetSolverKind::kDlsGeneric, true;
-  if (name == "ceres") return *kind = RetargetSolverKind::kCeres, true;
-  return false;
-}
-
-const char* RetargetSolverName(RetargetSolverKind kind) {
-  switch (kind) {
-    case RetargetSolverKind::kDls: return "dls";
-    case RetargetSolverKind::kDlsGeneric: return "dls_generic";
-    case RetargetSolverKind::kCeres: return "ceres";
-  }
-  return "?";
-}
-
 bool RetargetSolveOptions::IsValid(std::string* error) const {
   if (iterations < 1) return *error = "iterations must be >= 1", false;
   if (!(lambda >= 0.0) || !std::isfinite(lambda)) return *error = "lambda must be >= 0", false;
@@ -80,7 +64,7 @@ bool RetargetSolveOptions::IsValid(std::string* error) const {
   if (!(smoothness_weight >= 0.0) || !(limit_weight >= 0.0) || !(plant_weight >= 0.0)) {
     return *error = "smoothness, limit and plant weights must be >= 0", false;
   }
-  if (solver == RetargetSolverKind::kCeres && !ceres.IsValid(error)) return false;
+  if (solver == SolverKind::kCeres && !ceres.IsValid(error)) return false;
   return true;
 }
 
@@ -196,8 +180,8 @@ class RetargetFrameSolver::Impl {
     if (translation_prior_) tree_->AddBlockCost(-1, translation_prior_.get());
     for (const Extra& extra : extras_) tree_->AddBlockCost(extra.joint, extra.cost.get());
     tree_->set_time_stages(options.time_stages);
-    if (options.solver == RetargetSolverKind::kCeres) BuildCeres();
-    if (options.solver == RetargetSolverKind::kDlsGeneric) BuildDls();
+    if (options.solver == SolverKind::kCeres) BuildCeres();
+    if (options.solver == SolverKind::kDlsGeneric) BuildDls();
   }
 
   void SetPlants(const Eigen::Matrix3Xd& anchors, const std::vector<char>& active) {
@@ -224,7 +208,7 @@ class RetargetFrameSolver::Impl {
     reference_translation_ = translation_;
     RetargetFrameReport result;
     switch (options_.solver) {
-      case RetargetSolverKind::kDls: {
+      case SolverKind::kDls: {
         DlsSummary summary;
         tree_->Solve(DlsIterationOptions(), &summary);
         if (!summary.IsSolutionUsable()) return Status::Error("retarget: the DLS solve failed: " + summary.BriefReport());
@@ -233,7 +217,7 @@ class RetargetFrameSolver::Impl {
         result.iterations = summary.iterations;
         break;
       }
-      case RetargetSolverKind::kDlsGeneric: {
+      case SolverKind::kDlsGeneric: {
         DlsSummary summary;
         dls_solver_.Solve(DlsIterationOptions(), &dls_problem_, &summary);
         if (!summary.IsSolutionUsable()) return Status::Error("retarget: DLS failed: " + summary.BriefReport());
@@ -242,7 +226,7 @@ class RetargetFrameSolver::Impl {
         result.iterations = summary.iterations;
         break;
       }
-      case RetargetSolverKind::kCeres: {
+      case SolverKind::kCeres: {
         ceres::Solver::Options ceres_options = options_.ceres;
         ceres_options.max_num_iterations = options_.iterations;
         ceres::Solver::Summary summary;

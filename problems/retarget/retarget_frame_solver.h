@@ -50,17 +50,12 @@
 #include "kinematics/skinned_mesh.h"
 #include "kinematics/status.h"
 #include "problems/retarget/retarget_setup.h"
+#include "solvers/solver_kind.h"
 
 namespace mocapsolve {
 
-enum class RetargetSolverKind { kDls, kDlsGeneric, kCeres };
-
-// "dls", "dls_generic", "ceres"; false on an unknown name.
-bool ParseRetargetSolverKind(const std::string& name, RetargetSolverKind* kind);
-const char* RetargetSolverName(RetargetSolverKind kind);
-
 struct RetargetSolveOptions {
-  RetargetSolverKind solver = RetargetSolverKind::kDls;
+  SolverKind solver = SolverKind::kDls;
   int iterations = 10;           // Per frame (thesis: 10; Table 4: 5).
   double lambda = 5.0;           // DLS damping (eq. 18).
   double position_weight = 1.0;  // Per sigma of position error.

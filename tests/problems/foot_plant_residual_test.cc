@@ -171,7 +171,7 @@ class FootPlantSolveTest : public ::testing::Test {
     for (int j = 1; j < skeleton_.num_joints(); ++j) pose.translations[j] = rest.translations[j];
     return pose;
   }
-  RetargetSolveOptions Options(RetargetSolverKind kind) const {
+  RetargetSolveOptions Options(SolverKind kind) const {
     RetargetSolveOptions options;
     options.solver = kind;
     options.iterations = 4;
@@ -190,7 +190,7 @@ class FootPlantSolveTest : public ::testing::Test {
 };
 
 TEST_F(FootPlantSolveTest, LeanKernelRowsEqualTheJointJacobian) {
-  RetargetFrameSolver solver(skeleton_, mesh_, setup_, sigma_, Options(RetargetSolverKind::kDls));
+  RetargetFrameSolver solver(skeleton_, mesh_, setup_, sigma_, Options(SolverKind::kDls));
   const int nt = static_cast<int>(setup_.tracked.size());
   for (const testing::NamedPose& sample : testing::ResidualPoseSweep(skeleton_, 7)) {
     for (const std::vector<char>& active : {std::vector<char>{1, 1}, std::vector<char>{0, 1}}) {
@@ -221,8 +221,8 @@ TEST_F(FootPlantSolveTest, BothDlsPathsTakeTheSameStepsAndHoldTheFoot) {
     if (few) setup.tracked.resize(2);
     const int nt = static_cast<int>(setup.tracked.size());
     const Eigen::Matrix3Xd positions = goal_positions_.leftCols(nt), normals = goal_normals_.leftCols(nt);
-    RetargetFrameSolver lean(skeleton_, mesh_, setup, sigma_, Options(RetargetSolverKind::kDls));
-    RetargetFrameSolver generic(skeleton_, mesh_, setup, sigma_, Options(RetargetSolverKind::kDlsGeneric));
+    RetargetFrameSolver lean(skeleton_, mesh_, setup, sigma_, Options(SolverKind::kDls));
+    RetargetFrameSolver generic(skeleton_, mesh_, setup, sigma_, Options(SolverKind::kDlsGeneric));
     const std::vector<char> on = {1, 1};
     lean.SetPlants(anchors_, on);
     generic.SetPlants(anchors_, on);
@@ -237,7 +237,7 @@ TEST_F(FootPlantSolveTest, BothDlsPathsTakeTheSameStepsAndHoldTheFoot) {
     }
   }
   // Planted vs not, lean kernel and Ceres: the planted joints end nearer their anchors.
-  for (RetargetSolverKind kind : {RetargetSolverKind::kDls, RetargetSolverKind::kCeres}) {
+  for (SolverKind kind : {SolverKind::kDls, SolverKind::kCeres}) {
     RetargetSolveOptions options = Options(kind);
     options.iterations = 20;
     RetargetFrameSolver solver(skeleton_, mesh_, setup_, sigma_, options);
@@ -250,7 +250,7 @@ TEST_F(FootPlantSolveTest, BothDlsPathsTakeTheSameStepsAndHoldTheFoot) {
       ForwardKinematics(skeleton_, pose, &fk);
       for (int p = 0; p < 2; ++p) distance[planted] += (fk.world_positions[plants_[p]] - anchors_.col(p)).norm();
     }
-    EXPECT_LT(distance[1], 0.5 * distance[0]) << RetargetSolverName(kind);
+    EXPECT_LT(distance[1], 0.5 * distance[0]) << SolverKindName(kind);
   }
 }
 

@@ -14,7 +14,7 @@ namespace {
 
 struct Variant {
   const char* name;
-  RetargetSolverKind solver;
+  SolverKind solver;
   double lambda;
   double tolerance;  // On the vertex error, fraction of height, after the first 5 frames.
   double rotation_tolerance;  // Radians, any joint, after the first 5 frames.
@@ -108,9 +108,9 @@ TEST_P(RetargetClipTest, RejectsAnEmptyClip) {
 // ~2e-3 of the height, worst joint 0.16 rad). With little damping, and with Ceres
 // (adaptive LM), the motion comes back to round-off.
 INSTANTIATE_TEST_SUITE_P(Solvers, RetargetClipTest,
-                         ::testing::Values(Variant{"dls_lambda5", RetargetSolverKind::kDls, 5.0, 5e-3, 0.25},
-                                           Variant{"dls_lambda0p01", RetargetSolverKind::kDls, 0.01, 1e-4, 2e-3},
-                                           Variant{"ceres", RetargetSolverKind::kCeres, 5.0, 1e-4, 2e-3}),
+                         ::testing::Values(Variant{"dls_lambda5", SolverKind::kDls, 5.0, 5e-3, 0.25},
+                                           Variant{"dls_lambda0p01", SolverKind::kDls, 0.01, 1e-4, 2e-3},
+                                           Variant{"ceres", SolverKind::kCeres, 5.0, 1e-4, 2e-3}),
                          [](const ::testing::TestParamInfo<Variant>& info) {
                            return std::string(info.param.name);
                          });

@@ -112,9 +112,9 @@ TEST_F(RetargetFrameSolverTest, LeanAndGenericDlsTakeTheSameSteps) {
       RetargetSolveOptions options;
       options.iterations = 4;
       options.smoothness_weight = smoothness;
-      options.solver = RetargetSolverKind::kDls;
+      options.solver = SolverKind::kDls;
       RetargetFrameSolver lean(skeleton_, mesh_, *setup, sigma_, options);
-      options.solver = RetargetSolverKind::kDlsGeneric;
+      options.solver = SolverKind::kDlsGeneric;
       RetargetFrameSolver generic(skeleton_, mesh_, *setup, sigma_, options);
       const Pose start = Start();
       Pose a = start, b = start;
@@ -149,9 +149,9 @@ TEST_F(RetargetFrameSolverTest, JointLimitsTakeTheSameStepsInBothDlsPaths) {
   RetargetSolveOptions options;
   options.iterations = 4;
   options.limit_weight = 2.0;
-  options.solver = RetargetSolverKind::kDls;
+  options.solver = SolverKind::kDls;
   RetargetFrameSolver lean(limited, mesh_, setup_, sigma_, options);
-  options.solver = RetargetSolverKind::kDlsGeneric;
+  options.solver = SolverKind::kDlsGeneric;
   RetargetFrameSolver generic(limited, mesh_, setup_, sigma_, options);
   const Pose start = Start();
   Pose a = start, b = start;
@@ -163,7 +163,7 @@ TEST_F(RetargetFrameSolverTest, JointLimitsTakeTheSameStepsInBothDlsPaths) {
   for (int j = 0; j < limited.num_joints(); ++j) {
     EXPECT_LT(AngularDistance(a.rotations[j], b.rotations[j]), 1e-8) << "joint " << j;
   }
-  options.solver = RetargetSolverKind::kDls;
+  options.solver = SolverKind::kDls;
   options.limit_weight = 0.0;
   RetargetFrameSolver free(limited, mesh_, setup_, sigma_, options);
   Pose c = start;
@@ -176,7 +176,7 @@ TEST_F(RetargetFrameSolverTest, JointLimitsTakeTheSameStepsInBothDlsPaths) {
 }
 
 TEST_F(RetargetFrameSolverTest, DlsAndCeresRecoverTheHiddenPose) {
-  for (RetargetSolverKind kind : {RetargetSolverKind::kDls, RetargetSolverKind::kCeres}) {
+  for (SolverKind kind : {SolverKind::kDls, SolverKind::kCeres}) {
     RetargetSolveOptions options;
     options.solver = kind;
     options.iterations = 30;
@@ -187,9 +187,9 @@ TEST_F(RetargetFrameSolverTest, DlsAndCeresRecoverTheHiddenPose) {
     RetargetFrameReport report;
     ASSERT_TRUE(solver.Solve(goal_positions_, goal_normals_, &pose, &report).ok());
     // A zero-residual problem solved to convergence: vertex error ~ round-off.
-    EXPECT_LT(report.mean_position_error, 1e-6) << RetargetSolverName(kind);
-    EXPECT_LT(report.mean_normal_angle, 1e-6) << RetargetSolverName(kind);
-    EXPECT_LT(report.final_cost, 1e-12) << RetargetSolverName(kind);
+    EXPECT_LT(report.mean_position_error, 1e-6) << SolverKindName(kind);
+    EXPECT_LT(report.mean_normal_angle, 1e-6) << SolverKindName(kind);
+    EXPECT_LT(report.final_cost, 1e-12) << SolverKindName(kind);
   }
 }
 
@@ -209,10 +209,10 @@ TEST(RetargetSolveOptionsTest, Validation) {
   options.iterations = 5;
   options.lambda = -1.0;
   EXPECT_FALSE(options.IsValid(&error));
-  RetargetSolverKind kind;
-  EXPECT_TRUE(ParseRetargetSolverKind("ceres", &kind));
-  EXPECT_EQ(kind, RetargetSolverKind::kCeres);
-  EXPECT_FALSE(ParseRetargetSolverKind("lm", &kind));
+  SolverKind kind;
+  EXPECT_TRUE(ParseSolverKind("ceres", &kind));
+  EXPECT_EQ(kind, SolverKind::kCeres);
+  EXPECT_FALSE(ParseSolverKind("lm", &kind));
 }
 
 }  // namespace
