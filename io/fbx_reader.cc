@@ -261,10 +261,9 @@ void CountMeshes(const aiScene* scene, const std::vector<FlatNode>& nodes, FbxIn
   }
 }
 
-}  // namespace
-
-Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOptions& options,
-                Skeleton* skeleton, Motion* motion, FbxInfo* info) {
+// Rejects, before assimp sees the bytes, a bad frame rate option and an ASCII FBX nested
+// deeper than assimp's recursive parser survives.
+Status CheckFbxInput(std::string_view bytes, const std::string& path, const FbxReadOptions& options) {
   if (!(options.frame_rate >= 0.0) || !std::isfinite(options.frame_rate)) {
     return Status::Error(path + ": frame rate must be positive (or 0 for the key rate)");
   }
@@ -275,81 +274,93 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
     return Status::Error(path + ": ASCII FBX nested more than " +
                          std::to_string(kMaxThirdPartyNesting) + " braces deep");
   }
-  if (Status status = AssimpSurvives(bytes, path); !status.ok()) return status;
-  Assimp::Importer importer;
-  const aiScene* scene = nullptr;
-  std::string error;
-  ImportInto(&importer, bytes, &scene, &error);
-  if (!error.empty()) return Status::Error(path + ": assimp: " + OneLine(error));
-  std::vector<FlatNode> nodes;
-  if (Status status = Flatten(scene->mRootNode, path, &nodes); !status.ok()) return status;
-  FbxInfo out_info;
+  return Status::Ok();
+}
+
+// The scene-wide part of FbxInfo (unit scale factor, animation names, mesh counts), read
+// before the skeleton so that a file without animation still reports them.
+void ReadSceneInfo(const aiScene* scene, const std::vector<FlatNode>& nodes, FbxInfo* info) {
   if (scene->mMetaData != nullptr) {
     double factor = 0.0;
     float factor_f = 0.0f;
     if (scene->mMetaData->Get("UnitScaleFactor", factor) && factor > 0.0 && std::isfinite(factor)) {
-      out_info.unit_scale_factor = factor;
+      info->unit_scale_factor = factor;
     } else if (scene->mMetaData->Get("UnitScaleFactor", factor_f) && factor_f > 0.0f &&
                std::isfinite(factor_f)) {
-      out_info.unit_scale_factor = factor_f;
+      info->unit_scale_factor = factor_f;
     }
   }
   for (unsigned a = 0; a < scene->mNumAnimations; ++a) {
-    out_info.animation_names.push_back(scene->mAnimations[a]->mName.C_Str());
+    info->animation_names.push_back(scene->mAnimations[a]->mName.C_Str());
   }
-  CountMeshes(scene, nodes, &out_info);
+  CountMeshes(scene, nodes, info);
+}
+
+// The animation options.animation names (by name first, then by index; 0 when empty), so
+// that one clip of a multi-clip file is read; errors list the clips there are.
+Status ChooseAnimation(const aiScene* scene, const std::string& path, const FbxReadOptions& options,
+                       const std::vector<std::string>& names, int* anim_index) {
   if (scene->mNumAnimations == 0 && !options.skeleton_without_animation) {
     return Status::Error(path + ": has no animation");
   }
   if (scene->mNumAnimations == 0 && !options.animation.empty()) {
     return Status::Error(path + ": animation " + QuoteToken(options.animation) + " not found (the file has none)");
   }
-  int anim_index = 0;
-  if (!options.animation.empty()) {
-    anim_index = -1;
-    std::string names;
-    for (unsigned a = 0; a < scene->mNumAnimations; ++a) {
-      if (out_info.animation_names[a] == options.animation) anim_index = static_cast<int>(a);
-      names += (a ? ", " : "") + std::to_string(a) + " " + QuoteToken(out_info.animation_names[a]);
-    }
-    int i = 0;
-    if (anim_index < 0 && ParseIndex(options.animation, &i) && i < static_cast<int>(scene->mNumAnimations)) {
-      anim_index = i;
-    }
-    if (anim_index < 0) {
-      return Status::Error(path + ": animation " + QuoteToken(options.animation) + " not found (animations: " + names + ")");
-    }
+  *anim_index = 0;
+  if (options.animation.empty()) return Status::Ok();
+  *anim_index = -1;
+  std::string listed;
+  for (unsigned a = 0; a < scene->mNumAnimations; ++a) {
+    if (names[a] == options.animation) *anim_index = static_cast<int>(a);
+    listed += (a ? ", " : "") + std::to_string(a) + " " + QuoteToken(names[a]);
   }
-  const aiAnimation* anim = scene->mNumAnimations > 0 ? scene->mAnimations[anim_index] : nullptr;
-  const unsigned channels = anim != nullptr ? anim->mNumChannels : 0;
-  const std::string where = anim != nullptr ? path + ": animation " + std::to_string(anim_index) : path;
+  int i = 0;
+  if (*anim_index < 0 && ParseIndex(options.animation, &i) && i < static_cast<int>(scene->mNumAnimations)) {
+    *anim_index = i;
+  }
+  if (*anim_index < 0) {
+    return Status::Error(path + ": animation " + QuoteToken(options.animation) + " not found (animations: " + listed + ")");
+  }
+  return Status::Ok();
+}
 
-  const int nn = static_cast<int>(nodes.size());
-  std::vector<Similarity> locals(nn);
-  for (int i = 0; i < nn; ++i) {
+// Every node's default local transform as a similarity (the rig's input), warning where
+// the node's matrix is not one exactly (non-uniform scale, shear).
+Status NodeLocals(const std::vector<FlatNode>& nodes, const std::string& path, std::vector<Similarity>* locals,
+                  std::vector<std::string>* warnings) {
+  locals->resize(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) {
     bool exact = true;
     const Eigen::Matrix4d m = ToEigen(nodes[i].node->mTransformation);
     if (!m.allFinite()) return Status::Error(path + ": node " + QuoteToken(nodes[i].node->mName.C_Str()) + ": non-finite transform");
-    locals[i] = gltf_internal::SimilarityFromMatrix(m, &exact);
+    (*locals)[i] = gltf_internal::SimilarityFromMatrix(m, &exact);
     if (!exact) {
-      out_info.warnings.push_back(path + ": node '" + std::string(nodes[i].node->mName.C_Str()) +
-                                  "': transform is not a uniform-scale similarity; approximated");
+      warnings->push_back(path + ": node '" + std::string(nodes[i].node->mName.C_Str()) +
+                          "': transform is not a uniform-scale similarity; approximated");
     }
   }
-  // Channels to nodes (by name; the first node of that name).
+  return Status::Ok();
+}
+
+// Maps the clip's channels to nodes (by name; the first node of that name; -1 and a
+// warning for an unknown name) and returns the nodes a channel moves, in flattened order:
+// they anchor the skeleton.
+std::vector<int> MapChannels(const aiAnimation* anim, const std::vector<FlatNode>& nodes, const std::string& where,
+                             std::vector<int>* channel_node, std::vector<std::string>* warnings) {
+  const int nn = static_cast<int>(nodes.size());
+  const unsigned channels = anim != nullptr ? anim->mNumChannels : 0;
   std::map<std::string, int> node_by_name;
   for (int i = nn - 1; i >= 0; --i) node_by_name[nodes[i].node->mName.C_Str()] = i;
-  std::vector<int> channel_node(channels, -1);
+  channel_node->assign(channels, -1);
   std::vector<bool> animated(nn, false);
   for (unsigned c = 0; c < channels; ++c) {
     const aiNodeAnim* ch = anim->mChannels[c];
     auto it = node_by_name.find(ch->mNodeName.C_Str());
     if (it == node_by_name.end()) {
-      out_info.warnings.push_back(where + ": channel for unknown node '" +
-                                  std::string(ch->mNodeName.C_Str()) + "' ignored");
+      warnings->push_back(where + ": channel for unknown node '" + std::string(ch->mNodeName.C_Str()) + "' ignored");
       continue;
     }
-    channel_node[c] = it->second;
+    (*channel_node)[c] = it->second;
     // Channels whose keys never change (Blender keys the armature object and fixed
     // bones) still apply, but do not make their node a joint of their own.
     bool changes = false;
@@ -365,54 +376,66 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
   for (int i = 0; i < nn; ++i) {
     if (animated[i]) animated_nodes.push_back(i);
   }
-  if (anim == nullptr) animated_nodes = SkinnedBoneNodes(scene, nodes);  // No animation: the skins' bones.
-  if (animated_nodes.empty()) {  // A static clip: every keyed node.
-    for (unsigned c = 0; c < channels; ++c) {
-      if (channel_node[c] >= 0) animated_nodes.push_back(channel_node[c]);
-    }
-    std::sort(animated_nodes.begin(), animated_nodes.end());
-  }
-  if (animated_nodes.empty()) {
-    return Status::Error(anim != nullptr ? where + ": animates no node"
-                                         : path + ": has no animation and no skinned mesh (no skeleton to read)");
-  }
-  // Root: lowest common ancestor of the animated nodes (inclusive).
-  auto path_from_top = [&](int i) {
-    std::vector<int> p;
-    for (int a = i; a != -1; a = nodes[a].parent) p.push_back(a);
-    std::reverse(p.begin(), p.end());
-    return p;
-  };
-  std::vector<int> common = path_from_top(animated_nodes[0]);
-  for (size_t k = 1; k < animated_nodes.size(); ++k) {
-    const std::vector<int> p = path_from_top(animated_nodes[k]);
+  return animated_nodes;
+}
+
+// The nodes from the scene root down to `root` (inclusive): the chain baked into a root.
+std::vector<int> PathFromTop(const std::vector<FlatNode>& nodes, int root) {
+  std::vector<int> p;
+  for (int a = root; a != -1; a = nodes[a].parent) p.push_back(a);
+  std::reverse(p.begin(), p.end());
+  return p;
+}
+
+// The path from the scene root to the lowest common ancestor (inclusive) of `anchors`
+// (not empty): its last node is the skeleton's root, the others are baked into it.
+std::vector<int> CommonAncestry(const std::vector<FlatNode>& nodes, const std::vector<int>& anchors) {
+  std::vector<int> common = PathFromTop(nodes, anchors[0]);
+  for (size_t k = 1; k < anchors.size(); ++k) {
+    const std::vector<int> p = PathFromTop(nodes, anchors[k]);
     size_t n = 0;
     while (n < common.size() && n < p.size() && common[n] == p[n]) ++n;
     common.resize(n);
   }
+  return common;
+}
+
+// The skeleton's joints among the nodes, and the rig that poses them from node transforms.
+struct FbxJoints {
+  Rig rig;
+  std::vector<bool> is_joint;      // Per node.
+  std::vector<int> joint_of_node;  // Per node: its joint, or -1.
+};
+
+// The joints: the anchors, every node between one and the root (their lowest common
+// ancestor), and the root, in preorder (= flattened order: Flatten is a preorder DFS),
+// named uniquely; the root's rest rotation is its ancestors' rotation (baked in).
+FbxJoints BuildJoints(const std::vector<FlatNode>& nodes, const std::vector<Similarity>& locals,
+                      const std::vector<int>& anchors) {
+  const int nn = static_cast<int>(nodes.size());
+  const std::vector<int> common = CommonAncestry(nodes, anchors);
   const int root = common.back();  // Non-empty: every path starts at the scene root.
-  std::vector<bool> is_joint(nn, false);
-  for (int i : animated_nodes) {
+  FbxJoints joints;
+  joints.is_joint.assign(nn, false);
+  for (int i : anchors) {
     for (int a = i; a != -1; a = nodes[a].parent) {
-      if (is_joint[a]) break;
-      is_joint[a] = true;
+      if (joints.is_joint[a]) break;
+      joints.is_joint[a] = true;
       if (a == root) break;
     }
   }
-  is_joint[root] = true;
-  // Preorder = flattened order (Flatten is a preorder DFS).
-  Rig rig;
-  std::vector<int> joint_of_node(nn, -1);
-  std::vector<EndSite> end_sites;
+  joints.is_joint[root] = true;
+  Rig& rig = joints.rig;
+  joints.joint_of_node.assign(nn, -1);
   for (int i = 0; i < nn; ++i) {
-    if (!is_joint[i]) continue;
-    joint_of_node[i] = static_cast<int>(rig.joint_nodes.size());
+    if (!joints.is_joint[i]) continue;
+    joints.joint_of_node[i] = static_cast<int>(rig.joint_nodes.size());
     rig.joint_nodes.push_back(i);
     if (i == root) {
       rig.parents.push_back(-1);
       rig.chains.push_back(common);
     } else {
-      rig.parents.push_back(joint_of_node[nodes[i].parent]);
+      rig.parents.push_back(joints.joint_of_node[nodes[i].parent]);
       rig.chains.push_back({i});
     }
     std::string name = nodes[i].node->mName.C_Str();
@@ -427,55 +450,58 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
     rig.rest_rotations[0] = rig.rest_rotations[0] * locals[common[k]].rotation;
   }
   rig.rest_rotations[0].normalize();
-  Pose rest;
-  gltf_internal::EvaluateRig(rig, locals, &rest, &rig.rest_scales);
-  out_info.default_pose = rest;
+  return joints;
+}
+
+// The skeleton's unit from FBX UnitScaleFactor (centimetres per file unit), as fbx_reader.h states.
+LengthUnit FbxUnit(double unit_scale_factor) {
+  if (std::abs(unit_scale_factor - 1.0) < 1e-12) return Centimetres();
+  char name[64];
+  std::snprintf(name, sizeof name, "fbx unit (%g cm)", unit_scale_factor);
+  return {name, unit_scale_factor / 100.0};
+}
+
+// The skeleton at the nodes' default transforms (writing the rig's rest scales and the
+// rest pose): joint offsets and rest rotations from the rig, an end site for each
+// childless non-joint child of a joint.
+Status BuildSkeleton(const std::vector<FlatNode>& nodes, const std::vector<Similarity>& locals,
+                     double unit_scale_factor, const std::string& path, FbxJoints* joints, Pose* rest,
+                     Skeleton* skeleton) {
+  Rig& rig = joints->rig;
+  gltf_internal::EvaluateRig(rig, locals, rest, &rig.rest_scales);
   const int nj = static_cast<int>(rig.joint_nodes.size());
   std::vector<JointSpec> specs(nj);
   for (int j = 0; j < nj; ++j) {
     specs[j].name = rig.names[j];
     specs[j].parent = rig.parents[j];
-    specs[j].offset = rest.translations[j];
+    specs[j].offset = rest->translations[j];
     specs[j].rest_rotation = rig.rest_rotations[j];
   }
-  for (int i = 0; i < nn; ++i) {
+  std::vector<EndSite> end_sites;
+  for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {
     const int p = nodes[i].parent;
-    if (is_joint[i] || p < 0 || !is_joint[p] || nodes[i].node->mNumChildren != 0) continue;
+    if (joints->is_joint[i] || p < 0 || !joints->is_joint[p] || nodes[i].node->mNumChildren != 0) continue;
     EndSite site;
     site.name = nodes[i].node->mName.C_Str();
-    site.parent = joint_of_node[p];
+    site.parent = joints->joint_of_node[p];
     site.offset = rig.rest_scales[site.parent] * locals[i].translation;
     end_sites.push_back(site);
   }
-  LengthUnit unit;
-  if (std::abs(out_info.unit_scale_factor - 1.0) < 1e-12) {
-    unit = Centimetres();
-  } else {
-    char name[64];
-    std::snprintf(name, sizeof name, "fbx unit (%g cm)", out_info.unit_scale_factor);
-    unit = {name, out_info.unit_scale_factor / 100.0};
-  }
-  Skeleton out_skeleton;
-  Status status = Skeleton::Create(std::move(specs), std::move(end_sites), unit, &out_skeleton);
+  Status status = Skeleton::Create(std::move(specs), std::move(end_sites), FbxUnit(unit_scale_factor), skeleton);
   if (!status.ok()) return Status::Error(path + ": " + status.message());
-  if (anim == nullptr) {  // One frame: the nodes' default transforms (the bind pose as stored).
-    Motion still;
-    still.frame_rate = options.frame_rate > 0.0 ? options.frame_rate : 30.0;
-    still.frames.push_back(rest);
-    status = ValidateMotion(out_skeleton, still);
-    if (!status.ok()) return Status::Error(path + ": " + status.message());
-    *skeleton = std::move(out_skeleton);
-    *motion = std::move(still);
-    if (info != nullptr) *info = std::move(out_info);
-    return Status::Ok();
-  }
+  return Status::Ok();
+}
 
-  // Sampling.
-  const double ticks_per_second = anim->mTicksPerSecond > 0.0 ? anim->mTicksPerSecond : 25.0;
+// The span of the clip's key times (ticks) and the spacings between consecutive keys,
+// from which the sampling rate follows.
+struct KeyTimes {
   double t0 = 0.0, t1 = 0.0;
   bool any = false;
   std::vector<double> spacings;
-  auto note_keys = [&](auto* keys, unsigned n) {
+
+  // Notes keys[0..n); false unless their times are finite and increasing.
+  template <typename Key>
+  bool Note(const Key* keys, unsigned n) {
     for (unsigned k = 0; k < n; ++k) {
       const double t = keys[k].mTime;
       if (!std::isfinite(t)) return false;
@@ -489,71 +515,94 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
       }
     }
     return true;
-  };
-  std::vector<bool> use_scale(anim->mNumChannels, false);
+  }
+};
+
+// Error unless every position key of `ch` is finite and every rotation key has a finite,
+// non-zero norm (sampling normalizes them).
+Status CheckKeyValues(const aiNodeAnim* ch, const std::string& where) {
+  for (unsigned k = 0; k < ch->mNumPositionKeys; ++k) {
+    const aiVector3D& v = ch->mPositionKeys[k].mValue;
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+      return Status::Error(where + ": node '" + std::string(ch->mNodeName.C_Str()) + "': non-finite position key");
+    }
+  }
+  for (unsigned k = 0; k < ch->mNumRotationKeys; ++k) {
+    const aiQuaternion& q = ch->mRotationKeys[k].mValue;
+    const double norm = std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z);
+    if (!std::isfinite(norm) || !(norm > 1e-6)) {
+      return Status::Error(where + ": node '" + std::string(ch->mNodeName.C_Str()) + "': bad rotation key");
+    }
+  }
+  return Status::Ok();
+}
+
+// Scale keys are used only when uniform and constant over the clip (then they set the
+// node's scale for every frame); otherwise they are ignored with a warning.
+void ApplyScaleKeys(const aiNodeAnim* ch, const std::string& where, Similarity* local,
+                    std::vector<std::string>* warnings) {
+  if (ch->mNumScalingKeys == 0) return;
+  bool ok = true;
+  double first = 0.0;
+  for (unsigned k = 0; k < ch->mNumScalingKeys && ok; ++k) {
+    const aiVector3D& s = ch->mScalingKeys[k].mValue;
+    bool exact = true;
+    const double u = gltf_internal::UniformScale(Eigen::Vector3d(s.x, s.y, s.z), &exact);
+    if (k == 0) first = u;
+    ok = exact && std::isfinite(u) && std::abs(u - first) <= 1e-5 * first;
+  }
+  if (ok) {
+    local->scale = first;
+  } else {
+    warnings->push_back(where + ": node '" + std::string(ch->mNodeName.C_Str()) +
+                        "': scale keys not uniform and constant; ignored");
+  }
+}
+
+// Checks the keys of every channel mapped to a node and notes their times; their constant
+// scales go into *locals (the frames' base, after the rest pose was taken from them).
+Status ReadChannelKeys(const aiAnimation* anim, const std::vector<int>& channel_node, const std::string& where,
+                       KeyTimes* times, std::vector<Similarity>* locals, std::vector<std::string>* warnings) {
   for (unsigned c = 0; c < anim->mNumChannels; ++c) {
     if (channel_node[c] < 0) continue;
     const aiNodeAnim* ch = anim->mChannels[c];
-    if (!note_keys(ch->mPositionKeys, ch->mNumPositionKeys) ||
-        !note_keys(ch->mRotationKeys, ch->mNumRotationKeys)) {
+    if (!times->Note(ch->mPositionKeys, ch->mNumPositionKeys) ||
+        !times->Note(ch->mRotationKeys, ch->mNumRotationKeys)) {
       return Status::Error(where + ": node '" + std::string(ch->mNodeName.C_Str()) +
                            "': key times not finite and increasing");
     }
-    for (unsigned k = 0; k < ch->mNumPositionKeys; ++k) {
-      const aiVector3D& v = ch->mPositionKeys[k].mValue;
-      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
-        return Status::Error(where + ": node '" + std::string(ch->mNodeName.C_Str()) + "': non-finite position key");
-      }
-    }
-    for (unsigned k = 0; k < ch->mNumRotationKeys; ++k) {
-      const aiQuaternion& q = ch->mRotationKeys[k].mValue;
-      const double norm = std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z);
-      if (!std::isfinite(norm) || !(norm > 1e-6)) {
-        return Status::Error(where + ": node '" + std::string(ch->mNodeName.C_Str()) + "': bad rotation key");
-      }
-    }
-    if (ch->mNumScalingKeys > 0) {
-      bool ok = true;
-      double first = 0.0;
-      for (unsigned k = 0; k < ch->mNumScalingKeys && ok; ++k) {
-        const aiVector3D& s = ch->mScalingKeys[k].mValue;
-        bool exact = true;
-        const double u = gltf_internal::UniformScale(Eigen::Vector3d(s.x, s.y, s.z), &exact);
-        if (k == 0) first = u;
-        ok = exact && std::isfinite(u) && std::abs(u - first) <= 1e-5 * first;
-      }
-      if (ok) {
-        locals[channel_node[c]].scale = first;
-        use_scale[c] = true;
-      } else {
-        out_info.warnings.push_back(where + ": node '" + std::string(ch->mNodeName.C_Str()) +
-                                    "': scale keys not uniform and constant; ignored");
-      }
-    }
+    if (Status status = CheckKeyValues(ch, where); !status.ok()) return status;
+    ApplyScaleKeys(ch, where, &(*locals)[channel_node[c]], warnings);
   }
-  double rate = options.frame_rate;
-  if (rate == 0.0) {
+  return Status::Ok();
+}
+
+// The sampling rate: the option's, else the key rate (the keys' spacing, 30 fps when
+// none; snapped to an integer within 1e-3), bounded as in gltf_reader.cc.
+Status ChooseFrameRate(const FbxReadOptions& options, double ticks_per_second, const std::vector<double>& spacings,
+                       const std::string& where, double* rate) {
+  *rate = options.frame_rate;
+  if (*rate == 0.0) {
     const double spacing = gltf_internal::KeySpacing(spacings);
-    rate = spacing > 0.0 ? ticks_per_second / spacing : 30.0;
-    if (std::abs(rate - std::round(rate)) < 1e-3) rate = std::round(rate);
+    *rate = spacing > 0.0 ? ticks_per_second / spacing : 30.0;
+    if (std::abs(*rate - std::round(*rate)) < 1e-3) *rate = std::round(*rate);
   }
-  if (!(rate > 0.0 && rate <= gltf_internal::kMaxSampleRate)) {  // As in gltf_reader.cc.
-    return Status::Error(where + ": frame rate " + gltf_internal::ShortNumber(rate) + " (from " +
+  if (!(*rate > 0.0 && *rate <= gltf_internal::kMaxSampleRate)) {  // As in gltf_reader.cc.
+    return Status::Error(where + ": frame rate " + gltf_internal::ShortNumber(*rate) + " (from " +
                          (options.frame_rate > 0.0 ? "the options" : "the key spacing") +
                          ") is not in (0, 1e6] fps");
   }
-  const double seconds = (t1 - t0) / ticks_per_second;
-  if (!(seconds * rate * rig.joint_nodes.size() < 1e7)) {  // As in gltf_reader.cc.
-    return Status::Error(where + ": over 1e7 joint-frames");
-  }
-  const int num_frames = static_cast<int>(std::floor(seconds * rate + 1e-6 * rate)) + 1;
-  Motion out;
-  out.frame_rate = rate;
-  out.frames.resize(num_frames);
+  return Status::Ok();
+}
+
+// The clip's frames at `rate` from the first key: each mapped channel's node takes its
+// keys (lerp/slerp between them, the end keys outside) over `locals`; the rig poses them.
+void SampleClip(const aiAnimation* anim, const std::vector<int>& channel_node, const Rig& rig,
+                const std::vector<Similarity>& locals, double t0, double ticks_per_second, Motion* out) {
   std::vector<Similarity> frame_locals;
   std::vector<double> scales;
-  for (int f = 0; f < num_frames; ++f) {
-    const double ticks = t0 + f / rate * ticks_per_second;
+  for (int f = 0; f < static_cast<int>(out->frames.size()); ++f) {
+    const double ticks = t0 + f / out->frame_rate * ticks_per_second;
     frame_locals = locals;
     for (unsigned c = 0; c < anim->mNumChannels; ++c) {
       if (channel_node[c] < 0) continue;
@@ -562,9 +611,88 @@ Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOp
       if (ch->mNumPositionKeys > 0) l.translation = SampleVector(ch->mPositionKeys, ch->mNumPositionKeys, ticks);
       if (ch->mNumRotationKeys > 0) l.rotation = SampleRotation(ch->mRotationKeys, ch->mNumRotationKeys, ticks);
     }
-    gltf_internal::EvaluateRig(rig, frame_locals, &out.frames[f], &scales);
+    gltf_internal::EvaluateRig(rig, frame_locals, &out->frames[f], &scales);
   }
-  MakeSignContinuous(&out);
+}
+
+// The clip as a motion of the rig's joints: keys checked, rate chosen, span bounded
+// (1e7 joint-frames, as in gltf_reader.cc), frames sampled, rotations sign-continuous.
+Status SampleAnimation(const aiAnimation* anim, const std::vector<int>& channel_node, const Rig& rig,
+                       const FbxReadOptions& options, const std::string& where, std::vector<Similarity>* locals,
+                       std::vector<std::string>* warnings, Motion* out) {
+  const double ticks_per_second = anim->mTicksPerSecond > 0.0 ? anim->mTicksPerSecond : 25.0;
+  KeyTimes times;
+  if (Status status = ReadChannelKeys(anim, channel_node, where, &times, locals, warnings); !status.ok()) {
+    return status;
+  }
+  double rate = 0.0;
+  if (Status status = ChooseFrameRate(options, ticks_per_second, times.spacings, where, &rate); !status.ok()) {
+    return status;
+  }
+  const double seconds = (times.t1 - times.t0) / ticks_per_second;
+  if (!(seconds * rate * rig.joint_nodes.size() < 1e7)) {  // As in gltf_reader.cc.
+    return Status::Error(where + ": over 1e7 joint-frames");
+  }
+  const int num_frames = static_cast<int>(std::floor(seconds * rate + 1e-6 * rate)) + 1;
+  out->frame_rate = rate;
+  out->frames.resize(num_frames);
+  SampleClip(anim, channel_node, rig, *locals, times.t0, ticks_per_second, out);
+  MakeSignContinuous(out);
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ParseFbx(std::string_view bytes, const std::string& path, const FbxReadOptions& options,
+                Skeleton* skeleton, Motion* motion, FbxInfo* info) {
+  if (Status status = CheckFbxInput(bytes, path, options); !status.ok()) return status;
+  if (Status status = AssimpSurvives(bytes, path); !status.ok()) return status;
+  Assimp::Importer importer;
+  const aiScene* scene = nullptr;
+  std::string error;
+  ImportInto(&importer, bytes, &scene, &error);
+  if (!error.empty()) return Status::Error(path + ": assimp: " + OneLine(error));
+  std::vector<FlatNode> nodes;
+  if (Status status = Flatten(scene->mRootNode, path, &nodes); !status.ok()) return status;
+  FbxInfo out_info;
+  ReadSceneInfo(scene, nodes, &out_info);
+  int anim_index = 0;
+  Status status = ChooseAnimation(scene, path, options, out_info.animation_names, &anim_index);
+  if (!status.ok()) return status;
+  const aiAnimation* anim = scene->mNumAnimations > 0 ? scene->mAnimations[anim_index] : nullptr;
+  const std::string where = anim != nullptr ? path + ": animation " + std::to_string(anim_index) : path;
+
+  std::vector<Similarity> locals;
+  status = NodeLocals(nodes, path, &locals, &out_info.warnings);
+  if (!status.ok()) return status;
+  std::vector<int> channel_node;
+  std::vector<int> anchors = MapChannels(anim, nodes, where, &channel_node, &out_info.warnings);
+  if (anim == nullptr) anchors = SkinnedBoneNodes(scene, nodes);  // No animation: the skins' bones.
+  if (anchors.empty()) {  // A static clip: every keyed node.
+    for (int node : channel_node) {
+      if (node >= 0) anchors.push_back(node);
+    }
+    std::sort(anchors.begin(), anchors.end());
+  }
+  if (anchors.empty()) {
+    return Status::Error(anim != nullptr ? where + ": animates no node"
+                                         : path + ": has no animation and no skinned mesh (no skeleton to read)");
+  }
+  FbxJoints joints = BuildJoints(nodes, locals, anchors);
+  Pose rest;
+  Skeleton out_skeleton;
+  status = BuildSkeleton(nodes, locals, out_info.unit_scale_factor, path, &joints, &rest, &out_skeleton);
+  if (!status.ok()) return status;
+  out_info.default_pose = rest;
+
+  Motion out;
+  if (anim == nullptr) {  // One frame: the nodes' default transforms (the bind pose as stored).
+    out.frame_rate = options.frame_rate > 0.0 ? options.frame_rate : 30.0;
+    out.frames.push_back(rest);
+  } else {
+    status = SampleAnimation(anim, channel_node, joints.rig, options, where, &locals, &out_info.warnings, &out);
+    if (!status.ok()) return status;
+  }
   status = ValidateMotion(out_skeleton, out);
   if (!status.ok()) return Status::Error(where + ": " + status.message());
   *skeleton = std::move(out_skeleton);
