@@ -47,6 +47,433 @@ bool TemplateLabelsGiven(const SkeletonFitSettings& s) {
          s.template_labels != kTemplateLabelsNone;
 }
 
+
+using Observations = std::vector<std::vector<Eigen::Vector3d>>;
+
+// A round that improves the best marker RMS by less than this share ends the rounds
+// (it is kept).
+constexpr double kMinRoundGain = 0.01;
+
+// Progress events for the caller, stamped with the seconds since the fit started (none
+// without a callback), so the steps report without knowing the clock.
+class FitEvents {
+ public:
+  FitEvents(const SkeletonFitCallback& callback, std::chrono::steady_clock::time_point start)
+      : callback_(callback), start_(start) {}
+  bool wanted() const { return static_cast<bool>(callback_); }
+  void Emit(SkeletonFitEvent event) const {
+    if (!callback_) return;
+    event.seconds = Seconds(start_);
+    callback_(event);
+  }
+
+ private:
+  const SkeletonFitCallback& callback_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// Renames the template's markers to the take's labels by settings.template_labels (a
+// shipped map that fits the take for auto), so that round 0 fits them under the take's labels.
+Status ApplyTemplateLabels(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings,
+                           const MarkerTrajectories& file, const FitEvents& events, SkeletonFitResult* result,
+                           MarkerSet* template_markers) {
+  const Subject& templ = inputs.templ;
+  *template_markers = templ.markers;
+  Status status = Status::Ok();
+  if (settings.template_labels == kTemplateLabelsAuto) {
+    status = ChooseShippedTemplateLabels(templ.markers, file, &result->template_labels_map, &result->template_labels);
+  } else if (TemplateLabelsGiven(settings)) {
+    status = ReadTemplateLabels(settings.template_labels, &result->template_labels);
+    const bool inline_pairs = settings.template_labels.find(':') != std::string::npos;
+    result->template_labels_map = inline_pairs ? "inline" : settings.template_labels;
+  }
+  if (!status.ok()) return status;
+  if (result->template_labels.empty()) return Status::Ok();
+  status = RenameTemplateMarkers(result->template_labels, templ.skeleton, file, inputs.markers_path,
+                                 template_markers);
+  if (!status.ok()) return status;
+  SkeletonFitEvent event;
+  event.kind = SkeletonFitEvent::kTemplateLabels;
+  event.text = result->template_labels_map;
+  event.markers = static_cast<int>(result->template_labels.size());
+  events.Emit(event);
+  return Status::Ok();
+}
+
+// The template's markers the take holds: a template set may name markers this take lacks,
+// and the fit uses the ones it has (at least 3); the others are reported absent.
+Status PresentMarkers(const MarkerSet& template_markers, const MarkerTrajectories& file,
+                      const std::string& markers_path, const FitEvents& events, SkeletonFitResult* result,
+                      std::vector<MarkerSpec>* present) {
+  std::string absent;
+  for (int m = 0; m < template_markers.num_markers(); ++m) {
+    if (file.FindMarker(template_markers.label(m)) >= 0) {
+      present->push_back(template_markers.marker(m));
+    } else {
+      absent += (absent.empty() ? "" : ", ") + template_markers.label(m);
+      result->absent.push_back(template_markers.label(m));
+    }
+  }
+  if (present->size() < 3) {
+    return Status::Error(markers_path + ": fewer than 3 of the template marker set's labels (--template_labels "
+                         "maps the template's labels to the take's)");
+  }
+  if (!absent.empty()) {
+    SkeletonFitEvent event;
+    event.kind = SkeletonFitEvent::kAbsentMarkers;
+    event.text = absent;
+    events.Emit(event);
+  }
+  return Status::Ok();
+}
+
+// The skin check allows what the template itself holds: the fit keeps a template marker
+// within its starting distance when that exceeds --max_skin_cm (skeleton_fit.h), and a
+// calibrated template is trusted (CMU subject 2 calibrated on 02_01 holds RBAC 20.7 cm
+// from upperback; clamping it to 12 cm fits cmu_02_05 at 16.4 mm instead of 4.6).
+SubjectCheckOptions SkinCheckOptions(const Skeleton& skeleton, const std::vector<MarkerSpec>& present,
+                                     double units_per_cm) {
+  SubjectCheckOptions check_options;
+  for (const MarkerSpec& spec : present) {
+    for (const MarkerAttachment& a : spec.attachments) {
+      const double cm = DistanceToBone(skeleton, a.joint, a.offset) / units_per_cm;
+      check_options.max_marker_bone_distance_cm = std::max(check_options.max_marker_bone_distance_cm, cm + 0.1);
+    }
+  }
+  return check_options;
+}
+
+// The take as the rounds fit it.
+struct FitTake {
+  Subject mapping;                 // The template in the take's axes and scale, with the markers the take holds.
+  MarkerTake take;                 // Its observations cut to `frames`.
+  MarkerTrajectories model_frame;  // Every trajectory of the file in the skeleton's frame and units (for attach).
+  int frames = 0;
+  SubjectCheckOptions check_options;
+};
+
+// Reads the take and sets it against the template: labels mapped, the template markers it
+// lacks left out, samples in the skeleton's frame and units, frames cut to --fit_max_frames.
+Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings, double units_per_cm,
+                   const FitEvents& events, SkeletonFitResult* result, FitTake* fit) {
+  const std::string& markers_path = inputs.markers_path;
+  const Skeleton& skeleton = inputs.templ.skeleton;
+  // The take, in the skeleton's frame and units (axes, marker_scale describe it).
+  fit->mapping = inputs.templ;
+  fit->mapping.axes = inputs.axes;
+  fit->mapping.marker_scale = inputs.marker_scale;
+  fit->mapping.label_prefix.clear();
+  MarkerTrajectories file;
+  Status status = ReadMarkerFile(markers_path, &file);
+  if (status.ok()) status = RequireMarkerData(markers_path, file);
+  if (!status.ok()) return status;
+  // The template's markers, those the map names under the take's labels.
+  MarkerSet template_markers;
+  status = ApplyTemplateLabels(inputs, settings, file, events, result, &template_markers);
+  if (!status.ok()) return status;
+  std::vector<MarkerSpec> present;
+  status = PresentMarkers(template_markers, file, markers_path, events, result, &present);
+  if (!status.ok()) return status;
+  fit->check_options = SkinCheckOptions(skeleton, present, units_per_cm);
+  status = MarkerSet::Create(skeleton, std::move(present), &fit->mapping.markers);
+  if (!status.ok()) return status;
+  status = LoadTakeForSubject(fit->mapping, markers_path, &fit->take);
+  if (!status.ok()) return status;
+  const int frames = settings.fit_max_frames > 0 ? std::min<int>(settings.fit_max_frames, fit->take.observed.size())
+                                                 : static_cast<int>(fit->take.observed.size());
+  fit->take.observed.resize(frames);
+  fit->frames = frames;
+  result->frames = frames;
+  fit->model_frame = fit->take.trajectories;  // For auto attach.
+  TransformMarkers(fit->take.transform, skeleton.unit(), &fit->model_frame);
+  return Status::Ok();
+}
+
+// The fit options every round shares, from the settings (lengths in skeleton units).
+SkeletonFitOptions BaseFitOptions(const SkeletonFitSettings& settings, double units_per_cm) {
+  SkeletonFitOptions options;
+  options.frame_step = settings.fit_frame_step;
+  options.min_scale = settings.min_bone_scale;
+  options.max_scale = settings.max_bone_scale;
+  options.max_bone_distance = settings.max_skin_cm * units_per_cm;
+  options.root_from_markers = true;
+  return options;
+}
+
+// A round's own options: round 0 fits the template's markers (with the offset prior, and
+// finding the outliers), an attach round fresh attachments; each starts from `scales`.
+SkeletonFitOptions RoundOptions(SkeletonFitOptions options, const SkeletonFitSettings& settings, bool from_subject,
+                                int round, double outlier_distance, const std::vector<double>& scales) {
+  // Outliers are found in round 0, on the template's markers (a trusted attachment), and left
+  // out of every round. A fresh attachment misses by a lot until its round fits it (squat.c3d's
+  // round 1 starts at 59-104 mm): finding outliers in the attach rounds too left squat at
+  // 10.8-19.8 mm instead of 7.94 (gates 200-400 mm).
+  options.outlier_distance = round == 0 ? outlier_distance : 0.0;
+  options.iterations = round > 0 ? settings.attach_iterations
+                                 : settings.fit_iterations >= 0 ? settings.fit_iterations : (from_subject ? 15 : 6);
+  // The template's offsets are a prior worth keeping; an attach round's are estimates
+  // from a motion that is itself being fitted.
+  options.offset_prior_weight = round == 0 ? settings.offset_prior : 0.0;
+  options.initial_scales = scales;
+  return options;
+}
+
+// A round's fit as kept: the best round, by marker RMS, with every marker attached.
+struct RoundFit {
+  int round = -1;
+  double rms = 0.0;
+  Skeleton skeleton;
+  MarkerSet markers;
+  Motion motion;
+  SkeletonFitReport report;
+  Observations observed;
+};
+
+// What a round hands the next: the model as fitted, its motion and scales, round 0's
+// outliers, and the best round so far (re-attaching can also make a round worse).
+struct RoundState {
+  Skeleton fitted;
+  MarkerSet fitted_markers;
+  Motion motion;
+  SkeletonFitReport report;
+  std::vector<double> scales;
+  // Round 0 is a candidate for the best when it already holds every marker the attach
+  // finds (a template with the take's whole marker set: round 0 is a complete fit).
+  bool round0_complete = false;
+  // Round 0's outliers (frame, label): samples of the template's markers that its fit left out.
+  std::vector<std::pair<int, std::string>> template_outliers;
+  RoundFit best;
+};
+
+// Each round starts from the best so far: a worse round must not feed the next.
+void StartFromBest(RoundState* state) {
+  state->fitted = state->best.skeleton;
+  state->fitted_markers = state->best.markers;
+  state->motion = state->best.motion;
+  state->scales = state->best.report.bone_scales;
+}
+
+// "PATH: attach round N: MESSAGE", the error of an attach round's calibration.
+Status AttachError(const std::string& markers_path, int round, const Status& status) {
+  return Status::Error(markers_path + ": attach round " + std::to_string(round) + ": " + status.message());
+}
+
+// Attaches every marker of the take to the skeleton as fitted (CalibrateMarkers); markers
+// the template knows keep its joints (and their fitted offsets): they anchor the skeleton.
+// The others are clamped to the skin; `reattached` lists (index in specs, index in
+// fitted_markers) for those an earlier round attached.
+Status AttachAllMarkers(const FitTake& fit, const RoundState& state, const CalibrationOptions& calibration, int round,
+                        const std::string& markers_path, std::vector<MarkerSpec>* specs,
+                        std::vector<std::pair<int, int>>* reattached, int* new_markers) {
+  CalibrationResult attached;
+  Status status = CalibrateMarkers(state.fitted, state.motion, fit.model_frame, calibration, nullptr, &attached);
+  if (!status.ok()) return AttachError(markers_path, round, status);
+  *new_markers = 0;
+  for (int m = 0; m < attached.marker_set.num_markers(); ++m) {
+    MarkerSpec spec = attached.marker_set.marker(m);
+    const int known = state.fitted_markers.FindMarker(spec.label);
+    if (known >= 0 && fit.mapping.markers.FindMarker(spec.label) >= 0) {
+      // As fitted (not clamped again: the fit kept it within its own radius, which
+      // can exceed max_skin_cm for a template marker), so the round starts where the
+      // last one ended.
+      spec = state.fitted_markers.marker(known);
+    } else {
+      if (known >= 0) {
+        reattached->push_back({static_cast<int>(specs->size()), known});
+      } else {
+        ++*new_markers;
+      }
+      for (MarkerAttachment& a : spec.attachments) {
+        if (calibration.max_bone_distance > 0.0) {
+          a.offset = ClampToBone(state.fitted, a.joint, a.offset, calibration.max_bone_distance);
+        }
+      }
+    }
+    specs->push_back(spec);
+  }
+  return Status::Ok();
+}
+
+// The RMS of `label` in a calibration's fit (+inf if it has none), to compare attachments.
+double MarkerRms(const CalibrationResult& fit, const std::string& label) {
+  for (const CalibratedMarker& c : fit.markers) {
+    if (c.label == label) return c.rms;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+// A marker attached in an earlier round keeps that attachment (as fitted) unless the new
+// one fits the best round's motion better: so the round does not start worse than the
+// state it comes from. (Keeping every earlier attachment starts squat.c3d's rounds where
+// the last ended, but leaves JA1Gait35 at round 1's poor attachments, 107 mm; re-attaching
+// every one started squat's rounds 4-38 mm worse.)
+Status KeepBetterAttachments(const FitTake& fit, const RoundState& state, const CalibrationOptions& calibration,
+                             int round, const std::string& markers_path,
+                             const std::vector<std::pair<int, int>>& reattached, std::vector<MarkerSpec>* specs) {
+  MarkerSet fresh;
+  Status status = MarkerSet::Create(state.fitted, *specs, &fresh);
+  if (!status.ok()) return status;
+  CalibrationResult fresh_fit, kept_fit;
+  status = EvaluateMarkerSet(state.fitted, state.motion, fit.model_frame, fresh, calibration, &fresh_fit);
+  if (status.ok()) {
+    status = EvaluateMarkerSet(state.fitted, state.motion, fit.model_frame, state.fitted_markers, calibration,
+                               &kept_fit);
+  }
+  if (!status.ok()) return AttachError(markers_path, round, status);
+  for (const auto& [index, known] : reattached) {
+    const std::string& label = (*specs)[index].label;
+    if (MarkerRms(kept_fit, label) <= MarkerRms(fresh_fit, label)) (*specs)[index] = state.fitted_markers.marker(known);
+  }
+  return Status::Ok();
+}
+
+// An attach round's markers (every marker of the take attached) and their observations,
+// round 0's outliers left out; round 1 tells whether round 0 was already complete.
+Status AttachRound(const FitTake& fit, double max_bone_distance, int round, const std::string& markers_path,
+                   RoundState* state, MarkerSet* round_markers, Observations* observed) {
+  CalibrationOptions calibration;
+  calibration.max_bone_distance = max_bone_distance;
+  std::vector<MarkerSpec> specs;
+  std::vector<std::pair<int, int>> reattached;
+  int new_markers = 0;
+  Status status = AttachAllMarkers(fit, *state, calibration, round, markers_path, &specs, &reattached, &new_markers);
+  if (!status.ok()) return status;
+  if (!reattached.empty()) {
+    status = KeepBetterAttachments(fit, *state, calibration, round, markers_path, reattached, &specs);
+    if (!status.ok()) return status;
+  }
+  if (round == 1) state->round0_complete = new_markers == 0;
+  status = MarkerSet::Create(state->fitted, std::move(specs), round_markers);
+  if (!status.ok()) return status;
+  status = GatherObservations(*round_markers, fit.take.trajectories, fit.take.transform, observed);
+  if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
+  observed->resize(fit.frames);
+  for (const auto& [f, label] : state->template_outliers) {
+    const int m = round_markers->FindMarker(label);
+    if (m >= 0) (*observed)[f][m].setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+  return Status::Ok();
+}
+
+// The round's start event; its progress, done and stop events are copies of it.
+SkeletonFitEvent RoundStartEvent(int round, int rounds, int markers, int frames, int iterations) {
+  SkeletonFitEvent started;
+  started.kind = SkeletonFitEvent::kRoundStart;
+  started.round = round;
+  started.rounds = rounds;
+  started.markers = markers;
+  started.frames = frames;
+  started.iterations = iterations;
+  return started;
+}
+
+// Fits the round (FitSkeletonToMarkers, reporting its progress) and makes the fit the
+// state's model; round 0's outliers are noted and left out of its observations.
+Status FitRound(const FitTake& fit, const SkeletonFitOptions& options, const MarkerSolveOptions& solve_options,
+                const MarkerSet& round_markers, const SkeletonFitEvent& started, const FitEvents& events,
+                const std::string& markers_path, RoundState* state, Observations* observed,
+                SkeletonFitResult* result) {
+  const SkeletonFitProgress progress = [&](int iteration, double rms) {
+    SkeletonFitEvent event = started;
+    event.kind = SkeletonFitEvent::kIteration;
+    event.iteration = iteration;
+    event.rms = rms;
+    events.Emit(event);
+  };
+  // Pose solves of this round: 0 before the first step (the outlier passes' too), k the one of step k.
+  const std::function<void(int, int)> frame_progress = [&](int step, int frames_done) {
+    SkeletonFitEvent event = started;
+    event.kind = SkeletonFitEvent::kFrames;
+    event.iteration = step;
+    event.frames_done = frames_done;
+    events.Emit(event);
+  };
+  Skeleton next;
+  MarkerSet next_markers;
+  const Status status = FitSkeletonToMarkers(state->fitted, round_markers, *observed, solve_options, options, &next,
+                                             &next_markers, &state->motion, &state->report, progress,
+                                             events.wanted() ? frame_progress : nullptr);
+  if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
+  state->motion.frame_rate = fit.take.trajectories.frame_rate > 0.0 ? fit.take.trajectories.frame_rate : 120.0;
+  state->fitted = std::move(next);
+  state->fitted_markers = std::move(next_markers);
+  state->scales = state->report.bone_scales;
+  const SkeletonFitReport& report = state->report;
+  if (started.round == 0) {
+    for (const auto& [f, m] : report.outliers) state->template_outliers.push_back({f, round_markers.label(m)});
+    for (const auto& [f, m] : report.outliers) (*observed)[f][m].setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+  result->rounds.push_back({started.round, state->fitted_markers.num_markers(), report.rms,
+                            static_cast<int>(state->template_outliers.size())});
+  SkeletonFitEvent done = started;
+  done.kind = SkeletonFitEvent::kRoundDone;
+  done.markers = state->fitted_markers.num_markers();
+  done.rms_first = report.rms.front();
+  done.rms = report.rms.back();
+  events.Emit(done);
+  return Status::Ok();
+}
+
+// Keeps the round as the best when it is better (or not comparable: its markers differ
+// from the best's); false when the rounds stop: it did not improve the best, or by less
+// than kMinRoundGain.
+bool KeepBestRound(int round, int rounds, const Observations& observed, const SkeletonFitEvent& started,
+                   const FitEvents& events, RoundState* state) {
+  RoundFit& best = state->best;
+  const double rms = state->report.rms.back();
+  const bool comparable = round >= 2 || (round == 1 && state->round0_complete);  // Same markers as the best.
+  if (comparable && !(rms < best.rms)) {
+    // The next round would start from the same best state and attach alike.
+    SkeletonFitEvent stopped = started;
+    stopped.kind = SkeletonFitEvent::kStopped;
+    events.Emit(stopped);
+    return false;
+  }
+  const bool small_gain = comparable && rms > (1.0 - kMinRoundGain) * best.rms;
+  best = {round, rms, state->fitted, state->fitted_markers, state->motion, state->report, observed};
+  if (small_gain && round < rounds) {
+    // Kept, but the offsets now fit the take's noise more than its shape: on cmu_02_05
+    // rounds 3-12 gained 0.01 mm each while the leave-one-marker-out mean error grew
+    // from 9.7 to 12.5 mm.
+    SkeletonFitEvent stopped = started;
+    stopped.kind = SkeletonFitEvent::kStopped;
+    stopped.rms = best.rms;
+    events.Emit(stopped);
+    return false;
+  }
+  return true;
+}
+
+// The kept round as the fitted subject: lone joints regauged, the checks run against the
+// observations it was fitted to, its mean pose as the subject's rest prior.
+Status KeepSubject(const SkeletonFitInputs& inputs, const FitTake& fit, RoundState* state,
+                   SkeletonFitResult* result) {
+  RoundFit& best = state->best;
+  // A joint one marker alone constrains rests at its mean fitted pose (lone_joint_gauge.h):
+  // the same fit, but a solve without that marker predicts it.
+  std::vector<std::string> regauged;
+  const Status status = FixLoneJointGauges(best.skeleton, &best.markers, &best.motion, &regauged);
+  if (!status.ok()) return Status::Error(inputs.markers_path + ": " + status.message());
+  // The checks see the kept model against the observations it was fitted to.
+  result->kept_round = best.round;
+  result->outlier_samples = static_cast<int>(state->template_outliers.size());
+  result->motion = std::move(best.motion);
+  result->motion.frame_rate = fit.take.trajectories.frame_rate;
+  result->report = std::move(best.report);
+  result->checks = CheckSubjectFit(best.skeleton, best.markers, best.observed, result->motion, fit.check_options);
+  Subject& subject = result->subject;
+  subject.name = inputs.templ.name.empty() ? "fitted" : "fitted from " + inputs.templ.name;
+  subject.skeleton = std::move(best.skeleton);  // Inline: the fitted skeleton exists nowhere else.
+  subject.markers = std::move(best.markers);
+  subject.axes = inputs.axes;
+  subject.marker_scale = inputs.marker_scale;
+  subject.amc_fps = inputs.amc_fps;
+  // The rest prior's reference in later solves of this subject (directions no marker fixes
+  // settle at the pose the subject typically holds, not at zero rotations).
+  subject.mean_pose = MeanPose(subject.skeleton, result->motion);
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status ValidateSkeletonFitSettings(const SkeletonFitSettings& s) {
@@ -71,10 +498,6 @@ Status ValidateSkeletonFitSettings(const SkeletonFitSettings& s) {
   return Status::Ok();
 }
 
-// A round that improves the best marker RMS by less than this share ends the rounds
-// (it is kept).
-constexpr double kMinRoundGain = 0.01;
-
 Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings,
                         const MarkerSolveOptions& solve_options, SkeletonFitResult* result,
                         const SkeletonFitCallback& callback) {
@@ -86,8 +509,7 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   const bool from_subject = inputs.from_template_subject;
   const int rounds = settings.attach_rounds >= 0 ? settings.attach_rounds : (from_subject ? 12 : 0);
   result->attach_rounds = rounds;
-  const Subject& templ = inputs.templ;
-  const Skeleton& skeleton = templ.skeleton;
+  const Skeleton& skeleton = inputs.templ.skeleton;
   if (settings.max_skin_cm > 0.0 && !skeleton.unit().known()) {
     return Status::Error("the template skeleton's unit is unknown: give --skeleton_units (or --max_skin_cm=0)");
   }
@@ -97,300 +519,46 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   const double units_per_cm = skeleton.unit().known() ? 0.01 / skeleton.unit().metres_per_unit : 1.0;
   result->unit_known = skeleton.unit().known();
   result->mm_per_unit = skeleton.unit().known() ? skeleton.unit().metres_per_unit * 1000.0 : 1.0;
-  auto emit = [&](SkeletonFitEvent event) {
-    if (!callback) return;
-    event.seconds = Seconds(start);
-    callback(event);
-  };
+  const FitEvents events(callback, start);
+  FitTake fit;
+  status = LoadFitTake(inputs, settings, units_per_cm, events, result, &fit);
+  if (!status.ok()) return status;
 
-  // The take, in the skeleton's frame and units (axes, marker_scale describe it).
-  Subject take_mapping = templ;
-  take_mapping.axes = inputs.axes;
-  take_mapping.marker_scale = inputs.marker_scale;
-  take_mapping.label_prefix.clear();
-  MarkerTrajectories file;
-  status = ReadMarkerFile(markers_path, &file);
-  if (status.ok()) status = RequireMarkerData(markers_path, file);
-  if (!status.ok()) return status;
-  // The template's markers, those the map names under the take's labels.
-  MarkerSet template_markers = templ.markers;
-  if (settings.template_labels == kTemplateLabelsAuto) {
-    status = ChooseShippedTemplateLabels(templ.markers, file, &result->template_labels_map, &result->template_labels);
-  } else if (TemplateLabelsGiven(settings)) {
-    status = ReadTemplateLabels(settings.template_labels, &result->template_labels);
-    const bool inline_pairs = settings.template_labels.find(':') != std::string::npos;
-    result->template_labels_map = inline_pairs ? "inline" : settings.template_labels;
-  }
-  if (!status.ok()) return status;
-  if (!result->template_labels.empty()) {
-    status = RenameTemplateMarkers(result->template_labels, skeleton, file, markers_path, &template_markers);
-    if (!status.ok()) return status;
-    SkeletonFitEvent event;
-    event.kind = SkeletonFitEvent::kTemplateLabels;
-    event.text = result->template_labels_map;
-    event.markers = static_cast<int>(result->template_labels.size());
-    emit(event);
-  }
-  // A template set may name markers this take lacks: fit the ones it has.
-  std::vector<MarkerSpec> present;
-  std::string absent;
-  for (int m = 0; m < template_markers.num_markers(); ++m) {
-    if (file.FindMarker(template_markers.label(m)) >= 0) {
-      present.push_back(template_markers.marker(m));
-    } else {
-      absent += (absent.empty() ? "" : ", ") + template_markers.label(m);
-      result->absent.push_back(template_markers.label(m));
-    }
-  }
-  if (present.size() < 3) {
-    return Status::Error(markers_path + ": fewer than 3 of the template marker set's labels (--template_labels "
-                         "maps the template's labels to the take's)");
-  }
-  if (!absent.empty()) {
-    SkeletonFitEvent event;
-    event.kind = SkeletonFitEvent::kAbsentMarkers;
-    event.text = absent;
-    emit(event);
-  }
-  // The skin check allows what the template itself holds: the fit keeps a template marker
-  // within its starting distance when that exceeds --max_skin_cm (skeleton_fit.h), and a
-  // calibrated template is trusted (CMU subject 2 calibrated on 02_01 holds RBAC 20.7 cm
-  // from upperback; clamping it to 12 cm fits cmu_02_05 at 16.4 mm instead of 4.6).
-  SubjectCheckOptions check_options;
-  for (const MarkerSpec& spec : present) {
-    for (const MarkerAttachment& a : spec.attachments) {
-      const double cm = DistanceToBone(skeleton, a.joint, a.offset) / units_per_cm;
-      check_options.max_marker_bone_distance_cm = std::max(check_options.max_marker_bone_distance_cm, cm + 0.1);
-    }
-  }
-  status = MarkerSet::Create(skeleton, std::move(present), &take_mapping.markers);
-  if (!status.ok()) return status;
-  MarkerTake take;
-  status = LoadTakeForSubject(take_mapping, markers_path, &take);
-  if (!status.ok()) return status;
-  const int frames = settings.fit_max_frames > 0 ? std::min<int>(settings.fit_max_frames, take.observed.size())
-                                                 : static_cast<int>(take.observed.size());
-  take.observed.resize(frames);
-  result->frames = frames;
-  MarkerTrajectories model_frame = take.trajectories;  // For auto attach.
-  TransformMarkers(take.transform, skeleton.unit(), &model_frame);
-
-  SkeletonFitOptions options;
-  options.frame_step = settings.fit_frame_step;
-  options.min_scale = settings.min_bone_scale;
-  options.max_scale = settings.max_bone_scale;
-  options.max_bone_distance = settings.max_skin_cm * units_per_cm;
-  options.root_from_markers = true;
+  const SkeletonFitOptions base_options = BaseFitOptions(settings, units_per_cm);
   const double outlier_distance = settings.fit_outlier_mm * 0.1 * units_per_cm;
-
-  Skeleton fitted = skeleton;
-  MarkerSet fitted_markers = take_mapping.markers;
-  Motion motion;
-  SkeletonFitReport report;
-  std::vector<double> scales(skeleton.num_joints(), 1.0);
-  // The best round with every marker attached, by marker RMS: re-attaching can also make
-  // a round worse. Round 0 is a candidate when it already holds every marker the attach
-  // finds (a template with the take's whole marker set: round 0 is a complete fit).
-  bool round0_complete = false;
-  // Round 0's outliers (frame, label): samples of the template's markers that its fit left out.
-  std::vector<std::pair<int, std::string>> template_outliers;
-  struct Best {
-    int round = -1;
-    double rms = 0.0;
-    Skeleton skeleton;
-    MarkerSet markers;
-    Motion motion;
-    SkeletonFitReport report;
-    std::vector<std::vector<Eigen::Vector3d>> observed;
-  } best;
+  RoundState state;
+  state.fitted = skeleton;
+  state.fitted_markers = fit.mapping.markers;
+  state.scales.assign(skeleton.num_joints(), 1.0);
   for (int round = 0; round <= rounds; ++round) {
-    std::vector<std::vector<Eigen::Vector3d>> observed = take.observed;
-    MarkerSet round_markers = fitted_markers;
-    if (round >= 2 && (best.round >= 1 || round0_complete)) {
-      // Each round starts from the best so far: a worse round must not feed the next.
-      fitted = best.skeleton;
-      fitted_markers = best.markers;
-      motion = best.motion;
-      scales = best.report.bone_scales;
-    }
+    Observations observed = fit.take.observed;
+    MarkerSet round_markers = state.fitted_markers;
+    if (round >= 2 && (state.best.round >= 1 || state.round0_complete)) StartFromBest(&state);
     if (round > 0) {
-      // Attach every marker of the take to the skeleton as fitted; markers the template
-      // knows keep its joints (and their fitted offsets): they anchor the skeleton.
-      CalibrationOptions calibration;
-      calibration.max_bone_distance = options.max_bone_distance;
-      CalibrationResult attached;
-      status = CalibrateMarkers(fitted, motion, model_frame, calibration, nullptr, &attached);
-      if (!status.ok()) {
-        return Status::Error(markers_path + ": attach round " + std::to_string(round) + ": " + status.message());
-      }
-      std::vector<MarkerSpec> specs;
-      int new_markers = 0;
-      std::vector<std::pair<int, int>> reattached;  // (index in specs, index in fitted_markers).
-      for (int m = 0; m < attached.marker_set.num_markers(); ++m) {
-        MarkerSpec spec = attached.marker_set.marker(m);
-        const int known = fitted_markers.FindMarker(spec.label);
-        if (known >= 0 && take_mapping.markers.FindMarker(spec.label) >= 0) {
-          // As fitted (not clamped again: the fit kept it within its own radius, which
-          // can exceed max_skin_cm for a template marker), so the round starts where the
-          // last one ended.
-          spec = fitted_markers.marker(known);
-        } else {
-          if (known >= 0) {
-            reattached.push_back({static_cast<int>(specs.size()), known});
-          } else {
-            ++new_markers;
-          }
-          for (MarkerAttachment& a : spec.attachments) {
-            if (options.max_bone_distance > 0.0) {
-              a.offset = ClampToBone(fitted, a.joint, a.offset, options.max_bone_distance);
-            }
-          }
-        }
-        specs.push_back(spec);
-      }
-      if (!reattached.empty()) {
-        // A marker attached in an earlier round keeps that attachment (as fitted) unless
-        // the new one fits the best round's motion better: so the round does not start
-        // worse than the state it comes from. (Keeping every earlier attachment starts
-        // squat.c3d's rounds where the last ended, but leaves JA1Gait35 at round 1's poor
-        // attachments, 107 mm; re-attaching every one started squat's rounds 4-38 mm worse.)
-        MarkerSet fresh;
-        status = MarkerSet::Create(fitted, specs, &fresh);
-        if (!status.ok()) return status;
-        CalibrationResult fresh_fit, kept_fit;
-        status = EvaluateMarkerSet(fitted, motion, model_frame, fresh, calibration, &fresh_fit);
-        if (status.ok()) status = EvaluateMarkerSet(fitted, motion, model_frame, fitted_markers, calibration, &kept_fit);
-        if (!status.ok()) {
-          return Status::Error(markers_path + ": attach round " + std::to_string(round) + ": " + status.message());
-        }
-        auto rms_of = [](const CalibrationResult& fit, const std::string& label) {
-          for (const CalibratedMarker& c : fit.markers) {
-            if (c.label == label) return c.rms;
-          }
-          return std::numeric_limits<double>::infinity();
-        };
-        for (const auto& [index, known] : reattached) {
-          const std::string& label = specs[index].label;
-          if (rms_of(kept_fit, label) <= rms_of(fresh_fit, label)) specs[index] = fitted_markers.marker(known);
-        }
-      }
-      if (round == 1) round0_complete = new_markers == 0;
-      status = MarkerSet::Create(fitted, std::move(specs), &round_markers);
+      status = AttachRound(fit, base_options.max_bone_distance, round, markers_path, &state, &round_markers,
+                           &observed);
       if (!status.ok()) return status;
-      status = GatherObservations(round_markers, take.trajectories, take.transform, &observed);
-      if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
-      observed.resize(frames);
-      for (const auto& [f, label] : template_outliers) {
-        const int m = round_markers.FindMarker(label);
-        if (m >= 0) observed[f][m].setConstant(std::numeric_limits<double>::quiet_NaN());
-      }
     }
-    // Outliers are found in round 0, on the template's markers (a trusted attachment), and left
-    // out of every round. A fresh attachment misses by a lot until its round fits it (squat.c3d's
-    // round 1 starts at 59-104 mm): finding outliers in the attach rounds too left squat at
-    // 10.8-19.8 mm instead of 7.94 (gates 200-400 mm).
-    options.outlier_distance = round == 0 ? outlier_distance : 0.0;
-    options.iterations = round > 0 ? settings.attach_iterations
-                                   : settings.fit_iterations >= 0 ? settings.fit_iterations : (from_subject ? 15 : 6);
-    // The template's offsets are a prior worth keeping; an attach round's are estimates
-    // from a motion that is itself being fitted.
-    options.offset_prior_weight = round == 0 ? settings.offset_prior : 0.0;
-    options.initial_scales = scales;
-    SkeletonFitEvent started;
-    started.kind = SkeletonFitEvent::kRoundStart;
-    started.round = round;
-    started.rounds = rounds;
-    started.markers = round_markers.num_markers();
-    started.frames = frames;
-    started.iterations = options.iterations;
-    emit(started);
-    const SkeletonFitProgress progress = [&](int iteration, double rms) {
-      SkeletonFitEvent event = started;
-      event.kind = SkeletonFitEvent::kIteration;
-      event.iteration = iteration;
-      event.rms = rms;
-      emit(event);
-    };
-    // Pose solves of this round: 0 before the first step (the outlier passes' too), k the one of step k.
-    const std::function<void(int, int)> frame_progress = [&](int step, int frames_done) {
-      SkeletonFitEvent event = started;
-      event.kind = SkeletonFitEvent::kFrames;
-      event.iteration = step;
-      event.frames_done = frames_done;
-      emit(event);
-    };
-    Skeleton next;
-    MarkerSet next_markers;
-    status = FitSkeletonToMarkers(fitted, round_markers, observed, solve_options, options, &next, &next_markers,
-                                  &motion, &report, progress, callback ? frame_progress : nullptr);
-    if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
-    motion.frame_rate = take.trajectories.frame_rate > 0.0 ? take.trajectories.frame_rate : 120.0;
-    fitted = std::move(next);
-    fitted_markers = std::move(next_markers);
-    scales = report.bone_scales;
-    if (round == 0) {
-      for (const auto& [f, m] : report.outliers) template_outliers.push_back({f, round_markers.label(m)});
-      for (const auto& [f, m] : report.outliers) observed[f][m].setConstant(std::numeric_limits<double>::quiet_NaN());
-    }
-    result->rounds.push_back({round, fitted_markers.num_markers(), report.rms, static_cast<int>(template_outliers.size())});
-    SkeletonFitEvent done = started;
-    done.kind = SkeletonFitEvent::kRoundDone;
-    done.markers = fitted_markers.num_markers();
-    done.rms_first = report.rms.front();
-    done.rms = report.rms.back();
-    emit(done);
-    const bool comparable = round >= 2 || (round == 1 && round0_complete);  // Same markers as the best.
-    if (!comparable || report.rms.back() < best.rms) {
-      const bool small_gain = comparable && report.rms.back() > (1.0 - kMinRoundGain) * best.rms;
-      best = {round, report.rms.back(), fitted, fitted_markers, motion, report, observed};
-      if (small_gain && round < rounds) {
-        // Kept, but the offsets now fit the take's noise more than its shape: on cmu_02_05
-        // rounds 3-12 gained 0.01 mm each while the leave-one-marker-out mean error grew
-        // from 9.7 to 12.5 mm.
-        SkeletonFitEvent stopped = started;
-        stopped.kind = SkeletonFitEvent::kStopped;
-        stopped.rms = best.rms;
-        emit(stopped);
-        break;
-      }
-    } else {
-      // The next round would start from the same best state and attach alike.
-      SkeletonFitEvent stopped = started;
-      stopped.kind = SkeletonFitEvent::kStopped;
-      emit(stopped);
-      break;
-    }
+    const SkeletonFitOptions options =
+        RoundOptions(base_options, settings, from_subject, round, outlier_distance, state.scales);
+    const SkeletonFitEvent started =
+        RoundStartEvent(round, rounds, round_markers.num_markers(), fit.frames, options.iterations);
+    events.Emit(started);
+    status = FitRound(fit, options, solve_options, round_markers, started, events, markers_path, &state, &observed,
+                      result);
+    if (!status.ok()) return status;
+    if (!KeepBestRound(round, rounds, observed, started, events, &state)) break;
   }
-  if (rounds > 0 && best.round != rounds) {
+  if (rounds > 0 && state.best.round != rounds) {
     SkeletonFitEvent kept;
     kept.kind = SkeletonFitEvent::kKept;
-    kept.round = best.round;
+    kept.round = state.best.round;
     kept.rounds = rounds;
-    kept.rms = best.rms;
-    emit(kept);
+    kept.rms = state.best.rms;
+    events.Emit(kept);
   }
-  // A joint one marker alone constrains rests at its mean fitted pose (lone_joint_gauge.h):
-  // the same fit, but a solve without that marker predicts it.
-  std::vector<std::string> regauged;
-  status = FixLoneJointGauges(best.skeleton, &best.markers, &best.motion, &regauged);
-  if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
-  // The checks see the kept model against the observations it was fitted to.
-  result->kept_round = best.round;
-  result->outlier_samples = static_cast<int>(template_outliers.size());
-  result->motion = std::move(best.motion);
-  result->motion.frame_rate = take.trajectories.frame_rate;
-  result->report = std::move(best.report);
-  result->checks = CheckSubjectFit(best.skeleton, best.markers, best.observed, result->motion, check_options);
-  Subject& subject = result->subject;
-  subject.name = templ.name.empty() ? "fitted" : "fitted from " + templ.name;
-  subject.skeleton = std::move(best.skeleton);  // Inline: the fitted skeleton exists nowhere else.
-  subject.markers = std::move(best.markers);
-  subject.axes = inputs.axes;
-  subject.marker_scale = inputs.marker_scale;
-  subject.amc_fps = inputs.amc_fps;
-  // The rest prior's reference in later solves of this subject (directions no marker fixes
-  // settle at the pose the subject typically holds, not at zero rotations).
-  subject.mean_pose = MeanPose(subject.skeleton, result->motion);
+  status = KeepSubject(inputs, fit, &state, result);
+  if (!status.ok()) return status;
   result->seconds = Seconds(start);
   return Status::Ok();
 }
