@@ -178,6 +178,421 @@ Observations ReconstructMarkers(const Skeleton& skeleton, const MarkerSet& marke
   return out;
 }
 
+// What every step of the repair reads: the model, the take, the options, and the defaults
+// the options select.
+struct RepairContext {
+  const Skeleton& skeleton;
+  const MarkerSet& markers;
+  const Observations& observed;
+  const RepairOptions& options;
+  double outlier;            // The fixed gate and the robust gates' cap: outlier_distance, else dp_max.
+  double resync_tolerance;   // Re-solves of changed frames stop where the solution rejoins the earlier one.
+  ResidualModelOptions model_options;  // Step 3b (and its refit after relabelling).
+};
+
+// The context of one repair, its defaults resolved once for every step.
+RepairContext MakeRepairContext(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
+                                const RepairOptions& options) {
+  const double outlier = options.outlier_distance > 0.0 ? options.outlier_distance : options.dp_max;
+  ResidualModelOptions model_options;
+  model_options.robust = options.robust_outliers;
+  model_options.mads = options.outlier_mads;
+  model_options.min_distance = options.outlier_min_distance > 0.0 ? options.outlier_min_distance : outlier / 4.0;
+  model_options.max_distance = outlier;
+  model_options.fixed_distance = outlier;
+  const double resync_tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
+  return {skeleton, markers, observed, options, outlier, resync_tolerance, model_options};
+}
+
+// The reference Y^ and the marker paths it predicts, X^, as observations and as trajectories.
+struct Reference {
+  Motion motion;
+  Observations reconstructed;
+  MarkerTrajectories paths;
+};
+
+// Step 3: X^ from Y^ (again whenever Y^ is redone).
+void ReconstructReference(const RepairContext& ctx, Reference* reference) {
+  reference->reconstructed = ReconstructMarkers(ctx.skeleton, ctx.markers, reference->motion);
+  reference->paths = ObservationTrajectories(ctx.markers, reference->reconstructed);
+}
+
+// Error unless the options are valid, the observations fit the marker set, and the
+// unlabelled points (if any) have the observations' frames and their tracks' width.
+Status CheckRepairInputs(const MarkerSet& markers, const Observations& observed, const UnlabelledPoints& unlabelled,
+                         const RepairOptions& options) {
+  if (std::string error; !options.IsValid(&error)) return Status::Error(error);
+  if (Status status = CheckRepairObservations(markers, observed); !status.ok()) return status;
+  if (unlabelled.num_tracks() > 0 && unlabelled.points.size() != observed.size()) {
+    return Status::Error("unlabelled points: " + std::to_string(unlabelled.points.size()) + " frames, markers " +
+                         std::to_string(observed.size()));
+  }
+  for (const auto& frame : unlabelled.points) {
+    if (frame.size() != static_cast<size_t>(unlabelled.num_tracks())) {
+      return Status::Error("unlabelled points: a frame's point count differs from the track names'");
+    }
+  }
+  return Status::Ok();
+}
+
+// Steps 1 and 2 with the robust tracker: it needs no naive solve, so with `parallel` the
+// two run side by side on two threads.
+Status SolveNaiveBesideTracker(const RepairContext& ctx, const std::function<void(int)>& naive_progress,
+                               StageClock* clock, Motion* naive, Motion* reference, SequenceSolveReport* sequence) {
+  const RepairOptions& options = ctx.options;
+  Status reference_status = Status::Ok();
+  SequenceSolveReport tracker_report;
+  auto track = [&] {
+    reference_status = SolveSequence(ctx.skeleton, ctx.markers, ctx.observed, options.tracker,
+                                     RestPose(ctx.skeleton), reference, &tracker_report);
+  };
+  std::thread tracker;
+  if (options.parallel) tracker = std::thread(track);
+  const Status status = SolveSequence(ctx.skeleton, ctx.markers, ctx.observed, options.naive, RestPose(ctx.skeleton),
+                                      naive, sequence, naive_progress);
+  if (options.parallel) {
+    tracker.join();
+  } else {
+    track();
+  }
+  if (!status.ok()) return status;
+  if (!reference_status.ok()) return reference_status;
+  clock->Lap(options.parallel ? "IK (naive) + reference (robust tracker), in parallel"
+                              : "IK (naive) + reference (robust tracker)");
+  return Status::Ok();
+}
+
+// Steps 1 and 2 with the whole-clip reference: the robust clip solve starts from Y.
+Status SolveNaiveThenClip(const RepairContext& ctx, const std::function<void(int)>& naive_progress,
+                          StageClock* clock, Motion* naive, Motion* reference, SequenceSolveReport* sequence) {
+  Status status = SolveSequence(ctx.skeleton, ctx.markers, ctx.observed, ctx.options.naive, RestPose(ctx.skeleton),
+                                naive, sequence, naive_progress);
+  if (!status.ok()) return status;
+  clock->Lap("IK (naive solve)");
+  *reference = *naive;
+  ClipSolveReport clip;
+  status = SolveClip(ctx.skeleton, ctx.markers, ctx.observed, ctx.options.reference, reference, &clip);
+  if (!status.ok()) return status;
+  clock->Lap("Reference solve (robust clip)");
+  return Status::Ok();
+}
+
+// Step 3c: swapped samples relabelled in *x (*relabelled: *x's observations, when any).
+// The robust tracker leans toward the swapped labels while a swap lasts (on a bone that
+// one marker pins, such as the thumb's, it follows them), so the relabelled samples would
+// be judged outliers against it: it is redone where the samples changed, until it rejoins
+// the earlier solution, and X^ with it. A swap from the first frame misled the tracker's
+// start (its orientation search): then the whole tracker is run again.
+Status UndoSwapsStep(const RepairContext& ctx, const MarkerResidualModel& model, MarkerTrajectories* x,
+                     Observations* relabelled, Reference* reference, RepairReport* report) {
+  const RepairOptions& options = ctx.options;
+  SwapDetectionOptions swap_options;
+  swap_options.radius = options.swap_radius > 0.0 ? options.swap_radius : 3.0 * options.dp_max;
+  swap_options.min_frames = options.swap_min_frames;
+  report->swaps = UndoSwaps(model, swap_options, x);
+  if (report->swaps.empty()) return Status::Ok();
+  *relabelled = TrajectoryObservations(*x);
+  if (options.reference_kind != ReferenceKind::kTracker) return Status::Ok();
+  Motion redone;
+  Status status = Status::Ok();
+  if (report->swaps.front().first == 0) {
+    SequenceSolveReport tracker_report;
+    status = SolveSequence(ctx.skeleton, ctx.markers, *relabelled, options.tracker, RestPose(ctx.skeleton), &redone,
+                           &tracker_report);
+  } else {
+    int resolved = 0;
+    status = ResolveChangedFrames(ctx.skeleton, ctx.markers, ctx.observed, *relabelled, reference->motion,
+                                  options.tracker, ctx.resync_tolerance, options.parallel, &redone, &resolved);
+  }
+  if (!status.ok()) return status;
+  reference->motion = std::move(redone);
+  ReconstructReference(ctx, reference);
+  return Status::Ok();
+}
+
+// Step 3d: the take's unlabelled points become the samples of missing markers in *x where
+// the residual model's prediction and the marker's track say they belong.
+void AssignUnlabelledStep(const RepairContext& ctx, const MarkerResidualModel& model,
+                          const UnlabelledPoints& unlabelled, MarkerTrajectories* x, Observations* relabelled,
+                          RepairReport* report) {
+  const RepairOptions& options = ctx.options;
+  UnlabelledAssignmentOptions assign;
+  assign.mads = options.outlier_mads;
+  assign.min_distance = options.unlabelled_min_distance > 0.0 ? options.unlabelled_min_distance : ctx.outlier / 2.0;
+  assign.max_distance = options.unlabelled_max_distance > 0.0 ? options.unlabelled_max_distance : 1.25 * ctx.outlier;
+  assign.min_frames = options.unlabelled_min_frames;
+  report->unlabelled = AssignUnlabelledPoints(model, unlabelled, assign, x);
+  if (!report->unlabelled.empty()) *relabelled = TrajectoryObservations(*x);
+}
+
+// After relabelling, the naive solve redone where the samples changed, and the residual
+// model refitted: it was fitted with the swapped samples in its window and without the
+// assigned ones.
+Status ResolveRelabelled(const RepairContext& ctx, const Observations& relabelled, const Reference& reference,
+                         const MarkerTrajectories& x, const RepairReport& report, Motion* naive,
+                         MarkerResidualModel* model) {
+  Motion solved;
+  int resolved = 0;
+  const Status status = ResolveChangedFrames(ctx.skeleton, ctx.markers, ctx.observed, relabelled, *naive,
+                                             ctx.options.naive, ctx.resync_tolerance, ctx.options.parallel, &solved,
+                                             &resolved);
+  if (!status.ok()) return status;
+  *naive = std::move(solved);
+  *model = FitMarkerResidualModel(ctx.skeleton, ctx.markers, reference.motion, reference.reconstructed, x,
+                                  ctx.model_options);
+  // The reference followed the swapped labels: its parent frames do not judge the
+  // relabelled samples (marker_residual_model.h).
+  for (const MarkerSwap& swap : report.swaps) {
+    for (int f = swap.first; f <= swap.last; ++f) {
+      for (const auto& [from, to] : swap.from_to) model->absorbed[f][to] = 0;
+    }
+  }
+  return Status::Ok();
+}
+
+// Steps 3c and 3d, then the naive solve redone where the samples changed; steps 4-7 work
+// on the relabelled samples (*relabelled, when any changed).
+Status RelabelSamples(const RepairContext& ctx, const UnlabelledPoints& unlabelled, StageClock* clock,
+                      Motion* naive, Reference* reference, MarkerResidualModel* model, MarkerTrajectories* x,
+                      Observations* relabelled, RepairReport* report) {
+  const RepairOptions& options = ctx.options;
+  const bool assigning = options.assign_unlabelled && unlabelled.num_tracks() > 0;
+  if (options.undo_swaps) {
+    const Status status = UndoSwapsStep(ctx, *model, x, relabelled, reference, report);
+    if (!status.ok()) return status;
+    if (assigning) clock->Lap("Swap Detection");
+  }
+  if (assigning) AssignUnlabelledStep(ctx, *model, unlabelled, x, relabelled, report);
+  if (!report->swaps.empty() || !report->unlabelled.empty()) {
+    const Status status = ResolveRelabelled(ctx, *relabelled, *reference, *x, *report, naive, model);
+    if (!status.ok()) return status;
+  }
+  if (assigning) {
+    clock->Lap("Unlabelled Assignment");  // With the re-solve of the changed frames.
+  } else if (options.undo_swaps) {
+    clock->Lap("Swap Detection");
+  }
+  return Status::Ok();
+}
+
+// Step 4's intervals the input itself marks: the capture's gaps, the labels that received
+// swapped samples, and the runs assigned unlabelled points.
+void RecordInputIntervals(const MarkerTrajectories& captured, RepairReport* report) {
+  for (const Gap& gap : FindGaps(captured)) report->detected.push_back({gap.marker, gap.first, gap.last, "missing"});
+  for (const MarkerSwap& swap : report->swaps) {
+    for (const auto& [from, to] : swap.from_to) {
+      report->detected.push_back({to, swap.first, swap.last, "swap"});
+    }
+  }
+  for (const UnlabelledAssignment& a : report->unlabelled) {
+    report->detected.push_back({a.marker, a.first, a.last, "unlabelled"});
+  }
+}
+
+// DetectBad(Y, Y^) as marker samples (frames x markers): a joint difference condemns a
+// marker only where it moves the marker past its gate.
+Status JointDifferenceSamples(const RepairContext& ctx, const Motion& naive, const Reference& reference,
+                              const MarkerResidualModel& model, const MarkerTrajectories& x,
+                              std::vector<std::vector<char>>* bad) {
+  std::vector<std::vector<char>> bad_joints;
+  const Status status = DetectBadJoints(ctx.skeleton, naive, reference.motion,
+                                        {ctx.options.dp_max, ctx.options.dr_max_rad}, &bad_joints);
+  if (!status.ok()) return status;
+  *bad = BadMarkerSamples(ctx.markers, bad_joints);
+  FkData fk_naive(ctx.skeleton);
+  for (int f = 0; f < x.num_frames(); ++f) {
+    bool any = false;
+    for (int m = 0; m < x.num_markers() && !any; ++m) any = (*bad)[f][m];
+    if (!any) continue;
+    ForwardKinematics(ctx.skeleton, naive.frames[f], &fk_naive);
+    for (int m = 0; m < x.num_markers(); ++m) {
+      if ((*bad)[f][m] && (ctx.markers.Position(m, fk_naive) - reference.reconstructed[f][m]).norm() <= model.gate[m]) {
+        (*bad)[f][m] = 0;
+      }
+    }
+  }
+  return Status::Ok();
+}
+
+// Names each new gap of `flagged` by its first cause: swap (a label left without a
+// sample), outlier, else joint difference; gaps the capture had are already recorded.
+void RecordNewGaps(const MarkerTrajectories& flagged, const MarkerTrajectories& captured,
+                   const MarkerTrajectories& x, const MarkerTrajectories& outliers_removed, RepairReport* report) {
+  for (const Gap& gap : FindGaps(flagged)) {
+    bool natural = true, outlying = false, swapped = false;
+    for (int f = gap.first; f <= gap.last; ++f) {
+      natural &= !captured.valid(f, gap.marker);
+      swapped |= captured.valid(f, gap.marker) && !x.valid(f, gap.marker);
+      outlying |= x.valid(f, gap.marker) && !outliers_removed.valid(f, gap.marker);
+    }
+    if (!natural) {
+      report->detected.push_back(
+          {gap.marker, gap.first, gap.last, swapped ? "swap" : outlying ? "outlier" : "joint difference"});
+    }
+  }
+}
+
+// Step 4: *flagged is x without its outliers (samples past their marker's gate) and the
+// samples the joint difference condemns; every interval found goes into the report.
+Status DetectGaps(const RepairContext& ctx, const Motion& naive, const Reference& reference,
+                  const MarkerResidualModel& model, const MarkerTrajectories& captured, const MarkerTrajectories& x,
+                  RepairReport* report, MarkerTrajectories* flagged) {
+  RecordInputIntervals(captured, report);
+  std::vector<std::vector<char>> bad;
+  const Status status = JointDifferenceSamples(ctx, naive, reference, model, x, &bad);
+  if (!status.ok()) return status;
+  MarkerTrajectories outliers_removed = x;
+  for (int f = 0; f < x.num_frames(); ++f) {
+    for (int m = 0; m < x.num_markers(); ++m) {
+      if (x.valid(f, m) && model.Outlying(f, m, x.position(f, m))) outliers_removed.SetMissing(f, m);
+    }
+  }
+  *flagged = outliers_removed;
+  for (int f = 0; f < x.num_frames(); ++f) {
+    for (int m = 0; m < x.num_markers(); ++m) {
+      if (bad[f][m] && flagged->valid(f, m)) flagged->SetMissing(f, m);
+    }
+  }
+  RecordNewGaps(*flagged, captured, x, outliers_removed, report);
+  return Status::Ok();
+}
+
+// Step 5, in the thesis' order: smart trimming, small-track removal, small-gap filling.
+// *before_small keeps the samples before the small gaps' cubics: step 6 conditions on them.
+void PreprocessGaps(const RepairContext& ctx, const MarkerTrajectories& reference_paths,
+                    const MarkerTrajectories& unflagged, MarkerTrajectories* x, MarkerTrajectories* before_small,
+                    RepairReport* report) {
+  report->trimmed_samples = TrimAroundGaps(reference_paths, ctx.options.trim_max, unflagged, x);
+  report->removed_track_samples = RemoveSmallTracks(ctx.options.small_track, x);
+  *before_small = *x;
+  report->polynomial_samples = FillSmallGaps(ctx.options.small_gap, x);
+  for (const Gap& gap : FindGaps(*before_small)) {
+    if (x->valid(gap.first, gap.marker)) report->filled.push_back({gap.marker, gap.first, gap.last, "polynomial"});
+  }
+}
+
+// Step 6 with the tracker: Y^ refitted without the cut samples where they were (the
+// trimmed samples kept), until it rejoins; *refit_paths is its X^.
+Status RefitReferencePaths(const RepairContext& ctx, const Observations& input, const MarkerTrajectories& flagged,
+                           const Motion& reference, MarkerTrajectories* refit_paths) {
+  Motion refitted;
+  int resolved = 0;
+  const Status status = ResolveChangedFrames(ctx.skeleton, ctx.markers, input, TrajectoryObservations(flagged),
+                                             reference, ctx.options.tracker, ctx.resync_tolerance,
+                                             ctx.options.parallel, &refitted, &resolved);
+  if (!status.ok()) return status;
+  *refit_paths = ObservationTrajectories(ctx.markers, ReconstructMarkers(ctx.skeleton, ctx.markers, refitted));
+  return Status::Ok();
+}
+
+// Which cut runs are rough (noise, jitter): the removed samples' median |second
+// difference| over refit_rough_factor times the marker's own over its kept samples. None
+// without a refitted reference (then every gap is filled from X^ as solved).
+class RoughRuns {
+ public:
+  RoughRuns(bool refit, double factor, const MarkerTrajectories& before_small, const MarkerTrajectories& unflagged)
+      : refit_(refit), factor_(factor), unflagged_(unflagged), own_(before_small.num_markers(), -1.0) {
+    if (!refit) return;
+    for (int m = 0; m < before_small.num_markers(); ++m) {
+      own_[m] = MedianSecondDifference(before_small, nullptr, m, 0, before_small.num_frames() - 1);
+    }
+  }
+  bool IsRough(const Gap& gap) const {
+    const double roughness = MedianSecondDifference(unflagged_, nullptr, gap.marker, gap.first, gap.last);
+    return refit_ && roughness >= 0.0 && roughness > factor_ * own_[gap.marker];
+  }
+
+ private:
+  bool refit_;
+  double factor_;
+  const MarkerTrajectories& unflagged_;
+  std::vector<double> own_;  // Per marker; -1 without refit.
+};
+
+// A rough run is cut whole: the samples beside it as rough as it (a noise run's ends and
+// small draws pass the gates), judged on the residual to X^ as solved
+// (signal/rough_run_extension.h); they leave the kriging's conditioning samples too.
+// Returns the samples cut.
+int ExtendRoughRuns(const RepairContext& ctx, const RoughRuns& rough, const MarkerTrajectories& unflagged,
+                    const MarkerTrajectories& reference_paths, MarkerTrajectories* x,
+                    MarkerTrajectories* before_small) {
+  // The threshold is at least a tenth of the gates' floor (1 mm by default): a noise-free
+  // marker's median is ~0, and the walk then cut the clean samples where X^ leaned toward
+  // the run (the synthetic demo walk: 4-7 a side; on real takes the floor changes nothing).
+  const double threshold_floor = 0.1 * ctx.model_options.min_distance;
+  std::vector<double> own(x->num_markers(), std::numeric_limits<double>::quiet_NaN());  // Computed once needed.
+  int cut = 0;
+  for (const Gap& gap : FindGaps(*x)) {
+    if (!rough.IsRough(gap)) continue;
+    double& own_level = own[gap.marker];
+    if (std::isnan(own_level)) {
+      own_level = MedianSecondDifference(*before_small, &reference_paths, gap.marker, 0, x->num_frames() - 1);
+    }
+    if (own_level < 0.0) continue;
+    const double threshold = std::max(ctx.options.rough_extension_factor * own_level, threshold_floor);
+    cut += ExtendRoughRun(gap, unflagged, reference_paths, threshold, ctx.options.trim_max, x, before_small);
+  }
+  return cut;
+}
+
+// Each remaining gap refilled: X^ (refitted for smooth runs and gaps, as solved for rough
+// runs) plus the offset kriged from the samples that survived detection and preprocessing
+// (not the small gaps' cubics nor another gap's fill; one offset process per reference),
+// or Algorithm 3's blend where no process was estimated.
+Status FillGaps(const RepairContext& ctx, const RoughRuns& rough, bool refit, const MarkerTrajectories& reference_paths,
+                const MarkerTrajectories& refit_paths, const MarkerTrajectories& before_small, MarkerTrajectories* x,
+                RepairReport* report) {
+  const RepairOptions& options = ctx.options;
+  GapFillOptions fill;
+  if (options.velocity_clamp > 0.0) fill.velocity_clamp = options.velocity_clamp;
+  fill.edge_samples = options.edge_samples;
+  OffsetKrigingOptions kriging;
+  kriging.samples_per_side = options.fill_samples;
+  std::vector<OffsetProcess> processes, refit_processes;
+  Status status = Status::Ok();
+  if (options.fill == GapFillKind::kKriging) {
+    status = EstimateOffsetProcesses(before_small, reference_paths, kriging, &processes);
+    if (status.ok() && refit) status = EstimateOffsetProcesses(before_small, refit_paths, kriging, &refit_processes);
+    if (!status.ok()) return status;
+  }
+  for (const Gap& gap : FindGaps(*x)) {
+    const bool from_refit = refit && !rough.IsRough(gap);
+    const MarkerTrajectories& paths = from_refit ? refit_paths : reference_paths;
+    const std::vector<OffsetProcess>& offsets = from_refit ? refit_processes : processes;
+    if (options.fill == GapFillKind::kKriging && offsets[gap.marker].valid) {
+      status = FillGapByKriging(gap, before_small, paths, offsets[gap.marker], kriging, x);
+    } else {
+      status = FillGapFromReference(gap, paths, fill, x);
+    }
+    if (!status.ok()) return status;
+    const bool whole = gap.first == 0 && gap.last + 1 == x->num_frames();
+    report->filled.push_back({gap.marker, gap.first, gap.last, whole ? "reference only" : "reference"});
+  }
+  return Status::Ok();
+}
+
+// Step 6, marker filling from the reference. The tracker leaned toward the samples now cut
+// (its loss bounds the pull of each sample, not of a displaced run of them): it is refitted
+// without them. A smooth run (a marker flown off, a ghost) and a gap without samples are
+// filled from the refitted X^; a rough run, whose samples scatter about the true path so
+// that the robust solve averaged them, from X^ as solved (issue 16, BENCHMARKS.md).
+Status FillMarkers(const RepairContext& ctx, const Observations& input, const Reference& reference,
+                   const MarkerTrajectories& flagged, const MarkerTrajectories& unflagged,
+                   MarkerTrajectories* before_small, MarkerTrajectories* x, RepairReport* report) {
+  const RepairOptions& options = ctx.options;
+  MarkerTrajectories refit_paths;
+  const bool refit = options.refit_reference && options.reference_kind == ReferenceKind::kTracker;
+  if (refit) {
+    const Status status = RefitReferencePaths(ctx, input, flagged, reference.motion, &refit_paths);
+    if (!status.ok()) return status;
+  }
+  const RoughRuns rough(refit, options.refit_rough_factor, *before_small, unflagged);
+  if (refit && options.rough_extension_factor > 0.0) {
+    report->rough_extension_samples += ExtendRoughRuns(ctx, rough, unflagged, reference.paths, x, before_small);
+  }
+  return FillGaps(ctx, rough, refit, reference.paths, refit_paths, *before_small, x, report);
+}
+
 }  // namespace
 
 MarkerTrajectories ObservationTrajectories(const MarkerSet& markers, const Observations& observed) {
@@ -260,24 +675,14 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
                      const UnlabelledPoints& unlabelled, const RepairOptions& options, Observations* repaired,
                      Motion* motion, RepairReport* report, RepairIntermediates* intermediates,
                      const RepairProgress& progress) {
-  if (std::string error; !options.IsValid(&error)) return Status::Error(error);
-  if (Status status = CheckRepairObservations(markers, observed); !status.ok()) return status;
-  if (unlabelled.num_tracks() > 0 && unlabelled.points.size() != observed.size()) {
-    return Status::Error("unlabelled points: " + std::to_string(unlabelled.points.size()) + " frames, markers " +
-                         std::to_string(observed.size()));
-  }
-  for (const auto& frame : unlabelled.points) {
-    if (frame.size() != static_cast<size_t>(unlabelled.num_tracks())) {
-      return Status::Error("unlabelled points: a frame's point count differs from the track names'");
-    }
-  }
+  if (Status status = CheckRepairInputs(markers, observed, unlabelled, options); !status.ok()) return status;
   *report = RepairReport();
   StageClock clock(report);
-  // 1. Naive solve and 2. robust reference (the tracker needs no naive solve, so with two
-  // threads the two run side by side).
-  Motion naive, reference;
+  const RepairContext ctx = MakeRepairContext(skeleton, markers, observed, options);
+  // 1. Naive solve and 2. robust reference.
+  Motion naive;
+  Reference reference;
   SequenceSolveReport sequence;
-  Status status = Status::Ok(), reference_status = Status::Ok();
   const int num_frames = static_cast<int>(observed.size());
   std::function<void(int)> naive_progress;
   if (progress) {
@@ -285,269 +690,49 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
       progress(options.reference_kind == ReferenceKind::kTracker ? "IK + reference" : "IK", done, num_frames);
     };
   }
-  if (options.reference_kind == ReferenceKind::kTracker) {
-    SequenceSolveReport tracker_report;
-    auto track = [&] {
-      reference_status = SolveSequence(skeleton, markers, observed, options.tracker, RestPose(skeleton),
-                                       &reference, &tracker_report);
-    };
-    std::thread tracker;
-    if (options.parallel) tracker = std::thread(track);
-    status = SolveSequence(skeleton, markers, observed, options.naive, RestPose(skeleton), &naive, &sequence,
-                           naive_progress);
-    if (options.parallel) {
-      tracker.join();
-    } else {
-      track();
-    }
-    if (!status.ok()) return status;
-    if (!reference_status.ok()) return reference_status;
-    clock.Lap(options.parallel ? "IK (naive) + reference (robust tracker), in parallel"
-                               : "IK (naive) + reference (robust tracker)");
-  } else {
-    status = SolveSequence(skeleton, markers, observed, options.naive, RestPose(skeleton), &naive, &sequence,
-                           naive_progress);
-    if (!status.ok()) return status;
-    clock.Lap("IK (naive solve)");
-    reference = naive;
-    ClipSolveReport clip;
-    status = SolveClip(skeleton, markers, observed, options.reference, &reference, &clip);
-    if (!status.ok()) return status;
-    clock.Lap("Reference solve (robust clip)");
-  }
+  Status status = options.reference_kind == ReferenceKind::kTracker
+                      ? SolveNaiveBesideTracker(ctx, naive_progress, &clock, &naive, &reference.motion, &sequence)
+                      : SolveNaiveThenClip(ctx, naive_progress, &clock, &naive, &reference.motion, &sequence);
+  if (!status.ok()) return status;
   report->naive_rms = RmsOver(skeleton, markers, naive, observed);
   report->naive_unconverged_frames = sequence.unconverged_frames;
-  report->reference_rms = RmsOver(skeleton, markers, reference, observed);
+  report->reference_rms = RmsOver(skeleton, markers, reference.motion, observed);
   // 3. Marker reconstruction.
-  Observations reconstructed = ReconstructMarkers(skeleton, markers, reference);
-  MarkerTrajectories reference_paths = ObservationTrajectories(markers, reconstructed);
+  ReconstructReference(ctx, &reference);
   clock.Lap("Marker Reconstruction");
   // 3b. Residual model.
   MarkerTrajectories x = ObservationTrajectories(markers, observed);
-  const double outlier = options.outlier_distance > 0.0 ? options.outlier_distance : options.dp_max;
-  ResidualModelOptions model_options;
-  model_options.robust = options.robust_outliers;
-  model_options.mads = options.outlier_mads;
-  model_options.min_distance = options.outlier_min_distance > 0.0 ? options.outlier_min_distance : outlier / 4.0;
-  model_options.max_distance = outlier;
-  model_options.fixed_distance = outlier;
-  MarkerResidualModel model = FitMarkerResidualModel(skeleton, markers, reference, reconstructed, x, model_options);
+  MarkerResidualModel model =
+      FitMarkerResidualModel(skeleton, markers, reference.motion, reference.reconstructed, x, ctx.model_options);
   clock.Lap("Residual Model");
-  // Re-solves of changed frames stop where the solution rejoins the earlier one.
-  const double resync_tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
   // 3c. Swaps: relabel; 3d. unlabelled points labelled; then redo the naive solve where
   // the samples changed.
   const MarkerTrajectories captured = x;
-  const Observations* input = &observed;
   Observations relabelled;
-  const bool assigning = options.assign_unlabelled && unlabelled.num_tracks() > 0;
-  if (options.undo_swaps) {
-    SwapDetectionOptions swap_options;
-    swap_options.radius = options.swap_radius > 0.0 ? options.swap_radius : 3.0 * options.dp_max;
-    swap_options.min_frames = options.swap_min_frames;
-    report->swaps = UndoSwaps(model, swap_options, &x);
-    if (!report->swaps.empty()) relabelled = TrajectoryObservations(x);
-    // The robust tracker leans toward the swapped labels while a swap lasts (on a bone
-    // that one marker pins, such as the thumb's, it follows them), so the relabelled
-    // samples would be judged outliers against it: it is redone where the samples changed,
-    // until it rejoins the earlier solution, and X^ with it.
-    // A swap from the first frame misled the tracker's start (its orientation search):
-    // then the whole tracker is run again.
-    if (!report->swaps.empty() && options.reference_kind == ReferenceKind::kTracker) {
-      Motion redone;
-      if (report->swaps.front().first == 0) {
-        SequenceSolveReport tracker_report;
-        status = SolveSequence(skeleton, markers, relabelled, options.tracker, RestPose(skeleton), &redone,
-                               &tracker_report);
-      } else {
-        int resolved = 0;
-        status = ResolveChangedFrames(skeleton, markers, observed, relabelled, reference, options.tracker,
-                                      resync_tolerance, options.parallel, &redone, &resolved);
-      }
-      if (!status.ok()) return status;
-      reference = std::move(redone);
-      reconstructed = ReconstructMarkers(skeleton, markers, reference);
-      reference_paths = ObservationTrajectories(markers, reconstructed);
-    }
-    if (assigning) clock.Lap("Swap Detection");
-  }
-  if (assigning) {
-    UnlabelledAssignmentOptions assign;
-    assign.mads = options.outlier_mads;
-    assign.min_distance = options.unlabelled_min_distance > 0.0 ? options.unlabelled_min_distance : outlier / 2.0;
-    assign.max_distance = options.unlabelled_max_distance > 0.0 ? options.unlabelled_max_distance : 1.25 * outlier;
-    assign.min_frames = options.unlabelled_min_frames;
-    report->unlabelled = AssignUnlabelledPoints(model, unlabelled, assign, &x);
-    if (!report->unlabelled.empty()) relabelled = TrajectoryObservations(x);
-  }
-  if (!report->swaps.empty() || !report->unlabelled.empty()) {
-    Motion solved;
-    int resolved = 0;
-    status = ResolveChangedFrames(skeleton, markers, observed, relabelled, naive, options.naive, resync_tolerance,
-                                  options.parallel, &solved, &resolved);
-    if (!status.ok()) return status;
-    naive = std::move(solved);
-    input = &relabelled;
-    // The soft-tissue residual was fitted with the swapped samples in its window and
-    // without the assigned ones.
-    model = FitMarkerResidualModel(skeleton, markers, reference, reconstructed, x, model_options);
-    // The reference followed the swapped labels: its parent frames do not judge the
-    // relabelled samples (marker_residual_model.h).
-    for (const MarkerSwap& swap : report->swaps) {
-      for (int f = swap.first; f <= swap.last; ++f) {
-        for (const auto& [from, to] : swap.from_to) model.absorbed[f][to] = 0;
-      }
-    }
-  }
-  if (assigning) {
-    clock.Lap("Unlabelled Assignment");  // With the re-solve of the changed frames.
-  } else if (options.undo_swaps) {
-    clock.Lap("Swap Detection");
-  }
-  // 4. Gap detection.
-  for (const Gap& gap : FindGaps(captured)) report->detected.push_back({gap.marker, gap.first, gap.last, "missing"});
-  for (const MarkerSwap& swap : report->swaps) {
-    for (const auto& [from, to] : swap.from_to) {
-      report->detected.push_back({to, swap.first, swap.last, "swap"});
-    }
-  }
-  for (const UnlabelledAssignment& a : report->unlabelled) {
-    report->detected.push_back({a.marker, a.first, a.last, "unlabelled"});
-  }
-  std::vector<std::vector<char>> bad_joints;
-  status = DetectBadJoints(skeleton, naive, reference, {options.dp_max, options.dr_max_rad}, &bad_joints);
+  status = RelabelSamples(ctx, unlabelled, &clock, &naive, &reference, &model, &x, &relabelled, report);
   if (!status.ok()) return status;
-  auto bad = BadMarkerSamples(markers, bad_joints);
-  // A joint difference condemns a marker only where it moves the marker past its gate.
-  FkData fk_naive(skeleton);
-  for (int f = 0; f < x.num_frames(); ++f) {
-    bool any = false;
-    for (int m = 0; m < x.num_markers() && !any; ++m) any = bad[f][m];
-    if (!any) continue;
-    ForwardKinematics(skeleton, naive.frames[f], &fk_naive);
-    for (int m = 0; m < x.num_markers(); ++m) {
-      if (bad[f][m] && (markers.Position(m, fk_naive) - reconstructed[f][m]).norm() <= model.gate[m]) bad[f][m] = 0;
-    }
-  }
-  MarkerTrajectories outliers_removed = x;
-  for (int f = 0; f < x.num_frames(); ++f) {
-    for (int m = 0; m < x.num_markers(); ++m) {
-      if (x.valid(f, m) && model.Outlying(f, m, x.position(f, m))) outliers_removed.SetMissing(f, m);
-    }
-  }
-  MarkerTrajectories flagged = outliers_removed;
-  for (int f = 0; f < x.num_frames(); ++f) {
-    for (int m = 0; m < x.num_markers(); ++m) {
-      if (bad[f][m] && flagged.valid(f, m)) flagged.SetMissing(f, m);
-    }
-  }
-  // Name each new gap by its first cause: swap (a label left without a sample), outlier,
-  // else joint difference.
-  for (const Gap& gap : FindGaps(flagged)) {
-    bool natural = true, outlying = false, swapped = false;
-    for (int f = gap.first; f <= gap.last; ++f) {
-      natural &= !captured.valid(f, gap.marker);
-      swapped |= captured.valid(f, gap.marker) && !x.valid(f, gap.marker);
-      outlying |= x.valid(f, gap.marker) && !outliers_removed.valid(f, gap.marker);
-    }
-    if (!natural) {
-      report->detected.push_back(
-          {gap.marker, gap.first, gap.last, swapped ? "swap" : outlying ? "outlier" : "joint difference"});
-    }
-  }
+  const bool changed = !report->swaps.empty() || !report->unlabelled.empty();
+  const Observations& input = changed ? relabelled : observed;
+  // 4. Gap detection.
+  MarkerTrajectories flagged;
+  status = DetectGaps(ctx, naive, reference, model, captured, x, report, &flagged);
+  if (!status.ok()) return status;
   const MarkerTrajectories unflagged = x;
   x = flagged;
   clock.Lap("Gap Detection");
   // 5. Preprocessing, in the thesis' order.
-  report->trimmed_samples = TrimAroundGaps(reference_paths, options.trim_max, unflagged, &x);
-  report->removed_track_samples = RemoveSmallTracks(options.small_track, &x);
-  MarkerTrajectories before_small = x;
-  report->polynomial_samples = FillSmallGaps(options.small_gap, &x);
-  for (const Gap& gap : FindGaps(before_small)) {
-    if (x.valid(gap.first, gap.marker)) report->filled.push_back({gap.marker, gap.first, gap.last, "polynomial"});
-  }
+  MarkerTrajectories before_small;
+  PreprocessGaps(ctx, reference.paths, unflagged, &x, &before_small, report);
   clock.Lap("Gap Preprocessing");
   // 6. Marker filling from the reference.
-  // The tracker leaned toward the samples now cut (its loss bounds the pull of each sample,
-  // not of a displaced run of them): it is refitted without them where they were (the
-  // trimmed samples kept), until it rejoins. A smooth run (a marker flown off, a ghost:
-  // the removed samples' median |second difference| within refit_rough_factor times the
-  // marker's own over its kept samples) and a gap without samples are filled from the
-  // refitted X^; a rough run (noise, jitter), whose samples scatter about the true path
-  // so that the robust solve averaged them, from X^ as solved (issue 16, BENCHMARKS.md).
-  MarkerTrajectories refit_paths;
-  const bool refit = options.refit_reference && options.reference_kind == ReferenceKind::kTracker;
-  if (refit) {
-    Motion refitted;
-    int resolved = 0;
-    status = ResolveChangedFrames(skeleton, markers, *input, TrajectoryObservations(flagged), reference,
-                                  options.tracker, resync_tolerance, options.parallel, &refitted, &resolved);
-    if (!status.ok()) return status;
-    refit_paths = ObservationTrajectories(markers, ReconstructMarkers(skeleton, markers, refitted));
-  }
-  std::vector<double> own_roughness(x.num_markers(), -1.0);
-  if (refit) {
-    for (int m = 0; m < x.num_markers(); ++m) {
-      own_roughness[m] = MedianSecondDifference(before_small, nullptr, m, 0, x.num_frames() - 1);
-    }
-  }
-  auto is_rough = [&](const Gap& gap) {
-    const double roughness = MedianSecondDifference(unflagged, nullptr, gap.marker, gap.first, gap.last);
-    return refit && roughness >= 0.0 && roughness > options.refit_rough_factor * own_roughness[gap.marker];
-  };
-  // A rough run is cut whole: the samples beside it as rough as it (a noise run's ends and
-  // small draws pass the gates), judged on the residual to X^ as solved
-  // (signal/rough_run_extension.h); they leave the kriging's conditioning samples too.
-  if (refit && options.rough_extension_factor > 0.0) {
-    // The threshold is at least a tenth of the gates' floor (1 mm by default): a noise-free
-    // marker's median is ~0, and the walk then cut the clean samples where X^ leaned toward
-    // the run (the synthetic demo walk: 4-7 a side; on real takes the floor changes nothing).
-    const double threshold_floor = 0.1 * model_options.min_distance;
-    std::vector<double> own(x.num_markers(), std::numeric_limits<double>::quiet_NaN());  // Computed once needed.
-    for (const Gap& gap : FindGaps(x)) {
-      if (!is_rough(gap)) continue;
-      double& own_level = own[gap.marker];
-      if (std::isnan(own_level)) {
-        own_level = MedianSecondDifference(before_small, &reference_paths, gap.marker, 0, x.num_frames() - 1);
-      }
-      if (own_level < 0.0) continue;
-      const double threshold = std::max(options.rough_extension_factor * own_level, threshold_floor);
-      report->rough_extension_samples +=
-          ExtendRoughRun(gap, unflagged, reference_paths, threshold, options.trim_max, &x, &before_small);
-    }
-  }
-  GapFillOptions fill;
-  if (options.velocity_clamp > 0.0) fill.velocity_clamp = options.velocity_clamp;
-  fill.edge_samples = options.edge_samples;
-  // Kriging conditions on the samples that survived detection and preprocessing, not on
-  // the small gaps' cubics nor on another gap's fill; one offset process per reference.
-  OffsetKrigingOptions kriging;
-  kriging.samples_per_side = options.fill_samples;
-  std::vector<OffsetProcess> processes, refit_processes;
-  if (options.fill == GapFillKind::kKriging) {
-    status = EstimateOffsetProcesses(before_small, reference_paths, kriging, &processes);
-    if (status.ok() && refit) status = EstimateOffsetProcesses(before_small, refit_paths, kriging, &refit_processes);
-    if (!status.ok()) return status;
-  }
-  for (const Gap& gap : FindGaps(x)) {
-    const bool from_refit = refit && !is_rough(gap);
-    const MarkerTrajectories& paths = from_refit ? refit_paths : reference_paths;
-    const std::vector<OffsetProcess>& offsets = from_refit ? refit_processes : processes;
-    if (options.fill == GapFillKind::kKriging && offsets[gap.marker].valid) {
-      status = FillGapByKriging(gap, before_small, paths, offsets[gap.marker], kriging, &x);
-    } else {
-      status = FillGapFromReference(gap, paths, fill, &x);
-    }
-    if (!status.ok()) return status;
-    const bool whole = gap.first == 0 && gap.last + 1 == x.num_frames();
-    report->filled.push_back({gap.marker, gap.first, gap.last, whole ? "reference only" : "reference"});
-  }
+  status = FillMarkers(ctx, input, reference, flagged, unflagged, &before_small, &x, report);
+  if (!status.ok()) return status;
   // Every sample is now valid; those never marked bad are the input's, bit for bit.
   *repaired = TrajectoryObservations(x);
   clock.Lap("Marker Filling");
   // 7. Re-solve.
   if (progress) progress("re-solve", 0, num_frames);
-  status = ResolveChangedFrames(skeleton, markers, *input, *repaired, naive, options.naive, resync_tolerance,
+  status = ResolveChangedFrames(skeleton, markers, input, *repaired, naive, options.naive, ctx.resync_tolerance,
                                 options.parallel, motion, &report->resolved_frames);
   if (!status.ok()) return status;
   if (progress) progress("re-solve", num_frames, num_frames);
@@ -555,8 +740,8 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   clock.Lap("IK (re-solve)");
   if (intermediates != nullptr) {
     intermediates->naive = std::move(naive);
-    intermediates->reference = std::move(reference);
-    intermediates->reconstructed = std::move(reconstructed);
+    intermediates->reference = std::move(reference.motion);
+    intermediates->reconstructed = std::move(reference.reconstructed);
     intermediates->residual_model = std::move(model);
   }
   return Status::Ok();
