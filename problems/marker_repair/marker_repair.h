@@ -76,7 +76,7 @@ struct RepairOptions {
   ClipSolveOptions reference;      // Step 2, kClip (give it a robust loss).
   MarkerSolveOptions tracker;      // Step 2, kTracker (a robust loss and a prior).
   bool parallel = true;            // Two threads: steps 1 and 2 (kTracker), step 7.
-  double resync_tolerance = 0.0;   // Skeleton units (joint positions); <= 0: dp_max * 1e-4.
+  double resync_tolerance = 0.0;   // Skeleton units (joint positions); <= 0: dp_max * 1e-3.
   double dp_max = 0.0;             // Joint position threshold, skeleton units.
   double dr_max_rad = 0.0;         // Joint rotation threshold.
   double outlier_distance = 0.0;   // Skeleton units; <= 0: dp_max. The fixed gate, and
