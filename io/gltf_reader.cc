@@ -428,6 +428,45 @@ Status GltfDocument::Read(const std::string& path, GltfDocument* document) {
   return Status::Ok();
 }
 
+namespace {
+
+// The mesh in the bind pose: each vertex (and normal) mapped by every influencing joint,
+// rest_positions = sum_b w_b X_b (c_b IBM_b v0), normals likewise (unit; +Y where they
+// cancel); the influences in skeleton joints.
+void BlendRestVertices(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& normals,
+                       const std::vector<std::vector<Influence>>& influences, const std::vector<int>& skin_joints,
+                       const std::vector<Eigen::Matrix<double, 3, 4>>& position_maps,
+                       const std::vector<Eigen::Matrix3d>& normal_ibm, const std::vector<Eigen::Isometry3d>& world_bind,
+                       SkinnedMeshSpec* out) {
+  SkinnedMeshSpec& spec = *out;
+  const int nv = static_cast<int>(positions.size());
+  spec.rest_positions.resize(3, nv);
+  spec.rest_normals.resize(3, normals.empty() ? 0 : nv);
+  spec.influences.resize(nv);
+  for (int v = 0; v < nv; ++v) {
+    double total = 0.0;
+    for (const Influence& inf : influences[v]) total += inf.weight;
+    Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
+    for (const Influence& inf : influences[v]) {
+      const double w = inf.weight / total;
+      p += w * (position_maps[inf.skin_joint] * positions[v].homogeneous());
+      if (!normals.empty()) {
+        const Eigen::Vector3d local = normal_ibm[inf.skin_joint] * normals[v];
+        const double len = local.norm();
+        if (len > 0.0) n += w * (world_bind[skin_joints[inf.skin_joint]].linear() * (local / len));
+      }
+      spec.influences[v].push_back({skin_joints[inf.skin_joint], inf.weight});
+    }
+    spec.rest_positions.col(v) = p;
+    if (!normals.empty()) {
+      const double len = n.norm();
+      spec.rest_normals.col(v) = len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitY();
+    }
+  }
+}
+
+}  // namespace
+
 Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& options,
                          GltfCharacter* character) {
   if (!document.loaded()) return Status::Error("glTF document not loaded");
@@ -537,31 +576,8 @@ Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& op
                               world_bind[j].translation();
     normal_ibm[k] = bind.ibm[k].topLeftCorner<3, 3>().inverse().transpose();
   }
-  const int nv = static_cast<int>(positions.size());
   SkinnedMeshSpec spec;
-  spec.rest_positions.resize(3, nv);
-  spec.rest_normals.resize(3, normals.empty() ? 0 : nv);
-  spec.influences.resize(nv);
-  for (int v = 0; v < nv; ++v) {
-    double total = 0.0;
-    for (const Influence& inf : influences[v]) total += inf.weight;
-    Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
-    for (const Influence& inf : influences[v]) {
-      const double w = inf.weight / total;
-      p += w * (position_maps[inf.skin_joint] * positions[v].homogeneous());
-      if (!normals.empty()) {
-        const Eigen::Vector3d local = normal_ibm[inf.skin_joint] * normals[v];
-        const double len = local.norm();
-        if (len > 0.0) n += w * (world_bind[rig.skin_joints[inf.skin_joint]].linear() * (local / len));
-      }
-      spec.influences[v].push_back({rig.skin_joints[inf.skin_joint], inf.weight});
-    }
-    spec.rest_positions.col(v) = p;
-    if (!normals.empty()) {
-      const double len = n.norm();
-      spec.rest_normals.col(v) = len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitY();
-    }
-  }
+  BlendRestVertices(positions, normals, influences, rig.skin_joints, position_maps, normal_ibm, world_bind, &spec);
   if (normals.empty() && !triangles.empty()) {
     spec.rest_normals = AreaWeightedNormals(spec.rest_positions, triangles);
     out.warnings.push_back(file + ": skin " + std::to_string(out.skin) +
