@@ -145,6 +145,9 @@ class SceneBuilder {
 };
 
 EulerOrder SceneBuilder::JointOrder(int j) const {
+  // FBX evaluates PreRotation in XYZ order (the SDK, assimp, current Blender); Blender
+  // 3.4 uses the joint's RotationOrder instead, so a joint with both is written in XYZ.
+  if (skeleton_.has_rest_rotation(j)) return EulerOrder::kZYX;
   if (options_.euler_order) return *options_.euler_order;
   const std::vector<int>& axes = skeleton_.rotation_axes(j);
   bool from_channels = false;

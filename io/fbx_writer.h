@@ -16,7 +16,9 @@
 //   EulerOrder the leftmost factor (kZYX: R = Rz Ry Rx), so FBX's order is ours reversed.
 //   Each joint keeps the order of its file's rotation channels (a BVH's), else XYZ, unless
 //   FbxWriteOptions::euler_order overrides it; RotationOrder records it. PreRotation is
-//   always XYZ (as the FBX SDK, assimp and Blender read it).
+//   XYZ (as the FBX SDK, assimp and current Blender read it; Blender 3.4 applies the joint's
+//   RotationOrder to it), so a joint with a rest rotation is always written in XYZ, which
+//   every reader evaluates alike.
 // - Animation: one AnimationStack (FbxWriteOptions::take_name) with one AnimationLayer.
 //   Per joint an AnimationCurveNode "R" on Lcl Rotation with three AnimationCurves (degrees,
 //   float keys), and for the root and every joint whose translation leaves its rest value

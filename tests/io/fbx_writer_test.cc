@@ -283,6 +283,22 @@ TEST(FbxWriter, FileStructureFollowsTheFormat) {
     if (r.name == "AnimationCurveNode") ++curve_nodes;
   }
   EXPECT_EQ(limbs, skeleton.num_joints() + static_cast<int>(skeleton.end_sites().size()));
+  // RotationOrder: Hips' ZXY channels are FBX YXZ (3); Spine has a rest rotation, so
+  // PreRotation and XYZ (0), which every reader evaluates alike; Head's YZX is FBX XZY (1).
+  const auto model_property = [&](const std::string& model, const std::string& key) {
+    for (const FbxRecord& r : Find(top, "Objects")->children) {
+      if (r.name != "Model" || r.properties[1].text != model + std::string("\x00\x01Model", 7)) continue;
+      for (const FbxRecord& p : Find(r.children, "Properties70")->children) {
+        if (p.properties[0].text == key) return p.properties[4].numbers[0];
+      }
+    }
+    return -1.0;
+  };
+  EXPECT_EQ(model_property("Hips", "RotationOrder"), 3);
+  EXPECT_EQ(model_property("Spine", "RotationOrder"), 0);
+  EXPECT_NE(model_property("Spine", "PreRotation"), -1.0);
+  EXPECT_EQ(model_property("Head", "RotationOrder"), 1);
+  EXPECT_EQ(model_property("Head", "PreRotation"), -1.0);
   EXPECT_EQ(curve_nodes, skeleton.num_joints() + 1);
 }
 
