@@ -5,6 +5,7 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "io/bvh_writer.h"
+#include "io/fbx_writer.h"
 #include "io/gltf_reader.h"
 #include "io/gltf_writer.h"
 #include "io/marker_file.h"
@@ -17,7 +18,7 @@ DEFINE_double(scale, 1.0, "Multiply every length (offsets, translations) by this
 DEFINE_string(euler_order, "", "Write every joint's rotation channels in this order (XYZ, XZY, "
               "YXZ, YZX, ZXY, ZYX); default: keep each joint's order from the input.");
 DEFINE_int32(precision, 6, "Significant digits of the written channel values.");
-DEFINE_string(clip_name, "mocapsolve", "glTF output: name of the added animation.");
+DEFINE_string(clip_name, "mocapsolve", "glTF output: name of the added animation; FBX output: the take's name.");
 DEFINE_string(out_units, "", "Marker files: write OUT in this unit (mm, cm, m, in), the coordinates "
               "converted; default: IN's unit.");
 
@@ -58,6 +59,56 @@ Status ConvertToGltf(const std::string& in, const std::string& out) {
   JsonObject report;
   report.Add("input", in).Add("output", out).Add("target", target).Add("clip_name", FLAGS_clip_name)
       .Add("joints", character.skeleton.num_joints()).Add("frames", mapped.num_frames());
+  return WriteReport(report);
+}
+
+// IN's motion as binary FBX: the skeleton and the clip, or with --target (or a glTF IN) the
+// character with its skinned mesh and the clip mapped onto it (io/fbx_writer.h).
+Status ConvertToFbx(const std::string& in, const std::string& out) {
+  const std::string in_ext = FileExtension(in);
+  const std::string target = !FLAGS_target.empty() ? FLAGS_target
+                             : in_ext == ".glb" || in_ext == ".gltf" ? in
+                                                                     : "";
+  Status status = CheckNotAnInput(out, in);
+  if (status.ok() && !target.empty()) status = CheckNotAnInput(out, target);
+  if (status.ok() && !FLAGS_skeleton.empty()) status = CheckNotAnInput(out, FLAGS_skeleton);
+  if (!status.ok()) return status;
+  if (FLAGS_scale != 1.0) return Status::Error("--scale applies to BVH output only");
+  Skeleton skeleton;
+  Motion motion;
+  status = LoadMotion(in, &skeleton, &motion);
+  if (!status.ok()) return status;
+  JsonObject report;
+  report.Add("input", in).Add("output", out);
+  if (!target.empty()) {
+    if (!FLAGS_euler_order.empty()) return Status::Error("--euler_order: not with a glTF character (--target)");
+    GltfCharacter character;
+    status = ReadGltfCharacter(target, GltfReadOptions(), &character);
+    if (!status.ok()) return status;
+    Motion mapped;
+    status = MotionForCharacter(skeleton, motion, character, &mapped);
+    if (!status.ok()) return Status::Error(in + " onto " + target + ": " + status.message());
+    status = WriteFbxCharacter(out, character, mapped, FLAGS_clip_name, false);
+    if (!status.ok()) return status;
+    std::printf("wrote %s: %s with take '%s' (%d frames at %.6g fps)\n", out.c_str(), target.c_str(),
+                FLAGS_clip_name.c_str(), mapped.num_frames(), mapped.frame_rate);
+    report.Add("target", target).Add("joints", character.skeleton.num_joints()).Add("frames", mapped.num_frames());
+    return WriteReport(report);
+  }
+  FbxWriteOptions options;
+  options.take_name = FLAGS_clip_name;
+  if (!FLAGS_euler_order.empty()) {
+    EulerOrder order;
+    if (!ParseEulerOrder(FLAGS_euler_order, &order)) {
+      return Status::Error("--euler_order: '" + FLAGS_euler_order + "' is not one of XYZ, XZY, YXZ, YZX, ZXY, ZYX");
+    }
+    options.euler_order = order;
+  }
+  status = WriteFbx(out, skeleton, motion, options);
+  if (!status.ok()) return status;
+  std::printf("wrote %s: %d joints, %d frames at %.6g fps\n", out.c_str(), skeleton.num_joints(),
+              motion.num_frames(), motion.frame_rate);
+  report.Add("joints", skeleton.num_joints()).Add("frames", motion.num_frames());
   return WriteReport(report);
 }
 
@@ -119,7 +170,8 @@ Status RunConvert(const std::vector<std::string>& arguments) {
   }
   if (!FLAGS_out_units.empty()) return Status::Error("--out_units is for marker files (.c3d, .trc)");
   if (out_ext == ".glb" || out_ext == ".gltf") return ConvertToGltf(in, out);
-  if (!IsTextOutputPath(out, ".bvh")) return Status::Error(out + ": output must be .bvh, .glb or .gltf");
+  if (out_ext == ".fbx") return ConvertToFbx(in, out);
+  if (!IsTextOutputPath(out, ".bvh")) return Status::Error(out + ": output must be .bvh, .glb, .gltf or .fbx");
   Status status = CheckNotAnInput(out, in);
   if (status.ok() && !FLAGS_skeleton.empty()) status = CheckNotAnInput(out, FLAGS_skeleton);
   if (!status.ok()) return status;
@@ -155,15 +207,18 @@ Status RunConvert(const std::vector<std::string>& arguments) {
 }  // namespace
 
 extern const Command kConvertCommand = {
-    "convert", "BVH, ASF/AMC, glTF/GLB or FBX in; BVH out, or a new clip of a glTF character",
+    "convert", "BVH, ASF/AMC, glTF/GLB or FBX in; BVH or FBX out, or a new clip of a glTF character",
     "mocapsolve convert IN.bvh|IN.amc|IN.glb|IN.gltf|IN.fbx OUT.bvh [--skeleton=X.asf] "
     "[--animation=NAME] [--scale=S] [--euler_order=ZXY]\n"
     "       mocapsolve convert IN OUT.glb|OUT.gltf [--target=CHARACTER.glb] [--clip_name=NAME]\n"
+    "       mocapsolve convert IN OUT.fbx [--target=CHARACTER.glb] [--clip_name=NAME] [--euler_order=XYZ]\n"
     "       mocapsolve convert IN.c3d|IN.trc OUT.c3d|OUT.trc [--out_units=mm] [--axes=y,z,x]\n\n"
     "Reads a motion and writes it as BVH. Rest rotations of ASF skeletons are folded into\n"
     "the BVH rotation channels. With a .glb/.gltf OUT, the motion (whose skeleton must have\n"
     "the character's joints, e.g. a BVH converted from it) is added as a new animation to a\n"
-    "copy of --target (default IN). Marker files convert between C3D and TRC: labels, rate,\n"
+    "copy of --target (default IN). With a .fbx OUT, binary FBX 7.4: the skeleton and the\n"
+    "clip (take --clip_name), or with --target (default a glTF IN) the character, its skinned\n"
+    "mesh and the clip. Marker files convert between C3D and TRC: labels, rate,\n"
     "first frame and missing samples kept, in --out_units, OUT's axes being IN's --axes.\n"
     "OUT is written atomically and may not be an input.",
     __FILE__, RunConvert, "skeleton,skeleton_units,amc_fps,animation,sample_fps,target,axes,report,quiet"};

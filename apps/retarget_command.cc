@@ -59,11 +59,12 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
     }
   }
   const bool out_bvh = IsTextOutputPath(FLAGS_out, ".bvh");
-  if (!FLAGS_out.empty() && !out_bvh && !HasExtension(FLAGS_out, ".glb") && !HasExtension(FLAGS_out, ".gltf")) {
-    return Status::Error("--out: " + FLAGS_out + ": expected .glb, .gltf or .bvh");
+  if (!FLAGS_out.empty() && !out_bvh && !HasExtension(FLAGS_out, ".glb") && !HasExtension(FLAGS_out, ".gltf") &&
+      !HasExtension(FLAGS_out, ".fbx")) {
+    return Status::Error("--out: " + FLAGS_out + ": expected .glb, .gltf, .fbx or .bvh");
   }
   if (FLAGS_animation_only && (FLAGS_out.empty() || out_bvh)) {
-    return Status::Error("--animation_only: applies to a .glb/.gltf --out");
+    return Status::Error("--animation_only: applies to a .glb/.gltf/.fbx --out");
   }
   Status status = CheckViewFlag({FLAGS_source, FLAGS_target, FLAGS_skeleton, RetargetSettingsFromFlags().joint_map});
   if (!status.ok()) return status;
@@ -157,7 +158,7 @@ const std::string kRetargetFlags = std::string("target,out,report,quiet,max_fram
 extern const Command kRetargetCommand = {
     "retarget", "transfer a motion (glTF, BVH, AMC, FBX) onto a glTF character by meshes (thesis ch. 4)",
     "mocapsolve retarget --source=SRC.glb|.bvh|.amc|.fbx [--skeleton=X.asf] [--source_animation=NAME] --target=TGT.glb "
-    "--out=OUT.glb|.gltf|.bvh [--animation_only] [--out_bvh=OUT.bvh] [--animation_name=NAME] [--solver=dls|dls_generic|ceres] [--subsample=128] "
+    "--out=OUT.glb|.gltf|.fbx|.bvh [--animation_only] [--out_bvh=OUT.bvh] [--animation_name=NAME] [--solver=dls|dls_generic|ceres] [--subsample=128] "
     "[--iterations=10] [--lambda=5] [--blend_mask=auto|FILE.json] [--report=r.json] [--view=PAGE.html]\n\n"
     "Subsamples the source mesh (farthest points, normal check, >= 3 per joint), maps the samples\n"
     "to the nearest target vertices in a height-normalized rest frame, and solves each frame's\n"
@@ -169,6 +170,8 @@ extern const Command kRetargetCommand = {
     "A .glb/.gltf --out is the target file with the result added as a new animation; with\n"
     "--animation_only just the target's skeleton, skin and that animation (no meshes), to play\n"
     "on the target file an application already has (Blender: scripts/apply_animation_gltf.py).\n"
+    "A .fbx --out is binary FBX 7.4: the target's skeleton, skinned mesh (not with\n"
+    "--animation_only) and the result as its take.\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
     __FILE__, RetargetMain, kRetargetFlags.c_str(), {RetargetSolverOptions().options(), RetargetSettingOptions().options()}};

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "io/bvh_writer.h"
+#include "io/fbx_writer.h"
 #include "io/gltf_writer.h"
 #include "io/motion_file.h"
 
@@ -179,6 +180,9 @@ Status WriteRetargeted(const std::string& out, const RetargetTaskResult& result,
                        bool animation_only) {
   const Motion& motion = result.retarget.clip.motion;
   if (IsTextOutputPath(out, ".bvh")) return WriteBvh(out, result.target.skeleton, motion);  // "-": stdout.
+  if (FileExtension(out) == ".fbx") {
+    return WriteFbxCharacter(out, result.target, motion, animation_name, animation_only);
+  }
   GltfWriteOptions write_options;
   write_options.animation_only = animation_only;
   return WriteGltfWithAnimation(result.target_document, result.target, motion, animation_name, out, write_options);

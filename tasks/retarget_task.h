@@ -60,8 +60,10 @@ Status RunRetarget(const RetargetInputs& inputs, const RetargetConfig& config,
 // The new clip's name in a written glTF: `name`, or "retargeted from <source clip or file>".
 std::string RetargetAnimationName(const RetargetInputs& inputs, const std::string& name);
 
-// Writes the result to `out`: a .bvh (the target skeleton), or a .glb/.gltf (the target file
-// with the result added as a new animation; animation_only: skeleton, skin and animation).
+// Writes the result to `out`: a .bvh (the target skeleton), a .glb/.gltf (the target file
+// with the result added as a new animation; animation_only: skeleton, skin and animation),
+// or a .fbx (io/fbx_writer.h: the target's skeleton, mesh unless animation_only, the result
+// as the take named `animation_name`).
 Status WriteRetargeted(const std::string& out, const RetargetTaskResult& result, const std::string& animation_name,
                        bool animation_only);
 
