@@ -87,9 +87,9 @@ Status SerializeFbx(const Skeleton& skeleton, const Motion& motion, const FbxWri
 Status WriteFbx(const std::string& path, const Skeleton& skeleton, const Motion& motion,
                 const FbxWriteOptions& options = FbxWriteOptions(), const FbxSkinnedMesh* mesh = nullptr);
 
-// A glTF character with a clip of it (e.g. retargeted): its skeleton at its rest pose,
-// its skinned mesh unless `animation_only`, and the clip. The mesh is named after the
-// file's stem when known ("mesh" otherwise).
+// A glTF character with a clip of it (e.g. retargeted): its skeleton at its rest pose
+// (the nodes' default TRS), its skinned mesh ("mesh", all primitives of the skin merged)
+// unless `animation_only`, and the clip as the take `take_name`.
 Status WriteFbxCharacter(const std::string& path, const GltfCharacter& character, const Motion& motion,
                          const std::string& take_name, bool animation_only);
 
