@@ -124,10 +124,10 @@ TEST(RetargetCli, AnimationOnlyGlb) {
   ASSERT_NE(options, nullptr);
   ASSERT_NE(options->Find("animation_only"), nullptr);
   EXPECT_TRUE(options->Find("animation_only")->boolean);
-  // Only for a glTF --out.
+  // Only for a glTF or FBX --out.
   const std::string bvh = testing::TempPath("walk.bvh");
   EXPECT_EQ(testing::RunCli(base + " --out=" + bvh, &output), 1);
-  EXPECT_THAT(output, HasSubstr("--animation_only: applies to a .glb/.gltf --out"));
+  EXPECT_THAT(output, HasSubstr("--animation_only: applies to a .glb/.gltf/.fbx --out"));
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
   EXPECT_FALSE(testing::FileExists(bvh));
 }
@@ -153,7 +153,7 @@ TEST(RetargetCli, BadInputsFailWithOneLine) {
       {base + "--out=" + out + " --blend_mask=" + mask, "no_such_joint"},
       {base + "--out=" + target, "input"},
       {base + "--out=" + out + " --subsample=0", "--subsample"},
-      {base + "--out=" + testing::TempPath("out.fbx"), "expected .glb"},
+      {base + "--out=" + testing::TempPath("out.obj"), "expected .glb"},
       {"retarget --source=" + source + " --target=" + target, "--out"},
   };
   for (const Case& c : cases) {
