@@ -105,6 +105,14 @@ class SceneBuilder {
 
  private:
   int64_t NewId() { return next_id_++; }
+  // The children every Model ends with (after its Properties70), counted in the header.
+  void FinishModel(Node* model) {
+    model->AddChild("MultiLayer").Int32(0);
+    model->AddChild("MultiTake").Int32(0);
+    model->AddChild("Shading").Char('T');
+    model->AddChild("Culling").String("CullingOff");
+    ++models_;
+  }
   void Connect(int64_t child, int64_t parent) { connections_.AddChild("C").String("OO").Int64(child).Int64(parent); }
   void ConnectProperty(int64_t child, int64_t parent, const char* property) {
     connections_.AddChild("C").String("OP").Int64(child).Int64(parent).String(property);
@@ -248,11 +256,7 @@ int64_t SceneBuilder::AddLimbNode(const std::string& name, const Eigen::Vector3d
           ByAxisDegrees(EulerFromQuaternion(rotation, order), order));
   PVector(&props, "Lcl Scaling", "Lcl Scaling", "", "A", Eigen::Vector3d::Ones());
   PInt(&props, "DefaultAttributeIndex", 0);
-  node.AddChild("MultiLayer").Int32(0);
-  node.AddChild("MultiTake").Int32(0);
-  node.AddChild("Shading").Char('T');
-  node.AddChild("Culling").String("CullingOff");
-  ++models_;
+  FinishModel(&node);
   Connect(attribute, model);
   return model;
 }
@@ -392,11 +396,7 @@ void SceneBuilder::AddMesh(const std::vector<int64_t>& joint_models) {
   Node& props = node.AddChild("Properties70");
   PEnum(&props, "InheritType", 1);
   PInt(&props, "DefaultAttributeIndex", 0);
-  node.AddChild("MultiLayer").Int32(0);
-  node.AddChild("MultiTake").Int32(0);
-  node.AddChild("Shading").Char('T');
-  node.AddChild("Culling").String("CullingOff");
-  ++models_;
+  FinishModel(&node);
   Connect(model, 0);
   Connect(geometry, model);
 
