@@ -23,7 +23,7 @@ namespace mocapsolve {
 
 struct RepairConfig {
   RepairSettings repair;
-  SolverSettings solver = RepairSolverOptions().Defaults();  // --solver is dls here.
+  SolverSettings solver = RepairSolverOptions().Defaults();  // The solver options without --mode.
 };
 
 struct RepairResult {
