@@ -19,14 +19,10 @@ DEFINE_int32(levels, 2, "Pyramid levels N; the N finest bands are dropped (each 
 
 namespace mocapsolve {
 
-PyramidSettings PyramidSettingsFromFlags() {
+Status PyramidOptionsFromFlags(int levels, PyramidOptions* options) {
   PyramidSettings settings;
   ReadOptionFlags(PyramidSettingOptions(), &settings);
-  return settings;
-}
-
-Status PyramidOptionsFromFlags(int levels, PyramidOptions* options) {
-  return PyramidOptionsFromSettings(PyramidSettingsFromFlags(), levels, options);
+  return PyramidOptionsFromSettings(settings, levels, options);
 }
 
 Status FilterFromFlags(const char* command, int levels, const std::vector<double>& weights) {

@@ -97,16 +97,15 @@ void BindPipeline(py::module_& m) {
         inputs.markers_path = markers;
         inputs.character_paths = characters;
         auto result = std::make_shared<TakeResult>();
-        std::string report_text;
+        JsonObject report;
         Status status = Status::Ok();
         {
           py::gil_scoped_release release;
           status = RunTakePipeline(inputs, options, result.get());
           if (status.ok()) {
-            JsonObject report = TakeReport(inputs, *result);
+            report = TakeReport(inputs, *result);
             const bool in_take_folder = view_path == ViewPagePath(out_dir);
             report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
-            report_text = report.ToString();
             if (!out_dir.empty()) {
               status = MakeFolders(out_dir);
               GltfWriteOptions character_files;
@@ -124,7 +123,7 @@ void BindPipeline(py::module_& m) {
         out["characters"] = retargeted;
         out["passed"] = result->verdict.pass;
         out["failures"] = result->verdict.failures;
-        out["report"] = py::module_::import("json").attr("loads")(report_text);
+        out["report"] = ReportToPython(report);
         return out;
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("characters") = std::vector<std::string>(),
       py::arg("out_dir") = "", py::arg("take_name") = "", py::arg("filter_levels") = 0, py::arg("kernel_a") = PyramidSettings().kernel_a,

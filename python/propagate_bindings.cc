@@ -335,7 +335,7 @@ ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc") +
         ThrowIfError(status);
         py::list arrays;
         for (const Eigen::VectorXd& w : weights.weights) arrays.append(VectorToArray(w));
-        py::object report = py::module_::import("json").attr("loads")(weights.report.ToString());
+        py::object report = ReportToPython(weights.report);
         return py::make_tuple(arrays, report);
       }, py::arg("skeleton"), py::arg("motion"), py::arg("edits"), py::arg("method") = "green", py::kw_only(),
       py::arg("harmonic_ground") = EditWeightSettings().harmonic_ground,

@@ -167,8 +167,7 @@ void BindSkeletonFitting(py::module_& m) {
         if (interrupted) throw py::error_already_set();
         ThrowIfError(status);
         ThrowIfError(SkeletonFitCheckStatus(inputs, fit, *result));
-        const std::string report_text = SkeletonFitReportJson(inputs, *result).ToString();
-        py::object report = py::module_::import("json").attr("loads")(report_text);
+        py::object report = ReportToPython(SkeletonFitReportJson(inputs, *result));
         return py::make_tuple(std::make_shared<Subject>(std::move(result->subject)), std::move(result->motion),
                               report);
       }, py::arg("markers"), py::arg("template_subject") = py::none(), py::kw_only(),

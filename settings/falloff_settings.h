@@ -2,8 +2,8 @@
 // flag of `mocapsolve distance` / `propagate`: --sigma, --sigma_scale, --eigenpairs,
 // --region, --diffusion_steps, --knn, --isomap_knn, --falloff_kernel, --feature_joints,
 // --joint_weights, --temporal_weight; same defaults), and their one conversion into
-// FalloffOptions (problems/edit_propagation/falloff.h). The command line
-// (apps/falloff_flags.cc) and the Python module both call it. Knows nothing of gflags.
+// FalloffOptions (problems/edit_propagation/falloff.h). The distance and propagate tasks
+// (tasks/) and Python's falloff() call it. Knows nothing of gflags.
 #ifndef MOCAPSOLVE_SETTINGS_FALLOFF_SETTINGS_H_
 #define MOCAPSOLVE_SETTINGS_FALLOFF_SETTINGS_H_
 

@@ -1,5 +1,5 @@
-// A source whose skeleton is the target's own (issue 29 item 1: a character's clip written
-// as BVH and retargeted back onto the character must come back as itself).
+// A source whose skeleton is the target's own (a character's clip written as BVH and
+// retargeted back onto the character must come back as itself).
 //
 // Same skeleton (IsSameSkeleton): the joint map (joint_map.h) is one-to-one and complete
 // (every joint of either side mapped), it keeps the hierarchy (the target joint of a source
