@@ -9,6 +9,7 @@
 #include <string>
 
 #include "apps/command.h"
+#include "apps/option_flags.h"
 #include "apps/common_flags.h"
 #include "kinematics/quote_token.h"
 #include "apps/progress.h"
@@ -25,46 +26,12 @@ DEFINE_string(template_subject, "", "Template subject (.json): skeleton and mark
               "(e.g. CMU subject 2 calibrated on 02_01); replaces --skeleton/--markerset. --axes and "
               "--marker_scale then describe the take's marker file.");
 DEFINE_string(out_markerset, "", "The fitted marker set (.json), in the skeleton's units.");
-// Defaults and help from the library's one table (pipeline/skeleton_fitting.h).
-#define MOCAPSOLVE_FIT_HELP(name) mocapsolve::SettingHelpFor(mocapsolve::kSkeletonFitSettingHelp, #name)
-DEFINE_int32(fit_iterations, mocapsolve::SkeletonFitSettings().fit_iterations, MOCAPSOLVE_FIT_HELP(fit_iterations));
-DEFINE_int32(attach_rounds, mocapsolve::SkeletonFitSettings().attach_rounds, MOCAPSOLVE_FIT_HELP(attach_rounds));
-DEFINE_int32(attach_iterations, mocapsolve::SkeletonFitSettings().attach_iterations,
-             MOCAPSOLVE_FIT_HELP(attach_iterations));
-DEFINE_int32(fit_frame_step, mocapsolve::SkeletonFitSettings().fit_frame_step, MOCAPSOLVE_FIT_HELP(fit_frame_step));
-DEFINE_int32(fit_max_frames, mocapsolve::SkeletonFitSettings().fit_max_frames, MOCAPSOLVE_FIT_HELP(fit_max_frames));
-DEFINE_double(max_skin_cm, mocapsolve::SkeletonFitSettings().max_skin_cm, MOCAPSOLVE_FIT_HELP(max_skin_cm));
-DEFINE_double(min_bone_scale, mocapsolve::SkeletonFitSettings().min_bone_scale, MOCAPSOLVE_FIT_HELP(min_bone_scale));
-DEFINE_double(max_bone_scale, mocapsolve::SkeletonFitSettings().max_bone_scale, MOCAPSOLVE_FIT_HELP(max_bone_scale));
-DEFINE_double(offset_prior, mocapsolve::SkeletonFitSettings().offset_prior, MOCAPSOLVE_FIT_HELP(offset_prior));
-DEFINE_double(fit_outlier_mm, mocapsolve::SkeletonFitSettings().fit_outlier_mm, MOCAPSOLVE_FIT_HELP(fit_outlier_mm));
-DEFINE_string(check, mocapsolve::SkeletonFitSettings().check.c_str(), MOCAPSOLVE_FIT_HELP(check));
-DEFINE_string(template_labels, mocapsolve::SkeletonFitSettings().template_labels.c_str(),
-              MOCAPSOLVE_FIT_HELP(template_labels));
-#undef MOCAPSOLVE_FIT_HELP
 
 namespace mocapsolve {
 namespace {
 
 double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-SkeletonFitSettings SkeletonFitSettingsFromFlags() {
-  SkeletonFitSettings s;
-  s.fit_iterations = FLAGS_fit_iterations;
-  s.attach_rounds = FLAGS_attach_rounds;
-  s.attach_iterations = FLAGS_attach_iterations;
-  s.fit_frame_step = FLAGS_fit_frame_step;
-  s.fit_max_frames = FLAGS_fit_max_frames;
-  s.max_skin_cm = FLAGS_max_skin_cm;
-  s.min_bone_scale = FLAGS_min_bone_scale;
-  s.max_bone_scale = FLAGS_max_bone_scale;
-  s.offset_prior = FLAGS_offset_prior;
-  s.fit_outlier_mm = FLAGS_fit_outlier_mm;
-  s.check = FLAGS_check;
-  s.template_labels = FLAGS_template_labels;
-  return s;
 }
 
 Status RunFitSkeleton(const std::vector<std::string>& arguments) {
@@ -96,7 +63,8 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
       if (outputs[a] == outputs[b]) return Status::Error(outputs[a] + ": named by two output flags");
     }
   }
-  const SkeletonFitSettings settings = SkeletonFitSettingsFromFlags();
+  SkeletonFitSettings settings;
+  ReadOptionFlags(SkeletonFitSettingOptions(), &settings);
   Status status = ValidateSkeletonFitSettings(settings);
   if (!status.ok()) return status;
 
@@ -202,7 +170,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   std::printf("\nfit: %d markers, marker RMS %.2f %s%s, %.1f s\n", result.subject.markers.num_markers(),
               result.report.rms.back() * mm, unit, left_out.c_str(), result.seconds);
   const JsonObject json = SkeletonFitReportJson(inputs, result);
-  if (!checks.ok() && FLAGS_check != "off") {
+  if (!checks.ok() && settings.check != "off") {
     for (const std::string& failure : checks.failures) std::fprintf(stderr, "fit_skeleton: check failed: %s\n", failure.c_str());
     const Status failed = SkeletonFitCheckStatus(inputs, settings, result);
     if (!failed.ok()) {
@@ -256,6 +224,7 @@ extern const Command kFitSkeletonCommand = {
     "own, left/right bone lengths within 5 %, and the marker RMS within 25 mm;\n"
     "--check=fail (default) exits 1 when one fails.\n"
     "Writes the subject (skeleton inline), and optionally the solved motion and marker set.",
-    __FILE__, RunFitSkeleton, kFitFlags.c_str(), {SolverOptions().Without("mode").options()}};
+    __FILE__, RunFitSkeleton, kFitFlags.c_str(),
+    {SkeletonFitSettingOptions().options(), SolverOptions().Without("mode").options()}};
 
 }  // namespace mocapsolve

@@ -477,20 +477,9 @@ Status KeepSubject(const SkeletonFitInputs& inputs, const FitTake& fit, RoundSta
 }  // namespace
 
 Status ValidateSkeletonFitSettings(const SkeletonFitSettings& s) {
-  if (s.fit_iterations < -1 || s.fit_iterations > 100) return Status::Error("--fit_iterations: -1..100");
-  if (s.attach_iterations < 0 || s.attach_iterations > 100) return Status::Error("--attach_iterations: 0..100");
-  if (s.attach_rounds < -1 || s.attach_rounds > 20) return Status::Error("--attach_rounds: -1..20");
-  if (s.fit_frame_step < 1) return Status::Error("--fit_frame_step: >= 1");
-  if (s.fit_max_frames < 0) return Status::Error("--fit_max_frames: >= 0");
-  if (!(s.offset_prior >= 0.0)) return Status::Error("--offset_prior: >= 0");
-  if (!(s.max_skin_cm >= 0.0)) return Status::Error("--max_skin_cm: >= 0");
-  if (!(s.fit_outlier_mm >= 0.0)) return Status::Error("--fit_outlier_mm: >= 0");
-  if (!(s.min_bone_scale > 0.0 && s.min_bone_scale <= 1.0 && s.max_bone_scale >= 1.0)) {
-    return Status::Error("--min_bone_scale in (0, 1] and --max_bone_scale >= 1");
-  }
-  if (s.check != "fail" && s.check != "warn" && s.check != "off") {
-    return Status::Error("--check: expected fail, warn or off");
-  }
+  Status status = SkeletonFitSettingOptions().Validate(s);
+  if (!status.ok()) return status;
+  if (!(s.min_bone_scale > 0.0)) return Status::Error("--min_bone_scale: expected a value in (0, 1], got 0");
   if (TemplateLabelsGiven(s)) {
     std::vector<TemplateLabel> labels;
     return ReadTemplateLabels(s.template_labels, &labels);

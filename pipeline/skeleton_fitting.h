@@ -38,81 +38,16 @@
 #include "pipeline/subject.h"
 #include "pipeline/template_label_maps.h"
 #include "pipeline/template_labels.h"
+#include "settings/skeleton_fit_settings.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/skeleton_fit.h"
 #include "problems/marker_solve/subject_checks.h"
 
 namespace mocapsolve {
 
-// The options as the user names them: one field per flag of `mocapsolve fit_skeleton`
-// (same name, default and units), documented once in kSkeletonFitSettingHelp.
-struct SkeletonFitSettings {
-  int fit_iterations = -1;       // -1: 15 with a template subject, else 6.
-  int attach_rounds = -1;        // -1: 12 with a template subject, else 0.
-  int attach_iterations = 6;
-  int fit_frame_step = 4;
-  int fit_max_frames = 0;        // 0 = all frames.
-  double max_skin_cm = 12.0;     // 0 = off.
-  double min_bone_scale = 0.8;
-  double max_bone_scale = 1.25;
-  double offset_prior = 0.0;
-  double fit_outlier_mm = 200.0;  // 0 = off.
-  std::string check = "fail";    // fail | warn | off.
-  // TEMPLATE:TAKE pairs or their file (template_labels.h); "auto": a shipped map that fits the
-  // take (template_label_maps.h); "" or "none": none.
-  std::string template_labels = kTemplateLabelsAuto;
-};
-
-struct SettingHelp {
-  const char* name;
-  const char* help;
-};
-
-// One line of help per setting, in the order of the struct: the gflags help of
-// apps/fit_skeleton_command.cc and the Python docstring are both made from it.
-inline constexpr SettingHelp kSkeletonFitSettingHelp[] = {
-    {"fit_iterations", "Alternations of pose solve and length/offset fit on the template's markers; "
-                       "-1: 15 with --template_subject, else 6."},
-    {"attach_rounds", "Rounds of attaching every marker of the take to the fitted skeleton (auto: the joint it "
-                      "moves least with, among joints whose bone is within --max_skin_cm) and fitting again "
-                      "(stopping early when a round improves the marker RMS by less than 1 %); -1: 12 with "
-                      "--template_subject, else 0."},
-    {"attach_iterations", "Fit iterations in each attach round."},
-    {"fit_frame_step", "Use every N-th frame in the length/offset fit."},
-    {"fit_max_frames", "Fit on the first N frames only (0 = all)."},
-    {"max_skin_cm", "Markers stay within this distance of their bone (fit and attach); 0: off."},
-    {"min_bone_scale", "Bone lengths no shorter than this times the template's."},
-    {"max_bone_scale", "Bone lengths no longer than this times the template's."},
-    {"offset_prior", "Weight of the prior that keeps marker offsets near the template's in the first fit, per "
-                     "frame, relative to a marker residual; 0: off."},
-    {"fit_outlier_mm", "Leave out of every round's fit the samples of the template's markers farther than this, "
-                       "and than 5 times their marker's median residual, from their marker in the first fit "
-                       "(mislabels, ghosts); the fit RMS and the checks are then over the kept samples, and the "
-                       "report counts the others; 0: fit every sample."},
-    {"check", "The subject checks (marker within 15 cm of its bone, or within its template distance when "
-              "larger, torso direction within 15 degrees of the markers', left/right within 5 %, marker RMS within 25 mm): fail (exit 1, nothing written but "
-              "the report), warn, off."},
-    {"template_labels", "Template markers that are the take's under other labels: TEMPLATE:TAKE pairs "
-                        "(RFWT:RASI,LFWT:LASI) or a file of them (examples/ais_to_cmu_labels.txt); round 0 fits "
-                        "them under the take's labels, which the fitted subject keeps. auto: the first shipped map "
-                        "(examples/*_to_cmu_labels.txt) whose take labels are all in the take and whose template "
-                        "labels are all in the template but none in the take; \"\" or none: labels as they are."},
-};
-
-// The help of `name` in a table like the one above ("" if absent).
-template <size_t N>
-const char* SettingHelpFor(const SettingHelp (&table)[N], const std::string& name) {
-  for (const SettingHelp& entry : table) {
-    if (name == entry.name) return entry.help;
-  }
-  return "";
-}
-
-inline constexpr char kSkeletonFitSettingNames[] =
-    "fit_iterations,attach_rounds,attach_iterations,fit_frame_step,fit_max_frames,max_skin_cm,min_bone_scale,"
-    "max_bone_scale,offset_prior,fit_outlier_mm,check,template_labels";
-
-// The CLI's one-line messages ("--attach_rounds: -1..20").
+// Every option's check (settings/skeleton_fit_settings.h), then what one option cannot check
+// alone: min_bone_scale > 0, and a given template label map that reads. One-line messages
+// naming the option.
 Status ValidateSkeletonFitSettings(const SkeletonFitSettings& settings);
 
 // What the fit reports while it runs, for a progress display.

@@ -4,8 +4,10 @@
 #define MOCAPSOLVE_PYTHON_KEYWORD_DOCS_H_
 
 #include <string>
+#include <vector>
 
 #include "python/bindings.h"
+#include "settings/option.h"
 
 namespace mocapsolve::python {
 
@@ -29,6 +31,17 @@ inline std::string KeywordDefaults(const std::string& title, const py::object& d
   }
   if (!line.empty()) line.pop_back();  // The last comma.
   return text + line;
+}
+
+// "  name (default D): help [unit]" per declared option, D read from `defaults` (a bound
+// settings object) as Python writes it, the text from the declarations themselves.
+inline std::string KeywordHelp(const std::vector<Option>& options, const py::object& defaults) {
+  std::string text;
+  for (const Option& option : options) {
+    text += "  " + option.name + " (default " + std::string(py::repr(defaults.attr(option.name.c_str()))) +
+            "): " + option.Description() + "\n";
+  }
+  return text;
 }
 
 }  // namespace mocapsolve::python

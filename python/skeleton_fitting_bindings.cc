@@ -1,6 +1,6 @@
 // Skeleton fitting (`mocapsolve fit_skeleton`): FitSubjectToTake (pipeline/skeleton_fitting.h)
 // with the command's options as keywords. The keyword list of the docstring is generated
-// from the library's help table and a default-constructed SkeletonFitSettings.
+// from the options' declarations (settings/skeleton_fit_settings.h).
 #include <string>
 
 #include "io/marker_set_file.h"
@@ -12,20 +12,6 @@
 #include "python/solve_bindings.h"
 
 namespace mocapsolve::python {
-namespace {
-
-// "  name (default: repr): help" for each entry of the table, values read from `defaults`.
-template <size_t N>
-std::string KeywordList(const py::object& defaults, const SettingHelp (&table)[N]) {
-  std::string text;
-  for (const SettingHelp& entry : table) {
-    text += "  " + std::string(entry.name) + " (default " +
-            std::string(py::repr(defaults.attr(entry.name))) + "): " + entry.help + "\n";
-  }
-  return text;
-}
-
-}  // namespace
 
 void BindSkeletonFitting(py::module_& m) {
   py::class_<SkeletonFitSettings> settings(m, "SkeletonFitSettings",
@@ -40,7 +26,7 @@ void BindSkeletonFitting(py::module_& m) {
 #undef MOCAPSOLVE_FIELD
   settings.def("validate", [](const SkeletonFitSettings& s) { ThrowIfError(ValidateSkeletonFitSettings(s)); },
                "Raises ValueError (the CLI's message) if a value is invalid.");
-  m.attr("SKELETON_FIT_OPTION_NAMES") = std::string(kSkeletonFitSettingNames);
+  m.attr("SKELETON_FIT_OPTION_NAMES") = SkeletonFitSettingOptions().Names();
 
   static const std::string doc =
       "Fits a subject (bone lengths, marker attachments and offsets) to a take's markers, as\n"
@@ -60,7 +46,7 @@ void BindSkeletonFitting(py::module_& m) {
       "  map is applied ('template_labels', 'text' its file); keys 'round', 'rounds',\n"
       "  'iteration', 'seconds'.\n"
       "Keywords, the fit's options (SkeletonFitSettings):\n" +
-      KeywordList(py::cast(SkeletonFitSettings()), kSkeletonFitSettingHelp) +
+      KeywordHelp(SkeletonFitSettingOptions().options(), py::cast(SkeletonFitSettings())) +
       "and the solver options of solve() (SolverSettings: solver='dls'|'dls_generic'|'ceres', max_iterations,\n"
       "prior_weight, ...).\n\n"
       "Returns (subject, motion, report): the fitted Subject (skeleton inline), the motion\n"
@@ -79,7 +65,7 @@ void BindSkeletonFitting(py::module_& m) {
         ApplyKeywords(keywords,
                       {py::cast(&fit, py::return_value_policy::reference),
                        py::cast(&solver, py::return_value_policy::reference)},
-                      std::string(kSkeletonFitSettingNames) + "," + SolverOptions().Names());
+                      SkeletonFitSettingOptions().Names() + "," + SolverOptions().Names());
         ThrowIfError(ValidateSkeletonFitSettings(fit));
         SkeletonFitInputs inputs;
         inputs.markers_path = markers;

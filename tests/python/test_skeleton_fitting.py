@@ -136,7 +136,7 @@ def test_settings_hold_the_cli_defaults():
     assert settings.fit_outlier_mm == 200.0
     assert settings.check == "fail"
     settings.attach_rounds = 21
-    with pytest.raises(ValueError, match="--attach_rounds: -1..20"):
+    with pytest.raises(ValueError, match=r"--attach_rounds: expected a value in \[-1, 20\], got 21"):
         settings.validate()
     for name in mocapsolve.SKELETON_FIT_OPTION_NAMES.split(","):
         assert name in mocapsolve.fit_skeleton.__doc__

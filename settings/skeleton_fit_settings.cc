@@ -1,0 +1,46 @@
+#include "settings/skeleton_fit_settings.h"
+
+namespace mocapsolve {
+
+const OptionGroup<SkeletonFitSettings>& SkeletonFitSettingOptions() {
+  using S = SkeletonFitSettings;
+  static const OptionGroup<S>* const group = &(*new OptionGroup<S>())
+      .Add(&S::fit_iterations, "fit_iterations", "",
+           "Alternations of pose solve and length/offset fit on the template's markers; -1: 15 with "
+           "--template_subject, else 6.", -1, 100)
+      .Add(&S::attach_rounds, "attach_rounds", "",
+           "Rounds of attaching every marker of the take to the fitted skeleton (auto: the joint it moves least "
+           "with, among joints whose bone is within --max_skin_cm) and fitting again (stopping early when a round "
+           "improves the marker RMS by less than 1 %); -1: 12 with --template_subject, else 0.", -1, 20)
+      .Add(&S::attach_iterations, "attach_iterations", "", "Fit iterations in each attach round.", 0, 100)
+      .Add(&S::fit_frame_step, "fit_frame_step", "frames", "Use every N-th frame in the length/offset fit.", 1)
+      .Add(&S::fit_max_frames, "fit_max_frames", "frames", "Fit on the first N frames only (0 = all).", 0)
+      .Add(&S::max_skin_cm, "max_skin_cm", "cm",
+           "Markers stay within this distance of their bone (fit and attach); 0: off.", 0.0)
+      .Add(&S::min_bone_scale, "min_bone_scale", "",
+           "Bone lengths no shorter than this times the template's (in (0, 1]).", 0.0, 1.0)
+      .Add(&S::max_bone_scale, "max_bone_scale", "", "Bone lengths no longer than this times the template's.",
+           1.0)
+      .Add(&S::offset_prior, "offset_prior", "",
+           "Weight of the prior that keeps marker offsets near the template's in the first fit, per frame, "
+           "relative to a marker residual; 0: off.", 0.0)
+      .Add(&S::fit_outlier_mm, "fit_outlier_mm", "mm",
+           "Leave out of every round's fit the samples of the template's markers farther than this, and than 5 "
+           "times their marker's median residual, from their marker in the first fit (mislabels, ghosts); the fit "
+           "RMS and the checks are then over the kept samples, and the report counts the others; 0: fit every "
+           "sample.", 0.0)
+      .Add(&S::check, "check",
+           "The subject checks (marker within 15 cm of its bone, or within its template distance when larger, "
+           "torso direction within 15 degrees of the markers', left/right within 5 %, marker RMS within 25 mm): "
+           "fail (exit 1, nothing written but the report), warn, off.",
+           {"fail", "warn", "off"})
+      .Add(&S::template_labels, "template_labels",
+           "Template markers that are the take's under other labels: TEMPLATE:TAKE pairs (RFWT:RASI,LFWT:LASI) or "
+           "a file of them (examples/ais_to_cmu_labels.txt); round 0 fits them under the take's labels, which the "
+           "fitted subject keeps. auto: the first shipped map (examples/*_to_cmu_labels.txt) whose take labels are "
+           "all in the take and whose template labels are all in the template but none in the take; \"\" or none: "
+           "labels as they are.");
+  return *group;
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,36 @@
+// SkeletonFitSettings: the options of fitting a subject to a take's markers (`mocapsolve
+// fit_skeleton`, Python's fit_skeleton()): the rounds of pose solve and length/offset fit,
+// the constraints on bone scales and marker offsets, the outlier rule, the checks and the
+// template label map. Declared once; the CLI's flags and Python's keywords. The fit itself:
+// tasks/fit_skeleton_task.h.
+#ifndef MOCAPSOLVE_SETTINGS_SKELETON_FIT_SETTINGS_H_
+#define MOCAPSOLVE_SETTINGS_SKELETON_FIT_SETTINGS_H_
+
+#include <string>
+
+#include "settings/option.h"
+
+namespace mocapsolve {
+
+struct SkeletonFitSettings {
+  int fit_iterations = -1;       // -1: 15 with a template subject, else 6.
+  int attach_rounds = -1;        // -1: 12 with a template subject, else 0.
+  int attach_iterations = 6;
+  int fit_frame_step = 4;        // Frames.
+  int fit_max_frames = 0;        // 0 = all frames.
+  double max_skin_cm = 12.0;     // 0 = off.
+  double min_bone_scale = 0.8;
+  double max_bone_scale = 1.25;
+  double offset_prior = 0.0;
+  double fit_outlier_mm = 200.0;  // 0 = off.
+  std::string check = "fail";    // fail | warn | off.
+  // TEMPLATE:TAKE pairs or their file (problems/marker_solve/template_labels.h); "auto": a
+  // shipped map that fits the take (template_label_maps.h); "" or "none": none.
+  std::string template_labels = "auto";
+};
+
+const OptionGroup<SkeletonFitSettings>& SkeletonFitSettingOptions();
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_SETTINGS_SKELETON_FIT_SETTINGS_H_
