@@ -12,7 +12,7 @@
 #include "io/motion_file.h"
 #include "kinematics/marker_trajectories.h"
 #include "pipeline/subject.h"
-#include "pipeline/subject_calibration.h"
+#include "tasks/calibrate_task.h"
 #include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/marker_observations.h"
 

@@ -1,6 +1,6 @@
 // mocapsolve fit_skeleton: a subject (bone lengths, marker attachments and offsets) from
 // its markers alone, starting from a template subject. The rounds, the checks and the
-// report are the library's (pipeline/skeleton_fitting.h, which the Python module's
+// report are the library's (tasks/fit_skeleton_task.h, which the Python module's
 // fit_skeleton() calls too); this file reads the flags, prints and writes.
 #include <chrono>
 #include <cmath>
@@ -18,7 +18,7 @@
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
-#include "pipeline/skeleton_fitting.h"
+#include "tasks/fit_skeleton_task.h"
 #include "pipeline/subject.h"
 
 DECLARE_string(out_subject);

@@ -1,11 +1,11 @@
-// Skeleton fitting (`mocapsolve fit_skeleton`): FitSubjectToTake (pipeline/skeleton_fitting.h)
+// Skeleton fitting (`mocapsolve fit_skeleton`): FitSubjectToTake (tasks/fit_skeleton_task.h)
 // with the command's options as keywords. The keyword list of the docstring is generated
 // from the options' declarations (settings/skeleton_fit_settings.h).
 #include <string>
 
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
-#include "pipeline/skeleton_fitting.h"
+#include "tasks/fit_skeleton_task.h"
 #include "settings/solver_settings.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
@@ -30,7 +30,7 @@ void BindSkeletonFitting(py::module_& m) {
 
   static const std::string doc =
       "Fits a subject (bone lengths, marker attachments and offsets) to a take's markers, as\n"
-      "`mocapsolve fit_skeleton --out_subject` (pipeline/skeleton_fitting.h, the same code).\n\n"
+      "`mocapsolve fit_skeleton --out_subject` (tasks/fit_skeleton_task.h, the same code).\n\n"
       "markers: the take's .c3d/.trc path.\n"
       "template_subject: the template to start from, a Subject or a subject .json path; or\n"
       "  None with skeleton (.bvh/.asf path) and markerset (.json path) instead.\n"

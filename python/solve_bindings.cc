@@ -8,7 +8,7 @@
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "settings/solver_settings.h"
-#include "pipeline/subject_calibration.h"
+#include "tasks/calibrate_task.h"
 #include "problems/marker_solve/marker_clip_solver.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/sequence_solver.h"

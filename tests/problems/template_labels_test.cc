@@ -1,7 +1,7 @@
-// The template label map (pipeline/template_labels.h): inline pairs and files with comments,
+// The template label map (problems/marker_solve/template_labels.h): inline pairs and files with comments,
 // one-line errors naming the flag or the file and line, and the renaming of a template's
 // markers against a take's labels.
-#include "pipeline/template_labels.h"
+#include "problems/marker_solve/template_labels.h"
 
 #include <string>
 #include <vector>

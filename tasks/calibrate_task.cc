@@ -1,4 +1,4 @@
-#include "pipeline/subject_calibration.h"
+#include "tasks/calibrate_task.h"
 
 #include <cmath>
 

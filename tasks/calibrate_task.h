@@ -3,8 +3,8 @@
 // file's scale and axes decided first, and the result as a Subject (subject.h) that
 // solve, repair and the pipeline take. `mocapsolve calibrate` and the Python module's
 // calibrate() both call CalibrateSubject. Knows nothing of flags.
-#ifndef MOCAPSOLVE_PIPELINE_SUBJECT_CALIBRATION_H_
-#define MOCAPSOLVE_PIPELINE_SUBJECT_CALIBRATION_H_
+#ifndef MOCAPSOLVE_TASKS_CALIBRATE_TASK_H_
+#define MOCAPSOLVE_TASKS_CALIBRATE_TASK_H_
 
 #include <string>
 #include <vector>
@@ -46,4 +46,4 @@ Status CalibrateSubject(const Skeleton& skeleton, const Motion& motion,
 
 }  // namespace mocapsolve
 
-#endif  // MOCAPSOLVE_PIPELINE_SUBJECT_CALIBRATION_H_
+#endif  // MOCAPSOLVE_TASKS_CALIBRATE_TASK_H_

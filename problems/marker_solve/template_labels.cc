@@ -1,4 +1,4 @@
-#include "pipeline/template_labels.h"
+#include "problems/marker_solve/template_labels.h"
 
 #include <cctype>
 #include <set>

@@ -1,4 +1,4 @@
-#include "pipeline/skeleton_fitting.h"
+#include "tasks/fit_skeleton_task.h"
 
 #include <algorithm>
 #include <chrono>

@@ -7,8 +7,8 @@
 // does not use the template's labels: a CMU-labelled take fits no map), and no marker of T
 // outside the map is labelled like some k_i (the renaming would give two markers one
 // label). `auto` applies the first shipped map that fits, none if none does.
-#ifndef MOCAPSOLVE_PIPELINE_TEMPLATE_LABEL_MAPS_H_
-#define MOCAPSOLVE_PIPELINE_TEMPLATE_LABEL_MAPS_H_
+#ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_TEMPLATE_LABEL_MAPS_H_
+#define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_TEMPLATE_LABEL_MAPS_H_
 
 #include <string>
 #include <vector>
@@ -16,7 +16,7 @@
 #include "kinematics/marker_set.h"
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/status.h"
-#include "pipeline/template_labels.h"
+#include "problems/marker_solve/template_labels.h"
 
 namespace mocapsolve {
 
@@ -43,4 +43,4 @@ Status ChooseShippedTemplateLabels(const MarkerSet& templ, const MarkerTrajector
 
 }  // namespace mocapsolve
 
-#endif  // MOCAPSOLVE_PIPELINE_TEMPLATE_LABEL_MAPS_H_
+#endif  // MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_TEMPLATE_LABEL_MAPS_H_

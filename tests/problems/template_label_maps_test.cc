@@ -1,7 +1,7 @@
 // The shipped template label maps and the rule `--template_labels=auto` picks one by
-// (pipeline/template_label_maps.h), on crafted label sets: no real data needed. Which map
-// each real take picks is in tests/pipeline/skeleton_fitting_test.cc.
-#include "pipeline/template_label_maps.h"
+// (problems/marker_solve/template_label_maps.h), on crafted label sets: no real data needed. Which map
+// each real take picks is in tests/tasks/fit_skeleton_task_test.cc.
+#include "problems/marker_solve/template_label_maps.h"
 
 #include <string>
 #include <vector>

@@ -10,8 +10,8 @@
 // that runs to the end of its line. The setting's value is that text, or the path of a file
 // holding it (a value without ':' is a path). examples/ais_to_cmu_labels.txt is one; the
 // shipped ones are also applied without a flag (template_label_maps.h).
-#ifndef MOCAPSOLVE_PIPELINE_TEMPLATE_LABELS_H_
-#define MOCAPSOLVE_PIPELINE_TEMPLATE_LABELS_H_
+#ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_TEMPLATE_LABELS_H_
+#define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_TEMPLATE_LABELS_H_
 
 #include <string>
 #include <vector>
@@ -46,4 +46,4 @@ Status RenameTemplateMarkers(const std::vector<TemplateLabel>& labels, const Ske
 
 }  // namespace mocapsolve
 
-#endif  // MOCAPSOLVE_PIPELINE_TEMPLATE_LABELS_H_
+#endif  // MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_TEMPLATE_LABELS_H_

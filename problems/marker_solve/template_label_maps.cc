@@ -1,4 +1,4 @@
-#include "pipeline/template_label_maps.h"
+#include "problems/marker_solve/template_label_maps.h"
 
 #include <set>
 #include <utility>

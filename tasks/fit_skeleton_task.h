@@ -22,8 +22,8 @@
 // kept model is then checked by measures that
 // do not trust the residual (subject_checks.h). Knows nothing of flags or printing: the
 // caller formats the progress events.
-#ifndef MOCAPSOLVE_PIPELINE_SKELETON_FITTING_H_
-#define MOCAPSOLVE_PIPELINE_SKELETON_FITTING_H_
+#ifndef MOCAPSOLVE_TASKS_FIT_SKELETON_TASK_H_
+#define MOCAPSOLVE_TASKS_FIT_SKELETON_TASK_H_
 
 #include <cstddef>
 #include <functional>
@@ -36,8 +36,8 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "pipeline/subject.h"
-#include "pipeline/template_label_maps.h"
-#include "pipeline/template_labels.h"
+#include "problems/marker_solve/template_label_maps.h"
+#include "problems/marker_solve/template_labels.h"
 #include "settings/skeleton_fit_settings.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/skeleton_fit.h"
@@ -120,4 +120,4 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
 
 }  // namespace mocapsolve
 
-#endif  // MOCAPSOLVE_PIPELINE_SKELETON_FITTING_H_
+#endif  // MOCAPSOLVE_TASKS_FIT_SKELETON_TASK_H_

@@ -1,8 +1,8 @@
-// FitSubjectToTake (pipeline/skeleton_fitting.h): the settings' validation messages, and on
+// FitSubjectToTake (tasks/fit_skeleton_task.h): the settings' validation messages, and on
 // a short real take (squat.c3d from CMU subject 2 calibrated on 02_01) the order of the
 // progress events, the rounds and the report. The CLI's byte-for-byte agreement with the
 // Python binding is tested in tests/python/test_skeleton_fitting.py.
-#include "pipeline/skeleton_fitting.h"
+#include "tasks/fit_skeleton_task.h"
 
 #include <string>
 #include <vector>
@@ -13,7 +13,7 @@
 #include "io/motion_file.h"
 #include "kinematics/demo_character.h"
 #include "kinematics/forward_kinematics.h"
-#include "pipeline/subject_calibration.h"
+#include "tasks/calibrate_task.h"
 #include "problems/marker_repair/marker_repair.h"
 #include "problems/marker_solve/synthetic_marker_set.h"
 #include "tests/test_support.h"
