@@ -44,23 +44,14 @@ Status RunCalibrate(const std::vector<std::string>& arguments) {
   if (!FLAGS_out_subject.empty() && !IsTextOutputPath(FLAGS_out_subject, ".json")) {
     return Status::Error(FLAGS_out_subject + ": expected a .json subject file");
   }
-  if (!FLAGS_out.empty() && FLAGS_out_subject == FLAGS_out) {
-    return Status::Error("--out and --out_subject name the same file");
-  }
-  for (const std::string& output : {FLAGS_out, FLAGS_out_subject}) {
-    if (output.empty()) continue;
-    for (const std::string& input :
-         {FLAGS_motion, FLAGS_skeleton, FLAGS_markers, auto_attach ? std::string() : FLAGS_attach}) {
-      if (input.empty()) continue;
-      Status status = CheckNotAnInput(output, input);
-      if (!status.ok()) return status;
-    }
-  }
+  Status status = CheckOutputsApart({FLAGS_out, FLAGS_out_subject},
+                                    {FLAGS_motion, FLAGS_skeleton, FLAGS_markers, auto_attach ? "" : FLAGS_attach});
+  if (!status.ok()) return status;
 
   Skeleton skeleton;
   Motion motion;
   SetStage("inputs");
-  Status status = LoadMotion(FLAGS_motion, &skeleton, &motion);
+  status = LoadMotion(FLAGS_motion, &skeleton, &motion);
   if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
   if (!status.ok()) return status;
   MarkerTrajectories trajectories;

@@ -4,6 +4,7 @@
 #define MOCAPSOLVE_APPS_COMMON_FLAGS_H_
 
 #include <string>
+#include <vector>
 
 #include <gflags/gflags.h>
 
@@ -89,6 +90,10 @@ void SetStage(const std::string& stage);
 
 // An output path must not name one of the inputs.
 Status CheckNotAnInput(const std::string& output, const std::string& input);
+
+// Every given output (empty = not asked for) names none of the given inputs and no other
+// output ("X: named by two output flags").
+Status CheckOutputsApart(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
 
 }  // namespace mocapsolve
 

@@ -3,23 +3,19 @@
 // report are the library's (tasks/fit_skeleton_task.h, which the Python module's
 // fit_skeleton() calls too); this file reads the flags, prints and writes.
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "apps/command.h"
-#include "apps/option_flags.h"
 #include "apps/common_flags.h"
-#include "kinematics/quote_token.h"
+#include "apps/option_flags.h"
 #include "apps/progress.h"
 #include "apps/solver_flags.h"
 #include "io/bvh_writer.h"
-#include "io/marker_file.h"
 #include "io/marker_set_file.h"
-#include "io/motion_file.h"
-#include "tasks/fit_skeleton_task.h"
 #include "pipeline/subject.h"
+#include "tasks/fit_skeleton_task.h"
 
 DECLARE_string(out_subject);
 DEFINE_string(template_subject, "", "Template subject (.json): skeleton and marker set to start from "
@@ -30,148 +26,72 @@ DEFINE_string(out_markerset, "", "The fitted marker set (.json), in the skeleton
 namespace mocapsolve {
 namespace {
 
-double Seconds(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   const auto start = std::chrono::steady_clock::now();
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  const bool from_subject = !FLAGS_template_subject.empty();
-  if (from_subject && (!FLAGS_skeleton.empty() || !FLAGS_markerset.empty() || !FLAGS_skeleton_units.empty())) {
-    return Status::Error(std::string("--template_subject and --") +
-                         (!FLAGS_skeleton.empty() ? "skeleton" : !FLAGS_markerset.empty() ? "markerset" : "skeleton_units") +
-                         " both given: the template subject holds the skeleton and marker set");
-  }
-  if (FLAGS_markers.empty() || (!from_subject && (FLAGS_skeleton.empty() || FLAGS_markerset.empty()))) {
-    return Status::Error("--markers and either --template_subject or --skeleton and --markerset are required");
-  }
+  Status status = CheckSkeletonFitInputsGiven(!FLAGS_template_subject.empty(), !FLAGS_skeleton.empty(),
+                                              !FLAGS_markerset.empty(), !FLAGS_skeleton_units.empty(),
+                                              !FLAGS_markers.empty());
+  if (!status.ok()) return status;
   if (FLAGS_out.empty() && FLAGS_out_subject.empty()) return Status::Error("--out or --out_subject is required");
   if (!FLAGS_out.empty() && !IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh");
   for (const std::string& json : {FLAGS_out_markerset, FLAGS_out_subject}) {
     if (!json.empty() && !IsTextOutputPath(json, ".json")) return Status::Error(json + ": expected a .json");
   }
   const std::vector<std::string> outputs = {FLAGS_out, FLAGS_out_markerset, FLAGS_out_subject};
-  for (size_t a = 0; a < outputs.size(); ++a) {
-    if (outputs[a].empty()) continue;
-    for (const std::string& in : {FLAGS_template_subject, FLAGS_skeleton, FLAGS_markers, FLAGS_markerset}) {
-      if (in.empty()) continue;
-      Status status = CheckNotAnInput(outputs[a], in);
-      if (!status.ok()) return status;
-    }
-    for (size_t b = a + 1; b < outputs.size(); ++b) {
-      if (outputs[a] == outputs[b]) return Status::Error(outputs[a] + ": named by two output flags");
-    }
-  }
+  status = CheckOutputsApart(outputs, {FLAGS_template_subject, FLAGS_skeleton, FLAGS_markers, FLAGS_markerset});
+  if (!status.ok()) return status;
   SkeletonFitSettings settings;
   ReadOptionFlags(SkeletonFitSettingOptions(), &settings);
-  Status status = ValidateSkeletonFitSettings(settings);
+  status = ValidateSkeletonFitSettings(settings);
   if (!status.ok()) return status;
 
-  // The template.
   SkeletonFitInputs inputs;
-  inputs.from_template_subject = from_subject;
-  inputs.template_name = from_subject ? FLAGS_template_subject : FLAGS_skeleton;
   inputs.markers_path = FLAGS_markers;
   inputs.axes = FLAGS_axes;
   inputs.marker_scale = FLAGS_marker_scale;
   inputs.amc_fps = FLAGS_amc_fps;
-  if (from_subject) {
-    status = ReadSubject(FLAGS_template_subject, &inputs.templ);
-  } else {
-    status = LoadSkeleton(FLAGS_skeleton, &inputs.templ.skeleton);
-    if (status.ok()) status = ReadMarkerSet(FLAGS_markerset, inputs.templ.skeleton, &inputs.templ.markers);
-  }
+  status = LoadSkeletonFitTemplate(FLAGS_template_subject, FLAGS_skeleton, FLAGS_markerset, FLAGS_skeleton_units,
+                                   &inputs);
   if (!status.ok()) return status;
   MarkerSolveOptions solve_options;
   status = MarkerSolveOptionsFromFlags(inputs.templ.skeleton.unit(), &solve_options);
   if (!status.ok()) return status;
-  const bool unit_known = inputs.templ.skeleton.unit().known();
-  const double mm = unit_known ? inputs.templ.skeleton.unit().metres_per_unit * 1000.0 : 1.0;
-  const char* unit = unit_known ? "mm" : "skeleton units";
 
   // Progress: a line per round and per iteration, and the frames of each pose solve.
   std::unique_ptr<Progress> frames_progress;
   int progress_round = -1, progress_iteration = -1;
   const SkeletonFitCallback callback = [&](const SkeletonFitEvent& e) {
-    switch (e.kind) {
-      case SkeletonFitEvent::kTemplateLabels:
-        if (!FLAGS_quiet) {
-          std::fprintf(stderr, "fit_skeleton: template labels: %d pairs from %s\n", e.markers, e.text.c_str());
-        }
-        break;
-      case SkeletonFitEvent::kAbsentMarkers:
-        if (!FLAGS_quiet) std::fprintf(stderr, "fit_skeleton: not in the file, left out: %s\n", e.text.c_str());
-        break;
-      case SkeletonFitEvent::kRoundStart:
-        if (!FLAGS_quiet) {
-          std::fprintf(stderr, "fit_skeleton: round %d/%d: %d markers, %d frames, %d iterations (%.0f s so far)\n",
-                       e.round, e.rounds, e.markers, e.frames, e.iterations, Seconds(start));
-        }
-        break;
-      case SkeletonFitEvent::kFrames:
-        if (e.round != progress_round || e.iteration != progress_iteration || !frames_progress) {
-          progress_round = e.round;
-          progress_iteration = e.iteration;
-          frames_progress = std::make_unique<Progress>(
-              "  pose solve " + std::to_string(e.iteration + 1) + "/" + std::to_string(e.iterations + 1),
-              e.frames, FLAGS_quiet);
-        }
-        frames_progress->Update(e.frames_done);
-        if (e.frames_done >= e.frames) frames_progress.reset();
-        break;
-      case SkeletonFitEvent::kIteration:
-        if (!FLAGS_quiet) {
-          std::fprintf(stderr, "  iteration %d: marker RMS %.2f %s (%.0f s)\n", e.iteration, e.rms * mm, unit,
-                       Seconds(start));
-        }
-        break;
-      case SkeletonFitEvent::kRoundDone:
-        if (!FLAGS_quiet) {  // The report's "rounds" holds the same figures.
-          std::printf("round %d: %d markers, marker RMS %.2f -> %.2f %s\n", e.round, e.markers, e.rms_first * mm,
-                      e.rms * mm, unit);
-          std::fflush(stdout);
-        }
-        break;
-      case SkeletonFitEvent::kStopped:
-        if (!FLAGS_quiet) {
-          std::fprintf(stderr, e.rms > 0.0 ? "fit_skeleton: round %d improved by less than 1 %%; stopping\n"
-                                           : "fit_skeleton: round %d did not improve; stopping\n", e.round);
-        }
-        break;
-      case SkeletonFitEvent::kKept:
-        if (!FLAGS_quiet) {
-          std::fprintf(stderr, "fit_skeleton: keeping round %d (marker RMS %.2f %s)\n", e.round, e.rms * mm, unit);
-        }
-        break;
+    if (e.kind == SkeletonFitEvent::kFrames) {
+      if (e.round != progress_round || e.iteration != progress_iteration || !frames_progress) {
+        progress_round = e.round;
+        progress_iteration = e.iteration;
+        frames_progress = std::make_unique<Progress>(
+            "  pose solve " + std::to_string(e.iteration + 1) + "/" + std::to_string(e.iterations + 1), e.frames,
+            FLAGS_quiet);
+      }
+      frames_progress->Update(e.frames_done);
+      if (e.frames_done >= e.frames) frames_progress.reset();
+      return;
     }
+    bool to_stdout = false;
+    const std::string line = SkeletonFitEventLine(e, inputs.templ.skeleton, &to_stdout);
+    if (FLAGS_quiet) return;
+    std::fputs(line.c_str(), to_stdout ? stdout : stderr);
+    if (to_stdout) std::fflush(stdout);
   };
   SkeletonFitResult result;
   SetStage("fit");
   status = FitSubjectToTake(inputs, settings, solve_options, &result, callback);
   if (!status.ok()) return status;
-  const SubjectChecks& checks = result.checks;
   const Skeleton& fitted = result.subject.skeleton;
-  result.seconds = Seconds(start);
-  std::printf("checks: marker RMS %.1f mm, max marker-to-bone %.1f cm (%s), max marker-to-joint %.1f cm, torso direction error "
-              "mean %.1f max %.1f deg over %d frames, left/right asymmetry %.1f %%%s%s\n",
-              checks.rms_mm, checks.max_bone_distance_cm, checks.farthest_marker.c_str(), checks.max_joint_distance_cm,
-              checks.torso_error_mean_deg, checks.torso_error_max_deg, checks.torso_frames, 100.0 * checks.max_asymmetry,
-              checks.least_symmetric_pair.empty() ? "" : (" (" + checks.least_symmetric_pair + ")").c_str(),
-              checks.ok() ? ", passed" : "");
-  std::printf("bone scales:");
-  for (int j = 1; j < fitted.num_joints(); ++j) {
-    if (std::abs(result.report.bone_scales[j] - 1.0) > 1e-9) {
-      std::printf(" %s %.3f", TerminalText(fitted.name(j)).c_str(), result.report.bone_scales[j]);
-    }
-  }
-  const int outliers = result.outlier_samples;
-  const std::string left_out = outliers > 0 ? " (" + std::to_string(outliers) + " outlier samples left out)" : "";
-  std::printf("\nfit: %d markers, marker RMS %.2f %s%s, %.1f s\n", result.subject.markers.num_markers(),
-              result.report.rms.back() * mm, unit, left_out.c_str(), result.seconds);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fputs(SkeletonFitSummary(result).c_str(), stdout);
   const JsonObject json = SkeletonFitReportJson(inputs, result);
-  if (!checks.ok() && settings.check != "off") {
-    for (const std::string& failure : checks.failures) std::fprintf(stderr, "fit_skeleton: check failed: %s\n", failure.c_str());
+  if (!result.checks.ok() && settings.check != "off") {
+    for (const std::string& failure : result.checks.failures) {
+      std::fprintf(stderr, "fit_skeleton: check failed: %s\n", failure.c_str());
+    }
     const Status failed = SkeletonFitCheckStatus(inputs, settings, result);
     if (!failed.ok()) {
       Status written = WriteReport(json);

@@ -496,6 +496,20 @@ Status CheckNotAnInput(const std::string& output, const std::string& input) {
   return Status::Ok();
 }
 
+Status CheckOutputsApart(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
+  for (size_t a = 0; a < outputs.size(); ++a) {
+    if (outputs[a].empty()) continue;
+    for (const std::string& input : inputs) {
+      Status status = input.empty() ? Status::Ok() : CheckNotAnInput(outputs[a], input);
+      if (!status.ok()) return status;
+    }
+    for (size_t b = a + 1; b < outputs.size(); ++b) {
+      if (outputs[a] == outputs[b]) return Status::Error(outputs[a] + ": named by two output flags");
+    }
+  }
+  return Status::Ok();
+}
+
 }  // namespace mocapsolve
 
 int main(int argc, char** argv) {

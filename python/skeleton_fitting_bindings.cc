@@ -72,36 +72,20 @@ void BindSkeletonFitting(py::module_& m) {
         inputs.axes = axes;
         inputs.marker_scale = marker_scale;
         inputs.amc_fps = amc_fps;
-        if (!template_subject.is_none()) {
-          if (!skeleton.is_none() || !markerset.is_none() || !skeleton_units.empty()) {
-            throw py::value_error(std::string("--template_subject and --") +
-                                  (!skeleton.is_none() ? "skeleton" : !markerset.is_none() ? "markerset"
-                                                                                           : "skeleton_units") +
-                                  " both given: the template subject holds the skeleton and marker set");
-          }
+        ThrowIfError(CheckSkeletonFitInputsGiven(!template_subject.is_none(), !skeleton.is_none(),
+                                                 !markerset.is_none(), !skeleton_units.empty(), true));
+        if (!template_subject.is_none() && !py::isinstance<py::str>(template_subject)) {
           inputs.from_template_subject = true;
-          if (py::isinstance<py::str>(template_subject)) {
-            const std::string path = py::str(template_subject);
-            RequireReadable(path);
-            ThrowIfError(ReadSubject(path, &inputs.templ));
-            inputs.template_name = path;
-          } else {
-            inputs.templ = *template_subject.cast<SubjectPtr>();
-            inputs.template_name = inputs.templ.name;
-          }
+          inputs.templ = *template_subject.cast<SubjectPtr>();
+          inputs.template_name = inputs.templ.name;
         } else {
-          if (skeleton.is_none() || markerset.is_none()) {
-            throw py::value_error(
-                "--markers and either --template_subject or --skeleton and --markerset are required");
+          const std::string subject_path = template_subject.is_none() ? "" : std::string(py::str(template_subject));
+          const std::string skeleton_path = skeleton.is_none() ? "" : std::string(py::str(skeleton));
+          const std::string markerset_path = markerset.is_none() ? "" : std::string(py::str(markerset));
+          for (const std::string& path : {subject_path, skeleton_path, markerset_path}) {
+            if (!path.empty()) RequireReadable(path);
           }
-          const std::string skeleton_path = py::str(skeleton), markerset_path = py::str(markerset);
-          RequireReadable(skeleton_path);
-          RequireReadable(markerset_path);
-          inputs.from_template_subject = false;
-          inputs.template_name = skeleton_path;
-          ThrowIfError(ReadSkeletonFile(skeleton_path, &inputs.templ.skeleton));
-          ThrowIfError(SetSkeletonUnits(skeleton_units, &inputs.templ.skeleton));
-          ThrowIfError(ReadMarkerSet(markerset_path, inputs.templ.skeleton, &inputs.templ.markers));
+          ThrowIfError(LoadSkeletonFitTemplate(subject_path, skeleton_path, markerset_path, skeleton_units, &inputs));
         }
         RequireReadable(markers);
         MarkerSolveOptions solve_options;

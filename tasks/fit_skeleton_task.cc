@@ -7,10 +7,14 @@
 #include <utility>
 
 #include "io/marker_file.h"
+#include "io/marker_set_file.h"
+#include "io/motion_file.h"
+#include "kinematics/quote_token.h"
 #include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/lone_joint_gauge.h"
 #include "problems/marker_solve/marker_observations.h"
 #include "problems/marker_solve/mean_pose.h"
+#include "tasks/console_text.h"
 
 namespace mocapsolve {
 namespace {
@@ -592,6 +596,99 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
       .Add("outlier_samples", result.outlier_samples)
       .Add("rounds", round_json).Add("bone_scales", scale_json).Add("checks", ChecksJson(result.checks));
   return json;
+}
+
+Status CheckSkeletonFitInputsGiven(bool template_subject, bool skeleton, bool markerset, bool skeleton_units,
+                                   bool markers) {
+  if (template_subject && (skeleton || markerset || skeleton_units)) {
+    return Status::Error(std::string("--template_subject and --") +
+                         (skeleton ? "skeleton" : markerset ? "markerset" : "skeleton_units") +
+                         " both given: the template subject holds the skeleton and marker set");
+  }
+  if (!markers || (!template_subject && (!skeleton || !markerset))) {
+    return Status::Error("--markers and either --template_subject or --skeleton and --markerset are required");
+  }
+  return Status::Ok();
+}
+
+Status LoadSkeletonFitTemplate(const std::string& template_subject, const std::string& skeleton,
+                               const std::string& markerset, const std::string& skeleton_units,
+                               SkeletonFitInputs* inputs) {
+  Status status = CheckSkeletonFitInputsGiven(!template_subject.empty(), !skeleton.empty(), !markerset.empty(),
+                                              !skeleton_units.empty(), !inputs->markers_path.empty());
+  if (!status.ok()) return status;
+  inputs->from_template_subject = !template_subject.empty();
+  if (inputs->from_template_subject) {
+    inputs->template_name = template_subject;
+    return ReadSubject(template_subject, &inputs->templ);
+  }
+  inputs->template_name = skeleton;
+  status = ReadSkeletonFile(skeleton, &inputs->templ.skeleton);
+  if (status.ok()) status = SetSkeletonUnits(skeleton_units, &inputs->templ.skeleton);
+  if (status.ok()) status = ReadMarkerSet(markerset, inputs->templ.skeleton, &inputs->templ.markers);
+  return status;
+}
+
+std::string SkeletonFitEventLine(const SkeletonFitEvent& e, const Skeleton& templ, bool* to_stdout) {
+  const bool known = templ.unit().known();
+  const double mm = known ? templ.unit().metres_per_unit * 1000.0 : 1.0;
+  const char* unit = known ? "mm" : "skeleton units";
+  std::string line;
+  *to_stdout = false;
+  switch (e.kind) {
+    case SkeletonFitEvent::kTemplateLabels:
+      AppendF(&line, "fit_skeleton: template labels: %d pairs from %s\n", e.markers, e.text.c_str());
+      break;
+    case SkeletonFitEvent::kAbsentMarkers:
+      AppendF(&line, "fit_skeleton: not in the file, left out: %s\n", e.text.c_str());
+      break;
+    case SkeletonFitEvent::kRoundStart:
+      AppendF(&line, "fit_skeleton: round %d/%d: %d markers, %d frames, %d iterations (%.0f s so far)\n", e.round,
+              e.rounds, e.markers, e.frames, e.iterations, e.seconds);
+      break;
+    case SkeletonFitEvent::kFrames:
+      break;
+    case SkeletonFitEvent::kIteration:
+      AppendF(&line, "  iteration %d: marker RMS %.2f %s (%.0f s)\n", e.iteration, e.rms * mm, unit, e.seconds);
+      break;
+    case SkeletonFitEvent::kRoundDone:  // The report's "rounds" holds the same figures.
+      *to_stdout = true;
+      AppendF(&line, "round %d: %d markers, marker RMS %.2f -> %.2f %s\n", e.round, e.markers, e.rms_first * mm,
+              e.rms * mm, unit);
+      break;
+    case SkeletonFitEvent::kStopped:
+      AppendF(&line, e.rms > 0.0 ? "fit_skeleton: round %d improved by less than 1 %%; stopping\n"
+                                 : "fit_skeleton: round %d did not improve; stopping\n", e.round);
+      break;
+    case SkeletonFitEvent::kKept:
+      AppendF(&line, "fit_skeleton: keeping round %d (marker RMS %.2f %s)\n", e.round, e.rms * mm, unit);
+      break;
+  }
+  return line;
+}
+
+std::string SkeletonFitSummary(const SkeletonFitResult& result) {
+  const SubjectChecks& checks = result.checks;
+  const Skeleton& fitted = result.subject.skeleton;
+  std::string text;
+  AppendF(&text, "checks: marker RMS %.1f mm, max marker-to-bone %.1f cm (%s), max marker-to-joint %.1f cm, torso "
+          "direction error mean %.1f max %.1f deg over %d frames, left/right asymmetry %.1f %%%s%s\n",
+          checks.rms_mm, checks.max_bone_distance_cm, checks.farthest_marker.c_str(), checks.max_joint_distance_cm,
+          checks.torso_error_mean_deg, checks.torso_error_max_deg, checks.torso_frames, 100.0 * checks.max_asymmetry,
+          checks.least_symmetric_pair.empty() ? "" : (" (" + checks.least_symmetric_pair + ")").c_str(),
+          checks.ok() ? ", passed" : "");
+  text += "bone scales:";
+  for (int j = 1; j < fitted.num_joints(); ++j) {
+    if (std::abs(result.report.bone_scales[j] - 1.0) > 1e-9) {
+      AppendF(&text, " %s %.3f", TerminalText(fitted.name(j)).c_str(), result.report.bone_scales[j]);
+    }
+  }
+  const int outliers = result.outlier_samples;
+  const std::string left_out = outliers > 0 ? " (" + std::to_string(outliers) + " outlier samples left out)" : "";
+  AppendF(&text, "\nfit: %d markers, marker RMS %.2f %s%s, %.1f s\n", result.subject.markers.num_markers(),
+          result.report.rms.back() * result.mm_per_unit, result.unit_known ? "mm" : "skeleton units", left_out.c_str(),
+          result.seconds);
+  return text;
 }
 
 }  // namespace mocapsolve

@@ -106,6 +106,18 @@ struct SkeletonFitResult {
   bool unit_known = false;
 };
 
+// Which inputs were given: a template subject, or a skeleton and a marker set (not both),
+// and the take's markers; else the one-line error every front end prints.
+Status CheckSkeletonFitInputsGiven(bool template_subject, bool skeleton, bool markerset, bool skeleton_units,
+                                   bool markers);
+
+// The template from files: a subject file, or a skeleton file (with `skeleton_units` when
+// it states none) and a marker set (CheckSkeletonFitInputsGiven first; set
+// inputs->markers_path before).
+Status LoadSkeletonFitTemplate(const std::string& template_subject, const std::string& skeleton,
+                               const std::string& markerset, const std::string& skeleton_units,
+                               SkeletonFitInputs* inputs);
+
 // Runs the rounds. Errors name the marker file; `settings` are validated first.
 Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings,
                         const MarkerSolveOptions& solve_options, SkeletonFitResult* result,
@@ -114,6 +126,14 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
 // Error when the checks failed and settings.check is "fail": the CLI's message.
 Status SkeletonFitCheckStatus(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings,
                               const SkeletonFitResult& result);
+
+// The console line of an event ("fit_skeleton: round 2/12: 41 markers, ..."), lengths in mm
+// (skeleton units when `templ`'s unit is unknown); *to_stdout: the line is a result (a round's
+// RMS), not progress. "" for kFrames (a progress bar's).
+std::string SkeletonFitEventLine(const SkeletonFitEvent& event, const Skeleton& templ, bool* to_stdout);
+
+// The console summary after the fit: the checks, the bone scales that changed, the RMS.
+std::string SkeletonFitSummary(const SkeletonFitResult& result);
 
 // The report (`--report`): frames, rounds, kept round, RMS, bone scales, checks, the label map.
 JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const SkeletonFitResult& result);
