@@ -289,58 +289,40 @@ A bad option raises ValueError with the CLI's message; an unknown one TypeError.
                         const std::string& attach, double amc_fps, const std::string& skeleton_units) {
         RequireReadable(motion_path);
         RequireReadable(markers_path);
+        CalibrateSettings settings;
+        settings.attach = attach;
+        settings.frame_offset = frame_offset;
+        settings.min_valid_frames = min_valid_frames;
+        ThrowIfError(CheckCalibrateSettings(settings));
         MotionFileOptions motion_options;
         if (!skeleton.is_none()) motion_options.skeleton_path = py::str(skeleton);
         motion_options.amc_frame_rate = amc_fps;
-        auto out = std::make_shared<SubjectCalibration>();
-        Skeleton model;
-        Motion motion;
-        MarkerTrajectories trajectories;
-        MarkerSet attachments;
+        SubjectCalibrationOptions options;
+        options.axes = axes;
+        options.marker_scale = marker_scale;
+        options.skeleton_path = motion_options.skeleton_path.empty() ? motion_path : motion_options.skeleton_path;
+        options.amc_fps = amc_fps;
+        options.markers_name = markers_path;
+        auto out = std::make_shared<CalibrateTaskResult>();
         Status status = Status::Ok();
         {
           py::gil_scoped_release release;
+          Skeleton model;
+          Motion motion;
+          MarkerTrajectories trajectories;
           status = ReadMotionFile(motion_path, motion_options, &model, &motion);
           if (status.ok()) status = SetSkeletonUnits(skeleton_units, &model);
           if (status.ok()) status = ReadMarkerFile(markers_path, &trajectories);
-          if (status.ok() && attach != "auto") status = ReadMarkerSet(attach, model, &attachments);
-          if (status.ok()) {
-            SubjectCalibrationOptions options;
-            options.axes = axes;
-            options.marker_scale = marker_scale;
-            options.frame_offset = frame_offset;
-            options.min_valid_frames = min_valid_frames;
-            options.attachments = attach == "auto" ? nullptr : &attachments;
-            options.skeleton_path = motion_options.skeleton_path.empty() ? motion_path : motion_options.skeleton_path;
-            options.amc_fps = amc_fps;
-            options.markers_name = markers_path;
-            status = CalibrateSubject(model, motion, trajectories, options, out.get());
-          }
+          if (status.ok()) status = RunCalibrate(model, motion, trajectories, settings, options, out.get());
         }
         ThrowIfError(status);
-        const double mm = model.unit().known() ? model.unit().metres_per_unit * 1000.0 : 0.0;
-        py::dict report;
-        report["axes"] = AxesName(out->transform.rotation);
-        report["marker_scale"] = out->transform.scale;
-        report["matched_frames"] = out->result.matched_frames;
-        report["samples"] = out->result.samples;
-        report["rms"] = out->result.rms;
-        if (mm > 0.0) report["rms_mm"] = out->result.rms * mm;
-        py::list per_marker;
-        for (const CalibratedMarker& c : out->result.markers) {
-          py::dict o;
-          o["label"] = c.label;
-          o["frames"] = c.frames;
-          o["rms"] = c.rms;
-          o["max_error"] = c.max_error;
-          per_marker.append(o);
-        }
-        report["per_marker"] = per_marker;
-        report["skipped"] = out->result.skipped;
-        return py::make_tuple(std::make_shared<Subject>(std::move(out->subject)), report);
+        return py::make_tuple(std::make_shared<Subject>(std::move(out->calibration.subject)),
+                              ReportToPython(out->report));
       }, py::arg("motion"), py::arg("markers"), py::kw_only(), py::arg("skeleton") = py::none(),
-      py::arg("axes") = "x,y,z", py::arg("marker_scale") = 0.0, py::arg("frame_offset") = 0,
-      py::arg("min_valid_frames") = 2, py::arg("attach") = "auto", py::arg("amc_fps") = 120.0,
+      py::arg("axes") = "x,y,z", py::arg("marker_scale") = 0.0,
+      py::arg("frame_offset") = CalibrateSettings().frame_offset,  // The declared defaults.
+      py::arg("min_valid_frames") = CalibrateSettings().min_valid_frames, py::arg("attach") = CalibrateSettings().attach,
+      py::arg("amc_fps") = 120.0,
       py::arg("skeleton_units") = "",
       R"doc(Calibrates a subject as `mocapsolve calibrate --out_subject`: where each marker sits
 on the skeleton, from a solved motion (motion: .bvh, or .amc with skeleton= its .asf) and
@@ -350,7 +332,8 @@ marker_scale: marker units -> skeleton units (0 = from the units); frame_offset:
 = motion frame + frame_offset; min_valid_frames: markers valid in fewer matched frames are
 left out (default 2); amc_fps: the .amc's frame rate (default 120); skeleton_units: the unit
 of a skeleton that states none (mm, cm, m, in).
-Returns (subject, report) with the calibrated RMS and per-marker figures.)doc");
+Returns (subject, report): the report of `calibrate --report` (after its file names): the
+calibrated RMS, the axes, per-marker figures (joint, frames, rms, max_error, rms_mm).)doc");
 }
 
 }  // namespace mocapsolve::python

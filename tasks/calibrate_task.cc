@@ -1,8 +1,13 @@
 #include "tasks/calibrate_task.h"
 
 #include <cmath>
+#include <cstdio>
 
+#include "io/marker_set_file.h"
+#include "io/motion_file.h"
+#include "kinematics/quote_token.h"
 #include "problems/marker_solve/mean_pose.h"
+#include "tasks/console_text.h"
 
 namespace mocapsolve {
 
@@ -56,6 +61,119 @@ Status CalibrateSubject(const Skeleton& skeleton, const Motion& motion,
   result.transform = transform;
   result.axis_rms = std::move(axis_rms);
   *out = std::move(result);
+  return Status::Ok();
+}
+
+namespace {
+
+// "LeftArm" or, for a marker on several joints, "LeftArm+LeftForeArm".
+std::string AttachedJoints(const Skeleton& skeleton, const MarkerSpec& spec) {
+  std::string joints;
+  for (const MarkerAttachment& a : spec.attachments) joints += (joints.empty() ? "" : "+") + skeleton.name(a.joint);
+  return joints;
+}
+
+// The console table: the mapping, one line per marker (joint, frames, RMS, max, next best
+// joint), the markers skipped and the overall RMS.
+std::string CalibrationTable(const Skeleton& skeleton, const SubjectCalibration& calibration, int frame_offset) {
+  const CalibrationResult& result = calibration.result;
+  const double mm = skeleton.unit().known() ? skeleton.unit().metres_per_unit * 1000.0 : 0.0;
+  const auto length = [&](double value, bool pad) {
+    std::string text;
+    if (mm > 0.0) {
+      AppendF(&text, pad ? "%8.3f mm" : "%.3f mm", value * mm);
+    } else {
+      AppendF(&text, pad ? "%8.4g units" : "%.4g units", value);
+    }
+    return text;
+  };
+  std::string text;
+  AppendF(&text, "axes %s, scale %.9g (marker units -> %s), frames %d..%d of the motion (offset %d)\n",
+          AxesName(calibration.transform.rotation).c_str(), calibration.transform.scale,
+          skeleton.unit().name.c_str(), result.first_motion_frame,
+          result.first_motion_frame + result.matched_frames - 1, frame_offset);
+  AppendF(&text, "%-12s %-14s %7s %12s %12s  %s\n", "marker", "joint", "frames", "rms", "max", "next best joint");
+  for (int s = 0; s < result.marker_set.num_markers(); ++s) {
+    const CalibratedMarker& m = result.markers[s];
+    const std::string joints = AttachedJoints(skeleton, result.marker_set.marker(s));
+    std::string runner = "-";
+    if (m.runner_up >= 0) runner = skeleton.name(m.runner_up) + " (" + length(m.runner_up_rms, false) + ")";
+    AppendF(&text, "%-12s %-14s %7d %s %s  %s\n", TerminalText(m.label).c_str(), TerminalText(joints).c_str(),
+            m.frames, length(m.rms, true).c_str(), length(m.max_error, true).c_str(), TerminalText(runner).c_str());
+  }
+  for (const std::string& skipped : result.skipped) AppendF(&text, "skipped %s\n", TerminalText(skipped).c_str());
+  AppendF(&text, "calibrated %d markers over %d samples: RMS %s", result.marker_set.num_markers(), result.samples,
+          length(result.rms, false).c_str());
+  return text;
+}
+
+JsonObject CalibrationReport(const Skeleton& skeleton, const SubjectCalibration& calibration,
+                             const CalibrateSettings& settings) {
+  const CalibrationResult& result = calibration.result;
+  const double mm = skeleton.unit().known() ? skeleton.unit().metres_per_unit * 1000.0 : 0.0;
+  JsonObject report;
+  report.Add("attach", settings.attach)
+      .Add("axes", AxesName(calibration.transform.rotation))
+      .Add("marker_scale", calibration.transform.scale)
+      .Add("units", skeleton.unit().name)
+      .Add("frame_offset", settings.frame_offset)
+      .Add("matched_frames", result.matched_frames)
+      .Add("samples", result.samples)
+      .Add("rms", result.rms);
+  if (mm > 0.0) report.Add("rms_mm", result.rms * mm);
+  if (!calibration.axis_rms.empty()) {
+    std::vector<JsonObject> candidates;
+    const std::vector<Eigen::Matrix3d> rotations = AllAxisRotations();
+    for (size_t c = 0; c < rotations.size(); ++c) {
+      JsonObject o;
+      o.Add("axes", AxesName(rotations[c])).Add("rms", calibration.axis_rms[c]);
+      candidates.push_back(o);
+    }
+    report.Add("axis_candidates", candidates);
+  }
+  std::vector<JsonObject> per_marker;
+  for (int s = 0; s < result.marker_set.num_markers(); ++s) {
+    const CalibratedMarker& m = result.markers[s];
+    const std::string joints = AttachedJoints(skeleton, result.marker_set.marker(s));
+    JsonObject o;
+    o.Add("label", m.label).Add("joint", joints).Add("frames", m.frames).Add("rms", m.rms)
+        .Add("max_error", m.max_error);
+    if (mm > 0.0) o.Add("rms_mm", m.rms * mm);
+    per_marker.push_back(o);
+  }
+  std::vector<JsonValue> skipped(result.skipped.begin(), result.skipped.end());
+  report.Add("skipped", skipped).Add("per_marker", per_marker);
+  return report;
+}
+
+}  // namespace
+
+Status CheckCalibrateSettings(const CalibrateSettings& settings) {
+  Status status = CalibrateSettingOptions().Validate(settings);
+  if (!status.ok()) return status;
+  if (settings.attach != "auto" && FileExtension(settings.attach) != ".json") {
+    return Status::Error("--attach='" + settings.attach + "': expected auto or a marker set .json");
+  }
+  return Status::Ok();
+}
+
+Status RunCalibrate(const Skeleton& skeleton, const Motion& motion, const MarkerTrajectories& trajectories,
+                    const CalibrateSettings& settings, SubjectCalibrationOptions options,
+                    CalibrateTaskResult* result) {
+  Status status = CheckCalibrateSettings(settings);
+  if (!status.ok()) return status;
+  MarkerSet attachments;
+  if (settings.attach != "auto") {
+    status = ReadMarkerSet(settings.attach, skeleton, &attachments);
+    if (!status.ok()) return status;
+  }
+  options.frame_offset = settings.frame_offset;
+  options.min_valid_frames = settings.min_valid_frames;
+  options.attachments = settings.attach == "auto" ? nullptr : &attachments;
+  status = CalibrateSubject(skeleton, motion, trajectories, options, &result->calibration);
+  if (!status.ok()) return status;
+  result->report = CalibrationReport(skeleton, result->calibration, settings);
+  result->table = CalibrationTable(skeleton, result->calibration, settings.frame_offset);
   return Status::Ok();
 }
 

@@ -2,13 +2,14 @@
 // each marker sits on the skeleton (problems/marker_solve/calibration.h), with the marker
 // file's scale and axes decided first, and the result as a Subject (subject.h) that
 // solve, repair and the pipeline take. `mocapsolve calibrate` and the Python module's
-// calibrate() both call CalibrateSubject. Knows nothing of flags.
+// calibrate() both call RunCalibrate. Knows nothing of flags.
 #ifndef MOCAPSOLVE_TASKS_CALIBRATE_TASK_H_
 #define MOCAPSOLVE_TASKS_CALIBRATE_TASK_H_
 
 #include <string>
 #include <vector>
 
+#include "io/json_writer.h"
 #include "kinematics/marker_set.h"
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/motion.h"
@@ -17,6 +18,7 @@
 #include "pipeline/subject.h"
 #include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/marker_observations.h"
+#include "settings/calibrate_settings.h"
 
 namespace mocapsolve {
 
@@ -43,6 +45,23 @@ struct SubjectCalibration {
 Status CalibrateSubject(const Skeleton& skeleton, const Motion& motion,
                         const MarkerTrajectories& trajectories,
                         const SubjectCalibrationOptions& options, SubjectCalibration* out);
+
+struct CalibrateTaskResult {
+  SubjectCalibration calibration;
+  JsonObject report;  // `--report` after the caller's file names: attach, axes, ..., per_marker.
+  std::string table;  // The console table: axes, one line per marker, skipped ones, the RMS (no final newline).
+};
+
+// Settings checked as the CLI checks them (their options, then --attach: auto or a .json).
+Status CheckCalibrateSettings(const CalibrateSettings& settings);
+
+// `mocapsolve calibrate`: the attachments read (settings.attach), CalibrateSubject with
+// `options`' mapping and paths (their frame_offset, min_valid_frames and attachments come
+// from `settings`), the report and the table. Lengths in mm where the skeleton's unit is
+// known ("rms_mm"), else skeleton units.
+Status RunCalibrate(const Skeleton& skeleton, const Motion& motion, const MarkerTrajectories& trajectories,
+                    const CalibrateSettings& settings, SubjectCalibrationOptions options,
+                    CalibrateTaskResult* result);
 
 }  // namespace mocapsolve
 
