@@ -8,7 +8,6 @@
 // read here with its own default (green); the other options are declared in settings/.
 #include <cstdio>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -39,48 +38,7 @@ DEFINE_string(foot_joints, "", "Comma-separated foot joints for contacts (defaul
 DEFINE_string(weights_csv, "", "Write the falloff weights: frame,weight (one column per edit).");
 
 namespace mocapsolve {
-
 namespace {
-
-Status WriteWeightsCsv(const std::string& path, const std::vector<int>& frames,
-                       const std::vector<Eigen::VectorXd>& weights) {
-  std::ostringstream csv;
-  csv.precision(9);
-  csv << "frame";
-  if (weights.size() == 1) {
-    csv << ",weight";
-  } else {
-    for (int frame : frames) csv << ",weight_" << frame;
-  }
-  csv << "\n";
-  for (int f = 0; f < (weights.empty() ? 0 : weights[0].size()); ++f) {
-    csv << f;
-    for (const Eigen::VectorXd& w : weights) csv << "," << w[f];
-    csv << "\n";
-  }
-  return WriteFileAtomically(path, csv.str());
-}
-
-// The console lines: the IK solve, the falloff comparisons, the feet.
-void PrintPropagation(const PropagateConfig& config, const PropagateResult& result) {
-  if (result.ik) {
-    std::printf("IK edit at frame %d (%s): %d iterations, max target error %.4g skeleton units\n", config.frame,
-                config.solver.solver.c_str(), result.ik_report.solve.iterations, result.ik_report.max_target_error);
-  }
-  for (const FalloffComparison& c : result.comparisons) {
-    std::printf("%s vs %s falloff of frame %d: correlation %.4f, max |difference| %.4f\n", config.method.c_str(),
-                c.method.c_str(), result.frames[0], c.correlation, c.max_difference);
-  }
-  if (!result.contacts_found) return;
-  const char* assumed = result.unit_assumed ? " (skeleton unit unknown: assumed cm)" : "";
-  if (config.propagate.keep_contacts) {
-    std::printf("contacts: %d frames, max foot drift %.3f cm before the re-solve, %.3f cm after%s\n",
-                result.contact_frames, result.drift_cm_before, result.drift_cm_after, assumed);
-  } else {
-    std::printf("contacts: %d frames, max foot drift %.3f cm (use --keep_contacts to hold them)%s\n",
-                result.contact_frames, result.drift_cm_before, assumed);
-  }
-}
 
 Status PropagateMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
@@ -117,36 +75,18 @@ Status PropagateMain(const std::vector<std::string>& arguments) {
     progress->Update(done);
   }, &result);
   if (!status.ok()) return status;
-  PrintPropagation(config, result);
+  std::fputs(PropagateSummary(config, result).c_str(), stdout);
 
   SetStage("writing");
   status = WriteBvh(FLAGS_out, skeleton, result.propagated);
   if (!status.ok()) return status;
-  const std::vector<Eigen::VectorXd>& weights = result.weights.weights;
   if (!FLAGS_weights_csv.empty()) {
-    status = WriteWeightsCsv(FLAGS_weights_csv, result.frames, weights);
+    status = WriteFileAtomically(FLAGS_weights_csv, FalloffWeightsCsv(result));
     if (!status.ok()) return status;
   }
   // --view: the propagated clip over the original (ghosted), and each edit's falloff.
-  status = WriteViewFlag([&](ViewScene* scene) {
-    ViewTransform transform;
-    Status made = MakeMotionViewTransform(FLAGS_motion, skeleton, motion, -1, &transform);
-    if (!made.ok()) return made;
-    scene->title = "propagate: " + FileStem(FLAGS_motion);
-    scene->frame_rate = motion.frame_rate > 0 ? motion.frame_rate : 30.0;
-    scene->notes.push_back(transform.note);
-    scene->skeletons.push_back(MakeViewSkeleton("propagated", skeleton, result.propagated, transform));
-    ViewSkeleton original = MakeViewSkeleton("original", skeleton, motion, transform);
-    original.ghost = true;
-    scene->skeletons.push_back(std::move(original));
-    for (size_t e = 0; e < weights.size(); ++e) {
-      ViewCurve curve;
-      curve.name = "falloff (edit at " + std::to_string(result.frames[e]) + ")";
-      for (int f = 0; f < weights[e].size(); ++f) curve.values.push_back(static_cast<float>(weights[e][f]));
-      scene->curves.push_back(std::move(curve));
-    }
-    return Status::Ok();
-  });
+  status = WriteViewFlag(
+      [&](ViewScene* scene) { return MakePropagateViewScene(FLAGS_motion, skeleton, motion, result, scene); });
   if (!status.ok()) return status;
   std::printf("wrote %s: %d frames, %zu edit(s) at frame %d%s, %s falloff over %d:%d\n", FLAGS_out.c_str(),
               motion.num_frames(), result.frames.size(), result.frames[0], result.frames.size() > 1 ? " ..." : "",

@@ -1,11 +1,14 @@
 #include "tasks/propagate_task.h"
 
 #include <cmath>
+#include <sstream>
 #include <utility>
 
 #include "io/comma_list.h"
+#include "io/motion_file.h"
 #include "problems/edit_propagation/foot_contacts.h"
 #include "problems/edit_propagation/pose_edit.h"
+#include "tasks/console_text.h"
 
 namespace mocapsolve {
 namespace {
@@ -165,6 +168,69 @@ Status RunPropagate(const Skeleton& skeleton, const Motion& motion, const Propag
       .Add("region_end", result->region_end).Add("edit", edit_report).Add("falloff", result->weights.report)
       .Add("contacts", contact_report).Add("units_assumed_cm", result->unit_assumed);
   if (config.propagate.compare_falloffs) result->report.Add("comparison", comparison);
+  return Status::Ok();
+}
+
+std::string PropagateSummary(const PropagateConfig& config, const PropagateResult& result) {
+  std::string text;
+  if (result.ik) {
+    AppendF(&text, "IK edit at frame %d (%s): %d iterations, max target error %.4g skeleton units\n", config.frame,
+            config.solver.solver.c_str(), result.ik_report.solve.iterations, result.ik_report.max_target_error);
+  }
+  for (const FalloffComparison& c : result.comparisons) {
+    AppendF(&text, "%s vs %s falloff of frame %d: correlation %.4f, max |difference| %.4f\n", config.method.c_str(),
+            c.method.c_str(), result.frames[0], c.correlation, c.max_difference);
+  }
+  if (!result.contacts_found) return text;
+  const char* assumed = result.unit_assumed ? " (skeleton unit unknown: assumed cm)" : "";
+  if (config.propagate.keep_contacts) {
+    AppendF(&text, "contacts: %d frames, max foot drift %.3f cm before the re-solve, %.3f cm after%s\n",
+            result.contact_frames, result.drift_cm_before, result.drift_cm_after, assumed);
+  } else {
+    AppendF(&text, "contacts: %d frames, max foot drift %.3f cm (use --keep_contacts to hold them)%s\n",
+            result.contact_frames, result.drift_cm_before, assumed);
+  }
+  return text;
+}
+
+std::string FalloffWeightsCsv(const PropagateResult& result) {
+  const std::vector<Eigen::VectorXd>& weights = result.weights.weights;
+  std::ostringstream csv;
+  csv.precision(9);
+  csv << "frame";
+  if (weights.size() == 1) {
+    csv << ",weight";
+  } else {
+    for (int frame : result.frames) csv << ",weight_" << frame;
+  }
+  csv << "\n";
+  for (int f = 0; f < (weights.empty() ? 0 : weights[0].size()); ++f) {
+    csv << f;
+    for (const Eigen::VectorXd& w : weights) csv << "," << w[f];
+    csv << "\n";
+  }
+  return csv.str();
+}
+
+Status MakePropagateViewScene(const std::string& motion_name, const Skeleton& skeleton, const Motion& motion,
+                              const PropagateResult& result, ViewScene* scene) {
+  ViewTransform transform;
+  Status made = MakeMotionViewTransform(motion_name, skeleton, motion, -1, &transform);
+  if (!made.ok()) return made;
+  scene->title = "propagate: " + FileStem(motion_name);
+  scene->frame_rate = motion.frame_rate > 0 ? motion.frame_rate : 30.0;
+  scene->notes.push_back(transform.note);
+  scene->skeletons.push_back(MakeViewSkeleton("propagated", skeleton, result.propagated, transform));
+  ViewSkeleton original = MakeViewSkeleton("original", skeleton, motion, transform);
+  original.ghost = true;
+  scene->skeletons.push_back(std::move(original));
+  for (size_t e = 0; e < result.weights.weights.size(); ++e) {
+    const Eigen::VectorXd& weights = result.weights.weights[e];
+    ViewCurve curve;
+    curve.name = "falloff (edit at " + std::to_string(result.frames[e]) + ")";
+    for (int f = 0; f < weights.size(); ++f) curve.values.push_back(static_cast<float>(weights[f]));
+    scene->curves.push_back(std::move(curve));
+  }
   return Status::Ok();
 }
 

@@ -19,6 +19,7 @@
 #include "settings/falloff_settings.h"
 #include "settings/propagate_settings.h"
 #include "settings/solver_settings.h"
+#include "viewer/view_scene.h"
 
 namespace mocapsolve {
 
@@ -57,6 +58,17 @@ struct PropagateResult {
 // the contact re-solve done, and the total.
 Status RunPropagate(const Skeleton& skeleton, const Motion& motion, const PropagateConfig& config,
                     const std::function<void(int done, int total)>& contact_progress, PropagateResult* result);
+
+// The console lines after RunPropagate: the IK solve, the falloff comparisons, the feet.
+std::string PropagateSummary(const PropagateConfig& config, const PropagateResult& result);
+
+// The falloff weights as CSV: frame,weight (one weight_<frame> column per edit when several).
+std::string FalloffWeightsCsv(const PropagateResult& result);
+
+// The page of `propagate --view`: the propagated clip over the original (ghosted), and each
+// edit's falloff as a curve. `motion_name` names the clip (its file) in the title.
+Status MakePropagateViewScene(const std::string& motion_name, const Skeleton& skeleton, const Motion& motion,
+                              const PropagateResult& result, ViewScene* scene);
 
 }  // namespace mocapsolve
 
