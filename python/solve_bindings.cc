@@ -69,8 +69,7 @@ class FrameSolver {
   FrameSolver(SubjectPtr subject, const py::kwargs& keywords) : subject_(std::move(subject)) {
     Required(subject_, "subject");
     settings_ = SettingsFromKeywords(keywords);
-    ThrowIfError(MarkerSolveOptionsFromSettings(settings_, subject_->skeleton.unit(), &options_));
-    options_.rest_rotations = subject_->mean_pose;
+    ThrowIfError(MarkerSolveOptionsFromSettings(settings_, subject_->skeleton, subject_->mean_pose, &options_));
     solver_ = std::make_unique<MarkerFrameSolver>(subject_->skeleton, subject_->markers, options_);
   }
 

@@ -169,6 +169,13 @@ Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const Leng
   return Status::Ok();
 }
 
+Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const Skeleton& skeleton,
+                                      const QuaternionVector& mean_pose, MarkerSolveOptions* options) {
+  Status status = MarkerSolveOptionsFromSettings(settings, skeleton.unit(), options);
+  if (status.ok()) options->rest_rotations = mean_pose;
+  return status;
+}
+
 Status ClipSolveOptionsFromSettings(const SolverSettings& settings, ClipSolveOptions* options) {
   Status checked = SolverOptions().Validate(settings);
   if (!checked.ok()) return checked;

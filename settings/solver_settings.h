@@ -11,6 +11,8 @@
 
 #include <string>
 
+#include "kinematics/motion.h"
+#include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "kinematics/units.h"
 #include "settings/option.h"
@@ -65,6 +67,11 @@ inline constexpr double kMeanPoseRestPriorWeight = 5.0;
 // and limit weights from mm.
 Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const LengthUnit& skeleton_unit,
                                       MarkerSolveOptions* options);
+// A subject's per-frame options: the above in its skeleton's unit, with its mean pose (empty:
+// none) as the rest prior's reference. Every solve of a subject's markers starts here, so no
+// caller attaches the prior by hand.
+Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const Skeleton& skeleton,
+                                      const QuaternionVector& mean_pose, MarkerSolveOptions* options);
 // Whole-clip options: clip_solver picks Ceres (linear_solver defaults to
 // sparse_normal_cholesky) or the block-banded DLS (dls_lambda, dls_damping, the iteration
 // limit and tolerances as per frame, clip_function_tolerance).

@@ -15,9 +15,8 @@ Status LeaveOneOut(const MarkerTake& take, const EvaluateConfig& config,
   const Skeleton& skeleton = take.skeleton;
   const MarkerSet& markers = take.markers;
   LeaveOneOutOptions options;
-  Status status = MarkerSolveOptionsFromSettings(config.solver, skeleton.unit(), &options.frame);
+  Status status = MarkerSolveOptionsFromSettings(config.solver, skeleton, take.mean_pose, &options.frame);
   if (!status.ok()) return status;
-  options.frame.rest_rotations = take.mean_pose;
   options.clip = config.solver.mode == "clip";
   if (options.clip) {
     status = ClipSolveOptionsFromSettings(config.solver, &options.clip_options);

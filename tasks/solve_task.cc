@@ -27,9 +27,8 @@ Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolvePr
                                                   std::to_string(config.max_frames));
   const Skeleton& skeleton = take.skeleton;
   MarkerSolveOptions frame_options;  // Validates every solver option.
-  Status status = MarkerSolveOptionsFromSettings(solver, skeleton.unit(), &frame_options);
+  Status status = MarkerSolveOptionsFromSettings(solver, skeleton, take.mean_pose, &frame_options);
   if (!status.ok()) return status;
-  frame_options.rest_rotations = take.mean_pose;
   ClipSolveOptions clip_options;
   if (solver.mode == "clip") {
     status = ClipSolveOptionsFromSettings(solver, &clip_options);
