@@ -297,21 +297,6 @@ Status MarkerTakeInputs(std::vector<std::string>* inputs) {
   return Status::Ok();
 }
 
-namespace {
-
-// RequireMarkerData, and at least one sample of the marker set's markers.
-Status RequireTakeData(const std::string& path, const MarkerTake& take) {
-  if (Status status = RequireMarkerData(path, take.trajectories); !status.ok()) return status;
-  for (const std::vector<Eigen::Vector3d>& frame : take.observed) {
-    for (const Eigen::Vector3d& position : frame) {
-      if (position.allFinite()) return Status::Ok();
-    }
-  }
-  return Status::Error(path + ": no marker of the marker set is observed in any frame");
-}
-
-}  // namespace
-
 Status LoadMarkerTake(MarkerTake* take) {
   Subject subject;
   Status status = LoadSubjectFromFlags(&subject);

@@ -252,6 +252,16 @@ Status LoadTakeForSubject(const Subject& subject, const std::string& markers_pat
   return TakeForSubject(subject, std::move(trajectories), markers_path, take);
 }
 
+Status RequireTakeData(const std::string& path, const MarkerTake& take) {
+  if (Status status = RequireMarkerData(path, take.trajectories); !status.ok()) return status;
+  for (const std::vector<Eigen::Vector3d>& frame : take.observed) {
+    for (const Eigen::Vector3d& position : frame) {
+      if (position.allFinite()) return Status::Ok();
+    }
+  }
+  return Status::Error(path + ": no marker of the marker set is observed in any frame");
+}
+
 Status TakeForSubject(const Subject& subject, MarkerTrajectories trajectories, const std::string& markers_path,
                       MarkerTake* take) {
   MarkerTake result;

@@ -108,6 +108,10 @@ Status LoadTakeForSubject(const Subject& subject, const std::string& markers_pat
 // stands for the file in messages.
 Status TakeForSubject(const Subject& subject, MarkerTrajectories trajectories, const std::string& name,
                       MarkerTake* take);
+// Commands that compute on a take refuse one without data: RequireMarkerData
+// (io/marker_file.h), and at least one sample of the marker set's markers ("<path>: no
+// marker of the marker set is observed in any frame").
+Status RequireTakeData(const std::string& path, const MarkerTake& take);
 
 // The inverse for outputs: the take's file as read, with every sample of the set's
 // markers that differs from the observation (repaired[f][m], skeleton frame and units)

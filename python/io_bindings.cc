@@ -8,6 +8,7 @@
 #include "io/motion_file.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
+#include "tasks/info_task.h"
 #include "tasks/markers_task.h"
 
 namespace mocapsolve::python {
@@ -151,6 +152,38 @@ void BindIo(py::module_& m) {
       "skeleton that states none (mm, cm, m, in). Returns (skeleton, motion)\n"
       "with motion.rotations (frames, joints, 4; x, y, z, w) and motion.root_translations\n"
       "(frames, 3) in the file's units.");
+
+  m.def("info", [](const std::string& path, py::object skeleton, double amc_fps, const std::string& animation,
+                   double sample_fps, const std::string& skeleton_units) {
+        RequireReadable(path);
+        InfoConfig config;
+        if (!skeleton.is_none()) {
+          config.skeleton = py::str(skeleton);
+          RequireReadable(config.skeleton);
+        }
+        config.amc_fps = amc_fps;
+        config.animation = animation;
+        config.sample_fps = sample_fps;
+        config.skeleton_units = skeleton_units;
+        InfoResult result;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = RunInfo(path, config, &result);
+        }
+        for (const std::string& warning : result.warnings) py::module_::import("warnings").attr("warn")(warning);
+        ThrowIfError(status);
+        return ReportToPython(result.report);
+      }, py::arg("path"), py::kw_only(), py::arg("skeleton") = py::none(), py::arg("amc_fps") = 120.0,
+      py::arg("animation") = "", py::arg("sample_fps") = 0.0, py::arg("skeleton_units") = "",
+      "What a file holds, as `mocapsolve info` (one task): path, a marker file (.c3d/.trc:\n"
+      "labels, frames, rate, unit, missing samples, gap runs), a motion (.bvh, .amc with\n"
+      "skeleton= its .asf), a skeleton (.asf) or a character (.glb/.gltf/.fbx: meshes, skins,\n"
+      "the skeleton's first levels, height and bind pose, the animations; animation= a clip's\n"
+      "name or index, sample_fps= its sampling rate). amc_fps: an .amc's frame rate (default\n"
+      "120); skeleton_units: the unit of a skeleton that states none (mm, cm, m, in).\n"
+      "Returns the dict its --report writes (without the envelope: status, version, options,\n"
+      "inputs); the readers' warnings go to warnings.warn.");
 
   m.def("write_motion", [](const std::string& path, const Skeleton& skeleton, const Motion& motion,
                            int precision, double scale) {

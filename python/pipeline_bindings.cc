@@ -1,6 +1,7 @@
 // The pipeline on one take (pipeline/take_pipeline.h): repair and solve, optional
 // filtering, retargeting onto each character, the quality gate; outputs optionally written.
-// And batch(): the pipeline over many takes in worker processes (tasks/batch_task.h).
+// And batch(): the pipeline over many takes in worker processes (tasks/batch_task.h); view():
+// a take, motions and characters as one browser page (tasks/view_task.h).
 #include <cstdlib>
 
 #include "batch/batch_summary.h"
@@ -16,6 +17,7 @@
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
 #include "tasks/batch_task.h"
+#include "tasks/view_task.h"
 
 namespace mocapsolve::python {
 namespace {
@@ -206,6 +208,74 @@ Returns a dict: 'kind' ('ran', 'merged', 'manifest_only', 'empty_shard'), 'done'
 'failed' (takes; a failed take is not an exception), 'summary' (summary.json's contents),
 'summary_base'. Bad flags or a bad manifest raise ValueError with the CLI's message.
 Releases the GIL.)doc");
+
+  m.def("view", [](const std::string& out, const std::string& markers, const std::string& motion,
+                   const std::vector<std::string>& characters, const std::string& compare,
+                   const std::string& repair_report, const std::string& falloff, const SubjectPtr& subject,
+                   const std::string& skeleton, double amc_fps, const std::string& animation, double sample_fps,
+                   const std::string& skeleton_units, const std::string& character_animation, const std::string& up,
+                   const std::string& title) {
+        if (!IsTextOutputPath(out, ".html") || out == "-") throw py::value_error(out + ": expected an .html page");
+        for (const std::string* path : {&markers, &motion, &compare, &repair_report, &falloff, &skeleton}) {
+          if (!path->empty()) RequireReadable(*path);
+        }
+        for (const std::string& path : characters) RequireReadable(path);
+        ViewInputs inputs;
+        inputs.markers = markers;
+        inputs.motion = motion;
+        inputs.characters = characters;
+        inputs.compare = compare;
+        inputs.repair_report = repair_report;
+        inputs.falloff = falloff;
+        inputs.subject = markers.empty() ? nullptr : subject.get();
+        inputs.skeleton = skeleton;
+        inputs.amc_fps = amc_fps;
+        inputs.animation = animation;
+        inputs.sample_fps = sample_fps;
+        inputs.skeleton_units = skeleton_units;
+        ViewConfig config;
+        config.character_animation = character_animation;
+        config.up = up;
+        config.title = title;
+        config.page_name = out;
+        ViewResult result;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = RunView(inputs, config, &result);
+          if (status.ok()) status = WriteFileAtomically(out, result.html);
+        }
+        for (const std::string& warning : result.warnings) py::module_::import("warnings").attr("warn")(warning);
+        ThrowIfError(status);
+        const ViewScene& scene = result.scene;
+        py::dict summary;
+        summary["frames"] = scene.num_frames();
+        summary["marker_sets"] = scene.markers.size();
+        summary["skeletons"] = scene.skeletons.size();
+        summary["characters"] = scene.characters.size();
+        summary["title"] = scene.title;
+        summary["notes"] = scene.notes;
+        summary["marker_rms_mm"] = result.residual_samples > 0 ? py::object(py::float_(result.marker_rms_mm)) : py::none();
+        return summary;
+      }, py::arg("out"), py::kw_only(), py::arg("markers") = "", py::arg("motion") = "",
+      py::arg("characters") = std::vector<std::string>(), py::arg("compare") = "", py::arg("repair_report") = "",
+      py::arg("falloff") = "", py::arg("subject") = SubjectPtr(), py::arg("skeleton") = "", py::arg("amc_fps") = 120.0,
+      py::arg("animation") = "", py::arg("sample_fps") = 0.0, py::arg("skeleton_units") = "",
+      py::arg("character_animation") = "", py::arg("up") = "auto", py::arg("title") = "",
+      R"doc(Writes one self-contained browser page to out (.html), as `mocapsolve view` (the same
+task, the same bytes): markers (a .c3d/.trc path), a motion (.bvh, .amc with skeleton= its
+.asf, .glb/.gltf/.fbx with animation= and sample_fps=; amc_fps: an .amc's frame rate;
+skeleton_units: the unit of a skeleton that states none), characters (.glb/.gltf paths,
+each playing character_animation, default its last), compare (a second take ghosted: a
+marker file with markers, or a motion with motion), repair_report (a repair --report
+.json: repaired samples coloured by reason), falloff (a propagate --weights_csv .csv on
+the timeline). With subject (read_subject or subject()) the markers are mapped onto its
+skeleton and the motion's marker residual is drawn; otherwise each file is shown in its
+own unit with its up axis from up ('auto', 'x', 'y' or 'z'). title: the page's title
+(default: the files' names). The viewer's runtime must be installed
+(scripts/viewer_tools.sh; $MOCAPSOLVE_VIEWER_TOOLS).
+Returns a dict: 'frames', 'marker_sets', 'skeletons', 'characters', 'title', 'notes' and
+'marker_rms_mm' (with a subject and a motion; else None). Releases the GIL.)doc");
 }
 
 }  // namespace mocapsolve::python

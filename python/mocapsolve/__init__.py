@@ -38,6 +38,6 @@ def _naming_the_command(command, function):
 
 # The functions named after commands (one task under both front ends).
 for _command in ("markers", "solve", "repair", "corrupt", "evaluate", "calibrate", "fit_skeleton", "retarget",
-                 "distance", "propagate", "pipeline", "batch"):
+                 "distance", "propagate", "pipeline", "batch", "info", "view"):
     globals()[_command] = _naming_the_command(_command, globals()[_command])
 del _command
