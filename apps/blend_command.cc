@@ -10,6 +10,8 @@
 #include "apps/command.h"
 #include "apps/pyramid_flags.h"
 #include "apps/common_flags.h"
+#include "apps/option_flags.h"
+#include "settings/method_settings.h"
 #include "io/bvh_writer.h"
 #include "io/motion_file.h"
 #include "signal/motion_blend.h"
@@ -20,8 +22,6 @@ DEFINE_string(transition, "", "START:END of the transition window, in frames of 
               "or in seconds of --a with an 's' suffix on both (1.5s:2s).");
 DEFINE_int32(b_start, -1, "Frame of --a at which --b's frame 0 lies (-1: the transition start). "
              "If --b ends before --a, --b lies inside --a and the blend returns to --a.");
-DEFINE_string(method, "multires", "multires (per-band weighted sum, section 3) or weighted "
-              "(plain weighted sum, eq. 6).");
 DEFINE_int32(blend_levels, 4, "Pyramid levels of the multires blend (0 = as many as fit).");
 
 namespace mocapsolve {
@@ -61,12 +61,14 @@ Status RunBlend(const std::vector<std::string>& arguments) {
   if (status.ok()) status = CheckNotAnInput(FLAGS_out, FLAGS_b);
   if (!status.ok()) return status;
   BlendOptions options;
-  if (FLAGS_method == "multires") {
+  MethodSetting method;
+  ReadOptionFlags(BlendMethodOption(), &method);
+  if (method.method == "multires") {
     options.method = BlendMethod::kMultiresolution;
-  } else if (FLAGS_method == "weighted") {
+  } else if (method.method == "weighted") {
     options.method = BlendMethod::kWeightedSum;
   } else {
-    return Status::Error("--method: expected multires or weighted, got '" + FLAGS_method + "'");
+    return Status::Error("--method: unknown '" + method.method + "' (multires, weighted)");
   }
   if (FLAGS_blend_levels < 0 || FLAGS_blend_levels > 30) {
     return Status::Error("--blend_levels must be in [0, 30]");
@@ -119,10 +121,10 @@ Status RunBlend(const std::vector<std::string>& arguments) {
   std::printf("wrote %s: %d frames, %s blend over frames %d:%d (B from frame %d)\n"
               "largest velocity jump (%s/frame): transition +-%d frames %.4g; input A %.4g, "
               "input B %.4g\n",
-              FLAGS_out.c_str(), blended.num_frames(), FLAGS_method.c_str(), s, e,
+              FLAGS_out.c_str(), blended.num_frames(), method.method.c_str(), s, e,
               options.b_offset, units.c_str(), margin, blend_jump, a_jump, b_jump);
   JsonObject report;
-  report.Add("a", FLAGS_a).Add("b", FLAGS_b).Add("out", FLAGS_out).Add("method", FLAGS_method)
+  report.Add("a", FLAGS_a).Add("b", FLAGS_b).Add("out", FLAGS_out).Add("method", method.method)
       .Add("transition_start", s).Add("transition_end", e).Add("b_start", options.b_offset)
       .Add("frames", blended.num_frames()).Add("transition_velocity_jump", blend_jump)
       .Add("a_velocity_jump", a_jump).Add("b_velocity_jump", b_jump)
@@ -145,6 +147,6 @@ extern const Command kBlendCommand = {
     "velocity jump near the window and in each input.",
     __FILE__, RunBlend,
     "out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet",
-    {PyramidSettingOptions().options()}};
+    {PyramidSettingOptions().options(), BlendMethodOption().options()}};
 
 }  // namespace mocapsolve

@@ -13,17 +13,6 @@
 
 namespace mocapsolve {
 
-// A gflags-defined shared flag whose default or meaning differs for one command (--method
-// is green for distance): main.cc makes `default_value` the flag's default before parsing,
-// so the run and --help agree, and --help shows `description` (when not empty) in place of
-// the shared text. Declared options (Command::options) need none of this: a command
-// declares its own default with OptionGroup::WithDefault.
-struct FlagOverride {
-  std::string name;
-  std::string default_value;
-  std::string description;
-};
-
 struct Command {
   const char* name;
   const char* summary;  // One line for `mocapsolve --help`.
@@ -36,9 +25,9 @@ struct Command {
   const char* shared_flags = nullptr;
   // The declared options the command reads (settings/option.h), groups in priority order:
   // main.cc registers them as this run's flags, the command's own (--help lists them); a
-  // name two groups declare is the first group's.
+  // name two groups declare is the first group's. A command that needs another default or
+  // meaning for an option declares its own (OptionGroup::WithDefault, settings/method_settings.h).
   std::vector<std::vector<Option>> options = {};
-  std::vector<FlagOverride> flag_overrides = {};
 };
 
 // Every command, in the order `--help` lists them.

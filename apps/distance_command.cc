@@ -9,6 +9,7 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "apps/option_flags.h"
+#include "settings/method_settings.h"
 #include "io/atomic_file.h"
 #include "io/motion_file.h"
 #include "io/svg_plot.h"
@@ -17,8 +18,7 @@
 DEFINE_int32(frame, -1, "The edited frame (0-based).");
 DEFINE_string(sweep, "", "Comma-separated extra sigmas: adds a Green's weight column (and plot "
               "line) per sigma (section 4's sigma sweep).");
-DECLARE_string(method);  // apps/blend_command.cc; here green|diffusion|isomap, comma-separated.
-DECLARE_string(plot);    // apps/solve_command.cc.
+DECLARE_string(plot);  // apps/main.cc.
 
 namespace mocapsolve {
 namespace {
@@ -57,7 +57,9 @@ Status DistanceMain(const std::vector<std::string>& arguments) {
   }
   DistanceConfig config;
   config.frame = FLAGS_frame;
-  config.methods = FLAGS_method;
+  MethodSetting method;
+  ReadOptionFlags(DistanceMethodOption(), &method);
+  config.methods = method.method;
   config.sweep = FLAGS_sweep;
   ReadOptionFlags(FalloffSettingOptions(), &config.falloff);
   Skeleton skeleton;
@@ -122,11 +124,7 @@ extern const Command kDistanceCommand = {
     "other cycles, the second difference at the edit and where the weight drops below 0.5/0.05.\n"
     "--plot writes the distance curves (1 - weight) of every method and --sweep sigma as SVG.",
     __FILE__, DistanceMain,
-    "motion,out,plot,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet",
-    {FalloffSettingOptions().options()},
-    {{"method", "green",
-      "green | diffusion | isomap, comma-separated for several: the distances to compute (the first fills "
-      "distance,weight; the others add columns)."},
-     {"plot", "", "Write the distance curves (1 - weight) of every method and of --sweep as SVG."}}};
+    "motion,out,plot,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet",
+    {FalloffSettingOptions().options(), DistanceMethodOption().options()}};
 
 }  // namespace mocapsolve

@@ -11,13 +11,13 @@
 #include "apps/progress.h"
 #include "apps/repair_flags.h"
 #include "apps/solver_flags.h"
+#include "settings/method_settings.h"
 #include "io/atomic_file.h"
 #include "tasks/evaluate_summary.h"
 #include "tasks/evaluate_task.h"
 
 DEFINE_string(table_csv, "", "Also write the table as CSV (repair: one row per method and trial; leave_one_out: one "
               "row per marker).");
-DECLARE_string(method);  // apps/blend_command.cc; here repair | leave_one_out | small_errors.
 
 namespace mocapsolve {
 namespace {
@@ -28,14 +28,13 @@ Status EvaluateMain(const std::vector<std::string>& arguments) {
   Status checked = MarkerTakeInputs(&inputs);
   if (!checked.ok()) return checked;
   EvaluateConfig config;
-  config.method = FLAGS_method;
+  MethodSetting method;
+  ReadOptionFlags(EvaluateMethodOption(), &method);
+  config.method = method.method;
   ReadOptionFlags(EvaluateSettingOptions(), &config.evaluate);
   config.repair = RepairSettingsFromFlags();
   config.solver = SolverSettingsFromFlags();
   config.damage = CorruptionSettingsFromFlags();
-  if (config.method != "repair" && config.method != "leave_one_out" && config.method != "small_errors") {
-    return Status::Error("--method: expected repair, leave_one_out or small_errors, got '" + config.method + "'");
-  }
   if (!FLAGS_table_csv.empty()) {
     for (const std::string& in : inputs) {
       Status status = CheckNotAnInput(FLAGS_table_csv, in);
@@ -66,7 +65,7 @@ Status EvaluateMain(const std::vector<std::string>& arguments) {
 }
 
 const std::string kEvaluateFlags = std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,"
-                                               "report,quiet,method");
+                                               "report,quiet");
 
 }  // namespace
 
@@ -95,11 +94,7 @@ extern const Command kEvaluateCommand = {
     __FILE__, EvaluateMain, kEvaluateFlags.c_str(),
     {EvaluateSolverOptions().options(),
      SolverOptions().Only("mode").options(),  // leave_one_out's frame or clip solve.
-     RepairSettingOptions().options(), CorruptionSettingOptions().options(), EvaluateSettingOptions().options()},
-    {{"method", "repair",
-      "repair: damage the markers and score repair against the usual fills (Table 1); leave_one_out: "
-      "predict each marker from the solve of the others, on the take as it is; small_errors: recall and precision "
-      "of the repair's detections on 1-4 cm jumps and jitter."},
-    }};
+     RepairSettingOptions().options(), CorruptionSettingOptions().options(), EvaluateSettingOptions().options(),
+     EvaluateMethodOption().options()}};
 
 }  // namespace mocapsolve

@@ -157,21 +157,6 @@ Status CheckOtherCommandsOptions(const Command& command, int argc, char** argv) 
 }
 
 // The command's own defaults for the shared flags it overrides; an explicit flag still wins.
-void ApplyFlagOverrides(const Command& command) {
-  for (const FlagOverride& o : command.flag_overrides) {
-    CHECK(!gflags::SetCommandLineOptionWithMode(o.name.c_str(), o.default_value.c_str(), gflags::SET_FLAGS_DEFAULT)
-               .empty())
-        << command.name << ": bad override of --" << o.name;
-  }
-}
-
-std::string FlagDescription(const Command& command, const gflags::CommandLineFlagInfo& flag) {
-  for (const FlagOverride& o : command.flag_overrides) {
-    if (o.name == flag.name && !o.description.empty()) return o.description;
-  }
-  return flag.description;
-}
-
 void PrintCommandHelp(const Command& command) {
   std::printf("usage: %s\n\n", command.usage);
   std::vector<gflags::CommandLineFlagInfo> flags;
@@ -181,7 +166,7 @@ void PrintCommandHelp(const Command& command) {
     if (!CommandReadsFlag(command, flag)) continue;
     if (!header) std::printf("flags:\n"), header = true;
     std::printf("  --%s (%s) default: %s\n      %s\n", flag.name.c_str(), flag.type.c_str(),
-                ShownDefault(flag).c_str(), FlagDescription(command, flag).c_str());
+                ShownDefault(flag).c_str(), flag.description.c_str());
   }
 }
 
@@ -196,6 +181,8 @@ DEFINE_string(animation, "", "Animation of a .glb/.gltf/.fbx motion file: name o
 DEFINE_double(sample_fps, 0.0, "Sampling rate of .glb/.gltf/.fbx animations; 0 = the key rate "
               "when the keys are uniformly spaced, else 30.");
 DEFINE_string(report, "", "Write what the command measured to this JSON file.");
+DEFINE_string(plot, "", "Write an SVG plot (.svg): solve, the per-frame RMS marker residual; distance, the distance "
+              "curves (1 - weight) of every method and of --sweep.");
 DEFINE_string(skeleton_units, "", "Unit of a skeleton whose file does not state one (BVH): mm, "
               "cm, m or in; needed to relate it to marker files and mm-based weights.");
 DEFINE_string(motion, "", "Motion file: .bvh, .glb/.gltf, .fbx, or .amc with --skeleton=X.asf.");
@@ -518,7 +505,6 @@ int main(int argc, char** argv) {
     return 1;
   }
   mocapsolve::RegisterCommandOptions(*command);
-  mocapsolve::ApplyFlagOverrides(*command);
   const mocapsolve::Status foreign = mocapsolve::CheckOtherCommandsOptions(*command, argc, argv);
   if (!foreign.ok()) {
     std::fprintf(stderr, "mocapsolve %s: %s\n", command->name, mocapsolve::TerminalText(foreign.message()).c_str());

@@ -13,6 +13,7 @@
 #include "apps/repair_flags.h"
 #include "apps/retarget_flags.h"
 #include "apps/view_flags.h"
+#include "settings/view_page_settings.h"
 #include "apps/solver_flags.h"
 #include "io/atomic_file.h"
 #include "io/marker_file.h"
@@ -46,14 +47,16 @@ const std::string kPipelineOptionFlags =
 // The take's page, as --view says (TakeViewPath; a PAGE.html must be no input). *path: ""
 // for none.
 Status ViewPageOfTake(std::string* path) {
-  if (FLAGS_view != "auto" && FLAGS_view != "off") {
+  ViewPageSetting view;
+  ReadOptionFlags(TakeViewPageOption(), &view);
+  if (view.view != "auto" && view.view != "off") {
     std::vector<std::string> inputs = {FLAGS_subject, FLAGS_markers};
     for (const std::string& character : SplitCommaList(FLAGS_character)) inputs.push_back(character);
     Status status = CheckViewFlag(inputs);
     if (!status.ok()) return status;
   }
   std::string warning;
-  Status status = TakeViewPath(FLAGS_view, FLAGS_out_dir, path, &warning);
+  Status status = TakeViewPath(view.view, FLAGS_out_dir, path, &warning);
   // A warning, not progress: printed with --quiet too.
   if (!warning.empty()) std::fprintf(stderr, "warning: pipeline: %s\n", warning.c_str());
   return status;
@@ -154,7 +157,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
 }
 
 const std::string kPipelineFlags =
-    "subject,markers,character,out_dir,config,print_config,report,quiet,view," + kPipelineOptionFlags;
+    "subject,markers,character,out_dir,config,print_config,report,quiet," + kPipelineOptionFlags;
 
 }  // namespace
 
@@ -179,9 +182,6 @@ extern const Command kPipelineCommand = {
     __FILE__, RunPipeline, kPipelineFlags.c_str(),
     {RepairSolverOptions().options(),
      RepairSettingOptions().options(), RetargetSettingOptions().options(), QualityGateOptions().options(),
-     PyramidSettingOptions().options()},
-    {{"view", "auto",
-      "The take's browser page: auto = DIR/view.html when the viewer's runtime is installed (else a "
-      "warning and no page); PAGE.html = that page, required (no runtime: an error, nothing written); off = none."}}};
+     PyramidSettingOptions().options(), TakeViewPageOption().options()}};
 
 }  // namespace mocapsolve

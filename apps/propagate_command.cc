@@ -19,12 +19,13 @@
 #include "apps/progress.h"
 #include "apps/solver_flags.h"
 #include "apps/view_flags.h"
+#include "settings/view_page_settings.h"
+#include "settings/method_settings.h"
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
 #include "io/motion_file.h"
 #include "tasks/propagate_task.h"
 
-DECLARE_string(method);  // apps/blend_command.cc; here green | harmonic | spline.
 
 // apps/distance_command.cc; here required with --ik_target, optional with --edit (then it
 // must match a one-edit file's "frame").
@@ -55,7 +56,9 @@ Status PropagateMain(const std::vector<std::string>& arguments) {
   config.edit = FLAGS_edit;
   config.ik_target = FLAGS_ik_target;
   config.frame = FLAGS_frame;
-  config.method = FLAGS_method;
+  MethodSetting method;
+  ReadOptionFlags(PropagateMethodOption(), &method);
+  config.method = method.method;
   config.foot_joints = FLAGS_foot_joints;
   ReadOptionFlags(PropagateSettingOptions(), &config.propagate);
   ReadOptionFlags(FalloffSettingOptions(), &config.falloff);
@@ -114,12 +117,11 @@ extern const Command kPropagateCommand = {
     "Reports the largest drift of feet planted in the source; --keep_contacts re-solves those\n"
     "frames so the feet stay put.",
     __FILE__, PropagateMain,
-    "motion,out,report,method,skeleton,skeleton_units,amc_fps,animation,sample_fps,quiet,frame,view",
+    "motion,out,report,skeleton,skeleton_units,amc_fps,animation,sample_fps,quiet,frame",
     // The IK edit's solve and the harmonic falloff's sparse solve.
     {SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,sparse_library").options(),
      FalloffSettingOptions().Only("sigma,sigma_scale,eigenpairs,region,knn,falloff_kernel,feature_joints,joint_weights,"
                                   "temporal_weight").options(),
-     PropagateSettingOptions().options()},
-    {{"method", "green", "green | harmonic | spline: the falloff that carries the edit to the other frames."}}};
+     PropagateSettingOptions().options(), PropagateMethodOption().options(), ViewPageOption().options()}};
 
 }  // namespace mocapsolve

@@ -10,6 +10,7 @@
 #include "apps/repair_flags.h"
 #include "apps/solver_flags.h"
 #include "apps/view_flags.h"
+#include "settings/view_page_settings.h"
 #include "io/bvh_writer.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
@@ -122,7 +123,7 @@ Status RepairMain(const std::vector<std::string>& arguments) {
   return WriteReport(json);
 }
 
-const char kRepairFlags[] = "subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet,view";
+const char kRepairFlags[] = "subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet";
 
 }  // namespace
 
@@ -137,6 +138,7 @@ extern const Command kRepairCommand = {
     "(--assign_unlabelled; they leave their unlabelled columns in --out_markers);\n"
     "trimming, small tracks and small gaps; Hermite refill from the reference; re-solve.\n"
     "Samples never marked bad are written as they were read. Prints per-stage timings.",
-    __FILE__, RepairMain, kRepairFlags, {RepairSettingOptions().options(), RepairSolverOptions().options()}};
+    __FILE__, RepairMain, kRepairFlags,
+    {RepairSettingOptions().options(), RepairSolverOptions().options(), ViewPageOption().options()}};
 
 }  // namespace mocapsolve

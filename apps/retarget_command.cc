@@ -12,6 +12,7 @@
 #include "apps/retarget_flags.h"
 #include "apps/solver_flags.h"
 #include "apps/view_flags.h"
+#include "settings/view_page_settings.h"
 #include "io/bvh_writer.h"
 #include "io/gltf_reader.h"
 #include "io/gltf_writer.h"
@@ -149,7 +150,7 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
   return WriteReport(report);
 }
 
-const std::string kRetargetFlags = std::string("target,out,report,quiet,max_frames,skeleton,amc_fps,view,"
+const std::string kRetargetFlags = std::string("target,out,report,quiet,max_frames,skeleton,amc_fps,"
                                                "animation_only,") +
                                    "foot_joints";
 
@@ -174,6 +175,7 @@ extern const Command kRetargetCommand = {
     "--animation_only) and the result as its take.\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
-    __FILE__, RetargetMain, kRetargetFlags.c_str(), {RetargetSolverOptions().options(), RetargetSettingOptions().options()}};
+    __FILE__, RetargetMain, kRetargetFlags.c_str(), {RetargetSolverOptions().options(), RetargetSettingOptions().options(),
+    ViewPageOption().options()}};
 
 }  // namespace mocapsolve

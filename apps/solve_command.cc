@@ -8,6 +8,7 @@
 #include "apps/progress.h"
 #include "apps/solver_flags.h"
 #include "apps/view_flags.h"
+#include "settings/view_page_settings.h"
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
 #include "io/motion_file.h"
@@ -16,7 +17,7 @@
 #include "tasks/solve_task.h"
 
 DEFINE_int32(max_frames, 0, "Solve only the first N frames (0 = all).");
-DEFINE_string(plot, "", "Write an SVG plot of the per-frame RMS marker residual to this file.");
+DECLARE_string(plot);  // apps/main.cc.
 DEFINE_string(residuals_csv, "", "Write the written motion's per-frame marker residual as CSV: frame, time (s), "
               "markers observed, RMS and max residual (mm, or skeleton units when the unit is unknown).");
 
@@ -119,7 +120,7 @@ Status SolveMain(const std::vector<std::string>& arguments) {
 
 const std::string kSolveFlags =
     std::string("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,plot,residuals_csv,"
-                "max_frames,view");
+                "max_frames");
 
 }  // namespace
 
@@ -133,6 +134,6 @@ extern const Command kSolveCommand = {
     "refines all frames as one sparse problem with smoothness. Missing markers are simply\n"
     "left out. Prints the RMS marker residual, iterations and time; --report writes them,\n"
     "--residuals_csv the residual of every frame of the written motion (--plot draws it).",
-    __FILE__, SolveMain, kSolveFlags.c_str(), {SolverOptions().options()}};
+    __FILE__, SolveMain, kSolveFlags.c_str(), {SolverOptions().options(), ViewPageOption().options()}};
 
 }  // namespace mocapsolve

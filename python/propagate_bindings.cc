@@ -11,6 +11,7 @@
 #include "problems/edit_propagation/pose_edit.h"
 #include "problems/edit_propagation/spline_falloff.h"
 #include "python/bindings.h"
+#include "settings/method_settings.h"
 #include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
 #include "settings/propagate_settings.h"
@@ -80,7 +81,7 @@ void BindPropagate(py::module_& m) {
         d["eigenpairs"] = falloff.eigenpairs_used;
         d["sparse_kernel"] = falloff.sparse_used;
         return d;
-      }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("method") = "green",
+      }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("method") = DefaultMethod(DistanceMethodOption()),
       (std::string(R"doc(The pose-space falloff of an edit at `frame` of motion (on skeleton), as `mocapsolve distance`: method
 'green' (Green's function of the pose Laplacian), 'diffusion' or 'isomap'. Keywords: the
 FalloffSettings (sigma, sigma_scale, eigenpairs, region='a:b', diffusion_steps, knn,
@@ -117,7 +118,7 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
         report["distances"] = distances;
         report["sweep_weights"] = swept;
         return report;
-      }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("method") = "green", py::kw_only(),
+      }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("method") = DefaultMethod(DistanceMethodOption()), py::kw_only(),
       py::arg("sweep") = "",
       (std::string(R"doc(The pose-space distance and falloff of an edit at `frame` of motion (on skeleton; as
 read_motion returns them), as `mocapsolve distance`: method 'green', 'diffusion' or 'isomap', or several comma-separated; sweep: comma-separated
@@ -236,7 +237,7 @@ where the weight ends, ...) plus 'weights' and 'distances' {method: (frames,) ar
         report["weights"] = weights;
         return py::make_tuple(std::move(result.propagated), report);
       }, py::arg("skeleton"), py::arg("motion"), py::kw_only(), py::arg("edit") = "", py::arg("ik_target") = "",
-      py::arg("frame") = -1, py::arg("method") = "green", py::arg("foot_joints") = "",
+      py::arg("frame") = -1, py::arg("method") = DefaultMethod(PropagateMethodOption()), py::arg("foot_joints") = "",
       (std::string(R"doc(An edit propagated through a clip, as `mocapsolve propagate` (the whole command:
 edits, falloff, propagation, foot contacts).
 
@@ -307,9 +308,7 @@ ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc") +
         FalloffSettings falloff_settings;
         ApplyKeywords(keywords, {py::cast(&falloff_settings, py::return_value_policy::reference)},
                       FalloffSettingOptions().Names());
-        if (method != "green" && method != "harmonic" && method != "spline") {
-          throw py::value_error("--method: expected green, harmonic or spline, got '" + method + "'");
-        }
+        ThrowIfError(PropagateMethodOption().Validate(MethodSetting{method}));
         FalloffOptions options;
         ThrowIfError(FalloffOptionsFromSettings(falloff_settings, motion.num_frames(), &options));
         const int region_begin = options.region_begin;
@@ -337,7 +336,7 @@ ik_max_target_error in skeleton units, ik_final_cost). Releases the GIL.)doc") +
         for (const Eigen::VectorXd& w : weights.weights) arrays.append(VectorToArray(w));
         py::object report = ReportToPython(weights.report);
         return py::make_tuple(arrays, report);
-      }, py::arg("skeleton"), py::arg("motion"), py::arg("edits"), py::arg("method") = "green", py::kw_only(),
+      }, py::arg("skeleton"), py::arg("motion"), py::arg("edits"), py::arg("method") = DefaultMethod(PropagateMethodOption()), py::kw_only(),
       py::arg("harmonic_ground") = EditWeightSettings().harmonic_ground,
       py::arg("spline_width") = EditWeightSettings().spline_width,
       py::arg("sparse_library") = EditWeightSettings().sparse_library,

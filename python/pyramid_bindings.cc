@@ -4,6 +4,7 @@
 #include "signal/motion_blend.h"
 #include "signal/motion_pyramid.h"
 #include "python/bindings.h"
+#include "settings/method_settings.h"
 #include "settings/pyramid_settings.h"
 
 namespace mocapsolve::python {
@@ -123,13 +124,8 @@ void BindPyramid(py::module_& m) {
         options.b_offset = b_offset;
         options.transition_start = transition_start;
         options.transition_end = transition_end;
-        if (method == "multires") {
-          options.method = BlendMethod::kMultiresolution;
-        } else if (method == "weighted") {
-          options.method = BlendMethod::kWeightedSum;
-        } else {
-          throw py::value_error("--method: expected multires or weighted, got '" + method + "'");
-        }
+        ThrowIfError(BlendMethodOption().Validate(MethodSetting{method}));
+        options.method = method == "multires" ? BlendMethod::kMultiresolution : BlendMethod::kWeightedSum;
         options.pyramid = Options(levels, kernel_a, tension);
         Motion out;
         Status status = Status::Ok();
@@ -140,7 +136,7 @@ void BindPyramid(py::module_& m) {
         ThrowIfError(status);
         return out;
       }, py::arg("a"), py::arg("b"), py::kw_only(), py::arg("b_offset"), py::arg("transition_start"),
-      py::arg("transition_end"), py::arg("method") = "multires", py::arg("blend_levels") = 4,
+      py::arg("transition_end"), py::arg("method") = DefaultMethod(BlendMethodOption()), py::arg("blend_levels") = 4,
       py::arg("kernel_a") = kPyramidDefaults.kernel_a, py::arg("tension") = kPyramidDefaults.tension,
       "Blends motion b into a over A's frames [transition_start, transition_end] (b's frame 0\n"
       "at A's frame b_offset), as `mocapsolve blend`: method 'multires' (band by band,\n"

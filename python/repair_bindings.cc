@@ -5,6 +5,7 @@
 #include "tasks/evaluate_task.h"
 #include "tasks/repair_task.h"
 #include "python/bindings.h"
+#include "settings/method_settings.h"
 #include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
 
@@ -161,7 +162,7 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
         }
         ThrowIfError(status);
         return ReportToPython(result.report);
-      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("method") = "repair",
+      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("method") = DefaultMethod(EvaluateMethodOption()),
       (std::string(R"doc(Scores marker repair on a take, as `mocapsolve evaluate`; returns the dict its --report
 writes. method:
   'repair' (default): the thesis' Table 1 on synthetic damage: per trial (seeds

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "settings/method_settings.h"
 #include "tasks/repair_task.h"
 
 namespace mocapsolve {
@@ -187,11 +188,11 @@ Status RunEvaluate(const MarkerTake& take, const EvaluateConfig& config,
                    const std::function<void(int done, int total)>& progress, EvaluateResult* result) {
   *result = EvaluateResult();
   Status status = EvaluateSettingOptions().Validate(config.evaluate);
+  if (status.ok()) status = EvaluateMethodOption().Validate(MethodSetting{config.method});
   if (!status.ok()) return status;
   if (config.method == "leave_one_out") return LeaveOneOut(take, config, progress, result);
   if (config.method == "small_errors") return SmallErrors(take, config, result);
-  if (config.method == "repair") return RepairTable(take, config, progress, result);
-  return Status::Error("--method: expected repair, leave_one_out or small_errors, got '" + config.method + "'");
+  return RepairTable(take, config, progress, result);
 }
 
 }  // namespace mocapsolve

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <utility>
 
+#include "settings/method_settings.h"
 #include "io/comma_list.h"
 #include "io/motion_file.h"
 #include "problems/edit_propagation/foot_contacts.h"
@@ -111,10 +112,9 @@ Status RunPropagate(const Skeleton& skeleton, const Motion& motion, const Propag
     return Status::Error("--frame: expected a frame index >= 0, got " + std::to_string(config.frame));
   }
   const std::string& method = config.method;
-  if (method != "green" && method != "harmonic" && method != "spline") {
-    return Status::Error("--method: expected green, harmonic or spline, got '" + method + "'");
-  }
-  Status status = PropagateSettingOptions().Validate(config.propagate);
+  Status status = PropagateMethodOption().Validate(MethodSetting{method});
+  if (!status.ok()) return status;
+  status = PropagateSettingOptions().Validate(config.propagate);
   if (!status.ok()) return status;
   if (motion.num_frames() == 0) return Status::Error("the motion has no frames");
   FalloffOptions falloff;

@@ -130,7 +130,7 @@ TEST_F(PropagateCli, BadInputsFailWithOneLine) {
   } cases[] = {
       {base, "give exactly one of --edit"},
       {base + " --edit=" + edit_ + " --ik_target=lwrist:0,0,0", "give exactly one of --edit"},
-      {base + " --edit=" + edit_ + " --method=multires", "--method: expected green, harmonic or spline"},
+      {base + " --edit=" + edit_ + " --method=multires", "--method: unknown 'multires' (green, harmonic, spline)"},
       {base + " --edit=" + edit_ + " --frame=12", "but --frame=12"},
       {base + " --edit=" + edit_ + " --region=0:100", "--region: edited frame 200 lies outside 0:100"},
       {base + " --frame=10 --ik_target=nose:0,0,0", "--ik_target: unknown joint 'nose'"},
