@@ -10,6 +10,7 @@
 #include "apps/common_flags.h"
 #include "apps/progress.h"
 #include "apps/config_flags.h"
+#include "settings/delivery_settings.h"
 #include "batch/worker_process.h"
 #include "tasks/batch_task.h"
 
@@ -72,6 +73,7 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
   inputs.subject = FLAGS_subject;
   inputs.characters = SplitCommaList(FLAGS_character);
   inputs.out_dir = FLAGS_out_dir;
+  inputs.pipeline_options = GivenFlagsJson(DeliverySettingOptions().Names());
   inputs.write_manifest = FLAGS_write_manifest;
   inputs.jobs = FLAGS_jobs;
   inputs.take_threads = FLAGS_take_threads;
@@ -156,8 +158,10 @@ extern const Command kBatchCommand = {
     "A batch split over machines (--shard=i/n, by default from a Slurm job array; see\n"
     "scripts/slurm/submit.sh) writes DIR/summary.shard<i>of<n>.json; --merge then builds\n"
     "DIR/summary.json from the takes' records.\n"
+    "--formats, when given, is every take's (over the manifest's defaults; a take's own\n"
+    "\"formats\" still wins).\n"
     "Exit code: 0 every take done, 2 some failed or gate_failed, 1 bad manifest or flags\n"
     "(its form: JSON, keys, types, names) or an output that is an input.",
-    __FILE__, RunBatchCommand, "subject,character,out_dir,quiet"};
+    __FILE__, RunBatchCommand, "subject,character,out_dir,quiet", {DeliverySettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -19,6 +19,7 @@
 #include "io/motion_file.h"
 #include "pipeline/quality_gate.h"
 #include "pipeline/take_pipeline.h"
+#include "settings/delivery_settings.h"
 
 DECLARE_string(subject);  // apps/main.cc
 
@@ -41,6 +42,7 @@ namespace {
 
 const std::string kPipelineOptionFlags =
     std::string("take_name,filter_levels,") + PyramidSettingOptions().Names() + "," + QualityGateOptions().Names() + ",animation_only," +
+    DeliverySettingOptions().Names() + "," +
     RepairSettingOptions().Names() + "," + RepairSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints";
 
 // The take's page, as --view says (TakeViewPath; a PAGE.html must be no input). *path: ""
@@ -120,8 +122,10 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
   SetStage("writing");
   status = MakeFolders(FLAGS_out_dir);
-  GltfWriteOptions character_files;
-  character_files.animation_only = FLAGS_animation_only;
+  DeliverySettings delivery;
+  ReadOptionFlags(DeliverySettingOptions(), &delivery);
+  CharacterFileOptions character_files;
+  if (status.ok()) status = CharacterFilesFromSettings(delivery, FLAGS_animation_only, &character_files);
   if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report, view_path, character_files);
   if (status.ok()) status = WriteReport(report);
   if (!status.ok()) return status;
@@ -138,8 +142,9 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
     std::printf("  %s: vertex error %.4f of height, foot skating %.2f -> %.2f cm/s\n", c.name.c_str(),
                 r.mean_position_error, c.result.source_plant_skating_cm_s, c.result.result_plant_skating_cm_s);
   }
+  const size_t files = result.characters.size() * character_files.formats.size();
   std::printf("wrote %s (repaired markers, solved.bvh, %zu character file%s, report.json%s%s)\n",
-              FLAGS_out_dir.c_str(), result.characters.size(), result.characters.size() == 1 ? "" : "s",
+              FLAGS_out_dir.c_str(), files, files == 1 ? "" : "s",
               view_path.empty() ? "" : ", ", in_take_folder ? "view.html" : view_path.c_str());
   if (!result.verdict.pass) {
     std::string failures;
@@ -168,7 +173,8 @@ extern const Command kPipelineCommand = {
     "onto each character (thesis ch. 4, the character's own mesh bound to the subject's\n"
     "skeleton), then checks the quality gate. Writes DIR/repaired.c3d (or .trc),\n"
     "DIR/solved.bvh, DIR/<character>.glb (the character file plus the take as a new\n"
-    "animation; --animation_only: the character's skeleton, skin and the take, no meshes)\n"
+    "animation; --animation_only: the character's skeleton, skin and the take, no meshes;\n"
+    "--formats=glb,fbx,bvh adds DIR/<character>.fbx and .bvh)\n"
     "and DIR/report.json (stage timings, marker residuals, repaired intervals,\n"
     "retarget error, foot skating, the gate's verdict), all together or none, and the take's\n"
     "browser page: --view=auto (default) DIR/view.html when the viewer's runtime is installed\n"
@@ -179,7 +185,7 @@ extern const Command kPipelineCommand = {
     __FILE__, RunPipeline, kPipelineFlags.c_str(),
     {RepairSolverOptions().options(),
      RepairSettingOptions().options(), RetargetSettingOptions().options(), QualityGateOptions().options(),
-     PyramidSettingOptions().options()},
+     PyramidSettingOptions().options(), DeliverySettingOptions().options()},
     {{"view", "auto",
       "The take's browser page: auto = DIR/view.html when the viewer's runtime is installed (else a "
       "warning and no page); PAGE.html = that page, required (no runtime: an error, nothing written); off = none."}}};

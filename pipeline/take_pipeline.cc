@@ -5,6 +5,7 @@
 
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
+#include "io/fbx_writer.h"
 #include "io/gltf_writer.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
@@ -55,6 +56,18 @@ std::string CharacterOutputPath(const std::string& out_dir, const std::string& c
                                 const std::string& character_path) {
   const std::string extension = FileExtension(character_path) == ".gltf" ? ".gltf" : ".glb";
   return InFolder(out_dir, character_name + extension);
+}
+
+Status CharacterFilesFromSettings(const DeliverySettings& delivery, bool animation_only,
+                                  CharacterFileOptions* files) {
+  files->animation_only = animation_only;
+  return DeliveryFormats(delivery, &files->formats);
+}
+
+std::string CharacterFormatPath(const std::string& out_dir, const CharacterOutput& character,
+                                const std::string& format) {
+  if (format == "glb") return CharacterOutputPath(out_dir, character.name, character.path);
+  return InFolder(out_dir, character.name + "." + format);
 }
 
 Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
@@ -288,13 +301,34 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
 
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
                         const JsonObject& report, const std::string& view_path,
-                        const GltfWriteOptions& character_files) {
+                        const CharacterFileOptions& character_files) {
+  for (const CharacterOutput& c : result.characters) {
+    for (const std::string& format : character_files.formats) {
+      if (CharacterFormatPath(out_dir, c, format) == SolvedMotionPath(out_dir)) {
+        return Status::Error("write: " + c.path + ": --formats=" + format + " would write the character as " +
+                             SolvedMotionPath(out_dir) + ", the take's solve (rename the character file)");
+      }
+    }
+  }
   Status status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
   if (status.ok()) status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved, BvhWriteOptions());
+  GltfWriteOptions gltf;
+  gltf.animation_only = character_files.animation_only;
   for (const CharacterOutput& c : result.characters) {
-    if (!status.ok()) break;
-    status = WriteGltfWithAnimation(c.document, c.character, c.result.clip.motion, inputs.name,
-                                    CharacterOutputPath(out_dir, c.name, c.path), character_files);
+    const Motion& motion = c.result.clip.motion;
+    for (const std::string& format : character_files.formats) {
+      if (!status.ok()) break;
+      const std::string path = CharacterFormatPath(out_dir, c, format);
+      if (format == "glb") {
+        status = WriteGltfWithAnimation(c.document, c.character, motion, inputs.name, path, gltf);
+      } else if (format == "fbx") {
+        status = WriteFbxCharacter(path, c.character, motion, inputs.name, character_files.animation_only);
+      } else if (format == "bvh") {
+        status = WriteBvh(path, c.character.skeleton, motion, BvhWriteOptions());
+      } else {
+        status = Status::Error("--formats: unknown '" + format + "' (glb, fbx, bvh)");
+      }
+    }
   }
   if (status.ok()) status = WriteFileAtomically(InFolder(out_dir, "report.json"), report.ToString() + "\n");
   if (status.ok() && !view_path.empty()) {
