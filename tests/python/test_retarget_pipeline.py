@@ -92,3 +92,40 @@ def test_batch_runs_the_cli_batch_task(cmu02, tmp_path):
     assert merged["kind"] == "merged" and merged["done"] == 1
     with pytest.raises(ValueError, match="give either --manifest or --markers_glob"):
         mocapsolve.batch(out_dir=out)
+
+
+def test_pipeline_formats_match_the_cli(tmp_path):
+    """formats= is the CLI's --formats (the same declaration): the same character files, byte
+    for byte; a bad list raises the CLI's message."""
+    glb = data_file("gltf/Xbot.glb")
+    demo, markers = str(tmp_path / "walk.bvh"), str(tmp_path / "walk.c3d")
+    subject_path = str(tmp_path / "S.json")
+    run_cli("generate", "--demo_out=" + demo, "--frames=20", "--fps=30")
+    run_cli("markers", "--motion=" + demo, "--skeleton_units=cm", "--markerset=auto:3", "--noise_mm=0.5",
+            "--seed=3", "--out=" + markers)
+    run_cli("calibrate", "--motion=" + demo, "--skeleton_units=cm", "--markers=" + markers, "--attach=auto",
+            "--out=" + str(tmp_path / "calibrated.json"), "--out_subject=" + subject_path)
+    subject = mocapsolve.read_subject(subject_path)
+    out_py, out_cli = str(tmp_path / "py"), str(tmp_path / "cli")
+    mocapsolve.pipeline(subject, markers, characters=[glb], out_dir=out_py, view="off", formats="fbx,bvh",
+                        animation_only=True)
+    run_cli("pipeline", "--subject=" + subject_path, "--markers=" + markers, "--character=" + glb,
+            "--out_dir=" + out_cli, "--view=off", "--formats=fbx,bvh", "--animation_only")
+    assert not os.path.exists(os.path.join(out_py, "Xbot.glb"))
+    for name in ("Xbot.fbx", "Xbot.bvh"):
+        assert open(os.path.join(out_py, name), "rb").read() == open(os.path.join(out_cli, name), "rb").read(), name
+    assert mocapsolve.DeliverySettings().formats == "glb"
+    assert "formats='glb'" in mocapsolve.pipeline.__doc__
+    with pytest.raises(ValueError, match=r"--formats: unknown 'obj' \(glb, fbx, bvh\)"):
+        mocapsolve.pipeline(subject, markers, out_dir=str(tmp_path / "bad"), formats="glb,obj")
+    assert not os.path.exists(str(tmp_path / "bad"))
+    # batch(formats=) reaches every take's worker, as the CLI's batch --formats.
+    out_batch = str(tmp_path / "batch")
+    result = mocapsolve.batch(markers_glob=markers, subject=subject_path, characters=[glb], out_dir=out_batch,
+                              jobs=1, formats="bvh")
+    assert result["done"] == 1, result
+    assert open(os.path.join(out_batch, "walk", "Xbot.bvh"), "rb").read() == \
+        open(os.path.join(out_cli, "Xbot.bvh"), "rb").read()
+    assert not os.path.exists(os.path.join(out_batch, "walk", "Xbot.glb"))
+    with pytest.raises(ValueError, match="--formats: unknown 'obj'"):
+        mocapsolve.batch(markers_glob=markers, subject=subject_path, out_dir=out_batch, formats="obj")
