@@ -341,7 +341,7 @@ TEST_F(PipelineRealData, Cmu0205OntoXbot) {
                             " --out_dir=" + dir, &output), 0) << output;
   GltfCharacter character;
   ASSERT_TRUE(ReadGltfCharacter(dir + "/Xbot.glb", GltfReadOptions(), &character).ok());
-  EXPECT_EQ(character.animation_names.back(), "cmu_02_05");
+  EXPECT_EQ(character.animation_names.front(), "cmu_02_05");  // The clip readers open by default.
   GltfDocument document;
   ASSERT_TRUE(GltfDocument::Read(dir + "/Xbot.glb", &document).ok());
   GltfAnimationOptions animation;
