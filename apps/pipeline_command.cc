@@ -19,7 +19,7 @@
 #include "io/motion_file.h"
 #include "pipeline/quality_gate.h"
 #include "pipeline/take_pipeline.h"
-#include "settings/delivery_settings.h"
+#include "apps/delivery_flags.h"
 
 DECLARE_string(subject);  // apps/main.cc
 
@@ -92,6 +92,8 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (status.ok()) status = PyramidOptionsFromFlags(FLAGS_filter_levels, &options.filter);
   if (!status.ok()) return status;
   ReadOptionFlags(QualityGateOptions(), &options.gate);
+  status = ClipDeliveryFromFlags(&options.delivery);
+  if (!status.ok()) return status;
   std::string error;
   if (!options.IsValid(&error)) return Status::Error(error);
 
@@ -174,7 +176,8 @@ extern const Command kPipelineCommand = {
     "skeleton), then checks the quality gate. Writes DIR/repaired.c3d (or .trc),\n"
     "DIR/solved.bvh, DIR/<character>.glb (the character file plus the take as a new\n"
     "animation; --animation_only: the character's skeleton, skin and the take, no meshes;\n"
-    "--formats=glb,fbx,bvh adds DIR/<character>.fbx and .bvh)\n"
+    "--formats=glb,fbx,bvh adds DIR/<character>.fbx and .bvh; --frames/--seconds and\n"
+    "--out_fps cut and resample the take in every character file)\n"
     "and DIR/report.json (stage timings, marker residuals, repaired intervals,\n"
     "retarget error, foot skating, the gate's verdict), all together or none, and the take's\n"
     "browser page: --view=auto (default) DIR/view.html when the viewer's runtime is installed\n"

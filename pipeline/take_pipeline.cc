@@ -88,6 +88,9 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   const MarkerTake& take = result->take;
   const int frames = static_cast<int>(take.observed.size());
   if (frames == 0) return Status::Error("read: " + inputs.markers_path + ": the take has no frames");
+  int first = 0, last = 0;  // The delivered range, checked before any work.
+  status = ResolveClipRange(options.delivery.range, frames, take.trajectories.frame_rate, &first, &last);
+  if (!status.ok()) return Status::Error("deliver: " + inputs.markers_path + ": " + status.message());
   for (const std::string& path : inputs.character_paths) {
     CharacterOutput output;
     output.path = path;
@@ -154,6 +157,8 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
                                            if (progress) progress(stage, done, total);
                                          });
     if (!status.ok()) return Status::Error("retarget: " + output.path + ": " + status.message());
+    status = DeliverClip(output.result.clip.motion, options.delivery, &output.delivered);
+    if (!status.ok()) return Status::Error("deliver: " + output.path + ": " + status.message());
     lap(stage, stage_start);
   }
 
@@ -223,6 +228,8 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
         .Add("source_foot_skating_cm_per_s", c.result.source_plant_skating_cm_s)
         .Add("result_foot_skating_cm_per_s", c.result.result_plant_skating_cm_s)
         .Add("mean_bone_angle_deg", c.result.mean_bone_angle_deg)
+        .Add("delivered_frames", c.delivered.num_frames())
+        .Add("delivered_frame_rate", c.delivered.frame_rate)
         .Add("setup_seconds", c.result.setup_seconds)
         .Add("solve_seconds", r.solve_seconds);
     characters.push_back(o);
@@ -315,7 +322,7 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
   GltfWriteOptions gltf;
   gltf.animation_only = character_files.animation_only;
   for (const CharacterOutput& c : result.characters) {
-    const Motion& motion = c.result.clip.motion;
+    const Motion& motion = c.delivered;
     for (const std::string& format : character_files.formats) {
       if (!status.ok()) break;
       const std::string path = CharacterFormatPath(out_dir, c, format);

@@ -19,6 +19,10 @@
 //                                             settings/delivery_settings.h): the character
 //                                             with the take as binary FBX, the take on its
 //                                             skeleton as BVH,
+//                                             every character file holding the take as
+//                                             delivered (TakePipelineOptions::delivery: cut,
+//                                             resampled; the other outputs keep the take's
+//                                             frames and rate),
 //   DIR/report.json                           every stage's timings and quality figures,
 //   DIR/view.html                             the take's browser page (when asked; the
 //                                             pipeline command's --view=auto default),
@@ -42,6 +46,7 @@
 #include "settings/delivery_settings.h"
 #include "problems/marker_repair/marker_repair.h"
 #include "problems/retarget/retarget_character.h"
+#include "signal/clip_delivery.h"
 #include "signal/laplacian_pyramid.h"
 #include "viewer/view_scene.h"
 
@@ -53,6 +58,9 @@ struct TakePipelineOptions {
   PyramidOptions filter;            // Kernel and tension of the filter.
   CharacterRetargetOptions retarget;
   QualityGate gate;
+  // The character files' clip: cut and resampled (signal/clip_delivery.h); checked against
+  // the take's frames as soon as it is read.
+  ClipDelivery delivery;
 
   bool IsValid(std::string* error) const;
 };
@@ -75,6 +83,7 @@ struct CharacterOutput {
   GltfDocument document;
   GltfCharacter character;
   CharacterRetargetResult result;
+  Motion delivered;             // result.clip.motion cut and resampled as the options say.
 };
 
 struct TakeResult {

@@ -62,11 +62,18 @@ void BindPipeline(py::module_& m) {
       .def_readwrite("gate_torso_deg", &QualityGate::max_torso_error_deg);
   py::class_<DeliverySettings> delivery(m, "DeliverySettings",
       "Which files a take is delivered as, one per flag of `mocapsolve pipeline`/`batch` (same\n"
-      "names and defaults: formats='glb', a comma-separated list of glb, fbx, bvh). pipeline()\n"
+      "names and defaults: formats='glb', a comma-separated list of glb, fbx, bvh; out_fps;\n"
+      "frames and seconds, 'A:B' ranges). pipeline()\n"
       "and batch() take them as keywords.");
   delivery.def(py::init<>(), "Every option at the CLI's default.");
-  delivery.def_readwrite("formats", &DeliverySettings::formats);
-  delivery.def("validate", [](const DeliverySettings& s) { ThrowIfError(DeliverySettingOptions().Validate(s)); },
+  delivery.def_readwrite("formats", &DeliverySettings::formats)
+      .def_readwrite("out_fps", &DeliverySettings::out_fps)
+      .def_readwrite("frames", &DeliverySettings::frames)
+      .def_readwrite("seconds", &DeliverySettings::seconds);
+  delivery.def("validate", [](const DeliverySettings& s) {
+        ClipDelivery checked;
+        ThrowIfError(ClipDeliveryFromSettings(s, &checked));
+      },
                "Raises ValueError (the CLI's message) if a value is invalid.");
   m.attr("DELIVERY_OPTION_NAMES") = DeliverySettingOptions().Names();
   m.def("pipeline", [](SubjectPtr subject_arg, const std::string& markers, const std::vector<std::string>& characters,
@@ -101,6 +108,7 @@ void BindPipeline(py::module_& m) {
         options.filter_levels = filter_levels;
         ThrowIfError(PyramidOptionsFromSettings(PyramidSettings{kernel_a, tension}, filter_levels, &options.filter));
         options.gate = gate_settings;
+        ThrowIfError(ClipDeliveryFromSettings(delivery_settings, &options.delivery));
         std::string error;
         if (!options.IsValid(&error)) throw py::value_error(error);
         std::string view_path, warning;
@@ -132,7 +140,7 @@ void BindPipeline(py::module_& m) {
         out["solved"] = result->solved;
         out["repaired_markers"] = std::make_shared<MarkerTrajectories>(result->repaired_file);
         py::dict retargeted;
-        for (const CharacterOutput& c : result->characters) retargeted[c.name.c_str()] = c.result.clip.motion;
+        for (const CharacterOutput& c : result->characters) retargeted[c.name.c_str()] = c.delivered;
         out["characters"] = retargeted;
         out["passed"] = result->verdict.pass;
         out["failures"] = result->verdict.failures;
@@ -152,6 +160,8 @@ out_dir: also write repaired markers, solved.bvh, <character>.glb and report.jso
 and the take's page: view='auto' (default) DIR/view.html when the viewer's runtime is
 installed (else a warning), 'off' none, or a PAGE.html path (the runtime then required);
 formats='glb,fbx,bvh' also writes <character>.fbx (binary FBX) and <character>.bvh;
+frames='A:B' / seconds='A:B' and out_fps cut and resample the take in the character files
+(and in 'characters' below);
 animation_only: each <character>.glb and .fbx then holds the character's skeleton, skin
 and the take only, no meshes (as the CLI's --animation_only).
 Returns a dict: 'solved' (Motion), 'repaired_markers' (Markers), 'characters' {name:
@@ -170,7 +180,8 @@ Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the
         DeliverySettings delivery_settings;
         ApplyKeywords(keywords, {py::cast(&delivery_settings, py::return_value_policy::reference)},
                       DeliverySettingOptions().Names());
-        ThrowIfError(DeliverySettingOptions().Validate(delivery_settings));
+        ClipDelivery checked;
+        ThrowIfError(ClipDeliveryFromSettings(delivery_settings, &checked));
         JsonObject given;  // The delivery keywords given: every take's (tasks/batch_task.h).
         for (const Option& option : DeliverySettingOptions().options()) {
           if (!keywords.contains(option.name)) continue;

@@ -119,6 +119,13 @@ def test_pipeline_formats_match_the_cli(tmp_path):
     with pytest.raises(ValueError, match=r"--formats: unknown 'obj' \(glb, fbx, bvh\)"):
         mocapsolve.pipeline(subject, markers, out_dir=str(tmp_path / "bad"), formats="glb,obj")
     assert not os.path.exists(str(tmp_path / "bad"))
+    # The delivery keywords cut and resample the characters' clip, as the CLI's flags.
+    cut = mocapsolve.pipeline(subject, markers, characters=[glb], frames="4:", out_fps=15)
+    assert cut["characters"]["Xbot"].num_frames == 8 and cut["characters"]["Xbot"].rate == 15  # 4..18 of 20.
+    with pytest.raises(ValueError, match=r"--frames=4:30: the clip has 20 frames, 0:19"):
+        mocapsolve.pipeline(subject, markers, characters=[glb], frames="4:30")
+    with pytest.raises(ValueError, match="--seconds: expected A:B"):
+        mocapsolve.pipeline(subject, markers, seconds="1")
     # batch(formats=) reaches every take's worker, as the CLI's batch --formats.
     out_batch = str(tmp_path / "batch")
     result = mocapsolve.batch(markers_glob=markers, subject=subject_path, characters=[glb], out_dir=out_batch,
