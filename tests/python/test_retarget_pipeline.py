@@ -70,6 +70,15 @@ def test_retarget_animation_only_matches_the_cli(tmp_path):
     assert data[:4] == b"glTF" and len(data) < os.path.getsize(glb) / 20
     with pytest.raises(ValueError, match="animation_only"):
         mocapsolve.retarget(bvh, glb, max_frames=8, out=str(tmp_path / "x.bvh"), animation_only=True)
+    # The delivery keywords, as the CLI's --frames/--out_fps: the returned and written clip.
+    cut_out, cut_cli = str(tmp_path / "cut_py.bvh"), str(tmp_path / "cut_cli.bvh")
+    _, motion, report = mocapsolve.retarget(bvh, glb, max_frames=8, out=cut_out, frames="2:5", out_fps=60)
+    run_cli("retarget", "--source=" + bvh, "--target=" + glb, "--max_frames=8", "--out=" + cut_cli, "--frames=2:5",
+            "--out_fps=60")
+    assert open(cut_out, "rb").read() == open(cut_cli, "rb").read()
+    assert report["delivered_frames"] == motion.num_frames == 2 and motion.rate == 60  # 4 frames at 120 fps.
+    with pytest.raises(TypeError, match="formats"):
+        mocapsolve.retarget(bvh, glb, max_frames=8, formats="fbx")
 
 
 def test_batch_runs_the_cli_batch_task(cmu02, tmp_path):
