@@ -102,6 +102,12 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   inputs.subject = &subject;
   inputs.markers_path = FLAGS_markers;
   inputs.character_paths = SplitCommaList(FLAGS_character);
+  DeliverySettings delivery;
+  ReadOptionFlags(DeliverySettingOptions(), &delivery);
+  CharacterFileOptions character_files;
+  status = CharacterFilesFromSettings(delivery, FLAGS_animation_only, &character_files);
+  if (status.ok()) status = CheckCharacterFiles(FLAGS_out_dir, inputs, character_files);
+  if (!status.ok()) return status;
 
   TakeResult result;
   std::unique_ptr<Progress> progress;
@@ -124,10 +130,6 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
   SetStage("writing");
   status = MakeFolders(FLAGS_out_dir);
-  DeliverySettings delivery;
-  ReadOptionFlags(DeliverySettingOptions(), &delivery);
-  CharacterFileOptions character_files;
-  if (status.ok()) status = CharacterFilesFromSettings(delivery, FLAGS_animation_only, &character_files);
   if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report, view_path, character_files);
   if (status.ok()) status = WriteReport(report);
   if (!status.ok()) return status;

@@ -64,10 +64,23 @@ Status CharacterFilesFromSettings(const DeliverySettings& delivery, bool animati
   return DeliveryFormats(delivery, &files->formats);
 }
 
-std::string CharacterFormatPath(const std::string& out_dir, const CharacterOutput& character,
+std::string CharacterFormatPath(const std::string& out_dir, const std::string& character_path,
                                 const std::string& format) {
-  if (format == "glb") return CharacterOutputPath(out_dir, character.name, character.path);
-  return InFolder(out_dir, character.name + "." + format);
+  const std::string name = FileStem(character_path);
+  if (format == "glb") return CharacterOutputPath(out_dir, name, character_path);
+  return InFolder(out_dir, name + "." + format);
+}
+
+Status CheckCharacterFiles(const std::string& out_dir, const TakeInputs& inputs, const CharacterFileOptions& files) {
+  for (const std::string& path : inputs.character_paths) {
+    for (const std::string& format : files.formats) {
+      if (CharacterFormatPath(out_dir, path, format) == SolvedMotionPath(out_dir)) {
+        return Status::Error(path + ": --formats=" + format + " would write the character as " +
+                             SolvedMotionPath(out_dir) + ", the take's solve (rename the character file)");
+      }
+    }
+  }
+  return Status::Ok();
 }
 
 Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
@@ -309,15 +322,9 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
                         const JsonObject& report, const std::string& view_path,
                         const CharacterFileOptions& character_files) {
-  for (const CharacterOutput& c : result.characters) {
-    for (const std::string& format : character_files.formats) {
-      if (CharacterFormatPath(out_dir, c, format) == SolvedMotionPath(out_dir)) {
-        return Status::Error("write: " + c.path + ": --formats=" + format + " would write the character as " +
-                             SolvedMotionPath(out_dir) + ", the take's solve (rename the character file)");
-      }
-    }
-  }
-  Status status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
+  Status status = CheckCharacterFiles(out_dir, inputs, character_files);
+  if (!status.ok()) return Status::Error("write: " + status.message());
+  status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
   if (status.ok()) status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved, BvhWriteOptions());
   GltfWriteOptions gltf;
   gltf.animation_only = character_files.animation_only;
@@ -325,7 +332,7 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
     const Motion& motion = c.delivered;
     for (const std::string& format : character_files.formats) {
       if (!status.ok()) break;
-      const std::string path = CharacterFormatPath(out_dir, c, format);
+      const std::string path = CharacterFormatPath(out_dir, c.path, format);
       if (format == "glb") {
         status = WriteGltfWithAnimation(c.document, c.character, motion, inputs.name, path, gltf);
       } else if (format == "fbx") {

@@ -126,10 +126,15 @@ struct CharacterFileOptions {
 Status CharacterFilesFromSettings(const DeliverySettings& delivery, bool animation_only,
                                   CharacterFileOptions* files);
 
-// DIR/<character>.<format> for one of CharacterFileOptions::formats ("glb" keeps a .gltf
-// character's .gltf).
-std::string CharacterFormatPath(const std::string& out_dir, const CharacterOutput& character,
+// DIR/<character>.<format> for one of CharacterFileOptions::formats, the character read
+// from `character_path` ("glb" keeps a .gltf character's .gltf).
+std::string CharacterFormatPath(const std::string& out_dir, const std::string& character_path,
                                 const std::string& format);
+
+// An error naming the character when one of its files would be another output (a
+// character named "solved" with bvh: DIR/solved.bvh); before any work, and again by
+// WriteTakeOutputs.
+Status CheckCharacterFiles(const std::string& out_dir, const TakeInputs& inputs, const CharacterFileOptions& files);
 
 // The take's report (stage timings, quality figures, gate verdict, per character the
 // retarget's vertex/normal error and foot skating).
@@ -141,9 +146,8 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result);
 // solve, the residual curve, each character playing the take beside it), which needs the
 // viewer's runtime (viewer/view_page.h): without it, an error and nothing written.
 // character_files: which files of each character are written and how (animation_only:
-// without the character's meshes; the page always embeds whole characters). A character
-// named "solved" with bvh among the formats is an error (its file would be solved.bvh),
-// before anything is written.
+// without the character's meshes; the page always embeds whole characters);
+// CheckCharacterFiles first, before anything is written.
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
                         const JsonObject& report, const std::string& view_path = "",
                         const CharacterFileOptions& character_files = {});

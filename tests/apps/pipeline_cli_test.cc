@@ -178,6 +178,15 @@ TEST_F(PipelineCli, FormatsWriteEachCharacterFile) {
     EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
     EXPECT_FALSE(FolderExists(none)) << bad;
   }
+  // A character named "solved" would be written over the take's solve as BVH: refused.
+  const std::string solved = testing::TempPath("solved.gltf");
+  testing::WriteTestCharacter(solved, 45.0);
+  const std::string clash = testing::TempPath("formats_clash");
+  EXPECT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + clash + " --character=" + solved + " --formats=glb,bvh",
+                     &output), 1);
+  EXPECT_THAT(output, HasSubstr("solved.gltf: --formats=bvh would write the character as " + clash + "/solved.bvh"));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  EXPECT_FALSE(FolderExists(clash));
   // A config file's value gets the same check.
   const std::string config = testing::TempPath("formats_config.json");
   testing::WriteTextFile(config, "{\"formats\": \"glb,gltf\"}");
