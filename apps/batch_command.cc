@@ -10,6 +10,7 @@
 #include "apps/common_flags.h"
 #include "apps/progress.h"
 #include "apps/config_flags.h"
+#include "apps/delivery_flags.h"
 #include "batch/worker_process.h"
 #include "tasks/batch_task.h"
 
@@ -72,6 +73,10 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
   inputs.subject = FLAGS_subject;
   inputs.characters = SplitCommaList(FLAGS_character);
   inputs.out_dir = FLAGS_out_dir;
+  ClipDelivery delivery;  // Checked here: a malformed range is the batch's error, not every take's.
+  Status status = ClipDeliveryFromFlags(&delivery);
+  if (!status.ok()) return status;
+  inputs.pipeline_options = GivenFlagsJson(DeliverySettingOptions().Names());
   inputs.write_manifest = FLAGS_write_manifest;
   inputs.jobs = FLAGS_jobs;
   inputs.take_threads = FLAGS_take_threads;
@@ -85,7 +90,7 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
   inputs.version = Version();
   ProgressLine line(FLAGS_quiet);  // In place on a terminal, a line every few seconds in a log.
   BatchTaskResult task;
-  Status status = RunBatchTask(inputs, [&line](const BatchProgress& p) {
+  status = RunBatchTask(inputs, [&line](const BatchProgress& p) {
     const bool last = p.done + p.failed == p.takes && p.running == 0;
     if (!line.Due(last)) return;
     char text[256];
@@ -156,8 +161,10 @@ extern const Command kBatchCommand = {
     "A batch split over machines (--shard=i/n, by default from a Slurm job array; see\n"
     "scripts/slurm/submit.sh) writes DIR/summary.shard<i>of<n>.json; --merge then builds\n"
     "DIR/summary.json from the takes' records.\n"
+    "--formats, --frames, --seconds and --out_fps, when given, are every take's (over the\n"
+    "manifest's defaults; a take's own value still wins).\n"
     "Exit code: 0 every take done, 2 some failed or gate_failed, 1 bad manifest or flags\n"
     "(its form: JSON, keys, types, names) or an output that is an input.",
-    __FILE__, RunBatchCommand, "subject,character,out_dir,quiet"};
+    __FILE__, RunBatchCommand, "subject,character,out_dir,quiet", {DeliverySettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -53,11 +53,14 @@ Status ApplyConfigFile(const std::string& path, const std::string& flags) {
   return Status::Ok();
 }
 
-std::string ConfigJson(const std::string& flags) {
+namespace {
+
+std::string FlagsJson(const std::string& flags, bool given_only, bool indent) {
   JsonObject config;
   for (const std::string& name : SplitCommaList(flags)) {
     gflags::CommandLineFlagInfo info;
     if (!gflags::GetCommandLineFlagInfo(name.c_str(), &info)) continue;
+    if (given_only && info.is_default) continue;
     if (info.type == "bool") {
       config.Add(name, info.current_value == "true");
     } else if (info.type == "int32" || info.type == "int64" || info.type == "double") {
@@ -66,7 +69,13 @@ std::string ConfigJson(const std::string& flags) {
       config.Add(name, info.current_value);
     }
   }
-  return config.ToString();
+  return config.ToString(indent);
 }
+
+}  // namespace
+
+std::string ConfigJson(const std::string& flags) { return FlagsJson(flags, false, true); }
+
+std::string GivenFlagsJson(const std::string& flags) { return FlagsJson(flags, true, false); }
 
 }  // namespace mocapsolve

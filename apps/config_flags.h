@@ -21,6 +21,10 @@ Status ApplyConfigFile(const std::string& path, const std::string& flags);
 // booleans as JSON values, the rest as strings): what --print_config shows.
 std::string ConfigJson(const std::string& flags);
 
+// The same for the flags the command line (or a config file) set, on one line ("{}" for
+// none): what `batch` passes on to every take.
+std::string GivenFlagsJson(const std::string& flags);
+
 
 }  // namespace mocapsolve
 

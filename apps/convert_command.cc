@@ -4,6 +4,7 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/delivery_flags.h"
 #include "io/bvh_writer.h"
 #include "io/fbx_writer.h"
 #include "io/gltf_reader.h"
@@ -27,6 +28,18 @@ DECLARE_string(axes);  // apps/main.cc
 namespace mocapsolve {
 namespace {
 
+// IN's motion as delivered (--frames/--seconds, --out_fps: signal/clip_delivery.h).
+Status LoadDeliveredMotion(const std::string& in, Skeleton* skeleton, Motion* motion) {
+  ClipDelivery delivery;
+  Status status = ClipDeliveryFromFlags(&delivery);
+  if (status.ok()) status = LoadMotion(in, skeleton, motion);
+  if (status.ok() && !delivery.keeps_clip()) {
+    status = DeliverClip(*motion, delivery, motion);
+    if (!status.ok()) status = Status::Error(in + ": " + status.message());
+  }
+  return status;
+}
+
 // IN's motion as a new animation of the --target character.
 Status ConvertToGltf(const std::string& in, const std::string& out) {
   const std::string in_ext = FileExtension(in);
@@ -48,7 +61,7 @@ Status ConvertToGltf(const std::string& in, const std::string& out) {
   if (!status.ok()) return status;
   Skeleton skeleton;
   Motion motion, mapped;
-  status = LoadMotion(in, &skeleton, &motion);
+  status = LoadDeliveredMotion(in, &skeleton, &motion);
   if (!status.ok()) return status;
   status = MotionForCharacter(skeleton, motion, character, &mapped);
   if (!status.ok()) return Status::Error(in + " onto " + target + ": " + status.message());
@@ -76,7 +89,7 @@ Status ConvertToFbx(const std::string& in, const std::string& out) {
   if (FLAGS_scale != 1.0) return Status::Error("--scale applies to BVH output only");
   Skeleton skeleton;
   Motion motion;
-  status = LoadMotion(in, &skeleton, &motion);
+  status = LoadDeliveredMotion(in, &skeleton, &motion);
   if (!status.ok()) return status;
   JsonObject report;
   report.Add("input", in).Add("output", out);
@@ -119,6 +132,10 @@ Status ConvertMarkers(const std::string& in, const std::string& out) {
   if (FLAGS_scale != 1.0 || !FLAGS_euler_order.empty() || !FLAGS_target.empty()) {
     return Status::Error("--scale, --euler_order and --target are for motions; marker files take --out_units and --axes");
   }
+  ClipDelivery delivery;
+  Status checked = ClipDeliveryFromFlags(&delivery);
+  if (!checked.ok()) return checked;
+  if (!delivery.keeps_clip()) return Status::Error("--frames, --seconds and --out_fps are for motions, not marker files");
   Status status = CheckNotAnInput(out, in);
   if (!status.ok()) return status;
   Eigen::Matrix3d out_from_in;
@@ -192,7 +209,7 @@ Status RunConvert(const std::vector<std::string>& arguments) {
   }
   Skeleton skeleton;
   Motion motion;
-  status = LoadMotion(in, &skeleton, &motion);
+  status = LoadDeliveredMotion(in, &skeleton, &motion);
   if (!status.ok()) return status;
   status = WriteBvh(out, skeleton, motion, options);
   if (!status.ok()) return status;
@@ -220,7 +237,9 @@ extern const Command kConvertCommand = {
     "clip (take --clip_name), or with --target (default a glTF IN) the character, its skinned\n"
     "mesh and the clip. Marker files convert between C3D and TRC: labels, rate,\n"
     "first frame and missing samples kept, in --out_units, OUT's axes being IN's --axes.\n"
+    "--frames=A:B or --seconds=A:B cut the motion, --out_fps=R resamples it (BVH, glTF, FBX).\n"
     "OUT is written atomically and may not be an input.",
-    __FILE__, RunConvert, "skeleton,skeleton_units,amc_fps,animation,sample_fps,target,axes,report,quiet"};
+    __FILE__, RunConvert, "skeleton,skeleton_units,amc_fps,animation,sample_fps,target,axes,report,quiet",
+    {DeliverySettingOptions().Without("formats").options()}};
 
 }  // namespace mocapsolve

@@ -3,13 +3,13 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/option_flags.h"
 #include "io/bvh_writer.h"
 #include "io/motion_file.h"
 #include "kinematics/demo_character.h"
+#include "settings/demo_clip_settings.h"
 
 DEFINE_string(demo_out, "", "Where to write the demo clip (.bvh).");
-DEFINE_int32(frames, 240, "Number of frames of the demo clip.");
-DEFINE_double(fps, 60.0, "Frame rate of the demo clip.");
 
 namespace mocapsolve {
 namespace {
@@ -19,14 +19,14 @@ Status RunGenerate(const std::vector<std::string>& arguments) {
   if (FLAGS_demo_out.empty() || !IsTextOutputPath(FLAGS_demo_out, ".bvh")) {
     return Status::Error("--demo_out=FILE.bvh is required");
   }
-  if (FLAGS_frames < 1 || FLAGS_frames > 1000000) return Status::Error("--frames out of range");
-  if (!(FLAGS_fps > 0.0)) return Status::Error("--fps must be positive");
+  DemoClipSettings clip;
+  ReadOptionFlags(DemoClipSettingOptions(), &clip);
   const Skeleton skeleton = MakeDemoSkeleton();
-  const Motion motion = MakeDemoWalk(skeleton, FLAGS_frames, FLAGS_fps);
+  const Motion motion = MakeDemoWalk(skeleton, clip.frames, clip.fps);
   Status status = WriteBvh(FLAGS_demo_out, skeleton, motion, BvhWriteOptions());
   if (!status.ok()) return status;
   std::printf("wrote %s: procedural walk, %d joints, %d frames at %g fps, cm, Y up\n",
-              FLAGS_demo_out.c_str(), skeleton.num_joints(), motion.num_frames(), FLAGS_fps);
+              FLAGS_demo_out.c_str(), skeleton.num_joints(), motion.num_frames(), clip.fps);
   return Status::Ok();
 }
 
@@ -37,6 +37,6 @@ extern const Command kGenerateCommand = {
     "mocapsolve generate --demo_out=demo.bvh [--frames=240] [--fps=60]\n\n"
     "A 20-joint character in cm, Y up, walking along +Z with swinging arms and legs;\n"
     "made by the project itself, so demos and tests need no external data.",
-    __FILE__, RunGenerate, ""};
+    __FILE__, RunGenerate, "", {DemoClipSettingOptions().options()}};
 
 }  // namespace mocapsolve

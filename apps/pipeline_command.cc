@@ -20,6 +20,7 @@
 #include "io/motion_file.h"
 #include "pipeline/quality_gate.h"
 #include "pipeline/take_pipeline.h"
+#include "apps/delivery_flags.h"
 
 DECLARE_string(subject);  // apps/main.cc
 
@@ -42,6 +43,7 @@ namespace {
 
 const std::string kPipelineOptionFlags =
     std::string("take_name,filter_levels,") + PyramidSettingOptions().Names() + "," + QualityGateOptions().Names() + ",animation_only," +
+    DeliverySettingOptions().Names() + "," +
     RepairSettingOptions().Names() + "," + RepairSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints";
 
 // The take's page, as --view says (TakeViewPath; a PAGE.html must be no input). *path: ""
@@ -93,6 +95,8 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (status.ok()) status = PyramidOptionsFromFlags(FLAGS_filter_levels, &options.filter);
   if (!status.ok()) return status;
   ReadOptionFlags(QualityGateOptions(), &options.gate);
+  status = ClipDeliveryFromFlags(&options.delivery);
+  if (!status.ok()) return status;
   std::string error;
   if (!options.IsValid(&error)) return Status::Error(error);
 
@@ -101,6 +105,12 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   inputs.subject = &subject;
   inputs.markers_path = FLAGS_markers;
   inputs.character_paths = SplitCommaList(FLAGS_character);
+  DeliverySettings delivery;
+  ReadOptionFlags(DeliverySettingOptions(), &delivery);
+  CharacterFileOptions character_files;
+  status = CharacterFilesFromSettings(delivery, FLAGS_animation_only, &character_files);
+  if (status.ok()) status = CheckCharacterFiles(FLAGS_out_dir, inputs, character_files);
+  if (!status.ok()) return status;
 
   TakeResult result;
   std::unique_ptr<Progress> progress;
@@ -123,8 +133,6 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
   SetStage("writing");
   status = MakeFolders(FLAGS_out_dir);
-  GltfWriteOptions character_files;
-  character_files.animation_only = FLAGS_animation_only;
   if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report, view_path, character_files);
   if (status.ok()) status = WriteReport(report);
   if (!status.ok()) return status;
@@ -141,8 +149,9 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
     std::printf("  %s: vertex error %.4f of height, foot skating %.2f -> %.2f cm/s\n", c.name.c_str(),
                 r.mean_position_error, c.result.source_plant_skating_cm_s, c.result.result_plant_skating_cm_s);
   }
+  const size_t files = result.characters.size() * character_files.formats.size();
   std::printf("wrote %s (repaired markers, solved.bvh, %zu character file%s, report.json%s%s)\n",
-              FLAGS_out_dir.c_str(), result.characters.size(), result.characters.size() == 1 ? "" : "s",
+              FLAGS_out_dir.c_str(), files, files == 1 ? "" : "s",
               view_path.empty() ? "" : ", ", in_take_folder ? "view.html" : view_path.c_str());
   if (!result.verdict.pass) {
     std::string failures;
@@ -171,7 +180,9 @@ extern const Command kPipelineCommand = {
     "onto each character (thesis ch. 4, the character's own mesh bound to the subject's\n"
     "skeleton), then checks the quality gate. Writes DIR/repaired.c3d (or .trc),\n"
     "DIR/solved.bvh, DIR/<character>.glb (the character file plus the take as a new\n"
-    "animation; --animation_only: the character's skeleton, skin and the take, no meshes)\n"
+    "animation; --animation_only: the character's skeleton, skin and the take, no meshes;\n"
+    "--formats=glb,fbx,bvh adds DIR/<character>.fbx and .bvh; --frames/--seconds and\n"
+    "--out_fps cut and resample the take in every character file)\n"
     "and DIR/report.json (stage timings, marker residuals, repaired intervals,\n"
     "retarget error, foot skating, the gate's verdict), all together or none, and the take's\n"
     "browser page: --view=auto (default) DIR/view.html when the viewer's runtime is installed\n"
@@ -182,6 +193,6 @@ extern const Command kPipelineCommand = {
     __FILE__, RunPipeline, kPipelineFlags.c_str(),
     {RepairSolverOptions().options(),
      RepairSettingOptions().options(), RetargetSettingOptions().options(), QualityGateOptions().options(),
-     PyramidSettingOptions().options(), TakeViewPageOption().options()}};
+     PyramidSettingOptions().options(), DeliverySettingOptions().options(), TakeViewPageOption().options()}};
 
 }  // namespace mocapsolve

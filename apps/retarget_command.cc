@@ -8,6 +8,7 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/delivery_flags.h"
 #include "apps/progress.h"
 #include "apps/retarget_flags.h"
 #include "apps/solver_flags.h"
@@ -83,6 +84,8 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
   task_inputs.loop = FLAGS_loop;
   RetargetConfig config;
   config.retarget = RetargetSettingsFromFlags();
+  status = ClipDeliveryFromFlags(&config.delivery);
+  if (!status.ok()) return status;
   config.stage_times = FLAGS_stage_times;
   std::unique_ptr<Progress> progress;
   SetStage("inputs");
@@ -127,7 +130,7 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
   });
   if (!status.ok()) return status;
   if (!FLAGS_out_bvh.empty()) {
-    status = WriteBvh(FLAGS_out_bvh, task.target.skeleton, result.motion);
+    status = WriteBvh(FLAGS_out_bvh, task.target.skeleton, task.delivered);
     if (!status.ok()) return status;
   }
   if (!FLAGS_quiet) {
@@ -173,9 +176,10 @@ extern const Command kRetargetCommand = {
     "on the target file an application already has (Blender: scripts/apply_animation_gltf.py).\n"
     "A .fbx --out is binary FBX 7.4: the target's skeleton, skinned mesh (not with\n"
     "--animation_only) and the result as its take.\n"
+    "--frames=A:B or --seconds=A:B cut, --out_fps=R resamples the written result (--out, --out_bvh).\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
     __FILE__, RetargetMain, kRetargetFlags.c_str(), {RetargetSolverOptions().options(), RetargetSettingOptions().options(),
-    ViewPageOption().options()}};
+    ViewPageOption().options(), DeliverySettingOptions().Without("formats").options()}};
 
 }  // namespace mocapsolve

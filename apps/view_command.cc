@@ -12,7 +12,7 @@
 #include "tasks/view_task.h"
 
 DEFINE_string(character_animation, "", "The characters' animation to play (name); default: each "
-              "file's last animation (the one retarget/pipeline added).");
+              "file's first animation (the one retarget/pipeline/convert added).");
 DEFINE_string(repair_report, "", "A repair report (repair/pipeline --report JSON): colours the "
               "repaired samples of --markers by reason and draws the intervals on the timeline.");
 DEFINE_string(falloff, "", "A falloff weights CSV (propagate --weights_csv): drawn on the timeline.");

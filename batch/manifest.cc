@@ -175,6 +175,19 @@ std::string ResolvedOptionsJson(const BatchManifest& manifest, const BatchTake& 
   return OptionsJson(options);
 }
 
+Status SetDefaultOptions(const BatchOptions& options, BatchManifest* manifest) {
+  for (const auto& [key, value] : options) {
+    const JsonNode* known = FindOption(manifest->pipeline, key);
+    if (known == nullptr) return Status::Error("--" + key + ": not a pipeline option");
+    if (known->type != value.type) {
+      return Status::Error("--" + key + ": expected a " + std::string(JsonTypeName(known->type)) + ", got a " +
+                           JsonTypeName(value.type));
+    }
+    SetOption(&manifest->defaults, key, value);
+  }
+  return Status::Ok();
+}
+
 bool TakeGivesOption(const BatchManifest& manifest, const BatchTake& take, const std::string& key) {
   return FindOption(manifest.defaults, key) != nullptr || FindOption(take.overrides, key) != nullptr;
 }

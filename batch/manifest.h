@@ -67,6 +67,11 @@ std::string GivenOptionsJson(const BatchManifest& manifest, const BatchTake& tak
 // Every pipeline option, resolved (the pipeline's defaults under the given ones), for the
 // record and the key.
 std::string ResolvedOptionsJson(const BatchManifest& manifest, const BatchTake& take);
+// Sets `options` (pipeline options every take gets: the batch command's own --formats)
+// as defaults of the manifest, replacing its "defaults" for those keys; a take's own value
+// still wins. A key that is not a pipeline option, or a value of another JSON type than
+// its default, is an error naming the option.
+Status SetDefaultOptions(const BatchOptions& options, BatchManifest* manifest);
 // True if the take's given options (defaults or overrides) hold `key`.
 bool TakeGivesOption(const BatchManifest& manifest, const BatchTake& take, const std::string& key);
 

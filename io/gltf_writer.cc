@@ -256,7 +256,8 @@ bool AllElementsEqual(const tinygltf::Model& model, int index) {
 }
 
 // The animation-only model (gltf_writer.h) of `full`: the nodes of skin `skin` and their
-// ancestors (`parent` per node), the skin, one scene, and the last animation of `full`.
+// ancestors (`parent` per node), the skin, one scene, and the first animation of `full`
+// (the new one).
 Status AnimationOnlyModel(const tinygltf::Model& full, const std::vector<int>& parent, int skin,
                           const std::string& file, tinygltf::Model* out) {
   const int nn = static_cast<int>(full.nodes.size());
@@ -319,7 +320,7 @@ Status AnimationOnlyModel(const tinygltf::Model& full, const std::vector<int>& p
   // channel whose keys are all equal (fingers a skeleton-only source does not move) gets
   // one key at time 0, which glTF holds for the whole clip, unless every channel is
   // constant (the clip then keeps its length).
-  const tinygltf::Animation& from = full.animations.back();
+  const tinygltf::Animation& from = full.animations.front();
   std::vector<bool> constant(from.samplers.size());
   bool all_constant = true;
   for (size_t k = 0; k < from.samplers.size(); ++k) {
@@ -491,7 +492,8 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
     add_channel(node, "rotation", rotations, TINYGLTF_TYPE_VEC4);
     if (moves) add_channel(node, "translation", translations, TINYGLTF_TYPE_VEC3);
   }
-  model.animations.push_back(std::move(animation));
+  // First: the clip a reader opens by default (the character's own clips follow).
+  model.animations.insert(model.animations.begin(), std::move(animation));
   if (options.animation_only) {
     tinygltf::Model slim;
     status = AnimationOnlyModel(model, graph.parent, character.skin, file, &slim);

@@ -2,7 +2,9 @@
 // holding a Motion of that character (e.g. a retargeted clip), as .glb or as .gltf
 // with embedded (data URI) buffers; the output's extension decides.
 //
-// The source model is copied through tinygltf and the animation appended: one shared
+// The source model is copied through tinygltf and the animation added as the first one
+// (the clip readers open by default: `convert`, `info`, `view`, three.js's clips[0]; the
+// character's own animations follow, in their order): one shared
 // time accessor (frame k at k / frame_rate seconds, float, with min/max), and per joint
 // node a LINEAR rotation channel (VEC4 float) and, for the root joint and every joint
 // whose translation differs from its rest offset in some frame (by more than 1e-9 of

@@ -5,6 +5,7 @@
 
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
+#include "io/fbx_writer.h"
 #include "io/gltf_writer.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
@@ -57,6 +58,31 @@ std::string CharacterOutputPath(const std::string& out_dir, const std::string& c
   return InFolder(out_dir, character_name + extension);
 }
 
+Status CharacterFilesFromSettings(const DeliverySettings& delivery, bool animation_only,
+                                  CharacterFileOptions* files) {
+  files->animation_only = animation_only;
+  return DeliveryFormats(delivery, &files->formats);
+}
+
+std::string CharacterFormatPath(const std::string& out_dir, const std::string& character_path,
+                                const std::string& format) {
+  const std::string name = FileStem(character_path);
+  if (format == "glb") return CharacterOutputPath(out_dir, name, character_path);
+  return InFolder(out_dir, name + "." + format);
+}
+
+Status CheckCharacterFiles(const std::string& out_dir, const TakeInputs& inputs, const CharacterFileOptions& files) {
+  for (const std::string& path : inputs.character_paths) {
+    for (const std::string& format : files.formats) {
+      if (CharacterFormatPath(out_dir, path, format) == SolvedMotionPath(out_dir)) {
+        return Status::Error(path + ": --formats=" + format + " would write the character as " +
+                             SolvedMotionPath(out_dir) + ", the take's solve (rename the character file)");
+      }
+    }
+  }
+  return Status::Ok();
+}
+
 Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
                        const PipelineProgress& progress) {
   if (inputs.subject == nullptr) return Status::Error("pipeline: no subject");
@@ -75,6 +101,9 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   const MarkerTake& take = result->take;
   const int frames = static_cast<int>(take.observed.size());
   if (frames == 0) return Status::Error("read: " + inputs.markers_path + ": the take has no frames");
+  int first = 0, last = 0;  // The delivered range, checked before any work.
+  status = ResolveClipRange(options.delivery.range, frames, take.trajectories.frame_rate, &first, &last);
+  if (!status.ok()) return Status::Error("deliver: " + inputs.markers_path + ": " + status.message());
   for (const std::string& path : inputs.character_paths) {
     CharacterOutput output;
     output.path = path;
@@ -141,6 +170,8 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
                                            if (progress) progress(stage, done, total);
                                          });
     if (!status.ok()) return Status::Error("retarget: " + output.path + ": " + status.message());
+    status = DeliverClip(output.result.clip.motion, options.delivery, &output.delivered);
+    if (!status.ok()) return Status::Error("deliver: " + output.path + ": " + status.message());
     lap(stage, stage_start);
   }
 
@@ -210,6 +241,8 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
         .Add("source_foot_skating_cm_per_s", c.result.source_plant_skating_cm_s)
         .Add("result_foot_skating_cm_per_s", c.result.result_plant_skating_cm_s)
         .Add("mean_bone_angle_deg", c.result.mean_bone_angle_deg)
+        .Add("delivered_frames", c.delivered.num_frames())
+        .Add("delivered_frame_rate", c.delivered.frame_rate)
         .Add("setup_seconds", c.result.setup_seconds)
         .Add("solve_seconds", r.solve_seconds);
     characters.push_back(o);
@@ -288,13 +321,28 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
 
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
                         const JsonObject& report, const std::string& view_path,
-                        const GltfWriteOptions& character_files) {
-  Status status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
+                        const CharacterFileOptions& character_files) {
+  Status status = CheckCharacterFiles(out_dir, inputs, character_files);
+  if (!status.ok()) return Status::Error("write: " + status.message());
+  status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
   if (status.ok()) status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved, BvhWriteOptions());
+  GltfWriteOptions gltf;
+  gltf.animation_only = character_files.animation_only;
   for (const CharacterOutput& c : result.characters) {
-    if (!status.ok()) break;
-    status = WriteGltfWithAnimation(c.document, c.character, c.result.clip.motion, inputs.name,
-                                    CharacterOutputPath(out_dir, c.name, c.path), character_files);
+    const Motion& motion = c.delivered;
+    for (const std::string& format : character_files.formats) {
+      if (!status.ok()) break;
+      const std::string path = CharacterFormatPath(out_dir, c.path, format);
+      if (format == "glb") {
+        status = WriteGltfWithAnimation(c.document, c.character, motion, inputs.name, path, gltf);
+      } else if (format == "fbx") {
+        status = WriteFbxCharacter(path, c.character, motion, inputs.name, character_files.animation_only);
+      } else if (format == "bvh") {
+        status = WriteBvh(path, c.character.skeleton, motion, BvhWriteOptions());
+      } else {
+        status = Status::Error("--formats: unknown '" + format + "' (glb, fbx, bvh)");
+      }
+    }
   }
   if (status.ok()) status = WriteFileAtomically(InFolder(out_dir, "report.json"), report.ToString() + "\n");
   if (status.ok() && !view_path.empty()) {

@@ -15,6 +15,14 @@
 //   DIR/<character>.glb                       each character's file plus the take as a new
 //                                             animation named after the take (or, animation
 //                                             only, its skeleton, skin and the take: io/gltf_writer.h),
+//   DIR/<character>.fbx, .bvh                 when asked (CharacterFileOptions::formats,
+//                                             settings/delivery_settings.h): the character
+//                                             with the take as binary FBX, the take on its
+//                                             skeleton as BVH,
+//                                             every character file holding the take as
+//                                             delivered (TakePipelineOptions::delivery: cut,
+//                                             resampled; the other outputs keep the take's
+//                                             frames and rate),
 //   DIR/report.json                           every stage's timings and quality figures,
 //   DIR/view.html                             the take's browser page (when asked; the
 //                                             pipeline command's --view=auto default),
@@ -35,8 +43,10 @@
 #include "kinematics/status.h"
 #include "pipeline/quality_gate.h"
 #include "pipeline/subject.h"
+#include "settings/delivery_settings.h"
 #include "problems/marker_repair/marker_repair.h"
 #include "problems/retarget/retarget_character.h"
+#include "signal/clip_delivery.h"
 #include "signal/laplacian_pyramid.h"
 #include "viewer/view_scene.h"
 
@@ -48,6 +58,9 @@ struct TakePipelineOptions {
   PyramidOptions filter;            // Kernel and tension of the filter.
   CharacterRetargetOptions retarget;
   QualityGate gate;
+  // The character files' clip: cut and resampled (signal/clip_delivery.h); checked against
+  // the take's frames as soon as it is read.
+  ClipDelivery delivery;
 
   bool IsValid(std::string* error) const;
 };
@@ -70,6 +83,7 @@ struct CharacterOutput {
   GltfDocument document;
   GltfCharacter character;
   CharacterRetargetResult result;
+  Motion delivered;             // result.clip.motion cut and resampled as the options say.
 };
 
 struct TakeResult {
@@ -99,6 +113,29 @@ std::string SolvedMotionPath(const std::string& out_dir);
 std::string CharacterOutputPath(const std::string& out_dir, const std::string& character_name,
                                 const std::string& character_path);
 
+// How WriteTakeOutputs writes each character.
+struct CharacterFileOptions {
+  // Each of glb (the character's glTF form: .glb, or .gltf for a .gltf character), fbx
+  // (io/fbx_writer.h: WriteFbxCharacter) and bvh (the take on the character's skeleton).
+  std::vector<std::string> formats = {"glb"};
+  bool animation_only = false;  // glb and fbx: skeleton, skin and the take, no meshes.
+};
+
+// The delivery settings (--formats) and --animation_only as CharacterFileOptions; an error
+// naming --formats for a bad list.
+Status CharacterFilesFromSettings(const DeliverySettings& delivery, bool animation_only,
+                                  CharacterFileOptions* files);
+
+// DIR/<character>.<format> for one of CharacterFileOptions::formats, the character read
+// from `character_path` ("glb" keeps a .gltf character's .gltf).
+std::string CharacterFormatPath(const std::string& out_dir, const std::string& character_path,
+                                const std::string& format);
+
+// An error naming the character when one of its files would be another output (a
+// character named "solved" with bvh: DIR/solved.bvh); before any work, and again by
+// WriteTakeOutputs.
+Status CheckCharacterFiles(const std::string& out_dir, const TakeInputs& inputs, const CharacterFileOptions& files);
+
 // The take's report (stage timings, quality figures, gate verdict, per character the
 // retarget's vertex/normal error and foot skating).
 JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result);
@@ -108,11 +145,12 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result);
 // take's page there (pipeline/take_view.h: the repaired markers coloured by reason, the
 // solve, the residual curve, each character playing the take beside it), which needs the
 // viewer's runtime (viewer/view_page.h): without it, an error and nothing written.
-// character_files: how DIR/<character>.glb is written (animation_only: without the
-// character's meshes; the page always embeds whole characters).
+// character_files: which files of each character are written and how (animation_only:
+// without the character's meshes; the page always embeds whole characters);
+// CheckCharacterFiles first, before anything is written.
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
                         const JsonObject& report, const std::string& view_path = "",
-                        const GltfWriteOptions& character_files = {});
+                        const CharacterFileOptions& character_files = {});
 // DIR/view.html.
 std::string ViewPagePath(const std::string& out_dir);
 // The take's page as `view` asks (pipeline --view, Python's view=): "auto" = DIR/view.html

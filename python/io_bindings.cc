@@ -1,5 +1,6 @@
 // io: markers (C3D/TRC), motions (BVH, ASF/AMC, glTF, FBX), skeletons, subjects.
 #include "io/bvh_writer.h"
+#include "io/fbx_writer.h"
 #include "io/gltf_reader.h"
 #include "io/gltf_writer.h"
 #include "io/input_limits.h"
@@ -211,6 +212,41 @@ void BindIo(py::module_& m) {
       }, py::arg("path"), py::arg("target"), py::arg("motion"), py::arg("clip_name") = "mocapsolve",
       "Writes the character file `target` (.glb/.gltf) plus `motion` (on its skeleton, e.g. from\n"
       "read_motion(target) or retarget()) as a new animation clip_name, to path (.glb/.gltf).");
+
+  m.def("write_fbx", [](const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                        const std::string& clip_name, const std::string& euler_order) {
+        if (FileExtension(path) != ".fbx") throw py::value_error(path + ": expected a .fbx output");
+        FbxWriteOptions options;
+        options.take_name = clip_name;
+        if (!euler_order.empty()) {
+          EulerOrder order;
+          if (!ParseEulerOrder(euler_order, &order)) {
+            throw py::value_error("euler_order: '" + euler_order + "' is not one of XYZ, XZY, YXZ, YZX, ZXY, ZYX");
+          }
+          options.euler_order = order;
+        }
+        py::gil_scoped_release release;
+        ThrowIfError(WriteFbx(path, skeleton, motion, options));
+      }, py::arg("path"), py::arg("skeleton"), py::arg("motion"), py::kw_only(), py::arg("clip_name") = "mocapsolve",
+      py::arg("euler_order") = "",
+      "Writes motion on skeleton to path as binary FBX 7.4 (atomically), as `mocapsolve convert\n"
+      "IN OUT.fbx`: the skeleton as LimbNodes and the clip as the take clip_name; euler_order\n"
+      "(XYZ, ..., ZYX) overrides each joint's rotation order.");
+  m.def("write_fbx", [](const std::string& path, const std::string& target, const Motion& motion,
+                        const std::string& clip_name, bool animation_only) {
+        if (FileExtension(path) != ".fbx") throw py::value_error(path + ": expected a .fbx output");
+        RequireReadable(target);
+        py::gil_scoped_release release;
+        GltfCharacter character;
+        Status status = ReadGltfCharacter(target, GltfReadOptions(), &character);
+        if (status.ok()) status = WriteFbxCharacter(path, character, motion, clip_name, animation_only);
+        ThrowIfError(status);
+      }, py::arg("path"), py::arg("target"), py::arg("motion"), py::kw_only(), py::arg("clip_name") = "mocapsolve",
+      py::arg("animation_only") = false,
+      "Writes the character file `target` (.glb/.gltf) with `motion` (on its skeleton, e.g. from\n"
+      "read_motion(target) or retarget()) as binary FBX 7.4 (atomically), as `convert IN OUT.fbx\n"
+      "--target=`: the character's skeleton, skinned mesh (not with animation_only) and the clip\n"
+      "as the take clip_name.");
 
   py::class_<Subject, SubjectPtr>(m, "Subject",
       "One actor: skeleton, calibrated marker set and how marker files map onto it.")

@@ -13,6 +13,7 @@
 #include "pipeline/quality_gate.h"
 #include "settings/retarget_settings.h"
 #include "pipeline/take_pipeline.h"
+#include "settings/delivery_settings.h"
 #include "settings/pyramid_settings.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
@@ -61,6 +62,22 @@ void BindPipeline(py::module_& m) {
       .def_readwrite("gate_iteration_limit_share", &QualityGate::max_iteration_limit_share)
       .def_readwrite("gate_marker_offset_cm", &QualityGate::max_marker_offset_cm)
       .def_readwrite("gate_torso_deg", &QualityGate::max_torso_error_deg);
+  py::class_<DeliverySettings> delivery(m, "DeliverySettings",
+      "Which files a take is delivered as, one per flag of `mocapsolve pipeline`/`batch` (same\n"
+      "names and defaults: formats='glb', a comma-separated list of glb, fbx, bvh; out_fps;\n"
+      "frames and seconds, 'A:B' ranges). pipeline()\n"
+      "and batch() take them as keywords.");
+  delivery.def(py::init<>(), "Every option at the CLI's default.");
+  delivery.def_readwrite("formats", &DeliverySettings::formats)
+      .def_readwrite("out_fps", &DeliverySettings::out_fps)
+      .def_readwrite("frames", &DeliverySettings::frames)
+      .def_readwrite("seconds", &DeliverySettings::seconds);
+  delivery.def("validate", [](const DeliverySettings& s) {
+        ClipDelivery checked;
+        ThrowIfError(ClipDeliveryFromSettings(s, &checked));
+      },
+               "Raises ValueError (the CLI's message) if a value is invalid.");
+  m.attr("DELIVERY_OPTION_NAMES") = DeliverySettingOptions().Names();
   m.def("pipeline", [](SubjectPtr subject_arg, const std::string& markers, const std::vector<std::string>& characters,
                        const std::string& out_dir, const std::string& take_name, int filter_levels, double kernel_a,
                        double tension, bool animation_only, const std::string& view, const py::kwargs& keywords) {
@@ -69,14 +86,19 @@ void BindPipeline(py::module_& m) {
         SolverSettings solver_settings = RepairSolverOptions().Defaults();
         RetargetSettings retarget_settings;
         QualityGate gate_settings;
+        DeliverySettings delivery_settings;
         ApplyKeywords(keywords,
                       {py::cast(&repair_settings, py::return_value_policy::reference),
                        py::cast(&solver_settings, py::return_value_policy::reference),
                        py::cast(&retarget_settings, py::return_value_policy::reference),
-                       py::cast(&gate_settings, py::return_value_policy::reference)},
+                       py::cast(&gate_settings, py::return_value_policy::reference),
+                       py::cast(&delivery_settings, py::return_value_policy::reference)},
                       RepairSettingOptions().Names() + "," + SolverOptions().Names() + "," +
-                          RetargetSettingOptions().Names() + ",foot_joints," + QualityGateOptions().Names());
+                          RetargetSettingOptions().Names() + ",foot_joints," + QualityGateOptions().Names() + "," +
+                          DeliverySettingOptions().Names());
         ThrowIfError(QualityGateOptions().Validate(gate_settings));
+        CharacterFileOptions character_files;
+        ThrowIfError(CharacterFilesFromSettings(delivery_settings, animation_only, &character_files));
         if (!IsMarkerFile(markers)) throw py::value_error(markers + ": expected a .c3d or .trc");
         RequireReadable(markers);
         for (const std::string& path : characters) RequireReadable(path);
@@ -88,6 +110,7 @@ void BindPipeline(py::module_& m) {
         options.filter_levels = filter_levels;
         ThrowIfError(PyramidOptionsFromSettings(PyramidSettings{kernel_a, tension}, filter_levels, &options.filter));
         options.gate = gate_settings;
+        ThrowIfError(ClipDeliveryFromSettings(delivery_settings, &options.delivery));
         std::string error;
         if (!options.IsValid(&error)) throw py::value_error(error);
         std::string view_path, warning;
@@ -98,6 +121,7 @@ void BindPipeline(py::module_& m) {
         inputs.subject = subject;
         inputs.markers_path = markers;
         inputs.character_paths = characters;
+        if (!out_dir.empty()) ThrowIfError(CheckCharacterFiles(out_dir, inputs, character_files));
         auto result = std::make_shared<TakeResult>();
         JsonObject report;
         Status status = Status::Ok();
@@ -110,8 +134,6 @@ void BindPipeline(py::module_& m) {
             report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
             if (!out_dir.empty()) {
               status = MakeFolders(out_dir);
-              GltfWriteOptions character_files;
-              character_files.animation_only = animation_only;
               if (status.ok()) status = WriteTakeOutputs(out_dir, inputs, *result, report, view_path, character_files);
             }
           }
@@ -121,7 +143,7 @@ void BindPipeline(py::module_& m) {
         out["solved"] = result->solved;
         out["repaired_markers"] = std::make_shared<MarkerTrajectories>(result->repaired_file);
         py::dict retargeted;
-        for (const CharacterOutput& c : result->characters) retargeted[c.name.c_str()] = c.result.clip.motion;
+        for (const CharacterOutput& c : result->characters) retargeted[c.name.c_str()] = c.delivered;
         out["characters"] = retargeted;
         out["passed"] = result->verdict.pass;
         out["failures"] = result->verdict.failures;
@@ -136,24 +158,47 @@ paths), check the quality gate (the gate_* keywords, a QualityGate: see below).
 take_name: the take's name in the report ('' = the marker file's stem).
 filter_levels: the multiresolution filter's levels (0 = off), with kernel_a (the Cardinal
 spline kernel's a, default 0.4) and tension (default 0).
-Keywords: the repair, solver, retarget and quality gate options.
+Keywords: the repair, solver, retarget, quality gate and delivery options.
 out_dir: also write repaired markers, solved.bvh, <character>.glb and report.json there,
 and the take's page: view='auto' (default) DIR/view.html when the viewer's runtime is
 installed (else a warning), 'off' none, or a PAGE.html path (the runtime then required);
-animation_only: each <character>.glb then holds the character's skeleton, skin and the
-take only, no meshes (as the CLI's --animation_only).
+formats='glb,fbx,bvh' also writes <character>.fbx (binary FBX) and <character>.bvh;
+frames='A:B' / seconds='A:B' and out_fps cut and resample the take in the character files
+(and in 'characters' below);
+animation_only: each <character>.glb and .fbx then holds the character's skeleton, skin
+and the take only, no meshes (as the CLI's --animation_only).
 Returns a dict: 'solved' (Motion), 'repaired_markers' (Markers), 'characters' {name:
 Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc") +
        KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), RetargetSettingOptions().Names() + ",foot_joints") +
        KeywordDefaults("Quality gate keywords and defaults (QualityGate; 0 turns a check off)", py::cast(QualityGate()),
-                       QualityGateOptions().Names())).c_str());
+                       QualityGateOptions().Names()) +
+       KeywordDefaults("Delivery keywords and defaults (DeliverySettings)", py::cast(DeliverySettings()),
+                       DeliverySettingOptions().Names())).c_str());
 
   m.def("batch", [](const std::string& manifest, const std::string& markers_glob, const std::string& subject,
                     const std::vector<std::string>& characters, const std::string& out_dir,
                     const std::string& write_manifest, int jobs, int take_threads, double take_timeout,
                     int take_memory_mb, bool force, bool retry_failed, bool merge, const std::string& shard,
-                    const std::string& executable) {
+                    const std::string& executable, const py::kwargs& keywords) {
+        DeliverySettings delivery_settings;
+        ApplyKeywords(keywords, {py::cast(&delivery_settings, py::return_value_policy::reference)},
+                      DeliverySettingOptions().Names());
+        ClipDelivery checked;
+        ThrowIfError(ClipDeliveryFromSettings(delivery_settings, &checked));
+        JsonObject given;  // The delivery keywords given: every take's (tasks/batch_task.h).
+        for (const Option& option : DeliverySettingOptions().options()) {
+          if (!keywords.contains(option.name)) continue;
+          const std::string text = DeliverySettingOptions().Get(option.name, delivery_settings);
+          if (option.type == OptionType::kString) {
+            given.Add(option.name, text);
+          } else if (option.type == OptionType::kBool) {
+            given.Add(option.name, text == "true");
+          } else {
+            given.Add(option.name, JsonValue(std::stod(text)));
+          }
+        }
         BatchInputs inputs;
+        inputs.pipeline_options = keywords.empty() ? "" : given.ToString(/*indent=*/false);
         inputs.manifest = manifest;
         inputs.markers_glob = markers_glob;
         inputs.subject = subject;
@@ -207,6 +252,8 @@ PATH, else the build tree's).
 Returns a dict: 'kind' ('ran', 'merged', 'manifest_only', 'empty_shard'), 'done',
 'failed' (takes; a failed take is not an exception), 'summary' (summary.json's contents),
 'summary_base'. Bad flags or a bad manifest raise ValueError with the CLI's message.
+Keywords: the delivery options (formats='glb,fbx,bvh'), every take's when given (over the
+manifest's defaults; a take's own value still wins), as the CLI's --formats.
 Releases the GIL.)doc");
 
   m.def("view", [](const std::string& out, const std::string& markers, const std::string& motion,

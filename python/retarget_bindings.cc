@@ -2,6 +2,7 @@
 // motion with the target's mesh bound to it) onto a skinned glTF character.
 #include "io/gltf_reader.h"
 #include "io/motion_file.h"
+#include "settings/delivery_settings.h"
 #include "settings/retarget_settings.h"
 #include "problems/retarget/retarget_character.h"
 #include "python/bindings.h"
@@ -36,10 +37,15 @@ void BindRetarget(py::module_& m) {
                        const std::string& out, const std::string& animation_name, bool animation_only,
                        const py::kwargs& keywords) {
         RetargetConfig config;
-        ApplyKeywords(keywords, {py::cast(&config.retarget, py::return_value_policy::reference)},
-                      RetargetSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints");
+        DeliverySettings delivery;  // Its --frames, --seconds, --out_fps (not pipeline's --formats).
+        const std::string names = RetargetSolverOptions().Names() + "," + RetargetSettingOptions().Names() +
+                                  ",foot_joints," + DeliverySettingOptions().Without("formats").Names();
+        if (keywords.contains("formats")) throw py::type_error("unexpected keyword argument 'formats' (options: " + names + ")");
+        ApplyKeywords(keywords, {py::cast(&config.retarget, py::return_value_policy::reference),
+                                 py::cast(&delivery, py::return_value_policy::reference)}, names);
         CharacterRetargetOptions checked;  // Option errors before the files'.
         ThrowIfError(RetargetOptionsFromSettings(config.retarget, &checked));
+        ThrowIfError(ClipDeliveryFromSettings(delivery, &config.delivery));
         if (animation_only && (out.empty() || FileExtension(out) == ".bvh")) {
           throw py::value_error("--animation_only: applies to a .glb/.gltf --out");
         }
@@ -67,7 +73,7 @@ void BindRetarget(py::module_& m) {
         }
         ThrowIfError(status);
         auto target_character = std::make_shared<GltfCharacter>(std::move(task->target));
-        return py::make_tuple(target_character, std::move(task->retarget.clip.motion), ReportToPython(task->report));
+        return py::make_tuple(target_character, std::move(task->delivered), ReportToPython(task->report));
       }, py::arg("source"), py::arg("target"), py::kw_only(), py::arg("skeleton") = py::none(),
       py::arg("source_mesh") = true, py::arg("source_animation") = "", py::arg("source_skin") = "",
       py::arg("target_skin") = "", py::arg("frame_rate") = 0.0,
@@ -85,7 +91,8 @@ clip's name in the written glTF ('' = 'retargeted from <source clip>'); animatio
 write the glTF out as the target's skeleton, skin and the new animation only, no meshes
 (as the CLI's --animation_only).
 Keywords: the RetargetSettings (solver='dls', iterations=10,
-lambda=5, subsample=128, plant_feet=True, joint_map='map.json', ...).
+lambda=5, subsample=128, plant_feet=True, joint_map='map.json', ...), and frames='A:B' /
+seconds='A:B' and out_fps, which cut and resample the result (as the CLI's flags).
 Returns (target character, motion on the target skeleton, report): the report is what
 `mocapsolve retarget --report` writes (errors as fractions of the target's height, the
 joint map, per-frame errors, 'notes'). Releases the GIL.)doc") +

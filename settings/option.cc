@@ -1,5 +1,6 @@
 #include "settings/option.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -54,6 +55,26 @@ bool ParseNumber(const std::string& text, bool integer, double* value) {
   return end == text.c_str() + text.size();
 }
 
+// A list option's value: items separated by single commas, each one of `choices`, none twice.
+Status CheckList(const std::string& prefix, const std::string& text, const std::vector<std::string>& choices) {
+  if (text.empty()) return Status::Error(prefix + "expected a comma-separated list of " + JoinChoices(choices));
+  std::vector<std::string> seen;
+  size_t begin = 0;
+  while (true) {
+    const size_t end = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, end - begin);
+    bool known = false;
+    for (const std::string& choice : choices) known = known || item == choice;
+    if (!known) return Status::Error(prefix + "unknown '" + item + "' (" + JoinChoices(choices) + ")");
+    for (const std::string& earlier : seen) {
+      if (earlier == item) return Status::Error(prefix + "'" + item + "' given twice in '" + text + "'");
+    }
+    seen.push_back(item);
+    if (end == text.size()) return Status::Ok();
+    begin = end + 1;
+  }
+}
+
 }  // namespace
 
 Status Option::Check(const std::string& text) const {
@@ -62,12 +83,14 @@ Status Option::Check(const std::string& text) const {
     case OptionType::kBool:
       if (text == "true" || text == "false" || text == "1" || text == "0") return Status::Ok();
       return Status::Error(prefix + "expected true or false, got '" + text + "'");
-    case OptionType::kString:
+    case OptionType::kString: {
       if (choices.empty()) return Status::Ok();
+      if (list) return CheckList(prefix, text, choices);
       for (const std::string& choice : choices) {
         if (text == choice) return Status::Ok();
       }
       return Status::Error(prefix + "unknown '" + text + "' (" + JoinChoices(choices) + ")");
+    }
     case OptionType::kInt:
     case OptionType::kDouble: {
       const bool integer = type == OptionType::kInt;

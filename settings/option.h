@@ -11,8 +11,10 @@
 //
 // Checks are the same on every surface: a bool is true/false, an int an integer, a double
 // a finite number, within [min, max] when the option has a range; a string one of its
-// choices when it lists them. Each failure is one line naming the option:
+// choices when it lists them, or for a list option (AddList) a comma-separated list of
+// them, at least one, none twice. Each failure is one line naming the option:
 //   --solver: unknown 'x' (ceres, dls, dls_generic)
+//   --formats: unknown 'obj' (glb, fbx, bvh)
 //   --max_iterations: expected an integer, got '1.5'
 #ifndef MOCAPSOLVE_SETTINGS_OPTION_H_
 #define MOCAPSOLVE_SETTINGS_OPTION_H_
@@ -40,6 +42,7 @@ struct Option {
   std::string unit;                  // mm, cm, deg, frames, mm/rad, ... ("" = none).
   std::string help;
   std::vector<std::string> choices;  // A string option's allowed values (empty: any text).
+  bool list = false;                 // A comma-separated list of choices ("glb,fbx").
   double min = -std::numeric_limits<double>::infinity();  // A number option's closed range.
   double max = std::numeric_limits<double>::infinity();
 
@@ -79,6 +82,15 @@ class OptionGroup {
                    std::vector<std::string> choices = {}) {
     Option option = Make(name, OptionType::kString, "", help, Settings().*field);
     option.choices = std::move(choices);
+    return Push(field, std::move(option));
+  }
+
+  // A comma-separated list of `choices` (see Option::list), e.g. "glb,fbx".
+  OptionGroup& AddList(std::string Settings::*field, const char* name, const char* help,
+                       std::vector<std::string> choices) {
+    Option option = Make(name, OptionType::kString, "", help, Settings().*field);
+    option.choices = std::move(choices);
+    option.list = true;
     return Push(field, std::move(option));
   }
 
@@ -157,12 +169,13 @@ class OptionGroup {
 
   // The value of option `name` in `settings`, as text ("" for an unknown name).
   std::string Get(const std::string& name, const Settings& settings) const {
+    std::string text;
     for (size_t i = 0; i < options_.size(); ++i) {
-      if (options_[i].name == name) {
-        return std::visit([&](auto field) { return Text(settings.*field); }, fields_[i]);
-      }
+      if (options_[i].name != name) continue;
+      std::visit([&](auto field) { text = Text(settings.*field); }, fields_[i]);
+      break;
     }
-    return "";
+    return text;
   }
 
  private:

@@ -34,8 +34,17 @@ Status LoadManifest(const BatchInputs& inputs, BatchOptions* pipeline_options, B
   Status status = RunAndCapture({inputs.executable, "pipeline", "--print_config"}, &config);
   if (status.ok()) status = ParsePipelineOptions(config, pipeline_options);
   if (!status.ok()) return status;
-  if (!inputs.manifest.empty()) return ReadManifest(inputs.manifest, *pipeline_options, manifest);
-  return ManifestFromGlob(inputs.markers_glob, inputs.subject, inputs.characters, *pipeline_options, manifest);
+  if (!inputs.manifest.empty()) {
+    status = ReadManifest(inputs.manifest, *pipeline_options, manifest);
+  } else {
+    status = ManifestFromGlob(inputs.markers_glob, inputs.subject, inputs.characters, *pipeline_options, manifest);
+  }
+  if (!status.ok() || inputs.pipeline_options.empty()) return status;
+  JsonNode given;
+  status = ParseJson(inputs.pipeline_options, "the batch's pipeline options", &given);
+  if (status.ok() && !given.is_object()) status = Status::Error("the batch's pipeline options: expected an object");
+  if (status.ok()) status = SetDefaultOptions(given.members, manifest);
+  return status;
 }
 
 Status Merge(const BatchInputs& inputs, const BatchManifest* manifest, BatchTaskResult* out) {

@@ -21,6 +21,9 @@ struct BatchInputs {
   std::string subject;                  // this subject and
   std::vector<std::string> characters;  // these characters.
   std::string out_dir;
+  // Pipeline options for every take, a JSON object ({"formats": "glb,fbx"}; "" = none):
+  // they replace the manifest's defaults, a take's own value still wins.
+  std::string pipeline_options;
   std::string write_manifest;  // Also write the batch's manifest here (alone: without out_dir).
   int jobs = 0;                // Takes at once; 0 = the cores.
   int take_threads = 0;        // Threads per take; 0 = the cores over jobs, at least 1.

@@ -109,6 +109,8 @@ JsonObject RetargetReportJson(const RetargetInputs& inputs, const CharacterRetar
       .Add("plant_contact_pairs", retarget.plant_pairs)
       .Add("source_plant_skating_cm_per_s", retarget.source_plant_skating_cm_s)
       .Add("result_plant_skating_cm_per_s", retarget.result_plant_skating_cm_s)
+      .Add("delivered_frames", task.delivered.num_frames())
+      .Add("delivered_frame_rate", task.delivered.frame_rate)
       .Add("setup_seconds", task.setup_seconds)
       .Add("solve_seconds", result.solve_seconds)
       .Add("ms_per_frame", frames > 0 ? 1e3 * result.solve_seconds / frames : 0.0)
@@ -148,6 +150,9 @@ Status RunRetarget(const RetargetInputs& inputs, const RetargetConfig& config,
     for (const Pose& pose : clip.frames) motion.frames.push_back(pose);
   }
   if (inputs.max_frames > 0 && motion.num_frames() > inputs.max_frames) motion.frames.resize(inputs.max_frames);
+  int first = 0, last = 0;  // The delivered range, checked before the solve.
+  status = ResolveClipRange(config.delivery.range, motion.num_frames(), motion.frame_rate, &first, &last);
+  if (!status.ok()) return Status::Error(inputs.source + ": " + status.message());
 
   RetargetCharacter source_view;
   if (result->source_mesh_used) {
@@ -164,6 +169,8 @@ Status RunRetarget(const RetargetInputs& inputs, const RetargetConfig& config,
   for (const std::string& warning : t.warnings) result->retarget.notes.push_back(warning);
   result->setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
                           result->retarget.clip.solve_seconds;
+  status = DeliverClip(result->retarget.clip.motion, config.delivery, &result->delivered);
+  if (!status.ok()) return Status::Error(inputs.source + ": " + status.message());
   result->report = RetargetReportJson(inputs, options, config, *result);
   return Status::Ok();
 }
@@ -178,7 +185,7 @@ std::string RetargetAnimationName(const RetargetInputs& inputs, const std::strin
 
 Status WriteRetargeted(const std::string& out, const RetargetTaskResult& result, const std::string& animation_name,
                        bool animation_only) {
-  const Motion& motion = result.retarget.clip.motion;
+  const Motion& motion = result.delivered;
   if (IsTextOutputPath(out, ".bvh")) return WriteBvh(out, result.target.skeleton, motion);  // "-": stdout.
   if (FileExtension(out) == ".fbx") {
     return WriteFbxCharacter(out, result.target, motion, animation_name, animation_only);

@@ -13,6 +13,7 @@
 #include "kinematics/status.h"
 #include "problems/retarget/retarget_character.h"
 #include "settings/retarget_settings.h"
+#include "signal/clip_delivery.h"
 
 namespace mocapsolve {
 
@@ -31,6 +32,9 @@ struct RetargetInputs {
 
 struct RetargetConfig {
   RetargetSettings retarget;
+  // The written clip (WriteRetargeted; the CLI's --out_bvh): retarget.clip.motion cut and
+  // resampled (signal/clip_delivery.h), the range checked once the source is read.
+  ClipDelivery delivery;
   bool stage_times = false;  // Time FK, skinning, Jacobian and solve separately (dls only).
 };
 
@@ -42,6 +46,7 @@ struct RetargetTaskResult {
   bool source_mesh_used = false;
   Motion source_motion;            // The source clip as retargeted (looped, cut).
   CharacterRetargetResult retarget;  // retarget.clip.motion: the result on the target.
+  Motion delivered;                  // It as written: cut and resampled (RetargetConfig::delivery).
   double setup_seconds = 0.0;        // Reading and set-up: the wall time besides the solves.
   // What --report records (errors as fractions of the target's height, cm/s, degrees,
   // seconds; the joint map; per-frame errors).
@@ -60,7 +65,7 @@ Status RunRetarget(const RetargetInputs& inputs, const RetargetConfig& config,
 // The new clip's name in a written glTF: `name`, or "retargeted from <source clip or file>".
 std::string RetargetAnimationName(const RetargetInputs& inputs, const std::string& name);
 
-// Writes the result to `out`: a .bvh (the target skeleton), a .glb/.gltf (the target file
+// Writes the delivered result to `out`: a .bvh (the target skeleton), a .glb/.gltf (the target file
 // with the result added as a new animation; animation_only: skeleton, skin and animation),
 // or a .fbx (io/fbx_writer.h: the target's skeleton, mesh unless animation_only, the result
 // as the take named `animation_name`).

@@ -125,7 +125,7 @@ struct ViewCurve {
 struct ViewCharacter {
   std::string name;
   std::string glb;              // The .glb file's bytes.
-  std::string animation;        // The clip to play; "" = the file's last animation.
+  std::string animation;        // The clip to play; "" = the file's first animation.
 };
 
 struct ViewScene {

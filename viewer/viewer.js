@@ -619,7 +619,7 @@
         .then(function (gltf) {
           const clips = gltf.animations;
           if (!clips.length) throw new Error(c.name + ': the character has no animation');
-          let clip = clips[clips.length - 1];
+          let clip = clips[0];  // The clip retarget/pipeline/convert added (io/gltf_writer.h).
           if (c.animation) {
             clip = clips.find(function (k) { return k.name === c.animation; });
             if (!clip) throw new Error(c.name + ': no animation named "' + c.animation + '"');

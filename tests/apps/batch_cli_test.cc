@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include "io/json_reader.h"
+#include "tests/gltf_test_files.h"
 #include "tests/test_support.h"
 #include "viewer/view_page.h"
 
@@ -147,6 +148,44 @@ TEST_F(BatchCli, RunsResumesRedoesChangedAndForced) {
   EXPECT_THAT(record, HasSubstr(FindViewerRuntime(&runtime).ok()
                                     ? "\"outputs\": [\"repaired.c3d\", \"report.json\", \"solved.bvh\", \"view.html\"]"
                                     : "\"outputs\": [\"repaired.c3d\", \"report.json\", \"solved.bvh\"]"));
+}
+
+// --formats goes to every take's worker (over the manifest's defaults; a take's own value
+// wins), and into the written manifest; a bad list is the batch's one-line error.
+TEST_F(BatchCli, FormatsReachEveryTake) {
+  const std::string character = dir_ + "/figure.gltf";
+  testing::WriteTestCharacter(character, 45.0);
+  const std::string out = testing::TempPath("formats_out");
+  const std::string manifest = Manifest(
+      "{\"markers\": \"t1.c3d\", \"characters\": [\"figure.gltf\"]},\n"
+      " {\"markers\": \"t2.c3d\", \"characters\": [\"figure.gltf\"], \"formats\": \"bvh\"}");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("batch --quiet --jobs=2 --manifest=" + manifest + " --out_dir=" + out +
+                            " --formats=glb,fbx", &output), 0) << output;
+  EXPECT_TRUE(testing::FileExists(out + "/t1/figure.gltf"));
+  EXPECT_TRUE(testing::FileExists(out + "/t1/figure.fbx"));
+  EXPECT_FALSE(testing::FileExists(out + "/t1/figure.bvh"));
+  EXPECT_TRUE(testing::FileExists(out + "/t2/figure.bvh"));
+  EXPECT_FALSE(testing::FileExists(out + "/t2/figure.fbx"));
+  EXPECT_THAT(testing::ReadTextFile(out + "/t1/record.json"), HasSubstr("figure.fbx"));
+  // The same again: nothing to do; without --formats the options changed: both again.
+  ASSERT_EQ(testing::RunCli("batch --quiet --jobs=2 --manifest=" + manifest + " --out_dir=" + out +
+                            " --formats=glb,fbx", &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("(0 ran, 2 skipped"));
+  ASSERT_EQ(testing::RunCli("batch --quiet --jobs=2 --manifest=" + manifest + " --out_dir=" + out, &output), 0)
+      << output;
+  EXPECT_THAT(output, HasSubstr("(1 ran, 1 skipped"));
+  EXPECT_FALSE(testing::FileExists(out + "/t1/figure.fbx"));
+  // The glob form's written manifest keeps it.
+  const std::string written = dir_ + "/W.json";
+  ASSERT_EQ(testing::RunCli("batch --markers_glob='" + dir_ + "/t*.c3d' --subject=" + dir_ + "/S.json "
+                            "--formats=fbx --write_manifest=" + written, &output), 0) << output;
+  EXPECT_THAT(testing::ReadTextFile(written), HasSubstr("\"formats\": \"fbx\""));
+  const std::string none = testing::TempPath("formats_none");
+  EXPECT_EQ(testing::RunCli("batch --manifest=" + manifest + " --out_dir=" + none + " --formats=glb,obj", &output), 1);
+  EXPECT_THAT(output, HasSubstr("--formats: unknown 'obj' (glb, fbx, bvh)"));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  EXPECT_FALSE(testing::FileExists(none));
 }
 
 TEST_F(BatchCli, FaultsFailOnlyTheirTake) {

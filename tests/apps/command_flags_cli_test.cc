@@ -10,6 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "settings/delivery_settings.h"
 #include "settings/corruption_settings.h"
 #include "settings/falloff_settings.h"
 #include "settings/repair_settings.h"
@@ -176,6 +177,8 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
       {"retarget", RetargetSolverOptions().options()},
       {"retarget", RetargetSettingOptions().options()},
       {"pipeline", RetargetSettingOptions().options()},
+      {"pipeline", DeliverySettingOptions().options()},
+      {"batch", DeliverySettingOptions().options()},
       {"propagate", SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,"
                                          "sparse_library").options()}};
   for (const Use& use : uses) {
@@ -227,6 +230,8 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
   std::vector<Option> pipeline_options = RepairSolverOptions().options();
   pipeline_options.insert(pipeline_options.end(), RepairSettingOptions().options().begin(),
                           RepairSettingOptions().options().end());
+  pipeline_options.insert(pipeline_options.end(), DeliverySettingOptions().options().begin(),
+                          DeliverySettingOptions().options().end());
   for (const Option& option : pipeline_options) {
     const std::string value = option.type == OptionType::kString ? "\"" + option.default_value + "\""
                                                                  : option.default_value;

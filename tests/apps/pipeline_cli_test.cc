@@ -12,7 +12,10 @@
 #include <tiny_gltf.h>
 
 #include "io/bvh_reader.h"
+#include "io/fbx_reader.h"
 #include "io/gltf_reader.h"
+#include "kinematics/forward_kinematics.h"
+#include "tests/gltf_test_files.h"
 #include "tests/test_support.h"
 
 namespace mocapsolve {
@@ -85,6 +88,110 @@ TEST_F(PipelineCli, AnimationOnlyCharacterFiles) {
   EXPECT_LT(written.st_size, character.st_size / 10);  // 1.84 MB; 60 frames: 99 kB.
   EXPECT_THAT(testing::ReadTextFile(report), HasSubstr("\"animation_only\": true"));
   EXPECT_THAT(testing::ReadTextFile(dir + "/report.json"), HasSubstr("\"animation_only\": true"));
+}
+
+// The largest distance between the world positions of the joints `a` and `b` share by
+// name, over every frame (the frame counts and rates must agree).
+double LargestJointDistance(const Skeleton& a, const Motion& ma, const Skeleton& b, const Motion& mb) {
+  EXPECT_EQ(ma.num_frames(), mb.num_frames());
+  EXPECT_NEAR(ma.frame_rate, mb.frame_rate, 1e-6 * ma.frame_rate);
+  FkData fa(a), fb(b);
+  double worst = 0.0;
+  int shared = 0;
+  for (int f = 0; f < std::min(ma.num_frames(), mb.num_frames()); ++f) {
+    ForwardKinematics(a, ma.frames[f], &fa);
+    ForwardKinematics(b, mb.frames[f], &fb);
+    for (int j = 0; j < b.num_joints(); ++j) {
+      const int i = a.FindJoint(b.name(j));
+      if (i < 0) continue;
+      worst = std::max(worst, (fa.world_positions[i] - fb.world_positions[j]).norm());
+      ++shared;
+    }
+  }
+  EXPECT_GT(shared, 0);
+  return worst;
+}
+
+// --formats=glb,fbx,bvh: each character as its glTF form (a .gltf stays .gltf), binary FBX
+// and BVH, all three with the take's joint positions (FBX read back through assimp); by
+// default the glTF form only; an unknown format is one line naming --formats, nothing
+// written.
+TEST_F(PipelineCli, FormatsWriteEachCharacterFile) {
+  const std::string character = testing::TempPath("figure.gltf");
+  testing::WriteTestCharacter(character, 45.0);
+  const std::string dir = testing::TempPath("formats");
+  std::string output;
+  ASSERT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + dir + " --character=" + character +
+                     " --formats=glb,fbx,bvh", &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("3 character files"));
+  GltfDocument document;
+  ASSERT_TRUE(GltfDocument::Read(dir + "/figure.gltf", &document).ok());
+  GltfCharacter gltf;
+  ASSERT_TRUE(ReadGltfCharacter(document, {}, &gltf).ok());
+  GltfAnimationOptions take;
+  take.animation = "walk";
+  Motion from_gltf;
+  Status status = ReadGltfAnimation(document, gltf, take, &from_gltf);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_EQ(from_gltf.num_frames(), 60);
+  Skeleton fbx;
+  Motion from_fbx;
+  FbxInfo info;
+  status = ReadFbx(dir + "/figure.fbx", {}, &fbx, &from_fbx, &info);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(info.skinned_meshes, 1);
+  // Metres: float keys on a 1.75 m figure, 1e-5 m = 0.01 mm.
+  const double fbx_error = LargestJointDistance(gltf.skeleton, from_gltf, fbx, from_fbx);
+  EXPECT_LT(fbx_error, 1e-5);
+  Skeleton bvh;
+  Motion from_bvh;
+  ASSERT_TRUE(ReadBvh(dir + "/figure.bvh", &bvh, &from_bvh).ok());
+  // The BVH's 6 significant digits on metres.
+  const double bvh_error = LargestJointDistance(gltf.skeleton, from_gltf, bvh, from_bvh);
+  EXPECT_LT(bvh_error, 1e-4);
+  std::printf("largest joint distance to the glTF's: FBX %.3g m, BVH %.3g m (%d joints read back)\n", fbx_error,
+              bvh_error, fbx.num_joints());
+
+  // The default: the glTF form only, as before --formats.
+  const std::string plain = testing::TempPath("formats_default");
+  ASSERT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + plain + " --character=" + character, &output), 0)
+      << output;
+  EXPECT_TRUE(testing::FileExists(plain + "/figure.gltf"));
+  EXPECT_FALSE(testing::FileExists(plain + "/figure.fbx"));
+  EXPECT_FALSE(testing::FileExists(plain + "/figure.bvh"));
+
+  // --animation_only applies to the FBX too: no mesh.
+  const std::string slim = testing::TempPath("formats_slim");
+  ASSERT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + slim + " --character=" + character +
+                     " --formats=fbx --animation_only", &output), 0) << output;
+  EXPECT_FALSE(testing::FileExists(slim + "/figure.gltf"));
+  status = ReadFbx(slim + "/figure.fbx", {}, &fbx, &from_fbx, &info);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(info.meshes, 0);
+  EXPECT_LT(LargestJointDistance(gltf.skeleton, from_gltf, fbx, from_fbx), 1e-5);
+
+  for (const char* bad : {"glb,obj", "fbx,fbx", ""}) {
+    const std::string none = testing::TempPath("formats_bad");
+    EXPECT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + none + " --character=" + character +
+                       " --formats=" + bad, &output), 1) << bad;
+    EXPECT_THAT(output, HasSubstr("--formats: ")) << output;
+    EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+    EXPECT_FALSE(FolderExists(none)) << bad;
+  }
+  // A character named "solved" would be written over the take's solve as BVH: refused.
+  const std::string solved = testing::TempPath("solved.gltf");
+  testing::WriteTestCharacter(solved, 45.0);
+  const std::string clash = testing::TempPath("formats_clash");
+  EXPECT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + clash + " --character=" + solved + " --formats=glb,bvh",
+                     &output), 1);
+  EXPECT_THAT(output, HasSubstr("solved.gltf: --formats=bvh would write the character as " + clash + "/solved.bvh"));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  EXPECT_FALSE(FolderExists(clash));
+  // A config file's value gets the same check.
+  const std::string config = testing::TempPath("formats_config.json");
+  testing::WriteTextFile(config, "{\"formats\": \"glb,gltf\"}");
+  EXPECT_EQ(testing::RunCli("pipeline --print_config --config=" + config, &output), 1);
+  EXPECT_THAT(output, HasSubstr("--formats: unknown 'gltf' (glb, fbx, bvh)")) << output;
 }
 
 TEST_F(PipelineCli, ConfigFileAndFlagsAndPrintConfig) {
@@ -243,7 +350,7 @@ TEST_F(PipelineRealData, Cmu0205OntoXbot) {
                             " --out_dir=" + dir, &output), 0) << output;
   GltfCharacter character;
   ASSERT_TRUE(ReadGltfCharacter(dir + "/Xbot.glb", GltfReadOptions(), &character).ok());
-  EXPECT_EQ(character.animation_names.back(), "cmu_02_05");
+  EXPECT_EQ(character.animation_names.front(), "cmu_02_05");  // The clip readers open by default.
   GltfDocument document;
   ASSERT_TRUE(GltfDocument::Read(dir + "/Xbot.glb", &document).ok());
   GltfAnimationOptions animation;

@@ -83,8 +83,12 @@ TEST_P(GltfRoundTrip, AddedAnimationReadsBackAsWritten) {
     }
     EXPECT_EQ(back.mesh.num_vertices(), c.mesh.num_vertices());
     EXPECT_EQ(back.triangles, c.triangles);
+    // The new clip first (the one readers open by default), the character's own after it.
     ASSERT_EQ(back.animation_names.size(), c.animation_names.size() + 1);
-    EXPECT_EQ(back.animation_names.back(), "mocapsolve");
+    EXPECT_EQ(back.animation_names.front(), "mocapsolve");
+    for (size_t a = 0; a < c.animation_names.size(); ++a) {
+      EXPECT_EQ(back.animation_names[a + 1], c.animation_names[a]);
+    }
     // The new clip samples back to the written poses at the written rate.
     Motion read;
     GltfAnimationOptions options;
@@ -92,10 +96,17 @@ TEST_P(GltfRoundTrip, AddedAnimationReadsBackAsWritten) {
     status = ReadGltfAnimation(back_doc, back, options, &read);
     ASSERT_TRUE(status.ok()) << status.message();
     ExpectSameMotion(motion, read, size);
+    // A reader's default clip is the new one.
+    Motion default_clip;
+    ASSERT_TRUE(ReadGltfAnimation(back_doc, back, {}, &default_clip).ok());
+    ExpectSameMotion(motion, default_clip, size);
     // The original clips are untouched.
+    if (c.animation_names.empty()) continue;
     Motion original, original_back;
     ASSERT_TRUE(ReadGltfAnimation(doc, c, {}, &original).ok());
-    ASSERT_TRUE(ReadGltfAnimation(back_doc, back, {}, &original_back).ok());
+    GltfAnimationOptions first_own;
+    first_own.animation = "1";  // By index: a source's clip may be unnamed.
+    ASSERT_TRUE(ReadGltfAnimation(back_doc, back, first_own, &original_back).ok());
     ExpectSameMotion(original, original_back, size);
   }
 }
@@ -212,7 +223,7 @@ TEST_P(GltfAnimationOnly, HoldsTheSkeletonSkinAndAnimationOnly) {
   // The animation: channel k is the full file's channel k on the same node, key for key,
   // or, when all the full channel's keys are equal, its one key at time 0.
   const tinygltf::Animation& a = slim.animations[0];
-  const tinygltf::Animation& b = full.animations.back();
+  const tinygltf::Animation& b = full.animations.front();
   ASSERT_EQ(b.name, "mocapsolve");
   ASSERT_EQ(a.channels.size(), b.channels.size());
   int single_key_channels = 0;
@@ -401,7 +412,7 @@ TEST(GltfWriter, CompactVariantHoldsConstantChannelsWithOneKey) {
   EXPECT_LT(compact.size(), full.size());
   GltfDocument back;
   ASSERT_TRUE(GltfDocument::Parse(compact, "compact.glb", "", &back).ok());
-  const tinygltf::Animation& animation = back.model().animations.back();
+  const tinygltf::Animation& animation = back.model().animations.front();
   int one_key = 0;
   for (const tinygltf::AnimationSampler& sampler : animation.samplers) {
     if (back.model().accessors[sampler.input].count == 1) ++one_key;

@@ -168,3 +168,54 @@ def test_markers_matches_the_cli_and_its_subject_solves_back(tmp_path):
     assert summary["per_frame"]["rms_marker_residual"] < 2.0  # mm: the noise, not the model.
     with pytest.raises(ValueError, match="mocapsolve markers: --units: unknown 'furlong'"):
         mocapsolve.markers(skeleton, motion, units="furlong")
+
+
+def _joint_positions(skeleton, motion):
+    """{joint name: (frames, 3) world positions}."""
+    positions = mocapsolve.forward_kinematics(skeleton, motion)
+    return {name: positions[:, j, :] for j, name in enumerate(skeleton.joint_names)}
+
+
+def test_write_fbx_is_convert_and_reads_back(tmp_path):
+    """write_fbx(path, skeleton, motion) writes `convert IN OUT.fbx`'s bytes; assimp reads it
+    back to the same joint positions."""
+    demo = str(tmp_path / "walk.bvh")
+    run_cli("generate", "--demo_out=" + demo, "--frames=30", "--fps=30")
+    skeleton, motion = mocapsolve.read_motion(demo)
+    ours = str(tmp_path / "py.fbx")
+    mocapsolve.write_fbx(ours, skeleton, motion, clip_name="walk")
+    cli = str(tmp_path / "cli.fbx")
+    run_cli("convert", demo, cli, "--clip_name=walk")
+    assert open(ours, "rb").read() == open(cli, "rb").read()
+    back_skeleton, back = mocapsolve.read_motion(ours)
+    assert back.num_frames == motion.num_frames and back.rate == pytest.approx(30.0)
+    a, b = _joint_positions(skeleton, motion), _joint_positions(back_skeleton, back)
+    shared = set(a) & set(b)
+    assert len(shared) >= 15
+    worst = max(np.abs(a[name] - b[name]).max() for name in shared)
+    assert worst < 1e-3  # cm (a BVH without a unit is written as cm): 0.01 mm.
+    mocapsolve.write_fbx(str(tmp_path / "zyx.fbx"), skeleton, motion, euler_order="ZYX")
+    with pytest.raises(ValueError, match="euler_order: 'XYY'"):
+        mocapsolve.write_fbx(str(tmp_path / "bad.fbx"), skeleton, motion, euler_order="XYY")
+    with pytest.raises(ValueError, match="expected a .fbx output"):
+        mocapsolve.write_fbx(str(tmp_path / "walk.glb"), skeleton, motion)
+    assert not os.path.exists(str(tmp_path / "bad.fbx"))
+
+
+def test_write_fbx_of_a_character(tmp_path):
+    """write_fbx(path, target, motion): the glTF character with the clip (as `convert
+    --target`, which first maps its input's motion onto the character); animation_only
+    leaves the mesh out."""
+    glb = data_file("gltf/Xbot.glb")
+    skeleton, motion = mocapsolve.read_motion(glb)
+    full, slim = str(tmp_path / "xbot.fbx"), str(tmp_path / "xbot_anim.fbx")
+    mocapsolve.write_fbx(full, glb, motion, clip_name="clip")
+    mocapsolve.write_fbx(slim, glb, motion, clip_name="clip", animation_only=True)
+    assert os.path.getsize(slim) < os.path.getsize(full) / 2
+    a = _joint_positions(skeleton, motion)
+    for path in (full, slim):
+        back_skeleton, back = mocapsolve.read_motion(path)
+        b = _joint_positions(back_skeleton, back)
+        shared = set(a) & set(b)
+        assert len(shared) > 10
+        assert max(np.abs(a[name] - b[name]).max() for name in shared) < 1e-5  # Metres: 0.01 mm.

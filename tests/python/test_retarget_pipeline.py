@@ -70,6 +70,15 @@ def test_retarget_animation_only_matches_the_cli(tmp_path):
     assert data[:4] == b"glTF" and len(data) < os.path.getsize(glb) / 20
     with pytest.raises(ValueError, match="animation_only"):
         mocapsolve.retarget(bvh, glb, max_frames=8, out=str(tmp_path / "x.bvh"), animation_only=True)
+    # The delivery keywords, as the CLI's --frames/--out_fps: the returned and written clip.
+    cut_out, cut_cli = str(tmp_path / "cut_py.bvh"), str(tmp_path / "cut_cli.bvh")
+    _, motion, report = mocapsolve.retarget(bvh, glb, max_frames=8, out=cut_out, frames="2:5", out_fps=60)
+    run_cli("retarget", "--source=" + bvh, "--target=" + glb, "--max_frames=8", "--out=" + cut_cli, "--frames=2:5",
+            "--out_fps=60")
+    assert open(cut_out, "rb").read() == open(cut_cli, "rb").read()
+    assert report["delivered_frames"] == motion.num_frames == 2 and motion.rate == 60  # 4 frames at 120 fps.
+    with pytest.raises(TypeError, match="formats"):
+        mocapsolve.retarget(bvh, glb, max_frames=8, formats="fbx")
 
 
 def test_batch_runs_the_cli_batch_task(cmu02, tmp_path):
@@ -92,3 +101,47 @@ def test_batch_runs_the_cli_batch_task(cmu02, tmp_path):
     assert merged["kind"] == "merged" and merged["done"] == 1
     with pytest.raises(ValueError, match="give either --manifest or --markers_glob"):
         mocapsolve.batch(out_dir=out)
+
+
+def test_pipeline_formats_match_the_cli(tmp_path):
+    """formats= is the CLI's --formats (the same declaration): the same character files, byte
+    for byte; a bad list raises the CLI's message."""
+    glb = data_file("gltf/Xbot.glb")
+    demo, markers = str(tmp_path / "walk.bvh"), str(tmp_path / "walk.c3d")
+    subject_path = str(tmp_path / "S.json")
+    run_cli("generate", "--demo_out=" + demo, "--frames=20", "--fps=30")
+    run_cli("markers", "--motion=" + demo, "--skeleton_units=cm", "--markerset=auto:3", "--noise_mm=0.5",
+            "--seed=3", "--out=" + markers)
+    run_cli("calibrate", "--motion=" + demo, "--skeleton_units=cm", "--markers=" + markers, "--attach=auto",
+            "--out=" + str(tmp_path / "calibrated.json"), "--out_subject=" + subject_path)
+    subject = mocapsolve.read_subject(subject_path)
+    out_py, out_cli = str(tmp_path / "py"), str(tmp_path / "cli")
+    mocapsolve.pipeline(subject, markers, characters=[glb], out_dir=out_py, view="off", formats="fbx,bvh",
+                        animation_only=True)
+    run_cli("pipeline", "--subject=" + subject_path, "--markers=" + markers, "--character=" + glb,
+            "--out_dir=" + out_cli, "--view=off", "--formats=fbx,bvh", "--animation_only")
+    assert not os.path.exists(os.path.join(out_py, "Xbot.glb"))
+    for name in ("Xbot.fbx", "Xbot.bvh"):
+        assert open(os.path.join(out_py, name), "rb").read() == open(os.path.join(out_cli, name), "rb").read(), name
+    assert mocapsolve.DeliverySettings().formats == "glb"
+    assert "formats='glb'" in mocapsolve.pipeline.__doc__
+    with pytest.raises(ValueError, match=r"--formats: unknown 'obj' \(glb, fbx, bvh\)"):
+        mocapsolve.pipeline(subject, markers, out_dir=str(tmp_path / "bad"), formats="glb,obj")
+    assert not os.path.exists(str(tmp_path / "bad"))
+    # The delivery keywords cut and resample the characters' clip, as the CLI's flags.
+    cut = mocapsolve.pipeline(subject, markers, characters=[glb], frames="4:", out_fps=15)
+    assert cut["characters"]["Xbot"].num_frames == 8 and cut["characters"]["Xbot"].rate == 15  # 4..18 of 20.
+    with pytest.raises(ValueError, match=r"--frames=4:30: the clip has 20 frames, 0:19"):
+        mocapsolve.pipeline(subject, markers, characters=[glb], frames="4:30")
+    with pytest.raises(ValueError, match="--seconds: expected A:B"):
+        mocapsolve.pipeline(subject, markers, seconds="1")
+    # batch(formats=) reaches every take's worker, as the CLI's batch --formats.
+    out_batch = str(tmp_path / "batch")
+    result = mocapsolve.batch(markers_glob=markers, subject=subject_path, characters=[glb], out_dir=out_batch,
+                              jobs=1, formats="bvh")
+    assert result["done"] == 1, result
+    assert open(os.path.join(out_batch, "walk", "Xbot.bvh"), "rb").read() == \
+        open(os.path.join(out_cli, "Xbot.bvh"), "rb").read()
+    assert not os.path.exists(os.path.join(out_batch, "walk", "Xbot.glb"))
+    with pytest.raises(ValueError, match="--formats: unknown 'obj'"):
+        mocapsolve.batch(markers_glob=markers, subject=subject_path, out_dir=out_batch, formats="obj")

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "settings/corruption_settings.h"
+#include "settings/delivery_settings.h"
 #include "settings/falloff_settings.h"
 #include "settings/repair_settings.h"
 #include "settings/retarget_settings.h"
@@ -75,6 +76,35 @@ TEST(Option, EveryBadValueIsOneLineNamingTheOption) {
   EXPECT_EQ(Message(group.Validate(knobs)), "--kind: unknown 'z' (a, b)");
 }
 
+// A list option: comma-separated choices, at least one, none twice; the message names the
+// option and the item.
+TEST(Option, AListOptionChecksEachItem) {
+  struct Outputs {
+    std::string formats = "glb";
+  };
+  const OptionGroup<Outputs> group = OptionGroup<Outputs>().AddList(&Outputs::formats, "formats", "Files.",
+                                                                    {"glb", "fbx", "bvh"});
+  Outputs outputs;
+  EXPECT_EQ(Message(group.Set("formats", "glb,fbx,bvh", &outputs)), "ok");
+  EXPECT_EQ(outputs.formats, "glb,fbx,bvh");
+  EXPECT_EQ(Message(group.Set("formats", "bvh", &outputs)), "ok");
+  EXPECT_EQ(Message(group.Set("formats", "glb,obj", &outputs)), "--formats: unknown 'obj' (glb, fbx, bvh)");
+  EXPECT_EQ(Message(group.Set("formats", "glb,,fbx", &outputs)), "--formats: unknown '' (glb, fbx, bvh)");
+  EXPECT_EQ(Message(group.Set("formats", "glb,fbx,", &outputs)), "--formats: unknown '' (glb, fbx, bvh)");
+  EXPECT_EQ(Message(group.Set("formats", "fbx,glb,fbx", &outputs)), "--formats: 'fbx' given twice in 'fbx,glb,fbx'");
+  EXPECT_EQ(Message(group.Set("formats", "", &outputs)),
+            "--formats: expected a comma-separated list of glb, fbx, bvh");
+  EXPECT_EQ(outputs.formats, "bvh");
+  // The delivery settings' list, in the order given.
+  DeliverySettings delivery;
+  delivery.formats = "fbx,glb";
+  std::vector<std::string> formats;
+  ASSERT_EQ(Message(DeliveryFormats(delivery, &formats)), "ok");
+  EXPECT_EQ(formats, (std::vector<std::string>{"fbx", "glb"}));
+  delivery.formats = "GLB";
+  EXPECT_EQ(Message(DeliveryFormats(delivery, &formats)), "--formats: unknown 'GLB' (glb, fbx, bvh)");
+}
+
 TEST(Option, ACommandDeclaresItsOwnDefaultOrAPart) {
   const OptionGroup<Knobs> group = KnobOptions().WithDefault("kind", "b", "Which, here.");
   EXPECT_EQ(group.options()[3].default_value, "b");
@@ -120,6 +150,7 @@ TEST(Option, TheDeclaredGroupsAreWellFormed) {
   EXPECT_EQ(RepairSettingOptions().options().size(), 29u);
   ExpectWellDeclared(CorruptionSettingOptions(), CorruptionSettings());
   ExpectWellDeclared(FalloffSettingOptions(), FalloffSettings());
+  ExpectWellDeclared(DeliverySettingOptions(), DeliverySettings());
 }
 
 TEST(Option, TheSettingsConversionsCheckAgainstTheDeclarations) {
