@@ -169,13 +169,12 @@ class OptionGroup {
 
   // The value of option `name` in `settings`, as text ("" for an unknown name).
   std::string Get(const std::string& name, const Settings& settings) const {
-    std::string text;
     for (size_t i = 0; i < options_.size(); ++i) {
-      if (options_[i].name != name) continue;
-      std::visit([&](auto field) { text = Text(settings.*field); }, fields_[i]);
-      break;
+      if (options_[i].name == name) {
+        return std::visit([&](auto field) { return Text(settings.*field); }, fields_[i]);
+      }
     }
-    return text;
+    return "";
   }
 
  private:

@@ -129,13 +129,14 @@ TEST(Option, NumbersAreWrittenAsPeopleWriteThem) {
 template <class S>
 void ExpectWellDeclared(const OptionGroup<S>& group, const S& expected_defaults) {
   std::set<std::string> names;
+  const S defaults = group.Defaults();
   for (const Option& option : group.options()) {
     EXPECT_TRUE(names.insert(option.name).second) << option.name;
     EXPECT_FALSE(option.help.empty()) << option.name;
     EXPECT_TRUE(option.Check(option.default_value).ok()) << option.name << ": " << option.default_value;
-    EXPECT_EQ(group.Get(option.name, group.Defaults()), group.Get(option.name, expected_defaults)) << option.name;
+    EXPECT_EQ(group.Get(option.name, defaults), group.Get(option.name, expected_defaults)) << option.name;
   }
-  EXPECT_TRUE(group.Validate(group.Defaults()).ok());
+  EXPECT_TRUE(group.Validate(defaults).ok());
 }
 
 TEST(Option, TheDeclaredGroupsAreWellFormed) {
