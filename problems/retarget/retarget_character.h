@@ -12,6 +12,10 @@
 // Y-up or Z-up, T-pose or A-pose; the output motion is on the target skeleton in its
 // units, at the source's frame rate.
 //
+// Blend mask: unless given, where no target joint is named like a hand, foot, toe or head
+// (retarget_setup.h) and the target is a humanoid (humanoid_roles.h), its head, hand, foot
+// and toes joints are the position joints (so renaming the joints changes nothing).
+//
 // Own skeleton: when the source skeleton is the target's (same joints, hierarchy and rest
 // offsets up to a scale; own_skeleton.h), whatever the source's kind, the result is the
 // source motion on the target's joints (TransferOwnMotion, after the up-axis turn), exact:
