@@ -6,8 +6,9 @@
 // retarget_clip.h): the source's own surface is tracked.
 // Source without a mesh (BVH, ASF/AMC, FBX, or a glTF whose mesh is not wanted): the
 // target's mesh is bound to the source skeleton after aligning the rest poses
-// (skeleton_binding.h: joint map by names, bones pointed like the target's bind-pose
-// bones, scale by the height ratio, the source's up axis turned to +y) and that surface
+// (skeleton_binding.h: joint map by names and structure, joint_map.h; bones pointed like
+// the target's bind-pose bones, scale by the height ratio, the source's up axis turned to
+// +y) and that surface
 // is tracked; RetargetClip runs unchanged. So the source may be in cm, CMU units or m,
 // Y-up or Z-up, T-pose or A-pose; the output motion is on the target skeleton in its
 // units, at the source's frame rate.
