@@ -51,6 +51,11 @@ class Finder {
     // hang from bones unskinned, as RobotExpressive's).
     const int carrying = static_cast<int>(std::count(weighted.begin(), weighted.end(), true));
     use_weights_ = !weighted.empty() && 2 * carrying >= s_.num_joints();
+    subtree_weighted_.assign(s_.num_joints(), false);
+    for (int j = s_.num_joints() - 1; use_weights_ && j >= 0; --j) {
+      subtree_weighted_[j] = subtree_weighted_[j] || weighted_[j];
+      if (j > 0 && subtree_weighted_[j]) subtree_weighted_[s_.parent(j)] = true;
+    }
   }
 
   HumanoidRoles Run();
@@ -87,11 +92,31 @@ class Finder {
     }
     return best >= 0;
   }
+  // A helper chain (IK/FK duplicate, control): named so, or carrying no weight where
+  // weights tell.
+  bool IsHelper(int j) const {
+    for (const std::string& w : Words(s_.name(j))) {
+      if (w == "ik" || w == "mch" || w == "ctrl" || w == "pole" || w == "target" || w == "helper") return true;
+    }
+    return use_weights_ && !subtree_weighted_[j];
+  }
+  // Children of j that are no helpers (all of them if only helpers).
+  std::vector<int> Limbs(int j) const {
+    std::vector<int> limbs;
+    for (int k : children_[j]) {
+      if (!IsHelper(k)) limbs.push_back(k);
+    }
+    return limbs.empty() ? children_[j] : limbs;
+  }
   std::vector<int> MainChain(int c) const {
     std::vector<int> chain = {c};
     for (int j = c; !children_[j].empty();) {
       int next = children_[j][0];
       for (int k : children_[j]) {
+        if (IsHelper(k) != IsHelper(next)) {
+          if (IsHelper(next)) next = k;
+          continue;
+        }
         if (Size(k) > Size(next) || (Size(k) == Size(next) && Reach(k, j) > Reach(next, j) + 1e-12)) next = k;
       }
       chain.push_back(next);
@@ -163,6 +188,7 @@ class Finder {
   const std::vector<bool>& weighted_;
   std::vector<std::vector<int>> children_;
   bool use_weights_ = false;
+  std::vector<bool> subtree_weighted_;  // Some joint of subtree(j) carries weight.
 };
 
 HumanoidRoles Finder::Run() {
@@ -179,18 +205,19 @@ HumanoidRoles Finder::Run() {
       // The chest: first joint of the spine branch with a pair of arms and a neck.
       Choice c;
       for (int j = spine; j < s_.subtree_end(spine) && c.chest < 0; ++j) {
-        if (children_[j].size() < 3) continue;
+        const std::vector<int> limbs = Limbs(j);
+        if (limbs.size() < 3) continue;
         int a, b;
-        if (!BestPair(children_[j], j, &a, &b)) continue;
+        if (!BestPair(limbs, j, &a, &b)) continue;
         int neck = -1;
-        for (int k : children_[j]) {
+        for (int k : limbs) {
           if (k != a && k != b && (neck < 0 || Size(k) > Size(neck))) neck = k;
         }
         c.chest = j, c.arm_a = a, c.arm_b = b, c.neck = neck;
       }
       if (c.chest < 0) continue;
       std::vector<int> others;
-      for (int k : kids) {
+      for (int k : Limbs(pelvis)) {
         if (k != spine) others.push_back(k);
       }
       if (!BestPair(others, pelvis, &c.leg_a, &c.leg_b)) continue;

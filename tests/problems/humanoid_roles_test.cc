@@ -3,7 +3,8 @@
 // skeleton, and the shared characters (glTF, BVH, ASF; skipped without MOCAPSOLVE_DATA),
 // each also as variants that rename every joint to random names, re-root it under a floor
 // bone with IK foot and pole bones, put it under a rotated `Armature` joint in centimetres,
-// turn its facing by 90 or 180 degrees, or swap its side names (so names lie). The roles
+// turn its facing by 90 or 180 degrees, swap its side names (so names lie), or add IK
+// copies of the arms. The roles
 // must be the same joints on every variant, and the map from the original onto a variant
 // must link every role to its counterpart.
 #include "problems/retarget/humanoid_roles.h"
@@ -182,6 +183,23 @@ Fixture UnderArmature(const Fixture& in) {
   return Rebuild(in, specs, 1, {false});
 }
 
+// The subtree of `joint` duplicated under its parent as an IK chain (names "<name>_ik",
+// no vertex weight), after the original, as game rigs' IK/FK arms.
+Fixture WithIkCopy(const Fixture& in, int joint) {
+  std::vector<JointSpec> specs = Specs(in.skeleton);
+  std::vector<int> copy_of(in.skeleton.num_joints(), -1);
+  for (int j = joint; j < in.skeleton.subtree_end(joint); ++j) {
+    JointSpec spec = specs[j];
+    spec.name += "_ik";
+    spec.parent = j == joint ? specs[j].parent : copy_of[specs[j].parent];
+    copy_of[j] = static_cast<int>(specs.size());
+    specs.push_back(spec);
+  }
+  Fixture out = Rebuild(in, specs, 0, {});
+  if (!in.weighted.empty()) out.weighted.resize(specs.size(), false);
+  return out;
+}
+
 HumanoidRoles Roles(const Fixture& f) {
   FkData fk(f.skeleton);
   ForwardKinematics(f.skeleton, RestPose(f.skeleton), &fk);
@@ -207,6 +225,11 @@ const std::vector<Named>& Variants() {
       {"facing +90", [](const Fixture& f) { return Turned(f, Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()))); }},
       {"facing 180", [](const Fixture& f) { return Turned(f, Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()))); }},
       {"side names swapped", [](const Fixture& f) { return Mirrored(f); }},
+      {"IK copies of the arms", [](const Fixture& f) {
+         const HumanoidRoles roles = Roles(f);
+         Fixture out = WithIkCopy(f, roles.Find("left_upper_arm"));
+         return WithIkCopy(out, out.of_original[roles.Find("right_upper_arm")]);
+       }},
       {"all of them", [](const Fixture& f) {
          return Mirrored(Renamed(UnderArmature(FloorRooted(
              Turned(f, Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()))))), 11));
