@@ -21,6 +21,7 @@ extern const Command kFitSkeletonCommand;
 extern const Command kDistanceCommand;
 extern const Command kPropagateCommand;
 extern const Command kRetargetCommand;
+extern const Command kJointMapCommand;
 extern const Command kPipelineCommand;
 extern const Command kBatchCommand;
 extern const Command kViewCommand;
@@ -32,7 +33,7 @@ const std::vector<Command>& AllCommands() {
                                                 kEvaluateCommand,
                                                 kMarkersCommand, kCalibrateCommand, kFitSkeletonCommand,
                                                 kFilterCommand, kBandsCommand, kBlendCommand,
-                                                kRetargetCommand, kDistanceCommand, kPropagateCommand,
+                                                kRetargetCommand, kJointMapCommand, kDistanceCommand, kPropagateCommand,
                                                 kViewCommand};
   return commands;
 }

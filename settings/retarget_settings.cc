@@ -13,8 +13,10 @@ const OptionGroup<RetargetSettings>& RetargetSettingOptions() {
   using S = RetargetSettings;
   static const OptionGroup<S>* const group = &(*new OptionGroup<S>())
       .Add(&S::joint_map, "joint_map",
-           "JSON {\"joints\": {\"<source joint>\": \"<target joint>\"}}: overrides "
-           "of the automatic joint map (names; used to bind a skeleton-only source and for the plants).")
+           "JSON {\"joints\": {\"<source joint>\": \"<target joint>\"}, \"roles\": {\"<role>\": "
+           "{\"source\": ..., \"target\": ...}}} (what `mocapsolve joint_map` prints): overrides of the "
+           "automatic joint map (names, then humanoid roles by structure; used to bind a skeleton-only "
+           "source and for the plants).")
       .Add(&S::plant_feet, "plant_feet",
            "Keep the target's feet planted where the source's foot joints are in "
            "contact (an IK term in each frame's solve).")
@@ -85,26 +87,41 @@ Status ReadBlendMask(const std::string& path, std::vector<std::string>* joints) 
   return Status::Ok();
 }
 
-// {"joints": {"<source joint>": "<target joint>", ...}}.
-Status ReadJointMap(const std::string& path, std::vector<std::pair<std::string, std::string>>* pairs) {
+}  // namespace
+
+Status ReadJointMapFile(const std::string& path, std::vector<std::pair<std::string, std::string>>* pairs) {
   JsonNode root;
   Status status = ReadJsonFile(path, &root);
   if (!status.ok()) return status;
   const JsonNode* joints = root.Find("joints");
-  if (joints == nullptr || !joints->is_object()) {
+  const JsonNode* roles = root.Find("roles");
+  if ((joints == nullptr || !joints->is_object()) && (roles == nullptr || !roles->is_object())) {
     return Status::Error(root.Where(path) + ": expected an object with an object \"joints\" "
-                         "{\"<source joint>\": \"<target joint>\"}");
+                         "{\"<source joint>\": \"<target joint>\"} or \"roles\" "
+                         "{\"<role>\": {\"source\": \"<joint>\", \"target\": \"<joint>\"}}");
   }
-  for (const auto& [source, target] : joints->members) {
-    if (!target.is_string() || target.string.empty()) {
-      return Status::Error(target.Where(path) + ": joints: '" + source + "': expected a target joint name");
+  if (roles != nullptr && roles->is_object()) {
+    for (const auto& [role, entry] : roles->members) {
+      const JsonNode* source = entry.is_object() ? entry.Find("source") : nullptr;
+      const JsonNode* target = entry.is_object() ? entry.Find("target") : nullptr;
+      if (source == nullptr || target == nullptr || !source->is_string() || !target->is_string()) {
+        return Status::Error(entry.Where(path) + ": roles: '" + role +
+                             "': expected {\"source\": \"<joint>\", \"target\": \"<joint>\"}");
+      }
+      // A role found on one side only ("" on the other) is no override.
+      if (!source->string.empty() && !target->string.empty()) pairs->push_back({source->string, target->string});
     }
-    pairs->push_back({source, target.string});
+  }
+  if (joints != nullptr && joints->is_object()) {
+    for (const auto& [source, target] : joints->members) {
+      if (!target.is_string() || target.string.empty()) {
+        return Status::Error(target.Where(path) + ": joints: '" + source + "': expected a target joint name");
+      }
+      pairs->push_back({source, target.string});
+    }
   }
   return Status::Ok();
 }
-
-}  // namespace
 
 Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRetargetOptions* options_out) {
   Status checked = RetargetSolverOptions().Validate(settings);
@@ -148,7 +165,7 @@ Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRe
     if (!status.ok()) return status;
   }
   if (!settings.joint_map.empty()) {
-    status = ReadJointMap(settings.joint_map, &options.joint_map);
+    status = ReadJointMapFile(settings.joint_map, &options.joint_map);
     if (!status.ok()) return status;
   }
 

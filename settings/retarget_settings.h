@@ -7,6 +7,8 @@
 #define MOCAPSOLVE_SETTINGS_RETARGET_SETTINGS_H_
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "kinematics/status.h"
 #include "problems/retarget/retarget_character.h"
@@ -17,7 +19,7 @@ namespace mocapsolve {
 struct RetargetSettings {
   std::string solver = "dls";   // dls | dls_generic | ceres (--solver; dls unless given).
   double limit_weight = 0.0;    // Soft joint limits (--limit_weight), per radian.
-  std::string joint_map;        // JSON {"joints": {"<source>": "<target>"}}; "" = automatic.
+  std::string joint_map;        // JSON (ReadJointMapFile); "" = automatic.
   bool plant_feet = true;
   double plant_weight = 10.0;
   double plant_height = 0.03;   // Fraction of the source height.
@@ -43,6 +45,11 @@ const OptionGroup<RetargetSettings>& RetargetSettingOptions();
 // Who solves the retarget and its joint limits, declared once: `retarget`'s --solver and
 // --limit_weight. (pipeline reads the marker solver's options of the same names.)
 const OptionGroup<RetargetSettings>& RetargetSolverOptions();
+
+// The (source, target) joint pairs of a joint map file: {"joints": {"<source>": "<target>"},
+// "roles": {"<role>": {"source": "<joint>", "target": "<joint>"}}} (either object, or
+// both; a role with "" on a side is skipped). docs/retarget.md, "Joint map".
+Status ReadJointMapFile(const std::string& path, std::vector<std::pair<std::string, std::string>>* pairs);
 
 Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRetargetOptions* options);
 

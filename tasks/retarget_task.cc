@@ -7,6 +7,7 @@
 #include "io/fbx_writer.h"
 #include "io/gltf_writer.h"
 #include "io/motion_file.h"
+#include "tasks/joint_map_task.h"
 
 namespace mocapsolve {
 namespace {
@@ -72,6 +73,7 @@ JsonObject RetargetReportJson(const RetargetInputs& inputs, const CharacterRetar
     const int t = retarget.joint_map.target_of_source[j];
     if (t >= 0) joint_map.Add(source_joints.name(j), task.target.skeleton.name(t));
   }
+  const JsonObject joint_roles = JointMapRolesJson(retarget.joint_map, source_joints, task.target.skeleton);
   const std::vector<JsonValue> notes(retarget.notes.begin(), retarget.notes.end());
   JsonObject report;
   report.Add("source", inputs.source)
@@ -90,6 +92,8 @@ JsonObject RetargetReportJson(const RetargetInputs& inputs, const CharacterRetar
       .Add("target_joints", task.target.skeleton.num_joints())
       .Add("mapped_joints", retarget.joint_map.num_mapped())
       .Add("joint_map", joint_map)
+      .Add("joint_map_roles", joint_roles)
+      .Add("joint_map_confidence", retarget.joint_map.confidence)
       .Add("rest_alignment_mean_bone_angle_deg", retarget.mean_bone_angle_deg)
       .Add("tracked_vertices", static_cast<int>(setup.tracked.size()))
       .Add("position_tracked", positions)

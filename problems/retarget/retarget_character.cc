@@ -1,5 +1,7 @@
 #include "problems/retarget/retarget_character.h"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -52,8 +54,20 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
   CharacterRetargetResult out;
   out.skeleton_only = source.mesh == nullptr;
 
-  Status map_status = BuildJointMap(*source.skeleton, target_skeleton, options.joint_map, &out.joint_map);
+  const Pose source_bind = source.bind_pose.rotations.empty() ? RestPose(*source.skeleton) : source.bind_pose;
+  // A skeleton-only source's rest pose may be no natural pose: its first frame is the other.
+  const Pose& source_other = !source.rest_pose.rotations.empty() ? source.rest_pose : source_motion.frames[0];
+  Status map_status = BuildJointMap(StandingSkeleton(*source.skeleton, source_bind, source.mesh, source_other),
+                                    StandingSkeleton(target_skeleton, target_bind, target.mesh, target_rest),
+                                    options.joint_map, &out.joint_map);
   if (!map_status.ok()) return map_status;
+  if (out.skeleton_only && out.joint_map.num_mapped() < kMinMappedJoints) {
+    return Status::Error("the source and target skeletons are too different to map (" +
+                         std::to_string(out.joint_map.num_mapped()) + " joints map, need " +
+                         std::to_string(kMinMappedJoints) + "): source: " + out.joint_map.Found(true) +
+                         "; target: " + out.joint_map.Found(false) + " (give a joint map)");
+  }
+  out.notes.push_back(JointMapNote(out.joint_map));
   double own_scale = 1.0;
   out.own_skeleton = IsSameSkeleton(*source.skeleton, target_skeleton, out.joint_map, &own_scale);
 
@@ -73,8 +87,8 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
     setup_options.source_world_from_bind = Eigen::Matrix3d::Identity();
     source_height = binding.source_height;
     out.mean_bone_angle_deg = binding.mean_bone_angle_deg;
-    out.notes = binding.notes;
-    out.notes.push_back(std::to_string(out.joint_map.num_mapped()) + " joints mapped (names, joint map); rest poses aligned: " +
+    for (const std::string& note : binding.notes) out.notes.push_back(note);
+    out.notes.push_back(std::to_string(out.joint_map.num_mapped()) + " joints mapped; rest poses aligned: " +
                         Format("mean bone angle %.1f deg, worst %.1f deg (", binding.mean_bone_angle_deg,
                                binding.max_bone_angle_deg) +
                         binding.worst_bone + ")");
@@ -83,6 +97,29 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
     setup_options.source_world_from_bind =
         WorldFromBindRotation(*source.skeleton, bind, source.rest_pose.rotations.empty() ? bind : source.rest_pose);
     motion = source_motion;
+  }
+  // Blend mask: where no target joint is named like a hand, foot, toe or head, the
+  // humanoid roles say which joints those are.
+  if (setup_options.position_joints.empty() && out.joint_map.target_roles.humanoid) {
+    bool named = false;
+    for (int j = 0; j < target_skeleton.num_joints() && !named; ++j) {
+      std::string name = target_skeleton.name(j);
+      std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+      for (std::string pattern : setup_options.position_name_patterns) {
+        std::transform(pattern.begin(), pattern.end(), pattern.begin(), [](unsigned char c) { return std::tolower(c); });
+        named = named || name.find(pattern) != std::string::npos;
+      }
+    }
+    if (!named) {
+      for (const auto& [role, joint] : out.joint_map.target_roles.roles) {
+        if (role == "head" || role.find("_hand") != std::string::npos || role.find("_foot") != std::string::npos ||
+            role.find("_toes") != std::string::npos) {
+          setup_options.position_joints.push_back(target_skeleton.name(joint));
+        }
+      }
+      out.notes.push_back("blend mask: no target joint named like a hand, foot, toe or head; the humanoid roles "
+                          "head, hands, feet and toes are tracked by position");
+    }
   }
   Status status = BuildRetargetSetup(*source_mesh, target_skeleton, *target.mesh, setup_options, &out.setup);
   if (!status.ok()) return status;

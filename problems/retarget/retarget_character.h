@@ -6,11 +6,16 @@
 // retarget_clip.h): the source's own surface is tracked.
 // Source without a mesh (BVH, ASF/AMC, FBX, or a glTF whose mesh is not wanted): the
 // target's mesh is bound to the source skeleton after aligning the rest poses
-// (skeleton_binding.h: joint map by names, bones pointed like the target's bind-pose
-// bones, scale by the height ratio, the source's up axis turned to +y) and that surface
+// (skeleton_binding.h: joint map by names and structure, joint_map.h; bones pointed like
+// the target's bind-pose bones, scale by the height ratio, the source's up axis turned to
+// +y) and that surface
 // is tracked; RetargetClip runs unchanged. So the source may be in cm, CMU units or m,
 // Y-up or Z-up, T-pose or A-pose; the output motion is on the target skeleton in its
 // units, at the source's frame rate.
+//
+// Blend mask: unless given, where no target joint is named like a hand, foot, toe or head
+// (retarget_setup.h) and the target is a humanoid (humanoid_roles.h), its head, hand, foot
+// and toes joints are the position joints (so renaming the joints changes nothing).
 //
 // Own skeleton: when the source skeleton is the target's (same joints, hierarchy and rest
 // offsets up to a scale; own_skeleton.h), whatever the source's kind, the result is the

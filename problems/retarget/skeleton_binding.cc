@@ -61,7 +61,7 @@ Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motio
       missing += (listed++ ? ", " : "") + target.name(t);
     }
     return Status::Error("cannot align the skeletons: " + std::to_string(map.num_mapped()) +
-                         " joints map by name (need " + std::to_string(kMinMappedJoints) +
+                         " joints map (names, structure) (need " + std::to_string(kMinMappedJoints) +
                          "); target joints without a source joint: " + missing +
                          (listed == 12 ? ", ..." : "") + " (give a joint map)");
   }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -211,19 +212,71 @@ TEST(RetargetCli, JointMapFileMapsUnrelatedNames) {
   const std::string out = testing::TempPath("out.bvh");
   const std::string report = testing::TempPath("report.json");
   const std::string base = "retarget --quiet --source=" + bvh + " --target=" + target + " --max_frames=10 --out=" + out;
-  EXPECT_EQ(testing::RunCli(base, &output), 1);  // Without the map: nothing to align by.
-  EXPECT_THAT(output, HasSubstr("cannot align the skeletons"));
-  ASSERT_EQ(testing::RunCli(base + " --joint_map=" + map + " --report=" + report, &output), 0) << output;
+  // Without the map: no name matches; the humanoid roles found by structure map them.
+  ASSERT_EQ(testing::RunCli(base + " --report=" + report, &output), 0) << output;
   JsonNode root;
   ASSERT_TRUE(ReadJsonFile(report, &root).ok());
-  EXPECT_EQ(root.Find("mapped_joints")->number, 10);
+  EXPECT_GE(root.Find("mapped_joints")->number, 17);
+  const JsonNode* roles = root.Find("joint_map_roles");
+  ASSERT_NE(roles, nullptr);
+  EXPECT_EQ(roles->Find("left_thigh")->Find("source")->string, "leg_joint_L_1");
+  EXPECT_EQ(roles->Find("left_thigh")->Find("target")->string, "mixamorig:LeftUpLeg");
+  EXPECT_EQ(roles->Find("left_thigh")->Find("how")->string, "structure");
+  EXPECT_EQ(roles->Find("right_forearm")->Find("target")->string, "mixamorig:RightForeArm");
+  EXPECT_GT(root.Find("joint_map_confidence")->number, 0.6);  // Sides from the names _L/_R: x 0.75.
   EXPECT_LT(root.Find("mean_position_error_fraction_of_height")->number, 0.05);
+  // The file overrides: its pairs are decided by "file".
+  ASSERT_EQ(testing::RunCli(base + " --joint_map=" + map + " --report=" + report, &output), 0) << output;
+  ASSERT_TRUE(ReadJsonFile(report, &root).ok());
+  EXPECT_EQ(root.Find("joint_map_roles")->Find("left_thigh")->Find("how")->string, "file");
+  EXPECT_EQ(root.Find("joint_map")->Find("Skeleton_torso_joint_2")->string, "mixamorig:Spine1");
+  EXPECT_LT(root.Find("mean_position_error_fraction_of_height")->number, 0.05);
+}
+
+// `joint_map` prints the automatic map as JSON that --joint_map reads back; a map naming a
+// joint that does not exist names it and its side.
+TEST(RetargetCli, JointMapCommandPrintsAMapRetargetReadsBack) {
+  MOCAPSOLVE_DATA_FILE(cesium, "gltf/CesiumMan.glb");
+  MOCAPSOLVE_DATA_FILE(target, "gltf/Xbot.glb");
+  const std::string bvh = testing::TempPath("cesium.bvh");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("convert --quiet " + cesium + " " + bvh, &output), 0) << output;
+  const std::string map = testing::TempPath("map.json");
+  ASSERT_EQ(testing::RunCli("joint_map --source=" + bvh + " --target=" + target + " --out=" + map, &output), 0)
+      << output;
+  JsonNode printed;
+  ASSERT_TRUE(ReadJsonFile(map, &printed).ok());
+  EXPECT_EQ(printed.Find("roles")->Find("left_shin")->Find("source")->string, "leg_joint_L_2");
+  EXPECT_EQ(printed.Find("roles")->Find("left_shin")->Find("target")->string, "mixamorig:LeftLeg");
+  EXPECT_EQ(printed.Find("joints")->Find("leg_joint_R_3")->string, "mixamorig:RightFoot");
+  const std::string report = testing::TempPath("report.json");
+  const std::string out = testing::TempPath("out.bvh");
+  ASSERT_EQ(testing::RunCli("retarget --quiet --source=" + bvh + " --target=" + target + " --max_frames=5 --out=" + out +
+                                " --joint_map=" + map + " --report=" + report, &output), 0) << output;
+  JsonNode root;
+  ASSERT_TRUE(ReadJsonFile(report, &root).ok());
+  EXPECT_EQ(root.Find("joint_map_roles")->Find("left_shin")->Find("how")->string, "file");
+  EXPECT_EQ(root.Find("mapped_joints")->number, static_cast<double>(printed.Find("joints")->members.size()));
+
+  const std::string bad_source = testing::TempPath("bad_source.json");
+  const std::string bad_target = testing::TempPath("bad_target.json");
+  std::ofstream(bad_source) << "{\"roles\": {\"left_shin\": {\"source\": \"NoSuchShin\", \"target\": \"mixamorig:LeftLeg\"}}}";
+  std::ofstream(bad_target) << "{\"roles\": {\"left_shin\": {\"source\": \"leg_joint_L_2\", \"target\": \"NoSuchLeg\"}}}";
+  for (const auto& [file, message] : {std::make_pair(bad_source, "the source skeleton has no joint 'NoSuchShin'"),
+                                      std::make_pair(bad_target, "the target skeleton has no joint 'NoSuchLeg'")}) {
+    const std::string second = testing::TempPath("second.json");
+    EXPECT_EQ(testing::RunCli("joint_map --source=" + bvh + " --target=" + target + " --joint_map=" + file +
+                                  " --out=" + second, &output), 1);
+    EXPECT_THAT(output, HasSubstr(message));
+    EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+    EXPECT_FALSE(testing::FileExists(second));
+  }
 }
 
 TEST(RetargetCli, SkeletonSourceBadInputsFailWithOneLine) {
   MOCAPSOLVE_DATA_FILE(source, "bvh/16_15.bvh");
   MOCAPSOLVE_DATA_FILE(target, "gltf/Xbot.glb");
-  MOCAPSOLVE_DATA_FILE(unrelated, "gltf/RiggedFigure.glb");  // torso_joint_1, leg_joint_L_1, ...
+  MOCAPSOLVE_DATA_FILE(fox, "gltf/Fox.glb");  // A quadruped: no humanoid roles, no names in common.
   const std::string out = testing::TempPath("out.glb");
   const std::string unknown = testing::TempPath("unknown.json");
   const std::string skinless = testing::TempPath("skinless.gltf");
@@ -242,7 +295,8 @@ TEST(RetargetCli, SkeletonSourceBadInputsFailWithOneLine) {
       {base + "--target=" + target + " --joint_map=" + unknown, "no joint 'mixamorig:NoSuchLeg'"},
       {base + "--target=" + target + " --joint_map=" + testing::TempPath("missing.json"), "missing.json"},
       {base + "--target=" + target + " --foot_joints=NoFoot", "NoFoot"},
-      {base + "--target=" + unrelated, "cannot align the skeletons: 0 joints map by name"},
+      {"retarget --quiet --source=" + fox + " --source_mesh=false --max_frames=3 --out=" + out + " --target=" + target,
+       "too different to map (0 joints map, need 5): source: not a humanoid ("},
   };
   for (const Case& c : cases) {
     std::string output;
@@ -251,6 +305,9 @@ TEST(RetargetCli, SkeletonSourceBadInputsFailWithOneLine) {
     EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
   }
   EXPECT_FALSE(testing::FileExists(out));
+  std::string output;  // The refusal lists what each side was found to be.
+  testing::RunCli(cases.back().arguments, &output);
+  EXPECT_THAT(output, HasSubstr("target: humanoid (roles: pelvis, spine_1"));
 }
 
 }  // namespace

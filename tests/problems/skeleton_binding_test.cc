@@ -179,9 +179,11 @@ TEST(SkeletonBindingTest, RetargetsTheWalkOntoAnAPoseCharacterAndAZUpCopyAlike) 
 TEST(SkeletonBindingTest, RefusesSkeletonsThatDoNotMap) {
   const Skeleton source = MakeDemoSkeleton();
   std::vector<JointSpec> joints;
-  for (int j = 0; j < source.num_joints(); ++j) {
+  for (int j = 0; j < source.num_joints(); ++j) {  // One chain of unrelated names: no humanoid.
     joints.push_back(source.joint(j));
     joints.back().name = "bone" + std::to_string(j);
+    joints.back().parent = j - 1;
+    joints.back().offset = Eigen::Vector3d(0, j > 0 ? 0.1 : 0.0, 0);
   }
   Skeleton target;
   ASSERT_TRUE(Skeleton::Create(joints, {}, Metres(), &target).ok());
@@ -192,7 +194,7 @@ TEST(SkeletonBindingTest, RefusesSkeletonsThatDoNotMap) {
   const Status status = BindTargetMeshToSource(source, Motion(), target, mesh, RestPose(target),
                                                Eigen::Matrix3d::Identity(), map, &binding);
   ASSERT_FALSE(status.ok());
-  EXPECT_THAT(status.message(), HasSubstr("cannot align the skeletons: 0 joints map by name"));
+  EXPECT_THAT(status.message(), HasSubstr("cannot align the skeletons: 0 joints map (names, structure)"));
   EXPECT_THAT(status.message(), HasSubstr("bone0, bone1"));
 }
 
