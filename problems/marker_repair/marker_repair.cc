@@ -48,9 +48,15 @@ double SlopeDifference(const MarkerTrajectories& x, const MarkerTrajectories& r,
 // valid frames, k chosen so that the new edge sample has the smallest slope difference
 // to the reference. Gaps made only of detected outliers are not trimmed: the detector
 // bounded them, and on a clean take trimming turned one outlying sample into up to 241
-// replaced ones.
+// replaced ones. Relabelled samples (another label's capture, `captured` differing) are
+// not trimmed either: the swap step judged them against the label's prediction, and a
+// swap that begins or ends inside a gap would otherwise lose up to trim_max of them to a
+// refill instead of keeping them bit for bit.
 int TrimAroundGaps(const MarkerTrajectories& reference, int trim_max, const MarkerTrajectories& unflagged,
-                   MarkerTrajectories* x) {
+                   const MarkerTrajectories& captured, MarkerTrajectories* x) {
+  auto trimmable = [&](int f, int m) {
+    return x->valid(f, m) && captured.valid(f, m) && x->position(f, m) == captured.position(f, m);
+  };
   int trimmed = 0;
   for (const Gap& gap : FindGaps(*x)) {
     const int m = gap.marker;
@@ -60,7 +66,8 @@ int TrimAroundGaps(const MarkerTrajectories& reference, int trim_max, const Mark
     if (gap.first > 0) {
       int best = 0;
       double best_difference = SlopeDifference(*x, reference, m, gap.first - 1);
-      for (int k = 1; k <= trim_max && gap.first - 1 - k >= 0 && x->valid(gap.first - 1 - k, m); ++k) {
+      for (int k = 1; k <= trim_max && gap.first - 1 - k >= 0 && x->valid(gap.first - 1 - k, m) &&
+                      trimmable(gap.first - k, m); ++k) {
         const double d = SlopeDifference(*x, reference, m, gap.first - 1 - k);
         if (d < best_difference) best_difference = d, best = k;
       }
@@ -70,7 +77,8 @@ int TrimAroundGaps(const MarkerTrajectories& reference, int trim_max, const Mark
     if (gap.last + 1 < x->num_frames()) {
       int best = 0;
       double best_difference = SlopeDifference(*x, reference, m, gap.last + 2);
-      for (int k = 1; k <= trim_max && gap.last + 1 + k < x->num_frames() && x->valid(gap.last + 1 + k, m); ++k) {
+      for (int k = 1; k <= trim_max && gap.last + 1 + k < x->num_frames() && x->valid(gap.last + 1 + k, m) &&
+                      trimmable(gap.last + k, m); ++k) {
         const double d = SlopeDifference(*x, reference, m, gap.last + 2 + k);
         if (d < best_difference) best_difference = d, best = k;
       }
@@ -460,9 +468,9 @@ Status DetectGaps(const RepairContext& ctx, const Motion& naive, const Reference
 // Step 5, in the thesis' order: smart trimming, small-track removal, small-gap filling.
 // *before_small keeps the samples before the small gaps' cubics: step 6 conditions on them.
 void PreprocessGaps(const RepairContext& ctx, const MarkerTrajectories& reference_paths,
-                    const MarkerTrajectories& unflagged, MarkerTrajectories* x, MarkerTrajectories* before_small,
-                    RepairReport* report) {
-  report->trimmed_samples = TrimAroundGaps(reference_paths, ctx.options.trim_max, unflagged, x);
+                    const MarkerTrajectories& unflagged, const MarkerTrajectories& captured,
+                    MarkerTrajectories* x, MarkerTrajectories* before_small, RepairReport* report) {
+  report->trimmed_samples = TrimAroundGaps(reference_paths, ctx.options.trim_max, unflagged, captured, x);
   report->removed_track_samples = RemoveSmallTracks(ctx.options.small_track, x);
   *before_small = *x;
   report->polynomial_samples = FillSmallGaps(ctx.options.small_gap, x);
@@ -722,7 +730,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   clock.Lap("Gap Detection");
   // 5. Preprocessing, in the thesis' order.
   MarkerTrajectories before_small;
-  PreprocessGaps(ctx, reference.paths, unflagged, &x, &before_small, report);
+  PreprocessGaps(ctx, reference.paths, unflagged, captured, &x, &before_small, report);
   clock.Lap("Gap Preprocessing");
   // 6. Marker filling from the reference.
   status = FillMarkers(ctx, input, reference, flagged, unflagged, &before_small, &x, report);
