@@ -161,6 +161,9 @@ Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, 
   return Status::Ok();
 }
 
+// Frames on each side of a carried run its edge velocities are measured over.
+constexpr int kCarryVelocityFrames = 2;
+
 class StageClock {
  public:
   explicit StageClock(RepairReport* report) : report_(report), start_(std::chrono::steady_clock::now()) {}
@@ -480,17 +483,37 @@ void PreprocessGaps(const RepairContext& ctx, const MarkerTrajectories& referenc
 }
 
 // Step 6 with the tracker: Y^ refitted without the cut samples where they were (the
-// trimmed samples kept), until it rejoins; *refit_paths is its X^.
-Status RefitReferencePaths(const RepairContext& ctx, const Observations& input, const MarkerTrajectories& flagged,
-                           const Motion& reference, MarkerTrajectories* refit_paths) {
-  Motion refitted;
+// trimmed samples kept), until it rejoins.
+Status RefitReference(const RepairContext& ctx, const Observations& input, const MarkerTrajectories& flagged,
+                      const Motion& reference, Motion* refitted) {
   int resolved = 0;
-  const Status status = ResolveChangedFrames(ctx.skeleton, ctx.markers, input, TrajectoryObservations(flagged),
-                                             reference, ctx.options.tracker, ctx.resync_tolerance,
-                                             ctx.options.parallel, &refitted, &resolved);
-  if (!status.ok()) return status;
-  *refit_paths = ObservationTrajectories(ctx.markers, ReconstructMarkers(ctx.skeleton, ctx.markers, refitted));
-  return Status::Ok();
+  return ResolveChangedFrames(ctx.skeleton, ctx.markers, input, TrajectoryObservations(flagged), reference,
+                              ctx.options.tracker, ctx.resync_tolerance, ctx.options.parallel, refitted, &resolved);
+}
+
+// Step 6, carry_joints: the joints that the kept samples leave unobserved carried across
+// their runs (signal/joint_gap_carry.h) in *motion; then each frame of a run solved again
+// with the reference's options on the kept samples, warm-started from and pulled toward the
+// carried pose, so that the joints the markers still see follow them and the others stay
+// on the carried path. The runs go into the report. True if there were any.
+bool CarryUnobservedJoints(const RepairContext& ctx, const MarkerTrajectories& flagged, Motion* motion,
+                           RepairReport* report) {
+  if (!ctx.options.carry_joints) return false;
+  const std::vector<CarriedJointRun> runs = FindUnobservedJointRuns(ctx.skeleton, ctx.markers, flagged);
+  if (runs.empty()) return false;
+  CarryJoints(ctx.skeleton, runs, kCarryVelocityFrames, motion);
+  std::vector<char> carried(motion->num_frames(), 0);
+  for (const CarriedJointRun& run : runs) std::fill(carried.begin() + run.first, carried.begin() + run.last + 1, 1);
+  const Observations kept = TrajectoryObservations(flagged);
+  MarkerFrameSolver solver(ctx.skeleton, ctx.markers, ctx.options.tracker);
+  for (int f = 0; f < motion->num_frames(); ++f) {
+    if (!carried[f]) continue;
+    Pose pose = motion->frames[f];
+    FrameSolveReport frame;
+    if (solver.Solve(kept[f], &pose, &frame).ok()) motion->frames[f] = pose;
+  }
+  report->carried = runs;
+  return true;
 }
 
 // Which cut runs are rough (noise, jitter): the removed samples' median |second
@@ -591,12 +614,23 @@ Status FillMarkers(const RepairContext& ctx, const Observations& input, const Re
   MarkerTrajectories refit_paths;
   const bool refit = options.refit_reference && options.reference_kind == ReferenceKind::kTracker;
   if (refit) {
-    const Status status = RefitReferencePaths(ctx, input, flagged, reference.motion, &refit_paths);
+    Motion refitted;
+    const Status status = RefitReference(ctx, input, flagged, reference.motion, &refitted);
     if (!status.ok()) return status;
+    CarryUnobservedJoints(ctx, flagged, &refitted, report);
+    refit_paths = ObservationTrajectories(ctx.markers, ReconstructMarkers(ctx.skeleton, ctx.markers, refitted));
   }
   const RoughRuns rough(refit, options.refit_rough_factor, *before_small, unflagged);
   if (refit && options.rough_extension_factor > 0.0) {
     report->rough_extension_samples += ExtendRoughRuns(ctx, rough, unflagged, reference.paths, x, before_small);
+  }
+  if (!refit) {  // Gaps are filled from X^ as solved: carry its unobserved joints first.
+    Motion carried = reference.motion;
+    if (CarryUnobservedJoints(ctx, flagged, &carried, report)) {
+      const MarkerTrajectories carried_paths =
+          ObservationTrajectories(ctx.markers, ReconstructMarkers(ctx.skeleton, ctx.markers, carried));
+      return FillGaps(ctx, rough, refit, carried_paths, refit_paths, *before_small, x, report);
+    }
   }
   return FillGaps(ctx, rough, refit, reference.paths, refit_paths, *before_small, x, report);
 }
