@@ -14,8 +14,9 @@ What it does to a clean take, seeded:
     or ends inside a gap of one of the two markers (3-15 frames hiding the exchange).
 Events on a marker keep --spacing frames from each other and from the take's ends.
 
-The mask (frames x markers, int8): 0 untouched, 1 occluded (segment), 2 swapped sample
-(present, under the other label), 3 missing around a swap, 4 wobble only (truth moved).
+The mask (frames x markers, int8), per marker (not label): 0 untouched, 1 occluded
+(segment), 2 swapped (its sample present, under the other label), 3 lost around a swap
+(its sample was under a label the gap hides), 4 wobble only (truth moved).
 
 usage: damage.py --markers=take.c3d --out=bad.c3d --truth_out=truth.c3d --mask_out=mask.csv
                  [--seed=1 --occlusions=6 --swaps=6 --wobbles=20 --events_out=events.json]
@@ -151,10 +152,12 @@ def damage(positions, labels, metres_per_unit, rate, seed=1, occlusions=6, swaps
             damaged[first:last + 1, a], damaged[first:last + 1, b] = (truth[first:last + 1, b].copy(),
                                                                       truth[first:last + 1, a].copy())
             mask[first:last + 1, [a, b]] = SWAPPED
-            if hide is not None:
-                who, g0, g1, _ = hide
+            if hide is not None:  # Label `who` loses its samples: outside the swap its own
+                who, g0, g1, _ = hide  # marker's, inside it the other marker's.
+                other = b if who == a else a
                 damaged[g0:g1 + 1, who] = np.nan
-                mask[g0:g1 + 1, who] = SWAP_GAP
+                for f in range(g0, g1 + 1):
+                    mask[f, other if first <= f <= last else who] = SWAP_GAP
             busy[lo:hi + 1, [a, b]] = True
             event = {"kind": "swap", "markers": [labels[a], labels[b]], "first_frame": first, "last_frame": last}
             if hide is not None:
