@@ -474,7 +474,12 @@ void PreprocessGaps(const RepairContext& ctx, const MarkerTrajectories& referenc
                     const MarkerTrajectories& unflagged, const MarkerTrajectories& captured,
                     MarkerTrajectories* x, MarkerTrajectories* before_small, RepairReport* report) {
   report->trimmed_samples = TrimAroundGaps(reference_paths, ctx.options.trim_max, unflagged, captured, x);
-  report->removed_track_samples = RemoveSmallTracks(ctx.options.small_track, x);
+  // A track holding relabelled samples (a swap's, judged against the label's prediction)
+  // is not too short to trust.
+  const auto relabelled = [&](int f, int m) {
+    return x->valid(f, m) && !(captured.valid(f, m) && x->position(f, m) == captured.position(f, m));
+  };
+  report->removed_track_samples = RemoveSmallTracks(ctx.options.small_track, relabelled, x);
   *before_small = *x;
   report->polynomial_samples = FillSmallGaps(ctx.options.small_gap, x);
   for (const Gap& gap : FindGaps(*before_small)) {
