@@ -316,6 +316,21 @@ Status TakeForSubject(const Subject& subject, MarkerTrajectories trajectories, c
   return Status::Ok();
 }
 
+namespace {
+
+// The file's sample of the marker whose observation at frame f is `sample` (a relabelled
+// one, exactly), else `sample` mapped back to the file's axes and units.
+Eigen::Vector3d RelabelledFileSample(const MarkerTake& take, int f, const Eigen::Vector3d& sample) {
+  for (int n = 0; n < take.markers.num_markers(); ++n) {
+    if (!(take.observed[f][n] == sample)) continue;
+    const int column = take.trajectories.FindMarker(take.markers.label(n));
+    if (column >= 0 && take.trajectories.valid(f, column)) return take.trajectories.position(f, column);
+  }
+  return take.transform.Invert(sample);
+}
+
+}  // namespace
+
 MarkerTrajectories WithRepairedSamples(const MarkerTake& take,
                                        const std::vector<std::vector<Eigen::Vector3d>>& repaired,
                                        int* rewritten, const std::vector<UnlabelledAssignment>& assigned,
@@ -328,7 +343,7 @@ MarkerTrajectories WithRepairedSamples(const MarkerTake& take,
     for (int f = 0; f < out.num_frames() && f < static_cast<int>(repaired.size()); ++f) {
       const bool same = take.observed[f][m].allFinite() && repaired[f][m] == take.observed[f][m];
       if (same) continue;
-      out.SetSample(f, column, take.transform.Invert(repaired[f][m]));
+      out.SetSample(f, column, RelabelledFileSample(take, f, repaired[f][m]));
       ++count;
     }
   }

@@ -115,7 +115,9 @@ Status RequireTakeData(const std::string& path, const MarkerTake& take);
 
 // The inverse for outputs: the take's file as read, with every sample of the set's
 // markers that differs from the observation (repaired[f][m], skeleton frame and units)
-// mapped back to the file's axes and units; every other sample as it was read.
+// mapped back to the file's axes and units; every other sample as it was read. A sample
+// that is another marker's observation of the same frame (relabelled: a swap undone) is
+// that marker's sample as read, bit for bit.
 // *rewritten (optional) counts the samples replaced. The unlabelled points a repair
 // assigned to markers (`assigned`, its report's list) are removed from their unlabelled
 // columns (they now live under the marker's label); *unlabelled_removed counts them.

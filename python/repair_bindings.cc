@@ -31,7 +31,7 @@ void BindRepair(py::module_& m) {
   MOCAPSOLVE_FIELD(assign_unlabelled); MOCAPSOLVE_FIELD(unlabelled_min_cm); MOCAPSOLVE_FIELD(unlabelled_max_cm);
   MOCAPSOLVE_FIELD(unlabelled_min_frames);
   MOCAPSOLVE_FIELD(trim_max); MOCAPSOLVE_FIELD(small_track); MOCAPSOLVE_FIELD(small_gap);
-  MOCAPSOLVE_FIELD(vel_clamp); MOCAPSOLVE_FIELD(edge_samples); MOCAPSOLVE_FIELD(fill); MOCAPSOLVE_FIELD(fill_samples); MOCAPSOLVE_FIELD(refit_reference); MOCAPSOLVE_FIELD(refit_rough_factor); MOCAPSOLVE_FIELD(rough_extension_factor); MOCAPSOLVE_FIELD(reference); MOCAPSOLVE_FIELD(reference_loss);
+  MOCAPSOLVE_FIELD(vel_clamp); MOCAPSOLVE_FIELD(edge_samples); MOCAPSOLVE_FIELD(fill); MOCAPSOLVE_FIELD(fill_samples); MOCAPSOLVE_FIELD(refit_reference); MOCAPSOLVE_FIELD(refit_rough_factor); MOCAPSOLVE_FIELD(rough_extension_factor); MOCAPSOLVE_FIELD(carry_joints); MOCAPSOLVE_FIELD(reference); MOCAPSOLVE_FIELD(reference_loss);
   MOCAPSOLVE_FIELD(reference_loss_cm); MOCAPSOLVE_FIELD(tracker_prior_weight);
   MOCAPSOLVE_FIELD(tracker_translation_prior); MOCAPSOLVE_FIELD(tracker_function_tolerance);
 #undef MOCAPSOLVE_FIELD
@@ -76,7 +76,7 @@ outliers='robust'|'fixed', outlier_mads=6, outlier_min_cm=1, undo_swaps=True,
 swap_radius_cm=30, swap_min_frames=2, assign_unlabelled=True, unlabelled_min_cm=2,
 unlabelled_max_cm=5, unlabelled_min_frames=3,
 trim_max=120, small_track=120, small_gap=5, vel_clamp=0.25, edge_samples=1, fill='kriging'|'blend', fill_samples=10,
-refit_reference=True, refit_rough_factor=3, rough_extension_factor=6,
+refit_reference=True, refit_rough_factor=3, rough_extension_factor=6, carry_joints=True,
 reference='tracker'|'clip',
 reference_loss='cauchy', reference_loss_cm=1, tracker_prior_weight=20,
 tracker_translation_prior=0, tracker_function_tolerance=1e-4) and the solver options of

@@ -86,6 +86,12 @@ const OptionGroup<RepairSettings>& RepairSettingOptions() {
            "samples beside it whose residual |second difference| exceeds this many times the marker's "
            "median and a tenth of the gates' floor (a noise run cut whole; at most --trim_max per side; "
            "0: off).")
+      .Add(&S::carry_joints, "carry_joints",
+           "Where a joint loses the markers that observe its rotation (at least 2 of them missing, "
+           "fewer than 3 and fewer than half left: a hidden foot, hand or head), carry it across "
+           "those frames in joint space (log-quaternion Hermite between the solved poses on both "
+           "sides, velocities matched), solve them again pulled toward the carried pose, and refill "
+           "the hidden markers from that motion; the report lists the joints carried and their frames.")
       .Add(&S::reference, "reference",
            "The robust reference Y^: tracker (frame by frame, robust loss, "
            "pulled toward the previous frame; runs beside the naive solve) | clip (the "
@@ -179,6 +185,7 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
   options->refit_reference = settings.refit_reference;
   options->refit_rough_factor = settings.refit_rough_factor;
   options->rough_extension_factor = settings.rough_extension_factor;
+  options->carry_joints = settings.carry_joints;
   std::string error;
   if (!options->reference.IsValid(&error) || !options->tracker.IsValid(&error)) {
     return Status::Error(error);

@@ -39,6 +39,7 @@ struct RepairSettings {
   bool refit_reference = true;       // Tracker: X^ refitted without the cut samples for the fill.
   double refit_rough_factor = 3.0;   // Cut runs rougher than this (vs the marker's own) use X^ as solved.
   double rough_extension_factor = 6.0;  // Rough runs extended over neighbours this rough (0: off).
+  bool carry_joints = true;          // Joints that lost their markers carried across the gap.
   std::string reference = "tracker";  // tracker | clip.
   std::string reference_loss = "cauchy";
   double reference_loss_cm = 1.0;

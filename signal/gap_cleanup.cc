@@ -5,6 +5,10 @@
 namespace mocapsolve {
 
 int RemoveSmallTracks(int max_track, MarkerTrajectories* markers) {
+  return RemoveSmallTracks(max_track, nullptr, markers);
+}
+
+int RemoveSmallTracks(int max_track, const std::function<bool(int, int)>& trusted, MarkerTrajectories* markers) {
   int removed = 0;
   const int n = markers->num_frames();
   for (int m = 0; m < markers->num_markers(); ++m) {
@@ -13,7 +17,9 @@ int RemoveSmallTracks(int max_track, MarkerTrajectories* markers) {
       int end = f;
       while (end + 1 < n && markers->valid(end + 1, m)) ++end;
       const bool enclosed = f > 0 && end + 1 < n;  // Missing on both sides.
-      if (enclosed && end - f + 1 <= max_track) {
+      bool kept = false;
+      for (int g = f; trusted && g <= end && !kept; ++g) kept = trusted(g, m);
+      if (enclosed && !kept && end - f + 1 <= max_track) {
         for (int g = f; g <= end; ++g) markers->SetMissing(g, m);
         removed += end - f + 1;
       }

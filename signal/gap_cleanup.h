@@ -9,12 +9,16 @@
 #ifndef MOCAPSOLVE_SIGNAL_GAP_CLEANUP_H_
 #define MOCAPSOLVE_SIGNAL_GAP_CLEANUP_H_
 
+#include <functional>
+
 #include "kinematics/marker_trajectories.h"
 
 namespace mocapsolve {
 
 // Returns the number of samples made missing.
 int RemoveSmallTracks(int max_track, MarkerTrajectories* markers);
+// The same, keeping every track that holds a sample `trusted` (frame, marker) accepts.
+int RemoveSmallTracks(int max_track, const std::function<bool(int, int)>& trusted, MarkerTrajectories* markers);
 // Returns the number of samples filled.
 int FillSmallGaps(int max_gap, MarkerTrajectories* markers);
 

@@ -48,9 +48,15 @@ double SlopeDifference(const MarkerTrajectories& x, const MarkerTrajectories& r,
 // valid frames, k chosen so that the new edge sample has the smallest slope difference
 // to the reference. Gaps made only of detected outliers are not trimmed: the detector
 // bounded them, and on a clean take trimming turned one outlying sample into up to 241
-// replaced ones.
+// replaced ones. Relabelled samples (another label's capture, `captured` differing) are
+// not trimmed either: the swap step judged them against the label's prediction, and a
+// swap that begins or ends inside a gap would otherwise lose up to trim_max of them to a
+// refill instead of keeping them bit for bit.
 int TrimAroundGaps(const MarkerTrajectories& reference, int trim_max, const MarkerTrajectories& unflagged,
-                   MarkerTrajectories* x) {
+                   const MarkerTrajectories& captured, MarkerTrajectories* x) {
+  auto trimmable = [&](int f, int m) {
+    return x->valid(f, m) && captured.valid(f, m) && x->position(f, m) == captured.position(f, m);
+  };
   int trimmed = 0;
   for (const Gap& gap : FindGaps(*x)) {
     const int m = gap.marker;
@@ -60,7 +66,8 @@ int TrimAroundGaps(const MarkerTrajectories& reference, int trim_max, const Mark
     if (gap.first > 0) {
       int best = 0;
       double best_difference = SlopeDifference(*x, reference, m, gap.first - 1);
-      for (int k = 1; k <= trim_max && gap.first - 1 - k >= 0 && x->valid(gap.first - 1 - k, m); ++k) {
+      for (int k = 1; k <= trim_max && gap.first - 1 - k >= 0 && x->valid(gap.first - 1 - k, m) &&
+                      trimmable(gap.first - k, m); ++k) {
         const double d = SlopeDifference(*x, reference, m, gap.first - 1 - k);
         if (d < best_difference) best_difference = d, best = k;
       }
@@ -70,7 +77,8 @@ int TrimAroundGaps(const MarkerTrajectories& reference, int trim_max, const Mark
     if (gap.last + 1 < x->num_frames()) {
       int best = 0;
       double best_difference = SlopeDifference(*x, reference, m, gap.last + 2);
-      for (int k = 1; k <= trim_max && gap.last + 1 + k < x->num_frames() && x->valid(gap.last + 1 + k, m); ++k) {
+      for (int k = 1; k <= trim_max && gap.last + 1 + k < x->num_frames() && x->valid(gap.last + 1 + k, m) &&
+                      trimmable(gap.last + k, m); ++k) {
         const double d = SlopeDifference(*x, reference, m, gap.last + 2 + k);
         if (d < best_difference) best_difference = d, best = k;
       }
@@ -152,6 +160,9 @@ Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, 
   MakeSignContinuous(motion);
   return Status::Ok();
 }
+
+// Frames on each side of a carried run its edge velocities are measured over.
+constexpr int kCarryVelocityFrames = 2;
 
 class StageClock {
  public:
@@ -460,10 +471,15 @@ Status DetectGaps(const RepairContext& ctx, const Motion& naive, const Reference
 // Step 5, in the thesis' order: smart trimming, small-track removal, small-gap filling.
 // *before_small keeps the samples before the small gaps' cubics: step 6 conditions on them.
 void PreprocessGaps(const RepairContext& ctx, const MarkerTrajectories& reference_paths,
-                    const MarkerTrajectories& unflagged, MarkerTrajectories* x, MarkerTrajectories* before_small,
-                    RepairReport* report) {
-  report->trimmed_samples = TrimAroundGaps(reference_paths, ctx.options.trim_max, unflagged, x);
-  report->removed_track_samples = RemoveSmallTracks(ctx.options.small_track, x);
+                    const MarkerTrajectories& unflagged, const MarkerTrajectories& captured,
+                    MarkerTrajectories* x, MarkerTrajectories* before_small, RepairReport* report) {
+  report->trimmed_samples = TrimAroundGaps(reference_paths, ctx.options.trim_max, unflagged, captured, x);
+  // A track holding relabelled samples (a swap's, judged against the label's prediction)
+  // is not too short to trust.
+  const auto relabelled = [&](int f, int m) {
+    return x->valid(f, m) && !(captured.valid(f, m) && x->position(f, m) == captured.position(f, m));
+  };
+  report->removed_track_samples = RemoveSmallTracks(ctx.options.small_track, relabelled, x);
   *before_small = *x;
   report->polynomial_samples = FillSmallGaps(ctx.options.small_gap, x);
   for (const Gap& gap : FindGaps(*before_small)) {
@@ -472,17 +488,37 @@ void PreprocessGaps(const RepairContext& ctx, const MarkerTrajectories& referenc
 }
 
 // Step 6 with the tracker: Y^ refitted without the cut samples where they were (the
-// trimmed samples kept), until it rejoins; *refit_paths is its X^.
-Status RefitReferencePaths(const RepairContext& ctx, const Observations& input, const MarkerTrajectories& flagged,
-                           const Motion& reference, MarkerTrajectories* refit_paths) {
-  Motion refitted;
+// trimmed samples kept), until it rejoins.
+Status RefitReference(const RepairContext& ctx, const Observations& input, const MarkerTrajectories& flagged,
+                      const Motion& reference, Motion* refitted) {
   int resolved = 0;
-  const Status status = ResolveChangedFrames(ctx.skeleton, ctx.markers, input, TrajectoryObservations(flagged),
-                                             reference, ctx.options.tracker, ctx.resync_tolerance,
-                                             ctx.options.parallel, &refitted, &resolved);
-  if (!status.ok()) return status;
-  *refit_paths = ObservationTrajectories(ctx.markers, ReconstructMarkers(ctx.skeleton, ctx.markers, refitted));
-  return Status::Ok();
+  return ResolveChangedFrames(ctx.skeleton, ctx.markers, input, TrajectoryObservations(flagged), reference,
+                              ctx.options.tracker, ctx.resync_tolerance, ctx.options.parallel, refitted, &resolved);
+}
+
+// Step 6, carry_joints: the joints that the kept samples leave unobserved carried across
+// their runs (signal/joint_gap_carry.h) in *motion; then each frame of a run solved again
+// with the reference's options on the kept samples, warm-started from and pulled toward the
+// carried pose, so that the joints the markers still see follow them and the others stay
+// on the carried path. The runs go into the report. True if there were any.
+bool CarryUnobservedJoints(const RepairContext& ctx, const MarkerTrajectories& flagged, Motion* motion,
+                           RepairReport* report) {
+  if (!ctx.options.carry_joints) return false;
+  const std::vector<CarriedJointRun> runs = FindUnobservedJointRuns(ctx.skeleton, ctx.markers, flagged);
+  if (runs.empty()) return false;
+  CarryJoints(ctx.skeleton, runs, kCarryVelocityFrames, motion);
+  std::vector<char> carried(motion->num_frames(), 0);
+  for (const CarriedJointRun& run : runs) std::fill(carried.begin() + run.first, carried.begin() + run.last + 1, 1);
+  const Observations kept = TrajectoryObservations(flagged);
+  MarkerFrameSolver solver(ctx.skeleton, ctx.markers, ctx.options.tracker);
+  for (int f = 0; f < motion->num_frames(); ++f) {
+    if (!carried[f]) continue;
+    Pose pose = motion->frames[f];
+    FrameSolveReport frame;
+    if (solver.Solve(kept[f], &pose, &frame).ok()) motion->frames[f] = pose;
+  }
+  report->carried = runs;
+  return true;
 }
 
 // Which cut runs are rough (noise, jitter): the removed samples' median |second
@@ -583,12 +619,23 @@ Status FillMarkers(const RepairContext& ctx, const Observations& input, const Re
   MarkerTrajectories refit_paths;
   const bool refit = options.refit_reference && options.reference_kind == ReferenceKind::kTracker;
   if (refit) {
-    const Status status = RefitReferencePaths(ctx, input, flagged, reference.motion, &refit_paths);
+    Motion refitted;
+    const Status status = RefitReference(ctx, input, flagged, reference.motion, &refitted);
     if (!status.ok()) return status;
+    CarryUnobservedJoints(ctx, flagged, &refitted, report);
+    refit_paths = ObservationTrajectories(ctx.markers, ReconstructMarkers(ctx.skeleton, ctx.markers, refitted));
   }
   const RoughRuns rough(refit, options.refit_rough_factor, *before_small, unflagged);
   if (refit && options.rough_extension_factor > 0.0) {
     report->rough_extension_samples += ExtendRoughRuns(ctx, rough, unflagged, reference.paths, x, before_small);
+  }
+  if (!refit) {  // Gaps are filled from X^ as solved: carry its unobserved joints first.
+    Motion carried = reference.motion;
+    if (CarryUnobservedJoints(ctx, flagged, &carried, report)) {
+      const MarkerTrajectories carried_paths =
+          ObservationTrajectories(ctx.markers, ReconstructMarkers(ctx.skeleton, ctx.markers, carried));
+      return FillGaps(ctx, rough, refit, carried_paths, refit_paths, *before_small, x, report);
+    }
   }
   return FillGaps(ctx, rough, refit, reference.paths, refit_paths, *before_small, x, report);
 }
@@ -722,7 +769,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   clock.Lap("Gap Detection");
   // 5. Preprocessing, in the thesis' order.
   MarkerTrajectories before_small;
-  PreprocessGaps(ctx, reference.paths, unflagged, &x, &before_small, report);
+  PreprocessGaps(ctx, reference.paths, unflagged, captured, &x, &before_small, report);
   clock.Lap("Gap Preprocessing");
   // 6. Marker filling from the reference.
   status = FillMarkers(ctx, input, reference, flagged, unflagged, &before_small, &x, report);

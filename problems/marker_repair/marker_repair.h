@@ -28,14 +28,20 @@
 //      as a head carrying one marker, may differ between Y and Y^ without condemning it).
 //   5. Gap preprocessing (3.3.4): smart trimming (cut up to trim_max frames on each side of
 //      a gap, stopping where the velocity difference between original and reference is
-//      smallest), then small-track removal, then small-gap filling, in that order.
+//      smallest), then small-track removal, then small-gap filling, in that order. Samples
+//      relabelled in 3c/3d are neither trimmed nor dropped with a small track.
 //   6. Marker filling: X^ plus the offset from it, kriged from the samples beside each gap
 //      (signal/offset_kriging.h; or Algorithm 3's Hermite blend of the edge offsets). With
 //      the tracker, X^ is first refitted without the cut samples where they were; runs
 //      that were smooth (fly-off, ghost) and gaps are filled from the refitted X^, rough
 //      runs (noise, jitter, which the robust solve averaged) from X^ as solved; a rough run
 //      is first extended over the samples beside it that are as rough (a noise run's ends
-//      and small draws pass the gates; signal/rough_run_extension.h).
+//      and small draws pass the gates; signal/rough_run_extension.h). With carry_joints,
+//      the joints whose observing markers are (nearly) all cut or missing (a hidden foot,
+//      hand or head) are first carried across those frames in joint space, a
+//      log-quaternion Hermite between the poses on both sides (signal/joint_gap_carry.h),
+//      and those frames solved again with the reference's options pulled toward the carried
+//      pose, so the joints the markers still see follow them; X^ comes from that motion.
 //   7. Re-solve Y- on the filled markers: only the frames whose markers changed, and the
 //      frames after each until the solution rejoins Y (within resync_tolerance), since
 //      elsewhere the per-frame problem, its warm start and its prior are Y's own. With
@@ -59,6 +65,7 @@
 #include "problems/marker_repair/unlabelled_assignment.h"
 #include "problems/marker_solve/marker_clip_solver.h"
 #include "problems/marker_solve/marker_frame_solver.h"
+#include "signal/joint_gap_carry.h"
 
 namespace mocapsolve {
 
@@ -109,6 +116,8 @@ struct RepairOptions {
                                         // marker's median (and a tenth of the gates' floor),
                                         // up to trim_max per side (0: off;
                                         // signal/rough_run_extension.h).
+  bool carry_joints = true;        // Step 6: joints no kept marker observes carried across
+                                   // their runs in joint space (signal/joint_gap_carry.h).
 
   // Every number finite, the thresholds positive, the frame counts >= 0, and the solve
   // options valid; otherwise false with a one-line reason in *error.
@@ -137,6 +146,9 @@ struct RepairReport {
   // (also in `detected` as "unlabelled" intervals of the marker).
   std::vector<UnlabelledAssignment> unlabelled;
   std::vector<RepairInterval> filled;    // Gaps filled (after preprocessing).
+  // Step 6, carry_joints: joints whose observing markers were all cut or missing, carried
+  // in joint space over these frames (the filled markers come from that motion).
+  std::vector<CarriedJointRun> carried;
   std::vector<RepairStageTime> timings;
   int trimmed_samples = 0, removed_track_samples = 0, polynomial_samples = 0;
   int rough_extension_samples = 0;  // Samples cut beside rough runs (signal/rough_run_extension.h).

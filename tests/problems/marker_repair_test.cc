@@ -135,6 +135,51 @@ TEST(MarkerRepair, UndoesASwapAndFillsGapsAtTheEndsAndOfOneFrame) {
   EXPECT_LT((repaired[30][one] - clean[30][one]).norm(), 0.5);
 }
 
+// A whole foot hidden (every marker of the foot and toe for 40 frames of the walk): the
+// foot and toe are reported carried over the gap, and their markers come back closer to
+// the truth than the fill without the carry, which leaves the unobserved joints where the
+// reference's solve without data put them.
+TEST(MarkerRepair, CarriesTheJointsOfAHiddenFootAcrossTheGap) {
+  const testing::DemoTake take = testing::MakeDemoTake(120, 60.0, 5);
+  const Skeleton& skeleton = take.skeleton;
+  const MarkerSet& markers = take.markers;
+  auto corrupted = take.clean;
+  const int foot = skeleton.FindJoint("LeftFoot");
+  std::vector<int> hidden;
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    for (const MarkerAttachment& a : markers.marker(m).attachments) {
+      if (skeleton.IsAncestorOrSelf(foot, a.joint)) hidden.push_back(m);
+    }
+  }
+  ASSERT_GE(hidden.size(), 3u);
+  for (int f = 40; f < 80; ++f) {
+    for (int m : hidden) corrupted[f][m] = Eigen::Vector3d::Constant(std::nan(""));
+  }
+  auto worst_error = [&](bool carry, RepairReport* report) {
+    RepairOptions options = testing::DemoRepairOptions(ReferenceKind::kTracker);
+    options.carry_joints = carry;
+    std::vector<std::vector<Eigen::Vector3d>> repaired;
+    Motion motion;
+    EXPECT_TRUE(RepairMarkers(skeleton, markers, corrupted, options, &repaired, &motion, report).ok());
+    double worst = 0.0;
+    for (int f = 40; f < 80; ++f) {
+      for (int m : hidden) worst = std::max(worst, (repaired[f][m] - take.clean[f][m]).norm());
+    }
+    return worst;
+  };
+  RepairReport with, without;
+  const double carried = worst_error(true, &with), plain = worst_error(false, &without);
+  EXPECT_TRUE(without.carried.empty());
+  bool foot_carried = false;
+  for (const CarriedJointRun& run : with.carried) {
+    foot_carried |= run.joint == foot && run.first <= 40 && run.last >= 79;
+    EXPECT_TRUE(skeleton.IsAncestorOrSelf(skeleton.parent(foot), run.joint)) << skeleton.name(run.joint);
+  }
+  EXPECT_TRUE(foot_carried);
+  EXPECT_LT(carried, plain);
+  EXPECT_LT(carried, 3.0);  // cm, noise-free walk.
+}
+
 // Threads change the speed only: one thread gives the same markers and motion, bit for
 // bit, as two (a batch runs its takes single-threaded, side by side).
 TEST(MarkerRepair, ResultDoesNotDependOnThreads) {

@@ -148,7 +148,7 @@ TEST(Option, TheDeclaredGroupsAreWellFormed) {
   ExpectWellDeclared(RetargetSolverOptions(), RetargetSettings());
   ExpectWellDeclared(RetargetSettingOptions(), RetargetSettings());
   ExpectWellDeclared(RepairSettingOptions(), RepairSettings());
-  EXPECT_EQ(RepairSettingOptions().options().size(), 29u);
+  EXPECT_EQ(RepairSettingOptions().options().size(), 30u);
   ExpectWellDeclared(CorruptionSettingOptions(), CorruptionSettings());
   ExpectWellDeclared(FalloffSettingOptions(), FalloffSettings());
   ExpectWellDeclared(DeliverySettingOptions(), DeliverySettings());

@@ -24,6 +24,16 @@ TEST(GapCleanup, RemovesOnlyEnclosedShortTracks) {
   EXPECT_EQ(RemoveSmallTracks(5, &markers), 0);
 }
 
+TEST(GapCleanup, KeepsShortTracksThatHoldATrustedSample) {
+  MarkerTrajectories markers = Line(30);
+  // gap 5-9 | track 10-11 | gap 12-14 | track 15-17 | gap 18-19
+  for (int f : {5, 6, 7, 8, 9, 12, 13, 14, 18, 19}) markers.SetMissing(f, 0);
+  const auto trusted = [](int f, int m) { return m == 0 && f == 16; };
+  EXPECT_EQ(RemoveSmallTracks(5, trusted, &markers), 2);
+  EXPECT_FALSE(markers.valid(10, 0));
+  for (int f = 15; f <= 17; ++f) EXPECT_TRUE(markers.valid(f, 0)) << f;
+}
+
 TEST(GapCleanup, FillsShortInteriorGapsExactlyOnALine) {
   MarkerTrajectories markers = Line(30);
   const MarkerTrajectories original = markers;
