@@ -10,6 +10,7 @@
 #include "apps/common_flags.h"
 #include "apps/option_flags.h"
 #include "settings/method_settings.h"
+#include "settings/plot_settings.h"
 #include "io/atomic_file.h"
 #include "io/motion_file.h"
 #include "io/svg_plot.h"
@@ -18,7 +19,6 @@
 DEFINE_int32(frame, -1, "The edited frame (0-based).");
 DEFINE_string(sweep, "", "Comma-separated extra sigmas: adds a Green's weight column (and plot "
               "line) per sigma (section 4's sigma sweep).");
-DECLARE_string(plot);  // apps/main.cc.
 
 namespace mocapsolve {
 namespace {
@@ -44,15 +44,18 @@ void PrintFigures(const char* format, const FalloffFigures& f, bool with_half, b
 
 Status DistanceMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  PlotSetting plot_setting;
+  ReadOptionFlags(DistancePlotOption(), &plot_setting);
+  const std::string& plot = plot_setting.plot;
   if (FLAGS_motion.empty() || FLAGS_out.empty() || FLAGS_frame < 0) {
     return Status::Error("--motion, --frame (>= 0) and --out are required");
   }
   if (!IsTextOutputPath(FLAGS_out, ".csv")) return Status::Error(FLAGS_out + ": expected a .csv");
   Status status = CheckNotAnInput(FLAGS_out, FLAGS_motion);
   if (!status.ok()) return status;
-  if (!FLAGS_plot.empty()) {
-    if (!IsTextOutputPath(FLAGS_plot, ".svg")) return Status::Error(FLAGS_plot + ": expected a .svg");
-    status = CheckNotAnInput(FLAGS_plot, FLAGS_motion);
+  if (!plot.empty()) {
+    if (!IsTextOutputPath(plot, ".svg")) return Status::Error(plot + ": expected a .svg");
+    status = CheckNotAnInput(plot, FLAGS_motion);
     if (!status.ok()) return status;
   }
   DistanceConfig config;
@@ -73,7 +76,7 @@ Status DistanceMain(const std::vector<std::string>& arguments) {
 
   status = WriteFileAtomically(FLAGS_out, result.csv);
   if (!status.ok()) return status;
-  if (!FLAGS_plot.empty()) {
+  if (!plot.empty()) {
     std::vector<PlotSeries> series;
     for (size_t k = 0; k < result.methods.size(); ++k) {
       series.push_back({result.method_names[k] + " distance", ToStd(result.methods[k].distance)});
@@ -83,7 +86,7 @@ Status DistanceMain(const std::vector<std::string>& arguments) {
       name << "green distance, sigma " << result.sweep[s];
       series.push_back({name.str(), ToStd(result.swept[s].distance)});
     }
-    status = WriteFileAtomically(FLAGS_plot, LinePlotSvg("Pose distance from frame " + std::to_string(result.frame) +
+    status = WriteFileAtomically(plot, LinePlotSvg("Pose distance from frame " + std::to_string(result.frame) +
                                                              " (" + FLAGS_motion + ")",
                                                          "frame", "normalized distance", series));
     if (!status.ok()) return status;
@@ -103,7 +106,7 @@ Status DistanceMain(const std::vector<std::string>& arguments) {
                 config.falloff.sigma > 0.0 ? "given" : "auto", result.eigenpairs_used,
                 result.sparse_kernel ? "sparse kNN" : "dense", result.features_ms, result.build_ms);
   }
-  std::printf("wrote %s%s%s\n", FLAGS_out.c_str(), FLAGS_plot.empty() ? "" : " and ", FLAGS_plot.c_str());
+  std::printf("wrote %s%s%s\n", FLAGS_out.c_str(), plot.empty() ? "" : " and ", plot.c_str());
   return WriteReport(result.report);
 }
 
@@ -124,7 +127,7 @@ extern const Command kDistanceCommand = {
     "other cycles, the second difference at the edit and where the weight drops below 0.5/0.05.\n"
     "--plot writes the distance curves (1 - weight) of every method and --sweep sigma as SVG.",
     __FILE__, DistanceMain,
-    "motion,out,plot,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet",
-    {FalloffSettingOptions().options(), DistanceMethodOption().options()}};
+    "motion,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet",
+    {FalloffSettingOptions().options(), DistanceMethodOption().options(), DistancePlotOption().options()}};
 
 }  // namespace mocapsolve

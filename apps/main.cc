@@ -181,8 +181,6 @@ DEFINE_string(animation, "", "Animation of a .glb/.gltf/.fbx motion file: name o
 DEFINE_double(sample_fps, 0.0, "Sampling rate of .glb/.gltf/.fbx animations; 0 = the key rate "
               "when the keys are uniformly spaced, else 30.");
 DEFINE_string(report, "", "Write what the command measured to this JSON file.");
-DEFINE_string(plot, "", "Write an SVG plot (.svg): solve, the per-frame RMS marker residual; distance, the distance "
-              "curves (1 - weight) of every method and of --sweep.");
 DEFINE_string(skeleton_units, "", "Unit of a skeleton whose file does not state one (BVH): mm, "
               "cm, m or in; needed to relate it to marker files and mm-based weights.");
 DEFINE_string(motion, "", "Motion file: .bvh, .glb/.gltf, .fbx, or .amc with --skeleton=X.asf.");

@@ -9,18 +9,21 @@
 #include "apps/config_flags.h"
 #include "apps/option_flags.h"
 #include "apps/progress.h"
-#include "apps/pyramid_flags.h"
-#include "apps/repair_flags.h"
+#include "apps/delivery_flags.h"
+#include "apps/pipeline_flags.h"
 #include "apps/retarget_flags.h"
 #include "apps/view_flags.h"
-#include "settings/view_page_settings.h"
-#include "apps/solver_flags.h"
 #include "io/atomic_file.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
-#include "pipeline/quality_gate.h"
 #include "pipeline/take_pipeline.h"
-#include "apps/delivery_flags.h"
+#include "settings/delivery_settings.h"
+#include "settings/pyramid_settings.h"
+#include "pipeline/quality_gate.h"
+#include "settings/repair_settings.h"
+#include "settings/retarget_settings.h"
+#include "settings/view_page_settings.h"
+#include "tasks/take_summary.h"
 
 DECLARE_string(subject);  // apps/main.cc
 
@@ -30,21 +33,11 @@ DEFINE_string(config, "", "JSON file of options: keys are this command's flag na
               "--print_config); flags given on the command line override it.");
 DEFINE_bool(print_config, false, "Print every option of the pipeline with its value (the defaults, "
             "or --config's) as a JSON config file, and exit.");
-DEFINE_string(take_name, "", "The take's name: the characters' new animation (default: the marker "
-              "file's name without extension).");
-DEFINE_int32(filter_levels, 0, "Filter the solved motion: drop the N finest bands of its Laplacian "
-             "pyramid (as `filter --levels=N`); 0 = no filtering.");
-
 namespace mocapsolve {
 
 extern const Command kPipelineCommand;  // Below: its declared options check --config's values.
 
 namespace {
-
-const std::string kPipelineOptionFlags =
-    std::string("take_name,filter_levels,") + PyramidSettingOptions().Names() + "," + QualityGateOptions().Names() + ",animation_only," +
-    DeliverySettingOptions().Names() + "," +
-    RepairSettingOptions().Names() + "," + RepairSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints";
 
 // The take's page, as --view says (TakeViewPath; a PAGE.html must be no input). *path: ""
 // for none.
@@ -67,12 +60,12 @@ Status ViewPageOfTake(std::string* path) {
 Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   if (!FLAGS_config.empty()) {
-    Status status = ApplyConfigFile(FLAGS_config, kPipelineOptionFlags);
+    Status status = ApplyConfigFile(FLAGS_config, PipelineOptionFlags());
     if (status.ok()) status = CheckOptionFlags(kPipelineCommand.options);
     if (!status.ok()) return status;
   }
   if (FLAGS_print_config) {
-    std::printf("%s\n", ConfigJson(kPipelineOptionFlags).c_str());
+    std::printf("%s\n", ConfigJson(PipelineOptionFlags()).c_str());
     return Status::Ok();
   }
   if (FLAGS_subject.empty() || FLAGS_markers.empty() || FLAGS_out_dir.empty()) {
@@ -88,17 +81,8 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
 
   TakePipelineOptions options;
-  status = RepairOptionsFromFlags(subject.skeleton, &options.repair);
-  if (status.ok()) status = RetargetOptionsFromFlags(&options.retarget);
+  status = TakePipelineOptionsFromFlags(subject.skeleton, &options);
   if (!status.ok()) return status;
-  options.filter_levels = FLAGS_filter_levels;
-  if (status.ok()) status = PyramidOptionsFromFlags(FLAGS_filter_levels, &options.filter);
-  if (!status.ok()) return status;
-  ReadOptionFlags(QualityGateOptions(), &options.gate);
-  status = ClipDeliveryFromFlags(&options.delivery);
-  if (!status.ok()) return status;
-  std::string error;
-  if (!options.IsValid(&error)) return Status::Error(error);
 
   TakeInputs inputs;
   inputs.name = FLAGS_take_name.empty() ? FileStem(FLAGS_markers) : FLAGS_take_name;
@@ -128,7 +112,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   JsonObject report = TakeReport(inputs, result);
   report.Add("command", "pipeline").Add("version", Version()).Add("subject", FLAGS_subject).Add("config", FLAGS_config)
       .Add("animation_only", FLAGS_animation_only)
-      .Add("options", JsonValue::Raw(ConfigJson(kPipelineOptionFlags)));
+      .Add("options", JsonValue::Raw(ConfigJson(PipelineOptionFlags())));
   const bool in_take_folder = view_path == ViewPagePath(FLAGS_out_dir);
   report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
   SetStage("writing");
@@ -137,27 +121,14 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (status.ok()) status = WriteReport(report);
   if (!status.ok()) return status;
 
-  const int frames = static_cast<int>(result.take.observed.size());
-  std::printf("pipeline %s: %d frames in %.2f s (%.0f frames/s)\n", inputs.name.c_str(), frames, result.seconds,
-              result.seconds > 0 ? frames / result.seconds : 0.0);
-  for (const StageTime& t : result.timings) std::printf("  %-32s %8.3f s\n", t.stage.c_str(), t.seconds);
-  std::printf("  marker RMS naive %.2f mm, repaired %.2f mm; %d of %d samples repaired (%.2f %%)\n",
-              result.figures.naive_rms_mm, result.figures.repaired_rms_mm, result.repaired_samples, result.samples,
-              100.0 * result.figures.repaired_share);
-  for (const CharacterOutput& c : result.characters) {
-    const RetargetClipResult& r = c.result.clip;
-    std::printf("  %s: vertex error %.4f of height, foot skating %.2f -> %.2f cm/s\n", c.name.c_str(),
-                r.mean_position_error, c.result.source_plant_skating_cm_s, c.result.result_plant_skating_cm_s);
-  }
+  std::fputs(TakeSummary(inputs, result).c_str(), stdout);
   const size_t files = result.characters.size() * character_files.formats.size();
   std::printf("wrote %s (repaired markers, solved.bvh, %zu character file%s, report.json%s%s)\n",
               FLAGS_out_dir.c_str(), files, files == 1 ? "" : "s",
               view_path.empty() ? "" : ", ", in_take_folder ? "view.html" : view_path.c_str());
   if (!result.verdict.pass) {
-    std::string failures;
-    for (const std::string& f : result.verdict.failures) failures += (failures.empty() ? "" : "; ") + f;
     std::fprintf(stderr, "mocapsolve pipeline: %s: quality gate failed: %s\n", inputs.name.c_str(),
-                 failures.c_str());
+                 TakeGateFailures(result).c_str());
     SetExitCodeOnSuccess(3);
   } else {
     std::printf("quality gate: pass\n");
@@ -166,7 +137,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
 }
 
 const std::string kPipelineFlags =
-    "subject,markers,character,out_dir,config,print_config,report,quiet," + kPipelineOptionFlags;
+    "subject,markers,character,out_dir,config,print_config,report,quiet," + PipelineOptionFlags();
 
 }  // namespace
 

@@ -52,14 +52,10 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   if (FLAGS_source.empty() || FLAGS_target.empty()) return Status::Error("--source and --target are required");
   if (FLAGS_out.empty() && FLAGS_out_bvh.empty()) return Status::Error("--out or --out_bvh is required");
-  for (const std::string& out : {FLAGS_out, FLAGS_out_bvh, FLAGS_report}) {
-    if (out.empty()) continue;
-    for (const std::string& in : {FLAGS_source, FLAGS_target, FLAGS_skeleton, RetargetSettingsFromFlags().joint_map}) {
-      if (in.empty()) continue;
-      Status status = CheckNotAnInput(out, in);
-      if (!status.ok()) return status;
-    }
-  }
+  const std::string joint_map = RetargetSettingsFromFlags().joint_map;
+  Status status = CheckOutputsApart({FLAGS_out, FLAGS_out_bvh, FLAGS_report},
+                                    {FLAGS_source, FLAGS_target, FLAGS_skeleton, joint_map});
+  if (!status.ok()) return status;
   const bool out_bvh = IsTextOutputPath(FLAGS_out, ".bvh");
   if (!FLAGS_out.empty() && !out_bvh && !HasExtension(FLAGS_out, ".glb") && !HasExtension(FLAGS_out, ".gltf") &&
       !HasExtension(FLAGS_out, ".fbx")) {
@@ -68,7 +64,7 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
   if (FLAGS_animation_only && (FLAGS_out.empty() || out_bvh)) {
     return Status::Error("--animation_only: applies to a .glb/.gltf/.fbx --out");
   }
-  Status status = CheckViewFlag({FLAGS_source, FLAGS_target, FLAGS_skeleton, RetargetSettingsFromFlags().joint_map});
+  status = CheckViewFlag({FLAGS_source, FLAGS_target, FLAGS_skeleton, joint_map});
   if (!status.ok()) return status;
   RetargetInputs task_inputs;
   task_inputs.source = FLAGS_source;
@@ -96,10 +92,7 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
     progress->Update(done);
   }, &task);
   if (!status.ok()) return status;
-  const CharacterRetargetResult& retarget = task.retarget;
-  const RetargetClipResult& result = retarget.clip;
-  const Motion& motion = task.source_motion;
-  for (const std::string& note : retarget.notes) {
+  for (const std::string& note : task.retarget.notes) {
     if (!FLAGS_quiet) std::fprintf(stderr, "note: %s\n", note.c_str());
   }
   const std::string name = RetargetAnimationName(task_inputs, FLAGS_animation_name);
@@ -109,45 +102,13 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
     if (!status.ok()) return status;
   }
   // --view: the source's skeleton beside the target character playing the result.
-  status = WriteViewFlag([&](ViewScene* scene) {
-    const Skeleton& skeleton = task.source_joints();
-    ViewTransform transform;
-    Status made = MakeMotionViewTransform(FLAGS_source, skeleton, motion, -1, &transform);
-    if (!made.ok()) return made;
-    scene->title = "retarget: " + FileStem(FLAGS_source) + " -> " + FileStem(FLAGS_target);
-    scene->frame_rate = motion.frame_rate > 0 ? motion.frame_rate : 30.0;
-    scene->notes.push_back(transform.note);
-    scene->skeletons.push_back(MakeViewSkeleton("source: " + FileStem(FLAGS_source), skeleton, motion, transform));
-    ViewCharacter character;
-    character.name = FileStem(FLAGS_target);
-    character.animation = name;
-    GltfWriteOptions page_copy;
-    page_copy.compact = true;  // Int16 rotations, still joints as one key: the page only plays it.
-    made = SerializeGltfWithAnimation(task.target_document, task.target, result.motion, name, /*binary=*/true,
-                                      &character.glb, page_copy);
-    if (made.ok()) scene->characters.push_back(std::move(character));
-    return made;
-  });
+  status = WriteViewFlag([&](ViewScene* scene) { return MakeRetargetViewScene(task_inputs, task, name, scene); });
   if (!status.ok()) return status;
   if (!FLAGS_out_bvh.empty()) {
     status = WriteBvh(FLAGS_out_bvh, task.target.skeleton, task.delivered);
     if (!status.ok()) return status;
   }
-  if (!FLAGS_quiet) {
-    const RetargetSetup& setup = retarget.setup;
-    int positions = 0;
-    for (const TrackedVertex& t : setup.tracked) positions += t.track_position ? 1 : 0;
-    std::fprintf(stderr,
-                 "%s -> %s (%s): %d frames, %zu tracked vertices (%d by position), %s: vertex error "
-                 "%.4f of height (max %.4f), normal error %.2f deg, foot skating %.4f -> %.4f "
-                 "heights/s; foot joints in contact: skating %.2f -> %.2f cm/s (%zu planted); %.3f ms/frame\n",
-                 FLAGS_source.c_str(), FLAGS_target.c_str(), retarget.skeleton_only ? "skeleton only" : "mesh",
-                 motion.num_frames(), setup.tracked.size(), positions, config.retarget.solver.c_str(),
-                 result.mean_position_error, result.max_position_error, result.mean_normal_error_deg,
-                 result.source_foot_skating, result.result_foot_skating, retarget.source_plant_skating_cm_s,
-                 retarget.result_plant_skating_cm_s, retarget.plant_joints.size(),
-                 1e3 * result.solve_seconds / motion.num_frames());
-  }
+  if (!FLAGS_quiet) std::fputs(RetargetSummary(task_inputs, config, task).c_str(), stderr);
   JsonObject report;
   report.Add("command", "retarget").Merge(task.report).Add("animation_only", FLAGS_animation_only);
   return WriteReport(report);

@@ -5,9 +5,11 @@
 
 #include "apps/command.h"
 #include "apps/common_flags.h"
+#include "apps/option_flags.h"
 #include "apps/progress.h"
 #include "apps/solver_flags.h"
 #include "apps/view_flags.h"
+#include "settings/plot_settings.h"
 #include "settings/view_page_settings.h"
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
@@ -17,7 +19,6 @@
 #include "tasks/solve_task.h"
 
 DEFINE_int32(max_frames, 0, "Solve only the first N frames (0 = all).");
-DECLARE_string(plot);  // apps/main.cc.
 DEFINE_string(residuals_csv, "", "Write the written motion's per-frame marker residual as CSV: frame, time (s), "
               "markers observed, RMS and max residual (mm, or skeleton units when the unit is unknown).");
 
@@ -26,6 +27,9 @@ namespace {
 
 Status SolveMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  PlotSetting plot_setting;
+  ReadOptionFlags(SolvePlotOption(), &plot_setting);
+  const std::string& plot = plot_setting.plot;
   std::vector<std::string> inputs;
   Status checked = MarkerTakeInputs(&inputs);
   if (!checked.ok()) return checked;
@@ -94,14 +98,14 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   status = WriteBvh(FLAGS_out, skeleton, motion, BvhWriteOptions());
   if (!status.ok()) return status;
   std::printf("wrote %s\n", FLAGS_out.c_str());
-  if (!FLAGS_plot.empty()) {
+  if (!plot.empty()) {
     PlotSeries rms{"per-frame " + solver.solver, {}};
     for (double v : sequence.frame_rms) rms.y.push_back(v * to_output);
-    status = WriteFileAtomically(FLAGS_plot, LinePlotSvg("RMS marker residual per frame: " + FLAGS_markers,
+    status = WriteFileAtomically(plot, LinePlotSvg("RMS marker residual per frame: " + FLAGS_markers,
                                                         "frame", std::string("RMS residual (") + unit + ")",
                                                         {rms}));
     if (!status.ok()) return status;
-    std::printf("wrote %s\n", FLAGS_plot.c_str());
+    std::printf("wrote %s\n", plot.c_str());
   }
   take.observed.resize(result.frames);  // The page shows the frames solved.
   status = WriteViewFlag([&](ViewScene* scene) {
@@ -119,7 +123,7 @@ Status SolveMain(const std::vector<std::string>& arguments) {
 }
 
 const std::string kSolveFlags =
-    std::string("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,plot,residuals_csv,"
+    std::string("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,residuals_csv,"
                 "max_frames");
 
 }  // namespace
@@ -134,6 +138,6 @@ extern const Command kSolveCommand = {
     "refines all frames as one sparse problem with smoothness. Missing markers are simply\n"
     "left out. Prints the RMS marker residual, iterations and time; --report writes them,\n"
     "--residuals_csv the residual of every frame of the written motion (--plot draws it).",
-    __FILE__, SolveMain, kSolveFlags.c_str(), {SolverOptions().options(), ViewPageOption().options()}};
+    __FILE__, SolveMain, kSolveFlags.c_str(), {SolverOptions().options(), ViewPageOption().options(), SolvePlotOption().options()}};
 
 }  // namespace mocapsolve

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <vector>
 
+#include "tasks/console_text.h"
 #include "io/bvh_writer.h"
 #include "io/fbx_writer.h"
 #include "io/gltf_writer.h"
@@ -197,6 +198,49 @@ Status WriteRetargeted(const std::string& out, const RetargetTaskResult& result,
   GltfWriteOptions write_options;
   write_options.animation_only = animation_only;
   return WriteGltfWithAnimation(result.target_document, result.target, motion, animation_name, out, write_options);
+}
+
+std::string RetargetSummary(const RetargetInputs& inputs, const RetargetConfig& config,
+                            const RetargetTaskResult& task) {
+  const CharacterRetargetResult& retarget = task.retarget;
+  const RetargetClipResult& result = retarget.clip;
+  const Motion& motion = task.source_motion;
+  int positions = 0;
+  for (const TrackedVertex& t : retarget.setup.tracked) positions += t.track_position ? 1 : 0;
+  std::string text;
+  AppendF(&text,
+          "%s -> %s (%s): %d frames, %zu tracked vertices (%d by position), %s: vertex error %.4f of height (max "
+          "%.4f), normal error %.2f deg, foot skating %.4f -> %.4f heights/s; foot joints in contact: skating %.2f -> "
+          "%.2f cm/s (%zu planted); %.3f ms/frame\n",
+          inputs.source.c_str(), inputs.target.c_str(), retarget.skeleton_only ? "skeleton only" : "mesh",
+          motion.num_frames(), retarget.setup.tracked.size(), positions, config.retarget.solver.c_str(),
+          result.mean_position_error, result.max_position_error, result.mean_normal_error_deg,
+          result.source_foot_skating, result.result_foot_skating, retarget.source_plant_skating_cm_s,
+          retarget.result_plant_skating_cm_s, retarget.plant_joints.size(),
+          1e3 * result.solve_seconds / motion.num_frames());
+  return text;
+}
+
+Status MakeRetargetViewScene(const RetargetInputs& inputs, const RetargetTaskResult& task,
+                             const std::string& animation_name, ViewScene* scene) {
+  const Skeleton& skeleton = task.source_joints();
+  const Motion& motion = task.source_motion;
+  ViewTransform transform;
+  Status made = MakeMotionViewTransform(inputs.source, skeleton, motion, -1, &transform);
+  if (!made.ok()) return made;
+  scene->title = "retarget: " + FileStem(inputs.source) + " -> " + FileStem(inputs.target);
+  scene->frame_rate = motion.frame_rate > 0 ? motion.frame_rate : 30.0;
+  scene->notes.push_back(transform.note);
+  scene->skeletons.push_back(MakeViewSkeleton("source: " + FileStem(inputs.source), skeleton, motion, transform));
+  ViewCharacter character;
+  character.name = FileStem(inputs.target);
+  character.animation = animation_name;
+  GltfWriteOptions page_copy;
+  page_copy.compact = true;  // Int16 rotations, still joints as one key: the page only plays it.
+  made = SerializeGltfWithAnimation(task.target_document, task.target, task.retarget.clip.motion, animation_name,
+                                    /*binary=*/true, &character.glb, page_copy);
+  if (made.ok()) scene->characters.push_back(std::move(character));
+  return made;
 }
 
 }  // namespace mocapsolve

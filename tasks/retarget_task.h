@@ -14,6 +14,7 @@
 #include "problems/retarget/retarget_character.h"
 #include "settings/retarget_settings.h"
 #include "signal/clip_delivery.h"
+#include "viewer/view_scene.h"
 
 namespace mocapsolve {
 
@@ -71,6 +72,16 @@ std::string RetargetAnimationName(const RetargetInputs& inputs, const std::strin
 // as the take named `animation_name`).
 Status WriteRetargeted(const std::string& out, const RetargetTaskResult& result, const std::string& animation_name,
                        bool animation_only);
+
+// The console line after RunRetarget: frames, tracked vertices, the vertex, normal and
+// foot-skating errors and the time per frame.
+std::string RetargetSummary(const RetargetInputs& inputs, const RetargetConfig& config,
+                            const RetargetTaskResult& result);
+
+// The page of `retarget --view`: the source's skeleton beside the target character playing
+// the result (its animation `animation_name`).
+Status MakeRetargetViewScene(const RetargetInputs& inputs, const RetargetTaskResult& result,
+                             const std::string& animation_name, ViewScene* scene);
 
 }  // namespace mocapsolve
 

@@ -1,0 +1,28 @@
+// The pipeline's flags (apps/pipeline_command.cc): the names a --config file may set, and
+// the TakePipelineOptions made from the parsed flags (repair, retarget, filter, gate,
+// delivery), each through its settings' one conversion.
+#ifndef MOCAPSOLVE_APPS_PIPELINE_FLAGS_H_
+#define MOCAPSOLVE_APPS_PIPELINE_FLAGS_H_
+
+#include <string>
+
+#include <gflags/gflags.h>
+
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+#include "pipeline/take_pipeline.h"
+
+DECLARE_string(take_name);
+DECLARE_int32(filter_levels);
+
+namespace mocapsolve {
+
+// The options a config file may set and --print_config prints, comma-separated.
+const std::string& PipelineOptionFlags();
+
+// Every stage's options from the flags; errors name the flag.
+Status TakePipelineOptionsFromFlags(const Skeleton& skeleton, TakePipelineOptions* options);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_APPS_PIPELINE_FLAGS_H_
