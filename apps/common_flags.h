@@ -8,6 +8,7 @@
 
 #include <gflags/gflags.h>
 
+#include "io/atomic_file.h"
 #include "io/json_writer.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
@@ -88,8 +89,7 @@ JsonObject OptionsInForce();
 // it publishes them; a command names its own steps in between ("inputs", "solve", ...).
 void SetStage(const std::string& stage);
 
-// An output path must not name one of the inputs.
-Status CheckNotAnInput(const std::string& output, const std::string& input);
+// CheckNotAnInput (an output path must not name one of the inputs): io/atomic_file.h.
 
 // Every given output (empty = not asked for) names none of the given inputs and no other
 // output ("X: named by two output flags").

@@ -459,12 +459,6 @@ Status RunCommand(const Command& command, const std::vector<std::string>& positi
 
 }  // namespace
 
-Status CheckNotAnInput(const std::string& output, const std::string& input) {
-  if (output == input || SameFile(output, input)) {
-    return Status::Error(output + ": output would overwrite the input " + input);
-  }
-  return Status::Ok();
-}
 
 Status CheckOutputsApart(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
   for (size_t a = 0; a < outputs.size(); ++a) {

@@ -293,4 +293,9 @@ bool SameFile(const std::string& a, const std::string& b) {
   return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
+Status CheckNotAnInput(const std::string& output, const std::string& input) {
+  if (input.empty() || (output != input && !SameFile(output, input))) return Status::Ok();
+  return Status::Error(output + ": output would overwrite the input " + input);
+}
+
 }  // namespace mocapsolve

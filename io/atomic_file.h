@@ -63,6 +63,10 @@ Status MakeFolders(const std::string& path);
 // True if both paths name the same existing file (used to refuse overwriting an input).
 bool SameFile(const std::string& a, const std::string& b);
 
+// An output path must not name one of the inputs ("" names none): the one-line error
+// "OUT: output would overwrite the input IN".
+Status CheckNotAnInput(const std::string& output, const std::string& input);
+
 // An output written but not yet visible: an unnamed temporary file in the target's
 // folder (O_TMPFILE; a named "<target>.tmp.<pid>.<n>" where the file system lacks it),
 // or, for a target that is a character device or FIFO, the bytes held for writing into
