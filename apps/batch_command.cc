@@ -11,6 +11,7 @@
 #include "apps/progress.h"
 #include "apps/config_flags.h"
 #include "apps/delivery_flags.h"
+#include "apps/option_flags.h"
 #include "batch/worker_process.h"
 #include "tasks/batch_task.h"
 
@@ -24,30 +25,12 @@ DEFINE_string(markers_glob, "", "Instead of --manifest: one take per marker file
               "(quote it), all with --subject and --character.");
 DEFINE_string(write_manifest, "", "Write the batch's manifest (e.g. the one --markers_glob built) to this "
               "file.");
-DEFINE_int32(jobs, 0, "Takes run at the same time, each in its own process; 0 = the number of cores.");
-DEFINE_double(take_timeout, 0.0, "A take running longer than this (seconds) is killed and listed as "
-              "failed ('timeout'); 0 = no limit.");
-DEFINE_int32(take_memory_mb, 0, "Address-space limit of each take's process (MB, RLIMIT_AS); a take "
-             "exceeding it fails; 0 = no limit.");
-DEFINE_int32(take_threads, 0, "Threads of each take (the pipeline's --num_threads, unless the manifest gives "
-             "it); 0 = the cores over --jobs, at least 1. Speed only: results and keys do not depend on it.");
-DEFINE_bool(force, false, "Redo every take, finished or not.");
-DEFINE_string(shard, "", "Run shard i/n of the batch only (0 <= i < n): the takes at manifest positions p "
-              "with p % n == i; its summary is DIR/summary.shard<i>of<n>.json/.csv (then `batch --merge`). "
-              "Default under a Slurm job array: SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN / "
-              "SLURM_ARRAY_TASK_COUNT.");
-DEFINE_bool(merge, false, "Build DIR/summary.json/.csv from the takes' records alone (after the shards "
-            "ran): the manifest's takes (a take without a record is 'missing'), or without --manifest every "
-            "DIR/*/record.json.");
-DEFINE_bool(retry_failed, false, "Redo the takes that failed in an earlier run (otherwise they are "
-            "skipped and stay listed as failed).");
-
 namespace mocapsolve {
 namespace {
 
-// --shard, or the Slurm job array's task ("" = the whole batch).
-std::string ShardFromFlagOrSlurm() {
-  std::string text = FLAGS_shard;
+// `shard`, or the Slurm job array's task ("" = the whole batch).
+std::string ShardOrSlurm(const std::string& shard) {
+  std::string text = shard;
   const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
   const char* tasks = std::getenv("SLURM_ARRAY_TASK_COUNT");
   if (text.empty() && id != nullptr && tasks != nullptr) {
@@ -78,14 +61,8 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
   inputs.pipeline_options = GivenFlagsJson(DeliverySettingOptions().Names());
   inputs.write_manifest = FLAGS_write_manifest;
-  inputs.jobs = FLAGS_jobs;
-  inputs.take_threads = FLAGS_take_threads;
-  inputs.take_timeout = FLAGS_take_timeout;
-  inputs.take_memory_mb = FLAGS_take_memory_mb;
-  inputs.force = FLAGS_force;
-  inputs.retry_failed = FLAGS_retry_failed;
-  inputs.merge = FLAGS_merge;
-  inputs.shard = ShardFromFlagOrSlurm();
+  ReadOptionFlags(BatchSettingOptions(), &inputs.settings);
+  inputs.settings.shard = ShardOrSlurm(inputs.settings.shard);
   inputs.executable = SelfExecutable();
   inputs.version = Version();
   ProgressLine line(FLAGS_quiet);  // In place on a terminal, a line every few seconds in a log.
@@ -165,6 +142,6 @@ extern const Command kBatchCommand = {
     "manifest's defaults; a take's own value still wins).\n"
     "Exit code: 0 every take done, 2 some failed or gate_failed, 1 bad manifest or flags\n"
     "(its form: JSON, keys, types, names) or an output that is an input.",
-    __FILE__, RunBatchCommand, "subject,character,out_dir,quiet", {DeliverySettingOptions().options()}};
+    __FILE__, RunBatchCommand, "subject,character,out_dir,quiet", {BatchSettingOptions().options(), DeliverySettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -205,14 +205,14 @@ Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the
         inputs.characters = characters;
         inputs.out_dir = out_dir;
         inputs.write_manifest = write_manifest;
-        inputs.jobs = jobs;
-        inputs.take_threads = take_threads;
-        inputs.take_timeout = take_timeout;
-        inputs.take_memory_mb = take_memory_mb;
-        inputs.force = force;
-        inputs.retry_failed = retry_failed;
-        inputs.merge = merge;
-        inputs.shard = shard;
+        inputs.settings.jobs = jobs;
+        inputs.settings.take_threads = take_threads;
+        inputs.settings.take_timeout = take_timeout;
+        inputs.settings.take_memory_mb = take_memory_mb;
+        inputs.settings.force = force;
+        inputs.settings.retry_failed = retry_failed;
+        inputs.settings.merge = merge;
+        inputs.settings.shard = shard;
         inputs.executable = BatchExecutable(executable);
         inputs.version = ExecutableVersion(inputs.executable);
         BatchTaskResult task;
@@ -232,8 +232,11 @@ Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the
         return out;
       }, py::kw_only(), py::arg("manifest") = "", py::arg("markers_glob") = "", py::arg("subject") = "",
       py::arg("characters") = std::vector<std::string>(), py::arg("out_dir") = "", py::arg("write_manifest") = "",
-      py::arg("jobs") = 0, py::arg("take_threads") = 0, py::arg("take_timeout") = 0.0, py::arg("take_memory_mb") = 0,
-      py::arg("force") = false, py::arg("retry_failed") = false, py::arg("merge") = false, py::arg("shard") = "",
+      // The declared defaults (settings/batch_settings.h).
+      py::arg("jobs") = BatchSettings().jobs, py::arg("take_threads") = BatchSettings().take_threads,
+      py::arg("take_timeout") = BatchSettings().take_timeout, py::arg("take_memory_mb") = BatchSettings().take_memory_mb,
+      py::arg("force") = BatchSettings().force, py::arg("retry_failed") = BatchSettings().retry_failed,
+      py::arg("merge") = BatchSettings().merge, py::arg("shard") = BatchSettings().shard,
       py::arg("executable") = "",
       R"doc(Many takes through the pipeline, as `mocapsolve batch` (the same task): each take in
 its own worker process running `executable pipeline`, resumable (a take whose key of

@@ -13,15 +13,14 @@ namespace mocapsolve {
 namespace {
 
 Status CheckInputs(const BatchInputs& inputs) {
-  if (inputs.merge && inputs.out_dir.empty()) return Status::Error("--merge needs --out_dir");
-  if (inputs.merge && inputs.manifest.empty()) return Status::Ok();
+  if (inputs.settings.merge && inputs.out_dir.empty()) return Status::Error("--merge needs --out_dir");
+  if (inputs.settings.merge && inputs.manifest.empty()) return Status::Ok();
   if (inputs.manifest.empty() == inputs.markers_glob.empty()) {
     return Status::Error("give either --manifest or --markers_glob (with --subject)");
   }
   if (inputs.out_dir.empty() && inputs.write_manifest.empty()) return Status::Error("--out_dir is required");
-  if (inputs.take_timeout < 0 || inputs.take_memory_mb < 0 || inputs.jobs < 0 || inputs.take_threads < 0) {
-    return Status::Error("--jobs, --take_threads, --take_timeout and --take_memory_mb must not be negative");
-  }
+  Status status = BatchSettingOptions().Validate(inputs.settings);
+  if (!status.ok()) return status;
   if (!inputs.manifest.empty() && (!inputs.subject.empty() || !inputs.characters.empty())) {
     return Status::Error("--subject and --character go with --markers_glob; a manifest names its own");
   }
@@ -66,14 +65,14 @@ Status RunBatchTask(const BatchInputs& inputs, const std::function<void(const Ba
   *out = BatchTaskResult();
   Status status = CheckInputs(inputs);
   if (!status.ok()) return status;
-  if (inputs.merge && inputs.manifest.empty()) return Merge(inputs, nullptr, out);
+  if (inputs.settings.merge && inputs.manifest.empty()) return Merge(inputs, nullptr, out);
   BatchOptions pipeline_options;
   BatchManifest manifest;
   status = LoadManifest(inputs, &pipeline_options, &manifest);
   if (!status.ok()) return status;
-  if (inputs.merge) return Merge(inputs, &manifest, out);
+  if (inputs.settings.merge) return Merge(inputs, &manifest, out);
 
-  status = ParseShard(inputs.shard, &out->shard, &out->shards);
+  status = ParseShard(inputs.settings.shard, &out->shard, &out->shards);
   if (!status.ok()) return status;
   const std::string shard_name =
       out->shards == 1 ? "" : ".shard" + std::to_string(out->shard) + "of" + std::to_string(out->shards);
@@ -103,12 +102,12 @@ Status RunBatchTask(const BatchInputs& inputs, const std::function<void(const Ba
   }
   options.out_dir = inputs.out_dir;
   const int cores = std::max(1u, std::thread::hardware_concurrency());
-  options.jobs = inputs.jobs > 0 ? inputs.jobs : cores;
-  options.take_threads = inputs.take_threads > 0 ? inputs.take_threads : std::max(1, cores / options.jobs);
-  options.limits.timeout_seconds = inputs.take_timeout;
-  options.limits.memory_mb = inputs.take_memory_mb;
-  options.force = inputs.force;
-  options.retry_failed = inputs.retry_failed;
+  options.jobs = inputs.settings.jobs > 0 ? inputs.settings.jobs : cores;
+  options.take_threads = inputs.settings.take_threads > 0 ? inputs.settings.take_threads : std::max(1, cores / options.jobs);
+  options.limits.timeout_seconds = inputs.settings.take_timeout;
+  options.limits.memory_mb = inputs.settings.take_memory_mb;
+  options.force = inputs.settings.force;
+  options.retry_failed = inputs.settings.retry_failed;
   const std::string& summary_base = out->summary_base;
   options.checkpoint = [&options, &summary_base, &inputs](const BatchResult& partial) {
     // A summary as takes end: a killed batch leaves one. (A failed write is retried next time.)

@@ -12,6 +12,7 @@
 
 #include "batch/batch_runner.h"
 #include "kinematics/status.h"
+#include "settings/batch_settings.h"
 
 namespace mocapsolve {
 
@@ -25,14 +26,7 @@ struct BatchInputs {
   // they replace the manifest's defaults, a take's own value still wins.
   std::string pipeline_options;
   std::string write_manifest;  // Also write the batch's manifest here (alone: without out_dir).
-  int jobs = 0;                // Takes at once; 0 = the cores.
-  int take_threads = 0;        // Threads per take; 0 = the cores over jobs, at least 1.
-  double take_timeout = 0.0;   // Seconds; 0 = no limit.
-  int take_memory_mb = 0;      // RLIMIT_AS per take; 0 = no limit.
-  bool force = false;          // Redo every take.
-  bool retry_failed = false;   // Redo the takes that failed before.
-  bool merge = false;          // Only rebuild the summary from the records.
-  std::string shard;           // "i/n": the takes at positions p % n == i; "" = all.
+  BatchSettings settings;      // Jobs, threads, limits, force/retry, merge, shard.
   std::string executable;      // The mocapsolve CLI the workers run.
   std::string version;         // Its version (part of every take's key).
 };
