@@ -7,12 +7,20 @@
 
 #include <gtest/gtest.h>
 
+#include "settings/batch_settings.h"
+#include "settings/calibrate_settings.h"
+#include "settings/convert_settings.h"
 #include "settings/corruption_settings.h"
 #include "settings/delivery_settings.h"
 #include "settings/falloff_settings.h"
+#include "settings/method_settings.h"
+#include "settings/plot_settings.h"
+#include "settings/propagate_settings.h"
 #include "settings/repair_settings.h"
 #include "settings/retarget_settings.h"
+#include "settings/skeleton_fit_settings.h"
 #include "settings/solver_settings.h"
+#include "settings/view_page_settings.h"
 
 namespace mocapsolve {
 namespace {
@@ -152,6 +160,27 @@ TEST(Option, TheDeclaredGroupsAreWellFormed) {
   ExpectWellDeclared(CorruptionSettingOptions(), CorruptionSettings());
   ExpectWellDeclared(FalloffSettingOptions(), FalloffSettings());
   ExpectWellDeclared(DeliverySettingOptions(), DeliverySettings());
+  ExpectWellDeclared(SkeletonFitSettingOptions(), SkeletonFitSettings());
+  ExpectWellDeclared(CalibrateSettingOptions(), CalibrateSettings());
+  ExpectWellDeclared(ConvertSettingOptions(), ConvertSettings());
+  ExpectWellDeclared(BatchSettingOptions(), BatchSettings());
+  ExpectWellDeclared(PropagateSettingOptions(), PropagateSettings());
+  ExpectWellDeclared(ViewPageOption(), ViewPageSetting());
+  ExpectWellDeclared(SolvePlotOption(), PlotSetting());
+  ExpectWellDeclared(DistancePlotOption(), PlotSetting());
+}
+
+// Each command's own --method and --view: one name, the command's own default and check.
+TEST(Option, ACommandsOwnDefaultIsItsDeclaration) {
+  EXPECT_EQ(DefaultMethod(EvaluateMethodOption()), "repair");
+  EXPECT_EQ(DefaultMethod(PropagateMethodOption()), "green");
+  EXPECT_EQ(DefaultMethod(DistanceMethodOption()), "green");
+  EXPECT_EQ(DefaultMethod(BlendMethodOption()), "multires");
+  EXPECT_EQ(TakeViewPageOption().Defaults().view, "auto");
+  EXPECT_EQ(ViewPageOption().Defaults().view, "");
+  EXPECT_EQ(PropagateMethodOption().Validate(MethodSetting{"multires"}).message(),
+            "--method: unknown 'multires' (green, harmonic, spline)");
+  EXPECT_TRUE(BlendMethodOption().Validate(MethodSetting{"multires"}).ok());
 }
 
 TEST(Option, TheSettingsConversionsCheckAgainstTheDeclarations) {
