@@ -17,7 +17,7 @@
 
 DECLARE_string(subject);    // apps/main.cc
 DECLARE_string(character);  // apps/main.cc
-DECLARE_string(out_dir);    // apps/pipeline_command.cc
+DECLARE_string(out_dir);    // apps/pipeline_flags.cc
 
 DEFINE_string(manifest, "", "Batch manifest (.json): {\"defaults\": {...}, \"takes\": [{\"name\", \"markers\", "
               "\"subject\", \"characters\", ...options}]}; relative paths are relative to it.");

@@ -7,19 +7,18 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "apps/config_flags.h"
-#include "apps/option_flags.h"
-#include "apps/progress.h"
 #include "apps/delivery_flags.h"
+#include "apps/option_flags.h"
 #include "apps/pipeline_flags.h"
+#include "apps/progress.h"
 #include "apps/retarget_flags.h"
-#include "apps/view_flags.h"
-#include "io/atomic_file.h"
+#include "io/comma_list.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
+#include "pipeline/quality_gate.h"
 #include "pipeline/take_pipeline.h"
 #include "settings/delivery_settings.h"
 #include "settings/pyramid_settings.h"
-#include "pipeline/quality_gate.h"
 #include "settings/repair_settings.h"
 #include "settings/retarget_settings.h"
 #include "settings/view_page_settings.h"
@@ -27,8 +26,6 @@
 
 DECLARE_string(subject);  // apps/main.cc
 
-DEFINE_string(out_dir, "", "Folder of the take's outputs (created if missing; nothing is written "
-              "there when the take fails).");
 DEFINE_string(config, "", "JSON file of options: keys are this command's flag names (see "
               "--print_config); flags given on the command line override it.");
 DEFINE_bool(print_config, false, "Print every option of the pipeline with its value (the defaults, "
@@ -38,24 +35,6 @@ namespace mocapsolve {
 extern const Command kPipelineCommand;  // Below: its declared options check --config's values.
 
 namespace {
-
-// The take's page, as --view says (TakeViewPath; a PAGE.html must be no input). *path: ""
-// for none.
-Status ViewPageOfTake(std::string* path) {
-  ViewPageSetting view;
-  ReadOptionFlags(TakeViewPageOption(), &view);
-  if (view.view != "auto" && view.view != "off") {
-    std::vector<std::string> inputs = {FLAGS_subject, FLAGS_markers};
-    for (const std::string& character : SplitCommaList(FLAGS_character)) inputs.push_back(character);
-    Status status = CheckViewFlag(inputs);
-    if (!status.ok()) return status;
-  }
-  std::string warning;
-  Status status = TakeViewPath(view.view, FLAGS_out_dir, path, &warning);
-  // A warning, not progress: printed with --quiet too.
-  if (!warning.empty()) std::fprintf(stderr, "warning: pipeline: %s\n", warning.c_str());
-  return status;
-}
 
 Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");

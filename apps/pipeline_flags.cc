@@ -1,16 +1,22 @@
 #include "apps/pipeline_flags.h"
 
+#include "apps/common_flags.h"
 #include "apps/delivery_flags.h"
 #include "apps/option_flags.h"
 #include "apps/pyramid_flags.h"
 #include "apps/repair_flags.h"
 #include "apps/retarget_flags.h"
+#include "apps/view_flags.h"
+#include "io/comma_list.h"
 #include "pipeline/quality_gate.h"
 #include "settings/delivery_settings.h"
 #include "settings/pyramid_settings.h"
 #include "settings/repair_settings.h"
 #include "settings/retarget_settings.h"
+#include "settings/view_page_settings.h"
 
+DEFINE_string(out_dir, "", "Folder of the take's outputs (created if missing; nothing is written "
+              "there when the take fails).");
 DEFINE_string(take_name, "", "The take's name: the characters' new animation (default: the marker "
               "file's name without extension).");
 DEFINE_int32(filter_levels, 0, "Filter the solved motion: drop the N finest bands of its Laplacian "
@@ -38,6 +44,24 @@ Status TakePipelineOptionsFromFlags(const Skeleton& skeleton, TakePipelineOption
   std::string error;
   if (!options->IsValid(&error)) return Status::Error(error);
   return Status::Ok();
+}
+
+// The take's page, as --view says (TakeViewPath; a PAGE.html must be no input). *path: ""
+// for none.
+Status ViewPageOfTake(std::string* path) {
+  ViewPageSetting view;
+  ReadOptionFlags(TakeViewPageOption(), &view);
+  if (view.view != "auto" && view.view != "off") {
+    std::vector<std::string> inputs = {FLAGS_subject, FLAGS_markers};
+    for (const std::string& character : SplitCommaList(FLAGS_character)) inputs.push_back(character);
+    Status status = CheckViewFlag(inputs);
+    if (!status.ok()) return status;
+  }
+  std::string warning;
+  Status status = TakeViewPath(view.view, FLAGS_out_dir, path, &warning);
+  // A warning, not progress: printed with --quiet too.
+  if (!warning.empty()) std::fprintf(stderr, "warning: pipeline: %s\n", warning.c_str());
+  return status;
 }
 
 }  // namespace mocapsolve

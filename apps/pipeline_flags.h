@@ -12,6 +12,7 @@
 #include "kinematics/status.h"
 #include "pipeline/take_pipeline.h"
 
+DECLARE_string(out_dir);
 DECLARE_string(take_name);
 DECLARE_int32(filter_levels);
 
@@ -19,6 +20,10 @@ namespace mocapsolve {
 
 // The options a config file may set and --print_config prints, comma-separated.
 const std::string& PipelineOptionFlags();
+
+// The take's page, as --view says (auto, off or PAGE.html, which must be no input; a
+// missing viewer runtime is a warning for auto, an error for a page asked for): "" for none.
+Status ViewPageOfTake(std::string* path);
 
 // Every stage's options from the flags; errors name the flag.
 Status TakePipelineOptionsFromFlags(const Skeleton& skeleton, TakePipelineOptions* options);
