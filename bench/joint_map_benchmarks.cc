@@ -12,18 +12,13 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_data.h"
 #include "io/gltf_reader.h"
 #include "io/motion_file.h"
 #include "problems/retarget/joint_map.h"
 
 namespace mocapsolve {
 namespace {
-
-std::string DataFile(const std::string& relative) {
-  const char* env = std::getenv("MOCAPSOLVE_DATA");
-  const std::string root = env != nullptr && *env ? env : MOCAPSOLVE_SOURCE_DIR "/../shared/data";
-  return root + "/" + relative;
-}
 
 void BM_JointMap(benchmark::State& state, const char* target_name, bool rename) {
   Skeleton source;

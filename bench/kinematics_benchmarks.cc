@@ -10,6 +10,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_data.h"
 #include "io/atomic_file.h"
 #include "io/bvh_reader.h"
 #include "kinematics/demo_character.h"
@@ -19,12 +20,6 @@
 
 namespace mocapsolve {
 namespace {
-
-std::string DataFile(const std::string& relative) {
-  const char* env = std::getenv("MOCAPSOLVE_DATA");
-  const std::string root = env != nullptr && *env ? env : MOCAPSOLVE_SOURCE_DIR "/../shared/data";
-  return root + "/" + relative;
-}
 
 // The CMU 31-joint clip, loaded once.
 struct Clip {
