@@ -44,6 +44,13 @@ inline std::string KeywordHelp(const std::vector<Option>& options, const py::obj
   return text;
 }
 
+// The settings class's attributes, one per declared option of `group` (the name, the field):
+// a new declaration is an attribute without a line here.
+template <class Settings, class... Extra>
+void BindOptionFields(py::class_<Settings, Extra...>& cls, const OptionGroup<Settings>& group) {
+  group.VisitFields([&](const Option& option, auto field) { cls.def_readwrite(option.name.c_str(), field); });
+}
+
 }  // namespace mocapsolve::python
 
 #endif  // MOCAPSOLVE_PYTHON_KEYWORD_DOCS_H_

@@ -39,12 +39,7 @@ void BindPropagate(py::module_& m) {
       "The pose-space falloff's options, one per flag of `mocapsolve distance`/`propagate`\n"
       "(same names and defaults). falloff() takes them as keywords.");
   settings.def(py::init<>(), "Every option at the CLI's default.");
-#define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &FalloffSettings::name)
-  MOCAPSOLVE_FIELD(sigma); MOCAPSOLVE_FIELD(sigma_scale); MOCAPSOLVE_FIELD(eigenpairs);
-  MOCAPSOLVE_FIELD(region); MOCAPSOLVE_FIELD(diffusion_steps); MOCAPSOLVE_FIELD(knn);
-  MOCAPSOLVE_FIELD(isomap_knn); MOCAPSOLVE_FIELD(falloff_kernel); MOCAPSOLVE_FIELD(feature_joints);
-  MOCAPSOLVE_FIELD(joint_weights); MOCAPSOLVE_FIELD(temporal_weight);
-#undef MOCAPSOLVE_FIELD
+  BindOptionFields(settings, FalloffSettingOptions());
   settings.def("validate", [](const FalloffSettings& s, int num_frames) {
         FalloffOptions options;
         ThrowIfError(FalloffOptionsFromSettings(s, num_frames, &options));
@@ -201,11 +196,7 @@ where the weight ends, ...) plus 'weights' and 'distances' {method: (frames,) ar
       "`mocapsolve propagate`'s own options (the IK edit's root pull, the harmonic and spline\n"
       "falloffs, the foot contacts); same names, defaults and units as its flags.");
   propagate_settings.def(py::init<>(), "Every option at the CLI's default.");
-#define MOCAPSOLVE_FIELD(name) propagate_settings.def_readwrite(#name, &PropagateSettings::name)
-  MOCAPSOLVE_FIELD(ik_root_weight); MOCAPSOLVE_FIELD(harmonic_ground); MOCAPSOLVE_FIELD(spline_width);
-  MOCAPSOLVE_FIELD(keep_contacts); MOCAPSOLVE_FIELD(contact_height_cm); MOCAPSOLVE_FIELD(contact_speed_cm);
-  MOCAPSOLVE_FIELD(contact_prior_cm); MOCAPSOLVE_FIELD(contact_blend_s); MOCAPSOLVE_FIELD(compare_falloffs);
-#undef MOCAPSOLVE_FIELD
+  BindOptionFields(propagate_settings, PropagateSettingOptions());
   m.attr("PROPAGATE_OPTION_NAMES") = PropagateSettingOptions().Names();
 
   m.def("propagate", [](const Skeleton& skeleton, const Motion& motion, const std::string& edit,

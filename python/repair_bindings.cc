@@ -24,17 +24,7 @@ void BindRepair(py::module_& m) {
       "Marker repair's options, one per flag of `mocapsolve repair` (same names, defaults and\n"
       "units: cm, degrees, frames). repair() takes them, and the SolverSettings, as keywords.");
   settings.def(py::init<>(), "Every option at the CLI's default.");
-#define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &RepairSettings::name)
-  MOCAPSOLVE_FIELD(dp_max_cm); MOCAPSOLVE_FIELD(dr_max_deg); MOCAPSOLVE_FIELD(outlier_cm);
-  MOCAPSOLVE_FIELD(outliers); MOCAPSOLVE_FIELD(outlier_mads); MOCAPSOLVE_FIELD(outlier_min_cm);
-  MOCAPSOLVE_FIELD(undo_swaps); MOCAPSOLVE_FIELD(swap_radius_cm); MOCAPSOLVE_FIELD(swap_min_frames);
-  MOCAPSOLVE_FIELD(assign_unlabelled); MOCAPSOLVE_FIELD(unlabelled_min_cm); MOCAPSOLVE_FIELD(unlabelled_max_cm);
-  MOCAPSOLVE_FIELD(unlabelled_min_frames);
-  MOCAPSOLVE_FIELD(trim_max); MOCAPSOLVE_FIELD(small_track); MOCAPSOLVE_FIELD(small_gap);
-  MOCAPSOLVE_FIELD(vel_clamp); MOCAPSOLVE_FIELD(edge_samples); MOCAPSOLVE_FIELD(fill); MOCAPSOLVE_FIELD(fill_samples); MOCAPSOLVE_FIELD(refit_reference); MOCAPSOLVE_FIELD(refit_rough_factor); MOCAPSOLVE_FIELD(rough_extension_factor); MOCAPSOLVE_FIELD(carry_joints); MOCAPSOLVE_FIELD(reference); MOCAPSOLVE_FIELD(reference_loss);
-  MOCAPSOLVE_FIELD(reference_loss_cm); MOCAPSOLVE_FIELD(tracker_prior_weight);
-  MOCAPSOLVE_FIELD(tracker_translation_prior); MOCAPSOLVE_FIELD(tracker_function_tolerance);
-#undef MOCAPSOLVE_FIELD
+  BindOptionFields(settings, RepairSettingOptions());
   settings.def("validate", [](const RepairSettings& s, const SolverSettings& solver, const std::string& units) {
         JointSpec root;
         root.name = "root";
@@ -95,16 +85,7 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
       "The synthetic damage's options, one per flag of `mocapsolve corrupt`/`evaluate` (same\n"
       "names and defaults; distances in mm).");
   damage.def(py::init<>(), "Every option at the CLI's default.");
-#define MOCAPSOLVE_FIELD(name) damage.def_readwrite(#name, &CorruptionSettings::name)
-  MOCAPSOLVE_FIELD(seed); MOCAPSOLVE_FIELD(gaps); MOCAPSOLVE_FIELD(gap_min); MOCAPSOLVE_FIELD(gap_max);
-  MOCAPSOLVE_FIELD(cluster_gaps); MOCAPSOLVE_FIELD(cluster_radius_mm); MOCAPSOLVE_FIELD(fly_off_frames);
-  MOCAPSOLVE_FIELD(fly_off_mm); MOCAPSOLVE_FIELD(swaps); MOCAPSOLVE_FIELD(swap_length);
-  MOCAPSOLVE_FIELD(swap_radius_mm); MOCAPSOLVE_FIELD(noisy_markers); MOCAPSOLVE_FIELD(noise_length);
-  MOCAPSOLVE_FIELD(noise_sigma_mm); MOCAPSOLVE_FIELD(swaps_in_gaps); MOCAPSOLVE_FIELD(jitter_markers);
-  MOCAPSOLVE_FIELD(jitter_length); MOCAPSOLVE_FIELD(jitter_mm); MOCAPSOLVE_FIELD(ghosts);
-  MOCAPSOLVE_FIELD(ghost_length); MOCAPSOLVE_FIELD(ghost_mm); MOCAPSOLVE_FIELD(unlabels);
-  MOCAPSOLVE_FIELD(unlabel_length);
-#undef MOCAPSOLVE_FIELD
+  BindOptionFields(damage, CorruptionSettingOptions());
   damage.def("validate", [](const CorruptionSettings& s, const std::string& units) {
         CorruptionOptions options;
         ThrowIfError(CorruptionOptionsFromSettings(s, LengthUnitFromName(units), &options));

@@ -16,15 +16,9 @@ void BindRetarget(py::module_& m) {
       "The retargeting options, one per flag of `mocapsolve retarget`/`pipeline` (same names and\n"
       "defaults; solver is dls | dls_generic | ceres). retarget() takes them as keywords.");
   settings.def(py::init<>(), "Every option at the CLI's default.");
-#define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &RetargetSettings::name)
-  MOCAPSOLVE_FIELD(solver); MOCAPSOLVE_FIELD(limit_weight); MOCAPSOLVE_FIELD(joint_map);
-  MOCAPSOLVE_FIELD(plant_feet); MOCAPSOLVE_FIELD(plant_weight); MOCAPSOLVE_FIELD(plant_height);
-  MOCAPSOLVE_FIELD(plant_speed); MOCAPSOLVE_FIELD(foot_joints); MOCAPSOLVE_FIELD(subsample);
-  MOCAPSOLVE_FIELD(iterations); MOCAPSOLVE_FIELD(lambda); MOCAPSOLVE_FIELD(blend_mask);
-  MOCAPSOLVE_FIELD(mapping_normal_weight); MOCAPSOLVE_FIELD(transfer_normals);
-  MOCAPSOLVE_FIELD(normal_weight); MOCAPSOLVE_FIELD(smoothness); MOCAPSOLVE_FIELD(contact_height);
-  MOCAPSOLVE_FIELD(ceres_trust_radius);
-#undef MOCAPSOLVE_FIELD
+  BindOptionFields(settings, RetargetSolverOptions());
+  BindOptionFields(settings, RetargetSettingOptions());
+  settings.def_readwrite("foot_joints", &RetargetSettings::foot_joints);  // Not a declared option of this group.
   settings.def("validate", [](const RetargetSettings& s) {
         CharacterRetargetOptions options;
         ThrowIfError(RetargetOptionsFromSettings(s, &options));

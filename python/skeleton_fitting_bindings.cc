@@ -18,12 +18,7 @@ void BindSkeletonFitting(py::module_& m) {
       "The skeleton fit's options, one per flag of `mocapsolve fit_skeleton` (same names and\n"
       "defaults). fit_skeleton() takes them as keywords.");
   settings.def(py::init<>(), "Every option at the CLI's default.");
-#define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &SkeletonFitSettings::name)
-  MOCAPSOLVE_FIELD(fit_iterations); MOCAPSOLVE_FIELD(attach_rounds); MOCAPSOLVE_FIELD(attach_iterations);
-  MOCAPSOLVE_FIELD(fit_frame_step); MOCAPSOLVE_FIELD(fit_max_frames); MOCAPSOLVE_FIELD(max_skin_cm);
-  MOCAPSOLVE_FIELD(min_bone_scale); MOCAPSOLVE_FIELD(max_bone_scale); MOCAPSOLVE_FIELD(offset_prior);
-  MOCAPSOLVE_FIELD(fit_outlier_mm); MOCAPSOLVE_FIELD(check); MOCAPSOLVE_FIELD(template_labels);
-#undef MOCAPSOLVE_FIELD
+  BindOptionFields(settings, SkeletonFitSettingOptions());
   settings.def("validate", [](const SkeletonFitSettings& s) { ThrowIfError(ValidateSkeletonFitSettings(s)); },
                "Raises ValueError (the CLI's message) if a value is invalid.");
   m.attr("SKELETON_FIT_OPTION_NAMES") = SkeletonFitSettingOptions().Names();

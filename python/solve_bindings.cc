@@ -137,17 +137,8 @@ void BindSolve(py::module_& m) {
       "The marker solver's options, one per flag of `mocapsolve solve` (same names, defaults\n"
       "and units). Keyword arguments of solve(), FrameSolver(), repair() set these.");
   settings.def(py::init<>(), "Every option at the CLI's default.");
-#define MOCAPSOLVE_FIELD(name) settings.def_readwrite(#name, &SolverSettings::name)
-  MOCAPSOLVE_FIELD(solver); MOCAPSOLVE_FIELD(mode); MOCAPSOLVE_FIELD(linear_solver);
-  MOCAPSOLVE_FIELD(trust_region); MOCAPSOLVE_FIELD(max_iterations); MOCAPSOLVE_FIELD(function_tolerance);
-  MOCAPSOLVE_FIELD(gradient_tolerance); MOCAPSOLVE_FIELD(parameter_tolerance); MOCAPSOLVE_FIELD(num_threads);
-  MOCAPSOLVE_FIELD(loss); MOCAPSOLVE_FIELD(loss_scale); MOCAPSOLVE_FIELD(marker_weight);
-  MOCAPSOLVE_FIELD(prior_weight); MOCAPSOLVE_FIELD(prior_translation_weight); MOCAPSOLVE_FIELD(rest_prior_weight); MOCAPSOLVE_FIELD(limit_weight);
-  MOCAPSOLVE_FIELD(smooth_order); MOCAPSOLVE_FIELD(smooth_weight); MOCAPSOLVE_FIELD(smooth_translation_weight);
-  MOCAPSOLVE_FIELD(clip_function_tolerance); MOCAPSOLVE_FIELD(sparse_library); MOCAPSOLVE_FIELD(clip_solver);
-  MOCAPSOLVE_FIELD(dls_lambda);
-  MOCAPSOLVE_FIELD(dls_damping); MOCAPSOLVE_FIELD(verbose);
-#undef MOCAPSOLVE_FIELD
+  BindOptionFields(settings, SolverOptions());
+  settings.def_readwrite("verbose", &SolverSettings::verbose);  // Not a declared option of this group.
   settings.def("validate", [](const SolverSettings& s, const std::string& skeleton_units) {
         MarkerSolveOptions frame;
         LengthUnit unit = LengthUnitFromName(skeleton_units);

@@ -167,6 +167,16 @@ class OptionGroup {
     return Status::Error("--" + name + ": not an option here");
   }
 
+  // Calls visit(option, field) for each option in order, `field` its `T Settings::*` (T: bool,
+  // int, double or std::string): how a front end binds the fields themselves (Python's
+  // attributes) from the declarations.
+  template <class Visit>
+  void VisitFields(Visit visit) const {
+    for (size_t i = 0; i < options_.size(); ++i) {
+      std::visit([&](auto field) { visit(options_[i], field); }, fields_[i]);
+    }
+  }
+
   // The value of option `name` in `settings`, as text ("" for an unknown name).
   std::string Get(const std::string& name, const Settings& settings) const {
     for (size_t i = 0; i < options_.size(); ++i) {
