@@ -20,6 +20,108 @@ std::string Format(const char* format, double a, double b = 0.0, double c = 0.0)
   return buffer;
 }
 
+// The inputs the retargeting needs: valid options, a source skeleton, a target skeleton with
+// a skinned mesh and a non-empty motion that fits the source skeleton.
+Status CheckInputs(const RetargetCharacter& source, const Motion& source_motion, const RetargetCharacter& target,
+                   const CharacterRetargetOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) return Status::Error("retarget options: " + error);
+  if (source.skeleton == nullptr || target.skeleton == nullptr || target.mesh == nullptr) {
+    return Status::Error("retarget: the source needs a skeleton, the target a skeleton and a skinned mesh");
+  }
+  if (source_motion.num_frames() == 0) return Status::Error("retarget: the source motion has no frames");
+  for (const Pose& pose : source_motion.frames) {
+    if (static_cast<int>(pose.rotations.size()) != source.skeleton->num_joints()) {
+      return Status::Error("retarget: the source motion does not fit its skeleton");
+    }
+  }
+  return Status::Ok();
+}
+
+// Blend mask: where no target joint is named like a hand, foot, toe or head, the
+// humanoid roles say which joints those are (noted). Given position joints are kept.
+void AddHumanoidPositionJoints(const Skeleton& target_skeleton, const JointMap& joint_map,
+                               RetargetSetupOptions* setup_options, std::vector<std::string>* notes) {
+  if (!setup_options->position_joints.empty() || !joint_map.target_roles.humanoid) return;
+  bool named = false;
+  for (int j = 0; j < target_skeleton.num_joints() && !named; ++j) {
+    std::string name = target_skeleton.name(j);
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+    for (std::string pattern : setup_options->position_name_patterns) {
+      std::transform(pattern.begin(), pattern.end(), pattern.begin(), [](unsigned char c) { return std::tolower(c); });
+      named = named || name.find(pattern) != std::string::npos;
+    }
+  }
+  if (named) return;
+  for (const auto& [role, joint] : joint_map.target_roles.roles) {
+    if (role == "head" || role.find("_hand") != std::string::npos || role.find("_foot") != std::string::npos ||
+        role.find("_toes") != std::string::npos) {
+      setup_options->position_joints.push_back(target_skeleton.name(joint));
+    }
+  }
+  notes->push_back("blend mask: no target joint named like a hand, foot, toe or head; the humanoid roles "
+                   "head, hands, feet and toes are tracked by position");
+}
+
+// The source's foot contacts, over its foot joints (options.foot_joints, else AutoFootJoints)
+// that map to a target joint; thresholds relative to `source_height`. None (noted) when no
+// foot joint maps or the motion has no frame rate.
+Status DetectMappedFootContacts(const Skeleton& source_skeleton, const Motion& motion, const JointMap& joint_map,
+                                const CharacterRetargetOptions& options, double source_height,
+                                FootContacts* contacts, std::vector<std::string>* notes) {
+  FootContactOptions contact_options;
+  for (const std::string& name : options.foot_joints) {
+    const int j = source_skeleton.FindJoint(name);
+    if (j < 0) return Status::Error("retarget: foot joint '" + name + "' is not a source joint");
+    contact_options.joints.push_back(j);
+  }
+  if (contact_options.joints.empty()) contact_options.joints = AutoFootJoints(source_skeleton);
+  std::vector<int> mapped;
+  for (int j : contact_options.joints) {
+    if (joint_map.target_of_source[j] >= 0) mapped.push_back(j);
+  }
+  contact_options.joints = mapped;
+  contact_options.height_threshold = options.contact_height * source_height;
+  contact_options.speed_threshold = options.contact_speed * source_height;
+  contact_options.up_axis = 1;
+  if (mapped.empty()) {
+    notes->push_back("no foot contacts: no source foot joint maps to a target joint");
+  } else if (!(motion.frame_rate > 0.0)) {
+    notes->push_back("no foot contacts: the source has no frame rate");
+  } else {
+    Status status = DetectFootContacts(source_skeleton, motion, contact_options, contacts);
+    if (!status.ok()) return Status::Error("retarget: foot contacts: " + status.message());
+  }
+  return Status::Ok();
+}
+
+// Skating of the plant joints (target joints `contact_targets` in the result) while the
+// source's are in contact: mean horizontal speeds, cm/s when the target's unit is known.
+void MeasurePlantSkating(const Skeleton& target_skeleton, const Motion& motion, const FootContacts& contacts,
+                         const std::vector<int>& contact_targets, CharacterRetargetResult* out) {
+  if (contacts.joints.empty()) return;
+  const double cm = target_skeleton.unit().known() ? 100.0 * target_skeleton.unit().metres_per_unit : 1.0;
+  const std::vector<Vector3dVector> result_positions = ClipJointPositions(target_skeleton, out->clip.motion);
+  double source_sum = 0.0, result_sum = 0.0;
+  int pairs = 0;
+  for (size_t k = 0; k < contacts.joints.size(); ++k) {
+    const int t = contact_targets[k];
+    for (int f = 1; f < motion.num_frames(); ++f) {
+      if (!contacts.in_contact[k][f - 1] || !contacts.in_contact[k][f]) continue;
+      const Eigen::Vector3d a = contacts.positions[k][f] - contacts.positions[k][f - 1];
+      const Eigen::Vector3d b = result_positions[f][t] - result_positions[f - 1][t];
+      source_sum += std::hypot(a.x(), a.z()) * out->height_ratio;
+      result_sum += std::hypot(b.x(), b.z());
+      ++pairs;
+    }
+  }
+  out->plant_pairs = pairs;
+  if (pairs > 0) {
+    out->source_plant_skating_cm_s = source_sum / pairs * motion.frame_rate * cm;
+    out->result_plant_skating_cm_s = result_sum / pairs * motion.frame_rate * cm;
+  }
+}
+
 }  // namespace
 
 bool CharacterRetargetOptions::IsValid(std::string* error) const {
@@ -36,17 +138,8 @@ bool CharacterRetargetOptions::IsValid(std::string* error) const {
 Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion& source_motion,
                                    const RetargetCharacter& target, const CharacterRetargetOptions& options,
                                    CharacterRetargetResult* result, const RetargetProgressCallback& progress) {
-  std::string error;
-  if (!options.IsValid(&error)) return Status::Error("retarget options: " + error);
-  if (source.skeleton == nullptr || target.skeleton == nullptr || target.mesh == nullptr) {
-    return Status::Error("retarget: the source needs a skeleton, the target a skeleton and a skinned mesh");
-  }
-  if (source_motion.num_frames() == 0) return Status::Error("retarget: the source motion has no frames");
-  for (const Pose& pose : source_motion.frames) {
-    if (static_cast<int>(pose.rotations.size()) != source.skeleton->num_joints()) {
-      return Status::Error("retarget: the source motion does not fit its skeleton");
-    }
-  }
+  Status input_status = CheckInputs(source, source_motion, target, options);
+  if (!input_status.ok()) return input_status;
   const auto start = std::chrono::steady_clock::now();
   const Skeleton& target_skeleton = *target.skeleton;
   const Pose target_bind = target.bind_pose.rotations.empty() ? RestPose(target_skeleton) : target.bind_pose;
@@ -98,29 +191,7 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
         WorldFromBindRotation(*source.skeleton, bind, source.rest_pose.rotations.empty() ? bind : source.rest_pose);
     motion = source_motion;
   }
-  // Blend mask: where no target joint is named like a hand, foot, toe or head, the
-  // humanoid roles say which joints those are.
-  if (setup_options.position_joints.empty() && out.joint_map.target_roles.humanoid) {
-    bool named = false;
-    for (int j = 0; j < target_skeleton.num_joints() && !named; ++j) {
-      std::string name = target_skeleton.name(j);
-      std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
-      for (std::string pattern : setup_options.position_name_patterns) {
-        std::transform(pattern.begin(), pattern.end(), pattern.begin(), [](unsigned char c) { return std::tolower(c); });
-        named = named || name.find(pattern) != std::string::npos;
-      }
-    }
-    if (!named) {
-      for (const auto& [role, joint] : out.joint_map.target_roles.roles) {
-        if (role == "head" || role.find("_hand") != std::string::npos || role.find("_foot") != std::string::npos ||
-            role.find("_toes") != std::string::npos) {
-          setup_options.position_joints.push_back(target_skeleton.name(joint));
-        }
-      }
-      out.notes.push_back("blend mask: no target joint named like a hand, foot, toe or head; the humanoid roles "
-                          "head, hands, feet and toes are tracked by position");
-    }
-  }
+  AddHumanoidPositionJoints(target_skeleton, out.joint_map, &setup_options, &out.notes);
   Status status = BuildRetargetSetup(*source_mesh, target_skeleton, *target.mesh, setup_options, &out.setup);
   if (!status.ok()) return status;
   for (const std::string& note : out.setup.notes) out.notes.push_back(note);
@@ -142,70 +213,25 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
   clip.solve.plant_joints.clear();
   clip.plant_contacts.clear();
   FootContacts contacts;
-  std::vector<int> plant_source_joints;
+  status = DetectMappedFootContacts(*source.skeleton, motion, out.joint_map, options, source_height, &contacts,
+                                    &out.notes);
+  if (!status.ok()) return status;
   std::vector<int> contact_targets;  // Target joint of each contact joint.
-  {
-    FootContactOptions contact_options;
-    for (const std::string& name : options.foot_joints) {
-      const int j = source.skeleton->FindJoint(name);
-      if (j < 0) return Status::Error("retarget: foot joint '" + name + "' is not a source joint");
-      contact_options.joints.push_back(j);
-    }
-    if (contact_options.joints.empty()) contact_options.joints = AutoFootJoints(*source.skeleton);
-    std::vector<int> mapped;
-    for (int j : contact_options.joints) {
-      if (out.joint_map.target_of_source[j] >= 0) mapped.push_back(j);
-    }
-    contact_options.joints = mapped;
-    contact_options.height_threshold = options.contact_height * source_height;
-    contact_options.speed_threshold = options.contact_speed * source_height;
-    contact_options.up_axis = 1;
-    if (mapped.empty()) {
-      out.notes.push_back("no foot contacts: no source foot joint maps to a target joint");
-    } else if (!(motion.frame_rate > 0.0)) {
-      out.notes.push_back("no foot contacts: the source has no frame rate");
-    } else {
-      status = DetectFootContacts(*source.skeleton, motion, contact_options, &contacts);
-      if (!status.ok()) return Status::Error("retarget: foot contacts: " + status.message());
-      for (size_t k = 0; k < contacts.joints.size(); ++k) {
-        const int t = out.joint_map.target_of_source[contacts.joints[k]];
-        contact_targets.push_back(t);
-        if (!plant_feet) continue;  // Contacts for the skating figures only.
-        clip.solve.plant_joints.push_back(t);
-        clip.plant_contacts.push_back(contacts.in_contact[k]);
-        out.plant_joints.push_back(target_skeleton.name(t));
-      }
-      out.contact_samples = contacts.ContactSamples();
-    }
+  for (size_t k = 0; k < contacts.joints.size(); ++k) {
+    const int t = out.joint_map.target_of_source[contacts.joints[k]];
+    contact_targets.push_back(t);
+    if (!plant_feet) continue;  // Contacts for the skating figures only.
+    clip.solve.plant_joints.push_back(t);
+    clip.plant_contacts.push_back(contacts.in_contact[k]);
+    out.plant_joints.push_back(target_skeleton.name(t));
   }
+  out.contact_samples = contacts.ContactSamples();  // 0 without contacts.
   out.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   status = RetargetClip(*source.skeleton, *source_mesh, motion, target_skeleton, *target.mesh, out.setup, clip,
                         &out.clip, progress);
   if (!status.ok()) return status;
 
-  // Skating of the plant joints while the source's are in contact.
-  if (!contacts.joints.empty()) {
-    const double cm = target_skeleton.unit().known() ? 100.0 * target_skeleton.unit().metres_per_unit : 1.0;
-    const std::vector<Vector3dVector> result_positions = ClipJointPositions(target_skeleton, out.clip.motion);
-    double source_sum = 0.0, result_sum = 0.0;
-    int pairs = 0;
-    for (size_t k = 0; k < contacts.joints.size(); ++k) {
-      const int t = contact_targets[k];
-      for (int f = 1; f < motion.num_frames(); ++f) {
-        if (!contacts.in_contact[k][f - 1] || !contacts.in_contact[k][f]) continue;
-        const Eigen::Vector3d a = contacts.positions[k][f] - contacts.positions[k][f - 1];
-        const Eigen::Vector3d b = result_positions[f][t] - result_positions[f - 1][t];
-        source_sum += std::hypot(a.x(), a.z()) * out.height_ratio;
-        result_sum += std::hypot(b.x(), b.z());
-        ++pairs;
-      }
-    }
-    out.plant_pairs = pairs;
-    if (pairs > 0) {
-      out.source_plant_skating_cm_s = source_sum / pairs * motion.frame_rate * cm;
-      out.result_plant_skating_cm_s = result_sum / pairs * motion.frame_rate * cm;
-    }
-  }
+  MeasurePlantSkating(target_skeleton, motion, contacts, contact_targets, &out);
   *result = std::move(out);
   return Status::Ok();
 }

@@ -35,44 +35,38 @@ Eigen::Quaterniond BestRotation(const std::vector<Eigen::Vector3d>& u, const std
   return Eigen::Quaterniond(Eigen::Matrix3d(svd.matrixV() * d * svd.matrixU().transpose())).normalized();
 }
 
-}  // namespace
-
-Motion RotateMotionWorld(const Skeleton& skeleton, const Motion& motion, const Eigen::Matrix3d& rotation) {
-  Motion out = motion;
-  const Eigen::Quaterniond u(rotation);
-  const Eigen::Quaterniond rest = skeleton.rest_rotation(0);
-  for (Pose& pose : out.frames) {
-    pose.translations[0] = rotation * pose.translations[0];
-    pose.rotations[0] = (rest.conjugate() * u * rest * pose.rotations[0]).normalized();
+// The error for too few mapped joints, listing (up to 12 of) the target's unmapped joints.
+Status TooFewMappedJointsError(const Skeleton& target, const JointMap& map) {
+  std::string missing;
+  int listed = 0;
+  for (int t = 0; t < target.num_joints() && listed < 12; ++t) {
+    if (map.source_of_target[t] >= 0) continue;
+    missing += (listed++ ? ", " : "") + target.name(t);
   }
-  return out;
+  return Status::Error("cannot align the skeletons: " + std::to_string(map.num_mapped()) +
+                       " joints map (names, structure) (need " + std::to_string(kMinMappedJoints) +
+                       "); target joints without a source joint: " + missing + (listed == 12 ? ", ..." : "") +
+                       " (give a joint map)");
 }
 
-Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motion, const Skeleton& target,
-                              const SkinnedMesh& target_mesh, const Pose& target_bind_pose,
-                              const Eigen::Matrix3d& target_world_from_bind, const JointMap& map,
-                              SkeletonBinding* binding) {
-  const int ns = source.num_joints(), nt = target.num_joints();
-  if (map.num_mapped() < kMinMappedJoints) {
-    std::string missing;
-    int listed = 0;
-    for (int t = 0; t < nt && listed < 12; ++t) {
-      if (map.source_of_target[t] >= 0) continue;
-      missing += (listed++ ? ", " : "") + target.name(t);
-    }
-    return Status::Error("cannot align the skeletons: " + std::to_string(map.num_mapped()) +
-                         " joints map (names, structure) (need " + std::to_string(kMinMappedJoints) +
-                         "); target joints without a source joint: " + missing +
-                         (listed == 12 ? ", ..." : "") + " (give a joint map)");
-  }
-  SkeletonBinding out;
-  // Target bind pose in its world.
+// q_b: the target's bind-pose joint positions in its world.
+Vector3dVector TargetBindPositions(const Skeleton& target, const Pose& target_bind_pose,
+                                   const Eigen::Matrix3d& target_world_from_bind) {
+  const int nt = target.num_joints();
   FkData target_fk(target);
   ForwardKinematics(target, target_bind_pose, &target_fk);
-  std::vector<Eigen::Vector3d> q(nt);
+  Vector3dVector q(nt);
   for (int t = 0; t < nt; ++t) q[t] = target_world_from_bind * target_fk.world_positions[t];
+  return q;
+}
 
-  // Up axis from the lowest and highest mapped joints of the target's bind pose.
+// U (header, step 2): the rotation taking the source's up axis to +Y. The up axis is the
+// coordinate axis nearest to the mean, over (up to 100) frames of the motion, of the vector
+// from the lowest to the highest mapped joint of the target's bind pose `q`. A source not
+// +y up is noted.
+Eigen::Matrix3d SourceUpRotation(const Skeleton& source, const Motion& source_motion, const JointMap& map,
+                                 const Vector3dVector& q, std::vector<std::string>* notes) {
+  const int nt = static_cast<int>(q.size());
   int low = -1, high = -1;
   for (int t = 0; t < nt; ++t) {
     if (map.source_of_target[t] < 0) continue;
@@ -92,15 +86,17 @@ Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motio
   up_sum.cwiseAbs().maxCoeff(&axis);
   Eigen::Vector3d up_axis = Eigen::Vector3d::Zero();
   up_axis[axis] = up_sum[axis] < 0 ? -1.0 : 1.0;
-  out.up = Eigen::Quaterniond::FromTwoVectors(up_axis, Eigen::Vector3d::UnitY()).toRotationMatrix();
   if (axis != 1 || up_axis[axis] < 0) {
-    out.notes.push_back(std::string("source up axis: ") + (up_axis[axis] < 0 ? "-" : "+") + "xyz"[axis] +
-                        " (turned to +y)");
+    notes->push_back(std::string("source up axis: ") + (up_axis[axis] < 0 ? "-" : "+") + "xyz"[axis] +
+                     " (turned to +y)");
   }
+  return Eigen::Quaterniond::FromTwoVectors(up_axis, Eigen::Vector3d::UnitY()).toRotationMatrix();
+}
 
-  // Rest-pose alignment, from the source's rest pose or, when that leaves a mapped bone
-  // more than kRetryAngleDeg off (a rest pose with every bone along one axis, as the CMU
-  // FBX files have), from frames of the motion; the start with the lowest mean angle wins.
+// children[j]: the mapped source joints whose nearest mapped proper ancestor is j (the
+// bones the alignment and its angles are about).
+std::vector<std::vector<int>> MappedChildren(const Skeleton& source, const JointMap& map) {
+  const int ns = source.num_joints();
   std::vector<int> mapped_parent(ns, -1);  // Nearest mapped proper ancestor.
   std::vector<std::vector<int>> children(ns);
   for (int j = 1; j < ns; ++j) {
@@ -108,68 +104,88 @@ Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motio
     mapped_parent[j] = map.target_of_source[p] >= 0 ? p : mapped_parent[p];
     if (map.target_of_source[j] >= 0 && mapped_parent[j] >= 0) children[mapped_parent[j]].push_back(j);
   }
-  struct Alignment {
-    Pose pose;
-    std::vector<Eigen::Quaterniond> world;
-    double mean_angle = 0.0, max_angle = 0.0;
-    std::string worst;
-  };
-  auto align = [&](const Pose& start, Alignment* result) {
-    ForwardKinematics(source, start, &fk);
-    std::vector<Eigen::Quaterniond> correction(ns);
-    for (int j = 0; j < ns; ++j) {
-      const Eigen::Quaterniond parent =
-          source.parent(j) < 0 ? Eigen::Quaterniond::Identity() : correction[source.parent(j)];
-      correction[j] = parent;
-      const int t = map.target_of_source[j];
-      if (t < 0) continue;
-      std::vector<Eigen::Vector3d> u, v;
-      for (int c : children[j]) {
-        const Eigen::Vector3d a = parent * (fk.world_positions[c] - fk.world_positions[j]);
-        const Eigen::Vector3d b = q[map.target_of_source[c]] - q[t];
-        if (a.norm() < 1e-9 || b.norm() < 1e-9) continue;
-        u.push_back(a.normalized());
-        v.push_back(b.normalized());
+  return children;
+}
+
+// A source pose aligned to the target's bind pose, its world rotations and how far its
+// mapped bones are off the target's.
+struct Alignment {
+  Pose pose;
+  std::vector<Eigen::Quaterniond> world;
+  double mean_angle = 0.0, max_angle = 0.0;
+  std::string worst;
+};
+
+// Rest-pose alignment (header, step 3) from the source pose `start`: per mapped joint, in
+// preorder, the rotation (Kabsch) turning its bones to the target's bind-pose bones `q`;
+// then the aligned pose's mean and worst bone angles.
+void AlignFrom(const Skeleton& source, const Skeleton& target, const JointMap& map, const Vector3dVector& q,
+               const std::vector<std::vector<int>>& children, const Pose& start, Alignment* result) {
+  const int ns = source.num_joints();
+  FkData fk(source);
+  ForwardKinematics(source, start, &fk);
+  std::vector<Eigen::Quaterniond> correction(ns);
+  for (int j = 0; j < ns; ++j) {
+    const Eigen::Quaterniond parent =
+        source.parent(j) < 0 ? Eigen::Quaterniond::Identity() : correction[source.parent(j)];
+    correction[j] = parent;
+    const int t = map.target_of_source[j];
+    if (t < 0) continue;
+    std::vector<Eigen::Vector3d> u, v;
+    for (int c : children[j]) {
+      const Eigen::Vector3d a = parent * (fk.world_positions[c] - fk.world_positions[j]);
+      const Eigen::Vector3d b = q[map.target_of_source[c]] - q[t];
+      if (a.norm() < 1e-9 || b.norm() < 1e-9) continue;
+      u.push_back(a.normalized());
+      v.push_back(b.normalized());
+    }
+    if (!u.empty()) correction[j] = (BestRotation(u, v) * parent).normalized();
+  }
+  result->pose = start;
+  result->world.resize(ns);
+  for (int j = 0; j < ns; ++j) {
+    result->world[j] = correction[j] * fk.world_rotations[j];
+    const int p = source.parent(j);
+    const Eigen::Quaterniond above =
+        (p < 0 ? Eigen::Quaterniond::Identity() : result->world[p]) * source.rest_rotation(j);
+    result->pose.rotations[j] = (above.conjugate() * result->world[j]).normalized();
+  }
+  ForwardKinematics(source, result->pose, &fk);
+  int bones = 0;
+  for (int j = 0; j < ns; ++j) {
+    for (int c : children[j]) {
+      const Eigen::Vector3d a = fk.world_positions[c] - fk.world_positions[j];
+      const Eigen::Vector3d b = q[map.target_of_source[c]] - q[map.target_of_source[j]];
+      if (a.norm() < 1e-9 || b.norm() < 1e-9) continue;
+      const double angle = RadToDeg(std::atan2(a.cross(b).norm(), a.dot(b)));
+      result->mean_angle += angle;
+      ++bones;
+      if (angle > result->max_angle) {
+        result->max_angle = angle;
+        result->worst = target.name(map.target_of_source[c]);
       }
-      if (!u.empty()) correction[j] = (BestRotation(u, v) * parent).normalized();
     }
-    result->pose = start;
-    result->world.resize(ns);
-    for (int j = 0; j < ns; ++j) {
-      result->world[j] = correction[j] * fk.world_rotations[j];
-      const int p = source.parent(j);
-      const Eigen::Quaterniond above =
-          (p < 0 ? Eigen::Quaterniond::Identity() : result->world[p]) * source.rest_rotation(j);
-      result->pose.rotations[j] = (above.conjugate() * result->world[j]).normalized();
-    }
-    ForwardKinematics(source, result->pose, &fk);
-    int bones = 0;
-    for (int j = 0; j < ns; ++j) {
-      for (int c : children[j]) {
-        const Eigen::Vector3d a = fk.world_positions[c] - fk.world_positions[j];
-        const Eigen::Vector3d b = q[map.target_of_source[c]] - q[map.target_of_source[j]];
-        if (a.norm() < 1e-9 || b.norm() < 1e-9) continue;
-        const double angle = RadToDeg(std::atan2(a.cross(b).norm(), a.dot(b)));
-        result->mean_angle += angle;
-        ++bones;
-        if (angle > result->max_angle) {
-          result->max_angle = angle;
-          result->worst = target.name(map.target_of_source[c]);
-        }
-      }
-    }
-    if (bones > 0) result->mean_angle /= bones;
-  };
+  }
+  if (bones > 0) result->mean_angle /= bones;
+}
+
+// The alignment from the source's rest pose or, when that leaves a mapped bone more than
+// kRetryAngleDeg off (a rest pose with every bone along one axis, as the CMU FBX files
+// have), from frames of the motion; the start with the lowest mean angle wins (noted).
+Alignment BestAlignment(const Skeleton& source, const Motion& source_motion, const Skeleton& target,
+                        const JointMap& map, const Vector3dVector& q, std::vector<std::string>* notes) {
   constexpr double kRetryAngleDeg = 45.0;
+  const std::vector<std::vector<int>> children = MappedChildren(source, map);
+  const int nf = source_motion.num_frames();
   Alignment best;
-  align(RestPose(source), &best);
+  AlignFrom(source, target, map, q, children, RestPose(source), &best);
   if (best.max_angle > kRetryAngleDeg && nf > 0) {
     const double rest_angle = best.max_angle;
     int chosen = -1;
     for (int k = 0; k < 8; ++k) {
       const int f = k * nf / 8;
       Alignment candidate;
-      align(source_motion.frames[f], &candidate);
+      AlignFrom(source, target, map, q, children, source_motion.frames[f], &candidate);
       if (candidate.mean_angle < best.mean_angle) {
         best = std::move(candidate);
         chosen = f;
@@ -180,40 +196,34 @@ Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motio
       std::snprintf(note, sizeof note,
                     "the source's rest pose aligns badly (a bone %.0f deg off); aligned from frame %d instead",
                     rest_angle, chosen);
-      out.notes.push_back(note);
+      notes->push_back(note);
     }
   }
-  Pose aligned = best.pose;
-  std::vector<Eigen::Quaterniond>& world = best.world;
-  out.mean_bone_angle_deg = best.mean_angle;
-  out.max_bone_angle_deg = best.max_angle;
-  out.worst_bone = best.worst;
-  ForwardKinematics(source, aligned, &fk);
-  const Vector3dVector& positions = fk.world_positions;
-  const auto map_height = [&](double* s_min, double* s_max, double* t_min, double* t_max) {
-    *s_min = *t_min = 1e300;
-    *s_max = *t_max = -1e300;
-    for (int j = 0; j < ns; ++j) {
-      const int t = map.target_of_source[j];
-      if (t < 0) continue;
-      *s_min = std::min(*s_min, positions[j].y());
-      *s_max = std::max(*s_max, positions[j].y());
-      *t_min = std::min(*t_min, q[t].y());
-      *t_max = std::max(*t_max, q[t].y());
-    }
-  };
+  return best;
+}
 
-  // Scale from the vertical extents of the mapped joints.
-  double s_min, s_max, t_min, t_max;
-  map_height(&s_min, &s_max, &t_min, &t_max);
-  if (!(s_max - s_min > 0.0) || !(t_max - t_min > 0.0)) {
-    return Status::Error("cannot align the skeletons: the mapped joints have no vertical extent");
+// The vertical extents of the mapped joints: source (aligned pose `positions`) and target
+// (bind pose `q`).
+void MappedHeightRange(const JointMap& map, const Vector3dVector& positions, const Vector3dVector& q,
+                       double* s_min, double* s_max, double* t_min, double* t_max) {
+  const int ns = static_cast<int>(positions.size());
+  *s_min = *t_min = 1e300;
+  *s_max = *t_max = -1e300;
+  for (int j = 0; j < ns; ++j) {
+    const int t = map.target_of_source[j];
+    if (t < 0) continue;
+    *s_min = std::min(*s_min, positions[j].y());
+    *s_max = std::max(*s_max, positions[j].y());
+    *t_min = std::min(*t_min, q[t].y());
+    *t_max = std::max(*t_max, q[t].y());
   }
-  out.source_height = s_max - s_min;
-  out.scale = (t_max - t_min) / out.source_height;
+}
 
-  // The target mesh on the source skeleton.
-  std::vector<int> anchor(nt, -1);  // Target joint whose mapping carries joint t.
+// a(t): the target joint whose mapping carries target joint t: t when mapped, else its
+// nearest mapped ancestor, else the first mapped joint.
+std::vector<int> TargetAnchors(const Skeleton& target, const JointMap& map) {
+  const int nt = target.num_joints();
+  std::vector<int> anchor(nt, -1);
   int first_mapped = -1;
   for (int t = 0; t < nt; ++t) {
     if (map.source_of_target[t] >= 0) {
@@ -226,6 +236,15 @@ Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motio
   for (int t = 0; t < nt; ++t) {
     if (anchor[t] < 0) anchor[t] = first_mapped;
   }
+  return anchor;
+}
+
+// Binding (header, step 5): the target mesh's vertices snapped onto the source's bones
+// (aligned pose `positions`), per influence, and its influences moved to the source joints.
+// The spec's joint_from_bind is left to the caller.
+SkinnedMeshSpec SnapTargetMesh(const SkinnedMesh& target_mesh, const Eigen::Matrix3d& target_world_from_bind,
+                               const JointMap& map, const std::vector<int>& anchor, const Vector3dVector& positions,
+                               const Vector3dVector& q, double scale) {
   SkinnedMeshSpec spec;
   const int nv = target_mesh.num_vertices();
   spec.rest_positions.resize(3, nv);
@@ -240,32 +259,92 @@ Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motio
       const int a = anchor[target_mesh.weight_joint(k)];
       const int s = map.source_of_target[a];
       const double w = target_mesh.weight(k);
-      snapped += w * (positions[s] + (x - q[a]) / out.scale);
+      snapped += w * (positions[s] + (x - q[a]) / scale);
       weights[s] += w;
       total += w;
     }
-    spec.rest_positions.col(v) = total > 0 ? Eigen::Vector3d(snapped / total) : x / out.scale;
-    if (target_mesh.has_normals()) spec.rest_normals.col(v) = target_world_from_bind * target_mesh.rest_normals().col(v);
+    spec.rest_positions.col(v) = total > 0 ? Eigen::Vector3d(snapped / total) : x / scale;
+    if (target_mesh.has_normals()) {
+      spec.rest_normals.col(v) = target_world_from_bind * target_mesh.rest_normals().col(v);
+    }
     for (const auto& [joint, weight] : weights) spec.influences[v].push_back({joint, weight});
   }
-  // Placement (see the header): the bound mesh's rest frame origin o_s at o_t / k_m.
+  return spec;
+}
+
+// Placement (header, step 6): the shift putting the bound mesh's rest frame origin o_s
+// (of `bound_positions`) at o_t / k_m.
+Eigen::Vector3d PlacementShift(const SkinnedMesh& target_mesh, const Eigen::Matrix3d& target_world_from_bind,
+                               const Eigen::Matrix3Xd& bound_positions) {
+  const int nv = target_mesh.num_vertices();
   Eigen::Matrix3Xd target_world(3, nv);
   for (int v = 0; v < nv; ++v) target_world.col(v) = target_world_from_bind * target_mesh.rest_positions().col(v);
   const CharacterFrame target_frame = ComputeCharacterFrame(target_world);
-  const CharacterFrame bound_frame = ComputeCharacterFrame(spec.rest_positions);
-  const Eigen::Vector3d shift =
-      target_frame.origin * (bound_frame.height / target_frame.height) - bound_frame.origin;
-  spec.rest_positions.colwise() += shift;
-  aligned.translations[0] += shift;
+  const CharacterFrame bound_frame = ComputeCharacterFrame(bound_positions);
+  return target_frame.origin * (bound_frame.height / target_frame.height) - bound_frame.origin;
+}
+
+// joint_from_bind_j = (D_j R^rest_j, P_j)^-1: the (placed) aligned pose is the bind pose.
+std::vector<Eigen::Isometry3d> JointFromBind(const Skeleton& source, const Pose& aligned) {
+  const int ns = source.num_joints();
+  FkData fk(source);
   ForwardKinematics(source, aligned, &fk);
-  for (int j = 0; j < ns; ++j) world[j] = fk.world_rotations[j];
-  spec.joint_from_bind.resize(ns);
+  std::vector<Eigen::Isometry3d> joint_from_bind(ns);
   for (int j = 0; j < ns; ++j) {
     Eigen::Isometry3d world_from_joint = Eigen::Isometry3d::Identity();
-    world_from_joint.linear() = world[j].toRotationMatrix();
-    world_from_joint.translation() = positions[j];
-    spec.joint_from_bind[j] = world_from_joint.inverse();
+    world_from_joint.linear() = fk.world_rotations[j].toRotationMatrix();
+    world_from_joint.translation() = fk.world_positions[j];
+    joint_from_bind[j] = world_from_joint.inverse();
   }
+  return joint_from_bind;
+}
+
+}  // namespace
+
+Motion RotateMotionWorld(const Skeleton& skeleton, const Motion& motion, const Eigen::Matrix3d& rotation) {
+  Motion out = motion;
+  const Eigen::Quaterniond u(rotation);
+  const Eigen::Quaterniond rest = skeleton.rest_rotation(0);
+  for (Pose& pose : out.frames) {
+    pose.translations[0] = rotation * pose.translations[0];
+    pose.rotations[0] = (rest.conjugate() * u * rest * pose.rotations[0]).normalized();
+  }
+  return out;
+}
+
+Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motion, const Skeleton& target,
+                              const SkinnedMesh& target_mesh, const Pose& target_bind_pose,
+                              const Eigen::Matrix3d& target_world_from_bind, const JointMap& map,
+                              SkeletonBinding* binding) {
+  if (map.num_mapped() < kMinMappedJoints) return TooFewMappedJointsError(target, map);
+  SkeletonBinding out;
+  const Vector3dVector q = TargetBindPositions(target, target_bind_pose, target_world_from_bind);
+  out.up = SourceUpRotation(source, source_motion, map, q, &out.notes);
+
+  Alignment best = BestAlignment(source, source_motion, target, map, q, &out.notes);
+  Pose aligned = std::move(best.pose);
+  out.mean_bone_angle_deg = best.mean_angle;
+  out.max_bone_angle_deg = best.max_angle;
+  out.worst_bone = best.worst;
+  FkData fk(source);
+  ForwardKinematics(source, aligned, &fk);
+
+  // Scale from the vertical extents of the mapped joints.
+  double s_min, s_max, t_min, t_max;
+  MappedHeightRange(map, fk.world_positions, q, &s_min, &s_max, &t_min, &t_max);
+  if (!(s_max - s_min > 0.0) || !(t_max - t_min > 0.0)) {
+    return Status::Error("cannot align the skeletons: the mapped joints have no vertical extent");
+  }
+  out.source_height = s_max - s_min;
+  out.scale = (t_max - t_min) / out.source_height;
+
+  // The target mesh on the source skeleton, placed (see the header).
+  SkinnedMeshSpec spec = SnapTargetMesh(target_mesh, target_world_from_bind, map, TargetAnchors(target, map),
+                                        fk.world_positions, q, out.scale);
+  const Eigen::Vector3d shift = PlacementShift(target_mesh, target_world_from_bind, spec.rest_positions);
+  spec.rest_positions.colwise() += shift;
+  aligned.translations[0] += shift;
+  spec.joint_from_bind = JointFromBind(source, aligned);
   Status status = SkinnedMesh::Create(source, std::move(spec), &out.mesh);
   if (!status.ok()) return Status::Error("binding the target mesh to the source skeleton: " + status.message());
   out.aligned_pose = std::move(aligned);
