@@ -148,7 +148,9 @@ TEST(MarkerCorruption, UnlabelledRunsMoveSamplesToTracks) {
     for (int m = 0; m < 6; ++m) {
       if (mask[f][m] != 'u') {
         EXPECT_EQ(mask[f][m], mask_before[f][m]);
-        if (before.valid(f, m)) EXPECT_EQ(after.position(f, m), before.position(f, m));
+        if (before.valid(f, m)) {
+          EXPECT_EQ(after.position(f, m), before.position(f, m));
+        }
         continue;
       }
       EXPECT_EQ(mask_before[f][m], 0);
