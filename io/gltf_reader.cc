@@ -853,6 +853,7 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
     any = true;
   }
   double rate = options.frame_rate;
+  size_t uniform_keys = 0;  // Keys of a track keyed on every step from t0 to t1 (0: none).
   if (rate == 0.0) {
     std::vector<double> spacings;
     for (const Track& t : tracks) {
@@ -860,6 +861,19 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
     }
     const double spacing = gltf_internal::KeySpacing(spacings);
     rate = spacing > 0.0 ? 1.0 / spacing : 30.0;
+    // The smallest float spacing overstates the rate (a 2,752-key 120 fps clip's keys give
+    // 120.016 fps, and late frames drift): a track keyed on every step gives it exactly, its
+    // whole span over its number of steps (to the float's error over the span).
+    for (const Track& t : tracks) {
+      const double span = t.times.back() - t.times.front();
+      const size_t n = t.times.size();
+      // Keyed on every step: the mean step is the spacing (within KeySpacing's 1e-3).
+      if (spacing > 0.0 && n > uniform_keys && n >= 3 &&
+          std::abs(span / double(n - 1) - spacing) < 1e-3 * spacing) {
+        rate = double(n - 1) / span;
+        uniform_keys = t.times.front() == t0 && t.times.back() == t1 ? n : 0;
+      }
+    }
     // Float key times carry a relative error of ~6e-8: a 1 MHz clip's keys give
     // 1000000.0025 fps, which is 1e6 (and within kMaxSampleRate).
     if (std::abs(rate - std::round(rate)) < std::max(1e-3, 1e-7 * rate)) rate = std::round(rate);
@@ -878,7 +892,10 @@ Status ReadGltfAnimation(const GltfDocument& document, const GltfCharacter& char
                          " fps for " + std::to_string(character.skeleton.num_joints()) +
                          " joints is over 1e7 joint-frames");
   }
-  const int num_frames = static_cast<int>(std::floor(span_frames + 1e-6 * rate)) + 1;
+  // A track keyed on every frame of the whole span sets the count: a clip keyed at 120.0005
+  // fps (a BVH's rounded frame time) and read at 120 keeps its last frame.
+  const int num_frames = uniform_keys > 0 ? static_cast<int>(uniform_keys)
+                                          : static_cast<int>(std::floor(span_frames + 1e-6 * rate)) + 1;
   Motion out;
   out.frame_rate = rate;
   out.frames.resize(num_frames);

@@ -435,6 +435,38 @@ TEST(GltfWriter, CompactVariantHoldsConstantChannelsWithOneKey) {
   }
 }
 
+// A long clip's rate and frame count read back as written: float key times near the end
+// of a 23 s clip are ~2e-6 s off, so the smallest key spacing alone said 120.016 fps (and
+// late frames drifted). A rate a BVH's rounded frame time leaves a little off 120 reads as
+// 120 with every frame kept. Needs no shared data (the generated test character).
+TEST(GltfWriter, LongClipsKeepTheirRateAndFrames) {
+  const std::string path = testing::TempPath("rate_character.gltf");
+  testing::WriteTestCharacter(path, 30.0);
+  GltfDocument doc;
+  ASSERT_TRUE(GltfDocument::Read(path, &doc).ok());
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(doc, {}, &c).ok());
+  for (double rate : {120.0, 120.0005, 30.0}) {
+    Motion motion;
+    motion.frame_rate = rate;
+    for (int f = 0; f < 2752; ++f) {
+      Pose pose = c.rest_pose;
+      pose.rotations[1] = pose.rotations[1] * ExpMap(Eigen::Vector3d(0.3 * std::sin(0.01 * f), 0.0, 0.0));
+      motion.frames.push_back(pose);
+    }
+    std::string glb;
+    ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "take", true, &glb).ok());
+    GltfDocument back;
+    ASSERT_TRUE(GltfDocument::Parse(glb, "rate.glb", "", &back).ok());
+    GltfCharacter bc;
+    ASSERT_TRUE(ReadGltfCharacter(back, {}, &bc).ok());
+    Motion read;
+    ASSERT_TRUE(ReadGltfAnimation(back, bc, {}, &read).ok());
+    EXPECT_EQ(read.frame_rate, std::round(rate)) << rate;
+    EXPECT_EQ(read.num_frames(), motion.num_frames()) << rate;
+  }
+}
+
 // A .gltf whose buffers and texture are separate files, or data: URIs, becomes one .glb
 // with everything inside it (the viewer's pages embed characters so): one buffer without
 // a URI, the image in a buffer view with its bytes and MIME type, the same character.
