@@ -87,6 +87,9 @@ gltf_dir="${MOCAPSOLVE_DATA:-../shared/data}/gltf"
 if [ -f "$gltf_dir/CesiumMan.glb" ] && [ -f "$gltf_dir/RiggedFigure.glb" ]; then
   $ms retarget --source="$gltf_dir/CesiumMan.glb" --target="$gltf_dir/RiggedFigure.glb" \
     --out="$out/riggedfigure_walk.glb" --out_bvh="$out/riggedfigure_walk.bvh" --report="$out/retarget.json" 2>&1 | tail -1
+  echo "-- joint_map: the bundled walk's skeleton onto RiggedFigure, found by body roles (an editable --joint_map file)"
+  $ms joint_map --source="$out/walk.bvh" --target="$gltf_dir/RiggedFigure.glb" --out="$out/joint_map.json" &&
+    grep -m1 '"confidence"' "$out/joint_map.json"
 else
   echo "(skipped: no $gltf_dir/CesiumMan.glb; set MOCAPSOLVE_DATA to the shared data folder)"
 fi
@@ -105,8 +108,8 @@ if [ -f "$data_dir/c3d/cmu_02_05.c3d" ] && [ -f "$data_dir/gltf/Xbot.glb" ]; the
     --markers="$data_dir/c3d/02_01.c3d" --axes=y,z,x --out="$out/cmu02_markerset.json" \
     --out_subject="$out/cmu02_subject.json" | tail -1
   $ms pipeline --quiet --subject="$out/cmu02_subject.json" --markers="$data_dir/c3d/cmu_02_05.c3d" \
-    --character="$data_dir/gltf/Xbot.glb" --out_dir="$out/pipeline_02_05"
-  echo "outputs: $out/pipeline_02_05/ (repaired.c3d, solved.bvh, Xbot.glb with the take as animation 'cmu_02_05', report.json)"
+    --character="$data_dir/gltf/Xbot.glb" --formats=glb,fbx --out_dir="$out/pipeline_02_05"
+  echo "outputs: $out/pipeline_02_05/ (repaired.c3d, solved.bvh, Xbot.glb and Xbot.fbx with the take as animation 'cmu_02_05', report.json)"
 fi
 
 # Every promised output must be there: a missing one fails the demo loudly (a step that
@@ -117,7 +120,7 @@ promised=(walk.bvh info.json walk_m_xyz.bvh walk_positions.csv walk_markers.c3d 
           falloff.csv walk_edited.bvh walk_subject.json pipeline_walk/report.json pipeline_walk/solved.bvh
           pipeline_walk/repaired.c3d pipeline_walk/view.html)
 [ -f "$data_dir/c3d/cmu_02_05.c3d" ] && [ -f "$data_dir/gltf/Xbot.glb" ] &&
-  promised+=(pipeline_02_05/report.json pipeline_02_05/Xbot.glb pipeline_02_05/view.html)
+  promised+=(pipeline_02_05/report.json pipeline_02_05/Xbot.glb pipeline_02_05/Xbot.fbx pipeline_02_05/view.html)
 [ -f "$gltf_dir/CesiumMan.glb" ] && [ -f "$gltf_dir/RiggedFigure.glb" ] && promised+=(riggedfigure_walk.glb)
 absent=()
 for file in "${promised[@]}"; do [ -s "$out/$file" ] || absent+=("$file"); done
