@@ -24,7 +24,7 @@ Status ConvertMain(const std::vector<std::string>& arguments) {
   inputs.motion.amc_frame_rate = FLAGS_amc_fps;
   inputs.motion.animation = FLAGS_animation;  // An error for formats with one clip.
   inputs.motion.sample_rate = FLAGS_sample_fps;
-  inputs.skeleton_units = FLAGS_skeleton_units;
+  inputs.motion.skeleton_units = FLAGS_skeleton_units;
   inputs.axes = FLAGS_axes;
   ConvertSettings settings;
   ReadOptionFlags(ConvertSettingOptions(), &settings);

@@ -222,11 +222,12 @@ Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
   options.amc_frame_rate = FLAGS_amc_fps;
   options.animation = FLAGS_animation;  // An error for formats with one clip.
   options.sample_rate = FLAGS_sample_fps;
+  options.skeleton_units = FLAGS_skeleton_units;
   std::vector<std::string> warnings;
   options.warnings = &warnings;
   Status status = ReadMotionFile(path, options, skeleton, motion);
   for (const std::string& warning : warnings) std::fprintf(stderr, "warning: %s\n", TerminalText(warning).c_str());
-  return status.ok() ? ApplySkeletonUnits(skeleton) : status;
+  return status;
 }
 
 Status ApplySkeletonUnits(Skeleton* skeleton) { return SetSkeletonUnits(FLAGS_skeleton_units, skeleton); }

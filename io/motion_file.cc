@@ -81,7 +81,8 @@ Status ReadMotionFile(const std::string& path, const MotionFileOptions& options,
   Status status = ReadMotionFileUnchecked(path, options, skeleton, motion);
   // An .amc's skeleton comes from its .asf: name that file for the skeleton's offsets.
   if (FileExtension(path) == ".amc") status = CheckRead(options.skeleton_path, status, *skeleton, nullptr);
-  return CheckRead(path, status, *skeleton, motion);
+  status = CheckRead(path, status, *skeleton, motion);
+  return status.ok() ? SetSkeletonUnits(options.skeleton_units, skeleton) : status;
 }
 
 namespace {

@@ -22,6 +22,8 @@ struct MotionFileOptions {
   // the key rate when uniform, else 30 fps). Must stay at their defaults for BVH/AMC.
   std::string animation;
   double sample_rate = 0.0;
+  // The unit of a skeleton whose file states none (SetSkeletonUnits; "" = leave it).
+  std::string skeleton_units;
   // If not null, receives the reader's warnings (approximated scales, ignored channels).
   std::vector<std::string>* warnings = nullptr;
 };

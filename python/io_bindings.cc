@@ -135,13 +135,13 @@ void BindIo(py::module_& m) {
         options.amc_frame_rate = amc_fps;
         options.animation = animation;
         options.sample_rate = sample_fps;
+        options.skeleton_units = skeleton_units;
         auto out_skeleton = std::make_shared<Skeleton>();
         Motion motion;
         Status status = Status::Ok();
         {
           py::gil_scoped_release release;
           status = ReadMotionFile(path, options, out_skeleton.get(), &motion);
-          if (status.ok()) status = SetSkeletonUnits(skeleton_units, out_skeleton.get());
         }
         ThrowIfError(status);
         return py::make_tuple(SkeletonPtr(out_skeleton), std::move(motion));

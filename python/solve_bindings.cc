@@ -286,6 +286,7 @@ A bad option raises ValueError with the CLI's message; an unknown one TypeError.
         ThrowIfError(CheckCalibrateSettings(settings));
         MotionFileOptions motion_options;
         if (!skeleton.is_none()) motion_options.skeleton_path = py::str(skeleton);
+        motion_options.skeleton_units = skeleton_units;
         motion_options.amc_frame_rate = amc_fps;
         SubjectCalibrationOptions options;
         options.axes = axes;
@@ -301,7 +302,6 @@ A bad option raises ValueError with the CLI's message; an unknown one TypeError.
           Motion motion;
           MarkerTrajectories trajectories;
           status = ReadMotionFile(motion_path, motion_options, &model, &motion);
-          if (status.ok()) status = SetSkeletonUnits(skeleton_units, &model);
           if (status.ok()) status = ReadMarkerFile(markers_path, &trajectories);
           if (status.ok()) status = RunCalibrate(model, motion, trajectories, settings, options, out.get());
         }

@@ -20,10 +20,7 @@ const OptionGroup<MethodSetting>& DistanceMethodOption();   // green, diffusion,
 const OptionGroup<MethodSetting>& BlendMethodOption();      // multires | weighted.
 
 // A command's default method (the Python keyword's default).
-template <class Group>
-std::string DefaultMethod(const Group& group) {
-  return group.Defaults().method;
-}
+inline std::string DefaultMethod(const OptionGroup<MethodSetting>& group) { return group.Defaults().method; }
 
 }  // namespace mocapsolve
 

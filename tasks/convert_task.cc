@@ -19,7 +19,6 @@ Status LoadDeliveredMotion(const ConvertInputs& inputs, const ClipDelivery& deli
   MotionFileOptions options = inputs.motion;
   options.warnings = warnings;
   Status status = ReadMotionFile(inputs.in, options, skeleton, motion);
-  if (status.ok()) status = SetSkeletonUnits(inputs.skeleton_units, skeleton);
   if (status.ok() && !delivery.keeps_clip()) {
     status = DeliverClip(*motion, delivery, motion);
     if (!status.ok()) status = Status::Error(inputs.in + ": " + status.message());

@@ -21,7 +21,6 @@ struct ConvertInputs {
   std::string in, out;
   std::string target;          // A glTF character (glTF/FBX output; "" = IN when IN is one).
   MotionFileOptions motion;    // How IN is read (its warnings go to ConvertResult::warnings).
-  std::string skeleton_units;  // The unit of a skeleton that states none.
   std::string axes = "x,y,z";  // Marker files: OUT's axes (x, y, z) = IN's axes.
 };
 

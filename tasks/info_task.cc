@@ -118,7 +118,7 @@ void DescribeMotion(const Motion& motion, InfoResult* r) {
       .Add("root_max", std::vector<JsonValue>{hi.x(), hi.y(), hi.z()});
 }
 
-// ReadMotionFile with the config's options (warnings kept), then its skeleton units.
+// ReadMotionFile with the config's options (warnings kept, skeleton units applied).
 Status ReadInfoMotion(const std::string& path, const InfoConfig& config, Skeleton* skeleton, Motion* motion,
                   InfoResult* r) {
   MotionFileOptions options;
@@ -126,9 +126,9 @@ Status ReadInfoMotion(const std::string& path, const InfoConfig& config, Skeleto
   options.amc_frame_rate = config.amc_fps;
   options.animation = config.animation;  // An error for formats with one clip.
   options.sample_rate = config.sample_fps;
+  options.skeleton_units = config.skeleton_units;
   options.warnings = &r->warnings;
-  Status status = ReadMotionFile(path, options, skeleton, motion);
-  return status.ok() ? SetSkeletonUnits(config.skeleton_units, skeleton) : status;
+  return ReadMotionFile(path, options, skeleton, motion);
 }
 
 // A glTF/GLB: the rigged character (skin, joints, meshes, bind pose), with or without

@@ -54,17 +54,14 @@ Status LoadViewMotion(const std::string& path, const ViewInputs& in, Skeleton* s
   MotionFileOptions options;
   options.animation = in.animation;
   options.sample_rate = in.sample_fps;
+  options.skeleton_units = in.skeleton_units;
   if (FileExtension(path) == ".amc") {
     options.skeleton_path = in.skeleton;
     options.amc_frame_rate = in.amc_fps;
     options.warnings = warnings;
-    Status status = ReadMotionFile(path, options, skeleton, motion);
-    if (status.ok()) status = SetSkeletonUnits(in.skeleton_units, skeleton);
-    return status.ok() ? RequireFrames(path, *motion) : status;
   }
   Status status = ReadMotionFile(path, options, skeleton, motion);
-  if (status.ok()) status = RequireFrames(path, *motion);
-  return status.ok() ? SetSkeletonUnits(in.skeleton_units, skeleton) : status;
+  return status.ok() ? RequireFrames(path, *motion) : status;
 }
 
 Status AddCharacters(const ViewInputs& in, const ViewConfig& config, ViewScene* scene) {
