@@ -53,8 +53,8 @@ extern const Command kBandsCommand = {
     "Builds a Laplacian pyramid with N = (number of weights) - 1 levels and collapses it\n"
     "with each band scaled: G'_0 = w_N G_N + sum w_l L_l (Huang, Boulic & Thalmann, eq. 7);\n"
     "w_0 weights the finest band. All ones returns the input (to rounding).",
-    __FILE__, RunBands,
-    "motion,markers,out,skeleton,skeleton_units,amc_fps,report,quiet",
-    {PyramidSettingOptions().options()}};
+    __FILE__, RunBands, nullptr,
+    {SharedOptions("motion,markers,out,skeleton,skeleton_units,amc_fps,report"),
+     PyramidSettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -15,16 +15,7 @@
 #include "batch/worker_process.h"
 #include "tasks/batch_task.h"
 
-DECLARE_string(subject);    // apps/main.cc
-DECLARE_string(character);  // apps/main.cc
-DECLARE_string(out_dir);    // apps/pipeline_flags.cc
 
-DEFINE_string(manifest, "", "Batch manifest (.json): {\"defaults\": {...}, \"takes\": [{\"name\", \"markers\", "
-              "\"subject\", \"characters\", ...options}]}; relative paths are relative to it.");
-DEFINE_string(markers_glob, "", "Instead of --manifest: one take per marker file matching this pattern "
-              "(quote it), all with --subject and --character.");
-DEFINE_string(write_manifest, "", "Write the batch's manifest (e.g. the one --markers_glob built) to this "
-              "file.");
 namespace mocapsolve {
 namespace {
 
@@ -51,21 +42,21 @@ void PrintFailures(const BatchResult& result) {
 Status RunBatchCommand(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   BatchInputs inputs;
-  inputs.manifest = FLAGS_manifest;
-  inputs.markers_glob = FLAGS_markers_glob;
-  inputs.subject = FLAGS_subject;
-  inputs.characters = SplitCommaList(FLAGS_character);
-  inputs.out_dir = FLAGS_out_dir;
+  inputs.manifest = Files().manifest;
+  inputs.markers_glob = Files().markers_glob;
+  inputs.subject = Files().subject;
+  inputs.characters = SplitCommaList(Files().character);
+  inputs.out_dir = Files().out_dir;
   ClipDelivery delivery;  // Checked here: a malformed range is the batch's error, not every take's.
   Status status = ClipDeliveryFromFlags(&delivery);
   if (!status.ok()) return status;
   inputs.pipeline_options = GivenFlagsJson(DeliverySettingOptions().Names());
-  inputs.write_manifest = FLAGS_write_manifest;
+  inputs.write_manifest = Files().write_manifest;
   ReadOptionFlags(BatchSettingOptions(), &inputs.settings);
   inputs.settings.shard = ShardOrSlurm(inputs.settings.shard);
   inputs.executable = SelfExecutable();
   inputs.version = Version();
-  ProgressLine line(FLAGS_quiet);  // In place on a terminal, a line every few seconds in a log.
+  ProgressLine line(Console().quiet);  // In place on a terminal, a line every few seconds in a log.
   BatchTaskResult task;
   status = RunBatchTask(inputs, [&line](const BatchProgress& p) {
     const bool last = p.done + p.failed == p.takes && p.running == 0;
@@ -80,15 +71,15 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
   const BatchResult& result = task.result;
   switch (task.kind) {
     case BatchTaskResult::Kind::kManifestOnly:
-      std::printf("wrote %s (%d takes)\n", FLAGS_write_manifest.c_str(), task.manifest_takes);
+      std::printf("wrote %s (%d takes)\n", Files().write_manifest.c_str(), task.manifest_takes);
       return Status::Ok();
     case BatchTaskResult::Kind::kEmptyShard:
       std::printf("batch: shard %d/%d has no takes\n", task.shard, task.shards);
       return Status::Ok();
     case BatchTaskResult::Kind::kMerged:
       std::printf("merged %zu %s: %d done, %d failed%s\n", result.takes.size(),
-                  FLAGS_manifest.empty() ? "take records" : "takes", result.done, result.failed,
-                  FLAGS_manifest.empty() ? "" : " or missing");
+                  Files().manifest.empty() ? "take records" : "takes", result.done, result.failed,
+                  Files().manifest.empty() ? "" : " or missing");
       break;
     case BatchTaskResult::Kind::kRan:
       std::printf("batch: %zu takes in %.2f s: %d done, %d failed (%d ran, %d skipped as unchanged); %d failed at "
@@ -98,7 +89,7 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
   }
   PrintFailures(result);
   if (task.kind == BatchTaskResult::Kind::kRan) {
-    std::printf("wrote %s/%s.json and .csv\n", FLAGS_out_dir.c_str(), task.summary_base.c_str());
+    std::printf("wrote %s/%s.json and .csv\n", Files().out_dir.c_str(), task.summary_base.c_str());
   }
   if (result.failed > 0) SetExitCodeOnSuccess(2);
   return Status::Ok();
@@ -142,6 +133,8 @@ extern const Command kBatchCommand = {
     "manifest's defaults; a take's own value still wins).\n"
     "Exit code: 0 every take done, 2 some failed or gate_failed, 1 bad manifest or flags\n"
     "(its form: JSON, keys, types, names) or an output that is an input.",
-    __FILE__, RunBatchCommand, "subject,character,out_dir,quiet", {BatchSettingOptions().options(), DeliverySettingOptions().options()}};
+    __FILE__, RunBatchCommand, nullptr,
+    {SharedOptions("subject,character,out_dir,manifest,markers_glob,write_manifest"),
+     BatchSettingOptions().options(), DeliverySettingOptions().options()}};
 
 }  // namespace mocapsolve

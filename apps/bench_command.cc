@@ -90,10 +90,10 @@ std::string BenchUsage() {
 }  // namespace
 
 static const std::string kBenchUsage = BenchUsage();
-static const std::string kBenchFlags = std::string("report,quiet,axes,marker_scale,skeleton,skeleton_units,amc_fps,animation,sample_fps");
 extern const Command kBenchCommand = {"bench", "the solver comparison harness (time, iterations, "
                                       "cost, error per solver)",
-                                      kBenchUsage.c_str(), __FILE__, RunBench, kBenchFlags.c_str(),
-                                      {SolverOptions().Without("mode").options()}};
+                                      kBenchUsage.c_str(), __FILE__, RunBench, nullptr,
+    {SharedOptions("report,axes,marker_scale,skeleton,skeleton_units,amc_fps,animation,sample_fps"),
+     SolverOptions().Without("mode").options()}};
 
 }  // namespace mocapsolve

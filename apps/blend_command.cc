@@ -14,8 +14,6 @@
 #include "settings/method_settings.h"
 #include "tasks/blend_task.h"
 
-DEFINE_string(a, "", "The first motion (.bvh, or .amc with --skeleton).");
-DEFINE_string(b, "", "The second motion, same skeleton (joint names and order) as --a.");
 
 namespace mocapsolve {
 namespace {
@@ -24,11 +22,11 @@ Status BlendMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   BlendSettings settings;
   ReadOptionFlags(BlendSettingOptions(), &settings);
-  if (FLAGS_a.empty() || FLAGS_b.empty() || FLAGS_out.empty() || settings.transition.empty()) {
+  if (Files().a.empty() || Files().b.empty() || Files().out.empty() || settings.transition.empty()) {
     return Status::Error("--a, --b, --transition and --out are required");
   }
-  if (!IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh");
-  Status status = CheckOutputsApart({FLAGS_out}, {FLAGS_a, FLAGS_b});
+  if (!IsTextOutputPath(Files().out, ".bvh")) return Status::Error(Files().out + ": expected a .bvh");
+  Status status = CheckOutputsApart({Files().out}, {Files().a, Files().b});
   if (!status.ok()) return status;
   MethodSetting method;
   ReadOptionFlags(BlendMethodOption(), &method);
@@ -38,19 +36,19 @@ Status BlendMain(const std::vector<std::string>& arguments) {
 
   Skeleton skeleton_a, skeleton_b;
   Motion a, b;
-  status = LoadMotion(FLAGS_a, &skeleton_a, &a);
-  if (status.ok()) status = RequireFrames(FLAGS_a, a);
-  if (status.ok()) status = LoadMotion(FLAGS_b, &skeleton_b, &b);
-  if (status.ok()) status = RequireFrames(FLAGS_b, b);
+  status = LoadMotion(Files().a, &skeleton_a, &a);
+  if (status.ok()) status = RequireFrames(Files().a, a);
+  if (status.ok()) status = LoadMotion(Files().b, &skeleton_b, &b);
+  if (status.ok()) status = RequireFrames(Files().b, b);
   if (!status.ok()) return status;
   BlendTaskResult result;
-  status = RunBlend({&skeleton_a, &a, &skeleton_b, &b, FLAGS_a, FLAGS_b}, method.method, settings, pyramid, &result);
+  status = RunBlend({&skeleton_a, &a, &skeleton_b, &b, Files().a, Files().b}, method.method, settings, pyramid, &result);
   if (!status.ok()) return status;
-  status = WriteBvh(FLAGS_out, skeleton_a, result.blended);
+  status = WriteBvh(Files().out, skeleton_a, result.blended);
   if (!status.ok()) return status;
-  std::printf("wrote %s: %s", FLAGS_out.c_str(), result.summary.c_str());
+  std::printf("wrote %s: %s", Files().out.c_str(), result.summary.c_str());
   JsonObject report;
-  report.Add("a", FLAGS_a).Add("b", FLAGS_b).Add("out", FLAGS_out).Merge(result.report);
+  report.Add("a", Files().a).Add("b", Files().b).Add("out", Files().out).Merge(result.report);
   return WriteReport(report);
 }
 
@@ -67,8 +65,8 @@ extern const Command kBlendCommand = {
     "seam over its own wavelength. Rotations are blended as sign-continuous quaternions\n"
     "(B's sign matched to A's at START) and renormalized (nlerp). Prints the largest\n"
     "velocity jump near the window and in each input.",
-    __FILE__, BlendMain,
-    "out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet",
-    {PyramidSettingOptions().options(), BlendMethodOption().options(), BlendSettingOptions().options()}};
+    __FILE__, BlendMain, nullptr,
+    {SharedOptions("a,b,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report"),
+     PyramidSettingOptions().options(), BlendMethodOption().options(), BlendSettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -13,73 +13,71 @@
 #include "pipeline/subject.h"
 #include "tasks/calibrate_task.h"
 
-DEFINE_string(out_subject, "", "Also write a subject file (.json: skeleton, marker set, axes, units) "
-              "that solve/repair/evaluate take as --subject.");
 
 namespace mocapsolve {
 namespace {
 
 Status CalibrateMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_motion.empty() || FLAGS_markers.empty()) return Status::Error("--motion and --markers are required");
+  if (Files().motion.empty() || Files().markers.empty()) return Status::Error("--motion and --markers are required");
   // The subject file holds the marker set too, so either output is enough.
-  if (FLAGS_out.empty() && FLAGS_out_subject.empty()) {
+  if (Files().out.empty() && Files().out_subject.empty()) {
     return Status::Error("--out=SET.json and/or --out_subject=S.json is required");
   }
-  if (!FLAGS_out.empty() && !IsTextOutputPath(FLAGS_out, ".json")) {
-    return Status::Error(FLAGS_out + ": expected a .json output");
+  if (!Files().out.empty() && !IsTextOutputPath(Files().out, ".json")) {
+    return Status::Error(Files().out + ": expected a .json output");
   }
   CalibrateSettings settings;
   ReadOptionFlags(CalibrateSettingOptions(), &settings);
   Status status = CheckCalibrateSettings(settings);
   if (!status.ok()) return status;
-  if (!FLAGS_out_subject.empty() && !IsTextOutputPath(FLAGS_out_subject, ".json")) {
-    return Status::Error(FLAGS_out_subject + ": expected a .json subject file");
+  if (!Files().out_subject.empty() && !IsTextOutputPath(Files().out_subject, ".json")) {
+    return Status::Error(Files().out_subject + ": expected a .json subject file");
   }
   const std::string attach_file = settings.attach == "auto" ? "" : settings.attach;
-  status = CheckOutputsApart({FLAGS_out, FLAGS_out_subject}, {FLAGS_motion, FLAGS_skeleton, FLAGS_markers, attach_file});
+  status = CheckOutputsApart({Files().out, Files().out_subject}, {Files().motion, Files().skeleton, Files().markers, attach_file});
   if (!status.ok()) return status;
 
   Skeleton skeleton;
   Motion motion;
   SetStage("inputs");
-  status = LoadMotion(FLAGS_motion, &skeleton, &motion);
-  if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
+  status = LoadMotion(Files().motion, &skeleton, &motion);
+  if (status.ok()) status = RequireFrames(Files().motion, motion);
   if (!status.ok()) return status;
   MarkerTrajectories trajectories;
-  status = ReadMarkerFile(FLAGS_markers, &trajectories);
-  if (status.ok()) status = RequireMarkerData(FLAGS_markers, trajectories);
+  status = ReadMarkerFile(Files().markers, &trajectories);
+  if (status.ok()) status = RequireMarkerData(Files().markers, trajectories);
   if (!status.ok()) return status;
-  if (!FLAGS_quiet && trajectories.frame_rate > 0.0 && motion.frame_rate > 0.0 &&
+  if (!Console().quiet && trajectories.frame_rate > 0.0 && motion.frame_rate > 0.0 &&
       std::abs(trajectories.frame_rate / motion.frame_rate - 1.0) > 1e-6) {
     std::fprintf(stderr, "warning: marker rate %g fps differs from the motion's %g fps (frames are "
                  "matched by index)\n", trajectories.frame_rate, motion.frame_rate);
   }
   SubjectCalibrationOptions options;
-  options.axes = FLAGS_axes;
-  options.marker_scale = FLAGS_marker_scale;
-  options.skeleton_path = FLAGS_skeleton.empty() ? FLAGS_motion : FLAGS_skeleton;
-  options.amc_fps = FLAGS_amc_fps;
-  options.markers_name = FLAGS_markers;
+  options.axes = FileReading().axes;
+  options.marker_scale = FileReading().marker_scale;
+  options.skeleton_path = Files().skeleton.empty() ? Files().motion : Files().skeleton;
+  options.amc_fps = FileReading().amc_fps;
+  options.markers_name = Files().markers;
   CalibrateTaskResult result;
   SetStage("calibrate");
   status = RunCalibrate(skeleton, motion, trajectories, settings, options, &result);
   if (!status.ok()) return status;
   SetStage("writing");
-  if (!FLAGS_out.empty()) {
-    status = WriteMarkerSet(FLAGS_out, skeleton, result.calibration.result.marker_set, options.skeleton_path);
+  if (!Files().out.empty()) {
+    status = WriteMarkerSet(Files().out, skeleton, result.calibration.result.marker_set, options.skeleton_path);
     if (!status.ok()) return status;
   }
-  if (!FLAGS_out_subject.empty()) {
-    status = WriteSubject(FLAGS_out_subject, result.calibration.subject);
+  if (!Files().out_subject.empty()) {
+    status = WriteSubject(Files().out_subject, result.calibration.subject);
     if (!status.ok()) return status;
-    std::printf("wrote subject %s\n", FLAGS_out_subject.c_str());
+    std::printf("wrote subject %s\n", Files().out_subject.c_str());
   }
   std::fputs(result.table.c_str(), stdout);
-  std::printf(FLAGS_out.empty() ? "\n" : "; wrote %s\n", FLAGS_out.c_str());
+  std::printf(Files().out.empty() ? "\n" : "; wrote %s\n", Files().out.c_str());
   JsonObject report;
-  report.Add("motion", FLAGS_motion).Add("markers", FLAGS_markers).Add("out", FLAGS_out)
-      .Add("out_subject", FLAGS_out_subject).Merge(result.report);
+  report.Add("motion", Files().motion).Add("markers", Files().markers).Add("out", Files().out)
+      .Add("out_subject", Files().out_subject).Merge(result.report);
   return WriteReport(report);
 }
 
@@ -102,8 +100,8 @@ extern const Command kCalibrateCommand = {
     "skeleton, axes and units (--out_subject), or both.\n"
     "CMU (C3D from mocap.cs.cmu.edu with its ASF/AMC, e.g. 02_01): --axes=y,z,x, no frame\n"
     "offset, scale from the units (mm -> 1/0.45 inch): calibrated RMS 11.7 mm on 02_01.",
-    __FILE__, CalibrateMain,
-    "motion,markers,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,axes,marker_scale,report",
-    {CalibrateSettingOptions().options()}};
+    __FILE__, CalibrateMain, nullptr,
+    {SharedOptions("motion,markers,out,out_subject,skeleton,skeleton_units,amc_fps,animation,sample_fps,axes,marker_scale,report"),
+     CalibrateSettingOptions().options()}};
 
 }  // namespace mocapsolve

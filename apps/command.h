@@ -20,8 +20,9 @@ struct Command {
   const char* source;   // __FILE__ of the command: its flags are the ones defined there.
   // Positional arguments after flag parsing. Returns a failed Status on bad input.
   Status (*run)(const std::vector<std::string>& arguments);
-  // The shared flags (defined in apps/main.cc, solver_flags.cc, ...) the command reads,
-  // comma-separated: its --help lists them and main refuses the others (nullptr: none).
+  // Flags defined (DEFINE_*) in another apps/ file that the command reads, comma-separated:
+  // its --help lists them and main refuses the others (nullptr: none). The shared options
+  // (files, how files are read) are declared: SharedOptions (apps/common_flags.h) in `options`.
   const char* shared_flags = nullptr;
   // The declared options the command reads (settings/option.h), groups in priority order:
   // main.cc registers them as this run's flags, the command's own (--help lists them); a

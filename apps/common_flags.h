@@ -1,5 +1,6 @@
-// Flags shared by several commands (defined in apps/main.cc) and the helpers that read
-// them, so every command loads motions and writes reports the same way.
+// The options shared by commands (the files they read and write, how files are read,
+// --quiet: settings/file_settings.h, file_read_settings.h, console_settings.h) and the
+// helpers that read them, so every command loads motions and writes reports the same way.
 #ifndef MOCAPSOLVE_APPS_COMMON_FLAGS_H_
 #define MOCAPSOLVE_APPS_COMMON_FLAGS_H_
 
@@ -18,35 +19,26 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "pipeline/subject.h"
+#include "settings/console_settings.h"
+#include "settings/file_read_settings.h"
+#include "settings/file_settings.h"
 #include "problems/marker_solve/marker_observations.h"
 
-DECLARE_bool(quiet);
-DECLARE_string(skeleton);
-DECLARE_string(skeleton_units);
-DECLARE_double(amc_fps);
-DECLARE_string(animation);
-DECLARE_double(sample_fps);
-DECLARE_string(report);
-DECLARE_string(motion);
-DECLARE_string(out);
-DECLARE_string(markers);
-DECLARE_string(markerset);
-DECLARE_string(character);
-DECLARE_string(target);
-DECLARE_string(axes);
-DECLARE_double(marker_scale);
-DECLARE_string(subject);
-DECLARE_bool(include_model_outputs);
-DECLARE_string(subject_prefix);
 
 namespace mocapsolve {
 
-// How marker files are read (io/marker_file.h MarkerReadOptions): main.cc gives these
-// flags to every command that reads marker files (those taking --markers, info, convert),
-// so no command lists them itself.
-inline constexpr char kMarkerReadFlags[] = "include_model_outputs,subject_prefix";
-// Makes those flags the options of every ReadMarkerFile call (main.cc, once flags are parsed).
-void SetMarkerReadOptionsFromFlags();
+// The shared options named in `names` (comma-separated; from FileSettingOptions,
+// FileReadSettingOptions and ConsoleSettingOptions) as one group of a Command's options.
+// A command that reads --markers also gets include_model_outputs and subject_prefix (every
+// marker file is read the same way); --quiet is every command's (main.cc registers it).
+std::vector<Option> SharedOptions(const std::string& names);
+
+// This run's values of the shared options, as parsed (and set by --config): main.cc reads
+// them after parsing the command line, ApplyConfigFile again after applying a config.
+const FileSettings& Files();
+const FileReadSettings& FileReading();
+const ConsoleSettings& Console();
+void ReadSharedOptions();
 
 // ReadMotionFile with --skeleton and --amc_fps, then --skeleton_units.
 Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion);

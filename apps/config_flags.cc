@@ -9,6 +9,7 @@
 
 #include "io/json_reader.h"
 #include "io/json_writer.h"
+#include "apps/common_flags.h"
 
 namespace mocapsolve {
 
@@ -50,6 +51,7 @@ Status ApplyConfigFile(const std::string& path, const std::string& flags) {
       return Status::Error(value.Where(path) + ": " + key + ": invalid value '" + text + "'");
     }
   }
+  ReadSharedOptions();  // A config may set shared options too.
   return Status::Ok();
 }
 

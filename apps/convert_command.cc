@@ -9,7 +9,6 @@
 #include "kinematics/quote_token.h"
 #include "tasks/convert_task.h"
 
-DECLARE_string(axes);  // apps/main.cc
 
 namespace mocapsolve {
 namespace {
@@ -19,13 +18,13 @@ Status ConvertMain(const std::vector<std::string>& arguments) {
   ConvertInputs inputs;
   inputs.in = arguments[0];
   inputs.out = arguments[1];
-  inputs.target = FLAGS_target;
-  inputs.motion.skeleton_path = FLAGS_skeleton;
-  inputs.motion.amc_frame_rate = FLAGS_amc_fps;
-  inputs.motion.animation = FLAGS_animation;  // An error for formats with one clip.
-  inputs.motion.sample_rate = FLAGS_sample_fps;
-  inputs.motion.skeleton_units = FLAGS_skeleton_units;
-  inputs.axes = FLAGS_axes;
+  inputs.target = Files().target;
+  inputs.motion.skeleton_path = Files().skeleton;
+  inputs.motion.amc_frame_rate = FileReading().amc_fps;
+  inputs.motion.animation = FileReading().animation;  // An error for formats with one clip.
+  inputs.motion.sample_rate = FileReading().sample_fps;
+  inputs.motion.skeleton_units = FileReading().skeleton_units;
+  inputs.axes = FileReading().axes;
   ConvertSettings settings;
   ReadOptionFlags(ConvertSettingOptions(), &settings);
   ClipDelivery delivery;
@@ -59,7 +58,8 @@ extern const Command kConvertCommand = {
     "first frame and missing samples kept, in --out_units, OUT's axes being IN's --axes.\n"
     "--frames=A:B or --seconds=A:B cut the motion, --out_fps=R resamples it (BVH, glTF, FBX).\n"
     "OUT is written atomically and may not be an input.",
-    __FILE__, ConvertMain, "skeleton,skeleton_units,amc_fps,animation,sample_fps,target,axes,report,quiet",
-    {ConvertSettingOptions().options(), DeliverySettingOptions().Without("formats").options()}};
+    __FILE__, ConvertMain, nullptr,
+    {SharedOptions("skeleton,skeleton_units,amc_fps,animation,sample_fps,target,axes,include_model_outputs,subject_prefix,report"),
+     ConvertSettingOptions().options(), DeliverySettingOptions().Without("formats").options()}};
 
 }  // namespace mocapsolve

@@ -11,27 +11,25 @@
 #include "io/marker_file.h"
 #include "signal/marker_corruption.h"
 
-DEFINE_string(mask_out, "", "CSV of the damaged samples: frame,marker,kind (gap, fly_off, swap, noise, jitter, ghost, "
-              "unlabelled).");
 
 namespace mocapsolve {
 namespace {
 
 Status RunCorrupt(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_markers.empty() || FLAGS_out.empty()) return Status::Error("--markers and --out are required");
-  for (const std::string& out : {FLAGS_out, FLAGS_mask_out}) {
+  if (Files().markers.empty() || Files().out.empty()) return Status::Error("--markers and --out are required");
+  for (const std::string& out : {Files().out, Files().mask_out}) {
     if (out.empty()) continue;
-    Status status = CheckNotAnInput(out, FLAGS_markers);
+    Status status = CheckNotAnInput(out, Files().markers);
     if (!status.ok()) return status;
   }
   MarkerTrajectories markers;
-  Status status = ReadMarkerFile(FLAGS_markers, &markers);
-  if (status.ok()) status = RequireMarkerData(FLAGS_markers, markers);
+  Status status = ReadMarkerFile(Files().markers, &markers);
+  if (status.ok()) status = RequireMarkerData(Files().markers, markers);
   if (!status.ok()) return status;
   CorruptionOptions options;
   status = CorruptionOptionsFromFlags(markers.unit, &options);
-  if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
+  if (!status.ok()) return Status::Error(Files().markers + ": " + status.message());
   CorruptionMask mask;
   UnlabelledDamage unlabelled;
   CorruptMarkers(options, &markers, &mask, &unlabelled);
@@ -61,7 +59,7 @@ Status RunCorrupt(const std::vector<std::string>& arguments) {
       }
     }
   }
-  status = WriteMarkerFile(FLAGS_out, out);
+  status = WriteMarkerFile(Files().out, out);
   if (!status.ok()) return status;
   // Samples per kind; jitter and ghosts were counted as noise before they had names.
   int counts[kNumDamageKinds] = {};
@@ -74,26 +72,24 @@ Status RunCorrupt(const std::vector<std::string>& arguments) {
       csv += std::to_string(f) + "," + markers.label(static_cast<int>(m)) + "," + kDamageKindNames[k] + "\n";
     }
   }
-  if (!FLAGS_mask_out.empty()) {
-    status = WriteFileAtomically(FLAGS_mask_out, csv);
+  if (!Files().mask_out.empty()) {
+    status = WriteFileAtomically(Files().mask_out, csv);
     if (!status.ok()) return status;
   }
   std::string summary;
   for (int k = 0; k < kNumDamageKinds; ++k) {
     if (k < 4 || counts[k] > 0) summary += std::string(summary.empty() ? "" : ", ") + std::to_string(counts[k]) + " " + kDamageKindNames[k];
   }
-  std::printf("wrote %s: samples damaged: %s (seed %d)%s%s\n", FLAGS_out.c_str(), summary.c_str(),
-              CorruptionSettingsFromFlags().seed, FLAGS_mask_out.empty() ? "" : "; mask in ", FLAGS_mask_out.c_str());
+  std::printf("wrote %s: samples damaged: %s (seed %d)%s%s\n", Files().out.c_str(), summary.c_str(),
+              CorruptionSettingsFromFlags().seed, Files().mask_out.empty() ? "" : "; mask in ", Files().mask_out.c_str());
   JsonObject report;
-  report.Add("markers", FLAGS_markers).Add("out", FLAGS_out);
+  report.Add("markers", Files().markers).Add("out", Files().out);
   for (int k = 0; k < kNumDamageKinds; ++k) report.Add(std::string(kDamageKindNames[k]) + "_samples", counts[k]);
   std::vector<JsonValue> track_names;
   for (int k = 0; k < unlabelled.tracks.num_markers(); ++k) track_names.push_back(labels[markers.num_markers() + k]);
   report.Add("unlabelled_tracks", track_names);
   return WriteReport(report);
 }
-
-const char kCorruptFlags[] = "markers,out,report";
 
 }  // namespace
 
@@ -103,6 +99,8 @@ extern const Command kCorruptCommand = {
     "[--seed=1] [--gaps=10 ...]\n\n"
     "Writes a corrupted copy and, with --mask_out, which samples were damaged and how.\n"
     "Distances are in mm (converted with the file's unit); frames are frame indices.",
-    __FILE__, RunCorrupt, kCorruptFlags, {CorruptionSettingOptions().options()}};
+    __FILE__, RunCorrupt, nullptr,
+    {SharedOptions("markers,out,mask_out,report"),
+     CorruptionSettingOptions().options()}};
 
 }  // namespace mocapsolve

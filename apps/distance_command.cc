@@ -47,15 +47,15 @@ Status DistanceMain(const std::vector<std::string>& arguments) {
   PlotSetting plot_setting;
   ReadOptionFlags(DistancePlotOption(), &plot_setting);
   const std::string& plot = plot_setting.plot;
-  if (FLAGS_motion.empty() || FLAGS_out.empty() || FLAGS_frame < 0) {
+  if (Files().motion.empty() || Files().out.empty() || FLAGS_frame < 0) {
     return Status::Error("--motion, --frame (>= 0) and --out are required");
   }
-  if (!IsTextOutputPath(FLAGS_out, ".csv")) return Status::Error(FLAGS_out + ": expected a .csv");
-  Status status = CheckNotAnInput(FLAGS_out, FLAGS_motion);
+  if (!IsTextOutputPath(Files().out, ".csv")) return Status::Error(Files().out + ": expected a .csv");
+  Status status = CheckNotAnInput(Files().out, Files().motion);
   if (!status.ok()) return status;
   if (!plot.empty()) {
     if (!IsTextOutputPath(plot, ".svg")) return Status::Error(plot + ": expected a .svg");
-    status = CheckNotAnInput(plot, FLAGS_motion);
+    status = CheckNotAnInput(plot, Files().motion);
     if (!status.ok()) return status;
   }
   DistanceConfig config;
@@ -67,14 +67,14 @@ Status DistanceMain(const std::vector<std::string>& arguments) {
   ReadOptionFlags(FalloffSettingOptions(), &config.falloff);
   Skeleton skeleton;
   Motion motion;
-  status = LoadMotion(FLAGS_motion, &skeleton, &motion);
-  if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
+  status = LoadMotion(Files().motion, &skeleton, &motion);
+  if (status.ok()) status = RequireFrames(Files().motion, motion);
   if (!status.ok()) return status;
   DistanceResult result;
-  status = RunDistance(skeleton, motion, FLAGS_motion, config, &result);
+  status = RunDistance(skeleton, motion, Files().motion, config, &result);
   if (!status.ok()) return status;
 
-  status = WriteFileAtomically(FLAGS_out, result.csv);
+  status = WriteFileAtomically(Files().out, result.csv);
   if (!status.ok()) return status;
   if (!plot.empty()) {
     std::vector<PlotSeries> series;
@@ -87,11 +87,11 @@ Status DistanceMain(const std::vector<std::string>& arguments) {
       series.push_back({name.str(), ToStd(result.swept[s].distance)});
     }
     status = WriteFileAtomically(plot, LinePlotSvg("Pose distance from frame " + std::to_string(result.frame) +
-                                                             " (" + FLAGS_motion + ")",
+                                                             " (" + Files().motion + ")",
                                                          "frame", "normalized distance", series));
     if (!status.ok()) return status;
   }
-  std::printf("%s: %d frames, edit at frame %d, region %d:%d, period %d frames\n", FLAGS_motion.c_str(),
+  std::printf("%s: %d frames, edit at frame %d, region %d:%d, period %d frames\n", Files().motion.c_str(),
               result.frames, result.frame, result.region_begin, result.region_end, result.period);
   const bool phases = !result.same_phase.empty();
   for (const FalloffFigures& f : result.method_figures) PrintFigures("%-9s", f, true, phases);
@@ -106,7 +106,7 @@ Status DistanceMain(const std::vector<std::string>& arguments) {
                 config.falloff.sigma > 0.0 ? "given" : "auto", result.eigenpairs_used,
                 result.sparse_kernel ? "sparse kNN" : "dense", result.features_ms, result.build_ms);
   }
-  std::printf("wrote %s%s%s\n", FLAGS_out.c_str(), plot.empty() ? "" : " and ", plot.c_str());
+  std::printf("wrote %s%s%s\n", Files().out.c_str(), plot.empty() ? "" : " and ", plot.c_str());
   return WriteReport(result.report);
 }
 
@@ -126,8 +126,8 @@ extern const Command kDistanceCommand = {
     "Prints the clip's period (if periodic), the weight at the same and opposite phase of the\n"
     "other cycles, the second difference at the edit and where the weight drops below 0.5/0.05.\n"
     "--plot writes the distance curves (1 - weight) of every method and --sweep sigma as SVG.",
-    __FILE__, DistanceMain,
-    "motion,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet",
-    {FalloffSettingOptions().options(), DistanceMethodOption().options(), DistancePlotOption().options()}};
+    __FILE__, DistanceMain, nullptr,
+    {SharedOptions("motion,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report"),
+     FalloffSettingOptions().options(), DistanceMethodOption().options(), DistancePlotOption().options()}};
 
 }  // namespace mocapsolve

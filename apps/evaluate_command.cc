@@ -16,8 +16,6 @@
 #include "tasks/evaluate_summary.h"
 #include "tasks/evaluate_task.h"
 
-DEFINE_string(table_csv, "", "Also write the table as CSV (repair: one row per method and trial; leave_one_out: one "
-              "row per marker).");
 
 namespace mocapsolve {
 namespace {
@@ -35,9 +33,9 @@ Status EvaluateMain(const std::vector<std::string>& arguments) {
   config.repair = RepairSettingsFromFlags();
   config.solver = SolverSettingsFromFlags();
   config.damage = CorruptionSettingsFromFlags();
-  if (!FLAGS_table_csv.empty()) {
+  if (!Files().table_csv.empty()) {
     for (const std::string& in : inputs) {
-      Status status = CheckNotAnInput(FLAGS_table_csv, in);
+      Status status = CheckNotAnInput(Files().table_csv, in);
       if (!status.ok()) return status;
     }
   }
@@ -47,25 +45,22 @@ Status EvaluateMain(const std::vector<std::string>& arguments) {
   std::unique_ptr<Progress> progress;
   if (config.method == "leave_one_out") {
     progress = std::make_unique<Progress>("leave one out (" + config.solver.solver + ", " + config.solver.mode + ")",
-                                          take.markers.num_markers(), FLAGS_quiet, "markers");
+                                          take.markers.num_markers(), Console().quiet, "markers");
   } else if (config.method == "repair") {
-    progress = std::make_unique<Progress>("evaluate", config.evaluate.trials, FLAGS_quiet, "trials");
+    progress = std::make_unique<Progress>("evaluate", config.evaluate.trials, Console().quiet, "trials");
   }
   EvaluateResult result;
   status = RunEvaluate(take, config, [&](int done, int) { if (progress) progress->Update(done); }, &result);
   if (!status.ok()) return status;
   std::fputs(EvaluateSummary(take, config, result).c_str(), stdout);
-  if (!FLAGS_table_csv.empty() && !result.table_csv.empty()) {
-    status = WriteFileAtomically(FLAGS_table_csv, result.table_csv);
+  if (!Files().table_csv.empty() && !result.table_csv.empty()) {
+    status = WriteFileAtomically(Files().table_csv, result.table_csv);
     if (!status.ok()) return status;
   }
   JsonObject report;
-  report.Add("markers", FLAGS_markers).Merge(result.report);
+  report.Add("markers", Files().markers).Merge(result.report);
   return WriteReport(report);
 }
-
-const std::string kEvaluateFlags = std::string("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,"
-                                               "report,quiet");
 
 }  // namespace
 
@@ -91,8 +86,9 @@ extern const Command kEvaluateCommand = {
     "--method=small_errors adds 12 jumps of 1-4 cm and 3 runs of 2 cm jitter per seed to the take\n"
     "(after --white_noise_mm of noise) and prints the repair's recall and precision on them, the\n"
     "latter also without the samples it flags on the undamaged take (the take's own glitches).",
-    __FILE__, EvaluateMain, kEvaluateFlags.c_str(),
-    {EvaluateSolverOptions().options(),
+    __FILE__, EvaluateMain, nullptr,
+    {SharedOptions("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,table_csv,report"),
+     EvaluateSolverOptions().options(),
      SolverOptions().Only("mode").options(),  // leave_one_out's frame or clip solve.
      RepairSettingOptions().options(), CorruptionSettingOptions().options(), EvaluateSettingOptions().options(),
      EvaluateMethodOption().options()}};

@@ -26,41 +26,41 @@ Status PyramidOptionsFromFlags(int levels, PyramidOptions* options) {
 }
 
 Status FilterFromFlags(const char* command, int levels, const std::vector<double>& weights) {
-  if (FLAGS_out.empty()) return Status::Error("--out is required");
-  if (FLAGS_motion.empty() == FLAGS_markers.empty()) {
+  if (Files().out.empty()) return Status::Error("--out is required");
+  if (Files().motion.empty() == Files().markers.empty()) {
     return Status::Error("give exactly one of --motion and --markers");
   }
-  const std::string& input = FLAGS_motion.empty() ? FLAGS_markers : FLAGS_motion;
-  Status status = CheckNotAnInput(FLAGS_out, input);
+  const std::string& input = Files().motion.empty() ? Files().markers : Files().motion;
+  Status status = CheckNotAnInput(Files().out, input);
   if (!status.ok()) return status;
   PyramidOptions options;
   status = PyramidOptionsFromFlags(levels, &options);
   if (!status.ok()) return status;
   JsonObject report;
-  report.Add("command", command).Add("in", input).Add("out", FLAGS_out).Add("levels", levels)
+  report.Add("command", command).Add("in", input).Add("out", Files().out).Add("levels", levels)
       .Add("kernel_a", options.kernel.a).Add("tension", options.tension);
-  if (!FLAGS_motion.empty()) {
-    if (!IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh");
+  if (!Files().motion.empty()) {
+    if (!IsTextOutputPath(Files().out, ".bvh")) return Status::Error(Files().out + ": expected a .bvh");
     Skeleton skeleton;
     Motion motion, filtered;
-    status = LoadMotion(FLAGS_motion, &skeleton, &motion);
-    if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
+    status = LoadMotion(Files().motion, &skeleton, &motion);
+    if (status.ok()) status = RequireFrames(Files().motion, motion);
     if (!status.ok()) return status;
     status = FilterMotion(motion, options, weights, &filtered);
-    if (!status.ok()) return Status::Error(FLAGS_motion + ": " + status.message());
-    status = WriteBvh(FLAGS_out, skeleton, filtered);
+    if (!status.ok()) return Status::Error(Files().motion + ": " + status.message());
+    status = WriteBvh(Files().out, skeleton, filtered);
     if (!status.ok()) return status;
-    std::printf("wrote %s: %d frames, %d joints, %d levels\n", FLAGS_out.c_str(),
+    std::printf("wrote %s: %d frames, %d joints, %d levels\n", Files().out.c_str(),
                 filtered.num_frames(), skeleton.num_joints(), levels);
     report.Add("frames", filtered.num_frames()).Add("joints", skeleton.num_joints());
   } else {
-    if (!IsMarkerFile(FLAGS_out)) return Status::Error(FLAGS_out + ": expected a .c3d or .trc");
+    if (!IsMarkerFile(Files().out)) return Status::Error(Files().out + ": expected a .c3d or .trc");
     MarkerTrajectories trajectories, filtered;
-    status = ReadMarkerFile(FLAGS_markers, &trajectories);
-    if (status.ok()) status = RequireMarkerData(FLAGS_markers, trajectories);
+    status = ReadMarkerFile(Files().markers, &trajectories);
+    if (status.ok()) status = RequireMarkerData(Files().markers, trajectories);
     if (!status.ok()) return status;
     status = FilterMarkers(trajectories, options, weights, &filtered);
-    if (!status.ok()) return Status::Error(FLAGS_markers + ": " + status.message());
+    if (!status.ok()) return Status::Error(Files().markers + ": " + status.message());
     double sum = 0.0;
     int count = 0;
     for (int f = 0; f < filtered.num_frames(); ++f) {
@@ -71,10 +71,10 @@ Status FilterFromFlags(const char* command, int levels, const std::vector<double
       }
     }
     const double rms = count > 0 ? std::sqrt(sum / count) : 0.0;
-    status = WriteMarkerFile(FLAGS_out, filtered);
+    status = WriteMarkerFile(Files().out, filtered);
     if (!status.ok()) return status;
     std::printf("wrote %s: %d frames, %d markers (%d missing samples kept missing), %d levels, "
-                "rms change %.4g %s\n", FLAGS_out.c_str(), filtered.num_frames(),
+                "rms change %.4g %s\n", Files().out.c_str(), filtered.num_frames(),
                 filtered.num_markers(), filtered.CountMissing(), levels, rms,
                 trajectories.unit.name.c_str());
     report.Add("frames", filtered.num_frames()).Add("markers", filtered.num_markers())
@@ -101,7 +101,8 @@ extern const Command kFilterCommand = {
     "Thalmann, section 5). Rotations are filtered as sign-continuous quaternions and\n"
     "renormalized, positions and markers per channel; missing marker samples stay missing. A\n"
     "motion is written as BVH, markers as C3D or TRC (by --out's extension).",
-    __FILE__, RunFilter, "motion,markers,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet",
-    {PyramidSettingOptions().options()}};
+    __FILE__, RunFilter, nullptr,
+    {SharedOptions("motion,markers,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report"),
+     PyramidSettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -17,11 +17,6 @@
 #include "pipeline/subject.h"
 #include "tasks/fit_skeleton_task.h"
 
-DECLARE_string(out_subject);
-DEFINE_string(template_subject, "", "Template subject (.json): skeleton and marker set to start from "
-              "(e.g. CMU subject 2 calibrated on 02_01); replaces --skeleton/--markerset. --axes and "
-              "--marker_scale then describe the take's marker file.");
-DEFINE_string(out_markerset, "", "The fitted marker set (.json), in the skeleton's units.");
 
 namespace mocapsolve {
 namespace {
@@ -29,17 +24,17 @@ namespace {
 Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   const auto start = std::chrono::steady_clock::now();
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  Status status = CheckSkeletonFitInputsGiven(!FLAGS_template_subject.empty(), !FLAGS_skeleton.empty(),
-                                              !FLAGS_markerset.empty(), !FLAGS_skeleton_units.empty(),
-                                              !FLAGS_markers.empty());
+  Status status = CheckSkeletonFitInputsGiven(!Files().template_subject.empty(), !Files().skeleton.empty(),
+                                              !Files().markerset.empty(), !FileReading().skeleton_units.empty(),
+                                              !Files().markers.empty());
   if (!status.ok()) return status;
-  if (FLAGS_out.empty() && FLAGS_out_subject.empty()) return Status::Error("--out or --out_subject is required");
-  if (!FLAGS_out.empty() && !IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh");
-  for (const std::string& json : {FLAGS_out_markerset, FLAGS_out_subject}) {
+  if (Files().out.empty() && Files().out_subject.empty()) return Status::Error("--out or --out_subject is required");
+  if (!Files().out.empty() && !IsTextOutputPath(Files().out, ".bvh")) return Status::Error(Files().out + ": expected a .bvh");
+  for (const std::string& json : {Files().out_markerset, Files().out_subject}) {
     if (!json.empty() && !IsTextOutputPath(json, ".json")) return Status::Error(json + ": expected a .json");
   }
-  const std::vector<std::string> outputs = {FLAGS_out, FLAGS_out_markerset, FLAGS_out_subject};
-  status = CheckOutputsApart(outputs, {FLAGS_template_subject, FLAGS_skeleton, FLAGS_markers, FLAGS_markerset});
+  const std::vector<std::string> outputs = {Files().out, Files().out_markerset, Files().out_subject};
+  status = CheckOutputsApart(outputs, {Files().template_subject, Files().skeleton, Files().markers, Files().markerset});
   if (!status.ok()) return status;
   SkeletonFitSettings settings;
   ReadOptionFlags(SkeletonFitSettingOptions(), &settings);
@@ -47,11 +42,11 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
 
   SkeletonFitInputs inputs;
-  inputs.markers_path = FLAGS_markers;
-  inputs.axes = FLAGS_axes;
-  inputs.marker_scale = FLAGS_marker_scale;
-  inputs.amc_fps = FLAGS_amc_fps;
-  status = LoadSkeletonFitTemplate(FLAGS_template_subject, FLAGS_skeleton, FLAGS_markerset, FLAGS_skeleton_units,
+  inputs.markers_path = Files().markers;
+  inputs.axes = FileReading().axes;
+  inputs.marker_scale = FileReading().marker_scale;
+  inputs.amc_fps = FileReading().amc_fps;
+  status = LoadSkeletonFitTemplate(Files().template_subject, Files().skeleton, Files().markerset, FileReading().skeleton_units,
                                    &inputs);
   if (!status.ok()) return status;
   MarkerSolveOptions solve_options;
@@ -68,7 +63,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
         progress_iteration = e.iteration;
         frames_progress = std::make_unique<Progress>(
             "  pose solve " + std::to_string(e.iteration + 1) + "/" + std::to_string(e.iterations + 1), e.frames,
-            FLAGS_quiet);
+            Console().quiet);
       }
       frames_progress->Update(e.frames_done);
       if (e.frames_done >= e.frames) frames_progress.reset();
@@ -76,7 +71,7 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
     }
     bool to_stdout = false;
     const std::string line = SkeletonFitEventLine(e, inputs.templ.skeleton, &to_stdout);
-    if (FLAGS_quiet) return;
+    if (Console().quiet) return;
     std::fputs(line.c_str(), to_stdout ? stdout : stderr);
     if (to_stdout) std::fflush(stdout);
   };
@@ -99,17 +94,17 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
       return failed;
     }
   }
-  if (!FLAGS_out.empty()) {
+  if (!Files().out.empty()) {
     SetStage("writing");
-    status = WriteBvh(FLAGS_out, fitted, result.motion, BvhWriteOptions());
+    status = WriteBvh(Files().out, fitted, result.motion, BvhWriteOptions());
     if (!status.ok()) return status;
   }
-  if (!FLAGS_out_markerset.empty()) {
-    status = WriteMarkerSet(FLAGS_out_markerset, fitted, result.subject.markers);
+  if (!Files().out_markerset.empty()) {
+    status = WriteMarkerSet(Files().out_markerset, fitted, result.subject.markers);
     if (!status.ok()) return status;
   }
-  if (!FLAGS_out_subject.empty()) {
-    status = WriteSubject(FLAGS_out_subject, result.subject);
+  if (!Files().out_subject.empty()) {
+    status = WriteSubject(Files().out_subject, result.subject);
     if (!status.ok()) return status;
   }
   for (const std::string& out : outputs) {
@@ -117,9 +112,6 @@ Status RunFitSkeleton(const std::vector<std::string>& arguments) {
   }
   return WriteReport(json);
 }
-
-const std::string kFitFlags =
-    std::string("template_subject,skeleton,skeleton_units,amc_fps,markers,markerset,axes,marker_scale,out,out_subject,report,quiet");
 
 }  // namespace
 
@@ -144,7 +136,8 @@ extern const Command kFitSkeletonCommand = {
     "own, left/right bone lengths within 5 %, and the marker RMS within 25 mm;\n"
     "--check=fail (default) exits 1 when one fails.\n"
     "Writes the subject (skeleton inline), and optionally the solved motion and marker set.",
-    __FILE__, RunFitSkeleton, kFitFlags.c_str(),
-    {SkeletonFitSettingOptions().options(), SolverOptions().Without("mode").options()}};
+    __FILE__, RunFitSkeleton, nullptr,
+    {SharedOptions("template_subject,skeleton,skeleton_units,amc_fps,markers,markerset,axes,marker_scale,out,out_subject,out_markerset,report"),
+     SkeletonFitSettingOptions().options(), SolverOptions().Without("mode").options()}};
 
 }  // namespace mocapsolve

@@ -15,22 +15,22 @@ namespace {
 
 Status RunFk(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_motion.empty() || FLAGS_out.empty()) {
+  if (Files().motion.empty() || Files().out.empty()) {
     return Status::Error("--motion and --out are required");
   }
-  if (!IsTextOutputPath(FLAGS_out, ".csv")) return Status::Error(FLAGS_out + ": expected a .csv");
-  Status status = CheckNotAnInput(FLAGS_out, FLAGS_motion);
+  if (!IsTextOutputPath(Files().out, ".csv")) return Status::Error(Files().out + ": expected a .csv");
+  Status status = CheckNotAnInput(Files().out, Files().motion);
   if (!status.ok()) return status;
   Skeleton skeleton;
   Motion motion;
-  status = LoadMotion(FLAGS_motion, &skeleton, &motion);
-  if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
+  status = LoadMotion(Files().motion, &skeleton, &motion);
+  if (status.ok()) status = RequireFrames(Files().motion, motion);
   if (!status.ok()) return status;
 
   std::string csv = "frame,joint,x,y,z\n";
   csv.reserve(csv.size() + motion.frames.size() * skeleton.num_joints() * 48);
   FkData data(skeleton);
-  Progress progress("fk", motion.num_frames(), FLAGS_quiet);
+  Progress progress("fk", motion.num_frames(), Console().quiet);
   char line[256];
   for (int f = 0; f < motion.num_frames(); ++f) {
     ForwardKinematics(skeleton, motion.frames[f], &data);
@@ -42,12 +42,12 @@ Status RunFk(const std::vector<std::string>& arguments) {
     }
     progress.Update(f + 1);
   }
-  status = WriteFileAtomically(FLAGS_out, csv);
+  status = WriteFileAtomically(Files().out, csv);
   if (!status.ok()) return status;
-  std::printf("wrote %s: %d frames x %d joints (units: %s)\n", FLAGS_out.c_str(),
+  std::printf("wrote %s: %d frames x %d joints (units: %s)\n", Files().out.c_str(),
               motion.num_frames(), skeleton.num_joints(), skeleton.unit().name.c_str());
   JsonObject report;
-  report.Add("motion", FLAGS_motion).Add("out", FLAGS_out).Add("frames", motion.num_frames())
+  report.Add("motion", Files().motion).Add("out", Files().out).Add("frames", motion.num_frames())
       .Add("joints", skeleton.num_joints()).Add("units", skeleton.unit().name);
   return WriteReport(report);
 }
@@ -59,6 +59,6 @@ extern const Command kFkCommand = {
     "mocapsolve fk --motion=FILE.bvh|FILE.amc|FILE.glb|FILE.fbx [--skeleton=X.asf] [--animation=NAME] --out=positions.csv\n\n"
     "Runs forward kinematics on every frame and writes one row per frame and joint:\n"
     "frame,joint,x,y,z (joints by name, lengths in the motion file's units).",
-    __FILE__, RunFk, "motion,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report,quiet"};
+    __FILE__, RunFk, nullptr, {SharedOptions("motion,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report")}};
 
 }  // namespace mocapsolve

@@ -9,24 +9,23 @@
 #include "kinematics/demo_character.h"
 #include "settings/demo_clip_settings.h"
 
-DEFINE_string(demo_out, "", "Where to write the demo clip (.bvh).");
 
 namespace mocapsolve {
 namespace {
 
 Status RunGenerate(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_demo_out.empty() || !IsTextOutputPath(FLAGS_demo_out, ".bvh")) {
+  if (Files().demo_out.empty() || !IsTextOutputPath(Files().demo_out, ".bvh")) {
     return Status::Error("--demo_out=FILE.bvh is required");
   }
   DemoClipSettings clip;
   ReadOptionFlags(DemoClipSettingOptions(), &clip);
   const Skeleton skeleton = MakeDemoSkeleton();
   const Motion motion = MakeDemoWalk(skeleton, clip.frames, clip.fps);
-  Status status = WriteBvh(FLAGS_demo_out, skeleton, motion, BvhWriteOptions());
+  Status status = WriteBvh(Files().demo_out, skeleton, motion, BvhWriteOptions());
   if (!status.ok()) return status;
   std::printf("wrote %s: procedural walk, %d joints, %d frames at %g fps, cm, Y up\n",
-              FLAGS_demo_out.c_str(), skeleton.num_joints(), motion.num_frames(), clip.fps);
+              Files().demo_out.c_str(), skeleton.num_joints(), motion.num_frames(), clip.fps);
   return Status::Ok();
 }
 
@@ -37,6 +36,8 @@ extern const Command kGenerateCommand = {
     "mocapsolve generate --demo_out=demo.bvh [--frames=240] [--fps=60]\n\n"
     "A 20-joint character in cm, Y up, walking along +Z with swinging arms and legs;\n"
     "made by the project itself, so demos and tests need no external data.",
-    __FILE__, RunGenerate, "", {DemoClipSettingOptions().options()}};
+    __FILE__, RunGenerate, nullptr,
+    {SharedOptions("demo_out"),
+     DemoClipSettingOptions().options()}};
 
 }  // namespace mocapsolve

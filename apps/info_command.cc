@@ -120,7 +120,7 @@ void Print(const InfoResult& r) {
 Status InfoMain(const std::vector<std::string>& arguments) {
   if (arguments.size() != 1) return Status::Error("expected one file (mocapsolve info FILE)");
   // InfoConfig's fields in order.
-  const InfoConfig config{FLAGS_skeleton, FLAGS_skeleton_units, FLAGS_amc_fps, FLAGS_animation, FLAGS_sample_fps};
+  const InfoConfig config{Files().skeleton, FileReading().skeleton_units, FileReading().amc_fps, FileReading().animation, FileReading().sample_fps};
   InfoResult result;
   const Status status = RunInfo(arguments[0], config, &result);
   for (const std::string& warning : result.warnings) {
@@ -145,6 +145,6 @@ extern const Command kInfoCommand = {
     "skins and the animations. Motions: frame count and rate, duration, the file's length\n"
     "unit (BVH does not state one) and the bounding box of the root's path. Markers: labels,\n"
     "frames, rate, unit, missing samples and gap runs.",
-    __FILE__, InfoMain, "skeleton,skeleton_units,amc_fps,animation,sample_fps,report"};
+    __FILE__, InfoMain, nullptr, {SharedOptions("skeleton,skeleton_units,amc_fps,animation,sample_fps,include_model_outputs,subject_prefix,report")}};
 
 }  // namespace mocapsolve

@@ -12,7 +12,6 @@
 #include "settings/retarget_settings.h"
 #include "tasks/joint_map_task.h"
 
-DECLARE_string(source);       // apps/retarget_command.cc.
 DECLARE_string(source_skin);  // apps/retarget_command.cc.
 DECLARE_string(target_skin);  // apps/retarget_command.cc.
 
@@ -21,20 +20,20 @@ namespace {
 
 Status JointMapMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_source.empty() || FLAGS_target.empty()) return Status::Error("--source and --target are required");
+  if (Files().source.empty() || Files().target.empty()) return Status::Error("--source and --target are required");
   RetargetSettings settings;
   ReadOptionFlags(RetargetSettingOptions().Only("joint_map"), &settings);
-  if (!FLAGS_out.empty()) {
-    for (const std::string& in : {FLAGS_source, FLAGS_target, FLAGS_skeleton, settings.joint_map}) {
+  if (!Files().out.empty()) {
+    for (const std::string& in : {Files().source, Files().target, Files().skeleton, settings.joint_map}) {
       if (in.empty()) continue;
-      Status status = CheckNotAnInput(FLAGS_out, in);
+      Status status = CheckNotAnInput(Files().out, in);
       if (!status.ok()) return status;
     }
   }
   JointMapInputs inputs;
-  inputs.source = FLAGS_source;
-  inputs.target = FLAGS_target;
-  inputs.skeleton = FLAGS_skeleton;
+  inputs.source = Files().source;
+  inputs.target = Files().target;
+  inputs.skeleton = Files().skeleton;
   inputs.source_skin = FLAGS_source_skin;
   inputs.target_skin = FLAGS_target_skin;
   JointMapConfig config;
@@ -43,11 +42,11 @@ Status JointMapMain(const std::vector<std::string>& arguments) {
   Status status = RunJointMap(inputs, config, &result);
   if (!status.ok()) return status;
   const std::string text = result.json.ToString() + "\n";
-  if (FLAGS_out.empty() || FLAGS_out == "-") {
+  if (Files().out.empty() || Files().out == "-") {
     std::fputs(text.c_str(), stdout);
     return Status::Ok();
   }
-  return WriteFileAtomically(FLAGS_out, text);
+  return WriteFileAtomically(Files().out, text);
 }
 
 }  // namespace
@@ -63,7 +62,8 @@ extern const Command kJointMapCommand = {
     "by joint. Prints (or writes to --out) the map as JSON: each role's source and target joint\n"
     "and how it was decided (name, structure, topology, file), a confidence, and every joint pair.\n"
     "Edit it and pass it to retarget or pipeline as --joint_map; given here, it is applied first.",
-    __FILE__, JointMapMain, "source,target,skeleton,source_skin,target_skin,out,quiet",
-    {RetargetSettingOptions().Only("joint_map").options()}};
+    __FILE__, JointMapMain, "source_skin,target_skin",
+    {SharedOptions("source,target,skeleton,out"),
+     RetargetSettingOptions().Only("joint_map").options()}};
 
 }  // namespace mocapsolve

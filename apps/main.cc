@@ -58,27 +58,15 @@ std::string ShownDefault(const gflags::CommandLineFlagInfo& flag) {
   return text;
 }
 
-// The flags a command reads: those defined in its own file, and the shared ones (main.cc,
-// solver_flags.cc, ...) it lists. Its --help shows exactly these, and main refuses any other
-// of ours (glog's and gflags' own, such as --v, stay accepted everywhere).
-// The commands that read marker files: those taking --markers, and info and convert.
-bool ReadsMarkerFiles(const Command& command) {
-  const std::string name = command.name;
-  return name == "info" || name == "convert" ||
-         (command.shared_flags != nullptr &&
-          ("," + std::string(command.shared_flags) + ",").find(",markers,") != std::string::npos);
-}
-
+// The flags a command reads: those defined in its own file, which include the options it
+// declares (main registers them as its own), and the other files' flags it lists. Its
+// --help shows exactly these, and main refuses any other of ours (glog's and gflags' own,
+// such as --v, stay accepted everywhere).
 bool CommandReadsFlag(const Command& command, const gflags::CommandLineFlagInfo& flag) {
-  if (flag.name == "quiet") return true;  // Common to every command (`mocapsolve --help`).
-  // How marker files are read: every command that reads one (the one list, kMarkerReadFlags).
-  if (("," + std::string(kMarkerReadFlags) + ",").find("," + flag.name + ",") != std::string::npos) {
-    return ReadsMarkerFiles(command);
-  }
   const bool own = EndsWith(flag.filename, command.source) || EndsWith(command.source, flag.filename);
-  const bool common = command.shared_flags != nullptr &&
+  const bool listed = command.shared_flags != nullptr &&
                       ("," + std::string(command.shared_flags) + ",").find("," + flag.name + ",") != std::string::npos;
-  return own || common;
+  return own || listed;
 }
 
 bool IsOurFlag(const gflags::CommandLineFlagInfo& flag) {
@@ -116,7 +104,9 @@ Status CheckFiniteFlags(const Command& command) {
 // two of its groups declare: the first group's).
 void RegisterCommandOptions(const Command& command) {
   std::set<std::string> registered;
-  for (const std::vector<Option>& group : command.options) {
+  std::vector<std::vector<Option>> groups = command.options;
+  groups.push_back(ConsoleSettingOptions().Only("quiet").options());  // Every command's.
+  for (const std::vector<Option>& group : groups) {
     std::vector<Option> fresh;
     for (const Option& option : group) {
       if (registered.count(option.name)) continue;
@@ -173,56 +163,10 @@ void PrintCommandHelp(const Command& command) {
 }  // namespace
 }  // namespace mocapsolve
 
-DEFINE_bool(quiet, false, "No progress output on stderr.");
-DEFINE_string(skeleton, "", "Skeleton file for motions that lack one: the .asf of an .amc.");
-DEFINE_double(amc_fps, 120.0, "Frame rate of AMC files, which do not store it (CMU: 120).");
-DEFINE_string(animation, "", "Animation of a .glb/.gltf/.fbx motion file: name or index (default: "
-              "the first).");
-DEFINE_double(sample_fps, 0.0, "Sampling rate of .glb/.gltf/.fbx animations; 0 = the key rate "
-              "when the keys are uniformly spaced, else 30.");
-DEFINE_string(report, "", "Write what the command measured to this JSON file.");
-DEFINE_string(skeleton_units, "", "Unit of a skeleton whose file does not state one (BVH): mm, "
-              "cm, m or in; needed to relate it to marker files and mm-based weights.");
-DEFINE_string(motion, "", "Motion file: .bvh, .glb/.gltf, .fbx, or .amc with --skeleton=X.asf.");
-DEFINE_string(out, "", "Output file (its extension picks the format).");
-DEFINE_string(markers, "", "Marker file: .c3d or .trc.");
-DEFINE_bool(include_model_outputs, false, "C3D: read model outputs (POINT:ANGLES/FORCES/MOMENTS/POWERS/REACTIONS/"
-            "SCALARS, Plug-in Gait virtual points such as PELO, CentreOfMass) as markers; by default they are "
-            "left out of the markers and kept unchanged when the file is rewritten.");
-DEFINE_string(subject_prefix, "", "C3D with several subjects (SUBJECTS:LABEL_PREFIXES, 'Name:LASI' labels): read "
-              "this subject's points (name, 'Name:' or a SUBJECTS:NAMES entry), its prefix stripped; the other "
-              "subjects' points are ignored. Without it such a file is an error listing its subjects.");
-DEFINE_string(target, "", "Target character (.glb/.gltf): where retarget puts the motion; for convert, "
-              "the character a motion is written into as a new animation (default: IN when IN is glTF; "
-              "the motion's skeleton must have the character's joints).");
-DEFINE_string(character, "", "Characters (.glb/.gltf), comma-separated. pipeline: the take is retargeted "
-              "onto each and written as DIR/<name>.glb with the take as a new animation (empty: stop "
-              "after the solve); view: .glb files played beside the source (--character_animation).");
-DEFINE_string(markerset, "", "Marker set file (.json): which joint each marker rides on, with offsets.");
-DEFINE_string(axes, "x,y,z", "Marker file axes to skeleton axes: 'y,z,x' means (x, y, z)_skeleton = "
-              "(y, z, x)_file; CMU C3D (Z-up) onto CMU ASF/AMC (Y-up) is y,z,x.");
-DEFINE_double(marker_scale, 0.0, "Marker file units to skeleton units; 0 = from the files' "
-              "declared units (C3D POINT:UNITS, TRC Units, ASF :units).");
-DEFINE_string(subject, "", "Subject file (.json, written by calibrate/fit_skeleton --out_subject): "
-              "skeleton, marker set, axes and units in one; replaces --skeleton, --skeleton_units, "
-              "--markerset, --axes and --marker_scale.");
-
 namespace mocapsolve {
 
-void SetMarkerReadOptionsFromFlags() {
-  MarkerReadOptions options;
-  options.include_model_outputs = FLAGS_include_model_outputs;
-  options.subject_prefix = FLAGS_subject_prefix;
-  SetDefaultMarkerReadOptions(options);
-}
-
 Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
-  MotionFileOptions options;
-  options.skeleton_path = FLAGS_skeleton;
-  options.amc_frame_rate = FLAGS_amc_fps;
-  options.animation = FLAGS_animation;  // An error for formats with one clip.
-  options.sample_rate = FLAGS_sample_fps;
-  options.skeleton_units = FLAGS_skeleton_units;
+  MotionFileOptions options = MotionReadOptionsOf(FileReading(), Files().skeleton);
   std::vector<std::string> warnings;
   options.warnings = &warnings;
   Status status = ReadMotionFile(path, options, skeleton, motion);
@@ -230,7 +174,7 @@ Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion) {
   return status;
 }
 
-Status ApplySkeletonUnits(Skeleton* skeleton) { return SetSkeletonUnits(FLAGS_skeleton_units, skeleton); }
+Status ApplySkeletonUnits(Skeleton* skeleton) { return SetSkeletonUnits(FileReading().skeleton_units, skeleton); }
 
 Status LoadSkeleton(const std::string& path, Skeleton* skeleton) {
   Status status = ReadSkeletonFile(path, skeleton);
@@ -252,34 +196,34 @@ std::vector<std::string> GivenMappingFlags() {
 }  // namespace
 
 Status LoadSubjectFromFlags(Subject* subject) {
-  if (!FLAGS_subject.empty()) {
+  if (!Files().subject.empty()) {
     const std::vector<std::string> given = GivenMappingFlags();
     if (!given.empty()) {
       return Status::Error("--subject and --" + given[0] + " both given: the subject file holds the skeleton, "
                            "marker set, axes and units (give one or the other)");
     }
-    return ReadSubject(FLAGS_subject, subject);
+    return ReadSubject(Files().subject, subject);
   }
   SubjectFiles files;
-  files.skeleton_path = FLAGS_skeleton;
-  files.skeleton_units = FLAGS_skeleton_units;
-  files.markerset_path = FLAGS_markerset;
-  files.axes = FLAGS_axes;
-  files.marker_scale = FLAGS_marker_scale;
-  files.amc_fps = FLAGS_amc_fps;
+  files.skeleton_path = Files().skeleton;
+  files.skeleton_units = FileReading().skeleton_units;
+  files.markerset_path = Files().markerset;
+  files.axes = FileReading().axes;
+  files.marker_scale = FileReading().marker_scale;
+  files.amc_fps = FileReading().amc_fps;
   return LoadSubjectFromFiles(files, subject);
 }
 
 Status MarkerTakeInputs(std::vector<std::string>* inputs) {
-  if (!FLAGS_subject.empty()) {
-    if (FLAGS_markers.empty()) return Status::Error("--markers is required (with --subject)");
-    *inputs = {FLAGS_subject, FLAGS_markers};
+  if (!Files().subject.empty()) {
+    if (Files().markers.empty()) return Status::Error("--markers is required (with --subject)");
+    *inputs = {Files().subject, Files().markers};
     return Status::Ok();
   }
-  if (FLAGS_skeleton.empty() || FLAGS_markers.empty() || FLAGS_markerset.empty()) {
+  if (Files().skeleton.empty() || Files().markers.empty() || Files().markerset.empty()) {
     return Status::Error("--markers and either --subject or --skeleton and --markerset are required");
   }
-  *inputs = {FLAGS_skeleton, FLAGS_markers, FLAGS_markerset};
+  *inputs = {Files().skeleton, Files().markers, Files().markerset};
   return Status::Ok();
 }
 
@@ -287,8 +231,8 @@ Status LoadMarkerTake(MarkerTake* take) {
   Subject subject;
   Status status = LoadSubjectFromFlags(&subject);
   if (!status.ok()) return status;
-  status = LoadTakeForSubject(subject, FLAGS_markers, take);
-  return status.ok() ? RequireTakeData(FLAGS_markers, *take) : status;
+  status = LoadTakeForSubject(subject, Files().markers, take);
+  return status.ok() ? RequireTakeData(Files().markers, *take) : status;
 }
 
 Status LoadObservations(const std::string& path, const Skeleton& skeleton, const MarkerSet& markers,
@@ -297,8 +241,8 @@ Status LoadObservations(const std::string& path, const Skeleton& skeleton, const
   Subject subject;
   subject.skeleton = skeleton;
   subject.markers = markers;
-  subject.axes = FLAGS_axes;
-  subject.marker_scale = FLAGS_marker_scale;
+  subject.axes = FileReading().axes;
+  subject.marker_scale = FileReading().marker_scale;
   MarkerTake take;
   Status status = LoadTakeForSubject(subject, path, &take);
   if (status.ok()) status = RequireTakeData(path, take);
@@ -354,14 +298,14 @@ JsonObject OptionsInForce() { return running_command != nullptr ? OptionsOf(*run
 // status, command, version, then the command's own members, then the options in force and
 // each input read (path, size, content hash), unless the command reported those itself.
 Status WriteReport(const JsonObject& report) {
-  if (FLAGS_report.empty()) return Status::Ok();
+  if (Files().report.empty()) return Status::Ok();
   JsonObject full;
   full.Add("status", "ok").Add("version", Version());
   if (running_command != nullptr) full.Add("command", running_command->name);
   full.Merge(report);
   if (running_command != nullptr && !full.Has("options")) full.Add("options", OptionsOf(*running_command));
   if (!full.Has("inputs")) full.Add("inputs", InputsRead());
-  return WriteFileAtomically(FLAGS_report, full.ToString() + "\n");
+  return WriteFileAtomically(Files().report, full.ToString() + "\n");
 }
 
 // Early, before any work: --report and --plot must not name a file that another argument
@@ -409,7 +353,7 @@ bool NamesStandardOutput(const Command& command, const std::vector<std::string>&
 // transaction (whose outputs are dropped); not over an input or another argument's file.
 void WriteFailureReport(const char* command, const std::string& message,
                         const std::vector<std::string>& positional, const FileTransaction& files) {
-  if (FLAGS_report.empty() || !CheckReportPaths(positional).ok() || files.NamesAnInput(FLAGS_report)) return;
+  if (Files().report.empty() || !CheckReportPaths(positional).ok() || files.NamesAnInput(Files().report)) return;
   gflags::CommandLineFlagInfo report_flag;
   gflags::GetCommandLineFlagInfo("report", &report_flag);
   if (running_command != nullptr && !CommandReadsFlag(*running_command, report_flag)) return;  // Not its flag.
@@ -419,7 +363,7 @@ void WriteFailureReport(const char* command, const std::string& message,
   if (running_command != nullptr) report.Add("options", OptionsOf(*running_command));
   report.Add("inputs", InputsRead());
   StagedFile staged;
-  if (StagedFile::Create(FLAGS_report, report.ToString() + "\n", &staged).ok()) (void)staged.Publish();
+  if (StagedFile::Create(Files().report, report.ToString() + "\n", &staged).ok()) (void)staged.Publish();
 }
 
 void SetExitCodeOnSuccess(int code) { exit_code_on_success = code; }
@@ -532,8 +476,8 @@ int main(int argc, char** argv) {
   mocapsolve::SetStage("arguments");
   mocapsolve::Status status = mocapsolve::CheckGivenFlags(*command);
   if (status.ok()) status = mocapsolve::CheckOptionFlags(command->options);
+  mocapsolve::ReadSharedOptions();
   if (status.ok()) status = mocapsolve::CheckFiniteFlags(*command);
-  mocapsolve::SetMarkerReadOptionsFromFlags();
   if (status.ok()) status = mocapsolve::CheckReportPaths(positional);
   if (status.ok() && mocapsolve::NamesStandardOutput(*command, positional)) mocapsolve::ReserveStandardOutputForData();
   if (status.ok()) status = mocapsolve::RunCommand(*command, positional, &files);

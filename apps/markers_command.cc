@@ -13,63 +13,62 @@
 #include "io/motion_file.h"
 #include "tasks/markers_task.h"
 
-DEFINE_string(write_markerset, "", "Also write the marker set used (e.g. the auto one) to this .json.");
 
 namespace mocapsolve {
 namespace {
 
 Status MarkersMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_motion.empty() || FLAGS_markerset.empty() || FLAGS_out.empty()) {
+  if (Files().motion.empty() || Files().markerset.empty() || Files().out.empty()) {
     return Status::Error("--motion, --markerset (FILE.json or auto:N) and --out are required");
   }
-  if (!IsMarkerFile(FLAGS_out)) return Status::Error(FLAGS_out + ": expected a .c3d or .trc output");
-  const bool auto_set = FLAGS_markerset.compare(0, 5, "auto:") == 0;
-  if (!FLAGS_write_markerset.empty() && !IsTextOutputPath(FLAGS_write_markerset, ".json")) {
-    return Status::Error(FLAGS_write_markerset + ": expected a .json marker set file");
+  if (!IsMarkerFile(Files().out)) return Status::Error(Files().out + ": expected a .c3d or .trc output");
+  const bool auto_set = Files().markerset.compare(0, 5, "auto:") == 0;
+  if (!Files().write_markerset.empty() && !IsTextOutputPath(Files().write_markerset, ".json")) {
+    return Status::Error(Files().write_markerset + ": expected a .json marker set file");
   }
-  for (const std::string& output : {FLAGS_out, FLAGS_write_markerset}) {
+  for (const std::string& output : {Files().out, Files().write_markerset}) {
     if (output.empty()) continue;
-    for (const std::string& input : {FLAGS_motion, FLAGS_skeleton, auto_set ? std::string() : FLAGS_markerset}) {
+    for (const std::string& input : {Files().motion, Files().skeleton, auto_set ? std::string() : Files().markerset}) {
       if (input.empty()) continue;
       Status status = CheckNotAnInput(output, input);
       if (!status.ok()) return status;
     }
   }
-  if (FLAGS_out == FLAGS_write_markerset) return Status::Error("--out and --write_markerset name the same file");
+  if (Files().out == Files().write_markerset) return Status::Error("--out and --write_markerset name the same file");
 
   Skeleton skeleton;
   Motion motion;
-  Status status = LoadMotion(FLAGS_motion, &skeleton, &motion);
-  if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
+  Status status = LoadMotion(Files().motion, &skeleton, &motion);
+  if (status.ok()) status = RequireFrames(Files().motion, motion);
   if (!status.ok()) return status;
   MarkersConfig config;
-  config.markerset = FLAGS_markerset;
-  config.axes = FLAGS_axes;
-  config.marker_scale = FLAGS_marker_scale;
+  config.markerset = Files().markerset;
+  config.axes = FileReading().axes;
+  config.marker_scale = FileReading().marker_scale;
   ReadOptionFlags(SyntheticMarkerOptions(), &config.markers);
   MarkersResult result;
-  Progress progress("markers", motion.num_frames(), FLAGS_quiet);
-  status = RunMarkers(skeleton, motion, FLAGS_motion, config, [&](int done) { progress.Update(done); }, &result);
+  Progress progress("markers", motion.num_frames(), Console().quiet);
+  status = RunMarkers(skeleton, motion, Files().motion, config, [&](int done) { progress.Update(done); }, &result);
   if (!status.ok()) return status;
-  if (!result.warning.empty() && !FLAGS_quiet) std::fprintf(stderr, "warning: %s\n", result.warning.c_str());
+  if (!result.warning.empty() && !Console().quiet) std::fprintf(stderr, "warning: %s\n", result.warning.c_str());
   const MarkerTrajectories& trajectories = result.trajectories;
-  if (FileExtension(FLAGS_out) == ".trc" && !trajectories.unit.known()) {
-    return Status::Error(FLAGS_out + ": TRC needs a known unit; give --skeleton_units (the motion's unit)");
+  if (FileExtension(Files().out) == ".trc" && !trajectories.unit.known()) {
+    return Status::Error(Files().out + ": TRC needs a known unit; give --skeleton_units (the motion's unit)");
   }
   const MarkerSet& marker_set = result.marker_set;
-  if (!FLAGS_write_markerset.empty()) {
-    status = WriteMarkerSet(FLAGS_write_markerset, skeleton, marker_set, FLAGS_motion);
+  if (!Files().write_markerset.empty()) {
+    status = WriteMarkerSet(Files().write_markerset, skeleton, marker_set, Files().motion);
     if (!status.ok()) return status;
   }
-  status = WriteMarkerFile(FLAGS_out, trajectories);
+  status = WriteMarkerFile(Files().out, trajectories);
   if (!status.ok()) return status;
   std::printf("wrote %s: %d markers x %d frames at %g fps (%s, axes %s, noise %g mm)\n",
-              FLAGS_out.c_str(), marker_set.num_markers(), motion.num_frames(), motion.frame_rate,
-              trajectories.unit.name.c_str(), FLAGS_axes.c_str(), config.markers.noise_mm);
-  if (!FLAGS_write_markerset.empty()) std::printf("wrote %s\n", FLAGS_write_markerset.c_str());
+              Files().out.c_str(), marker_set.num_markers(), motion.num_frames(), motion.frame_rate,
+              trajectories.unit.name.c_str(), FileReading().axes.c_str(), config.markers.noise_mm);
+  if (!Files().write_markerset.empty()) std::printf("wrote %s\n", Files().write_markerset.c_str());
   JsonObject report;
-  report.Add("motion", FLAGS_motion).Add("markerset", FLAGS_markerset).Add("out", FLAGS_out).Merge(result.report);
+  report.Add("motion", Files().motion).Add("markerset", Files().markerset).Add("out", Files().out).Merge(result.report);
   return WriteReport(report);
 }
 
@@ -88,8 +87,8 @@ extern const Command kMarkersCommand = {
     "--axes and --marker_scale mean what they mean for `calibrate` and `solve` (the file\n"
     "from the model): x_file = A^T x_model / scale. --noise_mm adds Gaussian noise of that\n"
     "standard deviation (mm) to each coordinate. Frame rate: the motion's.",
-    __FILE__, MarkersMain,
-    "motion,markerset,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,axes,marker_scale,report",
-    {SyntheticMarkerOptions().options()}};
+    __FILE__, MarkersMain, nullptr,
+    {SharedOptions("motion,markerset,out,write_markerset,skeleton,skeleton_units,amc_fps,animation,sample_fps,axes,marker_scale,report"),
+     SyntheticMarkerOptions().options()}};
 
 }  // namespace mocapsolve

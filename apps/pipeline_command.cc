@@ -24,12 +24,7 @@
 #include "settings/view_page_settings.h"
 #include "tasks/take_summary.h"
 
-DECLARE_string(subject);  // apps/main.cc
 
-DEFINE_string(config, "", "JSON file of options: keys are this command's flag names (see "
-              "--print_config); flags given on the command line override it.");
-DEFINE_bool(print_config, false, "Print every option of the pipeline with its value (the defaults, "
-            "or --config's) as a JSON config file, and exit.");
 namespace mocapsolve {
 
 extern const Command kPipelineCommand;  // Below: its declared options check --config's values.
@@ -38,25 +33,25 @@ namespace {
 
 Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (!FLAGS_config.empty()) {
-    Status status = ApplyConfigFile(FLAGS_config, PipelineOptionFlags());
+  if (!Files().config.empty()) {
+    Status status = ApplyConfigFile(Files().config, PipelineOptionFlags());
     if (status.ok()) status = CheckOptionFlags(kPipelineCommand.options);
     if (!status.ok()) return status;
   }
-  if (FLAGS_print_config) {
+  if (Console().print_config) {
     std::printf("%s\n", ConfigJson(PipelineOptionFlags()).c_str());
     return Status::Ok();
   }
-  if (FLAGS_subject.empty() || FLAGS_markers.empty() || FLAGS_out_dir.empty()) {
+  if (Files().subject.empty() || Files().markers.empty() || Files().out_dir.empty()) {
     return Status::Error("--subject, --markers and --out_dir are required");
   }
-  if (!IsMarkerFile(FLAGS_markers)) return Status::Error(FLAGS_markers + ": expected a .c3d or .trc");
+  if (!IsMarkerFile(Files().markers)) return Status::Error(Files().markers + ": expected a .c3d or .trc");
   std::string view_path;
   Status status = ViewPageOfTake(&view_path);
   if (!status.ok()) return status;
   Subject subject;
   SetStage("inputs");
-  status = ReadSubject(FLAGS_subject, &subject);
+  status = ReadSubject(Files().subject, &subject);
   if (!status.ok()) return status;
 
   TakePipelineOptions options;
@@ -64,15 +59,15 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
 
   TakeInputs inputs;
-  inputs.name = FLAGS_take_name.empty() ? FileStem(FLAGS_markers) : FLAGS_take_name;
+  inputs.name = FLAGS_take_name.empty() ? FileStem(Files().markers) : FLAGS_take_name;
   inputs.subject = &subject;
-  inputs.markers_path = FLAGS_markers;
-  inputs.character_paths = SplitCommaList(FLAGS_character);
+  inputs.markers_path = Files().markers;
+  inputs.character_paths = SplitCommaList(Files().character);
   DeliverySettings delivery;
   ReadOptionFlags(DeliverySettingOptions(), &delivery);
   CharacterFileOptions character_files;
   status = CharacterFilesFromSettings(delivery, FLAGS_animation_only, &character_files);
-  if (status.ok()) status = CheckCharacterFiles(FLAGS_out_dir, inputs, character_files);
+  if (status.ok()) status = CheckCharacterFiles(Files().out_dir, inputs, character_files);
   if (!status.ok()) return status;
 
   TakeResult result;
@@ -81,7 +76,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   status = RunTakePipeline(inputs, options, &result, [&](const std::string& stage, int done, int total) {
     if (stage != shown) {
       SetStage(stage);
-      progress = std::make_unique<Progress>("pipeline: " + stage, total, FLAGS_quiet);
+      progress = std::make_unique<Progress>("pipeline: " + stage, total, Console().quiet);
       shown = stage;
     }
     progress->Update(done);
@@ -89,21 +84,21 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
 
   JsonObject report = TakeReport(inputs, result);
-  report.Add("command", "pipeline").Add("version", Version()).Add("subject", FLAGS_subject).Add("config", FLAGS_config)
+  report.Add("command", "pipeline").Add("version", Version()).Add("subject", Files().subject).Add("config", Files().config)
       .Add("animation_only", FLAGS_animation_only)
       .Add("options", JsonValue::Raw(ConfigJson(PipelineOptionFlags())));
-  const bool in_take_folder = view_path == ViewPagePath(FLAGS_out_dir);
+  const bool in_take_folder = view_path == ViewPagePath(Files().out_dir);
   report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
   SetStage("writing");
-  status = MakeFolders(FLAGS_out_dir);
-  if (status.ok()) status = WriteTakeOutputs(FLAGS_out_dir, inputs, result, report, view_path, character_files);
+  status = MakeFolders(Files().out_dir);
+  if (status.ok()) status = WriteTakeOutputs(Files().out_dir, inputs, result, report, view_path, character_files);
   if (status.ok()) status = WriteReport(report);
   if (!status.ok()) return status;
 
   std::fputs(TakeSummary(inputs, result).c_str(), stdout);
   const size_t files = result.characters.size() * character_files.formats.size();
   std::printf("wrote %s (repaired markers, solved.bvh, %zu character file%s, report.json%s%s)\n",
-              FLAGS_out_dir.c_str(), files, files == 1 ? "" : "s",
+              Files().out_dir.c_str(), files, files == 1 ? "" : "s",
               view_path.empty() ? "" : ", ", in_take_folder ? "view.html" : view_path.c_str());
   if (!result.verdict.pass) {
     std::fprintf(stderr, "mocapsolve pipeline: %s: quality gate failed: %s\n", inputs.name.c_str(),
@@ -114,9 +109,6 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   }
   return Status::Ok();
 }
-
-const std::string kPipelineFlags =
-    "subject,markers,character,out_dir,config,print_config,report,quiet," + PipelineOptionFlags();
 
 }  // namespace
 
@@ -140,8 +132,9 @@ extern const Command kPipelineCommand = {
     "missing runtime is an error); --view=off writes none.\n"
     "Exit code: 0 done, 1 bad input or a failed stage (nothing written), 3 the take failed\n"
     "the quality gate (outputs written, the report says why).",
-    __FILE__, RunPipeline, kPipelineFlags.c_str(),
-    {RepairSolverOptions().options(),
+    __FILE__, RunPipeline, PipelineOptionFlags().c_str(),
+    {SharedOptions("subject,markers,character,out_dir,config,print_config,report"),
+     RepairSolverOptions().options(),
      RepairSettingOptions().options(), RetargetSettingOptions().options(), QualityGateOptions().options(),
      PyramidSettingOptions().options(), DeliverySettingOptions().options(), TakeViewPageOption().options()}};
 

@@ -15,8 +15,6 @@
 #include "settings/retarget_settings.h"
 #include "settings/view_page_settings.h"
 
-DEFINE_string(out_dir, "", "Folder of the take's outputs (created if missing; nothing is written "
-              "there when the take fails).");
 DEFINE_string(take_name, "", "The take's name: the characters' new animation (default: the marker "
               "file's name without extension).");
 DEFINE_int32(filter_levels, 0, "Filter the solved motion: drop the N finest bands of its Laplacian "
@@ -52,13 +50,13 @@ Status ViewPageOfTake(std::string* path) {
   ViewPageSetting view;
   ReadOptionFlags(TakeViewPageOption(), &view);
   if (view.view != "auto" && view.view != "off") {
-    std::vector<std::string> inputs = {FLAGS_subject, FLAGS_markers};
-    for (const std::string& character : SplitCommaList(FLAGS_character)) inputs.push_back(character);
+    std::vector<std::string> inputs = {Files().subject, Files().markers};
+    for (const std::string& character : SplitCommaList(Files().character)) inputs.push_back(character);
     Status status = CheckViewFlag(inputs);
     if (!status.ok()) return status;
   }
   std::string warning;
-  Status status = TakeViewPath(view.view, FLAGS_out_dir, path, &warning);
+  Status status = TakeViewPath(view.view, Files().out_dir, path, &warning);
   // A warning, not progress: printed with --quiet too.
   if (!warning.empty()) std::fprintf(stderr, "warning: pipeline: %s\n", warning.c_str());
   return status;

@@ -12,7 +12,6 @@
 #include "kinematics/status.h"
 #include "pipeline/take_pipeline.h"
 
-DECLARE_string(out_dir);
 DECLARE_string(take_name);
 DECLARE_int32(filter_levels);
 

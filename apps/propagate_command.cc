@@ -30,30 +30,27 @@
 // apps/distance_command.cc; here required with --ik_target, optional with --edit (then it
 // must match a one-edit file's "frame").
 DECLARE_int32(frame);
-DEFINE_string(edit, "", "Edit file (.json, io/edit_file.h): rotation offsets per joint and a "
-              "root translation offset at one or several frames.");
 DEFINE_string(ik_target, "", "IK edit: JOINT:x,y,z moves JOINT to (x, y, z) (world, skeleton "
               "units) at --frame; several targets separated by ';'.");
 DEFINE_string(foot_joints, "", "Comma-separated foot joints for contacts (default: names with "
               "foot, toe or ankle).");
-DEFINE_string(weights_csv, "", "Write the falloff weights: frame,weight (one column per edit).");
 
 namespace mocapsolve {
 namespace {
 
 Status PropagateMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_motion.empty() || FLAGS_out.empty()) return Status::Error("--motion and --out are required");
-  if (FLAGS_edit.empty() == FLAGS_ik_target.empty()) {
+  if (Files().motion.empty() || Files().out.empty()) return Status::Error("--motion and --out are required");
+  if (Files().edit.empty() == FLAGS_ik_target.empty()) {
     return Status::Error("give exactly one of --edit=EDIT.json and --ik_target=JOINT:x,y,z");
   }
-  if (!IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh");
-  Status status = CheckNotAnInput(FLAGS_out, FLAGS_motion);
-  if (status.ok() && !FLAGS_edit.empty()) status = CheckNotAnInput(FLAGS_out, FLAGS_edit);
-  if (status.ok()) status = CheckViewFlag({FLAGS_motion, FLAGS_edit});
+  if (!IsTextOutputPath(Files().out, ".bvh")) return Status::Error(Files().out + ": expected a .bvh");
+  Status status = CheckNotAnInput(Files().out, Files().motion);
+  if (status.ok() && !Files().edit.empty()) status = CheckNotAnInput(Files().out, Files().edit);
+  if (status.ok()) status = CheckViewFlag({Files().motion, Files().edit});
   if (!status.ok()) return status;
   PropagateConfig config;
-  config.edit = FLAGS_edit;
+  config.edit = Files().edit;
   config.ik_target = FLAGS_ik_target;
   config.frame = FLAGS_frame;
   MethodSetting method;
@@ -67,35 +64,35 @@ Status PropagateMain(const std::vector<std::string>& arguments) {
   Skeleton skeleton;
   Motion motion;
   SetStage("inputs");
-  status = LoadMotion(FLAGS_motion, &skeleton, &motion);
-  if (status.ok()) status = RequireFrames(FLAGS_motion, motion);
+  status = LoadMotion(Files().motion, &skeleton, &motion);
+  if (status.ok()) status = RequireFrames(Files().motion, motion);
   if (!status.ok()) return status;
   std::unique_ptr<Progress> progress;
   SetStage("propagate");
   PropagateResult result;
   status = RunPropagate(skeleton, motion, config, [&](int done, int total) {
-    if (!progress) progress = std::make_unique<Progress>("propagate: contact re-solve", total, FLAGS_quiet);
+    if (!progress) progress = std::make_unique<Progress>("propagate: contact re-solve", total, Console().quiet);
     progress->Update(done);
   }, &result);
   if (!status.ok()) return status;
   std::fputs(PropagateSummary(config, result).c_str(), stdout);
 
   SetStage("writing");
-  status = WriteBvh(FLAGS_out, skeleton, result.propagated);
+  status = WriteBvh(Files().out, skeleton, result.propagated);
   if (!status.ok()) return status;
-  if (!FLAGS_weights_csv.empty()) {
-    status = WriteFileAtomically(FLAGS_weights_csv, FalloffWeightsCsv(result));
+  if (!Files().weights_csv.empty()) {
+    status = WriteFileAtomically(Files().weights_csv, FalloffWeightsCsv(result));
     if (!status.ok()) return status;
   }
   // --view: the propagated clip over the original (ghosted), and each edit's falloff.
   status = WriteViewFlag(
-      [&](ViewScene* scene) { return MakePropagateViewScene(FLAGS_motion, skeleton, motion, result, scene); });
+      [&](ViewScene* scene) { return MakePropagateViewScene(Files().motion, skeleton, motion, result, scene); });
   if (!status.ok()) return status;
-  std::printf("wrote %s: %d frames, %zu edit(s) at frame %d%s, %s falloff over %d:%d\n", FLAGS_out.c_str(),
+  std::printf("wrote %s: %d frames, %zu edit(s) at frame %d%s, %s falloff over %d:%d\n", Files().out.c_str(),
               motion.num_frames(), result.frames.size(), result.frames[0], result.frames.size() > 1 ? " ..." : "",
               config.method.c_str(), result.region_begin, result.region_end);
   JsonObject report;
-  report.Add("motion", FLAGS_motion).Add("out", FLAGS_out).Merge(result.report);
+  report.Add("motion", Files().motion).Add("out", Files().out).Merge(result.report);
   return WriteReport(report);
 }
 
@@ -113,13 +110,12 @@ extern const Command kPropagateCommand = {
     "harmonic function on the kNN pose graph, 1 at the edit, 0 at other edits and at a ground\n"
     "node (--harmonic_ground) and at the ends of --region; Zhu et al. 2003) or spline (a cubic\n"
     "bump of half-width --spline_width frames).\n"
-
     "Reports the largest drift of feet planted in the source; --keep_contacts re-solves those\n"
     "frames so the feet stay put.",
-    __FILE__, PropagateMain,
-    "motion,out,report,skeleton,skeleton_units,amc_fps,animation,sample_fps,quiet,frame",
-    // The IK edit's solve and the harmonic falloff's sparse solve.
-    {SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,sparse_library").options(),
+    __FILE__, PropagateMain, "frame",
+    {SharedOptions("motion,edit,out,weights_csv,report,skeleton,skeleton_units,amc_fps,animation,sample_fps"),
+     // The IK edit's solve and the harmonic falloff's sparse solve.
+     SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,sparse_library").options(),
      FalloffSettingOptions().Only("sigma,sigma_scale,eigenpairs,region,knn,falloff_kernel,feature_joints,joint_weights,"
                                   "temporal_weight").options(),
      PropagateSettingOptions().options(), PropagateMethodOption().options(), ViewPageOption().options()}};

@@ -17,8 +17,6 @@
 #include "pipeline/take_view.h"
 #include "tasks/repair_task.h"
 
-DEFINE_string(out_markers, "", "Repaired markers (.c3d or .trc), in the input file's axes and units.");
-DEFINE_string(out_motion, "", "The motion solved from the repaired markers (.bvh); optional.");
 
 namespace mocapsolve {
 namespace {
@@ -61,8 +59,8 @@ Status RepairMain(const std::vector<std::string>& arguments) {
   std::vector<std::string> inputs;
   Status checked = MarkerTakeInputs(&inputs);
   if (!checked.ok()) return checked;
-  if (FLAGS_out_markers.empty()) return Status::Error("--out_markers is required");
-  for (const std::string& out : {FLAGS_out_markers, FLAGS_out_motion}) {
+  if (Files().out_markers.empty()) return Status::Error("--out_markers is required");
+  for (const std::string& out : {Files().out_markers, Files().out_motion}) {
     if (out.empty()) continue;
     for (const std::string& in : inputs) {
       Status status = CheckNotAnInput(out, in);
@@ -71,9 +69,9 @@ Status RepairMain(const std::vector<std::string>& arguments) {
   }
   checked = CheckViewFlag(inputs);
   if (!checked.ok()) return checked;
-  if (!IsMarkerFile(FLAGS_out_markers)) return Status::Error(FLAGS_out_markers + ": expected .c3d or .trc");
-  if (!FLAGS_out_motion.empty() && !IsTextOutputPath(FLAGS_out_motion, ".bvh")) {
-    return Status::Error(FLAGS_out_motion + ": expected a .bvh");
+  if (!IsMarkerFile(Files().out_markers)) return Status::Error(Files().out_markers + ": expected .c3d or .trc");
+  if (!Files().out_motion.empty() && !IsTextOutputPath(Files().out_motion, ".bvh")) {
+    return Status::Error(Files().out_motion + ": expected a .bvh");
   }
   MarkerTake take;
   SetStage("inputs");
@@ -87,7 +85,7 @@ Status RepairMain(const std::vector<std::string>& arguments) {
   const RepairProgress show_progress = [&](const std::string& stage, int done, int total) {
     if (stage != progress_stage) {
       progress_stage = stage;
-      progress = std::make_unique<Progress>("repair: " + stage, total, FLAGS_quiet);
+      progress = std::make_unique<Progress>("repair: " + stage, total, Console().quiet);
     }
     progress->Update(done);
   };
@@ -97,19 +95,19 @@ Status RepairMain(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
 
   SetStage("writing");
-  status = WriteMarkerFile(FLAGS_out_markers, result.markers);
+  status = WriteMarkerFile(Files().out_markers, result.markers);
   if (!status.ok()) return status;
-  if (!FLAGS_out_motion.empty()) {
-    status = WriteBvh(FLAGS_out_motion, take.skeleton, result.motion, BvhWriteOptions());
+  if (!Files().out_motion.empty()) {
+    status = WriteBvh(Files().out_motion, take.skeleton, result.motion, BvhWriteOptions());
     if (!status.ok()) return status;
   }
   PrintRepairSummary(take, result);
-  std::printf("wrote %s\n", FLAGS_out_markers.c_str());
+  std::printf("wrote %s\n", Files().out_markers.c_str());
   JsonObject json;
-  json.Add("markers", FLAGS_markers).Add("out_markers", FLAGS_out_markers).Merge(result.report);
+  json.Add("markers", Files().markers).Add("out_markers", Files().out_markers).Merge(result.report);
   status = WriteViewFlag([&](ViewScene* scene) {
     TakeViewInputs view;
-    view.title = "repair: " + FileStem(FLAGS_markers);
+    view.title = "repair: " + FileStem(Files().markers);
     view.skeleton = &take.skeleton;
     view.markers = &take.markers;
     view.observed = &take.observed;
@@ -122,8 +120,6 @@ Status RepairMain(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
   return WriteReport(json);
 }
-
-const char kRepairFlags[] = "subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,report,quiet";
 
 }  // namespace
 
@@ -138,7 +134,8 @@ extern const Command kRepairCommand = {
     "(--assign_unlabelled; they leave their unlabelled columns in --out_markers);\n"
     "trimming, small tracks and small gaps; Hermite refill from the reference; re-solve.\n"
     "Samples never marked bad are written as they were read. Prints per-stage timings.",
-    __FILE__, RepairMain, kRepairFlags,
-    {RepairSettingOptions().options(), RepairSolverOptions().options(), ViewPageOption().options()}};
+    __FILE__, RepairMain, nullptr,
+    {SharedOptions("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,out_markers,out_motion,report"),
+     RepairSettingOptions().options(), RepairSolverOptions().options(), ViewPageOption().options()}};
 
 }  // namespace mocapsolve

@@ -25,14 +25,11 @@
 // not given), --max_frames (apps/solve_command.cc).
 DECLARE_int32(max_frames);
 
-DEFINE_string(source, "", "Source motion: a skinned character (.glb/.gltf) or a skeleton motion (.bvh, "
-              ".amc with --skeleton=X.asf, .fbx).");
 DEFINE_bool(source_mesh, true, "Track a skinned glTF source's own mesh; false: treat it as a "
             "skeleton only (the target's mesh is bound to its skeleton, as for BVH/AMC/FBX).");
 DEFINE_string(source_animation, "", "Animation of the source, by name or index (default: the first).");
 DEFINE_string(source_skin, "", "Skin of the source file (name or index; default: skin 0).");
 DEFINE_string(target_skin, "", "Skin of the target file (name or index; default: skin 0).");
-DEFINE_string(out_bvh, "", "Also write the result as BVH (target skeleton, metres).");
 DEFINE_string(animation_name, "", "Name of the new animation in --out (.glb/.gltf); default: "
               "'retargeted from <source animation or file>'.");
 DEFINE_double(frame_rate, 0.0, "Sampling rate of the source animation; 0 = its key rate.");
@@ -50,32 +47,32 @@ bool HasExtension(const std::string& path, const std::string& extension) {
 
 Status RetargetMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_source.empty() || FLAGS_target.empty()) return Status::Error("--source and --target are required");
-  if (FLAGS_out.empty() && FLAGS_out_bvh.empty()) return Status::Error("--out or --out_bvh is required");
+  if (Files().source.empty() || Files().target.empty()) return Status::Error("--source and --target are required");
+  if (Files().out.empty() && Files().out_bvh.empty()) return Status::Error("--out or --out_bvh is required");
   const std::string joint_map = RetargetSettingsFromFlags().joint_map;
-  Status status = CheckOutputsApart({FLAGS_out, FLAGS_out_bvh, FLAGS_report},
-                                    {FLAGS_source, FLAGS_target, FLAGS_skeleton, joint_map});
+  Status status = CheckOutputsApart({Files().out, Files().out_bvh, Files().report},
+                                    {Files().source, Files().target, Files().skeleton, joint_map});
   if (!status.ok()) return status;
-  const bool out_bvh = IsTextOutputPath(FLAGS_out, ".bvh");
-  if (!FLAGS_out.empty() && !out_bvh && !HasExtension(FLAGS_out, ".glb") && !HasExtension(FLAGS_out, ".gltf") &&
-      !HasExtension(FLAGS_out, ".fbx")) {
-    return Status::Error("--out: " + FLAGS_out + ": expected .glb, .gltf, .fbx or .bvh");
+  const bool out_bvh = IsTextOutputPath(Files().out, ".bvh");
+  if (!Files().out.empty() && !out_bvh && !HasExtension(Files().out, ".glb") && !HasExtension(Files().out, ".gltf") &&
+      !HasExtension(Files().out, ".fbx")) {
+    return Status::Error("--out: " + Files().out + ": expected .glb, .gltf, .fbx or .bvh");
   }
-  if (FLAGS_animation_only && (FLAGS_out.empty() || out_bvh)) {
+  if (FLAGS_animation_only && (Files().out.empty() || out_bvh)) {
     return Status::Error("--animation_only: applies to a .glb/.gltf/.fbx --out");
   }
-  status = CheckViewFlag({FLAGS_source, FLAGS_target, FLAGS_skeleton, joint_map});
+  status = CheckViewFlag({Files().source, Files().target, Files().skeleton, joint_map});
   if (!status.ok()) return status;
   RetargetInputs task_inputs;
-  task_inputs.source = FLAGS_source;
-  task_inputs.target = FLAGS_target;
-  task_inputs.skeleton = FLAGS_skeleton;
+  task_inputs.source = Files().source;
+  task_inputs.target = Files().target;
+  task_inputs.skeleton = Files().skeleton;
   task_inputs.source_animation = FLAGS_source_animation;
   task_inputs.source_skin = FLAGS_source_skin;
   task_inputs.target_skin = FLAGS_target_skin;
   task_inputs.source_mesh = FLAGS_source_mesh;
   task_inputs.frame_rate = FLAGS_frame_rate;
-  task_inputs.amc_fps = FLAGS_amc_fps;
+  task_inputs.amc_fps = FileReading().amc_fps;
   task_inputs.max_frames = FLAGS_max_frames;
   task_inputs.loop = FLAGS_loop;
   RetargetConfig config;
@@ -88,35 +85,31 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
   RetargetTaskResult task;
   status = RunRetarget(task_inputs, config, [&](int done, int total) {
     SetStage("retarget");
-    if (!progress) progress = std::make_unique<Progress>("retarget", total, FLAGS_quiet);
+    if (!progress) progress = std::make_unique<Progress>("retarget", total, Console().quiet);
     progress->Update(done);
   }, &task);
   if (!status.ok()) return status;
   for (const std::string& note : task.retarget.notes) {
-    if (!FLAGS_quiet) std::fprintf(stderr, "note: %s\n", note.c_str());
+    if (!Console().quiet) std::fprintf(stderr, "note: %s\n", note.c_str());
   }
   const std::string name = RetargetAnimationName(task_inputs, FLAGS_animation_name);
   SetStage("writing");
-  if (!FLAGS_out.empty()) {
-    status = WriteRetargeted(FLAGS_out, task, name, FLAGS_animation_only);
+  if (!Files().out.empty()) {
+    status = WriteRetargeted(Files().out, task, name, FLAGS_animation_only);
     if (!status.ok()) return status;
   }
   // --view: the source's skeleton beside the target character playing the result.
   status = WriteViewFlag([&](ViewScene* scene) { return MakeRetargetViewScene(task_inputs, task, name, scene); });
   if (!status.ok()) return status;
-  if (!FLAGS_out_bvh.empty()) {
-    status = WriteBvh(FLAGS_out_bvh, task.target.skeleton, task.delivered);
+  if (!Files().out_bvh.empty()) {
+    status = WriteBvh(Files().out_bvh, task.target.skeleton, task.delivered);
     if (!status.ok()) return status;
   }
-  if (!FLAGS_quiet) std::fputs(RetargetSummary(task_inputs, config, task).c_str(), stderr);
+  if (!Console().quiet) std::fputs(RetargetSummary(task_inputs, config, task).c_str(), stderr);
   JsonObject report;
   report.Add("command", "retarget").Merge(task.report).Add("animation_only", FLAGS_animation_only);
   return WriteReport(report);
 }
-
-const std::string kRetargetFlags = std::string("target,out,report,quiet,max_frames,skeleton,amc_fps,"
-                                               "animation_only,") +
-                                   "foot_joints";
 
 }  // namespace
 
@@ -140,7 +133,9 @@ extern const Command kRetargetCommand = {
     "--frames=A:B or --seconds=A:B cut, --out_fps=R resamples the written result (--out, --out_bvh).\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
-    __FILE__, RetargetMain, kRetargetFlags.c_str(), {RetargetSolverOptions().options(), RetargetSettingOptions().options(),
+    __FILE__, RetargetMain, "max_frames,animation_only,foot_joints",
+    {SharedOptions("source,target,out,out_bvh,report,skeleton,amc_fps"),
+     RetargetSolverOptions().options(), RetargetSettingOptions().options(),
     ViewPageOption().options(), DeliverySettingOptions().Without("formats").options()}};
 
 }  // namespace mocapsolve

@@ -19,8 +19,6 @@
 #include "tasks/solve_task.h"
 
 DEFINE_int32(max_frames, 0, "Solve only the first N frames (0 = all).");
-DEFINE_string(residuals_csv, "", "Write the written motion's per-frame marker residual as CSV: frame, time (s), "
-              "markers observed, RMS and max residual (mm, or skeleton units when the unit is unknown).");
 
 namespace mocapsolve {
 namespace {
@@ -33,10 +31,10 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   std::vector<std::string> inputs;
   Status checked = MarkerTakeInputs(&inputs);
   if (!checked.ok()) return checked;
-  if (FLAGS_out.empty()) return Status::Error("--out is required");
-  if (!IsTextOutputPath(FLAGS_out, ".bvh")) return Status::Error(FLAGS_out + ": expected a .bvh output");
+  if (Files().out.empty()) return Status::Error("--out is required");
+  if (!IsTextOutputPath(Files().out, ".bvh")) return Status::Error(Files().out + ": expected a .bvh output");
   for (const std::string& input : inputs) {
-    Status status = CheckNotAnInput(FLAGS_out, input);
+    Status status = CheckNotAnInput(Files().out, input);
     if (!status.ok()) return status;
   }
   checked = CheckViewFlag(inputs);
@@ -55,7 +53,7 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   const double to_output = known ? skeleton.unit().metres_per_unit * 1000.0 : 1.0;
   const int frames = FLAGS_max_frames > 0 ? std::min<int>(FLAGS_max_frames, take.observed.size())
                                           : static_cast<int>(take.observed.size());
-  Progress progress("solve (" + solver.solver + ")", frames, FLAGS_quiet);
+  Progress progress("solve (" + solver.solver + ")", frames, Console().quiet);
   SolveProgress show_progress;
   show_progress.frames = [&](int done) { progress.Update(done); };
   show_progress.per_frame_done = [&](const SequenceSolveReport& sequence) {
@@ -66,7 +64,7 @@ Status SolveMain(const std::vector<std::string>& arguments) {
                 sequence.total_iterations, sequence.rms_marker_error * to_output, unit,
                 sequence.max_frame_rms * to_output, sequence.unsolved_frames, sequence.unconverged_frames);
     if (solver.mode != "clip") return;
-    if (!FLAGS_quiet) std::fprintf(stderr, "clip solve: %d frames as one problem...\n", sequence.frames);
+    if (!Console().quiet) std::fprintf(stderr, "clip solve: %d frames as one problem...\n", sequence.frames);
     SetStage("clip solve");
   };
   SetStage("solve");
@@ -82,26 +80,26 @@ Status SolveMain(const std::vector<std::string>& arguments) {
                 clip.initial_cost, clip.final_cost, clip.rms_marker_error * to_output, unit);
   }
   JsonObject report;
-  if (FLAGS_subject.empty()) {
-    report.Add("skeleton", FLAGS_skeleton).Add("markerset", FLAGS_markerset);
+  if (Files().subject.empty()) {
+    report.Add("skeleton", Files().skeleton).Add("markerset", Files().markerset);
   } else {
-    report.Add("subject", FLAGS_subject);
+    report.Add("subject", Files().subject);
   }
-  report.Add("markers", FLAGS_markers).Add("out", FLAGS_out).Merge(result.report);
-  if (!FLAGS_residuals_csv.empty()) {
+  report.Add("markers", Files().markers).Add("out", Files().out).Merge(result.report);
+  if (!Files().residuals_csv.empty()) {
     SetStage("writing");
-    status = WriteFileAtomically(FLAGS_residuals_csv, FrameResidualsCsv(take, result.frames, result.motion));
+    status = WriteFileAtomically(Files().residuals_csv, FrameResidualsCsv(take, result.frames, result.motion));
     if (!status.ok()) return status;
-    report.Add("residuals_csv", FLAGS_residuals_csv);
+    report.Add("residuals_csv", Files().residuals_csv);
   }
   const Motion& motion = result.motion;
-  status = WriteBvh(FLAGS_out, skeleton, motion, BvhWriteOptions());
+  status = WriteBvh(Files().out, skeleton, motion, BvhWriteOptions());
   if (!status.ok()) return status;
-  std::printf("wrote %s\n", FLAGS_out.c_str());
+  std::printf("wrote %s\n", Files().out.c_str());
   if (!plot.empty()) {
     PlotSeries rms{"per-frame " + solver.solver, {}};
     for (double v : sequence.frame_rms) rms.y.push_back(v * to_output);
-    status = WriteFileAtomically(plot, LinePlotSvg("RMS marker residual per frame: " + FLAGS_markers,
+    status = WriteFileAtomically(plot, LinePlotSvg("RMS marker residual per frame: " + Files().markers,
                                                         "frame", std::string("RMS residual (") + unit + ")",
                                                         {rms}));
     if (!status.ok()) return status;
@@ -110,7 +108,7 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   take.observed.resize(result.frames);  // The page shows the frames solved.
   status = WriteViewFlag([&](ViewScene* scene) {
     TakeViewInputs view;
-    view.title = "solve: " + FileStem(FLAGS_markers);
+    view.title = "solve: " + FileStem(Files().markers);
     view.skeleton = &skeleton;
     view.markers = &take.markers;
     view.observed = &take.observed;
@@ -121,10 +119,6 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
   return WriteReport(report);
 }
-
-const std::string kSolveFlags =
-    std::string("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,report,quiet,residuals_csv,"
-                "max_frames");
 
 }  // namespace
 
@@ -138,6 +132,8 @@ extern const Command kSolveCommand = {
     "refines all frames as one sparse problem with smoothness. Missing markers are simply\n"
     "left out. Prints the RMS marker residual, iterations and time; --report writes them,\n"
     "--residuals_csv the residual of every frame of the written motion (--plot draws it).",
-    __FILE__, SolveMain, kSolveFlags.c_str(), {SolverOptions().options(), ViewPageOption().options(), SolvePlotOption().options()}};
+    __FILE__, SolveMain, "max_frames",
+    {SharedOptions("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,residuals_csv,report"),
+     SolverOptions().options(), ViewPageOption().options(), SolvePlotOption().options()}};
 
 }  // namespace mocapsolve

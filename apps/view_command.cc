@@ -13,11 +13,6 @@
 
 DEFINE_string(character_animation, "", "The characters' animation to play (name); default: each "
               "file's first animation (the one retarget/pipeline/convert added).");
-DEFINE_string(repair_report, "", "A repair report (repair/pipeline --report JSON): colours the "
-              "repaired samples of --markers by reason and draws the intervals on the timeline.");
-DEFINE_string(falloff, "", "A falloff weights CSV (propagate --weights_csv): drawn on the timeline.");
-DEFINE_string(compare, "", "A second take drawn ghosted over the first: a marker file (.c3d/.trc, "
-              "compared with --markers) or a motion (compared with --motion).");
 DEFINE_string(up, "auto", "Up axis of files without a subject: auto (guessed per file from how "
               "its points spread), x, y or z.");
 DEFINE_string(title, "", "The page's title (default: the files' names).");
@@ -27,48 +22,48 @@ namespace {
 
 Status ViewMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_out.empty()) return Status::Error("--out=PAGE.html is required");
-  if (!IsTextOutputPath(FLAGS_out, ".html")) return Status::Error("--out=" + FLAGS_out + ": expected an .html page");
+  if (Files().out.empty()) return Status::Error("--out=PAGE.html is required");
+  if (!IsTextOutputPath(Files().out, ".html")) return Status::Error("--out=" + Files().out + ": expected an .html page");
   // A subject (--subject, or --skeleton and --markerset) maps the markers onto its skeleton.
   Subject subject;
-  const bool with_subject = !FLAGS_markers.empty() && (!FLAGS_subject.empty() || !FLAGS_markerset.empty());
+  const bool with_subject = !Files().markers.empty() && (!Files().subject.empty() || !Files().markerset.empty());
   if (with_subject) {
     Status status = LoadSubjectFromFlags(&subject);
     if (!status.ok()) return status;
   }
   ViewInputs inputs;
-  inputs.markers = FLAGS_markers;
-  inputs.motion = FLAGS_motion;
-  inputs.characters = SplitCommaList(FLAGS_character);
-  inputs.compare = FLAGS_compare;
-  inputs.repair_report = FLAGS_repair_report;
-  inputs.falloff = FLAGS_falloff;
+  inputs.markers = Files().markers;
+  inputs.motion = Files().motion;
+  inputs.characters = SplitCommaList(Files().character);
+  inputs.compare = Files().compare;
+  inputs.repair_report = Files().repair_report;
+  inputs.falloff = Files().falloff;
   inputs.subject = with_subject ? &subject : nullptr;
-  inputs.skeleton = FLAGS_skeleton;
-  inputs.amc_fps = FLAGS_amc_fps;
-  inputs.animation = FLAGS_animation;
-  inputs.sample_fps = FLAGS_sample_fps;
-  inputs.skeleton_units = FLAGS_skeleton_units;
+  inputs.skeleton = Files().skeleton;
+  inputs.amc_fps = FileReading().amc_fps;
+  inputs.animation = FileReading().animation;
+  inputs.sample_fps = FileReading().sample_fps;
+  inputs.skeleton_units = FileReading().skeleton_units;
   ViewConfig config;
   config.character_animation = FLAGS_character_animation;
   config.up = FLAGS_up;
   config.title = FLAGS_title;
-  config.page_name = FLAGS_out;
+  config.page_name = Files().out;
   ViewResult result;
   Status status = RunView(inputs, config, &result);
   for (const std::string& warning : result.warnings) {
     std::fprintf(stderr, "warning: %s\n", TerminalText(warning).c_str());
   }
-  if (status.ok()) status = WriteFileAtomically(FLAGS_out, result.html);
+  if (status.ok()) status = WriteFileAtomically(Files().out, result.html);
   if (!status.ok()) return status;
-  if (!FLAGS_quiet) {
+  if (!Console().quiet) {
     const ViewScene& scene = result.scene;
     char residual[96] = "";
     if (result.residual_samples > 0) {
       std::snprintf(residual, sizeof(residual), ", marker residual RMS %.4g mm", result.marker_rms_mm);
     }
     std::printf("view: %d frames, %zu marker sets, %zu skeletons, %zu characters%s; wrote %s\n", scene.num_frames(),
-                scene.markers.size(), scene.skeletons.size(), scene.characters.size(), residual, FLAGS_out.c_str());
+                scene.markers.size(), scene.skeletons.size(), scene.characters.size(), residual, Files().out.c_str());
   }
   return Status::Ok();
 }
@@ -88,7 +83,6 @@ extern const Command kViewCommand = {
     "With --subject (or --skeleton and --markerset) the markers are mapped onto the skeleton and\n"
     "the residual of --motion is drawn; otherwise each file is shown in its own unit, with its up\n"
     "axis from --up.",
-    __FILE__, ViewMain,
-    "subject,skeleton,skeleton_units,markerset,axes,marker_scale,markers,motion,character,out,amc_fps,animation,sample_fps,quiet"};
+    __FILE__, ViewMain, nullptr, {SharedOptions("subject,skeleton,skeleton_units,markerset,axes,marker_scale,markers,motion,character,out,amc_fps,animation,sample_fps,repair_report,falloff,compare")}};
 
 }  // namespace mocapsolve
