@@ -7,12 +7,11 @@
 #include <vector>
 
 #include "apps/command.h"
+#include "apps/option_flags.h"
+#include "settings/band_settings.h"
 #include "apps/pyramid_flags.h"
 #include "apps/common_flags.h"
 #include "signal/laplacian_pyramid.h"
-
-DEFINE_string(weights, "", "Band weights w_0 (finest band),..,w_{N-1},w_N (the top Gaussian), "
-              "comma-separated; N + 1 values build an N-level pyramid.");
 
 namespace mocapsolve {
 
@@ -38,9 +37,11 @@ Status ParseWeights(const std::string& text, std::vector<double>* weights) {
 
 Status RunBands(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_weights.empty()) return Status::Error("--weights is required");
+  BandSettings bands;
+  ReadOptionFlags(BandSettingOptions(), &bands);
+  if (bands.weights.empty()) return Status::Error("--weights is required");
   std::vector<double> weights;
-  Status status = ParseWeights(FLAGS_weights, &weights);
+  Status status = ParseWeights(bands.weights, &weights);
   if (!status.ok()) return status;
   return FilterFromFlags("bands", static_cast<int>(weights.size()) - 1, weights);
 }
@@ -53,8 +54,8 @@ extern const Command kBandsCommand = {
     "Builds a Laplacian pyramid with N = (number of weights) - 1 levels and collapses it\n"
     "with each band scaled: G'_0 = w_N G_N + sum w_l L_l (Huang, Boulic & Thalmann, eq. 7);\n"
     "w_0 weights the finest band. All ones returns the input (to rounding).",
-    __FILE__, RunBands, nullptr,
+    __FILE__, RunBands,
     {SharedOptions("motion,markers,out,skeleton,skeleton_units,amc_fps,report"),
-     PyramidSettingOptions().options()}};
+     BandSettingOptions().Only("weights").options(), PyramidSettingOptions().options()}};
 
 }  // namespace mocapsolve

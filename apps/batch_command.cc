@@ -133,7 +133,7 @@ extern const Command kBatchCommand = {
     "manifest's defaults; a take's own value still wins).\n"
     "Exit code: 0 every take done, 2 some failed or gate_failed, 1 bad manifest or flags\n"
     "(its form: JSON, keys, types, names) or an output that is an input.",
-    __FILE__, RunBatchCommand, nullptr,
+    __FILE__, RunBatchCommand,
     {SharedOptions("subject,character,out_dir,manifest,markers_glob,write_manifest"),
      BatchSettingOptions().options(), DeliverySettingOptions().options()}};
 

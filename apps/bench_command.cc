@@ -6,48 +6,40 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "apps/config_flags.h"
+#include "apps/option_flags.h"
 #include "apps/solver_flags.h"
 #include "io/atomic_file.h"
+#include "settings/bench_settings.h"
 
-DEFINE_string(problem, "fk", "Problem to run (see the list in --help).");
-DEFINE_string(solvers, "", "Comma-separated solvers (default: all of the problem's).");
-DEFINE_string(json, "", "Write all records as JSON to this file.");
-DEFINE_string(bench_motion, "", "Input clip for the problem (default: the problem's own).");
-DEFINE_int32(repeats, 5, "Timed repeats; the median is reported.");
-DEFINE_string(bench_skeleton, "", "Skeleton (.asf/.bvh) of a real-marker problem.");
-DEFINE_string(bench_markers, "", "Marker file (.c3d/.trc) of a real-marker problem.");
-DEFINE_string(bench_markerset, "", "Marker set (.json) of a real-marker problem.");
-DEFINE_int32(bench_frames, 0, "Use only the first N frames (0 = all).");
-DEFINE_double(bench_noise_mm, 0.0, "Gaussian noise (mm) added to synthesized markers.");
-DEFINE_string(bench_subject, "", "Subject file (.json) of the pipeline problem (with --bench_markers).");
-DEFINE_string(bench_character, "", "Characters (.glb), comma-separated, of the pipeline problem.");
 
 namespace mocapsolve {
 namespace {
 
 Status RunBench(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  BenchRunSettings run;
+  ReadOptionFlags(BenchRunSettingOptions(), &run);
   const BenchProblem* problem = nullptr;
   std::string known;
   for (const BenchProblem& p : AllBenchProblems()) {
-    if (FLAGS_problem == p.name) problem = &p;
+    if (run.problem == p.name) problem = &p;
     known += std::string(known.empty() ? "" : ", ") + p.name;
   }
   if (problem == nullptr) {
-    return Status::Error("--problem: unknown problem '" + FLAGS_problem + "' (known: " + known + ")");
+    return Status::Error("--problem: unknown problem '" + run.problem + "' (known: " + known + ")");
   }
-  std::vector<std::string> solvers = SplitCommaList(FLAGS_solvers);
+  std::vector<std::string> solvers = SplitCommaList(run.solvers);
   if (solvers.empty()) solvers = problem->solvers;
   BenchSettings settings;
-  settings.motion_path = FLAGS_bench_motion;
-  settings.repeats = FLAGS_repeats;
-  settings.skeleton_path = FLAGS_bench_skeleton;
-  settings.markers_path = FLAGS_bench_markers;
-  settings.markerset_path = FLAGS_bench_markerset;
-  settings.max_frames = FLAGS_bench_frames;
-  settings.noise_mm = FLAGS_bench_noise_mm;
-  settings.subject_path = FLAGS_bench_subject;
-  settings.character_paths = SplitCommaList(FLAGS_bench_character);
+  settings.motion_path = run.bench_motion;
+  settings.repeats = run.repeats;
+  settings.skeleton_path = run.bench_skeleton;
+  settings.markers_path = run.bench_markers;
+  settings.markerset_path = run.bench_markerset;
+  settings.max_frames = run.bench_frames;
+  settings.noise_mm = run.bench_noise_mm;
+  settings.subject_path = run.bench_subject;
+  settings.character_paths = SplitCommaList(run.bench_character);
   std::vector<JsonObject> records;
   std::printf("%-14s %-8s %10s %12s %14s %10s %14s  %s\n", "problem", "solver", "frames",
               "seconds", "frames/s", "iters", "final_cost", "error");
@@ -67,9 +59,9 @@ Status RunBench(const std::vector<std::string>& arguments) {
   }
   JsonObject all;
   // The settings in force with the records, so a figure can be traced to how it was made.
-  all.Add("problem", FLAGS_problem).Add("version", Version()).Add("settings", OptionsInForce()).Add("records", records);
-  if (!FLAGS_json.empty()) {
-    Status status = WriteFileAtomically(FLAGS_json, all.ToString() + "\n");
+  all.Add("problem", run.problem).Add("version", Version()).Add("settings", OptionsInForce()).Add("records", records);
+  if (!run.json.empty()) {
+    Status status = WriteFileAtomically(run.json, all.ToString() + "\n");
     if (!status.ok()) return status;
   }
   return WriteReport(all);
@@ -92,8 +84,9 @@ std::string BenchUsage() {
 static const std::string kBenchUsage = BenchUsage();
 extern const Command kBenchCommand = {"bench", "the solver comparison harness (time, iterations, "
                                       "cost, error per solver)",
-                                      kBenchUsage.c_str(), __FILE__, RunBench, nullptr,
+                                      kBenchUsage.c_str(), __FILE__, RunBench,
     {SharedOptions("report,axes,marker_scale,skeleton,skeleton_units,amc_fps,animation,sample_fps"),
+     BenchRunSettingOptions().options(),
      SolverOptions().Without("mode").options()}};
 
 }  // namespace mocapsolve

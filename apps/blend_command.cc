@@ -65,7 +65,7 @@ extern const Command kBlendCommand = {
     "seam over its own wavelength. Rotations are blended as sign-continuous quaternions\n"
     "(B's sign matched to A's at START) and renormalized (nlerp). Prints the largest\n"
     "velocity jump near the window and in each input.",
-    __FILE__, BlendMain, nullptr,
+    __FILE__, BlendMain,
     {SharedOptions("a,b,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report"),
      PyramidSettingOptions().options(), BlendMethodOption().options(), BlendSettingOptions().options()}};
 

@@ -100,7 +100,7 @@ extern const Command kCalibrateCommand = {
     "skeleton, axes and units (--out_subject), or both.\n"
     "CMU (C3D from mocap.cs.cmu.edu with its ASF/AMC, e.g. 02_01): --axes=y,z,x, no frame\n"
     "offset, scale from the units (mm -> 1/0.45 inch): calibrated RMS 11.7 mm on 02_01.",
-    __FILE__, CalibrateMain, nullptr,
+    __FILE__, CalibrateMain,
     {SharedOptions("motion,markers,out,out_subject,skeleton,skeleton_units,amc_fps,animation,sample_fps,axes,marker_scale,report"),
      CalibrateSettingOptions().options()}};
 

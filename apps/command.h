@@ -17,14 +17,11 @@ struct Command {
   const char* name;
   const char* summary;  // One line for `mocapsolve --help`.
   const char* usage;    // Usage and a paragraph of explanation for `mocapsolve NAME --help`.
-  const char* source;   // __FILE__ of the command: its flags are the ones defined there.
+  const char* source;   // __FILE__ of the command: main registers its options as flags of this file.
   // Positional arguments after flag parsing. Returns a failed Status on bad input.
   Status (*run)(const std::vector<std::string>& arguments);
-  // Flags defined (DEFINE_*) in another apps/ file that the command reads, comma-separated:
-  // its --help lists them and main refuses the others (nullptr: none). The shared options
-  // (files, how files are read) are declared: SharedOptions (apps/common_flags.h) in `options`.
-  const char* shared_flags = nullptr;
-  // The declared options the command reads (settings/option.h), groups in priority order:
+  // The declared options the command reads (settings/option.h; the shared ones through
+  // SharedOptions, apps/common_flags.h), groups in priority order:
   // main.cc registers them as this run's flags, the command's own (--help lists them); a
   // name two groups declare is the first group's. A command that needs another default or
   // meaning for an option declares its own (OptionGroup::WithDefault, settings/method_settings.h).

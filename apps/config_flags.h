@@ -14,7 +14,7 @@
 
 namespace mocapsolve {
 
-// `flags`: the names the config may set (comma-separated, as Command::shared_flags).
+// `flags`: the names the config may set (comma-separated).
 Status ApplyConfigFile(const std::string& path, const std::string& flags);
 
 // The flags' current values as an indented JSON object, in the order given (numbers and

@@ -58,7 +58,7 @@ extern const Command kConvertCommand = {
     "first frame and missing samples kept, in --out_units, OUT's axes being IN's --axes.\n"
     "--frames=A:B or --seconds=A:B cut the motion, --out_fps=R resamples it (BVH, glTF, FBX).\n"
     "OUT is written atomically and may not be an input.",
-    __FILE__, ConvertMain, nullptr,
+    __FILE__, ConvertMain,
     {SharedOptions("skeleton,skeleton_units,amc_fps,animation,sample_fps,target,axes,include_model_outputs,subject_prefix,report"),
      ConvertSettingOptions().options(), DeliverySettingOptions().Without("formats").options()}};
 

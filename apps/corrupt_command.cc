@@ -99,7 +99,7 @@ extern const Command kCorruptCommand = {
     "[--seed=1] [--gaps=10 ...]\n\n"
     "Writes a corrupted copy and, with --mask_out, which samples were damaged and how.\n"
     "Distances are in mm (converted with the file's unit); frames are frame indices.",
-    __FILE__, RunCorrupt, nullptr,
+    __FILE__, RunCorrupt,
     {SharedOptions("markers,out,mask_out,report"),
      CorruptionSettingOptions().options()}};
 

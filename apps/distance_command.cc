@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "apps/command.h"
+#include "settings/edit_settings.h"
 #include "apps/common_flags.h"
 #include "apps/option_flags.h"
 #include "settings/method_settings.h"
@@ -15,10 +16,6 @@
 #include "io/motion_file.h"
 #include "io/svg_plot.h"
 #include "tasks/distance_task.h"
-
-DEFINE_int32(frame, -1, "The edited frame (0-based).");
-DEFINE_string(sweep, "", "Comma-separated extra sigmas: adds a Green's weight column (and plot "
-              "line) per sigma (section 4's sigma sweep).");
 
 namespace mocapsolve {
 namespace {
@@ -47,7 +44,9 @@ Status DistanceMain(const std::vector<std::string>& arguments) {
   PlotSetting plot_setting;
   ReadOptionFlags(DistancePlotOption(), &plot_setting);
   const std::string& plot = plot_setting.plot;
-  if (Files().motion.empty() || Files().out.empty() || FLAGS_frame < 0) {
+  EditSettings edit;
+  ReadOptionFlags(EditSettingOptions(), &edit);
+  if (Files().motion.empty() || Files().out.empty() || edit.frame < 0) {
     return Status::Error("--motion, --frame (>= 0) and --out are required");
   }
   if (!IsTextOutputPath(Files().out, ".csv")) return Status::Error(Files().out + ": expected a .csv");
@@ -59,11 +58,10 @@ Status DistanceMain(const std::vector<std::string>& arguments) {
     if (!status.ok()) return status;
   }
   DistanceConfig config;
-  config.frame = FLAGS_frame;
+  config.frame = edit.frame;
   MethodSetting method;
   ReadOptionFlags(DistanceMethodOption(), &method);
   config.methods = method.method;
-  config.sweep = FLAGS_sweep;
   ReadOptionFlags(FalloffSettingOptions(), &config.falloff);
   Skeleton skeleton;
   Motion motion;
@@ -126,8 +124,9 @@ extern const Command kDistanceCommand = {
     "Prints the clip's period (if periodic), the weight at the same and opposite phase of the\n"
     "other cycles, the second difference at the edit and where the weight drops below 0.5/0.05.\n"
     "--plot writes the distance curves (1 - weight) of every method and --sweep sigma as SVG.",
-    __FILE__, DistanceMain, nullptr,
+    __FILE__, DistanceMain,
     {SharedOptions("motion,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report"),
-     FalloffSettingOptions().options(), DistanceMethodOption().options(), DistancePlotOption().options()}};
+     EditSettingOptions().Only("frame").options(), FalloffSettingOptions().options(), DistanceMethodOption().options(),
+     DistancePlotOption().options()}};
 
 }  // namespace mocapsolve

@@ -86,7 +86,7 @@ extern const Command kEvaluateCommand = {
     "--method=small_errors adds 12 jumps of 1-4 cm and 3 runs of 2 cm jitter per seed to the take\n"
     "(after --white_noise_mm of noise) and prints the repair's recall and precision on them, the\n"
     "latter also without the samples it flags on the undamaged take (the take's own glitches).",
-    __FILE__, EvaluateMain, nullptr,
+    __FILE__, EvaluateMain,
     {SharedOptions("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,table_csv,report"),
      EvaluateSolverOptions().options(),
      SolverOptions().Only("mode").options(),  // leave_one_out's frame or clip solve.

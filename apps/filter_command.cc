@@ -6,6 +6,8 @@
 #include <string>
 
 #include "apps/command.h"
+#include "apps/option_flags.h"
+#include "settings/band_settings.h"
 #include "apps/common_flags.h"
 #include "apps/option_flags.h"
 #include "apps/pyramid_flags.h"
@@ -13,9 +15,6 @@
 #include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "signal/motion_pyramid.h"
-
-DEFINE_int32(levels, 2, "Pyramid levels N; the N finest bands are dropped (each level halves "
-             "the rate: 2^N frames is the shortest period kept).");
 
 namespace mocapsolve {
 
@@ -87,8 +86,10 @@ namespace {
 
 Status RunFilter(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
-  if (FLAGS_levels < 1 || FLAGS_levels > 30) return Status::Error("--levels must be in [1, 30]");
-  return FilterFromFlags("filter", FLAGS_levels, DropFinestBands(FLAGS_levels, FLAGS_levels));
+  BandSettings bands;
+  ReadOptionFlags(BandSettingOptions(), &bands);
+  if (bands.levels < 1 || bands.levels > 30) return Status::Error("--levels must be in [1, 30]");
+  return FilterFromFlags("filter", bands.levels, DropFinestBands(bands.levels, bands.levels));
 }
 
 }  // namespace
@@ -101,8 +102,8 @@ extern const Command kFilterCommand = {
     "Thalmann, section 5). Rotations are filtered as sign-continuous quaternions and\n"
     "renormalized, positions and markers per channel; missing marker samples stay missing. A\n"
     "motion is written as BVH, markers as C3D or TRC (by --out's extension).",
-    __FILE__, RunFilter, nullptr,
+    __FILE__, RunFilter,
     {SharedOptions("motion,markers,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report"),
-     PyramidSettingOptions().options()}};
+     BandSettingOptions().Only("levels").options(), PyramidSettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -136,7 +136,7 @@ extern const Command kFitSkeletonCommand = {
     "own, left/right bone lengths within 5 %, and the marker RMS within 25 mm;\n"
     "--check=fail (default) exits 1 when one fails.\n"
     "Writes the subject (skeleton inline), and optionally the solved motion and marker set.",
-    __FILE__, RunFitSkeleton, nullptr,
+    __FILE__, RunFitSkeleton,
     {SharedOptions("template_subject,skeleton,skeleton_units,amc_fps,markers,markerset,axes,marker_scale,out,out_subject,out_markerset,report"),
      SkeletonFitSettingOptions().options(), SolverOptions().Without("mode").options()}};
 

@@ -59,6 +59,6 @@ extern const Command kFkCommand = {
     "mocapsolve fk --motion=FILE.bvh|FILE.amc|FILE.glb|FILE.fbx [--skeleton=X.asf] [--animation=NAME] --out=positions.csv\n\n"
     "Runs forward kinematics on every frame and writes one row per frame and joint:\n"
     "frame,joint,x,y,z (joints by name, lengths in the motion file's units).",
-    __FILE__, RunFk, nullptr, {SharedOptions("motion,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report")}};
+    __FILE__, RunFk, {SharedOptions("motion,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report")}};
 
 }  // namespace mocapsolve

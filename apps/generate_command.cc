@@ -36,7 +36,7 @@ extern const Command kGenerateCommand = {
     "mocapsolve generate --demo_out=demo.bvh [--frames=240] [--fps=60]\n\n"
     "A 20-joint character in cm, Y up, walking along +Z with swinging arms and legs;\n"
     "made by the project itself, so demos and tests need no external data.",
-    __FILE__, RunGenerate, nullptr,
+    __FILE__, RunGenerate,
     {SharedOptions("demo_out"),
      DemoClipSettingOptions().options()}};
 

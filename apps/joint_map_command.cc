@@ -6,14 +6,13 @@
 #include <vector>
 
 #include "apps/command.h"
+#include "settings/retarget_run_settings.h"
 #include "apps/common_flags.h"
 #include "apps/option_flags.h"
 #include "io/atomic_file.h"
 #include "settings/retarget_settings.h"
 #include "tasks/joint_map_task.h"
 
-DECLARE_string(source_skin);  // apps/retarget_command.cc.
-DECLARE_string(target_skin);  // apps/retarget_command.cc.
 
 namespace mocapsolve {
 namespace {
@@ -34,8 +33,10 @@ Status JointMapMain(const std::vector<std::string>& arguments) {
   inputs.source = Files().source;
   inputs.target = Files().target;
   inputs.skeleton = Files().skeleton;
-  inputs.source_skin = FLAGS_source_skin;
-  inputs.target_skin = FLAGS_target_skin;
+  RetargetRunSettings run;
+  ReadOptionFlags(RetargetRunSettingOptions(), &run);
+  inputs.source_skin = run.source_skin;
+  inputs.target_skin = run.target_skin;
   JointMapConfig config;
   config.joint_map = settings.joint_map;
   JointMapTaskResult result;
@@ -62,8 +63,9 @@ extern const Command kJointMapCommand = {
     "by joint. Prints (or writes to --out) the map as JSON: each role's source and target joint\n"
     "and how it was decided (name, structure, topology, file), a confidence, and every joint pair.\n"
     "Edit it and pass it to retarget or pipeline as --joint_map; given here, it is applied first.",
-    __FILE__, JointMapMain, "source_skin,target_skin",
+    __FILE__, JointMapMain,
     {SharedOptions("source,target,skeleton,out"),
+     RetargetRunSettingOptions().Only("source_skin,target_skin").options(),
      RetargetSettingOptions().Only("joint_map").options()}};
 
 }  // namespace mocapsolve

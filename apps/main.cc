@@ -58,15 +58,11 @@ std::string ShownDefault(const gflags::CommandLineFlagInfo& flag) {
   return text;
 }
 
-// The flags a command reads: those defined in its own file, which include the options it
-// declares (main registers them as its own), and the other files' flags it lists. Its
-// --help shows exactly these, and main refuses any other of ours (glog's and gflags' own,
-// such as --v, stay accepted everywhere).
+// The flags a command reads: the options it declares, which main registers as flags of
+// its own file. Its --help shows exactly these, and main refuses any other of ours (glog's
+// and gflags' own, such as --v, stay accepted everywhere).
 bool CommandReadsFlag(const Command& command, const gflags::CommandLineFlagInfo& flag) {
-  const bool own = EndsWith(flag.filename, command.source) || EndsWith(command.source, flag.filename);
-  const bool listed = command.shared_flags != nullptr &&
-                      ("," + std::string(command.shared_flags) + ",").find("," + flag.name + ",") != std::string::npos;
-  return own || listed;
+  return EndsWith(flag.filename, command.source) || EndsWith(command.source, flag.filename);
 }
 
 bool IsOurFlag(const gflags::CommandLineFlagInfo& flag) {

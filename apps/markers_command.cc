@@ -87,7 +87,7 @@ extern const Command kMarkersCommand = {
     "--axes and --marker_scale mean what they mean for `calibrate` and `solve` (the file\n"
     "from the model): x_file = A^T x_model / scale. --noise_mm adds Gaussian noise of that\n"
     "standard deviation (mm) to each coordinate. Frame rate: the motion's.",
-    __FILE__, MarkersMain, nullptr,
+    __FILE__, MarkersMain,
     {SharedOptions("motion,markerset,out,write_markerset,skeleton,skeleton_units,amc_fps,animation,sample_fps,axes,marker_scale,report"),
      SyntheticMarkerOptions().options()}};
 

@@ -5,6 +5,9 @@
 #include <string>
 
 #include "apps/command.h"
+#include "settings/foot_joint_settings.h"
+#include "settings/retarget_run_settings.h"
+#include "settings/take_settings.h"
 #include "apps/common_flags.h"
 #include "apps/config_flags.h"
 #include "apps/delivery_flags.h"
@@ -59,14 +62,18 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
 
   TakeInputs inputs;
-  inputs.name = FLAGS_take_name.empty() ? FileStem(Files().markers) : FLAGS_take_name;
+  TakeSettings take;
+  ReadOptionFlags(TakeSettingOptions(), &take);
+  inputs.name = take.take_name.empty() ? FileStem(Files().markers) : take.take_name;
+  RetargetRunSettings run;
+  ReadOptionFlags(RetargetRunSettingOptions(), &run);
   inputs.subject = &subject;
   inputs.markers_path = Files().markers;
   inputs.character_paths = SplitCommaList(Files().character);
   DeliverySettings delivery;
   ReadOptionFlags(DeliverySettingOptions(), &delivery);
   CharacterFileOptions character_files;
-  status = CharacterFilesFromSettings(delivery, FLAGS_animation_only, &character_files);
+  status = CharacterFilesFromSettings(delivery, run.animation_only, &character_files);
   if (status.ok()) status = CheckCharacterFiles(Files().out_dir, inputs, character_files);
   if (!status.ok()) return status;
 
@@ -85,7 +92,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
 
   JsonObject report = TakeReport(inputs, result);
   report.Add("command", "pipeline").Add("version", Version()).Add("subject", Files().subject).Add("config", Files().config)
-      .Add("animation_only", FLAGS_animation_only)
+      .Add("animation_only", run.animation_only)
       .Add("options", JsonValue::Raw(ConfigJson(PipelineOptionFlags())));
   const bool in_take_folder = view_path == ViewPagePath(Files().out_dir);
   report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
@@ -132,9 +139,10 @@ extern const Command kPipelineCommand = {
     "missing runtime is an error); --view=off writes none.\n"
     "Exit code: 0 done, 1 bad input or a failed stage (nothing written), 3 the take failed\n"
     "the quality gate (outputs written, the report says why).",
-    __FILE__, RunPipeline, PipelineOptionFlags().c_str(),
+    __FILE__, RunPipeline,
     {SharedOptions("subject,markers,character,out_dir,config,print_config,report"),
-     RepairSolverOptions().options(),
+     TakeSettingOptions().options(), RetargetRunSettingOptions().Only("animation_only").options(),
+     FootJointOption().options(), RepairSolverOptions().options(),
      RepairSettingOptions().options(), RetargetSettingOptions().options(), QualityGateOptions().options(),
      PyramidSettingOptions().options(), DeliverySettingOptions().options(), TakeViewPageOption().options()}};
 

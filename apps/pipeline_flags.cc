@@ -10,31 +10,32 @@
 #include "io/comma_list.h"
 #include "pipeline/quality_gate.h"
 #include "settings/delivery_settings.h"
+#include "settings/foot_joint_settings.h"
+#include "settings/retarget_run_settings.h"
+#include "settings/take_settings.h"
 #include "settings/pyramid_settings.h"
 #include "settings/repair_settings.h"
 #include "settings/retarget_settings.h"
 #include "settings/view_page_settings.h"
 
-DEFINE_string(take_name, "", "The take's name: the characters' new animation (default: the marker "
-              "file's name without extension).");
-DEFINE_int32(filter_levels, 0, "Filter the solved motion: drop the N finest bands of its Laplacian "
-             "pyramid (as `filter --levels=N`); 0 = no filtering.");
-
 namespace mocapsolve {
 
 const std::string& PipelineOptionFlags() {
   static const std::string* const names = new std::string(
-      std::string("take_name,filter_levels,") + PyramidSettingOptions().Names() + "," + QualityGateOptions().Names() +
-      ",animation_only," + DeliverySettingOptions().Names() + "," + RepairSettingOptions().Names() + "," +
-      RepairSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints");
+      TakeSettingOptions().Names() + "," + PyramidSettingOptions().Names() + "," + QualityGateOptions().Names() + "," +
+      RetargetRunSettingOptions().Only("animation_only").Names() + "," + DeliverySettingOptions().Names() + "," +
+      RepairSettingOptions().Names() + "," + RepairSolverOptions().Names() + "," + RetargetSettingOptions().Names() +
+      "," + FootJointOption().Names());
   return *names;
 }
 
 Status TakePipelineOptionsFromFlags(const Skeleton& skeleton, TakePipelineOptions* options) {
   Status status = RepairOptionsFromFlags(skeleton, &options->repair);
   if (status.ok()) status = RetargetOptionsFromFlags(&options->retarget);
-  options->filter_levels = FLAGS_filter_levels;
-  if (status.ok()) status = PyramidOptionsFromFlags(FLAGS_filter_levels, &options->filter);
+  TakeSettings take;
+  ReadOptionFlags(TakeSettingOptions(), &take);
+  options->filter_levels = take.filter_levels;
+  if (status.ok()) status = PyramidOptionsFromFlags(take.filter_levels, &options->filter);
   if (!status.ok()) return status;
   ReadOptionFlags(QualityGateOptions(), &options->gate);
   status = ClipDeliveryFromFlags(&options->delivery);

@@ -12,9 +12,6 @@
 #include "kinematics/status.h"
 #include "pipeline/take_pipeline.h"
 
-DECLARE_string(take_name);
-DECLARE_int32(filter_levels);
-
 namespace mocapsolve {
 
 // The options a config file may set and --print_config prints, comma-separated.

@@ -14,6 +14,8 @@
 #include <gflags/gflags.h>
 
 #include "apps/command.h"
+#include "settings/edit_settings.h"
+#include "settings/foot_joint_settings.h"
 #include "apps/common_flags.h"
 #include "apps/option_flags.h"
 #include "apps/progress.h"
@@ -29,19 +31,15 @@
 
 // apps/distance_command.cc; here required with --ik_target, optional with --edit (then it
 // must match a one-edit file's "frame").
-DECLARE_int32(frame);
-DEFINE_string(ik_target, "", "IK edit: JOINT:x,y,z moves JOINT to (x, y, z) (world, skeleton "
-              "units) at --frame; several targets separated by ';'.");
-DEFINE_string(foot_joints, "", "Comma-separated foot joints for contacts (default: names with "
-              "foot, toe or ankle).");
-
 namespace mocapsolve {
 namespace {
 
 Status PropagateMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   if (Files().motion.empty() || Files().out.empty()) return Status::Error("--motion and --out are required");
-  if (Files().edit.empty() == FLAGS_ik_target.empty()) {
+  EditSettings edit;
+  ReadOptionFlags(EditSettingOptions(), &edit);
+  if (Files().edit.empty() == edit.ik_target.empty()) {
     return Status::Error("give exactly one of --edit=EDIT.json and --ik_target=JOINT:x,y,z");
   }
   if (!IsTextOutputPath(Files().out, ".bvh")) return Status::Error(Files().out + ": expected a .bvh");
@@ -51,12 +49,14 @@ Status PropagateMain(const std::vector<std::string>& arguments) {
   if (!status.ok()) return status;
   PropagateConfig config;
   config.edit = Files().edit;
-  config.ik_target = FLAGS_ik_target;
-  config.frame = FLAGS_frame;
+  config.ik_target = edit.ik_target;
+  config.frame = edit.frame;
   MethodSetting method;
   ReadOptionFlags(PropagateMethodOption(), &method);
   config.method = method.method;
-  config.foot_joints = FLAGS_foot_joints;
+  FootJointSettings feet;
+  ReadOptionFlags(FootJointOption(), &feet);
+  config.foot_joints = feet.foot_joints;
   ReadOptionFlags(PropagateSettingOptions(), &config.propagate);
   ReadOptionFlags(FalloffSettingOptions(), &config.falloff);
   config.solver = SolverSettingsFromFlags();
@@ -112,12 +112,13 @@ extern const Command kPropagateCommand = {
     "bump of half-width --spline_width frames).\n"
     "Reports the largest drift of feet planted in the source; --keep_contacts re-solves those\n"
     "frames so the feet stay put.",
-    __FILE__, PropagateMain, "frame",
+    __FILE__, PropagateMain,
     {SharedOptions("motion,edit,out,weights_csv,report,skeleton,skeleton_units,amc_fps,animation,sample_fps"),
      // The IK edit's solve and the harmonic falloff's sparse solve.
      SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,sparse_library").options(),
      FalloffSettingOptions().Only("sigma,sigma_scale,eigenpairs,region,knn,falloff_kernel,feature_joints,joint_weights,"
                                   "temporal_weight").options(),
-     PropagateSettingOptions().options(), PropagateMethodOption().options(), ViewPageOption().options()}};
+     EditSettingOptions().options(), FootJointOption().options(), PropagateSettingOptions().options(),
+     PropagateMethodOption().options(), ViewPageOption().options()}};
 
 }  // namespace mocapsolve

@@ -134,7 +134,7 @@ extern const Command kRepairCommand = {
     "(--assign_unlabelled; they leave their unlabelled columns in --out_markers);\n"
     "trimming, small tracks and small gaps; Hermite refill from the reference; re-solve.\n"
     "Samples never marked bad are written as they were read. Prints per-stage timings.",
-    __FILE__, RepairMain, nullptr,
+    __FILE__, RepairMain,
     {SharedOptions("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,out_markers,out_motion,report"),
      RepairSettingOptions().options(), RepairSolverOptions().options(), ViewPageOption().options()}};
 

@@ -13,29 +13,15 @@
 #include "apps/retarget_flags.h"
 #include "apps/solver_flags.h"
 #include "apps/view_flags.h"
+#include "settings/foot_joint_settings.h"
+#include "settings/frame_limit_settings.h"
+#include "settings/retarget_run_settings.h"
 #include "settings/view_page_settings.h"
 #include "io/bvh_writer.h"
 #include "io/gltf_reader.h"
 #include "io/gltf_writer.h"
 #include "io/motion_file.h"
 #include "tasks/retarget_task.h"
-
-// Shared with other commands: the retarget options (apps/retarget_flags.cc, also read by
-// pipeline), --solver (apps/solver_flags.cc; here dls | dls_generic | ceres, and dls when
-// not given), --max_frames (apps/solve_command.cc).
-DECLARE_int32(max_frames);
-
-DEFINE_bool(source_mesh, true, "Track a skinned glTF source's own mesh; false: treat it as a "
-            "skeleton only (the target's mesh is bound to its skeleton, as for BVH/AMC/FBX).");
-DEFINE_string(source_animation, "", "Animation of the source, by name or index (default: the first).");
-DEFINE_string(source_skin, "", "Skin of the source file (name or index; default: skin 0).");
-DEFINE_string(target_skin, "", "Skin of the target file (name or index; default: skin 0).");
-DEFINE_string(animation_name, "", "Name of the new animation in --out (.glb/.gltf); default: "
-              "'retargeted from <source animation or file>'.");
-DEFINE_double(frame_rate, 0.0, "Sampling rate of the source animation; 0 = its key rate.");
-DEFINE_int32(loop, 1, "Repeat the source clip N times (timing long clips).");
-DEFINE_bool(stage_times, false, "Time FK, skinning, Jacobian and solve separately (dls only; "
-            "the report gets each stage's share of an iteration, thesis Table 3).");
 
 namespace mocapsolve {
 namespace {
@@ -50,6 +36,10 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
   if (Files().source.empty() || Files().target.empty()) return Status::Error("--source and --target are required");
   if (Files().out.empty() && Files().out_bvh.empty()) return Status::Error("--out or --out_bvh is required");
   const std::string joint_map = RetargetSettingsFromFlags().joint_map;
+  RetargetRunSettings run;
+  ReadOptionFlags(RetargetRunSettingOptions(), &run);
+  FrameLimitSettings limit;
+  ReadOptionFlags(FrameLimitOption(), &limit);
   Status status = CheckOutputsApart({Files().out, Files().out_bvh, Files().report},
                                     {Files().source, Files().target, Files().skeleton, joint_map});
   if (!status.ok()) return status;
@@ -58,7 +48,7 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
       !HasExtension(Files().out, ".fbx")) {
     return Status::Error("--out: " + Files().out + ": expected .glb, .gltf, .fbx or .bvh");
   }
-  if (FLAGS_animation_only && (Files().out.empty() || out_bvh)) {
+  if (run.animation_only && (Files().out.empty() || out_bvh)) {
     return Status::Error("--animation_only: applies to a .glb/.gltf/.fbx --out");
   }
   status = CheckViewFlag({Files().source, Files().target, Files().skeleton, joint_map});
@@ -67,19 +57,19 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
   task_inputs.source = Files().source;
   task_inputs.target = Files().target;
   task_inputs.skeleton = Files().skeleton;
-  task_inputs.source_animation = FLAGS_source_animation;
-  task_inputs.source_skin = FLAGS_source_skin;
-  task_inputs.target_skin = FLAGS_target_skin;
-  task_inputs.source_mesh = FLAGS_source_mesh;
-  task_inputs.frame_rate = FLAGS_frame_rate;
+  task_inputs.source_animation = run.source_animation;
+  task_inputs.source_skin = run.source_skin;
+  task_inputs.target_skin = run.target_skin;
+  task_inputs.source_mesh = run.source_mesh;
+  task_inputs.frame_rate = run.frame_rate;
   task_inputs.amc_fps = FileReading().amc_fps;
-  task_inputs.max_frames = FLAGS_max_frames;
-  task_inputs.loop = FLAGS_loop;
+  task_inputs.max_frames = limit.max_frames;
+  task_inputs.loop = run.loop;
   RetargetConfig config;
   config.retarget = RetargetSettingsFromFlags();
   status = ClipDeliveryFromFlags(&config.delivery);
   if (!status.ok()) return status;
-  config.stage_times = FLAGS_stage_times;
+  config.stage_times = run.stage_times;
   std::unique_ptr<Progress> progress;
   SetStage("inputs");
   RetargetTaskResult task;
@@ -92,10 +82,10 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
   for (const std::string& note : task.retarget.notes) {
     if (!Console().quiet) std::fprintf(stderr, "note: %s\n", note.c_str());
   }
-  const std::string name = RetargetAnimationName(task_inputs, FLAGS_animation_name);
+  const std::string name = RetargetAnimationName(task_inputs, run.animation_name);
   SetStage("writing");
   if (!Files().out.empty()) {
-    status = WriteRetargeted(Files().out, task, name, FLAGS_animation_only);
+    status = WriteRetargeted(Files().out, task, name, run.animation_only);
     if (!status.ok()) return status;
   }
   // --view: the source's skeleton beside the target character playing the result.
@@ -107,7 +97,7 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
   }
   if (!Console().quiet) std::fputs(RetargetSummary(task_inputs, config, task).c_str(), stderr);
   JsonObject report;
-  report.Add("command", "retarget").Merge(task.report).Add("animation_only", FLAGS_animation_only);
+  report.Add("command", "retarget").Merge(task.report).Add("animation_only", run.animation_only);
   return WriteReport(report);
 }
 
@@ -133,9 +123,10 @@ extern const Command kRetargetCommand = {
     "--frames=A:B or --seconds=A:B cut, --out_fps=R resamples the written result (--out, --out_bvh).\n"
     "--solver: dls (the default here: the lean DLS kernel, eq. 18), dls_generic\n"
     "(solvers/dls_solver.h on the same residual blocks) or ceres (Levenberg-Marquardt).",
-    __FILE__, RetargetMain, "max_frames,animation_only,foot_joints",
+    __FILE__, RetargetMain,
     {SharedOptions("source,target,out,out_bvh,report,skeleton,amc_fps"),
-     RetargetSolverOptions().options(), RetargetSettingOptions().options(),
-    ViewPageOption().options(), DeliverySettingOptions().Without("formats").options()}};
+     RetargetSolverOptions().options(), RetargetSettingOptions().options(), RetargetRunSettingOptions().options(),
+     FootJointOption().options(), FrameLimitOption().options(), ViewPageOption().options(),
+     DeliverySettingOptions().Without("formats").options()}};
 
 }  // namespace mocapsolve

@@ -10,14 +10,11 @@
 #include "settings/retarget_settings.h"
 #include "problems/retarget/retarget_character.h"
 
-// Not a retargeting knob but how the result is delivered (io/gltf_writer.h); retarget and
-// pipeline read it.
-DECLARE_bool(animation_only);
-
 namespace mocapsolve {
 
 // The declared retarget options (RetargetSolverOptions, RetargetSettingOptions; in
-// pipeline --solver and --limit_weight are the marker solver's) and --foot_joints.
+// pipeline --solver and --limit_weight are the marker solver's) and --foot_joints
+// (FootJointOption).
 RetargetSettings RetargetSettingsFromFlags();
 // Those settings as options; reads the --blend_mask and --joint_map files.
 Status RetargetOptionsFromFlags(CharacterRetargetOptions* options);

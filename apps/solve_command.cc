@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "apps/command.h"
+#include "settings/frame_limit_settings.h"
 #include "apps/common_flags.h"
 #include "apps/option_flags.h"
 #include "apps/progress.h"
@@ -17,8 +18,6 @@
 #include "io/svg_plot.h"
 #include "pipeline/take_view.h"
 #include "tasks/solve_task.h"
-
-DEFINE_int32(max_frames, 0, "Solve only the first N frames (0 = all).");
 
 namespace mocapsolve {
 namespace {
@@ -41,7 +40,9 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   if (!checked.ok()) return checked;
   SolveConfig config;
   config.solver = SolverSettingsFromFlags();
-  config.max_frames = FLAGS_max_frames;
+  FrameLimitSettings limit;
+  ReadOptionFlags(FrameLimitOption(), &limit);
+  config.max_frames = limit.max_frames;
   const SolverSettings& solver = config.solver;
   MarkerTake take;
   SetStage("inputs");
@@ -51,7 +52,7 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   const bool known = skeleton.unit().known();
   const char* unit = known ? "mm" : "skeleton units";
   const double to_output = known ? skeleton.unit().metres_per_unit * 1000.0 : 1.0;
-  const int frames = FLAGS_max_frames > 0 ? std::min<int>(FLAGS_max_frames, take.observed.size())
+  const int frames = limit.max_frames > 0 ? std::min<int>(limit.max_frames, take.observed.size())
                                           : static_cast<int>(take.observed.size());
   Progress progress("solve (" + solver.solver + ")", frames, Console().quiet);
   SolveProgress show_progress;
@@ -132,8 +133,8 @@ extern const Command kSolveCommand = {
     "refines all frames as one sparse problem with smoothness. Missing markers are simply\n"
     "left out. Prints the RMS marker residual, iterations and time; --report writes them,\n"
     "--residuals_csv the residual of every frame of the written motion (--plot draws it).",
-    __FILE__, SolveMain, "max_frames",
+    __FILE__, SolveMain,
     {SharedOptions("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,residuals_csv,report"),
-     SolverOptions().options(), ViewPageOption().options(), SolvePlotOption().options()}};
+     FrameLimitOption().options(), SolverOptions().options(), ViewPageOption().options(), SolvePlotOption().options()}};
 
 }  // namespace mocapsolve

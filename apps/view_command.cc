@@ -7,15 +7,10 @@
 #include "apps/command.h"
 #include "apps/common_flags.h"
 #include "apps/config_flags.h"
+#include "apps/option_flags.h"
 #include "io/atomic_file.h"
 #include "kinematics/quote_token.h"
 #include "tasks/view_task.h"
-
-DEFINE_string(character_animation, "", "The characters' animation to play (name); default: each "
-              "file's first animation (the one retarget/pipeline/convert added).");
-DEFINE_string(up, "auto", "Up axis of files without a subject: auto (guessed per file from how "
-              "its points spread), x, y or z.");
-DEFINE_string(title, "", "The page's title (default: the files' names).");
 
 namespace mocapsolve {
 namespace {
@@ -45,9 +40,7 @@ Status ViewMain(const std::vector<std::string>& arguments) {
   inputs.sample_fps = FileReading().sample_fps;
   inputs.skeleton_units = FileReading().skeleton_units;
   ViewConfig config;
-  config.character_animation = FLAGS_character_animation;
-  config.up = FLAGS_up;
-  config.title = FLAGS_title;
+  ReadOptionFlags<ViewSettings>(ViewSettingOptions(), &config);
   config.page_name = Files().out;
   ViewResult result;
   Status status = RunView(inputs, config, &result);
@@ -83,6 +76,7 @@ extern const Command kViewCommand = {
     "With --subject (or --skeleton and --markerset) the markers are mapped onto the skeleton and\n"
     "the residual of --motion is drawn; otherwise each file is shown in its own unit, with its up\n"
     "axis from --up.",
-    __FILE__, ViewMain, nullptr, {SharedOptions("subject,skeleton,skeleton_units,markerset,axes,marker_scale,markers,motion,character,out,amc_fps,animation,sample_fps,repair_report,falloff,compare")}};
+    __FILE__, ViewMain, {SharedOptions("subject,skeleton,skeleton_units,markerset,axes,marker_scale,markers,motion,character,out,amc_fps,animation,sample_fps,repair_report,falloff,compare"),
+     ViewSettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -3,6 +3,7 @@
 #ifndef MOCAPSOLVE_PYTHON_KEYWORD_DOCS_H_
 #define MOCAPSOLVE_PYTHON_KEYWORD_DOCS_H_
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,19 @@ inline std::string KeywordHelp(const std::vector<Option>& options, const py::obj
             "): " + option.Description() + "\n";
   }
   return text;
+}
+
+// The default of declared option `name` of `group` as a Python value: a keyword argument's
+// default comes from its declaration, not from a value typed again in a binding.
+template <class Settings>
+py::object DeclaredDefault(const OptionGroup<Settings>& group, const std::string& name) {
+  const Settings defaults = group.Defaults();
+  py::object value;
+  group.VisitFields([&](const Option& option, auto field) {
+    if (option.name == name) value = py::cast(defaults.*field);
+  });
+  if (!value) throw std::logic_error("no declared option '" + name + "'");  // A binding's own bug.
+  return value;
 }
 
 // The settings class's attributes, one per declared option of `group` (the name, the field):

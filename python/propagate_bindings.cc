@@ -10,6 +10,8 @@
 #include "problems/edit_propagation/ik_edit.h"
 #include "problems/edit_propagation/pose_edit.h"
 #include "problems/edit_propagation/spline_falloff.h"
+#include "settings/edit_settings.h"
+#include "settings/foot_joint_settings.h"
 #include "python/bindings.h"
 #include "settings/method_settings.h"
 #include "python/keyword_docs.h"
@@ -91,7 +93,7 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
         DistanceConfig config;
         config.frame = frame;
         config.methods = method;
-        config.sweep = sweep;
+        config.falloff.sweep = sweep;
         ApplyKeywords(keywords, {py::cast(&config.falloff, py::return_value_policy::reference)},
                       FalloffSettingOptions().Names());
         DistanceResult result;
@@ -114,7 +116,7 @@ Returns a dict: 'weight' (frames,) in [0, 1] (1 at the edit), 'distance', 'raw',
         report["sweep_weights"] = swept;
         return report;
       }, py::arg("skeleton"), py::arg("motion"), py::arg("frame"), py::arg("method") = DefaultMethod(DistanceMethodOption()), py::kw_only(),
-      py::arg("sweep") = "",
+      py::arg("sweep") = DeclaredDefault(FalloffSettingOptions(), "sweep"),
       (std::string(R"doc(The pose-space distance and falloff of an edit at `frame` of motion (on skeleton; as
 read_motion returns them), as `mocapsolve distance`: method 'green', 'diffusion' or 'isomap', or several comma-separated; sweep: comma-separated
 extra sigmas for Green's weights. Keywords: the FalloffSettings.
@@ -227,8 +229,8 @@ where the weight ends, ...) plus 'weights' and 'distances' {method: (frames,) ar
         py::dict report = ReportToPython(result.report);
         report["weights"] = weights;
         return py::make_tuple(std::move(result.propagated), report);
-      }, py::arg("skeleton"), py::arg("motion"), py::kw_only(), py::arg("edit") = "", py::arg("ik_target") = "",
-      py::arg("frame") = -1, py::arg("method") = DefaultMethod(PropagateMethodOption()), py::arg("foot_joints") = "",
+      }, py::arg("skeleton"), py::arg("motion"), py::kw_only(), py::arg("edit") = "", py::arg("ik_target") = DeclaredDefault(EditSettingOptions(), "ik_target"),
+      py::arg("frame") = DeclaredDefault(EditSettingOptions(), "frame"), py::arg("method") = DefaultMethod(PropagateMethodOption()), py::arg("foot_joints") = DeclaredDefault(FootJointOption(), "foot_joints"),
       (std::string(R"doc(An edit propagated through a clip, as `mocapsolve propagate` (the whole command:
 edits, falloff, propagation, foot contacts).
 

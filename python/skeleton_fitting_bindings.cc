@@ -7,6 +7,7 @@
 #include "io/motion_file.h"
 #include "tasks/fit_skeleton_task.h"
 #include "settings/solver_settings.h"
+#include "settings/file_read_settings.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
@@ -136,8 +137,8 @@ void BindSkeletonFitting(py::module_& m) {
         return py::make_tuple(std::make_shared<Subject>(std::move(result->subject)), std::move(result->motion),
                               report);
       }, py::arg("markers"), py::arg("template_subject") = py::none(), py::kw_only(),
-      py::arg("skeleton") = py::none(), py::arg("markerset") = py::none(), py::arg("skeleton_units") = "",
-      py::arg("axes") = "x,y,z", py::arg("marker_scale") = 0.0, py::arg("amc_fps") = 120.0,
+      py::arg("skeleton") = py::none(), py::arg("markerset") = py::none(), py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
+      py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"), py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"), py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
       py::arg("progress") = py::none(), doc.c_str());
 }
 

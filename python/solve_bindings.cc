@@ -12,6 +12,8 @@
 #include "problems/marker_solve/marker_clip_solver.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/sequence_solver.h"
+#include "settings/file_read_settings.h"
+#include "settings/frame_limit_settings.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
 #include "python/solve_bindings.h"
@@ -190,7 +192,7 @@ void BindSolve(py::module_& m) {
         const Subject* subject = &Required(subject_arg, "subject");
         return TakeArgument(*subject, markers);
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("skeleton") = "", py::arg("markerset") = "",
-      py::arg("axes") = "x,y,z", py::arg("marker_scale") = 0.0, py::arg("skeleton_units") = "",
+      py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"), py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"), py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
       "Reads markers (a .c3d/.trc path, or Markers) and maps them onto subject (label prefix,\n"
       "axes, scale): a Take with .observed (frames, markers, 3) in the skeleton's frame and units.\n"
       "subject: a Subject, or None with skeleton (.bvh/.asf path) and markerset (.json path) to\n"
@@ -223,7 +225,7 @@ void BindSolve(py::module_& m) {
         }
         report["per_frame"]["frame_rms"] = rms;
         return py::make_tuple(std::move(result.motion), report);
-      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("max_frames") = 0,
+      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("max_frames") = DeclaredDefault(FrameLimitOption(), "max_frames"),
       (std::string(R"doc(Joint angles from markers, as `mocapsolve solve`.
 
 subject: a Subject (read_subject or subject()); markers: a .c3d/.trc path or a Take.
@@ -309,11 +311,11 @@ A bad option raises ValueError with the CLI's message; an unknown one TypeError.
         return py::make_tuple(std::make_shared<Subject>(std::move(out->calibration.subject)),
                               ReportToPython(out->report));
       }, py::arg("motion"), py::arg("markers"), py::kw_only(), py::arg("skeleton") = py::none(),
-      py::arg("axes") = "x,y,z", py::arg("marker_scale") = 0.0,
+      py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"), py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"),
       py::arg("frame_offset") = CalibrateSettings().frame_offset,  // The declared defaults.
       py::arg("min_valid_frames") = CalibrateSettings().min_valid_frames, py::arg("attach") = CalibrateSettings().attach,
-      py::arg("amc_fps") = 120.0,
-      py::arg("skeleton_units") = "",
+      py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
+      py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
       R"doc(Calibrates a subject as `mocapsolve calibrate --out_subject`: where each marker sits
 on the skeleton, from a solved motion (motion: .bvh, or .amc with skeleton= its .asf) and
 the markers of the same take. axes: marker file -> skeleton axes ('y,z,x' for CMU C3D onto

@@ -37,7 +37,10 @@ const OptionGroup<FalloffSettings>& FalloffSettingOptions() {
            "Comma-separated weights, one per --feature_joints entry.")
       .Add(&S::temporal_weight, "temporal_weight", "",
            "Adds temporal_weight * time (s) to the pose vector "
-           "(radians per second; section 3.1's temporal distance term).");
+           "(radians per second; section 3.1's temporal distance term).")
+      .Add(&S::sweep, "sweep",
+           "Comma-separated extra sigmas: adds a Green's weight column (and plot line) per sigma (section 4's "
+           "sigma sweep).");
   return *group;
 }
 namespace {

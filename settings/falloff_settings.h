@@ -27,6 +27,7 @@ struct FalloffSettings {
   std::string feature_joints;   // Comma-separated; "" = every rotating joint.
   std::string joint_weights;    // Comma-separated, one per feature joint.
   double temporal_weight = 0.0; // Radians per second.
+  std::string sweep;            // distance: extra sigmas (comma-separated) whose Green's weights it adds.
 };
 
 // The options, declared once (name, unit, help, check; the defaults are the fields'

@@ -37,7 +37,7 @@ Status ParseInputs(const DistanceConfig& config, std::vector<FalloffMethod>* met
     methods->push_back(m);
   }
   if (methods->empty()) return Status::Error("--method: empty");
-  for (const std::string& item : Split(config.sweep)) {
+  for (const std::string& item : Split(config.falloff.sweep)) {
     char* stop = nullptr;
     const double s = std::strtod(item.c_str(), &stop);
     if (item.empty() || *stop != '\0' || !std::isfinite(s) || !(s > 0.0)) {

@@ -23,7 +23,6 @@ namespace mocapsolve {
 struct DistanceConfig {
   int frame = -1;                   // The edited frame (0-based), required.
   std::string methods = "green";    // green | diffusion | isomap, comma-separated.
-  std::string sweep;                // Comma-separated extra sigmas for Green's weights.
   FalloffSettings falloff;
 };
 

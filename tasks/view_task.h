@@ -18,6 +18,7 @@
 
 #include "kinematics/status.h"
 #include "pipeline/subject.h"
+#include "settings/view_settings.h"
 #include "viewer/view_scene.h"
 
 namespace mocapsolve {
@@ -41,11 +42,9 @@ struct ViewInputs {
   std::string skeleton_units;
 };
 
-struct ViewConfig {
-  std::string character_animation;  // The characters' clip (name; "" = each file's last).
-  std::string up = "auto";          // Without a subject: auto, x, y or z.
-  std::string title;                // "" = the files' names.
-  std::string page_name;            // Names the page in messages (the CLI's --out).
+// The declared options (settings/view_settings.h) and what a front end adds.
+struct ViewConfig : ViewSettings {
+  std::string page_name;  // Names the page in messages (the CLI's --out).
 };
 
 struct ViewResult {

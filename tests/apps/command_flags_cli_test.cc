@@ -10,12 +10,23 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "settings/band_settings.h"
+#include "settings/bench_settings.h"
+#include "settings/console_settings.h"
 #include "settings/delivery_settings.h"
 #include "settings/corruption_settings.h"
+#include "settings/edit_settings.h"
 #include "settings/falloff_settings.h"
+#include "settings/file_read_settings.h"
+#include "settings/file_settings.h"
+#include "settings/foot_joint_settings.h"
+#include "settings/frame_limit_settings.h"
 #include "settings/repair_settings.h"
+#include "settings/retarget_run_settings.h"
 #include "settings/retarget_settings.h"
 #include "settings/solver_settings.h"
+#include "settings/take_settings.h"
+#include "settings/view_settings.h"
 #include "tests/test_support.h"
 
 namespace mocapsolve {
@@ -180,7 +191,30 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
       {"pipeline", DeliverySettingOptions().options()},
       {"batch", DeliverySettingOptions().options()},
       {"propagate", SolverOptions().Only("solver,prior_weight,max_iterations,marker_weight,dls_lambda,dls_damping,"
-                                         "sparse_library").options()}};
+                                         "sparse_library").options()},
+      // The shared options: files, how files are read, the console.
+      {"repair", FileSettingOptions().Only("subject,skeleton,markers,markerset,out_markers,out_motion,report").options()},
+      {"view", FileSettingOptions().Only("markers,motion,character,out,repair_report,falloff,compare").options()},
+      {"view", FileReadSettingOptions().options()},
+      {"info", FileReadSettingOptions().Without("axes,marker_scale").options()},
+      {"solve", ConsoleSettingOptions().Only("quiet").options()},
+      {"pipeline", ConsoleSettingOptions().options()},
+      // One command's knobs, and those two or three commands share.
+      {"view", ViewSettingOptions().options()},
+      {"bench", BenchRunSettingOptions().options()},
+      {"filter", BandSettingOptions().Only("levels").options()},
+      {"bands", BandSettingOptions().Only("weights").options()},
+      {"distance", EditSettingOptions().Only("frame").options()},
+      {"propagate", EditSettingOptions().options()},
+      {"propagate", FootJointOption().options()},
+      {"retarget", FootJointOption().options()},
+      {"pipeline", FootJointOption().options()},
+      {"retarget", RetargetRunSettingOptions().options()},
+      {"joint_map", RetargetRunSettingOptions().Only("source_skin,target_skin").options()},
+      {"pipeline", RetargetRunSettingOptions().Only("animation_only").options()},
+      {"pipeline", TakeSettingOptions().options()},
+      {"solve", FrameLimitOption().options()},
+      {"retarget", FrameLimitOption().options()}};
   for (const Use& use : uses) {
     std::string help;
     ASSERT_EQ(testing::RunCli(use.command + " --help", &help), 0) << use.command;
@@ -214,7 +248,7 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
       if (std::isfinite(option.min)) {
         const std::string below = OptionNumberText(option.min - 1);
         EXPECT_EQ(testing::RunCli(use.command + " --" + option.name + "=" + below, &output), 1) << where;
-        EXPECT_THAT(output, HasSubstr("--" + option.name + ": expected a value >= ")) << output;
+        EXPECT_THAT(output, HasSubstr("--" + option.name + ": expected a value ")) << output;
       }
     }
   }

@@ -138,7 +138,7 @@ TEST_F(ViewCli, BadInputsGiveOneLineAndNoPage) {
       {"--markers=" + clean_ + " --repair_report=" + not_json + " --out=" + page, "'NOPE' is not a marker"},
       {"--markers=" + clean_ + " --character=" + demo_ + " --out=" + page, "takes .glb or .gltf files"},
       {"--motion=" + demo_ + " --compare=" + clean_ + " --out=" + page, "a marker file needs --markers"},
-      {"--markers=" + clean_ + " --up=w --out=" + page, "--up=w"},
+      {"--markers=" + clean_ + " --up=w --out=" + page, "--up: unknown 'w' (auto, x, y, z)"},
       {"--markers=" + clean_ + " --out=" + clean_, "expected an .html page"},
   };
   for (const auto& [arguments, message] : cases) {

@@ -1,0 +1,21 @@
+// TakeSettings: a pipeline take's name and the filter of its solved motion. Declared once:
+// pipeline (and a batch manifest's per-take options).
+#ifndef MOCAPSOLVE_SETTINGS_TAKE_SETTINGS_H_
+#define MOCAPSOLVE_SETTINGS_TAKE_SETTINGS_H_
+
+#include <string>
+
+#include "settings/option.h"
+
+namespace mocapsolve {
+
+struct TakeSettings {
+  std::string take_name;  // The characters' new animation; "" = the marker file's stem.
+  int filter_levels = 0;  // Laplacian-pyramid bands dropped from the solved motion; 0 = none.
+};
+
+const OptionGroup<TakeSettings>& TakeSettingOptions();
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_SETTINGS_TAKE_SETTINGS_H_
