@@ -10,6 +10,7 @@
 #include "settings/retarget_run_settings.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
+#include "tasks/joint_map_task.h"
 #include "tasks/retarget_task.h"
 
 namespace mocapsolve::python {
@@ -95,6 +96,32 @@ Returns (target character, motion on the target skeleton, report): the report is
 joint map, per-frame errors, 'notes'). Releases the GIL.)doc") +
        KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()),
                        RetargetSolverOptions().Names() + "," + RetargetSettingOptions().Names() + ",foot_joints")).c_str());
+  m.def("joint_map", [](const std::string& source, const std::string& target, py::object skeleton,
+                        const std::string& source_skin, const std::string& target_skin, const std::string& joint_map) {
+        RequireReadable(source);
+        RequireReadable(target);
+        JointMapInputs inputs;
+        inputs.source = source;
+        inputs.target = target;
+        inputs.skeleton = skeleton.is_none() ? std::string() : std::string(py::str(skeleton));
+        inputs.source_skin = source_skin;
+        inputs.target_skin = target_skin;
+        JointMapConfig config;
+        config.joint_map = joint_map;
+        JointMapTaskResult result;
+        ThrowIfError(RunJointMap(inputs, config, &result));
+        return ReportToPython(result.json);
+      }, py::arg("source"), py::arg("target"), py::kw_only(), py::arg("skeleton") = py::none(),
+      py::arg("source_skin") = DeclaredDefault(RetargetRunSettingOptions(), "source_skin"),
+      py::arg("target_skin") = DeclaredDefault(RetargetRunSettingOptions(), "target_skin"),
+      py::arg("joint_map") = DeclaredDefault(RetargetSettingOptions(), "joint_map"),
+      R"doc(The automatic joint map from source to target, as `mocapsolve joint_map` prints it: a
+dict with 'confidence' (0..1), 'source_skeleton' and 'target_skeleton' (the humanoid roles
+found, or why not), 'roles' ({role: {'source', 'target', 'how'}}) and 'joints' ({source
+joint: target joint}). source, target: motion or character files (.glb/.gltf, .bvh, .amc
+with skeleton= its .asf, .fbx); source_skin, target_skin: a glTF's skin (name or index);
+joint_map: a joint map file whose entries override the automatic map. Save the dict as
+JSON, edit it and pass it to retarget(joint_map=...).)doc");
 }
 
 }  // namespace mocapsolve::python

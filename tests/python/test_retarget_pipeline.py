@@ -32,6 +32,22 @@ def test_retarget_matches_the_cli(tmp_path):
         mocapsolve.retarget(bvh, glb, max_frames=2, source_skin="0")
 
 
+def test_joint_map_is_the_clis(tmp_path):
+    """joint_map() returns what `mocapsolve joint_map` prints, and its joints are the ones
+    retarget() reports using."""
+    bvh = data_file("bvh/16_15.bvh")
+    glb = data_file("gltf/Xbot.glb")
+    ours = mocapsolve.joint_map(bvh, glb)
+    out = str(tmp_path / "map.json")
+    run_cli("joint_map", "--source=" + bvh, "--target=" + glb, "--out=" + out)
+    assert ours == json.load(open(out))
+    assert 0.0 < ours["confidence"] <= 1.0 and ours["roles"]["pelvis"]["target"]
+    with pytest.raises(ValueError, match="NoSuchJoint"):
+        bad = tmp_path / "bad.json"
+        bad.write_text('{"joints": {"NoSuchJoint": "mixamorig:Hips"}}')
+        mocapsolve.joint_map(bvh, glb, joint_map=str(bad))
+
+
 def test_pipeline_on_one_take_matches_the_cli(cmu02, tmp_path):
     subject = mocapsolve.read_subject(cmu02["subject"])
     out_py = str(tmp_path / "py")
