@@ -100,7 +100,9 @@ void BindIo(py::module_& m) {
         ThrowIfError(status);
         for (const std::string& warning : warnings) PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1);
         return markers;
-      }, py::arg("path"), py::arg("include_model_outputs") = DeclaredDefault(FileReadSettingOptions(), "include_model_outputs"), py::arg("subject_prefix") = DeclaredDefault(FileReadSettingOptions(), "subject_prefix"),
+      }, py::arg("path"),
+      py::arg("include_model_outputs") = DeclaredDefault(FileReadSettingOptions(), "include_model_outputs"),
+      py::arg("subject_prefix") = DeclaredDefault(FileReadSettingOptions(), "subject_prefix"),
       "Reads the .c3d or .trc file at path: Markers with .positions (frames, markers, 3; NaN where\n"
       "missing), .labels, .rate (Hz) and .units (the file's; nothing is rescaled).\n"
       "include_model_outputs: also read a C3D's model outputs (points listed by POINT:ANGLES,\n"
@@ -147,8 +149,11 @@ void BindIo(py::module_& m) {
         }
         ThrowIfError(status);
         return py::make_tuple(SkeletonPtr(out_skeleton), std::move(motion));
-      }, py::arg("path"), py::arg("skeleton") = py::none(), py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
-      py::arg("animation") = DeclaredDefault(FileReadSettingOptions(), "animation"), py::arg("sample_fps") = DeclaredDefault(FileReadSettingOptions(), "sample_fps"), py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
+      }, py::arg("path"), py::arg("skeleton") = py::none(),
+      py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
+      py::arg("animation") = DeclaredDefault(FileReadSettingOptions(), "animation"),
+      py::arg("sample_fps") = DeclaredDefault(FileReadSettingOptions(), "sample_fps"),
+      py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
       "Reads a motion: .bvh, .amc (skeleton= its .asf path), .glb/.gltf or .fbx\n"
       "(animation= a name or index, sample_fps= resampling rate). path: the file; amc_fps: the\n"
       "frame rate of an .amc (which states none; default 120); skeleton_units: the unit of a\n"
@@ -177,8 +182,11 @@ void BindIo(py::module_& m) {
         for (const std::string& warning : result.warnings) py::module_::import("warnings").attr("warn")(warning);
         ThrowIfError(status);
         return ReportToPython(result.report);
-      }, py::arg("path"), py::kw_only(), py::arg("skeleton") = py::none(), py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
-      py::arg("animation") = DeclaredDefault(FileReadSettingOptions(), "animation"), py::arg("sample_fps") = DeclaredDefault(FileReadSettingOptions(), "sample_fps"), py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
+      }, py::arg("path"), py::kw_only(), py::arg("skeleton") = py::none(),
+      py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
+      py::arg("animation") = DeclaredDefault(FileReadSettingOptions(), "animation"),
+      py::arg("sample_fps") = DeclaredDefault(FileReadSettingOptions(), "sample_fps"),
+      py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
       "What a file holds, as `mocapsolve info` (one task): path, a marker file (.c3d/.trc:\n"
       "labels, frames, rate, unit, missing samples, gap runs), a motion (.bvh, .amc with\n"
       "skeleton= its .asf), a skeleton (.asf) or a character (.glb/.gltf/.fbx: meshes, skins,\n"
@@ -290,7 +298,9 @@ void BindIo(py::module_& m) {
         ThrowIfError(LoadSubjectFromFiles(files, subject.get()));
         return SubjectPtr(subject);
       }, py::arg("skeleton"), py::arg("markerset"), py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"),
-      py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"), py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"), py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
+      py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"),
+      py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
+      py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
       "A subject from files, as the CLI's --skeleton, --markerset, --axes, --marker_scale,\n"
       "--skeleton_units and --amc_fps assemble it. skeleton: .bvh/.asf path; markerset: marker\n"
       "set .json path; axes: marker file -> skeleton axes (e.g. 'y,z,x'); marker_scale: marker\n"
@@ -334,7 +344,8 @@ void BindIo(py::module_& m) {
         return py::make_tuple(std::make_shared<MarkerTrajectories>(std::move(result.trajectories)),
                               SubjectPtr(subject), ReportToPython(result.report));
       }, py::arg("skeleton"), py::arg("motion"), py::arg("markerset") = "auto:3", py::kw_only(),
-      py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"), py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"),
+      py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"),
+      py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"),
       (std::string(R"doc(Synthetic markers from a motion, as `mocapsolve markers` (thesis eq. 9: each marker's
 position after FK), optionally with Gaussian noise.
 

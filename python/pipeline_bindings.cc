@@ -154,8 +154,11 @@ void BindPipeline(py::module_& m) {
         out["report"] = ReportToPython(report);
         return out;
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("characters") = std::vector<std::string>(),
-      py::arg("out_dir") = "", py::arg("take_name") = DeclaredDefault(TakeSettingOptions(), "take_name"), py::arg("filter_levels") = DeclaredDefault(TakeSettingOptions(), "filter_levels"), py::arg("kernel_a") = PyramidSettings().kernel_a,
-      py::arg("tension") = PyramidSettings().tension, py::arg("animation_only") = DeclaredDefault(RetargetRunSettingOptions(), "animation_only"), py::arg("view") = "auto",
+      py::arg("out_dir") = "", py::arg("take_name") = DeclaredDefault(TakeSettingOptions(), "take_name"),
+      py::arg("filter_levels") = DeclaredDefault(TakeSettingOptions(), "filter_levels"),
+      py::arg("kernel_a") = PyramidSettings().kernel_a,
+      py::arg("tension") = PyramidSettings().tension, py::arg("animation_only") = DeclaredDefault(RetargetRunSettingOptions(), "animation_only"),
+      py::arg("view") = "auto",
       (std::string(R"doc(One take end to end, as `mocapsolve pipeline`: repair and solve the markers (a .c3d/.trc
 path) of the subject, filter (filter_levels > 0), retarget onto each character (.glb
 paths), check the quality gate (the gate_* keywords, a QualityGate: see below).
@@ -313,9 +316,14 @@ Releases the GIL.)doc");
         return summary;
       }, py::arg("out"), py::kw_only(), py::arg("markers") = "", py::arg("motion") = "",
       py::arg("characters") = std::vector<std::string>(), py::arg("compare") = "", py::arg("repair_report") = "",
-      py::arg("falloff") = "", py::arg("subject") = SubjectPtr(), py::arg("skeleton") = "", py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
-      py::arg("animation") = DeclaredDefault(FileReadSettingOptions(), "animation"), py::arg("sample_fps") = DeclaredDefault(FileReadSettingOptions(), "sample_fps"), py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
-      py::arg("character_animation") = DeclaredDefault(ViewSettingOptions(), "character_animation"), py::arg("up") = DeclaredDefault(ViewSettingOptions(), "up"), py::arg("title") = DeclaredDefault(ViewSettingOptions(), "title"),
+      py::arg("falloff") = "", py::arg("subject") = SubjectPtr(),
+      py::arg("skeleton") = "", py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
+      py::arg("animation") = DeclaredDefault(FileReadSettingOptions(), "animation"),
+      py::arg("sample_fps") = DeclaredDefault(FileReadSettingOptions(), "sample_fps"),
+      py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
+      py::arg("character_animation") = DeclaredDefault(ViewSettingOptions(), "character_animation"),
+      py::arg("up") = DeclaredDefault(ViewSettingOptions(), "up"),
+      py::arg("title") = DeclaredDefault(ViewSettingOptions(), "title"),
       R"doc(Writes one self-contained browser page to out (.html), as `mocapsolve view` (the same
 task, the same bytes): markers (a .c3d/.trc path), a motion (.bvh, .amc with skeleton= its
 .asf, .glb/.gltf/.fbx with animation= and sample_fps=; amc_fps: an .amc's frame rate;

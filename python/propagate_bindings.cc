@@ -229,8 +229,11 @@ where the weight ends, ...) plus 'weights' and 'distances' {method: (frames,) ar
         py::dict report = ReportToPython(result.report);
         report["weights"] = weights;
         return py::make_tuple(std::move(result.propagated), report);
-      }, py::arg("skeleton"), py::arg("motion"), py::kw_only(), py::arg("edit") = "", py::arg("ik_target") = DeclaredDefault(EditSettingOptions(), "ik_target"),
-      py::arg("frame") = DeclaredDefault(EditSettingOptions(), "frame"), py::arg("method") = DefaultMethod(PropagateMethodOption()), py::arg("foot_joints") = DeclaredDefault(FootJointOption(), "foot_joints"),
+      }, py::arg("skeleton"), py::arg("motion"), py::kw_only(),
+      py::arg("edit") = "", py::arg("ik_target") = DeclaredDefault(EditSettingOptions(), "ik_target"),
+      py::arg("frame") = DeclaredDefault(EditSettingOptions(), "frame"),
+      py::arg("method") = DefaultMethod(PropagateMethodOption()),
+      py::arg("foot_joints") = DeclaredDefault(FootJointOption(), "foot_joints"),
       (std::string(R"doc(An edit propagated through a clip, as `mocapsolve propagate` (the whole command:
 edits, falloff, propagation, foot contacts).
 

@@ -105,7 +105,8 @@ void BindPyramid(py::module_& m) {
   m.def("filter", [](py::object data, int levels, double kernel_a, double tension) {
         if (levels < 1 || levels > 30) throw py::value_error("--levels must be in [1, 30]");
         return FilterAny(data, levels, DropFinestBands(levels, levels), kernel_a, tension);
-      }, py::arg("data"), py::arg("levels") = DeclaredDefault(BandSettingOptions(), "levels"), py::arg("kernel_a") = kPyramidDefaults.kernel_a, py::arg("tension") = kPyramidDefaults.tension,
+      }, py::arg("data"), py::arg("levels") = DeclaredDefault(BandSettingOptions(), "levels"),
+      py::arg("kernel_a") = kPyramidDefaults.kernel_a, py::arg("tension") = kPyramidDefaults.tension,
       "Multiresolution low-pass filter of a Motion or Markers, as `mocapsolve filter`: the\n"
       "pyramid of `levels` levels collapsed without its `levels` finest bands. Returns the\n"
       "same type (missing marker samples stay missing). data: a Motion or Markers."

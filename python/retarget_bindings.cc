@@ -73,9 +73,14 @@ void BindRetarget(py::module_& m) {
         auto target_character = std::make_shared<GltfCharacter>(std::move(task->target));
         return py::make_tuple(target_character, std::move(task->delivered), ReportToPython(task->report));
       }, py::arg("source"), py::arg("target"), py::kw_only(), py::arg("skeleton") = py::none(),
-      py::arg("source_mesh") = DeclaredDefault(RetargetRunSettingOptions(), "source_mesh"), py::arg("source_animation") = DeclaredDefault(RetargetRunSettingOptions(), "source_animation"), py::arg("source_skin") = DeclaredDefault(RetargetRunSettingOptions(), "source_skin"),
-      py::arg("target_skin") = DeclaredDefault(RetargetRunSettingOptions(), "target_skin"), py::arg("frame_rate") = DeclaredDefault(RetargetRunSettingOptions(), "frame_rate"),
-      py::arg("max_frames") = DeclaredDefault(FrameLimitOption(), "max_frames"), py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"), py::arg("out") = "", py::arg("animation_name") = DeclaredDefault(RetargetRunSettingOptions(), "animation_name"),
+      py::arg("source_mesh") = DeclaredDefault(RetargetRunSettingOptions(), "source_mesh"),
+      py::arg("source_animation") = DeclaredDefault(RetargetRunSettingOptions(), "source_animation"),
+      py::arg("source_skin") = DeclaredDefault(RetargetRunSettingOptions(), "source_skin"),
+      py::arg("target_skin") = DeclaredDefault(RetargetRunSettingOptions(), "target_skin"),
+      py::arg("frame_rate") = DeclaredDefault(RetargetRunSettingOptions(), "frame_rate"),
+      py::arg("max_frames") = DeclaredDefault(FrameLimitOption(), "max_frames"),
+      py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
+      py::arg("out") = "", py::arg("animation_name") = DeclaredDefault(RetargetRunSettingOptions(), "animation_name"),
       py::arg("animation_only") = DeclaredDefault(RetargetRunSettingOptions(), "animation_only"),
       (std::string(R"doc(Retargets a source motion onto a skinned glTF character, as `mocapsolve retarget`
 (thesis chapter 4). source: a skinned .glb/.gltf (its mesh tracked unless

@@ -137,8 +137,11 @@ void BindSkeletonFitting(py::module_& m) {
         return py::make_tuple(std::make_shared<Subject>(std::move(result->subject)), std::move(result->motion),
                               report);
       }, py::arg("markers"), py::arg("template_subject") = py::none(), py::kw_only(),
-      py::arg("skeleton") = py::none(), py::arg("markerset") = py::none(), py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
-      py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"), py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"), py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
+      py::arg("skeleton") = py::none(), py::arg("markerset") = py::none(),
+      py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
+      py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"),
+      py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"),
+      py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
       py::arg("progress") = py::none(), doc.c_str());
 }
 

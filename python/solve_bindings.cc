@@ -192,7 +192,9 @@ void BindSolve(py::module_& m) {
         const Subject* subject = &Required(subject_arg, "subject");
         return TakeArgument(*subject, markers);
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("skeleton") = "", py::arg("markerset") = "",
-      py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"), py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"), py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
+      py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"),
+      py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"),
+      py::arg("skeleton_units") = DeclaredDefault(FileReadSettingOptions(), "skeleton_units"),
       "Reads markers (a .c3d/.trc path, or Markers) and maps them onto subject (label prefix,\n"
       "axes, scale): a Take with .observed (frames, markers, 3) in the skeleton's frame and units.\n"
       "subject: a Subject, or None with skeleton (.bvh/.asf path) and markerset (.json path) to\n"
@@ -225,7 +227,8 @@ void BindSolve(py::module_& m) {
         }
         report["per_frame"]["frame_rms"] = rms;
         return py::make_tuple(std::move(result.motion), report);
-      }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("max_frames") = DeclaredDefault(FrameLimitOption(), "max_frames"),
+      }, py::arg("subject"), py::arg("markers"), py::kw_only(),
+      py::arg("max_frames") = DeclaredDefault(FrameLimitOption(), "max_frames"),
       (std::string(R"doc(Joint angles from markers, as `mocapsolve solve`.
 
 subject: a Subject (read_subject or subject()); markers: a .c3d/.trc path or a Take.
@@ -311,7 +314,8 @@ A bad option raises ValueError with the CLI's message; an unknown one TypeError.
         return py::make_tuple(std::make_shared<Subject>(std::move(out->calibration.subject)),
                               ReportToPython(out->report));
       }, py::arg("motion"), py::arg("markers"), py::kw_only(), py::arg("skeleton") = py::none(),
-      py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"), py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"),
+      py::arg("axes") = DeclaredDefault(FileReadSettingOptions(), "axes"),
+      py::arg("marker_scale") = DeclaredDefault(FileReadSettingOptions(), "marker_scale"),
       py::arg("frame_offset") = CalibrateSettings().frame_offset,  // The declared defaults.
       py::arg("min_valid_frames") = CalibrateSettings().min_valid_frames, py::arg("attach") = CalibrateSettings().attach,
       py::arg("amc_fps") = DeclaredDefault(FileReadSettingOptions(), "amc_fps"),
