@@ -1,6 +1,7 @@
 #include "io/live_frame.h"
 
 #include <cmath>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -33,10 +34,10 @@ Status ParsePosition(const JsonNode& value, Eigen::Vector3d* position) {
   return Status::Ok();
 }
 
-void AppendNumber(double value, std::string* out) {
+void AppendNumber(double value, std::string* out) {  // 10 significant digits, as %.10g.
   char text[32];
-  std::snprintf(text, sizeof(text), "%.10g", value);
-  *out += text;
+  const auto end = std::to_chars(text, text + sizeof(text), value, std::chars_format::general, 10).ptr;
+  out->append(text, end);
 }
 
 void AppendBytes(const void* data, size_t size, std::string* out) {

@@ -1,5 +1,6 @@
 #include "io/live_pose.h"
 
+#include <charconv>
 #include <cstdio>
 
 #include "io/bvh_writer.h"
@@ -8,10 +9,10 @@
 namespace mocapsolve {
 namespace {
 
-void Append(double value, std::string* out) {
+void Append(double value, std::string* out) {  // 9 significant digits, as %.9g.
   char text[32];
-  std::snprintf(text, sizeof(text), "%.9g", value);
-  *out += text;
+  const auto end = std::to_chars(text, text + sizeof(text), value, std::chars_format::general, 9).ptr;
+  out->append(text, end);
 }
 
 Motion OneFrame(const Pose& pose, double frame_rate) {

@@ -43,7 +43,8 @@ Status LiveTracker::Track(const std::vector<Eigen::Vector3d>& observed, Pose* po
     return Status::Ok();
   }
   if (!started_) {
-    if (report->markers_observed == 0 || !InitialPose(skeleton_, markers_, filled_, options_, &pose_).ok()) {
+    if (report->markers_observed == 0 ||
+        !InitialPose(skeleton_, markers_, filled_, options_, &pose_, /*root_from_markers=*/true).ok()) {
       *pose = pose_;
       return Status::Ok();
     }
