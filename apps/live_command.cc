@@ -55,7 +55,7 @@ Status LiveMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
   LiveConfig config;
   ReadOptionFlags(LiveSettingOptions(), &config.live);
-  config.solver = SolverSettingsFromFlags();
+  config.solver = SolverSettingsFromFlags();  // Reads only the options live declares.
   const LiveSettings& live = config.live;
   if (FLAGS_subject.empty() || live.input.empty()) return Status::Error("--subject and --input are required");
   std::signal(SIGPIPE, SIG_IGN);  // A reader gone is a write error, not a signal.
@@ -110,6 +110,6 @@ extern const Command kLiveCommand = {
     "stays silent for --stall_seconds; --report gives frames in, out and dropped and the\n"
     "per-frame latency (frame in to pose out: median, 99th percentile, max).",
     __FILE__, LiveMain, "subject,report,quiet",
-    {LiveSettingOptions().options(), SolverOptions().Without("mode").options()}};
+    {LiveSettingOptions().options(), LiveSolverOptions().options()}};
 
 }  // namespace mocapsolve

@@ -131,6 +131,9 @@ class StreamFrameSource : public LiveFrameSource {
   long lines_ = 0;                   // Bad lines without a frame number, for messages.
 };
 
+// A replayed frame later than this when its turn comes is dropped (0.1 s: 12 frames at 120 Hz).
+constexpr int64_t kMaxLateNs = 100000000;
+
 class ReplayFrameSource : public LiveFrameSource {
  public:
   ReplayFrameSource(MarkerTrajectories take, double speed) : take_(std::move(take)), speed_(speed) {}
@@ -140,7 +143,8 @@ class ReplayFrameSource : public LiveFrameSource {
     const int64_t now = SteadyNanoseconds();
     if (next_ == 0) start_ns_ = now;
     if (speed_ > 0) {
-      while (next_ + 1 < frames && now >= Due(next_ + 1)) ++next_, ++dropped_;
+      // Frames queue as they would in a socket; one already kMaxLateNs late is dropped.
+      while (next_ + 1 < frames && now - Due(next_) > kMaxLateNs) ++next_, ++dropped_;
     }
     if (next_ >= frames) return Next::kEnd;
     const int f = next_++;

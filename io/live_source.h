@@ -47,9 +47,9 @@ class LiveFrameSource {
 std::unique_ptr<LiveFrameSource> MakeStreamFrameSource(int fd, const std::string& name, double stall_seconds);
 
 // A marker file's frames (labels as the file spells them) at frame_rate * speed frames a
-// second (speed 0: as fast as they are asked for). A frame whose successor is already
-// due when it is asked for is skipped (dropped()): a live consumer keeps up with the
-// newest frame rather than falling further behind.
+// second (speed 0: as fast as they are asked for). Frames wait for the consumer as they
+// would in a socket's buffer, but one already 0.1 s late when its turn comes is skipped
+// (dropped()): a consumer that falls that far behind catches up with the newest frames.
 Status MakeReplayFrameSource(const std::string& path, double speed, std::unique_ptr<LiveFrameSource>* source);
 
 }  // namespace mocapsolve

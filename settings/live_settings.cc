@@ -19,7 +19,7 @@ const OptionGroup<LiveSettings>& LiveSettingOptions() {
            {"json", "bvh"})
       .Add(&S::replay_speed, "replay_speed", "",
            "With --input=replay:...: frames are due at the file's rate times this (1 = real time); 0 = as fast as "
-           "possible. A frame whose successor is already due when its turn comes is dropped.",
+           "possible. A frame already 0.1 s late when its turn comes is dropped.",
            0.0, 1000.0)
       .Add(&S::on_bad_frame, "on_bad_frame",
            "A frame that cannot be read (malformed JSON, a bad field): stop (one line naming the frame and field, "
@@ -36,6 +36,13 @@ const OptionGroup<LiveSettings>& LiveSettingOptions() {
            "A marker that stops being observed is predicted (from its last two samples, at constant velocity) for "
            "at most this many frames, then left out of the solve until it returns.",
            0, 1000);
+  return *group;
+}
+
+const OptionGroup<SolverSettings>& LiveSolverOptions() {
+  static const OptionGroup<SolverSettings>* const group = new OptionGroup<SolverSettings>(SolverOptions().Without(
+      "mode,clip_function_tolerance,clip_solver,smooth_order,smooth_weight,smooth_translation_weight,sparse_library,"
+      "num_threads"));
   return *group;
 }
 

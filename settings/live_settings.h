@@ -1,13 +1,14 @@
 // LiveSettings: `mocapsolve live`'s stream options (where frames come from and go to, the
 // output's format, what a bad frame does, how long a silent input may stall, the stream's
 // unit and how long a missing marker is predicted). Declared once. The solver's options are
-// settings/solver_settings.h's (without --mode: live solves frame by frame).
+// settings/solver_settings.h's per-frame ones (LiveSolverOptions: live solves frame by frame).
 #ifndef MOCAPSOLVE_SETTINGS_LIVE_SETTINGS_H_
 #define MOCAPSOLVE_SETTINGS_LIVE_SETTINGS_H_
 
 #include <string>
 
 #include "settings/option.h"
+#include "settings/solver_settings.h"
 
 namespace mocapsolve {
 
@@ -23,6 +24,8 @@ struct LiveSettings {
 };
 
 const OptionGroup<LiveSettings>& LiveSettingOptions();
+// The per-frame solver's options (SolverOptions without the whole-clip ones and --mode).
+const OptionGroup<SolverSettings>& LiveSolverOptions();
 
 }  // namespace mocapsolve
 
