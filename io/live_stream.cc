@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace mocapsolve {
@@ -18,6 +19,12 @@ namespace {
 int TimeoutMs(double seconds) {
   if (!(seconds > 0)) return 0;
   return seconds > 2.0e6 ? 2000000000 : static_cast<int>(std::ceil(seconds * 1000.0));
+}
+
+std::string SecondsText(double seconds) {  // 5, 0.5, not 5.000000.
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", seconds);
+  return text;
 }
 
 double Now() {
@@ -80,7 +87,7 @@ Status AcceptClient(int listen_fd, const std::string& name, double timeout_secon
   do {
     ready = ::poll(&wait, 1, TimeoutMs(timeout_seconds));
   } while (ready < 0 && errno == EINTR);
-  if (ready == 0) return Status::Error(name + ": no client connected within " + std::to_string(timeout_seconds) + " s");
+  if (ready == 0) return Status::Error(name + ": no client connected within " + SecondsText(timeout_seconds) + " s");
   if (ready < 0) return Status::Error(name + ": " + std::strerror(errno));
   const int client = ::accept4(listen_fd, nullptr, nullptr, SOCK_CLOEXEC);
   if (client < 0) return Status::Error(name + ": accept failed (" + std::strerror(errno) + ")");
@@ -199,7 +206,7 @@ Status WriteAll(int fd, bool is_socket, std::string_view bytes, double timeout_s
     pollfd wait{fd, POLLOUT, 0};
     const int ready = ::poll(&wait, 1, TimeoutMs(timeout_seconds));
     if (ready == 0) return Status::Error(name + ": stalled (the reader took nothing for " +
-                                         std::to_string(timeout_seconds) + " s)");
+                                         SecondsText(timeout_seconds) + " s)");
   }
   return Status::Ok();
 }

@@ -265,6 +265,10 @@ TEST_F(LiveCli, PortInUseAndDisconnectedClient) {
   EXPECT_THAT(messages, HasSubstr("tcp:" + std::to_string(used) + ": port in use"));
   EXPECT_EQ(std::count(messages.begin(), messages.end(), '\n'), 1) << messages;
   ::close(holder);
+  // No engine connects to the output: one line once --stall_seconds have passed.
+  EXPECT_EQ(Live("--input=- --output=tcp:" + std::to_string(FreePort()) + " --stall_seconds=0.3 < " + frames_json_,
+                 &poses, &messages), 1);
+  EXPECT_THAT(messages, HasSubstr(": no client connected within 0.3 s"));
 
   // The engine reading the poses goes away after the first: one line, exit 1, no hang.
   const int port = FreePort();
