@@ -73,7 +73,10 @@ class StreamFrameSource : public LiveFrameSource {
   Next ReadBinaryHeader(std::string* error) {
     std::string_view bytes;
     StreamReader::Result result = reader_.ReadBytes(12, stall_seconds_, &bytes, error);
-    if (result != StreamReader::Result::kData) return Next::kFatal;
+    if (result != StreamReader::Result::kData) {
+      *error = reader_.name() + ": binary stream header: truncated (the stream ended inside it)";
+      return Next::kFatal;
+    }
     uint32_t count;
     std::memcpy(&count, bytes.data() + 8, 4);
     if (count == 0 || count > kMaxBinaryMarkers) {

@@ -201,7 +201,9 @@ Status WriteAll(int fd, bool is_socket, std::string_view bytes, double timeout_s
       continue;
     }
     if (errno == EINTR) continue;
-    if (errno == EPIPE || errno == ECONNRESET) return Status::Error(name + ": the client disconnected");
+    if (errno == EPIPE || errno == ECONNRESET) {
+      return Status::Error(name + (is_socket ? ": the client disconnected" : ": the reader closed the pipe"));
+    }
     if (errno != EAGAIN && errno != EWOULDBLOCK) return Status::Error(name + ": " + std::strerror(errno));
     pollfd wait{fd, POLLOUT, 0};
     const int ready = ::poll(&wait, 1, TimeoutMs(timeout_seconds));

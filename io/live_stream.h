@@ -62,7 +62,8 @@ class StreamReader {
 
 // Writes all of `bytes` to fd (a socket when is_socket: MSG_NOSIGNAL), waiting up to
 // timeout_seconds for the peer to take them. Errors name `name`: "the client disconnected"
-// (EPIPE, ECONNRESET), "stalled" (timeout) or the system's message.
+// (a socket's EPIPE, ECONNRESET), "the reader closed the pipe" (stdout), "stalled"
+// (timeout) or the system's message.
 Status WriteAll(int fd, bool is_socket, std::string_view bytes, double timeout_seconds, const std::string& name);
 
 }  // namespace mocapsolve
