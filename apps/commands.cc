@@ -25,9 +25,10 @@ extern const Command kJointMapCommand;
 extern const Command kPipelineCommand;
 extern const Command kBatchCommand;
 extern const Command kViewCommand;
+extern const Command kLiveCommand;
 
 const std::vector<Command>& AllCommands() {
-  static const std::vector<Command> commands = {kPipelineCommand, kBatchCommand, kInfoCommand, kConvertCommand, kFkCommand,
+  static const std::vector<Command> commands = {kPipelineCommand, kBatchCommand, kLiveCommand, kInfoCommand, kConvertCommand, kFkCommand,
                                                 kGenerateCommand, kBenchCommand,
                                                 kSolveCommand, kRepairCommand, kCorruptCommand,
                                                 kEvaluateCommand,

@@ -169,6 +169,8 @@ StagedFile& StagedFile::operator=(StagedFile&& other) noexcept {
 
 bool IsStandardOutput(const std::string& path) { return path == "-"; }
 
+int StandardOutputDataFd() { return data_stdout_fd; }
+
 void ReserveStandardOutputForData() {
   if (data_stdout_fd != STDOUT_FILENO) return;
   std::fflush(stdout);

@@ -34,6 +34,9 @@ bool IsStandardOutput(const std::string& path);
 // else printed there (progress, "wrote ...") to standard error, so the data on stdout is
 // the output alone. apps/main.cc calls it when a flag of the command is "-"; idempotent.
 void ReserveStandardOutputForData();
+// The descriptor outputs named "-" are written to (STDOUT_FILENO unless reserved): for a
+// writer that streams its output (mocapsolve live) rather than writing it once.
+int StandardOutputDataFd();
 
 // Opens an input file to read: with O_NONBLOCK, so that a FIFO without a writer cannot
 // block, then fstat; anything but a regular file (a folder, FIFO, socket or device) is an

@@ -46,6 +46,17 @@ def marker_take(d):
             "--markerset=" + d["markerset"]]
 
 
+def demo_subject(d):
+    """A subject file for the demo walk and its marker set (live reads only subjects)."""
+    path = d["folder"] / "subject.json"
+    with open(d["markerset"]) as f:
+        markerset = json.load(f)
+    with open(path, "w") as f:
+        json.dump({"format": "mocapsolve.subject", "version": 1, "skeleton": os.path.abspath(d["walk"]),
+                   "skeleton_units": "cm", "markerset": markerset}, f)
+    return str(path)
+
+
 # Each command's success run: the arguments after the command name (d: the demo fixture).
 SUCCESS = {
     "info": lambda d: [d["walk"]],
@@ -70,6 +81,7 @@ SUCCESS = {
     "propagate": lambda d: ["--motion=" + d["walk"], "--frame=10", "--edit=" + d["edit"],
                             "--out=" + str(d["folder"] / "p.bvh")],
     "bench": lambda d: ["--problem=fk", "--repeats=1", "--bench_motion=" + d["walk"]],
+    "live": lambda d: ["--subject=" + demo_subject(d), "--input=replay:" + d["c3d"], "--replay_speed=0"],
 }
 
 # The commands that need real data: a subject (CMU 02 calibrated on 02_01) or characters.
