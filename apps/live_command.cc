@@ -57,7 +57,7 @@ Status LiveMain(const std::vector<std::string>& arguments) {
   ReadOptionFlags(LiveSettingOptions(), &config.live);
   config.solver = SolverSettingsFromFlags();  // Reads only the options live declares.
   const LiveSettings& live = config.live;
-  if (FLAGS_subject.empty() || live.input.empty()) return Status::Error("--subject and --input are required");
+  if (Files().subject.empty() || live.input.empty()) return Status::Error("--subject and --input are required");
   std::signal(SIGPIPE, SIG_IGN);  // A reader gone is a write error, not a signal.
   Subject subject;
   SetStage("inputs");
@@ -88,12 +88,12 @@ Status LiveMain(const std::vector<std::string>& arguments) {
   LiveResult result;
   status = RunLive(subject, config, io, &result);
   if (!status.ok()) return status;
-  if (!FLAGS_quiet) {
+  if (!Console().quiet) {
     std::fprintf(stderr, "live: %ld frames in, %ld out, %ld dropped (input %s)\n", result.frames_in,
                  result.frames_out, result.frames_dropped, result.end.c_str());
   }
   JsonObject report;
-  report.Add("subject", FLAGS_subject).Merge(result.report);
+  report.Add("subject", Files().subject).Merge(result.report);
   return WriteReport(report);
 }
 
@@ -109,7 +109,7 @@ extern const Command kLiveCommand = {
     "pose at once, as a JSON line or a BVH MOTION line. The run ends when the input closes or\n"
     "stays silent for --stall_seconds; --report gives frames in, out and dropped and the\n"
     "per-frame latency (frame in to pose out: median, 99th percentile, max).",
-    __FILE__, LiveMain, "subject,report,quiet",
-    {LiveSettingOptions().options(), LiveSolverOptions().options()}};
+    __FILE__, LiveMain,
+    {SharedOptions("subject,report"), LiveSettingOptions().options(), LiveSolverOptions().options()}};
 
 }  // namespace mocapsolve
