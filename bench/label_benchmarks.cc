@@ -61,7 +61,7 @@ void PrintConfusions(const std::vector<std::vector<std::string>>& truth,
   std::map<std::pair<std::string, std::string>, std::pair<int, int>> count;  // count, first frame
   for (size_t f = 0; f < truth.size(); ++f) {
     for (size_t c = 0; c < truth[f].size(); ++c) {
-      if (labels[f][c] == truth[f][c] || labels[f][c].empty()) continue;
+      if (labels[f][c] == truth[f][c] || truth[f][c].empty()) continue;
       auto& e = count[{truth[f][c], labels[f][c]}];
       if (e.first++ == 0) e.second = static_cast<int>(f);
     }
@@ -116,6 +116,9 @@ void LabelTake(benchmark::State& state, const std::string& take_name, const std:
   state.counters["fps"] = result.seconds > 0 ? scrambled.points.num_frames() / result.seconds : 0.0;
   state.counters["acquisitions"] = static_cast<double>(result.details.acquisitions.size());
   state.counters["lost_frames"] = result.details.lost_frames;
+  int refused = 0;
+  for (const MarkerLabelStats& s : result.details.per_marker) refused += s.low_confidence;
+  state.counters["low_confidence"] = refused;
   state.counters["truth_samples"] = score.truth_samples;
 }
 

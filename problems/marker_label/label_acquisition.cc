@@ -169,7 +169,8 @@ double SolvedCost(const Skeleton& skeleton, const MarkerSet& markers, const std:
 }  // namespace
 
 bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
-                   double gate, bool rematch, MarkerFrameSolver* solver, Pose* pose, GatedAssignment* matches) {
+                   double gate, bool rematch, double keep_ratio, MarkerFrameSolver* solver, Pose* pose,
+                   GatedAssignment* matches) {
   const int num_markers = markers.num_markers();
   std::vector<int> current = matches->point_of_marker;
   double best = SolvedCost(skeleton, markers, points, current, gate, solver, pose);
@@ -216,7 +217,7 @@ bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std
       if (!valid) continue;
       Pose trial_pose = *pose;
       const double cost = SolvedCost(skeleton, markers, points, trial, gate, solver, &trial_pose);
-      if (cost < 0.99 * best) best = cost, current = trial, *pose = trial_pose, improved = true;
+      if (cost < keep_ratio * best) best = cost, current = trial, *pose = trial_pose, improved = true;
     }
     if (!improved) break;
   }
@@ -291,7 +292,7 @@ Acquisition AcquireBody(const Skeleton& skeleton, const MarkerSet& markers, cons
   best.placements = static_cast<int>(placements.size());
   for (int round = 0; round < 2 && !best.matches.point_of_marker.empty(); ++round) {
     const std::vector<int> before = best.matches.point_of_marker;
-    PolishMatches(skeleton, markers, points, options.gate, true, solver, &best.pose, &best.matches);
+    PolishMatches(skeleton, markers, points, options.gate, true, 0.99, solver, &best.pose, &best.matches);
     if (best.matches.point_of_marker == before) break;
     AcquisitionOptions final_gate = options;
     final_gate.iterations = 1;

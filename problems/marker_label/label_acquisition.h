@@ -80,7 +80,8 @@ Acquisition AcquireBody(const Skeleton& skeleton, const MarkerSet& markers, cons
 // tracking's check, where a free point is a ghost or a dropout's neighbour more often
 // than a missed marker). *pose: the polished pose. Returns whether a move was kept.
 bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
-                   double gate, bool rematch, MarkerFrameSolver* solver, Pose* pose, GatedAssignment* matches);
+                   double gate, bool rematch, double keep_ratio, MarkerFrameSolver* solver, Pose* pose,
+                   GatedAssignment* matches);
 
 // Every marker's model position at `pose` (#M, skeleton units).
 std::vector<Eigen::Vector3d> ModelMarkerPositions(const Skeleton& skeleton, const MarkerSet& markers, const Pose& pose);

@@ -50,8 +50,10 @@ class Tracker {
     state_.pose = acquisition.pose;
     state_.model.clear();
     state_.model_before.clear();
+    GatedAssignment matches = acquisition.matches;
+    MatchEmptyMarkers(f, &matches);
     std::vector<Eigen::Vector3d> observed;
-    const int count = TakeMatches(f, acquisition.matches, false, &observed);
+    const int count = TakeMatches(f, matches, false, &observed);
     Advance(observed, count);
     state_.expected = count;
     state_.lost = false;
@@ -89,6 +91,10 @@ class Tracker {
       }
     }
     if (options_.polish_every > 0 && ++since_polish_ >= options_.polish_every) Polish(f, &matches);
+    if (options_.refill_every > 0 && ++since_refill_ >= options_.refill_every) {
+      since_refill_ = 0;
+      MatchEmptyMarkers(f, &matches);
+    }
     std::vector<Eigen::Vector3d> observed;
     const int count = TakeMatches(f, matches, true, &observed);
     Advance(observed, count);
@@ -115,10 +121,14 @@ class Tracker {
   }
   // Markers without a point take free points near their model positions: matched within
   // 3 acquisition gates of the pose solved from the frame's matches, kept when within one
-  // gate of the pose solved with them (a whole lost limb comes back this way).
+  // gate of the pose solved with them and with no rival near (match confidence >= 0.5 at
+  // the wide gate): a whole lost limb comes back this way.
   void MatchEmptyMarkers(int f, GatedAssignment* matches) {
     const int num_markers = markers_.num_markers();
     const std::vector<Eigen::Vector3d>& points = points_[f];
+    int matched = 0;
+    for (int m = 0; m < num_markers; ++m) matched += matches->point_of_marker[m] >= 0;
+    if (matched == num_markers || matched >= static_cast<int>(points.size())) return;
     std::vector<char> used(points.size(), 0);
     std::vector<Eigen::Vector3d> observed(num_markers, kNan);
     for (int m = 0; m < num_markers; ++m) {
@@ -146,7 +156,7 @@ class Tracker {
     const std::vector<Eigen::Vector3d> model = ModelMarkerPositions(skeleton_, markers_, pose);
     for (int m = 0; m < num_markers; ++m) {
       const int k = found.point_of_marker[m];
-      if (k < 0 || (with[m] - model[m]).norm() >= options_.acquisition.gate || found.confidence[m] <= 0.0) continue;
+      if (k < 0 || (with[m] - model[m]).norm() >= options_.acquisition.gate || found.confidence[m] < 0.5) continue;
       matches->point_of_marker[m] = free_index[k];
       matches->confidence[m] = std::max(found.confidence[m], options_.min_confidence);
     }
@@ -155,10 +165,9 @@ class Tracker {
   // changes point starts its track again (no velocity; a re-acquisition).
   void Polish(int f, GatedAssignment* matches) {
     since_polish_ = 0;
-    MatchEmptyMarkers(f, matches);
     const std::vector<int> before = matches->point_of_marker;
     Pose pose = state_.pose;
-    if (!PolishMatches(skeleton_, markers_, points_[f], options_.acquisition.gate, false, &acquisition_solver_, &pose,
+    if (!PolishMatches(skeleton_, markers_, points_[f], options_.acquisition.gate, false, 0.99, &acquisition_solver_, &pose,
                        matches)) {
       return;
     }
@@ -237,6 +246,7 @@ class Tracker {
   LabellingResult* result_;
   TrackState state_;
   int since_polish_ = 0;
+  int since_refill_ = 0;
 };
 
 std::string NotFoundMessage(const Skeleton& skeleton, const MarkerSet& markers, const LabellingResult& result,

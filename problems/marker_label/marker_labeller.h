@@ -18,7 +18,9 @@
 //    unlabelled rather than guess. The pose of the frame is solved from its labelled
 //    points (MarkerFrameSolver, warm-started), for the next frame's model predictions.
 //    Every `polish_every` frames the frame's matches are checked by PolishMatches
-//    (label_acquisition.h: exchanges among matched markers that lower the solved cost).
+//    (label_acquisition.h: exchanges among matched markers that halve the solved cost), and
+//    at the acquisition and every `refill_every` frames the markers without a point look
+//    for free points near the pose solved from the others (a lost limb comes back).
 // 3. Losses: a frame where fewer than `lost_fraction` of the markers found at acquisition
 //    are labelled loses the body; from the next frame the body is looked for again
 //    (re-acquisition), each frame until found.
@@ -49,7 +51,8 @@ struct LabellerOptions {
   double min_confidence = 0.2;  // Matches below it leave the point unlabelled.
   double lost_fraction = 0.4;   // Of the markers found at acquisition.
   int acquire_frames = 60;      // Frames tried to find the body at the start.
-  int polish_every = 30;        // Frames between checks of the labels (PolishMatches); 0 = never.
+  int polish_every = 30;       // Frames between checks of the labels (PolishMatches); 0 = never.
+  int refill_every = 30;       // Frames between searches for markers without a point; 0 = never.
   AcquisitionOptions acquisition;
   MarkerSolveOptions solve;
 };
