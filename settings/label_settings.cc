@@ -22,6 +22,9 @@ const OptionGroup<LabelSettings>& LabelSettingOptions() {
       .Add(&S::accept_fraction, "accept_fraction", "",
            "The body is found when this fraction of the subject's markers is matched within --acquire_gate.",
            0.05, 1.0)
+      .Add(&S::acquire_rms_mm, "acquire_rms", "mm",
+           "The body is found only when its matches lie at most this far from the refined placement (RMS).",
+           0.1, 1e4)
       .Add(&S::lost_fraction, "lost_fraction", "",
            "The body is lost (and looked for again) in a frame that labels fewer than this fraction of the markers "
            "found when it was acquired.", 0.0, 1.0)
@@ -42,6 +45,7 @@ Status LabellerOptionsFromSettings(const LabelSettings& settings, const LengthUn
   out.acquisition.gate = settings.acquire_gate_mm * units_per_mm;
   out.acquisition.cluster_tolerance = settings.cluster_tolerance_mm * units_per_mm;
   out.acquisition.accept_fraction = settings.accept_fraction;
+  out.acquisition.max_rms = settings.acquire_rms_mm * units_per_mm;
   out.min_confidence = settings.min_confidence;
   out.lost_fraction = settings.lost_fraction;
   out.acquire_frames = settings.acquire_frames;

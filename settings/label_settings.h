@@ -18,7 +18,8 @@ struct LabelSettings {
   double acquire_gate_mm = 50.0;     // Finding the body: the final matching gate.
   double cluster_tolerance_mm = 30.0;  // Finding the body: rigid cluster distances.
   double min_confidence = 0.2;
-  double accept_fraction = 0.6;
+  double accept_fraction = 0.85;
+  double acquire_rms_mm = 15.0;
   double lost_fraction = 0.4;
   int acquire_frames = 60;
 };

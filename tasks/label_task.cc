@@ -77,7 +77,11 @@ void Describe(const Subject& subject, const MarkerTrajectories& file, int points
   result->report.Add("frames", file.num_frames()).Add("points", points).Add("samples_labelled", labelled)
       .Add("points_left_unlabelled", points - labelled).Add("swaps_avoided", swaps)
       .Add("reacquisitions", reacquired).Add("low_confidence_left", refused)
-      .Add("body_acquisition_frames", acquisitions).Add("frames_without_body", d.lost_frames)
+      .Add("body_acquisition_frames", acquisitions)
+      .Add("first_acquisition", JsonObject()
+                                    .Add("frame", d.first_frame)
+                                    .Add("markers_matched", d.first.matched)
+                                    .Add("rms_mm", d.first.rms * subject.skeleton.unit().metres_per_unit * 1000.0)).Add("frames_without_body", d.lost_frames)
       .Add("seconds", result->seconds).Add("frames_per_second", fps).Add("per_label", per_label);
   char text[512];
   std::snprintf(text, sizeof(text),

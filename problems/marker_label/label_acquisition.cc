@@ -305,7 +305,8 @@ Acquisition AcquireBody(const Skeleton& skeleton, const MarkerSet& markers, cons
     sum += best.matches.distance[m] * best.matches.distance[m];
   }
   best.rms = best.matched > 0 ? std::sqrt(sum / best.matched) : 0.0;
-  best.found = best.matched >= options.accept_fraction * markers.num_markers() && best.matched >= 3;
+  best.found = best.matched >= options.accept_fraction * markers.num_markers() && best.matched >= 3 &&
+               best.rms <= options.max_rms;
   if (best.pose.rotations.empty()) best.pose = start;
   return best;
 }

@@ -268,7 +268,7 @@ Status LabelPointCloud(const Skeleton& skeleton, const MarkerSet& markers, const
                        const std::vector<std::vector<Eigen::Vector3d>>& points, const LabellerOptions& options,
                        const LabelProgress& progress, LabellingResult* result) {
   if (!(options.gate > 0.0) || !(options.reacquire_gate > 0.0) || !(options.acquisition.gate > 0.0) ||
-      !(options.acquisition.cluster_tolerance > 0.0)) {
+      !(options.acquisition.cluster_tolerance > 0.0) || !(options.acquisition.max_rms > 0.0)) {
     return Status::Error("labelling gates and tolerances must be positive");
   }
   const int num_frames = static_cast<int>(points.size());

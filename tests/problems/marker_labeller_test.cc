@@ -75,7 +75,7 @@ ScrambledDemo MakeScrambledDemo(double scale) {
 LabellerOptions DemoLabellerOptions() {
   LabellerOptions options;
   options.gate = 2.5, options.reacquire_gate = 6.0;
-  options.acquisition.gate = 5.0, options.acquisition.cluster_tolerance = 3.0;
+  options.acquisition.gate = 5.0, options.acquisition.cluster_tolerance = 3.0, options.acquisition.max_rms = 1.5;
   options.solve.prior_rotation_weight = 2.0;
   return options;
 }
