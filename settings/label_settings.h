@@ -1,7 +1,6 @@
-// LabelSettings: the options of labelling raw marker points (`mocapsolve label`, Python's
-// label()): the matching gates, the confidence below which a point stays unlabelled, and
-// when the body counts as found or lost. Declared once; the CLI's flags and Python's
-// keywords. The labeller: problems/marker_label/marker_labeller.h; the task: tasks/label_task.h.
+// LabelSettings: the options of labelling raw marker points (`mocapsolve label`): the
+// matching gates, the confidence below which a point stays unlabelled, and
+// when the body counts as found or lost. Declared once; the CLI's flags. The labeller: problems/marker_label/marker_labeller.h; the task: tasks/label_task.h.
 #ifndef MOCAPSOLVE_SETTINGS_LABEL_SETTINGS_H_
 #define MOCAPSOLVE_SETTINGS_LABEL_SETTINGS_H_
 
