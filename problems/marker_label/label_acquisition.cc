@@ -169,8 +169,8 @@ double SolvedCost(const Skeleton& skeleton, const MarkerSet& markers, const std:
 }  // namespace
 
 bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
-                   double gate, bool rematch, double keep_ratio, MarkerFrameSolver* solver, Pose* pose,
-                   GatedAssignment* matches) {
+                   double gate, bool rematch, bool free_points, double keep_ratio, MarkerFrameSolver* solver,
+                   Pose* pose, GatedAssignment* matches) {
   const int num_markers = markers.num_markers();
   std::vector<int> current = matches->point_of_marker;
   double best = SolvedCost(skeleton, markers, points, current, gate, solver, pose);
@@ -188,7 +188,7 @@ bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std
   std::vector<std::vector<std::pair<int, int>>> moves;
   for (int m = 0; m < num_markers; ++m) {
     for (int n = m + 1; n < num_markers; ++n) {
-      if (!near(m, n) || (current[m] < 0 && current[n] < 0) || (!rematch && (current[m] < 0 || current[n] < 0))) {
+      if (!near(m, n) || (current[m] < 0 && current[n] < 0) || (!free_points && (current[m] < 0 || current[n] < 0))) {
         continue;
       }
       moves.push_back({{m, current[n]}, {n, current[m]}});
@@ -198,7 +198,7 @@ bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std
         moves.push_back({{m, current[o]}, {o, current[n]}, {n, current[m]}});
       }
     }
-    for (size_t q = 0; q < points.size() && rematch; ++q) {
+    for (size_t q = 0; q < points.size() && free_points; ++q) {
       if (used[q] || (points[q] - where(m)).squaredNorm() >= radius2) continue;
       moves.push_back({{m, static_cast<int>(q)}});
       for (int n = 0; n < num_markers; ++n) {
@@ -292,7 +292,7 @@ Acquisition AcquireBody(const Skeleton& skeleton, const MarkerSet& markers, cons
   best.placements = static_cast<int>(placements.size());
   for (int round = 0; round < 2 && !best.matches.point_of_marker.empty(); ++round) {
     const std::vector<int> before = best.matches.point_of_marker;
-    PolishMatches(skeleton, markers, points, options.gate, true, 0.99, solver, &best.pose, &best.matches);
+    PolishMatches(skeleton, markers, points, options.gate, true, true, 0.99, solver, &best.pose, &best.matches);
     if (best.matches.point_of_marker == before) break;
     AcquisitionOptions final_gate = options;
     final_gate.iterations = 1;

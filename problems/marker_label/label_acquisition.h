@@ -76,15 +76,15 @@ Acquisition AcquireBody(const Skeleton& skeleton, const MarkerSet& markers, cons
 // cycles of three (within 2 gates), a marker taking a free point within 3 gates (and its
 // own point passing to a neighbour); each move kept when the pose solved from the moved matches lowers
 //   sum over markers of min(|x_m - M_m(pose)|^2, gate^2)   (an empty marker: gate^2)
-// by more than 1 %. The fixed point of match-and-solve rounds can hold the markers of a
-// foot or a wrist in a rotated order the rounds cannot leave. rematch: the matches are
-// then made again around the polished pose (else the moved matches are kept as they are,
-// confidences untouched, and only exchanges among matched markers are tried: the
-// tracking's check, where a free point is a ghost or a dropout's neighbour more often
-// than a missed marker). *pose: the polished pose. Returns whether a move was kept.
+// below keep_ratio times its value (0.99 = by more than 1 %; both callers). The fixed
+// point of match-and-solve rounds can hold the markers of a
+// foot or a wrist in a rotated order the rounds cannot leave. free_points: moves that
+// give a marker a point no marker has are tried too. rematch: the matches are then made
+// again around the polished pose (else the moved matches are kept as they are, the
+// confidences untouched). *pose: the polished pose. Returns whether a move was kept.
 bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
-                   double gate, bool rematch, double keep_ratio, MarkerFrameSolver* solver, Pose* pose,
-                   GatedAssignment* matches);
+                   double gate, bool rematch, bool free_points, double keep_ratio, MarkerFrameSolver* solver,
+                   Pose* pose, GatedAssignment* matches);
 
 // Every marker's model position at `pose` (#M, skeleton units).
 std::vector<Eigen::Vector3d> ModelMarkerPositions(const Skeleton& skeleton, const MarkerSet& markers, const Pose& pose);

@@ -167,7 +167,7 @@ class Tracker {
     since_polish_ = 0;
     const std::vector<int> before = matches->point_of_marker;
     Pose pose = state_.pose;
-    if (!PolishMatches(skeleton_, markers_, points_[f], options_.acquisition.gate, false, 0.99, &acquisition_solver_, &pose,
+    if (!PolishMatches(skeleton_, markers_, points_[f], options_.acquisition.gate, false, true, 0.99, &acquisition_solver_, &pose,
                        matches)) {
       return;
     }

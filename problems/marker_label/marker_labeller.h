@@ -18,7 +18,8 @@
 //    unlabelled rather than guess. The pose of the frame is solved from its labelled
 //    points (MarkerFrameSolver, warm-started), for the next frame's model predictions.
 //    Every `polish_every` frames the frame's matches are checked by PolishMatches
-//    (label_acquisition.h: exchanges among matched markers that halve the solved cost), and
+//    (label_acquisition.h: exchanges, 3-cycles and free points that lower the solved cost
+//    by more than 1 %), and
 //    at the acquisition and every `refill_every` frames the markers without a point look
 //    for free points near the pose solved from the others (a lost limb comes back).
 // 3. Losses: a frame where fewer than `lost_fraction` of the markers found at acquisition
