@@ -15,6 +15,7 @@ extern const Command kFilterCommand;
 extern const Command kBandsCommand;
 extern const Command kBlendCommand;
 extern const Command kRepairCommand;
+extern const Command kLabelCommand;
 extern const Command kCorruptCommand;
 extern const Command kEvaluateCommand;
 extern const Command kFitSkeletonCommand;
@@ -30,7 +31,7 @@ extern const Command kLiveCommand;
 const std::vector<Command>& AllCommands() {
   static const std::vector<Command> commands = {kPipelineCommand, kBatchCommand, kLiveCommand, kInfoCommand, kConvertCommand, kFkCommand,
                                                 kGenerateCommand, kBenchCommand,
-                                                kSolveCommand, kRepairCommand, kCorruptCommand,
+                                                kSolveCommand, kLabelCommand, kRepairCommand, kCorruptCommand,
                                                 kEvaluateCommand,
                                                 kMarkersCommand, kCalibrateCommand, kFitSkeletonCommand,
                                                 kFilterCommand, kBandsCommand, kBlendCommand,

@@ -49,6 +49,7 @@ const char* const kMotionCommands[] = {
 const char* const kMarkerCommands[] = {
     "solve --quiet --solver=dls --subject=DIR/subject.json --markers=IN --out=OUT/x.bvh",
     "repair --quiet --subject=DIR/subject.json --markers=IN --out_markers=OUT/x.c3d",
+    "label --quiet --subject=DIR/subject.json --markers=IN --out=OUT/x.c3d",
     "repair --quiet --subject=DIR/subject.json --markers=IN --reference=clip --out_markers=OUT/x.c3d",
     "evaluate --quiet --subject=DIR/subject.json --markers=IN --trials=1",
     "evaluate --quiet --subject=DIR/subject.json --markers=IN --method=small_errors --trials=1",

@@ -66,6 +66,7 @@ SUCCESS = {
                           "--out=" + str(d["folder"] / "m.trc")],
     "solve": lambda d: marker_take(d) + ["--solver=dls", "--out=" + str(d["folder"] / "s.bvh")],
     "repair": lambda d: marker_take(d) + ["--out_markers=" + str(d["folder"] / "r.c3d")],
+    "label": lambda d: marker_take(d) + ["--out=" + str(d["folder"] / "l.c3d")],
     "corrupt": lambda d: ["--markers=" + d["c3d"], "--out=" + str(d["folder"] / "x.c3d"),
                           "--cluster_radius_mm=0"],
     "evaluate": lambda d: marker_take(d) + ["--gaps=2", "--gap_min=5", "--gap_max=8", "--trim_max=5"],
@@ -102,6 +103,7 @@ FAILURE = {
     "repair": lambda d: marker_take(d) + ["--trim_max=-1", "--out_markers=" + str(d["folder"] / "r2.c3d")],
     "fk": lambda d: ["--motion=/nonexistent.bvh", "--out=" + str(d["folder"] / "fk2.csv")],
     "evaluate": lambda d: marker_take(d) + ["--method=guess"],
+    "label": lambda d: marker_take(d) + ["--min_confidence=2", "--out=" + str(d["folder"] / "l2.c3d")],
     "distance": lambda d: ["--motion=" + d["walk"], "--frame=999", "--out=" + str(d["folder"] / "d2.csv")],
 }
 

@@ -1,0 +1,315 @@
+#include "problems/marker_label/marker_labeller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+namespace mocapsolve {
+namespace {
+
+const Eigen::Vector3d kNan = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+constexpr int kNever = std::numeric_limits<int>::max() / 2;  // `since` of a marker never labelled.
+
+// What tracking carries from frame to frame.
+struct TrackState {
+  Pose pose;
+  std::vector<Eigen::Vector3d> last, before, offset;  // Per marker.
+  std::vector<Eigen::Vector3d> model, model_before;   // Model positions at the last two poses.
+  std::vector<int> since;          // Frames since last labelled: 1 = the previous frame.
+  std::vector<bool> velocity;      // `before` is the frame just before `last`.
+  bool lost = false;
+  int expected = 0;                // Markers labelled at the latest acquisition.
+};
+
+// Finding the body solves each matching round from scratch: no pull toward the previous
+// round's pose (the rest prior stays).
+MarkerSolveOptions WithoutFramePrior(MarkerSolveOptions options) {
+  options.prior_rotation_weight = 0.0;
+  options.prior_translation_weight = 0.0;
+  return options;
+}
+
+class Tracker {
+ public:
+  Tracker(const Skeleton& skeleton, const MarkerSet& markers, const LabellerOptions& options,
+          const std::vector<std::vector<Eigen::Vector3d>>& points, const Pose& start, LabellingResult* result)
+      : skeleton_(skeleton), markers_(markers), options_(options), points_(points), start_(start),
+        clusters_(RigidClusters(markers)), solver_(skeleton, markers, options.solve),
+        acquisition_solver_(skeleton, markers, WithoutFramePrior(options.solve)), result_(result) {}
+
+  // The body in frame f, from scratch.
+  Acquisition Find(int f) {
+    return AcquireBody(skeleton_, markers_, clusters_, start_, points_[f], options_.acquisition,
+                       &acquisition_solver_);
+  }
+  // Starts (or restarts) tracking from an acquisition at frame f.
+  void Start(int f, const Acquisition& acquisition) {
+    if (state_.since.empty()) Reset();
+    state_.pose = acquisition.pose;
+    state_.model.clear();
+    state_.model_before.clear();
+    GatedAssignment matches = acquisition.matches;
+    MatchEmptyMarkers(f, &matches);
+    std::vector<Eigen::Vector3d> observed;
+    const int count = TakeMatches(f, matches, false, &observed);
+    Advance(observed, count);
+    state_.expected = count;
+    state_.lost = false;
+    result_->acquisitions.push_back(f);
+  }
+  void Step(int f) {
+    if (state_.lost) {
+      const Acquisition acquisition = Find(f);
+      if (acquisition.found) Start(f, acquisition);
+      else ++result_->lost_frames;
+      return;
+    }
+    const int num_markers = markers_.num_markers();
+    std::vector<Eigen::Vector3d> predicted(num_markers);
+    std::vector<double> gate(num_markers);
+    Predict(&predicted, &gate);
+    GatedAssignment matches;
+    AssignGated(predicted, gate, points_[f], &matches);
+    if (state_.model_before.empty()) {
+      // Just after an acquisition no motion is known: the pose solved from this first
+      // match gives the model's step, and the markers without a velocity are matched again
+      // from their predictions moved by it.
+      std::vector<Eigen::Vector3d> observed(num_markers, kNan);
+      for (int m = 0; m < num_markers; ++m) {
+        if (matches.point_of_marker[m] >= 0) observed[m] = points_[f][matches.point_of_marker[m]];
+      }
+      Pose moved = state_.pose;
+      FrameSolveReport report;
+      if (solver_.Solve(observed, &moved, &report).ok() && report.usable) {
+        const std::vector<Eigen::Vector3d> model = ModelMarkerPositions(skeleton_, markers_, moved);
+        for (int m = 0; m < num_markers; ++m) {
+          if (!(state_.since[m] == 1 && state_.velocity[m])) predicted[m] += model[m] - state_.model[m];
+        }
+        AssignGated(predicted, gate, points_[f], &matches);
+      }
+    }
+    if (options_.polish_every > 0 && ++since_polish_ >= options_.polish_every) Polish(f, &matches);
+    if (options_.refill_every > 0 && ++since_refill_ >= options_.refill_every) {
+      since_refill_ = 0;
+      MatchEmptyMarkers(f, &matches);
+    }
+    std::vector<Eigen::Vector3d> observed;
+    const int count = TakeMatches(f, matches, true, &observed);
+    Advance(observed, count);
+    if (count < options_.lost_fraction * state_.expected) state_.lost = true;
+  }
+  // Each marker's prediction and gate for the next frame (see the header).
+  void Predict(std::vector<Eigen::Vector3d>* predicted, std::vector<double>* gate) const {
+    for (int m = 0; m < markers_.num_markers(); ++m) {
+      // The model's step between the last two poses carries predictions made from the model.
+      const Eigen::Vector3d step = state_.model_before.empty() ? Eigen::Vector3d::Zero()
+                                                              : Eigen::Vector3d(state_.model[m] - state_.model_before[m]);
+      if (state_.since[m] == 1 && state_.velocity[m]) {
+        (*predicted)[m] = 2.0 * state_.last[m] - state_.before[m];
+        (*gate)[m] = options_.gate;
+      } else if (state_.since[m] == 1) {
+        (*predicted)[m] = state_.last[m] + step;
+        (*gate)[m] = options_.reacquire_gate;
+      } else {
+        (*predicted)[m] =
+            state_.model[m] + step + (state_.since[m] < kNever ? state_.offset[m] : Eigen::Vector3d::Zero());
+        (*gate)[m] = options_.reacquire_gate;
+      }
+    }
+  }
+  // Markers without a point take free points near their model positions: matched within
+  // 3 acquisition gates of the pose solved from the frame's matches, kept when within one
+  // gate of the pose solved with them and with no rival near (match confidence >= 0.5 at
+  // the wide gate): a whole lost limb comes back this way.
+  void MatchEmptyMarkers(int f, GatedAssignment* matches) {
+    const int num_markers = markers_.num_markers();
+    const std::vector<Eigen::Vector3d>& points = points_[f];
+    int matched = 0;
+    for (int m = 0; m < num_markers; ++m) matched += matches->point_of_marker[m] >= 0;
+    if (matched == num_markers || matched >= static_cast<int>(points.size())) return;
+    std::vector<char> used(points.size(), 0);
+    std::vector<Eigen::Vector3d> observed(num_markers, kNan);
+    for (int m = 0; m < num_markers; ++m) {
+      const int k = matches->point_of_marker[m];
+      if (k >= 0) used[k] = 1, observed[m] = points[k];
+    }
+    Pose pose = state_.pose;
+    FrameSolveReport report;
+    if (!solver_.Solve(observed, &pose, &report).ok() || !report.usable) return;
+    std::vector<Eigen::Vector3d> predicted = ModelMarkerPositions(skeleton_, markers_, pose), free_points;
+    std::vector<int> free_index;
+    for (size_t k = 0; k < points.size(); ++k) {
+      if (!used[k]) free_points.push_back(points[k]), free_index.push_back(static_cast<int>(k));
+    }
+    for (int m = 0; m < num_markers; ++m) {
+      if (matches->point_of_marker[m] >= 0) predicted[m] = kNan;
+    }
+    GatedAssignment found;
+    AssignGated(predicted, std::vector<double>(num_markers, 3.0 * options_.acquisition.gate), free_points, &found);
+    std::vector<Eigen::Vector3d> with = observed;
+    for (int m = 0; m < num_markers; ++m) {
+      if (found.point_of_marker[m] >= 0) with[m] = free_points[found.point_of_marker[m]];
+    }
+    if (!solver_.Solve(with, &pose, &report).ok() || !report.usable) return;
+    const std::vector<Eigen::Vector3d> model = ModelMarkerPositions(skeleton_, markers_, pose);
+    for (int m = 0; m < num_markers; ++m) {
+      const int k = found.point_of_marker[m];
+      if (k < 0 || (with[m] - model[m]).norm() >= options_.acquisition.gate || found.confidence[m] < 0.5) continue;
+      matches->point_of_marker[m] = free_index[k];
+      matches->confidence[m] = std::max(found.confidence[m], options_.min_confidence);
+    }
+  }
+  // The periodic check of the labels: PolishMatches on the frame's matches; a marker that
+  // changes point starts its track again (no velocity; a re-acquisition).
+  void Polish(int f, GatedAssignment* matches) {
+    since_polish_ = 0;
+    const std::vector<int> before = matches->point_of_marker;
+    Pose pose = state_.pose;
+    if (!PolishMatches(skeleton_, markers_, points_[f], options_.acquisition.gate, false, true, 0.99, &acquisition_solver_, &pose,
+                       matches)) {
+      return;
+    }
+    for (int m = 0; m < markers_.num_markers(); ++m) {
+      if (matches->point_of_marker[m] == before[m]) continue;
+      if (matches->point_of_marker[m] >= 0) matches->confidence[m] = std::max(matches->confidence[m], options_.min_confidence);
+      if (state_.since[m] == 1) state_.since[m] = 2;
+    }
+  }
+  const TrackState& state() const { return state_; }
+  void set_state(const TrackState& state) { state_ = state; }
+
+ private:
+  void Reset() {
+    const int n = markers_.num_markers();
+    state_.last.assign(n, kNan);
+    state_.before.assign(n, kNan);
+    state_.offset.assign(n, Eigen::Vector3d::Zero());
+    state_.since.assign(n, kNever);
+    state_.velocity.assign(n, false);
+  }
+  // The frame's matches kept (confidence high enough): labels, counts, observed samples.
+  int TakeMatches(int f, const GatedAssignment& matches, bool count_conflicts, std::vector<Eigen::Vector3d>* observed) {
+    observed->assign(markers_.num_markers(), kNan);
+    int count = 0;
+    for (int m = 0; m < markers_.num_markers(); ++m) {
+      MarkerLabelStats& stats = result_->per_marker[m];
+      if (count_conflicts && matches.conflict[m]) ++stats.swaps_avoided;
+      const int k = matches.point_of_marker[m];
+      if (k < 0) continue;
+      if (matches.confidence[m] < options_.min_confidence) {
+        ++stats.low_confidence;
+        continue;
+      }
+      result_->marker_of_point[f][k] = m;
+      result_->confidence[f][k] = static_cast<float>(matches.confidence[m]);
+      ++stats.labelled;
+      if (state_.since[m] > 1 && state_.since[m] < kNever) ++stats.reacquisitions;
+      (*observed)[m] = points_[f][k];
+      ++count;
+    }
+    return count;
+  }
+  // Solves the frame's pose and moves every marker's state on by one frame.
+  void Advance(const std::vector<Eigen::Vector3d>& observed, int count) {
+    if (count >= 3) {
+      Pose solved = state_.pose;
+      FrameSolveReport report;
+      if (solver_.Solve(observed, &solved, &report).ok() && report.usable) state_.pose = solved;
+    }
+    state_.model_before = std::move(state_.model);
+    state_.model = ModelMarkerPositions(skeleton_, markers_, state_.pose);
+    const std::vector<Eigen::Vector3d>& model = state_.model;
+    for (int m = 0; m < markers_.num_markers(); ++m) {
+      if (observed[m].allFinite()) {
+        state_.velocity[m] = state_.since[m] == 1;
+        state_.before[m] = state_.last[m];
+        state_.last[m] = observed[m];
+        state_.offset[m] = observed[m] - model[m];
+        state_.since[m] = 1;
+      } else {
+        state_.velocity[m] = false;
+        if (state_.since[m] < kNever) ++state_.since[m];
+      }
+    }
+  }
+
+  const Skeleton& skeleton_;
+  const MarkerSet& markers_;
+  const LabellerOptions& options_;
+  const std::vector<std::vector<Eigen::Vector3d>>& points_;
+  const Pose start_;
+  const std::vector<RigidCluster> clusters_;
+  MarkerFrameSolver solver_;
+  MarkerFrameSolver acquisition_solver_;  // Without the prior toward the previous solution.
+  LabellingResult* result_;
+  TrackState state_;
+  int since_polish_ = 0;
+  int since_refill_ = 0;
+};
+
+std::string NotFoundMessage(const Skeleton& skeleton, const MarkerSet& markers, const LabellingResult& result,
+                            int tried) {
+  const double mm = skeleton.unit().known() ? skeleton.unit().metres_per_unit * 1000.0 : 0.0;
+  char text[320];
+  std::snprintf(text, sizeof(text),
+                "the points match no placement of the subject's markers in the first %d frames with points "
+                "(another marker set, another person or wrong units?): best match %d of %d markers (RMS %.3g %s) "
+                "at frame %d",
+                tried, result.first.matched, markers.num_markers(), mm > 0 ? result.first.rms * mm : result.first.rms,
+                mm > 0 ? "mm" : "skeleton units", result.first_frame);
+  return text;
+}
+
+}  // namespace
+
+Status LabelPointCloud(const Skeleton& skeleton, const MarkerSet& markers, const QuaternionVector& mean_pose,
+                       const std::vector<std::vector<Eigen::Vector3d>>& points, const LabellerOptions& options,
+                       const LabelProgress& progress, LabellingResult* result) {
+  if (!(options.gate > 0.0) || !(options.reacquire_gate > 0.0) || !(options.acquisition.gate > 0.0) ||
+      !(options.acquisition.cluster_tolerance > 0.0) || !(options.acquisition.max_rms > 0.0)) {
+    return Status::Error("labelling gates and tolerances must be positive");
+  }
+  const int num_frames = static_cast<int>(points.size());
+  *result = LabellingResult();
+  result->per_marker.assign(markers.num_markers(), MarkerLabelStats());
+  for (const auto& frame : points) {
+    result->marker_of_point.emplace_back(frame.size(), -1);
+    result->confidence.emplace_back(frame.size(), 0.0f);
+  }
+  Pose start = RestPose(skeleton);
+  if (mean_pose.size() == start.rotations.size()) start.rotations = mean_pose;
+  Tracker tracker(skeleton, markers, options, points, start, result);
+  int tried = 0;
+  for (int f = 0; f < num_frames && tried < options.acquire_frames; ++f) {
+    if (points[f].empty()) continue;
+    ++tried;
+    const Acquisition acquisition = tracker.Find(f);
+    if (result->first_frame < 0 || acquisition.matched > result->first.matched) {
+      result->first = acquisition, result->first_frame = f;
+    }
+    if (acquisition.found) {
+      result->first = acquisition, result->first_frame = f;
+      break;
+    }
+  }
+  if (!result->first.found) return Status::Error(NotFoundMessage(skeleton, markers, *result, tried));
+  const int f0 = result->first_frame;
+  tracker.Start(f0, result->first);
+  const TrackState at_start = tracker.state();
+  int done = 1;
+  for (int f = f0 + 1; f < num_frames; ++f, ++done) {
+    tracker.Step(f);
+    if (progress && done % 64 == 0) progress(done, num_frames);
+  }
+  tracker.set_state(at_start);
+  for (int f = f0 - 1; f >= 0; --f, ++done) {
+    tracker.Step(f);
+    if (progress && done % 64 == 0) progress(done, num_frames);
+  }
+  if (progress) progress(num_frames, num_frames);
+  return Status::Ok();
+}
+
+}  // namespace mocapsolve

@@ -1,0 +1,120 @@
+// Marker labelling on small synthetic fixtures: the gated one-to-one assignment, and the
+// labeller on the demo walk (3 markers per bone, cm) with its labels stripped, points
+// shuffled every frame, 2 ghosts per frame, 5 % dropouts and 1 mm noise; a take 10 times
+// too large is refused with the best match.
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "kinematics/demo_character.h"
+#include "kinematics/forward_kinematics.h"
+#include "problems/marker_label/gated_assignment.h"
+#include "problems/marker_label/label_fixture.h"
+#include "problems/marker_label/marker_labeller.h"
+#include "problems/marker_solve/synthetic_marker_set.h"
+
+namespace mocapsolve {
+namespace {
+
+TEST(GatedAssignment, OneToOneWithinTheGate) {
+  // Two markers predicted 1 cm apart, their points crossed over by less than the gate; a
+  // third marker with no point within its gate stays empty.
+  const std::vector<Eigen::Vector3d> predicted = {{0, 0, 0}, {1, 0, 0}, {10, 0, 0}};
+  const std::vector<double> gate = {2.0, 2.0, 1.0};
+  const std::vector<Eigen::Vector3d> points = {{1.1, 0, 0}, {0.4, 0, 0}, {20, 0, 0}};
+  GatedAssignment result;
+  AssignGated(predicted, gate, points, &result);
+  EXPECT_EQ(result.point_of_marker, (std::vector<int>{1, 0, -1}));
+  EXPECT_GT(result.confidence[0], 0.0);
+  EXPECT_LT(result.confidence[0], 0.8);  // A competitor (the other point) lies within the gate.
+  EXPECT_EQ(result.confidence[2], 0.0);
+}
+
+TEST(GatedAssignment, EmptyLabelRatherThanAFarPoint) {
+  // One point between two markers: the nearer marker takes it, the other stays empty.
+  GatedAssignment result;
+  AssignGated({{0, 0, 0}, {3, 0, 0}}, {2.0, 2.0}, {{1.2, 0, 0}}, &result);
+  EXPECT_EQ(result.point_of_marker, (std::vector<int>{0, -1}));
+  EXPECT_TRUE(result.conflict[1]);  // Its nearest point went to the other marker.
+}
+
+struct ScrambledDemo {
+  Skeleton skeleton;
+  MarkerSet markers;
+  ScrambledTake take;
+  std::vector<std::vector<Eigen::Vector3d>> points;  // [frame][column] present points.
+};
+
+ScrambledDemo MakeScrambledDemo(double scale) {
+  ScrambledDemo demo;
+  demo.skeleton = MakeDemoSkeleton();
+  const Motion walk = MakeDemoWalk(demo.skeleton, 240, 120.0);
+  demo.markers = MakeSyntheticMarkerSet(demo.skeleton, 3, 7);
+  std::vector<std::string> labels;
+  for (int m = 0; m < demo.markers.num_markers(); ++m) labels.push_back(demo.markers.label(m));
+  MarkerTrajectories clean(labels, walk.num_frames());
+  FkData fk(demo.skeleton);
+  for (int f = 0; f < walk.num_frames(); ++f) {
+    ForwardKinematics(demo.skeleton, walk.frames[f], &fk);
+    for (int m = 0; m < demo.markers.num_markers(); ++m) clean.SetSample(f, m, scale * demo.markers.Position(m, fk));
+  }
+  ScrambleOptions scramble;
+  scramble.ghosts = 2, scramble.ghost_margin = 20.0, scramble.dropout = 0.05, scramble.noise = 0.1, scramble.seed = 3;
+  demo.take = ScrambleLabels(clean, scramble);
+  for (int f = 0; f < demo.take.points.num_frames(); ++f) {
+    demo.points.emplace_back();
+    for (int c = 0; c < demo.take.points.num_markers(); ++c) {
+      if (demo.take.points.valid(f, c)) demo.points.back().push_back(demo.take.points.position(f, c));
+    }
+  }
+  return demo;
+}
+
+// The command's defaults in the demo's centimetres.
+LabellerOptions DemoLabellerOptions() {
+  LabellerOptions options;
+  options.gate = 2.5, options.reacquire_gate = 6.0;
+  options.acquisition.gate = 5.0, options.acquisition.cluster_tolerance = 3.0, options.acquisition.max_rms = 1.5;
+  options.solve.prior_rotation_weight = 2.0;
+  return options;
+}
+
+TEST(MarkerLabeller, LabelsAScrambledWalk) {
+  const ScrambledDemo demo = MakeScrambledDemo(1.0);
+  LabellingResult result;
+  ASSERT_TRUE(LabelPointCloud(demo.skeleton, demo.markers, {}, demo.points, DemoLabellerOptions(), nullptr, &result).ok());
+  // Back to columns: the points were gathered in column order.
+  std::vector<std::vector<std::string>> labels(demo.take.truth.size());
+  for (size_t f = 0; f < labels.size(); ++f) {
+    labels[f].assign(demo.take.truth[f].size(), "");
+    int k = 0;
+    for (int c = 0; c < demo.take.points.num_markers(); ++c) {
+      if (!demo.take.points.valid(static_cast<int>(f), c)) continue;
+      const int m = result.marker_of_point[f][k++];
+      if (m >= 0) labels[f][c] = demo.markers.label(m);
+    }
+  }
+  std::vector<std::string> scored;
+  for (int m = 0; m < demo.markers.num_markers(); ++m) scored.push_back(demo.markers.label(m));
+  const LabelScore score = ScoreLabels(demo.take.truth, labels, scored);
+  EXPECT_GE(score.accuracy(), 0.995) << score.correct << " of " << score.truth_samples;
+  EXPECT_LE(score.longest_wrong_run, 5);
+  EXPECT_EQ(result.acquisitions.size(), 1u);
+  int labelled = 0;
+  for (const MarkerLabelStats& s : result.per_marker) labelled += s.labelled;
+  EXPECT_EQ(labelled, score.correct + score.wrong);
+}
+
+TEST(MarkerLabeller, RefusesATakeTenTimesTooLarge) {
+  const ScrambledDemo demo = MakeScrambledDemo(10.0);
+  LabellerOptions options = DemoLabellerOptions();
+  options.acquire_frames = 3;
+  LabellingResult result;
+  const Status status = LabelPointCloud(demo.skeleton, demo.markers, {}, demo.points, options, nullptr, &result);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("best match"), std::string::npos) << status.message();
+}
+
+}  // namespace
+}  // namespace mocapsolve
