@@ -13,12 +13,30 @@
 #include "apps/solver_flags.h"
 #include "settings/method_settings.h"
 #include "io/atomic_file.h"
+#include "io/marker_file.h"
+#include "tasks/leave_one_out_protocol.h"
 #include "tasks/evaluate_summary.h"
 #include "tasks/evaluate_task.h"
 
 
 namespace mocapsolve {
 namespace {
+
+// --protocol=time_split: --subject is the template of the first half's fit (its marker set
+// need not be the take's) and --axes, --marker_scale, when given, describe the take, as
+// fit_skeleton's --template_subject.
+Status LoadTimeSplitTake(MarkerTake* take) {
+  if (FLAGS_subject.empty()) return Status::Error("--protocol=time_split needs --subject (the fit's template)");
+  Subject templ;
+  Status status = ReadSubject(FLAGS_subject, &templ);
+  if (!status.ok()) return status;
+  if (!gflags::GetCommandLineFlagInfoOrDie("axes").is_default) templ.axes = FLAGS_axes;
+  if (!gflags::GetCommandLineFlagInfoOrDie("marker_scale").is_default) templ.marker_scale = FLAGS_marker_scale;
+  MarkerTrajectories trajectories;
+  status = ReadMarkerFile(FLAGS_markers, &trajectories);
+  if (status.ok()) status = RequireMarkerData(FLAGS_markers, trajectories);
+  return status.ok() ? TemplateTakeForSubject(templ, std::move(trajectories), FLAGS_markers, take) : status;
+}
 
 Status EvaluateMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
@@ -40,12 +58,16 @@ Status EvaluateMain(const std::vector<std::string>& arguments) {
     }
   }
   MarkerTake take;
-  Status status = LoadMarkerTake(&take);
+  Status status = config.method == "leave_one_out" && config.evaluate.protocol == "time_split"
+                      ? LoadTimeSplitTake(&take)
+                      : LoadMarkerTake(&take);
   if (!status.ok()) return status;
   std::unique_ptr<Progress> progress;
   if (config.method == "leave_one_out") {
+    const bool split = config.evaluate.protocol == "time_split";  // Then the fitted subject's markers.
     progress = std::make_unique<Progress>("leave one out (" + config.solver.solver + ", " + config.solver.mode + ")",
-                                          take.markers.num_markers(), Console().quiet, "markers");
+                                          split ? take.trajectories.num_markers() : take.markers.num_markers(),
+                                          Console().quiet, "markers");
   } else if (config.method == "repair") {
     progress = std::make_unique<Progress>("evaluate", config.evaluate.trials, Console().quiet, "trials");
   }

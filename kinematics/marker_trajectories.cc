@@ -84,6 +84,24 @@ void MarkerTrajectories::ScaleLengths(double factor) {
   }
 }
 
+MarkerTrajectories TrajectoryFrames(const MarkerTrajectories& trajectories, int first, int count) {
+  first = std::max(0, std::min(first, trajectories.num_frames()));
+  count = std::max(0, std::min(count, trajectories.num_frames() - first));
+  MarkerTrajectories out(trajectories.labels(), count);
+  out.frame_rate = trajectories.frame_rate;
+  out.unit = trajectories.unit;
+  out.first_frame = trajectories.first_frame + first;
+  out.subject_prefixes = trajectories.subject_prefixes;
+  for (int f = 0; f < count; ++f) {
+    for (int m = 0; m < trajectories.num_markers(); ++m) {
+      if (!trajectories.valid(first + f, m)) continue;
+      out.SetSample(f, m, trajectories.position(first + f, m), trajectories.residual(first + f, m),
+                    trajectories.camera_mask(first + f, m));
+    }
+  }
+  return out;
+}
+
 Status ConvertUnits(const LengthUnit& to, MarkerTrajectories* trajectories) {
   if (!trajectories->unit.known()) {
     return Status::Error("cannot convert marker units to " + to.name + ": source unit '" +

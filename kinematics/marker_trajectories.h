@@ -131,6 +131,10 @@ struct ModelOutputPoints {
   MarkerTrajectories points;  // Same frames as the markers; raw values (degrees, N, ...).
 };
 
+// Frames [first, first + count) of `trajectories` (clamped to its frames), every sample as it
+// was (residuals, camera masks); first_frame follows, model outputs are dropped.
+MarkerTrajectories TrajectoryFrames(const MarkerTrajectories& trajectories, int first, int count);
+
 // Rescales positions and residuals into `to` and sets unit. Fails (and changes nothing)
 // when either unit is unknown.
 Status ConvertUnits(const LengthUnit& to, MarkerTrajectories* trajectories);

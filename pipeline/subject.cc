@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <utility>
 
@@ -262,6 +263,41 @@ Status RequireTakeData(const std::string& path, const MarkerTake& take) {
   return Status::Error(path + ": no marker of the marker set is observed in any frame");
 }
 
+namespace {
+
+// A subject whose marker set the take does not match: one line naming, per segment (the
+// joint a marker rides on; several for a blended one), the labels the take has no column for.
+Status CheckTakeHasSubjectMarkers(const Skeleton& skeleton, const MarkerSet& markers,
+                                  const MarkerTrajectories& file, const std::string& markers_path) {
+  std::vector<std::string> segments;                // In order of first appearance.
+  std::map<std::string, std::string> missing_on;    // Segment -> labels.
+  std::map<std::string, int> needed;                // Segment -> the set's markers on it.
+  int missing = 0;
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    std::string segment;
+    for (const MarkerAttachment& a : markers.marker(m).attachments) {
+      segment += (segment.empty() ? "" : "+") + skeleton.joint(a.joint).name;
+    }
+    ++needed[segment];
+    if (file.FindMarker(markers.label(m)) >= 0) continue;
+    ++missing;
+    if (missing_on.count(segment) == 0) segments.push_back(segment);
+    std::string& labels = missing_on[segment];
+    labels += (labels.empty() ? "" : ", ") + markers.label(m);
+  }
+  if (missing == 0) return Status::Ok();
+  std::string text;
+  for (const std::string& segment : segments) {
+    text += (text.empty() ? "" : "; ") + segment + ": " + missing_on[segment] + " (of its " +
+            std::to_string(needed[segment]) + ")";
+  }
+  return Status::Error(markers_path + ": the subject's marker set does not match the take: no column for " +
+                       std::to_string(missing) + " of its " + std::to_string(markers.num_markers()) +
+                       " markers, by segment: " + text);
+}
+
+}  // namespace
+
 Status TakeForSubject(const Subject& subject, MarkerTrajectories trajectories, const std::string& markers_path,
                       MarkerTake* take) {
   MarkerTake result;
@@ -293,6 +329,8 @@ Status TakeForSubject(const Subject& subject, MarkerTrajectories trajectories, c
     status = UnitScale(result.trajectories.unit, result.skeleton.unit(), &result.transform.scale);
     if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
   }
+  status = CheckTakeHasSubjectMarkers(result.skeleton, result.markers, matched, markers_path);
+  if (!status.ok()) return status;
   status = GatherObservations(result.markers, matched, result.transform, &result.observed);
   if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
   const Eigen::Vector3d nan = Eigen::Vector3d::Constant(std::nan(""));

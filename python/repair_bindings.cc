@@ -118,10 +118,14 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
       "int8 mask of the damage kind per sample, 0 = untouched; signal/marker_corruption.h).");
 
   py::class_<EvaluateSettings> evaluate(m, "EvaluateSettings",
-      "`mocapsolve evaluate`'s own options, one per flag (trials, white_noise_mm; same defaults).");
+      "`mocapsolve evaluate`'s own options, one per flag (trials, white_noise_mm, protocol, refine_offsets,\n"
+      "refine_prior_frames; same defaults).");
   evaluate.def(py::init<>(), "Every option at the CLI's default.");
   evaluate.def_readwrite("trials", &EvaluateSettings::trials)
-      .def_readwrite("white_noise_mm", &EvaluateSettings::white_noise_mm);
+      .def_readwrite("white_noise_mm", &EvaluateSettings::white_noise_mm)
+      .def_readwrite("protocol", &EvaluateSettings::protocol)
+      .def_readwrite("refine_offsets", &EvaluateSettings::refine_offsets)
+      .def_readwrite("refine_prior_frames", &EvaluateSettings::refine_prior_frames);
   m.def("evaluate", [](SubjectPtr subject_arg, py::object markers, const std::string& method,
                        const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");
@@ -151,7 +155,9 @@ writes. method:
     every method (original, polynomial, linear, PCA, reference only, ours); 'methods'
     holds each method's mean over the trials, 'per_trial' one row per trial and method
     (the columns of --table_csv and more; errors against the solve of the clean markers);
-  'leave_one_out': each marker predicted by the solve of the others ('per_marker', 'all');
+  'leave_one_out': each marker predicted by the solve of the others ('per_marker', 'all'),
+    under protocol='cross_take' (the subject from another take) or 'time_split' (fitted on
+    the first half, the second scored; 'protocol' records which);
   'small_errors': recall and precision on 1-4 cm jumps and jitter ('seeds'), after
     white_noise_mm of noise.
 subject: a Subject; markers: a .c3d/.trc path, Markers or a Take. Keywords: the evaluate

@@ -4,6 +4,8 @@
 #ifndef MOCAPSOLVE_SETTINGS_EVALUATE_SETTINGS_H_
 #define MOCAPSOLVE_SETTINGS_EVALUATE_SETTINGS_H_
 
+#include <string>
+
 #include "settings/option.h"
 
 namespace mocapsolve {
@@ -11,6 +13,11 @@ namespace mocapsolve {
 struct EvaluateSettings {
   int trials = 1;               // Damage draws (seeds --seed, +1, ...).
   double white_noise_mm = 0.0;  // small_errors: noise per axis before the damage, mm.
+  // leave_one_out: where the subject comes from (tasks/evaluate_task.h): cross_take (as given,
+  // fitted on another take) or time_split (fitted here on the take's first half).
+  std::string protocol = "cross_take";
+  int refine_offsets = 0;              // leave_one_out: offset refinements per left-out marker.
+  double refine_prior_frames = 200.0;  // Their prior: the calibrated offset's weight, frames.
 };
 
 const OptionGroup<EvaluateSettings>& EvaluateSettingOptions();

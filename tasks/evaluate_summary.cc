@@ -11,20 +11,26 @@ namespace {
 constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
 // --method=leave_one_out's console table: each marker's prediction error.
-std::string LeaveOneOutTable(const MarkerTake& take, const EvaluateConfig& config, const LeaveOneOutReport& result) {
+std::string LeaveOneOutTable(const MarkerTake& take, const EvaluateConfig& config, const EvaluateResult& evaluated) {
+  const LeaveOneOutReport& result = evaluated.leave_one_out;
+  const std::vector<std::string>& labels = evaluated.leave_one_out_labels;
   std::string text;
   const bool known = take.skeleton.unit().known();
   const double mm = known ? take.skeleton.unit().metres_per_unit * 1000.0 : 1.0;
   const char* unit = known ? "mm" : "skeleton units";
-  AppendF(&text, "%d frames, %d markers; each marker predicted by the %s solve of the others (%s), in %s\n",
-          static_cast<int>(take.observed.size()), take.markers.num_markers(), config.solver.mode.c_str(),
-          config.solver.solver.c_str(), unit);
+  const bool split = config.evaluate.protocol == "time_split";
+  const int frames = take.trajectories.num_frames();
+  AppendF(&text, "%s: %d frames%s, %d markers; each marker predicted by the %s solve of the others (%s)%s, in %s\n",
+          config.evaluate.protocol.c_str(), split ? frames - frames / 2 : frames,
+          split ? " (the second half; the subject fitted on the first)" : "", static_cast<int>(labels.size()),
+          config.solver.mode.c_str(), config.solver.solver.c_str(),
+          config.evaluate.refine_offsets > 0 ? ", the others' offsets refined on the take" : "", unit);
   AppendF(&text, "| marker | samples | mean | median | 95th pct | max |\n|---|---|---|---|---|---|\n");
   auto row = [&](const std::string& label, const PredictionErrorSummary& e) {
     AppendF(&text, "| %s | %d | %.2f | %.2f | %.2f | %.2f |\n", TerminalText(label).c_str(), e.samples, e.mean * mm,
             e.median * mm, e.p95 * mm, e.max * mm);
   };
-  for (int m = 0; m < take.markers.num_markers(); ++m) row(take.markers.label(m), result.markers[m]);
+  for (size_t m = 0; m < labels.size(); ++m) row(labels[m], result.markers[m]);
   row("all", result.all);
   AppendF(&text, "prediction error over every sample: median %.2f %s, mean %.2f, 95th percentile %.2f (%.1f s)\n",
           result.all.median * mm, unit, result.all.mean * mm, result.all.p95 * mm, result.seconds);
@@ -140,7 +146,7 @@ std::string RepairTable(const MarkerTake& take, const EvaluateConfig& config, co
 }  // namespace
 
 std::string EvaluateSummary(const MarkerTake& take, const EvaluateConfig& config, const EvaluateResult& result) {
-  if (config.method == "leave_one_out") return LeaveOneOutTable(take, config, result.leave_one_out);
+  if (config.method == "leave_one_out") return LeaveOneOutTable(take, config, result);
   if (config.method == "small_errors") return SmallErrorsTable(take, config, result);
   if (config.method == "repair") return RepairTable(take, config, result);
   return "";

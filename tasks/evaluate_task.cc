@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "settings/method_settings.h"
+#include "tasks/leave_one_out_protocol.h"
 #include "tasks/repair_task.h"
 
 namespace mocapsolve {
@@ -11,12 +12,17 @@ namespace {
 
 constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
 
-Status LeaveOneOut(const MarkerTake& take, const EvaluateConfig& config,
+Status LeaveOneOut(const MarkerTake& evaluated, const EvaluateConfig& config,
                    const std::function<void(int, int)>& progress, EvaluateResult* result) {
+  // The protocol decides the subject and the scored frames (leave_one_out_protocol.h).
+  MarkerTake take;
+  JsonObject protocol;
+  Status status = LeaveOneOutProtocolTake(evaluated, config.evaluate.protocol, config.solver, &take, &protocol);
+  if (!status.ok()) return status;
   const Skeleton& skeleton = take.skeleton;
   const MarkerSet& markers = take.markers;
   LeaveOneOutOptions options;
-  Status status = MarkerSolveOptionsFromSettings(config.solver, skeleton, take.mean_pose, &options.frame);
+  status = MarkerSolveOptionsFromSettings(config.solver, skeleton, take.mean_pose, &options.frame);
   if (!status.ok()) return status;
   options.clip = config.solver.mode == "clip";
   if (options.clip) {
@@ -25,11 +31,18 @@ Status LeaveOneOut(const MarkerTake& take, const EvaluateConfig& config,
     options.clip_options.ceres.num_threads = 1;  // The markers are the parallel work.
   }
   options.num_threads = config.solver.num_threads;
+  options.refine_rounds = config.evaluate.refine_offsets;
+  options.refine.prior_frames = config.evaluate.refine_prior_frames;
+  options.keep_predictions = config.keep_predictions;
   LeaveOneOutReport& loo = result->leave_one_out;
   status = LeaveOneMarkerOut(skeleton, markers, take.observed, options, &loo, [&](int done) {
     if (progress) progress(done, markers.num_markers());
   });
   if (!status.ok()) return Status::Error(take.name + ": " + status.message());
+  result->leave_one_out_labels.clear();
+  for (int m = 0; m < markers.num_markers(); ++m) result->leave_one_out_labels.push_back(markers.label(m));
+  protocol.Add("refine_offsets", config.evaluate.refine_offsets)
+      .Add("refine_prior_frames", config.evaluate.refine_prior_frames);
 
   const bool known = skeleton.unit().known();
   const double mm = known ? skeleton.unit().metres_per_unit * 1000.0 : 1.0;
@@ -49,7 +62,7 @@ Status LeaveOneOut(const MarkerTake& take, const EvaluateConfig& config,
   for (int m = 0; m < markers.num_markers(); ++m) rows.push_back(row(markers.label(m), loo.markers[m]));
   const JsonObject all = row("all", loo.all);
   result->report.Add("method", "leave_one_out").Add("mode", config.solver.mode).Add("solver", config.solver.solver)
-      .Add("frames", static_cast<int>(take.observed.size())).Add("unit", unit).Add("seconds", loo.seconds)
+      .Add("protocol", protocol).Add("frames", static_cast<int>(take.observed.size())).Add("unit", unit).Add("seconds", loo.seconds)
       .Add("all", all).Add("per_marker", rows);
   return Status::Ok();
 }

@@ -3,8 +3,11 @@
 //                  seeds first_seed, first_seed + 1, ... and refilled by every method
 //                  (problems/marker_repair/repair_evaluation.h), errors against the solve of
 //                  the undamaged markers;
-//   leave_one_out  each marker predicted by the solve of the others, on the take as it is
-//                  (problems/marker_solve/leave_one_out.h);
+//   leave_one_out  each marker predicted by the solve of the others
+//                  (problems/marker_solve/leave_one_out.h), under the protocol
+//                  config.evaluate.protocol (tasks/leave_one_out_protocol.h: the subject
+//                  from another take, or fitted on the take's first half and the second
+//                  half scored), optionally with per-take offset refinement;
 //   small_errors   the repair's recall and precision on 1-4 cm jumps and jitter
 //                  (problems/marker_repair/small_error_evaluation.h).
 // The CLI (apps/evaluate_command.cc: tables on the console, --table_csv, --report) and
@@ -35,6 +38,7 @@ struct EvaluateConfig {
   RepairSettings repair;
   SolverSettings solver = EvaluateSolverOptions().Defaults();  // mode: leave_one_out's solve.
   CorruptionSettings damage;
+  bool keep_predictions = false;  // leave_one_out: fill EvaluateResult::leave_one_out.predicted.
 };
 
 struct EvaluateResult {
@@ -43,7 +47,11 @@ struct EvaluateResult {
   std::vector<int> trial_of_row;
   std::vector<uint32_t> seed_of_row;
   std::vector<RepairEvaluationRow> mean_rows;
-  LeaveOneOutReport leave_one_out;  // leave_one_out, in skeleton units.
+  // leave_one_out, in skeleton units, over the scored frames of the protocol
+  // (leave_one_out_protocol.h; time_split: the second half, markers of the fitted subject,
+  // labelled by leave_one_out_labels).
+  LeaveOneOutReport leave_one_out;
+  std::vector<std::string> leave_one_out_labels;
   SmallErrorRecipe recipe;          // small_errors.
   SmallErrorScore small_errors;
   std::string table_csv;  // What --table_csv writes (repair, leave_one_out; "" otherwise).

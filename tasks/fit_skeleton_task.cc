@@ -168,7 +168,8 @@ Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& s
   fit->mapping.marker_scale = inputs.marker_scale;
   fit->mapping.label_prefix.clear();
   MarkerTrajectories file;
-  Status status = ReadMarkerFile(markers_path, &file);
+  Status status = inputs.trajectories != nullptr ? Status::Ok() : ReadMarkerFile(markers_path, &file);
+  if (inputs.trajectories != nullptr) file = *inputs.trajectories;
   if (status.ok()) status = RequireMarkerData(markers_path, file);
   if (!status.ok()) return status;
   // The template's markers, those the map names under the take's labels.
@@ -181,7 +182,7 @@ Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& s
   fit->check_options = SkinCheckOptions(skeleton, present, units_per_cm);
   status = MarkerSet::Create(skeleton, std::move(present), &fit->mapping.markers);
   if (!status.ok()) return status;
-  status = LoadTakeForSubject(fit->mapping, markers_path, &fit->take);
+  status = TakeForSubject(fit->mapping, std::move(file), markers_path, &fit->take);
   if (!status.ok()) return status;
   const int frames = settings.fit_max_frames > 0 ? std::min<int>(settings.fit_max_frames, fit->take.observed.size())
                                                  : static_cast<int>(fit->take.observed.size());

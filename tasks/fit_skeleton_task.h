@@ -76,6 +76,9 @@ struct SkeletonFitInputs {
   bool from_template_subject = true;  // Picks the -1 defaults (a subject file vs --skeleton/--markerset).
   std::string template_name;        // The template's file, for the report.
   std::string markers_path;         // The take's .c3d/.trc (named in errors).
+  // The take in memory (file axes and units, as read), used instead of reading markers_path
+  // (which then only names it): a part of a take (evaluate's time split).
+  const MarkerTrajectories* trajectories = nullptr;
   std::string axes = "x,y,z";       // Take's file -> skeleton axes.
   double marker_scale = 0.0;        // Take's units -> skeleton units; 0: from the units.
   double amc_fps = 120.0;           // Recorded in the subject.

@@ -21,28 +21,45 @@ double SortedPercentile(const std::vector<double>& sorted, double p) {
   return sorted[std::min(sorted.size(), std::max<size_t>(rank, 1)) - 1];
 }
 
-// Solves the take without marker m and returns its prediction errors.
+// Solves the take without marker m (the frame solve, then the clip solve when asked) with
+// marker set `set`.
+Status SolveWithout(const Skeleton& skeleton, const MarkerSet& set,
+                    const std::vector<std::vector<Eigen::Vector3d>>& without, const LeaveOneOutOptions& options,
+                    Motion* motion) {
+  SequenceSolveReport sequence;
+  Status status = SolveSequence(skeleton, set, without, options.frame, RestPose(skeleton), motion, &sequence);
+  if (!status.ok() || !options.clip) return status;
+  ClipSolveReport clip;
+  return SolveClip(skeleton, set, without, options.clip_options, motion, &clip);
+}
+
+// Solves the take without marker m (refining the others' offsets between solves when
+// asked) and returns its prediction errors and, when `predicted` is not null, predictions.
 Status PredictionErrors(const Skeleton& skeleton, const MarkerSet& markers,
                         const std::vector<std::vector<Eigen::Vector3d>>& observed, int m,
-                        const LeaveOneOutOptions& options, std::vector<double>* errors) {
+                        const LeaveOneOutOptions& options, std::vector<double>* errors,
+                        std::vector<Eigen::Vector3d>* predicted) {
   const Eigen::Vector3d missing = Eigen::Vector3d::Constant(std::nan(""));
   std::vector<std::vector<Eigen::Vector3d>> without = observed;
   for (std::vector<Eigen::Vector3d>& frame : without) frame[m] = missing;
   Motion motion;
-  SequenceSolveReport sequence;
-  Status status = SolveSequence(skeleton, markers, without, options.frame, RestPose(skeleton), &motion, &sequence);
-  if (!status.ok()) return status;
-  if (options.clip) {
-    ClipSolveReport clip;
-    status = SolveClip(skeleton, markers, without, options.clip_options, &motion, &clip);
-    if (!status.ok()) return status;
+  Status status = SolveWithout(skeleton, markers, without, options, &motion);
+  MarkerSet set = markers;
+  for (int round = 0; status.ok() && round < options.refine_rounds; ++round) {
+    // Towards the calibrated offsets every round; m, missing from `without`, keeps its own.
+    status = RefineMarkerOffsets(skeleton, markers, without, motion, options.refine, &set);
+    if (status.ok()) status = SolveWithout(skeleton, set, without, options, &motion);
   }
+  if (!status.ok()) return status;
   FkData fk(skeleton);
   errors->clear();
+  if (predicted != nullptr) predicted->assign(observed.size(), missing);
   for (size_t f = 0; f < observed.size(); ++f) {
     if (!observed[f][m].allFinite()) continue;
     ForwardKinematics(skeleton, motion.frames[f], &fk);
-    errors->push_back((markers.Position(m, fk) - observed[f][m]).norm());
+    const Eigen::Vector3d x = set.Position(m, fk);
+    errors->push_back((x - observed[f][m]).norm());
+    if (predicted != nullptr) (*predicted)[f] = x;
   }
   return Status::Ok();
 }
@@ -76,14 +93,17 @@ Status LeaveOneMarkerOut(const Skeleton& skeleton, const MarkerSet& markers,
   std::string error;
   if (!options.frame.IsValid(&error)) return Status::Error(error);
   if (options.clip && !options.clip_options.IsValid(&error)) return Status::Error(error);
+  if (options.refine_rounds < 0) return Status::Error("refine_rounds must be >= 0");
   const auto start = std::chrono::steady_clock::now();
 
   std::vector<std::vector<double>> errors(num_markers);
   std::vector<Status> statuses(num_markers, Status::Ok());
+  report->predicted.assign(options.keep_predictions ? num_markers : 0, {});
+  auto predicted = [&](int m) { return options.keep_predictions ? &report->predicted[m] : nullptr; };
   const int threads = std::max(1, std::min(options.num_threads, num_markers));
   if (threads == 1) {
     for (int m = 0; m < num_markers; ++m) {
-      statuses[m] = PredictionErrors(skeleton, markers, observed, m, options, &errors[m]);
+      statuses[m] = PredictionErrors(skeleton, markers, observed, m, options, &errors[m], predicted(m));
       if (progress) progress(m + 1);
     }
   } else {
@@ -95,7 +115,7 @@ Status LeaveOneMarkerOut(const Skeleton& skeleton, const MarkerSet& markers,
     int done = 0;
     auto work = [&] {
       for (int m = next++; m < num_markers; m = next++) {
-        statuses[m] = PredictionErrors(skeleton, markers, observed, m, options, &errors[m]);
+        statuses[m] = PredictionErrors(skeleton, markers, observed, m, options, &errors[m], predicted(m));
         std::lock_guard<std::mutex> lock(mutex);
         ++done;
         finished_one.notify_one();

@@ -9,6 +9,13 @@
 // from the others is predicted within the soft-tissue and calibration error; a marker
 // the solution does not constrain (its bone moved by it alone) shows it.
 //
+// No sample of m reaches its prediction: the solves see `observed` with m missing, and with
+// refine_rounds > 0 the other markers' offsets are re-estimated on the take between solves
+// (offset_refinement.h: each towards its calibrated offset; m, unobserved, keeps its own),
+// x^_m(f) then coming from the last solve. Which frames and subject are given is the caller's
+// protocol (tasks/evaluate_task.h: the subject from another take, or from the take's first
+// half with the second half given here).
+//
 // Summaries (mean, median, 95th percentile, max) per marker and over every sample of
 // every marker. Lengths in skeleton units. Each marker's solve is independent of the
 // others', so the markers are spread over num_threads threads and the result does not
@@ -25,6 +32,7 @@
 #include "kinematics/status.h"
 #include "problems/marker_solve/marker_clip_solver.h"
 #include "problems/marker_solve/marker_frame_solver.h"
+#include "problems/marker_solve/offset_refinement.h"
 
 namespace mocapsolve {
 
@@ -33,6 +41,9 @@ struct LeaveOneOutOptions {
   bool clip = false;         // Then the whole-clip solve with `clip_options`.
   ClipSolveOptions clip_options;
   int num_threads = 1;       // Markers solved at once.
+  int refine_rounds = 0;     // Offset refinements (each followed by a solve) per left-out marker.
+  OffsetRefinementOptions refine;
+  bool keep_predictions = false;  // Fill LeaveOneOutReport::predicted.
 };
 
 struct PredictionErrorSummary {
@@ -44,6 +55,8 @@ struct LeaveOneOutReport {
   std::vector<PredictionErrorSummary> markers;  // Per marker of the set.
   PredictionErrorSummary all;                   // Over every scored sample.
   double seconds = 0.0;                         // Wall time of all the solves.
+  // With keep_predictions: predicted[m][f], x^_m(f) where m was observed, else NaN.
+  std::vector<std::vector<Eigen::Vector3d>> predicted;
 };
 
 // The summary of a set of errors (empty: all zero). Sorts `errors`.

@@ -2,6 +2,7 @@
 // and bad files whose one-line errors name the file and the field.
 #include "pipeline/subject.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -151,6 +152,30 @@ std::string Edited(const std::string& text, const std::string& from, const std::
 
 // A subject written from a skeleton file holds the skeleton inline: copied to another
 // folder (without the skeleton file), it still loads.
+// A take that lacks some of the subject's markers: one line naming, per segment, the labels
+// missing (and how many markers the segment has), nothing else loaded.
+TEST(Subject, ATakeLackingMarkersNamesTheirSegmentsAndLabels) {
+  const Subject subject = MakeSubject();
+  std::vector<std::string> labels;
+  std::string message;
+  const std::vector<int> dropped = {0, 1, 3};  // Two markers per bone: bone 0 loses both, bone 1 one.
+  for (int m = 0; m < subject.markers.num_markers(); ++m) {
+    if (std::find(dropped.begin(), dropped.end(), m) == dropped.end()) labels.push_back(subject.markers.label(m));
+  }
+  MarkerTrajectories file(labels, 2);
+  file.unit = LengthUnitFromName("mm");
+  for (int c = 0; c < file.num_markers(); ++c) file.SetSample(0, c, Eigen::Vector3d(c, 1.0, 2.0));
+  MarkerTake take;
+  const Status status = TakeForSubject(subject, file, "short.c3d", &take);
+  ASSERT_FALSE(status.ok());
+  auto segment = [&](int m) { return subject.skeleton.joint(subject.markers.marker(m).attachments[0].joint).name; };
+  ASSERT_EQ(segment(0), segment(1));
+  EXPECT_EQ(status.message(), "short.c3d: the subject's marker set does not match the take: no column for 3 of its " +
+                                  std::to_string(subject.markers.num_markers()) + " markers, by segment: " + segment(0) +
+                                  ": " + subject.markers.label(0) + ", " + subject.markers.label(1) + " (of its 2); " +
+                                  segment(3) + ": " + subject.markers.label(3) + " (of its 2)");
+}
+
 TEST(Subject, WrittenSkeletonIsInlineSoACopyElsewhereLoads) {
   Subject subject = MakeSubject();
   subject.skeleton = MakeDemoSkeleton();

@@ -1,7 +1,8 @@
 // Leave-one-marker-out (problems/marker_solve/leave_one_out.h): on noise-free markers with
 // three per bone every left-out marker is still predicted exactly; a marker whose
 // observations are moved by a known amount shows that amount and spoils no other; and the
-// result does not depend on the number of threads.
+// result does not depend on the number of threads; no sample of a left-out marker reaches its
+// own prediction, with or without the per-take offset refinement.
 #include "problems/marker_solve/leave_one_out.h"
 
 #include <gtest/gtest.h>
@@ -73,6 +74,45 @@ TEST(LeaveOneOut, ResultDoesNotDependOnThreads) {
                                 })
                   .ok());
   EXPECT_EQ(last, take.markers.num_markers());
+}
+
+TEST(LeaveOneOut, ALeftOutMarkersSamplesCannotReachItsPrediction) {
+  const testing::DemoTake take = testing::MakeDemoTake(8, 30.0, 7);
+  for (int rounds : {0, 1}) {
+    LeaveOneOutOptions options = Options(2);
+    options.frame.dls = DlsOptions();  // Default tolerances: the test compares two runs, not the truth.
+    options.frame.dls.max_iterations = 10;
+    options.refine_rounds = rounds;
+    options.refine.prior_frames = 5.0;
+    options.keep_predictions = true;
+    LeaveOneOutReport clean, spoiled;
+    ASSERT_TRUE(LeaveOneMarkerOut(take.skeleton, take.markers, take.clean, options, &clean).ok());
+    // Marker m's samples moved wildly (a different amount every frame), one sample dropped.
+    const int m = 4;
+    std::vector<std::vector<Eigen::Vector3d>> moved = take.clean;
+    for (size_t f = 0; f < moved.size(); ++f) moved[f][m] += Eigen::Vector3d(30.0 + f, -20.0, 3.0 * f);  // cm.
+    moved[6][m] = Eigen::Vector3d::Constant(std::nan(""));
+    ASSERT_TRUE(LeaveOneMarkerOut(take.skeleton, take.markers, moved, options, &spoiled).ok());
+    ASSERT_EQ(static_cast<int>(spoiled.predicted.size()), take.markers.num_markers());
+    // m's predictions are bit for bit those of the clean take (the dropped frame unscored).
+    for (size_t f = 0; f < moved.size(); ++f) {
+      if (f == 6) {
+        EXPECT_FALSE(spoiled.predicted[m][f].allFinite());
+        continue;
+      }
+      EXPECT_EQ(spoiled.predicted[m][f], clean.predicted[m][f]) << "rounds " << rounds << " frame " << f;
+    }
+    EXPECT_GT(spoiled.markers[m].median, 20.0);  // Scored against the moved samples.
+    // The moved samples do reach the others' predictions, so a leak would be seen.
+    double other_change = 0.0;
+    for (int k = 0; k < take.markers.num_markers(); ++k) {
+      if (k == m) continue;
+      for (size_t f = 0; f < moved.size(); ++f) {
+        other_change = std::max(other_change, (spoiled.predicted[k][f] - clean.predicted[k][f]).norm());
+      }
+    }
+    EXPECT_GT(other_change, 0.1) << "rounds " << rounds;  // cm.
+  }
 }
 
 TEST(LeaveOneOut, SummaryUsesNearestRankPercentiles) {
