@@ -39,6 +39,9 @@ const FileSettings& Files();
 const FileReadSettings& FileReading();
 const ConsoleSettings& Console();
 void ReadSharedOptions();
+// Whether option `name` was given (on the command line or by --config), for the rule "a
+// given option wins over what a subject file holds"; never to pick a default.
+bool GivenOnCommandLine(const std::string& name);
 
 // ReadMotionFile with --skeleton and --amc_fps, then --skeleton_units.
 Status LoadMotion(const std::string& path, Skeleton* skeleton, Motion* motion);

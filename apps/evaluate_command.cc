@@ -26,16 +26,16 @@ namespace {
 // need not be the take's) and --axes, --marker_scale, when given, describe the take, as
 // fit_skeleton's --template_subject.
 Status LoadTimeSplitTake(MarkerTake* take) {
-  if (FLAGS_subject.empty()) return Status::Error("--protocol=time_split needs --subject (the fit's template)");
+  if (Files().subject.empty()) return Status::Error("--protocol=time_split needs --subject (the fit's template)");
   Subject templ;
-  Status status = ReadSubject(FLAGS_subject, &templ);
+  Status status = ReadSubject(Files().subject, &templ);
   if (!status.ok()) return status;
-  if (!gflags::GetCommandLineFlagInfoOrDie("axes").is_default) templ.axes = FLAGS_axes;
-  if (!gflags::GetCommandLineFlagInfoOrDie("marker_scale").is_default) templ.marker_scale = FLAGS_marker_scale;
+  if (GivenOnCommandLine("axes")) templ.axes = FileReading().axes;
+  if (GivenOnCommandLine("marker_scale")) templ.marker_scale = FileReading().marker_scale;
   MarkerTrajectories trajectories;
-  status = ReadMarkerFile(FLAGS_markers, &trajectories);
-  if (status.ok()) status = RequireMarkerData(FLAGS_markers, trajectories);
-  return status.ok() ? TemplateTakeForSubject(templ, std::move(trajectories), FLAGS_markers, take) : status;
+  status = ReadMarkerFile(Files().markers, &trajectories);
+  if (status.ok()) status = RequireMarkerData(Files().markers, trajectories);
+  return status.ok() ? TemplateTakeForSubject(templ, std::move(trajectories), Files().markers, take) : status;
 }
 
 Status EvaluateMain(const std::vector<std::string>& arguments) {

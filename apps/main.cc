@@ -183,13 +183,17 @@ namespace {
 std::vector<std::string> GivenMappingFlags() {
   std::vector<std::string> given;
   for (const char* name : {"skeleton", "skeleton_units", "markerset", "axes", "marker_scale"}) {
-    gflags::CommandLineFlagInfo info;
-    if (gflags::GetCommandLineFlagInfo(name, &info) && !info.is_default) given.push_back(name);
+    if (GivenOnCommandLine(name)) given.push_back(name);
   }
   return given;
 }
 
 }  // namespace
+
+bool GivenOnCommandLine(const std::string& name) {
+  gflags::CommandLineFlagInfo info;
+  return gflags::GetCommandLineFlagInfo(name.c_str(), &info) && !info.is_default;
+}
 
 Status LoadSubjectFromFlags(Subject* subject) {
   if (!Files().subject.empty()) {
