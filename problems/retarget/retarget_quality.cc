@@ -36,10 +36,22 @@ Eigen::Matrix3d BestRotation(const Eigen::Matrix3d& t_s) {
   return svd.matrixU() * d * svd.matrixV().transpose();
 }
 
-// The source joint of a role: the one mapped to the target's role joint `t`, else the
-// source's own role (a source found a humanoid by names alone has no roles of its own).
+// The target joint of a role: the joint map's (roles linked across, names included), else the
+// target's own.
+int TargetJoint(const JointMap& map, const std::string& role) {
+  for (const JointMapRole& r : map.roles) {
+    if (r.role == role && r.target >= 0) return r.target;
+  }
+  return map.target_roles.Find(role);
+}
+
+// The source joint of a role: the one mapped to the target's role joint `t`, else the joint
+// map's, else the source's own role.
 int SourceJoint(const JointMap& map, const std::string& role, int t) {
   if (t >= 0 && map.source_of_target[t] >= 0) return map.source_of_target[t];
+  for (const JointMapRole& r : map.roles) {
+    if (r.role == role && r.source >= 0) return r.source;
+  }
   return map.source_roles.Find(role);
 }
 
@@ -54,7 +66,7 @@ std::vector<LimbDirections> CollectLimbDirections(const JointMap& map,
                                                   const std::vector<Vector3dVector>& target_positions) {
   std::vector<LimbDirections> limbs;
   for (const auto& [from, to] : HumanoidLimbs()) {
-    const int t0 = map.target_roles.Find(from), t1 = map.target_roles.Find(to);
+    const int t0 = TargetJoint(map, from), t1 = TargetJoint(map, to);
     const int s0 = SourceJoint(map, from, t0), s1 = SourceJoint(map, to, t1);
     if (s0 < 0 || s1 < 0 || t0 < 0 || t1 < 0) continue;
     LimbDirections limb;
@@ -132,8 +144,13 @@ void MeasurePenetration(const Skeleton& skeleton, const std::vector<int>& feet, 
 }
 
 // Tracked vertices per body part (the role of the heaviest joint's nearest role ancestor).
-void MeasureCoverage(const Skeleton& target, const SkinnedMesh& mesh, const HumanoidRoles& roles,
-                     const RetargetSetup& setup, RetargetQuality* quality) {
+void MeasureCoverage(const Skeleton& target, const SkinnedMesh& mesh, const JointMap& map, const RetargetSetup& setup,
+                     RetargetQuality* quality) {
+  HumanoidRoles roles;  // The target's role joints (TargetJoint), in the template's order.
+  for (const auto& [role, joint] : map.target_roles.roles) roles.roles.emplace_back(role, TargetJoint(map, role));
+  for (const JointMapRole& r : map.roles) {
+    if (r.target >= 0 && roles.Find(r.role) < 0) roles.roles.emplace_back(r.role, r.target);
+  }
   std::vector<int> part(target.num_joints(), -1);  // Index into roles.roles.
   for (size_t r = 0; r < roles.roles.size(); ++r) part[roles.roles[r].second] = static_cast<int>(r);
   for (int j = 0; j < target.num_joints(); ++j) {
@@ -209,13 +226,13 @@ RetargetQuality MeasureRetargetQuality(const RetargetQualityInputs& in) {
   const Pose target_rest = in.target_rest.rotations.empty() ? RestPose(*in.target) : in.target_rest;
   std::vector<int> target_feet;
   for (const char* role : {"left_foot", "right_foot", "left_toes", "right_toes"}) {
-    if (in.joint_map->target_roles.Find(role) >= 0) target_feet.push_back(in.joint_map->target_roles.Find(role));
+    if (TargetJoint(*in.joint_map, role) >= 0) target_feet.push_back(TargetJoint(*in.joint_map, role));
   }
   MeasurePenetration(*in.target, target_feet, target_rest, in.target_mesh, target_positions, cm,
                      &quality.penetration_cm, &quality.penetration_frame_share, 1.0);
   MeasureSelfJointError(in, source_positions, target_positions, cm, &quality);
   if (in.setup != nullptr && in.target_mesh != nullptr) {
-    MeasureCoverage(*in.target, *in.target_mesh, in.joint_map->target_roles, *in.setup, &quality);
+    MeasureCoverage(*in.target, *in.target_mesh, *in.joint_map, *in.setup, &quality);
   }
   return quality;
 }
