@@ -13,39 +13,54 @@
 #include "apps/solver_flags.h"
 #include "settings/method_settings.h"
 #include "io/atomic_file.h"
-#include "io/marker_file.h"
 #include "tasks/leave_one_out_protocol.h"
 #include "tasks/evaluate_summary.h"
+#include "tasks/evaluate_retarget_task.h"
 #include "tasks/evaluate_task.h"
+#include "pipeline/quality_gate.h"
+#include "settings/frame_limit_settings.h"
+#include "settings/retarget_settings.h"
 
 
 namespace mocapsolve {
 namespace {
 
-// --protocol=time_split: --subject is the template of the first half's fit (its marker set
-// need not be the take's) and --axes, --marker_scale, when given, describe the take, as
-// fit_skeleton's --template_subject.
-Status LoadTimeSplitTake(MarkerTake* take) {
-  if (Files().subject.empty()) return Status::Error("--protocol=time_split needs --subject (the fit's template)");
-  Subject templ;
-  Status status = ReadSubject(Files().subject, &templ);
+// --method=retarget: --motion onto each of --target (comma-separated), a row each.
+Status EvaluateRetarget() {
+  EvaluateRetargetInputs inputs;
+  inputs.source = Files().motion;
+  inputs.skeleton = Files().skeleton;
+  inputs.amc_fps = FileReading().amc_fps;
+  FrameLimitSettings limit;
+  ReadOptionFlags(FrameLimitOption(), &limit);
+  inputs.max_frames = limit.max_frames;
+  inputs.characters = SplitCharacterList(Files().target);
+  QualityGate gate;
+  ReadOptionFlags(QualityGateOptions().Only(RetargetGateNames()), &gate);
+  Progress progress("evaluate retarget", static_cast<int>(inputs.characters.size()), Console().quiet, "characters");
+  RetargetSettings retarget = RetargetSettingOptions().Defaults();
+  ReadOptionFlags(RetargetSettingOptions(), &retarget);  // The retarget's knobs (not --solver: dls).
+  EvaluateRetargetResult result;
+  Status status = RunEvaluateRetarget(inputs, retarget, gate,
+                                      [&](int done, int) { progress.Update(done); }, &result);
   if (!status.ok()) return status;
-  if (GivenOnCommandLine("axes")) templ.axes = FileReading().axes;
-  if (GivenOnCommandLine("marker_scale")) templ.marker_scale = FileReading().marker_scale;
-  MarkerTrajectories trajectories;
-  status = ReadMarkerFile(Files().markers, &trajectories);
-  if (status.ok()) status = RequireMarkerData(Files().markers, trajectories);
-  return status.ok() ? TemplateTakeForSubject(templ, std::move(trajectories), Files().markers, take) : status;
+  std::fputs(result.table.c_str(), stdout);
+  if (!Files().table_csv.empty()) {
+    status = WriteFileAtomically(Files().table_csv, result.table_csv);
+    if (!status.ok()) return status;
+  }
+  return WriteReport(result.report);
 }
 
 Status EvaluateMain(const std::vector<std::string>& arguments) {
   if (!arguments.empty()) return Status::Error("unexpected argument '" + arguments[0] + "'");
+  MethodSetting method;
+  ReadOptionFlags(EvaluateMethodOption(), &method);
+  if (method.method == "retarget") return EvaluateRetarget();
   std::vector<std::string> inputs;
   Status checked = MarkerTakeInputs(&inputs);
   if (!checked.ok()) return checked;
   EvaluateConfig config;
-  MethodSetting method;
-  ReadOptionFlags(EvaluateMethodOption(), &method);
   config.method = method.method;
   ReadOptionFlags(EvaluateSettingOptions(), &config.evaluate);
   config.repair = RepairSettingsFromFlags();
@@ -59,7 +74,10 @@ Status EvaluateMain(const std::vector<std::string>& arguments) {
   }
   MarkerTake take;
   Status status = config.method == "leave_one_out" && config.evaluate.protocol == "time_split"
-                      ? LoadTimeSplitTake(&take)
+                      ? ReadTimeSplitTake(Files().subject, Files().markers,
+                                          GivenOnCommandLine("axes") ? &FileReading().axes : nullptr,
+                                          GivenOnCommandLine("marker_scale") ? &FileReading().marker_scale : nullptr,
+                                          &take)
                       : LoadMarkerTake(&take);
   if (!status.ok()) return status;
   std::unique_ptr<Progress> progress;
@@ -93,7 +111,9 @@ extern const Command kEvaluateCommand = {
     "       mocapsolve evaluate --method=leave_one_out (--subject=S.json | ...) --markers=TAKE.c3d|.trc "
     "[--mode=frame|clip] [--table_csv=t.csv]\n"
     "       mocapsolve evaluate --method=small_errors (--subject=S.json | ...) --markers=TAKE.c3d|.trc [--trials=5] "
-    "[--white_noise_mm=1]\n\n"
+    "[--white_noise_mm=1]\n"
+    "       mocapsolve evaluate --method=retarget --motion=SRC.bvh|.amc|.fbx|.glb [--skeleton=X.asf] "
+    "--target=A.glb,B.glb,... [--gate_limb_mean_deg=10 ...]\n\n"
     "Damages the clean markers (as `corrupt` does, in the skeleton's frame), runs every method\n"
     "on the same damage and prints the analogue of the thesis' Table 1: mean global joint\n"
     "position (cm) and rotation (deg) error of the per-frame solve after each method against\n"
@@ -107,12 +127,19 @@ extern const Command kEvaluateCommand = {
     "(mean, median, 95th percentile, max).\n"
     "--method=small_errors adds 12 jumps of 1-4 cm and 3 runs of 2 cm jitter per seed to the take\n"
     "(after --white_noise_mm of noise) and prints the repair's recall and precision on them, the\n"
-    "latter also without the samples it flags on the undamaged take (the take's own glitches).",
+    "latter also without the samples it flags on the undamaged take (the take's own glitches).\n"
+    "--method=retarget retargets --motion onto each --target character (retarget's options, dls) and\n"
+    "prints per character what the solve's residual cannot hide: the eight limbs' direction error\n"
+    "against the source (mean, 95th percentile, after one constant rotation), planted feet's skate,\n"
+    "ground penetration (the source's own beside it), the joint error where the source is the\n"
+    "character's own skeleton, the fewest tracked vertices on a limb, and the gate's verdict.",
     __FILE__, EvaluateMain,
-    {SharedOptions("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,table_csv,report"),
-     EvaluateSolverOptions().options(),
+    {SharedOptions("subject,skeleton,skeleton_units,markers,markerset,axes,marker_scale,table_csv,report,motion,"
+                   "target,amc_fps"),
+     FrameLimitOption().options(), EvaluateSolverOptions().options(),
      SolverOptions().Only("mode").options(),  // leave_one_out's frame or clip solve.
      RepairSettingOptions().options(), CorruptionSettingOptions().options(), EvaluateSettingOptions().options(),
-     EvaluateMethodOption().options()}};
+     EvaluateMethodOption().options(), QualityGateOptions().Only(RetargetGateNames()).options(),
+     RetargetSettingOptions().options()}};
 
 }  // namespace mocapsolve

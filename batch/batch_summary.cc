@@ -81,6 +81,8 @@ std::string FormatSummaryJson(const BatchResult& result, const std::string& vers
         .Add("repaired_rms_mm", f.repaired_rms_mm).Add("repaired_share", f.repaired_share)
         .Add("gate_pass", f.gate_pass < 0 ? JsonValue() : JsonValue(f.gate_pass == 1))
         .Add("vertex_error", f.vertex_error).Add("foot_skating_cm_per_s", f.foot_skating_cm_s)
+        .Add("limb_mean_deg", f.limb_mean_deg).Add("limb_p95_deg", f.limb_p95_deg)
+        .Add("penetration_cm", f.penetration_cm).Add("min_limb_vertices", f.min_limb_vertices)
         .Add("view", ViewLink(r).empty() ? JsonValue() : JsonValue(ViewLink(r))).Add("key", r.key);
     text += first ? "" : ", ";
     text += o.ToString(/*indent=*/false);
@@ -93,7 +95,8 @@ std::string FormatSummaryJson(const BatchResult& result, const std::string& vers
 std::string FormatSummaryCsv(const BatchResult& result) {
   std::string csv =
       "take,status,ran,exit,exit_code,error,frames,wall_seconds,stage_seconds,naive_rms_mm,repaired_rms_mm,"
-      "repaired_share,gate_pass,vertex_error,foot_skating_cm_per_s,view\n";
+      "repaired_share,gate_pass,vertex_error,foot_skating_cm_per_s,limb_mean_deg,limb_p95_deg,penetration_cm,"
+      "min_limb_vertices,view\n";
   for (const TakeOutcome& outcome : result.takes) {
     if (!Ended(outcome)) continue;
     const TakeSummary& r = outcome.record;
@@ -105,7 +108,8 @@ std::string FormatSummaryCsv(const BatchResult& result) {
            CsvNumber(r.wall_seconds) + "," + CsvCell(stages) + "," + CsvNumber(f.naive_rms_mm) + "," +
            CsvNumber(f.repaired_rms_mm) + "," + CsvNumber(f.repaired_share) + "," +
            (f.gate_pass < 0 ? "" : f.gate_pass ? "1" : "0") + "," + CsvNumber(f.vertex_error) + "," +
-           CsvNumber(f.foot_skating_cm_s) + "," + CsvCell(ViewLink(r)) + "\n";
+           CsvNumber(f.foot_skating_cm_s) + "," + CsvNumber(f.limb_mean_deg) + "," + CsvNumber(f.limb_p95_deg) + "," +
+           CsvNumber(f.penetration_cm) + "," + CsvNumber(f.min_limb_vertices) + "," + CsvCell(ViewLink(r)) + "\n";
   }
   return csv;
 }

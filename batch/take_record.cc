@@ -13,6 +13,24 @@ double Number(const JsonNode* node) {
 
 std::string String(const JsonNode* node) { return node != nullptr && node->is_string() ? node->string : ""; }
 
+// The worst character's retarget quality ("quality" of each character; NaN figures skipped).
+void WorstRetargetQuality(const JsonNode& characters, TakeFigures* f) {
+  auto worst = [](double* into, double value, bool larger) {
+    if (std::isnan(value)) return;
+    if (std::isnan(*into) || (larger ? value > *into : value < *into)) *into = value;
+  };
+  for (const JsonNode& c : characters.items) {
+    const JsonNode* q = c.Find("quality");
+    if (q == nullptr) continue;
+    worst(&f->limb_mean_deg, Number(q->Find("limb_mean_deg")), true);
+    worst(&f->limb_p95_deg, Number(q->Find("limb_p95_deg")), true);
+    worst(&f->penetration_cm, Number(q->Find("penetration_cm")), true);
+    if (const JsonNode* limb = q->Find("least_covered_limb"); limb != nullptr && !String(limb).empty()) {
+      worst(&f->min_limb_vertices, Number(q->Find("min_limb_vertices")), false);
+    }
+  }
+}
+
 }  // namespace
 
 Status TakeFiguresFromReport(const std::string& report_path, TakeFigures* figures) {
@@ -39,6 +57,7 @@ Status TakeFiguresFromReport(const std::string& report_path, TakeFigures* figure
     }
     f.vertex_error = error / characters->items.size();
     f.foot_skating_cm_s = skating / characters->items.size();
+    WorstRetargetQuality(*characters, &f);
   }
   f.view = String(root.Find("view"));
   *figures = std::move(f);
@@ -73,6 +92,8 @@ std::string FormatTakeRecord(const TakeRecord& r) {
       .Add("repaired_share", f.repaired_share)
       .Add("gate_pass", f.gate_pass < 0 ? JsonValue() : JsonValue(f.gate_pass == 1))
       .Add("vertex_error", f.vertex_error).Add("foot_skating_cm_per_s", f.foot_skating_cm_s)
+      .Add("limb_mean_deg", f.limb_mean_deg).Add("limb_p95_deg", f.limb_p95_deg)
+      .Add("penetration_cm", f.penetration_cm).Add("min_limb_vertices", f.min_limb_vertices)
       .Add("view", f.view.empty() ? JsonValue() : JsonValue(f.view)).Add("outputs", outputs);
   return o.ToString() + "\n";
 }
@@ -120,6 +141,10 @@ Status ReadTakeRecord(const std::string& path, TakeRecord* record) {
   if (const JsonNode* pass = root.Find("gate_pass"); pass != nullptr && pass->is_bool()) f.gate_pass = pass->boolean;
   f.vertex_error = Number(root.Find("vertex_error"));
   f.foot_skating_cm_s = Number(root.Find("foot_skating_cm_per_s"));
+  f.limb_mean_deg = Number(root.Find("limb_mean_deg"));
+  f.limb_p95_deg = Number(root.Find("limb_p95_deg"));
+  f.penetration_cm = Number(root.Find("penetration_cm"));
+  f.min_limb_vertices = Number(root.Find("min_limb_vertices"));
   f.view = String(root.Find("view"));
   if (const JsonNode* outputs = root.Find("outputs"); outputs != nullptr && outputs->is_array()) {
     for (const JsonNode& o : outputs->items) r.outputs.push_back(String(&o));

@@ -9,11 +9,14 @@
 //    "exit_code": 0, "error": "the worker's last stderr line",
 //    "frames": 60, "wall_seconds": 1.2, "timings": [{"stage": "...", "seconds": 0.1}, ...],
 //    "naive_rms_mm": .., "repaired_rms_mm": .., "repaired_share": .., "gate_pass": true,
-//    "vertex_error": .., "foot_skating_cm_per_s": .., "outputs": ["report.json", ...]}
+//    "vertex_error": .., "foot_skating_cm_per_s": .., "limb_mean_deg": .., "limb_p95_deg": ..,
+//    "penetration_cm": .., "min_limb_vertices": .., "outputs": ["report.json", ...]}
 // The figures come from the pipeline's report.json (TakeFiguresFromReport); a take that
 // produced no report has null figures. vertex_error and foot skating are the mean over the
 // take's characters (mean vertex error as a fraction of the character's height; the
-// retargeted result's planted-foot skating in cm/s).
+// retargeted result's planted-foot skating in cm/s); the retarget quality figures
+// (pipeline/quality_gate.h) are the worst character's: the largest limb direction errors
+// (mean, 95th percentile, degrees) and penetration (cm), the fewest tracked vertices on a limb.
 #ifndef MOCAPSOLVE_BATCH_TAKE_RECORD_H_
 #define MOCAPSOLVE_BATCH_TAKE_RECORD_H_
 
@@ -38,6 +41,10 @@ struct TakeFigures {
   int gate_pass = -1;  // -1 unknown, 0 failed, 1 passed.
   double vertex_error = kNone;
   double foot_skating_cm_s = kNone;
+  double limb_mean_deg = kNone;
+  double limb_p95_deg = kNone;
+  double penetration_cm = kNone;
+  double min_limb_vertices = kNone;
   std::string view;    // The take's page, relative to its folder ("view.html"); "" = none.
 };
 

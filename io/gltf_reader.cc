@@ -14,6 +14,7 @@
 #include <tiny_gltf.h>
 
 #include "io/atomic_file.h"
+#include "io/gltf_rigid_parts.h"
 #include "io/gltf_scene.h"
 #include "io/input_limits.h"
 #include "kinematics/forward_kinematics.h"
@@ -578,6 +579,14 @@ Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& op
   }
   SkinnedMeshSpec spec;
   BlendRestVertices(positions, normals, influences, rig.skin_joints, position_maps, normal_ibm, world_bind, &spec);
+  int rigid_parts = 0;
+  status = gltf_internal::AppendRigidParts(model, file, graph, rig, world_bind, &spec, &triangles, &rigid_parts,
+                                           &out.warnings);
+  if (!status.ok()) return status;
+  if (rigid_parts > 0) {
+    out.warnings.push_back(file + ": skin " + std::to_string(out.skin) + ": " + std::to_string(rigid_parts) +
+                           " mesh nodes parented to its bones are rigid parts of the character (weight 1 on the bone)");
+  }
   if (normals.empty() && !triangles.empty()) {
     spec.rest_normals = AreaWeightedNormals(spec.rest_positions, triangles);
     out.warnings.push_back(file + ": skin " + std::to_string(out.skin) +

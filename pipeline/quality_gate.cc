@@ -31,13 +31,32 @@ const OptionGroup<QualityGate>& QualityGateOptions() {
            "subject 2's own calibration puts RBAC 20.7 cm from upperback); 0 = no check.")
       .Add(&G::max_torso_error_deg, "gate_torso_deg", "degrees",
            "Quality gate: the solved pelvis-to-head direction within this (degrees, mean over the take) of the "
-           "head and pelvis markers' own; 0 = no check.");
+           "head and pelvis markers' own; 0 = no check.")
+      .Add(&G::max_limb_mean_deg, "gate_limb_mean_deg", "degrees",
+           "Quality gate, per character: the eight limbs' direction error against the source (after one constant "
+           "rotation), mean over the limbs, at most this (degrees); 0 = no check.")
+      .Add(&G::max_limb_p95_deg, "gate_limb_p95_deg", "degrees",
+           "Quality gate, per character: the limbs' direction error, 95th percentile over limbs and frames, at most "
+           "this (degrees); 0 = no check.")
+      .Add(&G::max_foot_skate_cm_s, "gate_foot_skate_cm_s", "cm/s",
+           "Quality gate, per character: planted feet's horizontal speed while the source's are in contact at most "
+           "this (cm/s); 0 = no check.")
+      .Add(&G::max_penetration_cm, "gate_penetration_cm", "cm",
+           "Quality gate, per character: no foot joint deeper under the floor than this (cm, below its rest "
+           "clearance); 0 = no check.")
+      .Add(&G::max_self_joint_error_cm, "gate_self_joint_cm", "cm",
+           "Quality gate, per character: where the source is the character's own skeleton, no joint farther than "
+           "this (cm) from the source's; 0 = no check.")
+      .Add(&G::min_limb_vertices, "gate_limb_vertices", "vertices",
+           "Quality gate, per character: every limb (upper arms, forearms, thighs, shins) tracked by at least this "
+           "many vertices; 0 = no check.", 0);
   return *group;
 }
 
 bool QualityGate::IsValid(std::string* error) const {
   for (double value : {max_naive_rms_mm, max_repaired_rms_mm, max_repaired_share, max_iteration_limit_share,
-                       max_marker_offset_cm, max_torso_error_deg}) {
+                       max_marker_offset_cm, max_torso_error_deg, max_limb_mean_deg, max_limb_p95_deg,
+                       max_foot_skate_cm_s, max_penetration_cm, max_self_joint_error_cm}) {
     if (!std::isfinite(value)) {
       *error = "quality gate: thresholds must be finite";
       return false;
@@ -69,6 +88,35 @@ QualityVerdict CheckQuality(const QualityGate& gate, const QualityFigures& figur
   check(gate.max_torso_error_deg > 0 && !std::isnan(figures.torso_error_deg), figures.torso_error_deg,
         gate.max_torso_error_deg, "torso direction error", " deg");
   return verdict;
+}
+
+std::string RetargetGateNames() {
+  return "gate_limb_mean_deg,gate_limb_p95_deg,gate_foot_skate_cm_s,gate_penetration_cm,gate_self_joint_cm,"
+         "gate_limb_vertices";
+}
+
+void CheckRetargetQuality(const QualityGate& gate, const RetargetQuality& quality, const std::string& who,
+                          QualityVerdict* verdict) {
+  auto check = [&](bool on, double value, double limit, const std::string& what, const char* unit) {
+    if (!on || std::isnan(value) || value <= limit) return;
+    verdict->pass = false;
+    verdict->failures.push_back(who + ": " + what + " " + Number(value) + unit + " > " + Number(limit) + unit);
+  };
+  check(gate.max_limb_mean_deg > 0, quality.limb_mean_deg, gate.max_limb_mean_deg, "limb direction error (mean)",
+        " deg");
+  check(gate.max_limb_p95_deg > 0, quality.limb_p95_deg, gate.max_limb_p95_deg, "limb direction error (95th pct)",
+        " deg");
+  check(gate.max_foot_skate_cm_s > 0, quality.foot_skate_cm_s, gate.max_foot_skate_cm_s, "planted foot skate",
+        " cm/s");
+  check(gate.max_penetration_cm > 0, quality.penetration_cm, gate.max_penetration_cm, "ground penetration", " cm");
+  check(gate.max_self_joint_error_cm > 0, quality.self_joint_error_max_cm, gate.max_self_joint_error_cm,
+        "joint error on its own skeleton", " cm");
+  if (gate.min_limb_vertices > 0 && !quality.least_covered_limb.empty() && quality.min_limb_vertices < gate.min_limb_vertices) {
+    verdict->pass = false;
+    verdict->failures.push_back(who + ": " + quality.least_covered_limb + " tracked by " +
+                                std::to_string(quality.min_limb_vertices) + " vertices < " +
+                                std::to_string(gate.min_limb_vertices));
+  }
 }
 
 }  // namespace mocapsolve

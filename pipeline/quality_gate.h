@@ -17,6 +17,18 @@
 //                         (mean angle over the take, degrees): a skeleton solved tilted or
 //                         upside down while the markers stand upright. Takes without
 //                         head and pelvis markers by their usual labels are not checked.
+// Per character retargeted (problems/retarget/retarget_quality.h; CheckRetargetQuality):
+//   limb directions       the eight limbs' direction error against the source after one
+//                         constant rotation: the mean over limbs and the 95th percentile of
+//                         all samples (degrees);
+//   foot skate            planted feet's horizontal speed while the source's are in
+//                         contact (cm/s);
+//   penetration           the deepest foot joint under the floor (cm);
+//   self joint error      where the source is the character's own skeleton, the largest
+//                         joint position error (cm);
+//   coverage              the fewest tracked vertices on a limb: a limb tracked by fewer
+//                         than this follows nothing (a character whose parts are rigid
+//                         meshes under bones, with only the hands skinned).
 // A threshold <= 0 (or, for shares, >= 1) turns that check off.
 #ifndef MOCAPSOLVE_PIPELINE_QUALITY_GATE_H_
 #define MOCAPSOLVE_PIPELINE_QUALITY_GATE_H_
@@ -24,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "problems/retarget/retarget_quality.h"
 #include "settings/option.h"
 
 namespace mocapsolve {
@@ -35,6 +48,12 @@ struct QualityGate {
   double max_iteration_limit_share = 0.2;
   double max_marker_offset_cm = 25.0;
   double max_torso_error_deg = 15.0;
+  double max_limb_mean_deg = 10.0;
+  double max_limb_p95_deg = 20.0;
+  double max_foot_skate_cm_s = 1.0;
+  double max_penetration_cm = 1.0;
+  double max_self_joint_error_cm = 0.1;
+  int min_limb_vertices = 3;
 
   bool IsValid(std::string* error) const;
 };
@@ -56,6 +75,15 @@ struct QualityVerdict {
 };
 
 QualityVerdict CheckQuality(const QualityGate& gate, const QualityFigures& figures);
+
+// The retarget checks above for one character's figures, added to *verdict as
+// "<who>: limb direction error 23.4 deg > 10 deg". A figure not measured (NaN: no limbs,
+// not the own skeleton) is not checked, nor coverage on a target with no limb roles.
+void CheckRetargetQuality(const QualityGate& gate, const RetargetQuality& quality, const std::string& who,
+                          QualityVerdict* verdict);
+
+// The retarget thresholds alone (evaluate --method=retarget, retarget's report).
+std::string RetargetGateNames();
 
 // The thresholds as options, declared once (--gate_naive_rms_mm, ...; the defaults are the
 // fields' initializers): pipeline's flags and config keys, Python's pipeline() keywords.

@@ -10,6 +10,7 @@
 #include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "settings/repair_settings.h"
+#include "pipeline/retarget_quality_report.h"
 #include "pipeline/take_view.h"
 #include "problems/marker_solve/subject_checks.h"
 #include "signal/motion_pyramid.h"
@@ -188,6 +189,9 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   figures.farthest_marker = checks.farthest_marker;
   figures.torso_error_deg = checks.torso_frames > 0 ? checks.torso_error_mean_deg : std::nan("");
   result->verdict = CheckQuality(options.gate, figures);
+  for (const CharacterOutput& output : result->characters) {
+    CheckRetargetQuality(options.gate, output.result.quality, output.name, &result->verdict);
+  }
   result->seconds = SecondsSince(start);
   return Status::Ok();
 }
@@ -229,6 +233,10 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
   std::vector<JsonObject> characters;
   for (const CharacterOutput& c : result.characters) {
     const RetargetClipResult& r = c.result.clip;
+    std::vector<std::string> failures;  // The gate's lines about this character.
+    for (const std::string& f : result.verdict.failures) {
+      if (f.rfind(c.name + ": ", 0) == 0) failures.push_back(f);
+    }
     JsonObject o;
     o.Add("character", c.name)
         .Add("file", c.path)
@@ -244,7 +252,8 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
         .Add("delivered_frames", c.delivered.num_frames())
         .Add("delivered_frame_rate", c.delivered.frame_rate)
         .Add("setup_seconds", c.result.setup_seconds)
-        .Add("solve_seconds", r.solve_seconds);
+        .Add("solve_seconds", r.solve_seconds)
+        .Add("quality", RetargetQualityJson(c.result.quality, failures));
     characters.push_back(o);
   }
   std::vector<JsonValue> failures;

@@ -60,12 +60,7 @@ void BindPipeline(py::module_& m) {
       "The pipeline's quality gate thresholds, one per flag of `mocapsolve pipeline` (gate_*:\n"
       "same names, defaults and units; 0 turns a check off). pipeline() takes them as keywords.");
   gate.def(py::init<>(), "Every threshold at the CLI's default.");
-  gate.def_readwrite("gate_naive_rms_mm", &QualityGate::max_naive_rms_mm)
-      .def_readwrite("gate_repaired_rms_mm", &QualityGate::max_repaired_rms_mm)
-      .def_readwrite("gate_repaired_share", &QualityGate::max_repaired_share)
-      .def_readwrite("gate_iteration_limit_share", &QualityGate::max_iteration_limit_share)
-      .def_readwrite("gate_marker_offset_cm", &QualityGate::max_marker_offset_cm)
-      .def_readwrite("gate_torso_deg", &QualityGate::max_torso_error_deg);
+  BindOptionFields(gate, QualityGateOptions());  // gate_naive_rms_mm, ..., gate_limb_vertices.
   py::class_<DeliverySettings> delivery(m, "DeliverySettings",
       "Which files a take is delivered as, one per flag of `mocapsolve pipeline`/`batch` (same\n"
       "names and defaults: formats='glb', a comma-separated list of glb, fbx, bvh; out_fps;\n"

@@ -17,8 +17,9 @@ const Group& EvaluateMethodOption() {
       "repair",
       "repair: damage the markers and score repair against the usual fills (Table 1); leave_one_out: predict each "
       "marker from the solve of the others, on the take as it is; small_errors: recall and precision of the "
-      "repair's detections on 1-4 cm jumps and jitter.",
-      {"repair", "leave_one_out", "small_errors"});
+      "repair's detections on 1-4 cm jumps and jitter; retarget: --motion onto each --target character, limb "
+      "directions, skate, penetration and coverage.",
+      {"repair", "leave_one_out", "small_errors", "retarget"});
   return *group;
 }
 

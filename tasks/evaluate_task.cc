@@ -203,6 +203,9 @@ Status RunEvaluate(const MarkerTake& take, const EvaluateConfig& config,
   Status status = EvaluateSettingOptions().Validate(config.evaluate);
   if (status.ok()) status = EvaluateMethodOption().Validate(MethodSetting{config.method});
   if (!status.ok()) return status;
+  if (config.method == "retarget") {
+    return Status::Error("--method=retarget: a source and characters, not a marker take (RunEvaluateRetarget)");
+  }
   if (config.method == "leave_one_out") return LeaveOneOut(take, config, progress, result);
   if (config.method == "small_errors") return SmallErrors(take, config, result);
   return RepairTable(take, config, progress, result);

@@ -1,6 +1,9 @@
 #include "tasks/leave_one_out_protocol.h"
 
+#include <utility>
 #include <vector>
+
+#include "io/marker_file.h"
 
 #include "problems/marker_solve/marker_observations.h"
 #include "settings/skeleton_fit_settings.h"
@@ -85,6 +88,20 @@ Status TemplateTakeForSubject(const Subject& templ, MarkerTrajectories trajector
   take->markers = templ.markers;
   take->observed.clear();
   return Status::Ok();
+}
+
+Status ReadTimeSplitTake(const std::string& subject_path, const std::string& markers_path, const std::string* axes,
+                         const double* marker_scale, MarkerTake* take) {
+  if (subject_path.empty()) return Status::Error("--protocol=time_split needs --subject (the fit's template)");
+  Subject templ;
+  Status status = ReadSubject(subject_path, &templ);
+  if (!status.ok()) return status;
+  if (axes != nullptr) templ.axes = *axes;
+  if (marker_scale != nullptr) templ.marker_scale = *marker_scale;
+  MarkerTrajectories trajectories;
+  status = ReadMarkerFile(markers_path, &trajectories);
+  if (status.ok()) status = RequireMarkerData(markers_path, trajectories);
+  return status.ok() ? TemplateTakeForSubject(templ, std::move(trajectories), markers_path, take) : status;
 }
 
 }  // namespace mocapsolve

@@ -39,6 +39,12 @@ Status LeaveOneOutProtocolTake(const MarkerTake& take, const std::string& protoc
 Status TemplateTakeForSubject(const Subject& templ, MarkerTrajectories trajectories, const std::string& name,
                               MarkerTake* take);
 
+// TemplateTakeForSubject on the files: the subject at `subject_path` as the template, the
+// markers at `markers_path`; `axes` and `marker_scale`, when not null, describe the take's
+// file instead of the template's (a front end's given --axes, --marker_scale).
+Status ReadTimeSplitTake(const std::string& subject_path, const std::string& markers_path, const std::string* axes,
+                         const double* marker_scale, MarkerTake* take);
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_TASKS_LEAVE_ONE_OUT_PROTOCOL_H_

@@ -8,6 +8,7 @@
 #include "io/fbx_writer.h"
 #include "io/gltf_writer.h"
 #include "io/motion_file.h"
+#include "pipeline/retarget_quality_report.h"
 #include "tasks/joint_map_task.h"
 
 namespace mocapsolve {
@@ -76,6 +77,8 @@ JsonObject RetargetReportJson(const RetargetInputs& inputs, const CharacterRetar
   }
   const JsonObject joint_roles = JointMapRolesJson(retarget.joint_map, source_joints, task.target.skeleton);
   const std::vector<JsonValue> notes(retarget.notes.begin(), retarget.notes.end());
+  QualityVerdict verdict;
+  CheckRetargetQuality(config.gate, retarget.quality, FileStem(inputs.target), &verdict);
   JsonObject report;
   report.Add("source", inputs.source)
       .Add("source_animation", inputs.source_animation)
@@ -114,6 +117,7 @@ JsonObject RetargetReportJson(const RetargetInputs& inputs, const CharacterRetar
       .Add("plant_contact_pairs", retarget.plant_pairs)
       .Add("source_plant_skating_cm_per_s", retarget.source_plant_skating_cm_s)
       .Add("result_plant_skating_cm_per_s", retarget.result_plant_skating_cm_s)
+      .Add("quality", RetargetQualityJson(retarget.quality, verdict.failures))
       .Add("delivered_frames", task.delivered.num_frames())
       .Add("delivered_frame_rate", task.delivered.frame_rate)
       .Add("setup_seconds", task.setup_seconds)
@@ -218,6 +222,10 @@ std::string RetargetSummary(const RetargetInputs& inputs, const RetargetConfig& 
           result.source_foot_skating, result.result_foot_skating, retarget.source_plant_skating_cm_s,
           retarget.result_plant_skating_cm_s, retarget.plant_joints.size(),
           1e3 * result.solve_seconds / motion.num_frames());
+  QualityVerdict verdict;
+  CheckRetargetQuality(config.gate, retarget.quality, FileStem(inputs.target), &verdict);
+  text += "quality: " + RetargetQualityLine(retarget.quality) + (verdict.pass ? ": pass\n" : ": FAIL\n");
+  for (const std::string& failure : verdict.failures) text += "  " + failure + "\n";
   return text;
 }
 

@@ -11,6 +11,7 @@
 #include "io/json_writer.h"
 #include "kinematics/motion.h"
 #include "kinematics/status.h"
+#include "pipeline/quality_gate.h"
 #include "problems/retarget/retarget_character.h"
 #include "settings/retarget_settings.h"
 #include "signal/clip_delivery.h"
@@ -37,6 +38,9 @@ struct RetargetConfig {
   // resampled (signal/clip_delivery.h), the range checked once the source is read.
   ClipDelivery delivery;
   bool stage_times = false;  // Time FK, skinning, Jacobian and solve separately (dls only).
+  // The retarget checks of the quality gate (pipeline/quality_gate.h: limb directions, skate,
+  // penetration, own-skeleton joint error, coverage) for the report's "quality" verdict.
+  QualityGate gate;
 };
 
 struct RetargetTaskResult {

@@ -232,6 +232,20 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
   if (!status.ok()) return status;
 
   MeasurePlantSkating(target_skeleton, motion, contacts, contact_targets, &out);
+  RetargetQualityInputs quality;
+  quality.source = source.skeleton;
+  quality.source_motion = &motion;
+  quality.target = &target_skeleton;
+  quality.result = &out.clip.motion;
+  quality.target_mesh = target.mesh;
+  quality.target_rest = target_rest;
+  quality.joint_map = &out.joint_map;
+  quality.setup = out.own_skeleton ? nullptr : &out.setup;
+  quality.height_ratio = out.height_ratio;
+  quality.own_skeleton = out.own_skeleton;
+  quality.own_scale = own_scale;
+  quality.foot_skate_cm_s = out.result_plant_skating_cm_s;
+  out.quality = MeasureRetargetQuality(quality);
   *result = std::move(out);
   return Status::Ok();
 }

@@ -49,6 +49,7 @@
 #include "kinematics/status.h"
 #include "problems/retarget/joint_map.h"
 #include "problems/retarget/retarget_clip.h"
+#include "problems/retarget/retarget_quality.h"
 #include "problems/retarget/retarget_setup.h"
 
 namespace mocapsolve {
@@ -92,6 +93,8 @@ struct CharacterRetargetResult {
   int plant_pairs = 0;                    // (joint, frame pair)s in contact.
   double source_plant_skating_cm_s = 0.0;
   double result_plant_skating_cm_s = 0.0;
+  // Limb directions, skating, penetration, self joint error, coverage (retarget_quality.h).
+  RetargetQuality quality;
   std::vector<std::string> notes;
   double setup_seconds = 0.0;
 };

@@ -157,8 +157,9 @@ TEST_F(BatchCli, FormatsReachEveryTake) {
   testing::WriteTestCharacter(character, 45.0);
   const std::string out = testing::TempPath("formats_out");
   const std::string manifest = Manifest(
-      "{\"markers\": \"t1.c3d\", \"characters\": [\"figure.gltf\"]},\n"
-      " {\"markers\": \"t2.c3d\", \"characters\": [\"figure.gltf\"], \"formats\": \"bvh\"}");
+      "{\"markers\": \"t1.c3d\", \"characters\": [\"figure.gltf\"], \"gate_limb_vertices\": 0},\n"
+      " {\"markers\": \"t2.c3d\", \"characters\": [\"figure.gltf\"], \"formats\": \"bvh\", "
+      "\"gate_limb_vertices\": 0}");  // The test figure: one vertex per joint.
   std::string output;
   ASSERT_EQ(testing::RunCli("batch --quiet --jobs=2 --manifest=" + manifest + " --out_dir=" + out +
                             " --formats=glb,fbx", &output), 0) << output;

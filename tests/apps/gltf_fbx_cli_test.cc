@@ -173,8 +173,10 @@ TEST(GltfFbxCli, SkeletonFilesAndWarnings) {
   options.warnings = &warnings;
   Motion motion;
   ASSERT_TRUE(ReadMotionFile(robot, options, &skeleton, &motion).ok());
-  ASSERT_EQ(warnings.size(), 2u);
+  // And its body is rigid meshes under its bones (io/gltf_rigid_parts.h): the third warning.
+  ASSERT_EQ(warnings.size(), 3u);
   EXPECT_NE(warnings[0].find("'Leg.R': non-uniform or negative scale"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[2].find("12 mesh nodes parented to its bones are rigid parts"), std::string::npos) << warnings[2];
   std::string output;
   ASSERT_EQ(testing::RunCli("info " + robot, &output), 0);
   EXPECT_NE(output.find("warning: " + warnings[0]), std::string::npos) << output;

@@ -207,7 +207,7 @@ TEST_F(SolveCli, EvaluateLeaveOneOutPredictsEveryMarker) {
   }
   EXPECT_EQ(testing::RunCli("evaluate --method=guess --skeleton=" + demo_ + " --skeleton_units=cm --markers=" +
                             markers_ + " --markerset=" + set_, &output), 1);
-  EXPECT_THAT(output, HasSubstr("--method: unknown 'guess' (repair, leave_one_out, small_errors)"));
+  EXPECT_THAT(output, HasSubstr("--method: unknown 'guess' (repair, leave_one_out, small_errors, retarget)"));
 }
 
 TEST_F(SolveCli, EvaluateSmallErrorsReportsRecallAndPrecision) {

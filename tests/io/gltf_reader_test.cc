@@ -288,6 +288,63 @@ TEST_P(GltfCharacters, LoadsWithJointCountAndSkinningMatchesGltf) {
   }
 }
 
+// RobotExpressive skins only its hands; its head, torso, arms and legs are mesh nodes
+// parented to bones. They are rigid parts of the character's mesh (weight 1 on the bone):
+// animated, each vertex is where glTF's node transforms put it.
+TEST(GltfRigidParts, RobotExpressiveBodyMovesWithItsBones) {
+  MOCAPSOLVE_DATA_FILE(path, "gltf/RobotExpressive.glb");
+  GltfDocument doc;
+  ASSERT_TRUE(GltfDocument::Read(path, &doc).ok());
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(doc, {}, &c).ok());
+  const tinygltf::Model& m = doc.model();
+  std::vector<int> joint_node(m.nodes.size(), 0), parent(m.nodes.size(), -1);
+  for (int n : m.skins[c.skin].joints) joint_node[n] = 1;
+  for (size_t n = 0; n < m.nodes.size(); ++n) {
+    for (int child : m.nodes[n].children) parent[child] = static_cast<int>(n);
+  }
+  std::vector<std::pair<int, Eigen::Vector3d>> rigid;  // (node, vertex in the node's frame), in file order.
+  for (size_t n = 0; n < m.nodes.size(); ++n) {
+    if (m.nodes[n].skin >= 0 || m.nodes[n].mesh < 0) continue;
+    bool under_joint = false;
+    for (int p = parent[n]; p >= 0 && !under_joint; p = parent[p]) under_joint = joint_node[p] == 1;
+    if (!under_joint) continue;
+    for (const tinygltf::Primitive& prim : m.meshes[m.nodes[n].mesh].primitives) {
+      const std::vector<float> v = Floats(m, prim.attributes.at("POSITION"));
+      for (size_t k = 0; k + 2 < v.size(); k += 3) rigid.emplace_back(static_cast<int>(n), Eigen::Vector3d(v[k], v[k + 1], v[k + 2]));
+    }
+  }
+  ASSERT_GT(rigid.size(), 1000u);
+  const int first = c.mesh.num_vertices() - static_cast<int>(rigid.size());
+  ASSERT_GT(first, 0);  // The skinned hands come first.
+  double height = 0.0;
+  FkData fk(c.skeleton);
+  ForwardKinematics(c.skeleton, c.rest_pose, &fk);
+  std::vector<Eigen::Isometry3d> transforms;
+  ComputeSkinningTransforms(c.mesh, fk, &transforms);
+  Eigen::Matrix3Xd rest;
+  SkinMesh(c.mesh, transforms, &rest, nullptr);
+  height = rest.row(1).maxCoeff() - rest.row(1).minCoeff();
+  EXPECT_GT(height, 3.0);  // The robot's body (the hands alone span less than a metre).
+  Motion motion;
+  ASSERT_TRUE(ReadGltfAnimation(doc, c, GltfAnimationOptions(), &motion).ok());
+  double t0 = 1e300;
+  for (const tinygltf::AnimationChannel& ch : m.animations[0].channels) {
+    t0 = std::min<double>(t0, Floats(m, m.animations[0].samplers[ch.sampler].input).front());
+  }
+  for (int f : {0, motion.num_frames() / 2}) {
+    ForwardKinematics(c.skeleton, motion.frames[f], &fk);
+    ComputeSkinningTransforms(c.mesh, fk, &transforms);
+    const std::vector<Eigen::Matrix4d> world = WorldMatrices(m, AnimatedTrs(m, 0, t0 + f / motion.frame_rate));
+    for (size_t k = 0; k < rigid.size(); k += 37) {
+      const Eigen::Vector3d theirs = (world[rigid[k].first] * rigid[k].second.homogeneous()).head<3>();
+      const Eigen::Vector3d ours = SkinPosition(c.mesh, transforms, first + static_cast<int>(k));
+      // 1e-4 of the height: the legs' scales, uniform to 1e-5, are baked as uniform.
+      ASSERT_LT((ours - theirs).norm(), 1e-4 * height) << "frame " << f << " rigid vertex " << k;
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(
     SharedData, GltfCharacters,
     ::testing::Values(CharacterCase{"Xbot.glb", 65}, CharacterCase{"Ely.glb", 67},

@@ -78,7 +78,7 @@ def test_evaluate_has_every_method_of_the_cli(cmu02, tmp_path):
     expected = json.load(open(cli_report))
     assert loo["unit"] == "mm" and len(loo["per_marker"]) == len(subject.marker_labels)
     assert loo["all"]["median"] == pytest.approx(expected["all"]["median"], rel=1e-9)
-    with pytest.raises(ValueError, match=r"--method: unknown .* \(repair, leave_one_out, small_errors\)"):
+    with pytest.raises(ValueError, match=r"--method: unknown .* \(repair, leave_one_out, small_errors, retarget\)"):
         mocapsolve.evaluate(subject, cmu02["c3d"], method="magic")
     with pytest.raises(ValueError, match="--trials"):
         mocapsolve.evaluate(subject, cmu02["c3d"], trials=0)

@@ -138,6 +138,21 @@ def test_success_report_of_real_data_commands(demo, cmu02, command):
     jsonschema.Draft7Validator(options).validate(document["options"])
 
 
+def test_evaluate_retarget_report_follows_the_schema(demo, cmu02):
+    """evaluate --method=retarget: a row per character, each with its quality block."""
+    report = str(demo["folder"] / "evaluate_retarget.json")
+    characters = ",".join(data_file("gltf/" + name) for name in ("CesiumMan.glb", "RiggedFigure.glb"))
+    run_cli("evaluate", "--method=retarget", "--motion=" + cmu02["amc"], "--skeleton=" + cmu02["asf"],
+            "--target=" + characters, "--max_frames=30", "--report=" + report)
+    with open(report) as f:
+        document = json.load(f)
+    validator("evaluate").validate(document)
+    assert [c["character"] for c in document["characters"]] == ["CesiumMan", "RiggedFigure"]
+    for c in document["characters"]:
+        assert len(c["quality"]["limbs"]) == 8 and c["quality"]["pass"] == (not c["quality"]["failures"])
+    jsonschema.Draft7Validator(schema("options/evaluate")).validate(document["options"])
+
+
 @pytest.mark.parametrize("command", sorted(FAILURE))
 def test_failure_report_follows_the_envelope(demo, command):
     report = str(demo["folder"] / (command + "_error.json"))

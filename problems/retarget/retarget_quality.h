@@ -1,0 +1,97 @@
+// MeasureRetargetQuality: how good a retargeted clip is, measured on the two skeletons'
+// motions and the tracking set-up, never on the solve's own residual (a low vertex error
+// can hide a wrong skeleton: a character tracked by four hand vertices has one).
+//
+// Limb directions. The eight limbs (left/right upper arm, forearm, thigh, shin; the target's
+// roles of humanoid_roles.h and the source joints the joint map links to them, else the
+// source's own roles) point from the role's joint to
+// the next role's (upper arm -> forearm -> hand, thigh -> shin -> foot). Per frame f and
+// limb l, u_s(l, f) on the source (its motion as retargeted: up axis turned to +y) and
+// u_t(l, f) on the result, unit vectors in their worlds. One constant rotation R for all
+// limbs and frames absorbs what differs by convention (the source's facing, a rest-pose
+// tilt): R maximizes sum <u_t, R u_s> (Wahba's problem, solved by the SVD of
+// sum u_t u_s^T with the determinant fixed to +1, Kabsch). The error of a sample is the
+// angle between u_t and R u_s; per limb its mean and 95th percentile, over all limbs the
+// mean of the limbs' means and the 95th percentile of all samples (degrees). R's angle is
+// reported (alignment_deg) so that a tilted result shows.
+//
+// Foot skate of planted feet: the mean horizontal speed of the target's foot joints over
+// the frame pairs where the source's are in contact (retarget_character.h's plant
+// skating, cm/s), copied in.
+//
+// Ground penetration: the floor is y = 0 of the result's world (the retarget keeps the
+// source's floor, turned to +y and scaled). Each target foot and toes role joint has its
+// rest clearance c_j (its height above the lowest joint or vertex of the target in its rest
+// pose); it is under the floor at frame f by max(0, c_j - y_j(f)). Reported: the largest
+// over joints and frames and the share of frames with any > 1 cm.
+//
+// Self joint error: when the source skeleton is the target's own (own_skeleton.h) the joint
+// positions of the result against k times the source's (k: the own scale), mean and max
+// over joints and frames, cm. NaN otherwise.
+//
+// Coverage: every tracked vertex (retarget_setup.h) counted on the body part of its target
+// vertex's heaviest joint; a joint's part is the role of its nearest ancestor (itself
+// included) that plays one (pelvis, spine_1, ..., left_thigh, ...). A limb tracked by few
+// vertices is not tracked: its rotation is the prior's, whatever the residual says.
+//
+// Lengths in cm when the target's unit is known, else target units. Non-humanoids (no
+// roles on either side): limb figures NaN, limb_count 0.
+#ifndef MOCAPSOLVE_PROBLEMS_RETARGET_RETARGET_QUALITY_H_
+#define MOCAPSOLVE_PROBLEMS_RETARGET_RETARGET_QUALITY_H_
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "kinematics/motion.h"
+#include "kinematics/skeleton.h"
+#include "kinematics/skinned_mesh.h"
+#include "problems/retarget/joint_map.h"
+#include "problems/retarget/retarget_setup.h"
+
+namespace mocapsolve {
+
+struct LimbDirectionError {
+  std::string limb;  // "left_upper_arm", ...
+  double mean_deg = 0.0, p95_deg = 0.0;
+  int tracked_vertices = 0;  // Coverage of the limb's body part.
+};
+
+struct RetargetQuality {
+  std::vector<LimbDirectionError> limbs;  // The limbs found on both sides.
+  double limb_mean_deg = 0.0;             // Mean of the limbs' means (NaN: no limbs).
+  double limb_p95_deg = 0.0;              // 95th percentile of all samples (NaN: no limbs).
+  double alignment_deg = 0.0;             // Angle of the constant rotation R.
+  double foot_skate_cm_s = 0.0;           // Planted feet (0: no contacts).
+  double penetration_cm = 0.0;            // Deepest foot joint under the floor.
+  double penetration_frame_share = 0.0;   // Frames with a foot joint > 1 cm under it.
+  double self_joint_error_mean_cm = 0.0;  // NaN unless the source is the target's skeleton.
+  double self_joint_error_max_cm = 0.0;
+  std::vector<std::pair<std::string, int>> coverage;  // (body part, tracked vertices), role order.
+  int min_limb_vertices = 0;  // Fewest tracked vertices on a limb (the 8 limbs; 0 when none).
+  std::string least_covered_limb;
+};
+
+struct RetargetQualityInputs {
+  const Skeleton* source = nullptr;
+  const Motion* source_motion = nullptr;  // As retargeted (up axis turned).
+  const Skeleton* target = nullptr;
+  const Motion* result = nullptr;
+  const SkinnedMesh* target_mesh = nullptr;
+  Pose target_rest;                       // The target's rest (world) pose; empty = RestPose.
+  const JointMap* joint_map = nullptr;
+  const RetargetSetup* setup = nullptr;  // Coverage; nullptr = not tracked (own skeleton).
+  double height_ratio = 1.0;             // Target units per source unit.
+  bool own_skeleton = false;
+  double own_scale = 1.0;
+  double foot_skate_cm_s = 0.0;
+};
+
+RetargetQuality MeasureRetargetQuality(const RetargetQualityInputs& inputs);
+
+// The eight limbs: (role, next role), arms first.
+const std::vector<std::pair<std::string, std::string>>& HumanoidLimbs();
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PROBLEMS_RETARGET_RETARGET_QUALITY_H_
