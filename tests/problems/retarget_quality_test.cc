@@ -140,8 +140,8 @@ TEST_F(RetargetQualityTest, CoverageCountsTrackedVerticesPerBodyPartAndTheGateFa
 
 TEST(RetargetQualityGate, EachThresholdAndNaNNotChecked) {
   RetargetQuality q;
-  q.limb_mean_deg = 12.0;
-  q.limb_p95_deg = 25.0;
+  q.limb_mean_deg = 22.0;
+  q.limb_p95_deg = 45.0;
   q.foot_skate_cm_s = 1.5;
   q.penetration_cm = 2.0;
   q.self_joint_error_max_cm = std::nan("");  // Not the own skeleton.
@@ -149,7 +149,7 @@ TEST(RetargetQualityGate, EachThresholdAndNaNNotChecked) {
   CheckRetargetQuality(QualityGate(), q, "X", &verdict);
   EXPECT_FALSE(verdict.pass);
   ASSERT_EQ(verdict.failures.size(), 4u);
-  EXPECT_EQ(verdict.failures[0], "X: limb direction error (mean) 12 deg > 10 deg");
+  EXPECT_EQ(verdict.failures[0], "X: limb direction error (mean) 22 deg > 20 deg");
   EXPECT_THAT(verdict.failures[3], HasSubstr("ground penetration 2 cm > 1 cm"));
   QualityGate off;
   off.max_limb_mean_deg = off.max_limb_p95_deg = off.max_foot_skate_cm_s = off.max_penetration_cm = 0.0;
