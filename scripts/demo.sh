@@ -101,6 +101,14 @@ characters=()
 [ -f "$gltf_dir/Xbot.glb" ] && characters=(--character="$gltf_dir/Xbot.glb")
 $ms pipeline --quiet --subject="$out/walk_subject.json" --markers="$out/walk_markers_damaged.c3d" \
   "${characters[@]}" --out_dir="$out/pipeline_walk"
+echo "-- label: the damaged take's points named again from the subject alone (its labels ignored: any"
+echo "   order, ghosts, dropouts), as for a raw capture before labelling"
+$ms label --subject="$out/walk_subject.json" --markers="$out/walk_markers_damaged.c3d" \
+  --out="$out/walk_labelled.c3d" --report="$out/label.json" 2>/dev/null | head -1
+echo "-- live: the take replayed as a stream (as fast as possible), each frame solved as it arrives"
+$ms live --quiet --subject="$out/walk_subject.json" --input="replay:$out/walk_markers.c3d" --replay_speed=0 \
+  --output=- --report="$out/live.json" > "$out/walk_live.jsonl"
+/usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print('live: %d frames in, %d out, latency median %.3f ms, p99 %.3f ms' % (r['frames_in'], r['frames_out'], r['latency_ms']['median'], r['latency_ms']['p99']))" "$out/live.json" 2>/dev/null || true
 data_dir="${MOCAPSOLVE_DATA:-../shared/data}"
 if [ -f "$data_dir/c3d/cmu_02_05.c3d" ] && [ -f "$data_dir/gltf/Xbot.glb" ]; then
   echo "-- CMU 02_05 onto Xbot, with the subject calibrated once on 02_01"
@@ -118,7 +126,7 @@ promised=(walk.bvh info.json walk_m_xyz.bvh walk_positions.csv walk_markers.c3d 
           solved_ceres.bvh solved_dls.bvh solved_clip.bvh walk_filtered.bvh walk_blend.bvh
           walk_markers_damaged.c3d walk_markers_repaired.c3d repair.json evaluate.json leave_one_out.json
           falloff.csv walk_edited.bvh walk_subject.json pipeline_walk/report.json pipeline_walk/solved.bvh
-          pipeline_walk/repaired.c3d pipeline_walk/view.html)
+          pipeline_walk/repaired.c3d pipeline_walk/view.html walk_labelled.c3d label.json walk_live.jsonl live.json)
 [ -f "$data_dir/c3d/cmu_02_05.c3d" ] && [ -f "$data_dir/gltf/Xbot.glb" ] &&
   promised+=(pipeline_02_05/report.json pipeline_02_05/Xbot.glb pipeline_02_05/Xbot.fbx pipeline_02_05/view.html)
 [ -f "$gltf_dir/CesiumMan.glb" ] && [ -f "$gltf_dir/RiggedFigure.glb" ] && promised+=(riggedfigure_walk.glb)
