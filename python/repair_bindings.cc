@@ -2,7 +2,11 @@
 #include "settings/corruption_settings.h"
 #include "settings/repair_settings.h"
 #include "problems/marker_repair/marker_repair.h"
+#include "io/marker_file.h"
+#include "settings/label_settings.h"
+#include "settings/solver_settings.h"
 #include "tasks/evaluate_task.h"
+#include "tasks/label_task.h"
 #include "tasks/repair_task.h"
 #include "python/bindings.h"
 #include "settings/method_settings.h"
@@ -166,6 +170,45 @@ repair, solver and corruption options. Releases the GIL.)doc") +
        KeywordDefaults("Evaluate keywords and defaults (EvaluateSettings)", py::cast(EvaluateSettings()),
                        EvaluateSettingOptions().Names()) +
        KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(EvaluateSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), CorruptionSettingOptions().Names())).c_str());
+  py::class_<LabelSettings> label_settings(m, "LabelSettings",
+                                           "How label() finds the body and tracks the points (the CLI's label flags).");
+  label_settings.def(py::init<>());
+  BindOptionFields(label_settings, LabelSettingOptions());
+  m.def("label", [](SubjectPtr subject_arg, py::object markers, const py::kwargs& keywords) {
+        const Subject& subject = Required(subject_arg, "subject");
+        LabelConfig config;
+        ApplyKeywords(keywords,
+                      {py::cast(&config.label, py::return_value_policy::reference),
+                       py::cast(&config.solver, py::return_value_policy::reference)},
+                      LabelSettingOptions().Names() + "," + RepairSolverOptions().Names());
+        MarkerTrajectories file;
+        std::string name = "markers";
+        if (py::isinstance<MarkerTrajectories>(markers)) {  // What read_markers() and corrupt() return.
+          file = markers.cast<const MarkerTrajectories&>();
+          SyncMask(&file);
+        } else {
+          name = py::str(py::module_::import("os").attr("fspath")(markers));
+          RequireReadable(name);
+          ThrowIfError(ReadMarkerFile(name, &file));
+        }
+        LabelResult result;
+        Status status = Status::Ok();
+        {
+          py::gil_scoped_release release;
+          status = RunLabel(subject, file, name, config, nullptr, &result);
+        }
+        ThrowIfError(status);
+        return py::make_tuple(std::make_shared<MarkerTrajectories>(std::move(result.markers)),
+                              ReportToPython(result.report));
+      }, py::arg("subject"), py::arg("markers"),
+      (std::string(R"doc(Names the points of a raw, unlabelled take with the subject's markers, as
+`mocapsolve label` (labels the file carries are ignored: points in any order, ghosts,
+dropouts). subject: a Subject; markers: a .c3d/.trc path or Markers.
+Returns (markers, report): one column per marker of the subject, then the points left
+unlabelled as '*1', '*2', ... (samples as the file holds them), and the report as a dict,
+what `mocapsolve label --report` writes. Releases the GIL.
+Keywords (LabelSettings) and the solver options of solve():
+)doc") + KeywordHelp(LabelSettingOptions().options(), py::cast(LabelSettings()))).c_str());
 }
 
 }  // namespace mocapsolve::python

@@ -127,3 +127,28 @@ def test_repair_takes_the_markers_corrupt_returns(cmu02, tmp_path):
     assert motion.num_frames == 5
     with pytest.raises(TypeError, match="expected a Take, Markers or a .c3d/.trc path"):
         mocapsolve.repair(subject, 42)
+
+
+def test_label_matches_the_cli(tmp_path):
+    """label() names a take's points as `mocapsolve label` does: the same file, the same
+    report (timings aside), from a path or from the Markers read_markers() returns."""
+    demo, markers, subject = (str(tmp_path / n) for n in ("walk.bvh", "walk.c3d", "S.json"))
+    run_cli("generate", "--demo_out=" + demo, "--frames=40", "--fps=30")
+    run_cli("markers", "--motion=" + demo, "--skeleton_units=cm", "--markerset=auto:3", "--noise_mm=0.5",
+            "--out=" + markers)
+    run_cli("calibrate", "--motion=" + demo, "--skeleton_units=cm", "--markers=" + markers, "--attach=auto",
+            "--out_subject=" + subject)
+    cli_out, cli_report = str(tmp_path / "cli.c3d"), str(tmp_path / "cli.json")
+    run_cli("label", "--subject=" + subject, "--markers=" + markers, "--out=" + cli_out, "--report=" + cli_report)
+    labelled, report = mocapsolve.label(mocapsolve.read_subject(subject), markers)
+    ours = str(tmp_path / "py.c3d")
+    mocapsolve.write_markers(ours, labelled)
+    assert open(ours, "rb").read() == open(cli_out, "rb").read()
+    expected = json.load(open(cli_report))
+    for key, value in report.items():
+        if key not in ("seconds", "frames_per_second"):
+            assert expected[key] == value, key
+    again, _ = mocapsolve.label(mocapsolve.read_subject(subject), mocapsolve.read_markers(markers))
+    assert np.array_equal(np.nan_to_num(again.positions), np.nan_to_num(labelled.positions))
+    with pytest.raises(TypeError, match="unexpected keyword"):
+        mocapsolve.label(mocapsolve.read_subject(subject), markers, no_such_option=1)
