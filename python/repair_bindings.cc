@@ -65,16 +65,8 @@ void BindRepair(py::module_& m) {
 `mocapsolve repair` (thesis chapter 3).
 
 subject: a Subject; markers: a .c3d/.trc path or a Take.
-Keywords: the repair options (RepairSettings: dp_max_cm=10, dr_max_deg=30, outlier_cm=4,
-outliers='robust'|'fixed', outlier_mads=6, outlier_min_cm=1, undo_swaps=True,
-swap_radius_cm=30, swap_min_frames=2, assign_unlabelled=True, unlabelled_min_cm=2,
-unlabelled_max_cm=5, unlabelled_min_frames=3,
-trim_max=120, small_track=120, small_gap=5, vel_clamp=0.25, edge_samples=1, fill='kriging'|'blend', fill_samples=10,
-refit_reference=True, refit_rough_factor=3, rough_extension_factor=6, carry_joints=True,
-reference='tracker'|'clip',
-reference_loss='cauchy', reference_loss_cm=1, tracker_prior_weight=20,
-tracker_translation_prior=0, tracker_function_tolerance=1e-4) and the solver options of
-solve().
+Keywords: the repair options (RepairSettings) and the solver options of solve(), listed
+below with their defaults.
 Returns (markers, motion, report): the input file's markers with the repaired samples (its
 own axes and unit: what --out_markers writes), the motion solved from them, and the
 report as a dict, what `mocapsolve repair --report` writes ('swaps': {first_frame,
@@ -172,7 +164,7 @@ repair, solver and corruption options. Releases the GIL.)doc") +
        KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(EvaluateSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), CorruptionSettingOptions().Names())).c_str());
   py::class_<LabelSettings> label_settings(m, "LabelSettings",
                                            "How label() finds the body and tracks the points (the CLI's label flags).");
-  label_settings.def(py::init<>());
+  label_settings.def(py::init<>(), "Every option at the CLI's default.");
   BindOptionFields(label_settings, LabelSettingOptions());
   m.def("label", [](SubjectPtr subject_arg, py::object markers, const py::kwargs& keywords) {
         const Subject& subject = Required(subject_arg, "subject");
@@ -187,6 +179,10 @@ repair, solver and corruption options. Releases the GIL.)doc") +
           file = markers.cast<const MarkerTrajectories&>();
           SyncMask(&file);
         } else {
+          if (!py::isinstance<py::str>(markers) && !py::hasattr(markers, "__fspath__")) {
+            throw py::type_error("markers: expected Markers or a .c3d/.trc path, got " +
+                                 std::string(py::str(markers.get_type().attr("__name__"))));
+          }
           name = py::str(py::module_::import("os").attr("fspath")(markers));
           RequireReadable(name);
           ThrowIfError(ReadMarkerFile(name, &file));

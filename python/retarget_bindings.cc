@@ -93,8 +93,8 @@ frames (0 = all); amc_fps: an .amc's frame rate (default 120); animation_name: t
 clip's name in the written glTF ('' = 'retargeted from <source clip>'); animation_only:
 write the glTF out as the target's skeleton, skin and the new animation only, no meshes
 (as the CLI's --animation_only).
-Keywords: the RetargetSettings (solver='dls', iterations=10,
-lambda=5, subsample=128, plant_feet=True, joint_map='map.json', ...), and frames='A:B' /
+Keywords: the RetargetSettings (listed below with their defaults; joint_map='map.json' names a
+joint map file), and frames='A:B' /
 seconds='A:B' and out_fps, which cut and resample the result (as the CLI's flags).
 Returns (target character, motion on the target skeleton, report): the report is what
 `mocapsolve retarget --report` writes (errors as fractions of the target's height, the
