@@ -79,7 +79,9 @@ Status AppendRigidParts(const tinygltf::Model& model, const std::string& file, c
                         std::vector<int>* triangles, int* parts, std::vector<std::string>* warnings) {
   *parts = 0;
   std::vector<int> joint_of_node(model.nodes.size(), -1);
-  for (size_t j = 0; j < rig.joint_nodes.size(); ++j) joint_of_node[rig.joint_nodes[j]] = static_cast<int>(j);
+  for (size_t j = 0; j < rig.joint_nodes.size(); ++j) {
+    if (rig.joint_nodes[j] >= 0) joint_of_node[rig.joint_nodes[j]] = static_cast<int>(j);  // -1: the synthetic root.
+  }
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     const tinygltf::Node& node = model.nodes[n];
     if (node.skin >= 0 || node.mesh < 0 || node.mesh >= static_cast<int>(model.meshes.size())) continue;
