@@ -19,11 +19,7 @@ Status ConvertMain(const std::vector<std::string>& arguments) {
   inputs.in = arguments[0];
   inputs.out = arguments[1];
   inputs.target = Files().target;
-  inputs.motion.skeleton_path = Files().skeleton;
-  inputs.motion.amc_frame_rate = FileReading().amc_fps;
-  inputs.motion.animation = FileReading().animation;  // An error for formats with one clip.
-  inputs.motion.sample_rate = FileReading().sample_fps;
-  inputs.motion.skeleton_units = FileReading().skeleton_units;
+  inputs.motion = MotionReadOptionsOf(FileReading(), Files().skeleton);  // --animation: an error for one-clip formats.
   inputs.axes = FileReading().axes;
   ConvertSettings settings;
   ReadOptionFlags(ConvertSettingOptions(), &settings);
@@ -59,7 +55,8 @@ extern const Command kConvertCommand = {
     "--frames=A:B or --seconds=A:B cut the motion, --out_fps=R resamples it (BVH, glTF, FBX).\n"
     "OUT is written atomically and may not be an input.",
     __FILE__, ConvertMain,
-    {SharedOptions("skeleton,skeleton_units,amc_fps,animation,sample_fps,target,axes,include_model_outputs,subject_prefix,report"),
+    {SharedOptions("skeleton,skeleton_units,amc_fps,animation,sample_fps,target,axes,include_model_outputs,"
+                   "subject_prefix,report"),
      ConvertSettingOptions().options(), DeliverySettingOptions().Without("formats").options()}};
 
 }  // namespace mocapsolve

@@ -131,15 +131,14 @@ void BindIo(py::module_& m) {
   m.def("read_motion", [](const std::string& path, py::object skeleton, double amc_fps,
                           const std::string& animation, double sample_fps, const std::string& skeleton_units) {
         RequireReadable(path);
-        MotionFileOptions options;
-        if (!skeleton.is_none()) {
-          options.skeleton_path = py::str(skeleton);
-          RequireReadable(options.skeleton_path);
-        }
-        options.amc_frame_rate = amc_fps;
-        options.animation = animation;
-        options.sample_rate = sample_fps;
-        options.skeleton_units = skeleton_units;
+        FileReadSettings reading;
+        reading.amc_fps = amc_fps;
+        reading.animation = animation;
+        reading.sample_fps = sample_fps;
+        reading.skeleton_units = skeleton_units;
+        const MotionFileOptions options =
+            MotionReadOptionsOf(reading, skeleton.is_none() ? std::string() : std::string(py::str(skeleton)));
+        if (!options.skeleton_path.empty()) RequireReadable(options.skeleton_path);
         auto out_skeleton = std::make_shared<Skeleton>();
         Motion motion;
         Status status = Status::Ok();
