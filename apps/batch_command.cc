@@ -13,6 +13,7 @@
 #include "apps/delivery_flags.h"
 #include "apps/option_flags.h"
 #include "batch/worker_process.h"
+#include "settings/take_settings.h"
 #include "tasks/batch_task.h"
 
 
@@ -50,7 +51,7 @@ Status RunBatchCommand(const std::vector<std::string>& arguments) {
   ClipDelivery delivery;  // Checked here: a malformed range is the batch's error, not every take's.
   Status status = ClipDeliveryFromFlags(&delivery);
   if (!status.ok()) return status;
-  inputs.pipeline_options = GivenFlagsJson(DeliverySettingOptions().Names());
+  inputs.pipeline_options = GivenFlagsJson(DeliverySettingOptions().Names() + ",label");
   inputs.write_manifest = Files().write_manifest;
   ReadOptionFlags(BatchSettingOptions(), &inputs.settings);
   inputs.settings.shard = ShardOrSlurm(inputs.settings.shard);
@@ -129,12 +130,12 @@ extern const Command kBatchCommand = {
     "A batch split over machines (--shard=i/n, by default from a Slurm job array; see\n"
     "scripts/slurm/submit.sh) writes DIR/summary.shard<i>of<n>.json; --merge then builds\n"
     "DIR/summary.json from the takes' records.\n"
-    "--formats, --frames, --seconds and --out_fps, when given, are every take's (over the\n"
-    "manifest's defaults; a take's own value still wins).\n"
+    "--formats, --frames, --seconds, --out_fps and --label (raw takes: labelled first), when\n"
+    "given, are every take's (over the manifest's defaults; a take's own value still wins).\n"
     "Exit code: 0 every take done, 2 some failed or gate_failed, 1 bad manifest or flags\n"
     "(its form: JSON, keys, types, names) or an output that is an input.",
     __FILE__, RunBatchCommand,
     {SharedOptions("subject,character,out_dir,manifest,markers_glob,write_manifest"),
-     BatchSettingOptions().options(), DeliverySettingOptions().options()}};
+     BatchSettingOptions().options(), DeliverySettingOptions().options(), TakeSettingOptions().Only("label").options()}};
 
 }  // namespace mocapsolve

@@ -6,15 +6,14 @@
 
 #include "apps/command.h"
 #include "settings/foot_joint_settings.h"
+#include "settings/label_settings.h"
 #include "settings/retarget_run_settings.h"
 #include "settings/take_settings.h"
 #include "apps/common_flags.h"
 #include "apps/config_flags.h"
-#include "apps/delivery_flags.h"
 #include "apps/option_flags.h"
 #include "apps/pipeline_flags.h"
 #include "apps/progress.h"
-#include "apps/retarget_flags.h"
 #include "io/comma_list.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
@@ -26,7 +25,6 @@
 #include "settings/retarget_settings.h"
 #include "settings/view_page_settings.h"
 #include "tasks/take_summary.h"
-
 
 namespace mocapsolve {
 
@@ -124,7 +122,9 @@ extern const Command kPipelineCommand = {
     "mocapsolve pipeline --subject=S.json --markers=TAKE.c3d|.trc [--character=C.glb[,C2.glb]] "
     "--out_dir=DIR [--view=auto|off|PAGE.html] [--config=pipeline.json] [--report=r.json]\n"
     "       mocapsolve pipeline --print_config [--config=pipeline.json]\n\n"
-    "Runs the take through repair (thesis ch. 3: robust reference, gap detection and Hermite\n"
+    "Labels the take's points first when the file lacks some of the subject's labels (a raw,\n"
+    "unlabelled capture; --label=auto|never|always and the label options, as `mocapsolve label`),\n"
+    "then runs it through repair (thesis ch. 3: robust reference, gap detection and Hermite\n"
     "refill, re-solve), optional multiresolution filtering (--filter_levels), and retargeting\n"
     "onto each character (thesis ch. 4, the character's own mesh bound to the subject's\n"
     "skeleton), then checks the quality gate. Writes DIR/repaired.c3d (or .trc),\n"
@@ -144,6 +144,7 @@ extern const Command kPipelineCommand = {
      TakeSettingOptions().options(), RetargetRunSettingOptions().Only("animation_only").options(),
      FootJointOption().options(), RepairSolverOptions().options(),
      RepairSettingOptions().options(), RetargetSettingOptions().options(), QualityGateOptions().options(),
-     PyramidSettingOptions().options(), DeliverySettingOptions().options(), TakeViewPageOption().options()}};
+     PyramidSettingOptions().options(), DeliverySettingOptions().options(), TakeViewPageOption().options(),
+     LabelSettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -11,6 +11,7 @@
 #include "pipeline/quality_gate.h"
 #include "settings/delivery_settings.h"
 #include "settings/foot_joint_settings.h"
+#include "settings/label_settings.h"
 #include "settings/retarget_run_settings.h"
 #include "settings/take_settings.h"
 #include "settings/pyramid_settings.h"
@@ -25,7 +26,7 @@ const std::string& PipelineOptionFlags() {
       TakeSettingOptions().Names() + "," + PyramidSettingOptions().Names() + "," + QualityGateOptions().Names() + "," +
       RetargetRunSettingOptions().Only("animation_only").Names() + "," + DeliverySettingOptions().Names() + "," +
       RepairSettingOptions().Names() + "," + RepairSolverOptions().Names() + "," + RetargetSettingOptions().Names() +
-      "," + FootJointOption().Names());
+      "," + FootJointOption().Names() + "," + LabelSettingOptions().Names());
   return *names;
 }
 
@@ -35,6 +36,9 @@ Status TakePipelineOptionsFromFlags(const Skeleton& skeleton, TakePipelineOption
   TakeSettings take;
   ReadOptionFlags(TakeSettingOptions(), &take);
   options->filter_levels = take.filter_levels;
+  options->label = take.label;
+  ReadOptionFlags(LabelSettingOptions(), &options->labelling);
+  ReadOptionFlags(RepairSolverOptions(), &options->label_solver);
   if (status.ok()) status = PyramidOptionsFromFlags(take.filter_levels, &options->filter);
   if (!status.ok()) return status;
   ReadOptionFlags(QualityGateOptions(), &options->gate);

@@ -298,6 +298,24 @@ Status CheckTakeHasSubjectMarkers(const Skeleton& skeleton, const MarkerSet& mar
 
 }  // namespace
 
+Status SubjectFileTransform(const Subject& subject, const MarkerTrajectories& file, const std::string& name,
+                            MarkerFileToModel* transform) {
+  Status status = ParseAxes(subject.axes, &transform->rotation);
+  if (!status.ok()) return Status::Error("axes: " + status.message());
+  if (Status bound = CheckUnitScale(subject.marker_scale, "marker scale"); subject.marker_scale > 0.0 && !bound.ok()) {
+    return bound;
+  }
+  if (subject.marker_scale > 0.0) {
+    transform->scale = subject.marker_scale;
+  } else if (subject.marker_scale < 0.0 || !std::isfinite(subject.marker_scale)) {
+    return Status::Error("marker scale must be positive (or 0: from the units)");
+  } else {
+    status = UnitScale(file.unit, subject.skeleton.unit(), &transform->scale);
+    if (!status.ok()) return Status::Error(name + ": " + status.message());
+  }
+  return Status::Ok();
+}
+
 Status TakeForSubject(const Subject& subject, MarkerTrajectories trajectories, const std::string& markers_path,
                       MarkerTake* take) {
   MarkerTake result;
@@ -316,19 +334,8 @@ Status TakeForSubject(const Subject& subject, MarkerTrajectories trajectories, c
       }
     }
   }
-  status = ParseAxes(subject.axes, &result.transform.rotation);
-  if (!status.ok()) return Status::Error("axes: " + status.message());
-  if (Status bound = CheckUnitScale(subject.marker_scale, "marker scale"); subject.marker_scale > 0.0 && !bound.ok()) {
-    return bound;
-  }
-  if (subject.marker_scale > 0.0) {
-    result.transform.scale = subject.marker_scale;
-  } else if (subject.marker_scale < 0.0 || !std::isfinite(subject.marker_scale)) {
-    return Status::Error("marker scale must be positive (or 0: from the units)");
-  } else {
-    status = UnitScale(result.trajectories.unit, result.skeleton.unit(), &result.transform.scale);
-    if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
-  }
+  status = SubjectFileTransform(subject, result.trajectories, markers_path, &result.transform);
+  if (!status.ok()) return status;
   status = CheckTakeHasSubjectMarkers(result.skeleton, result.markers, matched, markers_path);
   if (!status.ok()) return status;
   status = GatherObservations(result.markers, matched, result.transform, &result.observed);

@@ -100,6 +100,11 @@ struct MarkerTake {
   std::vector<int> unlabelled_columns;
 };
 
+// The mapping of a marker file onto the subject's skeleton: its axes, then its marker
+// scale or (0) the file's and skeleton's units. Errors name `name` or the field.
+Status SubjectFileTransform(const Subject& subject, const MarkerTrajectories& file, const std::string& name,
+                            MarkerFileToModel* transform);
+
 // Reads the marker file at markers_path and maps it onto the subject: the label prefix
 // stripped, axes and scale applied, observed[f][m] gathered for every marker of the set
 // (an error names the ones the file lacks), and the unlabelled points kept.

@@ -11,6 +11,7 @@
 #include "io/motion_file.h"
 #include "settings/repair_settings.h"
 #include "pipeline/retarget_quality_report.h"
+#include "pipeline/take_labelling.h"
 #include "pipeline/take_view.h"
 #include "problems/marker_solve/subject_checks.h"
 #include "signal/motion_pyramid.h"
@@ -43,6 +44,10 @@ bool TakePipelineOptions::IsValid(std::string* error) const {
       *error = "filter: " + status.message();
       return false;
     }
+  }
+  if (label != "auto" && label != "never" && label != "always") {
+    *error = "label: unknown '" + label + "' (auto, never, always)";
+    return false;
   }
   return gate.IsValid(error) && retarget.IsValid(error);
 }
@@ -84,12 +89,52 @@ Status CheckCharacterFiles(const std::string& out_dir, const TakeInputs& inputs,
   return Status::Ok();
 }
 
+namespace {
+
+// The take's markers onto its subject, their points labelled first when options.label
+// says so (auto: the file lacks some of the subject's labels); *label_seconds the
+// labelling's time (0 when not labelled).
+Status ReadTakeMarkers(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
+                       const PipelineProgress& progress, double* label_seconds) {
+  *label_seconds = 0.0;
+  const Subject& subject = *inputs.subject;
+  MarkerTrajectories file;
+  Status status = ReadMarkerFile(inputs.markers_path, &file);
+  if (!status.ok()) return Status::Error("read: " + status.message());
+  const std::vector<std::string> missing = SubjectLabelsMissing(subject, file);
+  if (options.label == "always" || (options.label == "auto" && !missing.empty())) {
+    const Clock::time_point start = Clock::now();
+    TakeLabelling labelling;
+    status = LabelTakeForSubject(subject, file, inputs.markers_path, options.labelling, options.label_solver,
+                                 [&](int done, int total) {
+                                   if (progress) progress("label", done, total);
+                                 },
+                                 &labelling);
+    if (!status.ok()) return Status::Error("label: " + status.message());
+    std::string reason = "always";
+    if (options.label == "auto") {
+      reason = std::to_string(missing.size()) + " of the subject's " + std::to_string(subject.markers.num_markers()) +
+               " labels missing from the file (" + missing.front() + (missing.size() > 1 ? ", ...)" : ")");
+    }
+    result->labelling = LabellingReport(subject, labelling).Add("reason", reason);
+    result->labelled_points = labelling.points;
+    for (const MarkerLabelStats& s : labelling.details.per_marker) result->labelled_samples += s.labelled;
+    file = std::move(labelling.markers);
+    *label_seconds = SecondsSince(start);
+  }
+  status = TakeForSubject(subject, std::move(file), inputs.markers_path, &result->take);
+  if (status.ok()) return status;
+  const bool raw = options.label == "never" && !missing.empty();
+  return Status::Error("read: " + status.message() + (raw ? " (a raw capture? --label=auto labels its points first)" : ""));
+}
+
+}  // namespace
+
 Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
                        const PipelineProgress& progress) {
   if (inputs.subject == nullptr) return Status::Error("pipeline: no subject");
   std::string error;
   if (!options.IsValid(&error)) return Status::Error("pipeline options: " + error);
-  const Subject& subject = *inputs.subject;
   const Clock::time_point start = Clock::now();
   auto lap = [&](const std::string& stage, Clock::time_point since) {
     result->timings.push_back({stage, SecondsSince(since)});
@@ -97,8 +142,9 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
 
   // Read: the markers through the subject's mapping; the characters.
   Clock::time_point stage_start = Clock::now();
-  Status status = LoadTakeForSubject(subject, inputs.markers_path, &result->take);
-  if (!status.ok()) return Status::Error("read: " + status.message());
+  double label_seconds = 0.0;
+  Status status = ReadTakeMarkers(inputs, options, result, progress, &label_seconds);
+  if (!status.ok()) return status;
   const MarkerTake& take = result->take;
   const int frames = static_cast<int>(take.observed.size());
   if (frames == 0) return Status::Error("read: " + inputs.markers_path + ": the take has no frames");
@@ -125,7 +171,8 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
     }
     result->characters.push_back(std::move(output));
   }
-  lap("read", stage_start);
+  result->timings.push_back({"read", SecondsSince(stage_start) - label_seconds});
+  if (label_seconds > 0.0) result->timings.push_back({"label", label_seconds});
 
   // 1. Repair, whose re-solve is the take's solve.
   stage_start = Clock::now();
@@ -276,8 +323,14 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
       .Add("subject_markers", take.markers.num_markers())
       .Add("seconds", result.seconds)
       .Add("frames_per_second", result.seconds > 0 ? frames / result.seconds : 0.0)
-      .Add("timings", timings)
-      .Add("quality_gate", gate)
+      .Add("timings", timings);
+  // The labelling when the points were labelled first, else null.
+  if (result.labelling.Has("reason")) {
+    report.Add("labelling", result.labelling);
+  } else {
+    report.Add("labelling", JsonValue());
+  }
+  report.Add("quality_gate", gate)
       .Add("repair", repair)
       .Add("characters", characters);
   return report;

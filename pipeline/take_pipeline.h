@@ -1,7 +1,8 @@
 // One take end to end (the thesis' pipeline: marker solving, cleanup, retargeting,
 // delivery, with no person in between):
 //
-//   markers --(subject: skeleton, marker set, file mapping)--> observations
+//   markers --(labelled first when they do not carry the subject's labels: take_labelling.h)
+//           --(subject: skeleton, marker set, file mapping)--> observations
 //     1. repair (thesis ch. 3): naive solve, robust reference, gap detection and refill,
 //        re-solve; its re-solved motion is the take's solve;
 //     2. filter (optional): multiresolution low-pass of the solved motion (Huang et al.);
@@ -44,6 +45,8 @@
 #include "pipeline/quality_gate.h"
 #include "pipeline/subject.h"
 #include "settings/delivery_settings.h"
+#include "settings/label_settings.h"
+#include "settings/solver_settings.h"
 #include "problems/marker_repair/marker_repair.h"
 #include "problems/retarget/retarget_character.h"
 #include "signal/clip_delivery.h"
@@ -61,6 +64,11 @@ struct TakePipelineOptions {
   // The character files' clip: cut and resampled (signal/clip_delivery.h); checked against
   // the take's frames as soon as it is read.
   ClipDelivery delivery;
+  // Labelling the take's points first (TakeSettings::label: auto, never, always), how
+  // (the labeller's options) and with which per-frame solve.
+  std::string label = "auto";
+  LabelSettings labelling;
+  SolverSettings label_solver;
 
   bool IsValid(std::string* error) const;
 };
@@ -87,7 +95,11 @@ struct CharacterOutput {
 };
 
 struct TakeResult {
-  MarkerTake take;                    // The markers as read, with their mapping.
+  MarkerTake take;                    // The markers as read (labelled, when they were), with their mapping.
+  // When the points were labelled first: LabellingReport (pipeline/take_labelling.h) with
+  // "reason" (why: "always", or the subject's labels the file lacks); else empty.
+  JsonObject labelling;
+  int labelled_samples = 0, labelled_points = 0;  // For the console line.
   MarkerTrajectories repaired_file;   // The input file with the repaired samples.
   std::vector<std::vector<Eigen::Vector3d>> repaired;  // [frame][marker], skeleton frame (NaN = missing).
   Motion solved;                      // On the subject's skeleton (filtered if asked).

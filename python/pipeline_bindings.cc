@@ -17,6 +17,7 @@
 #include "settings/pyramid_settings.h"
 #include "settings/file_read_settings.h"
 #include "settings/retarget_run_settings.h"
+#include "settings/label_settings.h"
 #include "settings/take_settings.h"
 #include "settings/view_settings.h"
 #include "python/bindings.h"
@@ -78,7 +79,8 @@ void BindPipeline(py::module_& m) {
                "Raises ValueError (the CLI's message) if a value is invalid.");
   m.attr("DELIVERY_OPTION_NAMES") = DeliverySettingOptions().Names();
   m.def("pipeline", [](SubjectPtr subject_arg, const std::string& markers, const std::vector<std::string>& characters,
-                       const std::string& out_dir, const std::string& take_name, int filter_levels, double kernel_a,
+                       const std::string& out_dir, const std::string& take_name, int filter_levels,
+                       const std::string& label, double kernel_a,
                        double tension, bool animation_only, const std::string& view, const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");
         RepairSettings repair_settings;
@@ -86,15 +88,17 @@ void BindPipeline(py::module_& m) {
         RetargetSettings retarget_settings;
         QualityGate gate_settings;
         DeliverySettings delivery_settings;
+        LabelSettings label_settings;
         ApplyKeywords(keywords,
                       {py::cast(&repair_settings, py::return_value_policy::reference),
                        py::cast(&solver_settings, py::return_value_policy::reference),
                        py::cast(&retarget_settings, py::return_value_policy::reference),
                        py::cast(&gate_settings, py::return_value_policy::reference),
-                       py::cast(&delivery_settings, py::return_value_policy::reference)},
+                       py::cast(&delivery_settings, py::return_value_policy::reference),
+                       py::cast(&label_settings, py::return_value_policy::reference)},
                       RepairSettingOptions().Names() + "," + SolverOptions().Names() + "," +
                           RetargetSettingOptions().Names() + ",foot_joints," + QualityGateOptions().Names() + "," +
-                          DeliverySettingOptions().Names());
+                          DeliverySettingOptions().Names() + "," + LabelSettingOptions().Names());
         ThrowIfError(QualityGateOptions().Validate(gate_settings));
         CharacterFileOptions character_files;
         ThrowIfError(CharacterFilesFromSettings(delivery_settings, animation_only, &character_files));
@@ -107,6 +111,10 @@ void BindPipeline(py::module_& m) {
         retarget_settings.limit_weight = solver_settings.limit_weight;
         ThrowIfError(RetargetOptionsFromSettings(retarget_settings, &options.retarget));
         options.filter_levels = filter_levels;
+        ThrowIfError(TakeSettingOptions().Validate(TakeSettings{take_name, filter_levels, label}));
+        options.label = label;
+        options.labelling = label_settings;
+        options.label_solver = solver_settings;
         ThrowIfError(PyramidOptionsFromSettings(PyramidSettings{kernel_a, tension}, filter_levels, &options.filter));
         options.gate = gate_settings;
         ThrowIfError(ClipDeliveryFromSettings(delivery_settings, &options.delivery));
@@ -151,6 +159,7 @@ void BindPipeline(py::module_& m) {
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("characters") = std::vector<std::string>(),
       py::arg("out_dir") = "", py::arg("take_name") = DeclaredDefault(TakeSettingOptions(), "take_name"),
       py::arg("filter_levels") = DeclaredDefault(TakeSettingOptions(), "filter_levels"),
+      py::arg("label") = DeclaredDefault(TakeSettingOptions(), "label"),
       py::arg("kernel_a") = PyramidSettings().kernel_a,
       py::arg("tension") = PyramidSettings().tension, py::arg("animation_only") = DeclaredDefault(RetargetRunSettingOptions(), "animation_only"),
       py::arg("view") = "auto",
@@ -160,7 +169,10 @@ paths), check the quality gate (the gate_* keywords, a QualityGate: see below).
 take_name: the take's name in the report ('' = the marker file's stem).
 filter_levels: the multiresolution filter's levels (0 = off), with kernel_a (the Cardinal
 spline kernel's a, default 0.4) and tension (default 0).
-Keywords: the repair, solver, retarget, quality gate and delivery options.
+label: 'auto' (default) labels the take's points first, as label() does, when the file
+lacks some of the subject's labels (a raw capture); 'always'; 'never'. The label options
+(gate, min_confidence, ...; LabelSettings) are keywords too.
+Keywords: the repair, solver, retarget, quality gate, delivery and label options.
 out_dir: also write repaired markers, solved.bvh, <character>.glb and report.json there,
 and the take's page: view='auto' (default) DIR/view.html when the viewer's runtime is
 installed (else a warning), 'off' none, or a PAGE.html path (the runtime then required);

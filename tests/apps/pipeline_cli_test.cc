@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <numeric>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -14,6 +15,7 @@
 #include "io/bvh_reader.h"
 #include "io/fbx_reader.h"
 #include "io/gltf_reader.h"
+#include "io/marker_file.h"
 #include "kinematics/forward_kinematics.h"
 #include "tests/gltf_test_files.h"
 #include "tests/test_support.h"
@@ -323,6 +325,62 @@ TEST_F(PipelineCli, ViewPageDefaultAndRequired) {
   EXPECT_THAT(output, ::testing::Not(HasSubstr("warning")));
   EXPECT_FALSE(testing::FileExists(off_dir + "/view.html"));
   unsetenv("MOCAPSOLVE_VIEWER_TOOLS");
+}
+
+// A raw capture: the take's points under labels the subject does not know ("*1".."*N"),
+// in another order every frame. --label=auto (the default) labels them first, as
+// `mocapsolve label` does, and the take goes through; --label=never refuses it naming the
+// missing labels, with nothing written.
+TEST_F(PipelineCli, LabelsARawTakeFirst) {
+  MarkerTrajectories labelled;
+  ASSERT_TRUE(ReadMarkerFile(markers_, &labelled).ok());
+  const int n = labelled.num_markers();
+  std::vector<std::string> names;
+  for (int c = 0; c < n; ++c) names.push_back("*" + std::to_string(c + 1));
+  MarkerTrajectories raw(names, labelled.num_frames());
+  raw.frame_rate = labelled.frame_rate;
+  raw.unit = labelled.unit;
+  for (int f = 0; f < labelled.num_frames(); ++f) {
+    for (int c = 0; c < n; ++c) {
+      if (labelled.valid(f, c)) raw.SetSample(f, (c * 7 + f * 3) % n, labelled.position(f, c));
+    }
+  }
+  ASSERT_EQ(std::gcd(7, n), 1) << "the shuffle must be a permutation";
+  const std::string raw_path = testing::TempPath("raw.c3d");
+  ASSERT_TRUE(WriteMarkerFile(raw_path, raw).ok());
+
+  const std::string never = testing::TempPath("raw_never");
+  std::string output;
+  EXPECT_EQ(Pipeline("--markers=" + raw_path + " --out_dir=" + never + " --label=never", &output), 1);
+  EXPECT_THAT(output, HasSubstr("raw.c3d"));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  EXPECT_FALSE(FolderExists(never));
+
+  const std::string dir = testing::TempPath("raw_out");
+  ASSERT_EQ(testing::RunCli("pipeline --subject=" + subject_ + " --markers=" + raw_path + " --out_dir=" + dir +
+                                " --view=off",
+                            &output),
+            0)
+      << output;
+  EXPECT_THAT(output, HasSubstr("labelled first"));
+  EXPECT_THAT(output, HasSubstr("quality gate: pass"));
+  const std::string report = testing::ReadTextFile(dir + "/report.json");
+  EXPECT_THAT(report, HasSubstr("\"labelling\": {"));
+  EXPECT_THAT(report, HasSubstr("labels missing from the file"));
+  // The repaired take carries the subject's labels, each sample the raw file's own point.
+  MarkerTrajectories repaired;
+  ASSERT_TRUE(ReadMarkerFile(dir + "/repaired.c3d", &repaired).ok());
+  int same = 0, samples = 0;
+  for (int c = 0; c < n; ++c) {
+    const int m = repaired.FindMarker(labelled.label(c));
+    ASSERT_GE(m, 0) << labelled.label(c);
+    for (int f = 0; f < labelled.num_frames(); ++f) {
+      if (!labelled.valid(f, c)) continue;
+      ++samples;
+      same += repaired.valid(f, m) && (repaired.position(f, m) - labelled.position(f, c)).norm() < 1e-3;
+    }
+  }
+  EXPECT_GE(same, 0.95 * samples) << same << " of " << samples;
 }
 
 // Real data: CMU subject 2 calibrated once on 02_01, then 02_05 (1854 frames) onto Xbot

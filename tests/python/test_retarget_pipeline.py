@@ -161,3 +161,31 @@ def test_pipeline_formats_match_the_cli(tmp_path):
     assert not os.path.exists(os.path.join(out_batch, "walk", "Xbot.glb"))
     with pytest.raises(ValueError, match="--formats: unknown 'obj'"):
         mocapsolve.batch(markers_glob=markers, subject=subject_path, out_dir=out_batch, formats="obj")
+
+
+def test_pipeline_label_matches_the_cli(tmp_path):
+    """label= is the CLI's --label (the same declaration): with label='always' the take's points
+    are labelled first, and the repaired markers and the labelling report equal the CLI's; a bad
+    value raises the CLI's message."""
+    demo, markers = str(tmp_path / "walk.bvh"), str(tmp_path / "walk.c3d")
+    subject_path = str(tmp_path / "S.json")
+    run_cli("generate", "--demo_out=" + demo, "--frames=30", "--fps=30")
+    run_cli("markers", "--motion=" + demo, "--skeleton_units=cm", "--markerset=auto:3", "--noise_mm=0.5",
+            "--seed=3", "--out=" + markers)
+    run_cli("calibrate", "--motion=" + demo, "--skeleton_units=cm", "--markers=" + markers, "--attach=auto",
+            "--out=" + str(tmp_path / "calibrated.json"), "--out_subject=" + subject_path)
+    subject = mocapsolve.read_subject(subject_path)
+    out_py, out_cli = str(tmp_path / "py"), str(tmp_path / "cli")
+    result = mocapsolve.pipeline(subject, markers, out_dir=out_py, view="off", label="always")
+    run_cli("pipeline", "--subject=" + subject_path, "--markers=" + markers, "--out_dir=" + out_cli, "--view=off",
+            "--label=always")
+    labelling = result["report"]["labelling"]
+    assert labelling["reason"] == "always"
+    assert labelling["samples_labelled"] > 0.95 * labelling["points"]
+    with open(os.path.join(out_cli, "report.json")) as f:
+        assert json.load(f)["labelling"]["samples_labelled"] == labelling["samples_labelled"]
+    py_markers = open(os.path.join(out_py, "repaired.c3d"), "rb").read()
+    assert py_markers == open(os.path.join(out_cli, "repaired.c3d"), "rb").read()
+    assert mocapsolve.pipeline(subject, markers)["report"]["labelling"] is None  # auto: the labels match.
+    with pytest.raises(ValueError, match=r"--label: unknown 'sometimes' \(auto, never, always\)"):
+        mocapsolve.pipeline(subject, markers, label="sometimes")
