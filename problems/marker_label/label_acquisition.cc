@@ -141,8 +141,14 @@ double RefinePlacement(const Skeleton& skeleton, const MarkerSet& markers, const
   return score;
 }
 
-// The squared residual of the markers (each capped at the gate; an empty one: the gate) once the pose is
-// solved from them, warm-started at *pose (updated).
+
+// Local search over the matches: exchanges of the points of two, or cycles of three,
+// matched markers whose points lie within 3 gates of each other, each kept when the
+// solved cost drops by more than 10 % (the refinement's fixed point can hold the markers
+// of a foot or a wrist in a rotated order the rounds cannot leave), then the matches made
+// again from the polished pose.
+}  // namespace
+
 double SolvedCost(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
                   const std::vector<int>& point_of_marker, double gate, MarkerFrameSolver* solver, Pose* pose) {
   const int num_markers = markers.num_markers();
@@ -160,13 +166,6 @@ double SolvedCost(const Skeleton& skeleton, const MarkerSet& markers, const std:
   }
   return cost;
 }
-
-// Local search over the matches: exchanges of the points of two, or cycles of three,
-// matched markers whose points lie within 3 gates of each other, each kept when the
-// solved cost drops by more than 10 % (the refinement's fixed point can hold the markers
-// of a foot or a wrist in a rotated order the rounds cannot leave), then the matches made
-// again from the polished pose.
-}  // namespace
 
 bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
                    double gate, bool rematch, bool free_points, double keep_ratio, MarkerFrameSolver* solver,

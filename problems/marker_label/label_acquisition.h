@@ -86,6 +86,12 @@ bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std
                    double gate, bool rematch, bool free_points, double keep_ratio, MarkerFrameSolver* solver,
                    Pose* pose, GatedAssignment* matches);
 
+// The cost PolishMatches compares: sum over markers of min(|x_m - M_m(pose)|^2, gate^2)
+// (an empty marker: gate^2) once the pose is solved from the matched points
+// (point_of_marker[m]: an index into `points`, -1 = none), warm-started at *pose (updated).
+double SolvedCost(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
+                  const std::vector<int>& point_of_marker, double gate, MarkerFrameSolver* solver, Pose* pose);
+
 // Every marker's model position at `pose` (#M, skeleton units).
 std::vector<Eigen::Vector3d> ModelMarkerPositions(const Skeleton& skeleton, const MarkerSet& markers, const Pose& pose);
 
