@@ -222,6 +222,13 @@ struct Reference {
   MarkerTrajectories paths;
 };
 
+// A stage's per-frame data freed as soon as no later stage reads it (a long take holds
+// a dozen such arrays of one to two KB per frame).
+template <typename T>
+void Release(T* value) {
+  *value = T();
+}
+
 // Step 3: X^ from Y^ (again whenever Y^ is redone).
 void ReconstructReference(const RepairContext& ctx, Reference* reference) {
   reference->reconstructed = ReconstructMarkers(ctx.skeleton, ctx.markers, reference->motion);
@@ -754,7 +761,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   clock.Lap("Residual Model");
   // 3c. Swaps: relabel; 3d. unlabelled points labelled; then redo the naive solve where
   // the samples changed.
-  const MarkerTrajectories captured = x;
+  MarkerTrajectories captured = x;
   Observations relabelled;
   status = RelabelSamples(ctx, unlabelled, &clock, &naive, &reference, &model, &x, &relabelled, report);
   if (!status.ok()) return status;
@@ -764,18 +771,28 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   MarkerTrajectories flagged;
   status = DetectGaps(ctx, naive, reference, model, captured, x, report, &flagged);
   if (!status.ok()) return status;
-  const MarkerTrajectories unflagged = x;
+  MarkerTrajectories unflagged = x;
   x = flagged;
+  if (intermediates == nullptr) {  // Preprocessing and filling read the paths, not these.
+    Release(&reference.reconstructed);
+    Release(&model);
+  }
   clock.Lap("Gap Detection");
   // 5. Preprocessing, in the thesis' order.
   MarkerTrajectories before_small;
   PreprocessGaps(ctx, reference.paths, unflagged, captured, &x, &before_small, report);
+  Release(&captured);
   clock.Lap("Gap Preprocessing");
   // 6. Marker filling from the reference.
   status = FillMarkers(ctx, input, reference, flagged, unflagged, &before_small, &x, report);
   if (!status.ok()) return status;
   // Every sample is now valid; those never marked bad are the input's, bit for bit.
+  Release(&flagged);
+  Release(&unflagged);
+  Release(&before_small);
   *repaired = TrajectoryObservations(x);
+  Release(&x);
+  if (intermediates == nullptr) Release(&reference);  // The re-solve starts from the naive solve only.
   clock.Lap("Marker Filling");
   // 7. Re-solve.
   if (progress) progress("re-solve", 0, num_frames);
