@@ -189,6 +189,23 @@ Observations ReconstructMarkers(const Skeleton& skeleton, const MarkerSet& marke
   return out;
 }
 
+// ObservationTrajectories(markers, ReconstructMarkers(skeleton, markers, motion)), the same
+// samples, without the intermediate observations (1 KB per frame of a long take).
+MarkerTrajectories ReconstructedPaths(const Skeleton& skeleton, const MarkerSet& markers, const Motion& motion) {
+  std::vector<std::string> labels;
+  for (int m = 0; m < markers.num_markers(); ++m) labels.push_back(markers.label(m));
+  MarkerTrajectories out(labels, static_cast<int>(motion.frames.size()));
+  FkData fk(skeleton);
+  for (size_t f = 0; f < motion.frames.size(); ++f) {
+    ForwardKinematics(skeleton, motion.frames[f], &fk);
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      const Eigen::Vector3d position = markers.Position(m, fk);
+      if (position.allFinite()) out.SetSample(static_cast<int>(f), m, position);
+    }
+  }
+  return out;
+}
+
 // What every step of the repair reads: the model, the take, the options, and the defaults
 // the options select.
 struct RepairContext {
@@ -630,7 +647,7 @@ Status FillMarkers(const RepairContext& ctx, const Observations& input, const Re
     const Status status = RefitReference(ctx, input, flagged, reference.motion, &refitted);
     if (!status.ok()) return status;
     CarryUnobservedJoints(ctx, flagged, &refitted, report);
-    refit_paths = ObservationTrajectories(ctx.markers, ReconstructMarkers(ctx.skeleton, ctx.markers, refitted));
+    refit_paths = ReconstructedPaths(ctx.skeleton, ctx.markers, refitted);
   }
   const RoughRuns rough(refit, options.refit_rough_factor, *before_small, unflagged);
   if (refit && options.rough_extension_factor > 0.0) {
@@ -639,8 +656,7 @@ Status FillMarkers(const RepairContext& ctx, const Observations& input, const Re
   if (!refit) {  // Gaps are filled from X^ as solved: carry its unobserved joints first.
     Motion carried = reference.motion;
     if (CarryUnobservedJoints(ctx, flagged, &carried, report)) {
-      const MarkerTrajectories carried_paths =
-          ObservationTrajectories(ctx.markers, ReconstructMarkers(ctx.skeleton, ctx.markers, carried));
+      const MarkerTrajectories carried_paths = ReconstructedPaths(ctx.skeleton, ctx.markers, carried);
       return FillGaps(ctx, rough, refit, carried_paths, refit_paths, *before_small, x, report);
     }
   }
