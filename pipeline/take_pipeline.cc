@@ -218,8 +218,11 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
                                            if (progress) progress(stage, done, total);
                                          });
     if (!status.ok()) return Status::Error("retarget: " + output.path + ": " + status.message());
-    status = DeliverClip(output.result.clip.motion, options.delivery, &output.delivered);
-    if (!status.ok()) return Status::Error("deliver: " + output.path + ": " + status.message());
+    output.delivered_is_clip = first == 0 && last == frames - 1 && options.delivery.out_fps == 0.0;
+    if (!output.delivered_is_clip) {
+      status = DeliverClip(output.result.clip.motion, options.delivery, &output.delivered);
+      if (!status.ok()) return Status::Error("deliver: " + output.path + ": " + status.message());
+    }
     lap(stage, stage_start);
   }
 
@@ -296,8 +299,8 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
         .Add("source_foot_skating_cm_per_s", c.result.source_plant_skating_cm_s)
         .Add("result_foot_skating_cm_per_s", c.result.result_plant_skating_cm_s)
         .Add("mean_bone_angle_deg", c.result.mean_bone_angle_deg)
-        .Add("delivered_frames", c.delivered.num_frames())
-        .Add("delivered_frame_rate", c.delivered.frame_rate)
+        .Add("delivered_frames", c.delivered_motion().num_frames())
+        .Add("delivered_frame_rate", c.delivered_motion().frame_rate)
         .Add("setup_seconds", c.result.setup_seconds)
         .Add("solve_seconds", r.solve_seconds)
         .Add("quality", RetargetQualityJson(c.result.quality, failures));
@@ -391,7 +394,7 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
   GltfWriteOptions gltf;
   gltf.animation_only = character_files.animation_only;
   for (const CharacterOutput& c : result.characters) {
-    const Motion& motion = c.delivered;
+    const Motion& motion = c.delivered_motion();
     for (const std::string& format : character_files.formats) {
       if (!status.ok()) break;
       const std::string path = CharacterFormatPath(out_dir, c.path, format);

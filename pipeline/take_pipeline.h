@@ -91,7 +91,12 @@ struct CharacterOutput {
   GltfDocument document;
   GltfCharacter character;
   CharacterRetargetResult result;
-  Motion delivered;             // result.clip.motion cut and resampled as the options say.
+  // result.clip.motion cut and resampled as the options say; left empty when the options
+  // keep every frame at the take's rate (delivered_motion() is then the clip itself, not
+  // a second copy of a long take).
+  Motion delivered;
+  bool delivered_is_clip = false;
+  const Motion& delivered_motion() const { return delivered_is_clip ? result.clip.motion : delivered; }
 };
 
 struct TakeResult {

@@ -150,7 +150,7 @@ void BindPipeline(py::module_& m) {
         out["solved"] = result->solved;
         out["repaired_markers"] = std::make_shared<MarkerTrajectories>(result->repaired_file);
         py::dict retargeted;
-        for (const CharacterOutput& c : result->characters) retargeted[c.name.c_str()] = c.delivered;
+        for (const CharacterOutput& c : result->characters) retargeted[c.name.c_str()] = c.delivered_motion();
         out["characters"] = retargeted;
         out["passed"] = result->verdict.pass;
         out["failures"] = result->verdict.failures;

@@ -189,6 +189,23 @@ Observations ReconstructMarkers(const Skeleton& skeleton, const MarkerSet& marke
   return out;
 }
 
+// ObservationTrajectories(markers, ReconstructMarkers(skeleton, markers, motion)), the same
+// samples, without the intermediate observations (1 KB per frame of a long take).
+MarkerTrajectories ReconstructedPaths(const Skeleton& skeleton, const MarkerSet& markers, const Motion& motion) {
+  std::vector<std::string> labels;
+  for (int m = 0; m < markers.num_markers(); ++m) labels.push_back(markers.label(m));
+  MarkerTrajectories out(labels, static_cast<int>(motion.frames.size()));
+  FkData fk(skeleton);
+  for (size_t f = 0; f < motion.frames.size(); ++f) {
+    ForwardKinematics(skeleton, motion.frames[f], &fk);
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      const Eigen::Vector3d position = markers.Position(m, fk);
+      if (position.allFinite()) out.SetSample(static_cast<int>(f), m, position);
+    }
+  }
+  return out;
+}
+
 // What every step of the repair reads: the model, the take, the options, and the defaults
 // the options select.
 struct RepairContext {
@@ -221,6 +238,13 @@ struct Reference {
   Observations reconstructed;
   MarkerTrajectories paths;
 };
+
+// A stage's per-frame data freed as soon as no later stage reads it (a long take holds
+// a dozen such arrays of one to two KB per frame).
+template <typename T>
+void Release(T* value) {
+  *value = T();
+}
 
 // Step 3: X^ from Y^ (again whenever Y^ is redone).
 void ReconstructReference(const RepairContext& ctx, Reference* reference) {
@@ -623,7 +647,7 @@ Status FillMarkers(const RepairContext& ctx, const Observations& input, const Re
     const Status status = RefitReference(ctx, input, flagged, reference.motion, &refitted);
     if (!status.ok()) return status;
     CarryUnobservedJoints(ctx, flagged, &refitted, report);
-    refit_paths = ObservationTrajectories(ctx.markers, ReconstructMarkers(ctx.skeleton, ctx.markers, refitted));
+    refit_paths = ReconstructedPaths(ctx.skeleton, ctx.markers, refitted);
   }
   const RoughRuns rough(refit, options.refit_rough_factor, *before_small, unflagged);
   if (refit && options.rough_extension_factor > 0.0) {
@@ -632,8 +656,7 @@ Status FillMarkers(const RepairContext& ctx, const Observations& input, const Re
   if (!refit) {  // Gaps are filled from X^ as solved: carry its unobserved joints first.
     Motion carried = reference.motion;
     if (CarryUnobservedJoints(ctx, flagged, &carried, report)) {
-      const MarkerTrajectories carried_paths =
-          ObservationTrajectories(ctx.markers, ReconstructMarkers(ctx.skeleton, ctx.markers, carried));
+      const MarkerTrajectories carried_paths = ReconstructedPaths(ctx.skeleton, ctx.markers, carried);
       return FillGaps(ctx, rough, refit, carried_paths, refit_paths, *before_small, x, report);
     }
   }
@@ -754,7 +777,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   clock.Lap("Residual Model");
   // 3c. Swaps: relabel; 3d. unlabelled points labelled; then redo the naive solve where
   // the samples changed.
-  const MarkerTrajectories captured = x;
+  MarkerTrajectories captured = x;
   Observations relabelled;
   status = RelabelSamples(ctx, unlabelled, &clock, &naive, &reference, &model, &x, &relabelled, report);
   if (!status.ok()) return status;
@@ -764,18 +787,28 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   MarkerTrajectories flagged;
   status = DetectGaps(ctx, naive, reference, model, captured, x, report, &flagged);
   if (!status.ok()) return status;
-  const MarkerTrajectories unflagged = x;
+  MarkerTrajectories unflagged = x;
   x = flagged;
+  if (intermediates == nullptr) {  // Preprocessing and filling read the paths, not these.
+    Release(&reference.reconstructed);
+    Release(&model);
+  }
   clock.Lap("Gap Detection");
   // 5. Preprocessing, in the thesis' order.
   MarkerTrajectories before_small;
   PreprocessGaps(ctx, reference.paths, unflagged, captured, &x, &before_small, report);
+  Release(&captured);
   clock.Lap("Gap Preprocessing");
   // 6. Marker filling from the reference.
   status = FillMarkers(ctx, input, reference, flagged, unflagged, &before_small, &x, report);
   if (!status.ok()) return status;
   // Every sample is now valid; those never marked bad are the input's, bit for bit.
+  Release(&flagged);
+  Release(&unflagged);
+  Release(&before_small);
   *repaired = TrajectoryObservations(x);
+  Release(&x);
+  if (intermediates == nullptr) Release(&reference);  // The re-solve starts from the naive solve only.
   clock.Lap("Marker Filling");
   // 7. Re-solve.
   if (progress) progress("re-solve", 0, num_frames);

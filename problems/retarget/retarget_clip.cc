@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/rotation.h"
@@ -18,26 +20,102 @@ bool IsFootName(std::string name) {
   return name.find("foot") != std::string::npos || name.find("toe") != std::string::npos;
 }
 
-// Mean horizontal speed of the vertices while the source's are in contact (see the
-// header): `contact_positions` decide contact, `positions` give the speed.
-double FootSkating(const std::vector<Eigen::Matrix3Xd>& contact_positions,
-                   const std::vector<Eigen::Matrix3Xd>& positions, const std::vector<int>& feet,
-                   double floor_y, double contact, double height, double frame_rate, int* pairs) {
-  double sum = 0.0;
-  int count = 0;
-  for (size_t f = 1; f < positions.size(); ++f) {
-    for (int s : feet) {
-      if (contact_positions[f - 1](1, s) - floor_y >= contact ||
-          contact_positions[f](1, s) - floor_y >= contact) {
-        continue;
+// Foot skating (see the header), frame by frame: over consecutive frames (f - 1, f) and
+// the foot vertices while the source's goals of both frames are in contact, the mean
+// horizontal speed of the goals (source) and of the result's skinned vertices (result).
+class FootSkatingSums {
+ public:
+  FootSkatingSums(const Skeleton& target_skeleton, const SkinnedMesh& target_mesh, const RetargetSetup& setup,
+                  std::vector<int> feet, double contact_height, double frame_rate)
+      : skeleton_(target_skeleton),
+        mesh_(target_mesh),
+        setup_(setup),
+        feet_(std::move(feet)),
+        floor_y_(setup.target_frame.origin.y()),
+        contact_(contact_height * setup.target_frame.height),
+        speed_scale_(frame_rate),
+        height_(setup.target_frame.height),
+        fk_(target_skeleton) {}
+
+  bool active() const { return !feet_.empty() && speed_scale_ > 0.0; }
+
+  // The frame's position goals and its solved pose, in frame order.
+  void Add(const Eigen::Matrix3Xd& goals, const Pose& pose) {
+    ForwardKinematics(skeleton_, pose, &fk_);
+    ComputeSkinningTransforms(mesh_, fk_, &transforms_);
+    skinned_.resize(3, static_cast<Eigen::Index>(setup_.tracked.size()));
+    for (size_t s = 0; s < setup_.tracked.size(); ++s) {
+      skinned_.col(s) = SkinPosition(mesh_, transforms_, setup_.tracked[s].target_vertex);
+    }
+    if (frames_ > 0) {
+      for (int s : feet_) {
+        if (previous_goals_(1, s) - floor_y_ >= contact_ || goals(1, s) - floor_y_ >= contact_) continue;
+        source_sum_ += Speed(previous_goals_.col(s), goals.col(s));
+        result_sum_ += Speed(previous_skinned_.col(s), skinned_.col(s));
+        ++pairs_;
       }
-      const Eigen::Vector3d a = positions[f - 1].col(s), b = positions[f].col(s);
-      sum += std::hypot(b.x() - a.x(), b.z() - a.z()) * frame_rate / height;
-      ++count;
+    }
+    previous_goals_ = goals;
+    previous_skinned_.swap(skinned_);
+    ++frames_;
+  }
+
+  int pairs() const { return pairs_; }
+  double source() const { return pairs_ > 0 ? source_sum_ / pairs_ : 0.0; }
+  double result() const { return pairs_ > 0 ? result_sum_ / pairs_ : 0.0; }
+
+ private:
+  double Speed(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
+    return std::hypot(b.x() - a.x(), b.z() - a.z()) * speed_scale_ / height_;
+  }
+
+  const Skeleton& skeleton_;
+  const SkinnedMesh& mesh_;
+  const RetargetSetup& setup_;
+  std::vector<int> feet_;
+  double floor_y_, contact_, speed_scale_, height_;
+  FkData fk_;
+  std::vector<Eigen::Isometry3d> transforms_;
+  Eigen::Matrix3Xd skinned_, previous_skinned_, previous_goals_;
+  double source_sum_ = 0.0, result_sum_ = 0.0;
+  int pairs_ = 0, frames_ = 0;
+};
+
+// The start pose, warm start and plants against the clip and the target skeleton.
+Status CheckClipInputs(const Skeleton& target_skeleton, const RetargetClipOptions& options, const Pose& start,
+                       int nf) {
+  if (static_cast<int>(start.rotations.size()) != target_skeleton.num_joints() ||
+      start.translations.size() != start.rotations.size()) {
+    return Status::Error("retarget: the start pose does not match the target skeleton");
+  }
+  const bool warm_started = !options.warm_start.frames.empty();
+  if (!options.run_solver && !warm_started) return Status::Error("retarget: no solve and no warm start");
+  if (warm_started) {
+    if (options.warm_start.num_frames() != nf) {
+      return Status::Error("retarget: the warm start has " + std::to_string(options.warm_start.num_frames()) +
+                           " frames, the source " + std::to_string(nf));
+    }
+    for (const Pose& p : options.warm_start.frames) {
+      if (static_cast<int>(p.rotations.size()) != target_skeleton.num_joints() ||
+          p.translations.size() != p.rotations.size()) {
+        return Status::Error("retarget: the warm start does not match the target skeleton");
+      }
     }
   }
-  *pairs = count;
-  return count > 0 ? sum / count : 0.0;
+  const int np = static_cast<int>(options.solve.plant_joints.size());
+  if (static_cast<int>(options.plant_contacts.size()) != np) {
+    return Status::Error("retarget: plant contacts given for " + std::to_string(options.plant_contacts.size()) +
+                         " joints, plant joints " + std::to_string(np));
+  }
+  for (const std::vector<char>& contacts : options.plant_contacts) {
+    if (static_cast<int>(contacts.size()) != nf) {
+      return Status::Error("retarget: plant contacts do not cover the clip's frames");
+    }
+  }
+  for (int k : options.solve.plant_joints) {
+    if (k < 0 || k >= target_skeleton.num_joints()) return Status::Error("retarget: plant joint out of range");
+  }
+  return Status::Ok();
 }
 
 }  // namespace
@@ -79,57 +157,36 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
   if (!options.solve.IsValid(&error)) return Status::Error("retarget: " + error);
   if (source_motion.num_frames() == 0) return Status::Error("retarget: the source animation has no frames");
   if (setup.tracked.empty()) return Status::Error("retarget: no tracked vertices");
-  RetargetGoals goals;
-  ComputeRetargetGoals(setup, source_skeleton, source_mesh, source_motion, &goals);
-  for (const Eigen::Matrix3Xd& g : goals.positions) {
-    if (!g.allFinite()) return Status::Error("retarget: the source animation gives non-finite vertices");
-  }
+  // The goals are made frame by frame as the loop reaches them (a long clip's goals would
+  // be 2 x 3 x #tracked doubles per frame); sigma, over the whole clip, first.
+  RetargetGoalFrames goal_frames(setup, source_skeleton, source_mesh);
   RetargetClipResult out;
-  out.sigma = goals.sigma;
+  if (!goal_frames.Sigma(source_motion, &out.sigma)) {
+    return Status::Error("retarget: the source animation gives non-finite vertices");
+  }
   out.motion.frame_rate = source_motion.frame_rate;
   const int nf = source_motion.num_frames();
   const double height = setup.target_frame.height;
 
   Pose pose = options.start_pose.rotations.empty() ? RestPose(target_skeleton) : options.start_pose;
-  if (static_cast<int>(pose.rotations.size()) != target_skeleton.num_joints() ||
-      pose.translations.size() != pose.rotations.size()) {
-    return Status::Error("retarget: the start pose does not match the target skeleton");
-  }
+  const Status checked = CheckClipInputs(target_skeleton, options, pose, nf);
+  if (!checked.ok()) return checked;
   const bool warm_started = !options.warm_start.frames.empty();
-  if (!options.run_solver && !warm_started) return Status::Error("retarget: no solve and no warm start");
-  if (warm_started) {
-    if (options.warm_start.num_frames() != nf) {
-      return Status::Error("retarget: the warm start has " + std::to_string(options.warm_start.num_frames()) +
-                           " frames, the source " + std::to_string(nf));
-    }
-    for (const Pose& p : options.warm_start.frames) {
-      if (static_cast<int>(p.rotations.size()) != target_skeleton.num_joints() ||
-          p.translations.size() != p.rotations.size()) {
-        return Status::Error("retarget: the warm start does not match the target skeleton");
-      }
-    }
-  } else {
-    pose = RecenteredStartPose(target_skeleton, target_mesh, setup, goals.positions[0], pose);
-  }
+  Eigen::Matrix3Xd goal_positions, goal_normals;
+  goal_frames.Frame(source_motion.frames[0], &goal_positions, &goal_normals);
+  if (!warm_started) pose = RecenteredStartPose(target_skeleton, target_mesh, setup, goal_positions, pose);
   const int np = static_cast<int>(options.solve.plant_joints.size());
-  if (static_cast<int>(options.plant_contacts.size()) != np) {
-    return Status::Error("retarget: plant contacts given for " + std::to_string(options.plant_contacts.size()) +
-                         " joints, plant joints " + std::to_string(np));
-  }
-  for (const std::vector<char>& contacts : options.plant_contacts) {
-    if (static_cast<int>(contacts.size()) != nf) {
-      return Status::Error("retarget: plant contacts do not cover the clip's frames");
-    }
-  }
-  for (int k : options.solve.plant_joints) {
-    if (k < 0 || k >= target_skeleton.num_joints()) return Status::Error("retarget: plant joint out of range");
-  }
   Eigen::Matrix3Xd anchors = Eigen::Matrix3Xd::Zero(3, np);
   std::vector<char> anchored(np, 0), active(np, 0);
   FkData plant_fk(target_skeleton);
-  RetargetFrameSolver solver(target_skeleton, target_mesh, setup, goals.sigma, options.solve);
+  FootSkatingSums skating(target_skeleton, target_mesh, setup, FootTrackedVertices(target_skeleton, target_mesh, setup),
+                          options.contact_height, source_motion.frame_rate);
+  RetargetFrameSolver solver(target_skeleton, target_mesh, setup, out.sigma, options.solve);
+  out.motion.frames.reserve(nf);
+  out.frames.reserve(nf);
   const auto start = std::chrono::steady_clock::now();
   for (int f = 0; f < nf; ++f) {
+    if (f > 0) goal_frames.Frame(source_motion.frames[f], &goal_positions, &goal_normals);
     RetargetFrameReport report;
     bool anchor_needed = false;
     for (int p = 0; p < np; ++p) {
@@ -141,11 +198,11 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
     if (warm_started) pose = options.warm_start.frames[f];
     const int solves = !options.run_solver ? 0 : f == 0 ? std::max(1, options.first_frame_solves) : 1;
     for (int repeat = 0; repeat < solves; ++repeat) {
-      const Status status = solver.Solve(goals.positions[f], goals.normals[f], &pose, &report);
+      const Status status = solver.Solve(goal_positions, goal_normals, &pose, &report);
       if (!status.ok()) return Status::Error(status.message() + " (frame " + std::to_string(f) + ")");
     }
     if (solves == 0) {
-      TrackedVertexErrors(target_skeleton, target_mesh, setup, pose, goals.positions[f], goals.normals[f],
+      TrackedVertexErrors(target_skeleton, target_mesh, setup, pose, goal_positions, goal_normals,
                           &report.mean_position_error, &report.mean_normal_angle);
     }
     if (anchor_needed) {
@@ -164,6 +221,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
     figures.final_cost = report.final_cost;
     figures.iterations = report.iterations;
     out.frames.push_back(figures);
+    if (skating.active()) skating.Add(goal_positions, pose);
     if (progress) progress(f + 1, nf);
   }
   out.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -174,28 +232,11 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
     out.mean_final_cost += figures.final_cost / nf;
     out.max_position_error = std::max(out.max_position_error, figures.position_error);
   }
-
   // Foot skating of the source (goals) and of the result (skinned tracked vertices).
-  const std::vector<int> feet = FootTrackedVertices(target_skeleton, target_mesh, setup);
-  out.foot_vertices = static_cast<int>(feet.size());
-  if (!feet.empty() && source_motion.frame_rate > 0.0) {
-    std::vector<Eigen::Matrix3Xd> skinned(nf, Eigen::Matrix3Xd(3, setup.tracked.size()));
-    FkData fk(target_skeleton);
-    std::vector<Eigen::Isometry3d> transforms;
-    for (int f = 0; f < nf; ++f) {
-      ForwardKinematics(target_skeleton, out.motion.frames[f], &fk);
-      ComputeSkinningTransforms(target_mesh, fk, &transforms);
-      for (size_t s = 0; s < setup.tracked.size(); ++s) {
-        skinned[f].col(s) = SkinPosition(target_mesh, transforms, setup.tracked[s].target_vertex);
-      }
-    }
-    const double floor_y = setup.target_frame.origin.y();
-    const double contact = options.contact_height * height;
-    out.source_foot_skating = FootSkating(goals.positions, goals.positions, feet, floor_y, contact,
-                                          height, source_motion.frame_rate, &out.contact_pairs);
-    out.result_foot_skating = FootSkating(goals.positions, skinned, feet, floor_y, contact, height,
-                                          source_motion.frame_rate, &out.contact_pairs);
-  }
+  out.foot_vertices = static_cast<int>(FootTrackedVertices(target_skeleton, target_mesh, setup).size());
+  out.contact_pairs = skating.pairs();
+  out.source_foot_skating = skating.source();
+  out.result_foot_skating = skating.result();
   *result = std::move(out);
   return Status::Ok();
 }

@@ -142,43 +142,85 @@ Status BuildRetargetSetup(const SkinnedMesh& source_mesh, const Skeleton& target
   return Status::Ok();
 }
 
+RetargetGoalFrames::RetargetGoalFrames(const RetargetSetup& setup, const Skeleton& source_skeleton,
+                                       const SkinnedMesh& source_mesh)
+    : setup_(setup),
+      skeleton_(source_skeleton),
+      mesh_(source_mesh),
+      turn_(setup.target_frame.facing.transpose() * setup.source_frame.facing),
+      fk_(source_skeleton) {}
+
+void RetargetGoalFrames::Frame(const Pose& source_pose, Eigen::Matrix3Xd* positions, Eigen::Matrix3Xd* normals) {
+  const int nt = static_cast<int>(setup_.tracked.size());
+  positions->resize(3, nt);
+  if (normals != nullptr) normals->resize(3, nt);
+  ForwardKinematics(skeleton_, source_pose, &fk_);
+  ComputeSkinningTransforms(mesh_, fk_, &transforms_);
+  for (int s = 0; s < nt; ++s) {
+    const int v = setup_.tracked[s].source_vertex;
+    positions->col(s) = setup_.target_frame.origin +
+                        setup_.scale * (turn_ * (SkinPosition(mesh_, transforms_, v) - setup_.source_frame.origin));
+    if (normals == nullptr) continue;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (int k = mesh_.weight_begin(v); k < mesh_.weight_end(v); ++k) {
+      normal += mesh_.weight(k) * (transforms_[mesh_.weight_joint(k)].linear() * setup_.tracked[s].rest_normal);
+    }
+    normals->col(s) = turn_ * normal;
+  }
+}
+
+namespace {
+
+// sqrt(sum |g - mean|^2 / (3 N)) from the sum of the goals and the sum of squares about
+// the mean; the target height when the goals do not spread.
+double GoalSigma(double squares, double count, double height) {
+  const double sigma = count > 0 ? std::sqrt(squares / (3.0 * count)) : 0.0;
+  return sigma > 0.0 ? sigma : height;
+}
+
+}  // namespace
+
+bool RetargetGoalFrames::Sigma(const Motion& source_motion, double* sigma) {
+  const int nf = source_motion.num_frames();
+  const double count = static_cast<double>(nf) * setup_.tracked.size();
+  Eigen::Matrix3Xd positions;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int f = 0; f < nf; ++f) {
+    Frame(source_motion.frames[f], &positions, nullptr);
+    if (!positions.allFinite()) return false;
+    for (Eigen::Index s = 0; s < positions.cols(); ++s) sum += positions.col(s);
+  }
+  double squares = 0.0;
+  if (count > 0) {
+    const Eigen::Vector3d mean = sum / count;
+    for (int f = 0; f < nf; ++f) {
+      Frame(source_motion.frames[f], &positions, nullptr);
+      squares += (positions.colwise() - mean).squaredNorm();
+    }
+  }
+  *sigma = GoalSigma(squares, count, setup_.target_frame.height);
+  return true;
+}
+
 void ComputeRetargetGoals(const RetargetSetup& setup, const Skeleton& source_skeleton,
                           const SkinnedMesh& source_mesh, const Motion& source_motion,
                           RetargetGoals* goals) {
-  const int nt = static_cast<int>(setup.tracked.size());
   const int nf = source_motion.num_frames();
-  // Target world from source world: face the source the way the target faces.
-  const Eigen::Matrix3d turn = setup.target_frame.facing.transpose() * setup.source_frame.facing;
-  goals->positions.assign(nf, Eigen::Matrix3Xd(3, nt));
-  goals->normals.assign(nf, Eigen::Matrix3Xd(3, nt));
-  FkData fk(source_skeleton);
-  std::vector<Eigen::Isometry3d> transforms;
+  goals->positions.resize(nf);
+  goals->normals.resize(nf);
+  RetargetGoalFrames frames(setup, source_skeleton, source_mesh);
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int f = 0; f < nf; ++f) {
-    ForwardKinematics(source_skeleton, source_motion.frames[f], &fk);
-    ComputeSkinningTransforms(source_mesh, fk, &transforms);
-    for (int s = 0; s < nt; ++s) {
-      const int v = setup.tracked[s].source_vertex;
-      goals->positions[f].col(s) =
-          setup.target_frame.origin +
-          setup.scale * (turn * (SkinPosition(source_mesh, transforms, v) - setup.source_frame.origin));
-      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-      for (int k = source_mesh.weight_begin(v); k < source_mesh.weight_end(v); ++k) {
-        normal += source_mesh.weight(k) *
-                  (transforms[source_mesh.weight_joint(k)].linear() * setup.tracked[s].rest_normal);
-      }
-      goals->normals[f].col(s) = turn * normal;
-      sum += goals->positions[f].col(s);
-    }
+    frames.Frame(source_motion.frames[f], &goals->positions[f], &goals->normals[f]);
+    for (Eigen::Index s = 0; s < goals->positions[f].cols(); ++s) sum += goals->positions[f].col(s);
   }
-  const double count = static_cast<double>(nf) * nt;
+  const double count = static_cast<double>(nf) * setup.tracked.size();
   double squares = 0.0;
   if (count > 0) {
     const Eigen::Vector3d mean = sum / count;
     for (int f = 0; f < nf; ++f) squares += (goals->positions[f].colwise() - mean).squaredNorm();
   }
-  const double sigma = count > 0 ? std::sqrt(squares / (3.0 * count)) : 0.0;
-  goals->sigma = sigma > 0.0 ? sigma : setup.target_frame.height;
+  goals->sigma = GoalSigma(squares, count, setup.target_frame.height);
 }
 
 }  // namespace mocapsolve

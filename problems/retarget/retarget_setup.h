@@ -42,7 +42,9 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
+#include "kinematics/forward_kinematics.h"
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
 #include "kinematics/skinned_mesh.h"
@@ -121,6 +123,28 @@ struct RetargetGoals {
 void ComputeRetargetGoals(const RetargetSetup& setup, const Skeleton& source_skeleton,
                           const SkinnedMesh& source_mesh, const Motion& source_motion,
                           RetargetGoals* goals);
+
+// The same goals one frame at a time, for clips too long to hold every frame's goals
+// (2 x 3 x #tracked doubles per frame): Frame(pose) gives exactly ComputeRetargetGoals'
+// columns for a frame of that pose, and Sigma(motion) exactly its sigma, from two passes
+// over the frames (the sum, then the squares about the mean) without storing them.
+// Keeps references to its arguments; one per thread.
+class RetargetGoalFrames {
+ public:
+  RetargetGoalFrames(const RetargetSetup& setup, const Skeleton& source_skeleton, const SkinnedMesh& source_mesh);
+  // normals may be null (positions only).
+  void Frame(const Pose& source_pose, Eigen::Matrix3Xd* positions, Eigen::Matrix3Xd* normals);
+  // false (sigma untouched) when a frame's position goals are not all finite.
+  bool Sigma(const Motion& source_motion, double* sigma);
+
+ private:
+  const RetargetSetup& setup_;
+  const Skeleton& skeleton_;
+  const SkinnedMesh& mesh_;
+  Eigen::Matrix3d turn_;  // Target world from source world: face the way the target faces.
+  FkData fk_;
+  std::vector<Eigen::Isometry3d> transforms_;
+};
 
 }  // namespace mocapsolve
 

@@ -4,6 +4,7 @@
 #include "problems/retarget/retarget_setup.h"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -138,6 +139,33 @@ TEST_F(RetargetSetupTest, GoalsAreTheSourceScaledIntoTheTarget) {
     EXPECT_LT((goals.positions[f] - big_goals.positions[f]).cwiseAbs().maxCoeff(), 1e-9);
     EXPECT_LT((goals.normals[f] - big_goals.normals[f]).cwiseAbs().maxCoeff(), 1e-12);
   }
+}
+
+// Frame by frame (a long clip's goals are not held): the same columns and the same sigma,
+// bit for bit, as the whole clip's.
+TEST_F(RetargetSetupTest, GoalsFrameByFrameEqualTheWholeClips) {
+  const Skeleton big_skeleton = ScaleSkeleton(skeleton_, 1.5);
+  const SkinnedMesh big = MakeCylinderCharacter(big_skeleton);
+  RetargetSetup setup;
+  ASSERT_TRUE(BuildRetargetSetup(mesh_, big_skeleton, big, RetargetSetupOptions(), &setup).ok());
+  const Motion walk = MakeDemoWalk(skeleton_, 12, 30.0);
+  RetargetGoals goals;
+  ComputeRetargetGoals(setup, skeleton_, mesh_, walk, &goals);
+  RetargetGoalFrames frames(setup, skeleton_, mesh_);
+  double sigma = 0.0;
+  ASSERT_TRUE(frames.Sigma(walk, &sigma));
+  EXPECT_EQ(sigma, goals.sigma);
+  Eigen::Matrix3Xd positions, normals, positions_only;
+  for (int f = walk.num_frames() - 1; f >= 0; --f) {  // Any order: nothing carried over.
+    frames.Frame(walk.frames[f], &positions, &normals);
+    EXPECT_TRUE(positions == goals.positions[f]) << f;
+    EXPECT_TRUE(normals == goals.normals[f]) << f;
+    frames.Frame(walk.frames[f], &positions_only, nullptr);
+    EXPECT_TRUE(positions_only == goals.positions[f]) << f;
+  }
+  Motion broken = walk;
+  broken.frames[3].translations[0].x() = std::nan("");
+  EXPECT_FALSE(frames.Sigma(broken, &sigma));
 }
 
 }  // namespace
