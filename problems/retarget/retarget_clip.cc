@@ -124,6 +124,18 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
   for (int k : options.solve.plant_joints) {
     if (k < 0 || k >= target_skeleton.num_joints()) return Status::Error("retarget: plant joint out of range");
   }
+  const bool limbs_on = options.solve.limb_direction_weight > 0.0 && !options.solve.limbs.empty();
+  if (limbs_on) {
+    if (static_cast<int>(options.limb_goals.size()) != nf) {
+      return Status::Error("retarget: limb goals given for " + std::to_string(options.limb_goals.size()) +
+                           " frames, the source has " + std::to_string(nf));
+    }
+    for (const Eigen::Matrix3Xd& g : options.limb_goals) {
+      if (g.cols() != static_cast<int>(options.solve.limbs.size()) || !g.allFinite()) {
+        return Status::Error("retarget: limb goals do not match the limbs or are not finite");
+      }
+    }
+  }
   Eigen::Matrix3Xd anchors = Eigen::Matrix3Xd::Zero(3, np);
   std::vector<char> anchored(np, 0), active(np, 0);
   FkData plant_fk(target_skeleton);
@@ -138,6 +150,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
       anchor_needed |= options.plant_contacts[p][f] && !anchored[p];
     }
     if (np > 0) solver.SetPlants(anchors, active);
+    if (limbs_on) solver.SetLimbGoals(options.limb_goals[f]);
     if (warm_started) pose = options.warm_start.frames[f];
     const int solves = !options.run_solver ? 0 : f == 0 ? std::max(1, options.first_frame_solves) : 1;
     for (int repeat = 0; repeat < solves; ++repeat) {

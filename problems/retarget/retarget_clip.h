@@ -57,6 +57,10 @@ struct RetargetClipOptions {
   // pose's non-root translations are kept (the solve moves rotations and the root only).
   // Empty: frame f starts from frame f - 1's solution.
   Motion warm_start;
+  // Limb directions (solve.limbs, solve.limb_direction_weight > 0): per frame the goal
+  // directions of the limbs, 3 x #solve.limbs, unit, target world (RetargetFrameSolver::
+  // SetLimbGoals). Required then, one per source frame; unused otherwise.
+  std::vector<Eigen::Matrix3Xd> limb_goals;
   // false: no solve, the warm start is the answer (its figures are measured as they are;
   // final_cost and iterations 0). Requires a warm start.
   bool run_solver = true;
