@@ -159,7 +159,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
     }
     if (solves == 0) {
       TrackedVertexErrors(target_skeleton, target_mesh, setup, pose, goals.positions[f], goals.normals[f],
-                          &report.mean_position_error, &report.mean_normal_angle);
+                          &report.mean_position_error, &report.mean_normal_angle, &report.mean_effector_error);
     }
     if (anchor_needed) {
       ForwardKinematics(target_skeleton, pose, &plant_fk);
@@ -174,6 +174,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
     RetargetFrameFigures figures;
     figures.position_error = report.mean_position_error / height;
     figures.normal_error_deg = RadToDeg(report.mean_normal_angle);
+    figures.effector_error = report.mean_effector_error / height;
     figures.final_cost = report.final_cost;
     figures.iterations = report.iterations;
     out.frames.push_back(figures);
@@ -184,6 +185,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
   for (const RetargetFrameFigures& figures : out.frames) {
     out.mean_position_error += figures.position_error / nf;
     out.mean_normal_error_deg += figures.normal_error_deg / nf;
+    out.mean_effector_error += figures.effector_error / nf;
     out.mean_final_cost += figures.final_cost / nf;
     out.max_position_error = std::max(out.max_position_error, figures.position_error);
   }

@@ -69,6 +69,7 @@ struct RetargetClipOptions {
 struct RetargetFrameFigures {
   double position_error = 0.0;  // Fraction of target height.
   double normal_error_deg = 0.0;
+  double effector_error = 0.0;  // Position-tracked vertices only, fraction of target height.
   double final_cost = 0.0;
   int iterations = 0;
 };
@@ -80,6 +81,7 @@ struct RetargetClipResult {
   double mean_position_error = 0.0;  // Fraction of target height, over frames.
   double max_position_error = 0.0;
   double mean_normal_error_deg = 0.0;
+  double mean_effector_error = 0.0;  // Position-tracked vertices (end effectors), fraction of height.
   double mean_final_cost = 0.0;  // 1/2 |r|^2 after each frame's solve, averaged.
   int foot_vertices = 0;
   int contact_pairs = 0;  // (vertex, frame pair)s in contact.

@@ -84,22 +84,27 @@ ceres::Solver::Options DefaultRetargetCeresOptions() {
 void TrackedVertexErrors(const Skeleton& skeleton, const SkinnedMesh& mesh,
                          const RetargetSetup& setup, const Pose& pose,
                          const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
-                         double* mean_position_error, double* mean_normal_angle) {
+                         double* mean_position_error, double* mean_normal_angle,
+                         double* mean_effector_error) {
   FkData fk(skeleton);
   ForwardKinematics(skeleton, pose, &fk);
   std::vector<Eigen::Isometry3d> transforms;
   ComputeSkinningTransforms(mesh, fk, &transforms);
-  double position = 0.0, angle = 0.0;
+  double position = 0.0, angle = 0.0, effector = 0.0;
+  int effectors = 0;
   const int nt = static_cast<int>(setup.tracked.size());
   for (int s = 0; s < nt; ++s) {
     const int v = setup.tracked[s].target_vertex;
-    position += (SkinPosition(mesh, transforms, v) - goal_positions.col(s)).norm();
+    const double distance = (SkinPosition(mesh, transforms, v) - goal_positions.col(s)).norm();
+    position += distance;
+    if (setup.tracked[s].track_position) effector += distance, ++effectors;
     const Eigen::Vector3d n = SkinNormal(mesh, transforms, v);
     const Eigen::Vector3d m = goal_normals.col(s);
     angle += std::atan2(n.cross(m).norm(), n.dot(m));
   }
   *mean_position_error = nt > 0 ? position / nt : 0.0;
   *mean_normal_angle = nt > 0 ? angle / nt : 0.0;
+  if (mean_effector_error != nullptr) *mean_effector_error = effectors > 0 ? effector / effectors : 0.0;
 }
 
 class RetargetFrameSolver::Impl {
@@ -267,7 +272,7 @@ class RetargetFrameSolver::Impl {
     if (!translation_.allFinite()) return Status::Error("retarget: the solve produced a non-finite pose");
     if (report != nullptr) {
       TrackedVertexErrors(skeleton_, mesh_, setup_, *pose, goal_positions, goal_normals,
-                          &result.mean_position_error, &result.mean_normal_angle);
+                          &result.mean_position_error, &result.mean_normal_angle, &result.mean_effector_error);
       *report = result;
     }
     return Status::Ok();

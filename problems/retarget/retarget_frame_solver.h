@@ -107,6 +107,8 @@ struct RetargetFrameReport {
   int iterations = 0;
   double mean_position_error = 0.0;  // Mean |v - g| over all tracked vertices, target units.
   double mean_normal_angle = 0.0;    // Mean angle between n and m (radians), all tracked.
+  double mean_effector_error = 0.0;  // Mean |v - g| over the position-tracked ones (hands, feet,
+                                     // head: the end effectors), target units; 0 if none.
 };
 
 class RetargetFrameSolver {
@@ -146,11 +148,13 @@ class RetargetFrameSolver {
 };
 
 // Mean |v - g| (target units) and mean normal angle (radians) of the tracked vertices at a
-// pose, all of them whatever their mask.
+// pose, all of them whatever their mask; optionally the mean |v - g| of the position-tracked
+// ones only (the end effectors; 0 when there are none).
 void TrackedVertexErrors(const Skeleton& skeleton, const SkinnedMesh& mesh,
                          const RetargetSetup& setup, const Pose& pose,
                          const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
-                         double* mean_position_error, double* mean_normal_angle);
+                         double* mean_position_error, double* mean_normal_angle,
+                         double* mean_effector_error = nullptr);
 
 }  // namespace mocapsolve
 
