@@ -210,19 +210,23 @@ void BM_RetargetSkeletonOnly(benchmark::State& state) {
   const RetargetCharacter target_view = {&xbot.skeleton, &xbot.mesh, xbot.bind_pose, xbot.rest_pose};
   CharacterRetargetOptions options;
   options.plant_feet = state.range(0) != 0;
+  options.clip.solve.limb_direction_weight = state.range(1) != 0 ? 2.0 : 0.0;  // retarget's default: 2.
   CharacterRetargetResult result;
   for (auto _ : state) {
     status = RetargetMotionOntoCharacter(source_view, motion, target_view, options, &result);
     if (!status.ok()) return state.SkipWithError(status.message().c_str());
   }
-  state.SetLabel(options.plant_feet ? "16_15 onto Xbot, feet planted" : "16_15 onto Xbot, no foot plants");
+  state.SetLabel(std::string(options.plant_feet ? "16_15 onto Xbot, feet planted" : "16_15 onto Xbot, no foot plants") +
+                 (state.range(1) != 0 ? ", limb directions (weight 2)" : ""));
   state.counters["solve_ms_per_frame"] = 1e3 * result.clip.solve_seconds / motion.num_frames();
   state.counters["setup_ms"] = 1e3 * result.setup_seconds;
   state.counters["vertex_error"] = result.clip.mean_position_error;
+  state.counters["limb_mean_deg"] = result.quality.limb_mean_deg;
+  state.counters["effector_error"] = result.clip.mean_effector_error;
   state.counters["skating_cm_s_source"] = result.source_plant_skating_cm_s;
   state.counters["skating_cm_s_result"] = result.result_plant_skating_cm_s;
 }
-BENCHMARK(BM_RetargetSkeletonOnly)->Arg(0)->Arg(1)->ArgName("plant")->Unit(benchmark::kMillisecond)->MinTime(0.3);
+BENCHMARK(BM_RetargetSkeletonOnly)->Args({0, 0})->Args({1, 0})->Args({1, 1})->ArgNames({"plant", "limbs"})->Unit(benchmark::kMillisecond)->MinTime(0.3);
 
 // Thesis Table 3: stage shares of one DLS iteration at 128:1.
 void BM_RetargetStages(benchmark::State& state) {

@@ -45,6 +45,11 @@ const OptionGroup<RetargetSettings>& RetargetSettingOptions() {
            "source vertex's skinning (true) or the source's skinned normal itself (false, eq. 16).")
       .Add(&S::normal_weight, "normal_weight", "",
            "Weight of the normal residuals (positions: 1 per sigma).")
+      .Add(&S::limb_direction_weight, "limb_direction_weight", "1/rad",
+           "Weight of the eight limbs (upper arms, forearms, thighs, shins) pointing as the source's do "
+           "(per unit of direction difference, ~ per radian; normals have 1), against the vertex tracking: "
+           "higher follows the source's limb directions more and its end-effector positions less "
+           "(docs/retargeting.md, \"Limb directions\"); 0 = off.", 0)
       .Add(&S::smoothness, "smoothness", "1/rad",
            "Weight of a pull toward the previous frame (per radian); 0 = off.")
       .Add(&S::contact_height, "contact_height", "target heights",
@@ -143,6 +148,7 @@ Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRe
   solve.iterations = settings.iterations;
   solve.lambda = settings.lambda;
   solve.normal_weight = settings.normal_weight;
+  solve.limb_direction_weight = settings.limb_direction_weight;
   solve.smoothness_weight = settings.smoothness;
   solve.limit_weight = settings.limit_weight;
   solve.plant_weight = settings.plant_weight;

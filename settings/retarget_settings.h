@@ -32,6 +32,7 @@ struct RetargetSettings {
   double mapping_normal_weight = 0.0;
   bool transfer_normals = true;
   double normal_weight = 1.0;
+  double limb_direction_weight = 2.0;  // Per unit of direction difference; 0 = off.
   double smoothness = 0.0;
   double contact_height = 0.02;
   double ceres_trust_radius = 1.0;

@@ -106,6 +106,7 @@ JsonObject RetargetReportJson(const RetargetInputs& inputs, const CharacterRetar
       .Add("mean_position_error_fraction_of_height", result.mean_position_error)
       .Add("max_position_error_fraction_of_height", result.max_position_error)
       .Add("mean_normal_error_deg", result.mean_normal_error_deg)
+      .Add("mean_effector_error_fraction_of_height", result.mean_effector_error)
       .Add("mean_final_cost", result.mean_final_cost)
       .Add("foot_vertices", result.foot_vertices)
       .Add("foot_contact_pairs", result.contact_pairs)

@@ -8,6 +8,7 @@
 
 #include "kinematics/forward_kinematics.h"
 #include "problems/edit_propagation/foot_contacts.h"
+#include "problems/retarget/limb_goals.h"
 #include "problems/retarget/own_skeleton.h"
 #include "problems/retarget/skeleton_binding.h"
 
@@ -122,6 +123,24 @@ void MeasurePlantSkating(const Skeleton& target_skeleton, const Motion& motion, 
   }
 }
 
+// The limb direction term (limb_goals.h) when its weight is on and the clip is solved:
+// the target's limbs and their goals per frame (noted); off otherwise.
+void SetLimbGoals(const Skeleton& source, const Motion& motion, const Skeleton& target, const Pose& target_rest,
+                  const CharacterRetargetResult& out, RetargetClipOptions* clip, std::vector<std::string>* notes) {
+  clip->solve.limbs.clear();
+  clip->limb_goals.clear();
+  if (!(clip->solve.limb_direction_weight > 0.0) || !clip->run_solver) return;
+  LimbGoals goals = ComputeLimbGoals(out.joint_map, source, motion, target, target_rest, out.setup);
+  if (goals.limbs.empty()) {
+    notes->push_back("limb directions: no limb found on both skeletons, the term is off");
+    return;
+  }
+  clip->solve.limbs = goals.limbs;
+  clip->limb_goals = std::move(goals.directions);
+  notes->push_back(std::to_string(goals.limbs.size()) + " limbs asked to point as the source's (weight " +
+                   Format("%g", clip->solve.limb_direction_weight) + ")");
+}
+
 }  // namespace
 
 bool CharacterRetargetOptions::IsValid(std::string* error) const {
@@ -226,6 +245,7 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
     out.plant_joints.push_back(target_skeleton.name(t));
   }
   out.contact_samples = contacts.ContactSamples();  // 0 without contacts.
+  SetLimbGoals(*source.skeleton, motion, target_skeleton, target_rest, out, &clip, &out.notes);
   out.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   status = RetargetClip(*source.skeleton, *source_mesh, motion, target_skeleton, *target.mesh, out.setup, clip,
                         &out.clip, progress);

@@ -23,6 +23,10 @@
 // the vertex tracking is not run (its figures are measured at that motion), nor the foot
 // plants (the transfer adds no skating), and the notes say so.
 //
+// Limb directions (options.clip.solve.limb_direction_weight > 0, the clip solved): the
+// eight limbs found on both sides are asked to point as the source's do (limb_goals.h,
+// LimbDirectionResidual), against the vertex tracking; the notes say how many.
+//
 // Foot plants (options.plant_feet): contacts of the source's foot joints (AutoFootJoints,
 // or options.foot_joints) by DetectFootContacts (edit_propagation/foot_contacts.h): height
 // above the joint's lowest point <= contact_height * h_s and speed <= contact_speed * h_s

@@ -115,6 +115,18 @@ Status CheckClipInputs(const Skeleton& target_skeleton, const RetargetClipOption
   for (int k : options.solve.plant_joints) {
     if (k < 0 || k >= target_skeleton.num_joints()) return Status::Error("retarget: plant joint out of range");
   }
+  const bool limbs_on = options.solve.limb_direction_weight > 0.0 && !options.solve.limbs.empty();
+  if (limbs_on) {
+    if (static_cast<int>(options.limb_goals.size()) != nf) {
+      return Status::Error("retarget: limb goals given for " + std::to_string(options.limb_goals.size()) +
+                           " frames, the source has " + std::to_string(nf));
+    }
+    for (const Eigen::Matrix3Xd& g : options.limb_goals) {
+      if (g.cols() != static_cast<int>(options.solve.limbs.size()) || !g.allFinite()) {
+        return Status::Error("retarget: limb goals do not match the limbs or are not finite");
+      }
+    }
+  }
   return Status::Ok();
 }
 
@@ -176,6 +188,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
   goal_frames.Frame(source_motion.frames[0], &goal_positions, &goal_normals);
   if (!warm_started) pose = RecenteredStartPose(target_skeleton, target_mesh, setup, goal_positions, pose);
   const int np = static_cast<int>(options.solve.plant_joints.size());
+  const bool limbs_on = options.solve.limb_direction_weight > 0.0 && !options.solve.limbs.empty();
   Eigen::Matrix3Xd anchors = Eigen::Matrix3Xd::Zero(3, np);
   std::vector<char> anchored(np, 0), active(np, 0);
   FkData plant_fk(target_skeleton);
@@ -195,6 +208,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
       anchor_needed |= options.plant_contacts[p][f] && !anchored[p];
     }
     if (np > 0) solver.SetPlants(anchors, active);
+    if (limbs_on) solver.SetLimbGoals(options.limb_goals[f]);
     if (warm_started) pose = options.warm_start.frames[f];
     const int solves = !options.run_solver ? 0 : f == 0 ? std::max(1, options.first_frame_solves) : 1;
     for (int repeat = 0; repeat < solves; ++repeat) {
@@ -203,7 +217,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
     }
     if (solves == 0) {
       TrackedVertexErrors(target_skeleton, target_mesh, setup, pose, goal_positions, goal_normals,
-                          &report.mean_position_error, &report.mean_normal_angle);
+                          &report.mean_position_error, &report.mean_normal_angle, &report.mean_effector_error);
     }
     if (anchor_needed) {
       ForwardKinematics(target_skeleton, pose, &plant_fk);
@@ -218,6 +232,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
     RetargetFrameFigures figures;
     figures.position_error = report.mean_position_error / height;
     figures.normal_error_deg = RadToDeg(report.mean_normal_angle);
+    figures.effector_error = report.mean_effector_error / height;
     figures.final_cost = report.final_cost;
     figures.iterations = report.iterations;
     out.frames.push_back(figures);
@@ -229,6 +244,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
   for (const RetargetFrameFigures& figures : out.frames) {
     out.mean_position_error += figures.position_error / nf;
     out.mean_normal_error_deg += figures.normal_error_deg / nf;
+    out.mean_effector_error += figures.effector_error / nf;
     out.mean_final_cost += figures.final_cost / nf;
     out.max_position_error = std::max(out.max_position_error, figures.position_error);
   }

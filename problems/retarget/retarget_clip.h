@@ -57,6 +57,10 @@ struct RetargetClipOptions {
   // pose's non-root translations are kept (the solve moves rotations and the root only).
   // Empty: frame f starts from frame f - 1's solution.
   Motion warm_start;
+  // Limb directions (solve.limbs, solve.limb_direction_weight > 0): per frame the goal
+  // directions of the limbs, 3 x #solve.limbs, unit, target world (RetargetFrameSolver::
+  // SetLimbGoals). Required then, one per source frame; unused otherwise.
+  std::vector<Eigen::Matrix3Xd> limb_goals;
   // false: no solve, the warm start is the answer (its figures are measured as they are;
   // final_cost and iterations 0). Requires a warm start.
   bool run_solver = true;
@@ -65,6 +69,7 @@ struct RetargetClipOptions {
 struct RetargetFrameFigures {
   double position_error = 0.0;  // Fraction of target height.
   double normal_error_deg = 0.0;
+  double effector_error = 0.0;  // Position-tracked vertices only, fraction of target height.
   double final_cost = 0.0;
   int iterations = 0;
 };
@@ -76,6 +81,7 @@ struct RetargetClipResult {
   double mean_position_error = 0.0;  // Fraction of target height, over frames.
   double max_position_error = 0.0;
   double mean_normal_error_deg = 0.0;
+  double mean_effector_error = 0.0;  // Position-tracked vertices (end effectors), fraction of height.
   double mean_final_cost = 0.0;  // 1/2 |r|^2 after each frame's solve, averaged.
   int foot_vertices = 0;
   int contact_pairs = 0;  // (vertex, frame pair)s in contact.

@@ -14,6 +14,7 @@
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/pose_prior_residual.h"
 #include "problems/retarget/foot_plant_residual.h"
+#include "problems/retarget/limb_direction_residual.h"
 #include "problems/retarget/tracked_vertex_residual.h"
 #include "solvers/dls_solver.h"
 #include "solvers/right_quaternion_manifold.h"
@@ -61,8 +62,12 @@ bool RetargetSolveOptions::IsValid(std::string* error) const {
   if (!(position_weight > 0.0) || !(normal_weight >= 0.0)) {
     return *error = "position weight must be > 0 and normal weight >= 0", false;
   }
-  if (!(smoothness_weight >= 0.0) || !(limit_weight >= 0.0) || !(plant_weight >= 0.0)) {
-    return *error = "smoothness, limit and plant weights must be >= 0", false;
+  if (!(smoothness_weight >= 0.0) || !(limit_weight >= 0.0) || !(plant_weight >= 0.0) ||
+      !(limb_direction_weight >= 0.0) || !std::isfinite(limb_direction_weight)) {
+    return *error = "smoothness, limit, plant and limb direction weights must be >= 0", false;
+  }
+  for (const Limb& limb : limbs) {
+    if (limb.joint < 0 || !limb.local.allFinite()) return *error = "a limb without a joint or direction", false;
   }
   if (solver == SolverKind::kCeres && !ceres.IsValid(error)) return false;
   return true;
@@ -79,22 +84,27 @@ ceres::Solver::Options DefaultRetargetCeresOptions() {
 void TrackedVertexErrors(const Skeleton& skeleton, const SkinnedMesh& mesh,
                          const RetargetSetup& setup, const Pose& pose,
                          const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
-                         double* mean_position_error, double* mean_normal_angle) {
+                         double* mean_position_error, double* mean_normal_angle,
+                         double* mean_effector_error) {
   FkData fk(skeleton);
   ForwardKinematics(skeleton, pose, &fk);
   std::vector<Eigen::Isometry3d> transforms;
   ComputeSkinningTransforms(mesh, fk, &transforms);
-  double position = 0.0, angle = 0.0;
+  double position = 0.0, angle = 0.0, effector = 0.0;
+  int effectors = 0;
   const int nt = static_cast<int>(setup.tracked.size());
   for (int s = 0; s < nt; ++s) {
     const int v = setup.tracked[s].target_vertex;
-    position += (SkinPosition(mesh, transforms, v) - goal_positions.col(s)).norm();
+    const double distance = (SkinPosition(mesh, transforms, v) - goal_positions.col(s)).norm();
+    position += distance;
+    if (setup.tracked[s].track_position) effector += distance, ++effectors;
     const Eigen::Vector3d n = SkinNormal(mesh, transforms, v);
     const Eigen::Vector3d m = goal_normals.col(s);
     angle += std::atan2(n.cross(m).norm(), n.dot(m));
   }
   *mean_position_error = nt > 0 ? position / nt : 0.0;
   *mean_normal_angle = nt > 0 ? angle / nt : 0.0;
+  if (mean_effector_error != nullptr) *mean_effector_error = effectors > 0 ? effector / effectors : 0.0;
 }
 
 class RetargetFrameSolver::Impl {
@@ -109,9 +119,10 @@ class RetargetFrameSolver::Impl {
     const int nj = skeleton.num_joints();
     const int nt = static_cast<int>(setup.tracked.size());
     const int np = static_cast<int>(options.plant_joints.size());
+    const int nl = options.limb_direction_weight > 0.0 ? static_cast<int>(options.limbs.size()) : 0;
     rotations_.assign(4 * nj, 0.0);
     reference_rotations_.assign(4 * nj, 0.0);
-    goals_.assign(nt + np, Eigen::Vector3d::Zero());
+    goals_.assign(nt + np + nl, Eigen::Vector3d::Zero());
     plant_scales_.assign(np, 0.0);
     std::vector<bool> solved(nj, false);
     for (int s = 0; s < nt; ++s) {
@@ -127,6 +138,13 @@ class RetargetFrameSolver::Impl {
       CHECK(k >= 0 && k < nj) << "plant joint " << k;
       plant_residuals_.emplace_back(new FootPlantResidual(&skeleton, k, &goals_[nt + p], &plant_scales_[p]));
       for (int j : plant_residuals_.back()->joints()) solved[j] = true;
+    }
+    for (int l = 0; l < nl; ++l) {
+      const RetargetSolveOptions::Limb& limb = options.limbs[l];
+      CHECK(limb.joint < nj) << "limb joint " << limb.joint;
+      limb_residuals_.emplace_back(new LimbDirectionResidual(&skeleton, limb.joint, limb.local,
+                                                             &goals_[nt + np + l], options.limb_direction_weight));
+      for (int j : limb_residuals_.back()->joints()) solved[j] = true;
     }
     for (int j = 0; j < nj; ++j) {
       if (solved[j]) solved_joints_.push_back(j);
@@ -177,6 +195,10 @@ class RetargetFrameSolver::Impl {
     for (int p = 0; p < np; ++p) {
       tree_->AddPointRow({{plant_residuals_[p]->joint(), 1.0, Eigen::Vector3d::Zero()}}, &goals_[nt + p], 0.0);
     }
+    for (int l = 0; l < nl; ++l) {
+      const LimbDirectionResidual& limb = *limb_residuals_[l];
+      tree_->AddDirectionRow({{limb.joint(), 1.0, limb.local()}}, &goals_[nt + np + l], limb.scale());
+    }
     if (translation_prior_) tree_->AddBlockCost(-1, translation_prior_.get());
     for (const Extra& extra : extras_) tree_->AddBlockCost(extra.joint, extra.cost.get());
     tree_->set_time_stages(options.time_stages);
@@ -194,6 +216,14 @@ class RetargetFrameSolver::Impl {
       plant_scales_[p] = active[p] ? options_.plant_weight / sigma_ : 0.0;
       tree_->SetRowScale(nt + p, plant_scales_[p]);
     }
+  }
+
+  void SetLimbGoals(const Eigen::Matrix3Xd& directions) {
+    const int nl = static_cast<int>(limb_residuals_.size());
+    if (nl == 0) return;
+    CHECK_EQ(directions.cols(), nl);
+    const size_t first = goals_.size() - nl;
+    for (int l = 0; l < nl; ++l) goals_[first + l] = directions.col(l);
   }
 
   Status Solve(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
@@ -242,7 +272,7 @@ class RetargetFrameSolver::Impl {
     if (!translation_.allFinite()) return Status::Error("retarget: the solve produced a non-finite pose");
     if (report != nullptr) {
       TrackedVertexErrors(skeleton_, mesh_, setup_, *pose, goal_positions, goal_normals,
-                          &result.mean_position_error, &result.mean_normal_angle);
+                          &result.mean_position_error, &result.mean_normal_angle, &result.mean_effector_error);
       *report = result;
     }
     return Status::Ok();
@@ -326,6 +356,11 @@ class RetargetFrameSolver::Impl {
       for (int j : residual->joints()) blocks.push_back(&rotations_[4 * j]);
       ceres_problem_->AddResidualBlock(residual.get(), nullptr, blocks);
     }
+    for (const auto& residual : limb_residuals_) {
+      std::vector<double*> blocks = {translation_.data()};
+      for (int j : residual->joints()) blocks.push_back(&rotations_[4 * j]);
+      ceres_problem_->AddResidualBlock(residual.get(), nullptr, blocks);
+    }
     if (translation_prior_) {
       ceres_problem_->AddResidualBlock(translation_prior_.get(), nullptr, translation_.data());
     }
@@ -344,6 +379,11 @@ class RetargetFrameSolver::Impl {
       dls_problem_.AddResidualBlock(residual.get(), nullptr, blocks);
     }
     for (const auto& residual : plant_residuals_) {
+      std::vector<int> blocks = {translation};
+      for (int j : residual->joints()) blocks.push_back(block[j]);
+      dls_problem_.AddResidualBlock(residual.get(), nullptr, blocks);
+    }
+    for (const auto& residual : limb_residuals_) {
       std::vector<int> blocks = {translation};
       for (int j : residual->joints()) blocks.push_back(block[j]);
       dls_problem_.AddResidualBlock(residual.get(), nullptr, blocks);
@@ -368,6 +408,7 @@ class RetargetFrameSolver::Impl {
   std::vector<std::unique_ptr<TrackedVertexResidual>> residuals_;
   std::vector<std::unique_ptr<FootPlantResidual>> plant_residuals_;
   std::vector<double> plant_scales_;  // plant_weight / sigma while planted, else 0.
+  std::vector<std::unique_ptr<LimbDirectionResidual>> limb_residuals_;
   std::unique_ptr<ceres::CostFunction> translation_prior_;
   std::vector<Extra> extras_;
   std::vector<int> solved_joints_;
@@ -398,6 +439,8 @@ Status RetargetFrameSolver::Solve(const Eigen::Matrix3Xd& goal_positions,
 void RetargetFrameSolver::SetPlants(const Eigen::Matrix3Xd& anchors, const std::vector<char>& active) {
   impl_->SetPlants(anchors, active);
 }
+
+void RetargetFrameSolver::SetLimbGoals(const Eigen::Matrix3Xd& directions) { impl_->SetLimbGoals(directions); }
 
 const RetargetStageTimes& RetargetFrameSolver::stage_times() const { return impl_->stage_times(); }
 void RetargetFrameSolver::ResetStageTimes() { impl_->ResetStageTimes(); }

@@ -17,7 +17,11 @@
 //     scale plant_weight / sigma while planted (SetPlants), 0 otherwise (the rows stay,
 //     so the problem's shape does not change from frame to frame);
 //   optional soft joint limits (JointLimitResidual, limit_weight per radian) where the
-//     target skeleton has limits (problems/marker_solve/, reused as they are).
+//     target skeleton has limits (problems/marker_solve/, reused as they are);
+//   optional limb directions: LimbDirectionResidual (limb_direction_residual.h) per
+//     options.limbs entry, 3 rows, scale limb_direction_weight, toward the goal direction
+//     of the frame (SetLimbGoals; a zero goal gives the row no gradient). Only when
+//     limb_direction_weight > 0.
 //
 // DLS (kDls, kDlsGeneric): a fixed number of iterations, every step taken (Buss), with
 //   delta = J^T (J J^T + lambda I)^-1 e   (eq. 18)   =   (J^T J + lambda I)^-1 J^T e,
@@ -67,6 +71,16 @@ struct RetargetSolveOptions {
   // at an anchor (SetPlants), each weighted plant_weight / sigma while planted.
   std::vector<int> plant_joints;
   double plant_weight = 10.0;
+  // Limb directions (LimbDirectionResidual): target joint a and the limb's unit direction
+  // in a's frame (LimbDirectionInJoint), each asked to point along its goal (SetLimbGoals)
+  // with weight limb_direction_weight (per unit of direction difference, ~ per radian);
+  // no rows when the weight is 0.
+  struct Limb {
+    int joint = -1;
+    Eigen::Vector3d local = Eigen::Vector3d::UnitY();
+  };
+  std::vector<Limb> limbs;
+  double limb_direction_weight = 0.0;
   ceres::Solver::Options ceres;    // kCeres; max_num_iterations is set from iterations.
 
   bool IsValid(std::string* error) const;
@@ -93,6 +107,8 @@ struct RetargetFrameReport {
   int iterations = 0;
   double mean_position_error = 0.0;  // Mean |v - g| over all tracked vertices, target units.
   double mean_normal_angle = 0.0;    // Mean angle between n and m (radians), all tracked.
+  double mean_effector_error = 0.0;  // Mean |v - g| over the position-tracked ones (hands, feet,
+                                     // head: the end effectors), target units; 0 if none.
 };
 
 class RetargetFrameSolver {
@@ -112,10 +128,15 @@ class RetargetFrameSolver {
   // calls (default: all off).
   void SetPlants(const Eigen::Matrix3Xd& anchors, const std::vector<char>& active);
 
+  // Goal directions of the limbs for the next Solve calls (3 x #options.limbs, unit, target
+  // world; a zero column: no pull). Ignored when the limb term is off. Default: zero.
+  void SetLimbGoals(const Eigen::Matrix3Xd& directions);
+
   const RetargetStageTimes& stage_times() const;
   void ResetStageTimes();
 
-  // The lean kernel's residual (3 #tracked, then 3 per plant joint) and tangent Jacobian in
+  // The lean kernel's residual (3 #tracked, then 3 per plant joint, then 3 per limb when
+  // the limb term is on) and tangent Jacobian in
   // the pose tangent layout of kinematic_jacobians.h (3 + 3 #J columns; unsolved joints'
   // columns zero), at `pose` with the given goals (TreeDlsSolver::Linearize). For tests.
   void Linearize(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
@@ -127,11 +148,13 @@ class RetargetFrameSolver {
 };
 
 // Mean |v - g| (target units) and mean normal angle (radians) of the tracked vertices at a
-// pose, all of them whatever their mask.
+// pose, all of them whatever their mask; optionally the mean |v - g| of the position-tracked
+// ones only (the end effectors; 0 when there are none).
 void TrackedVertexErrors(const Skeleton& skeleton, const SkinnedMesh& mesh,
                          const RetargetSetup& setup, const Pose& pose,
                          const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,
-                         double* mean_position_error, double* mean_normal_angle);
+                         double* mean_position_error, double* mean_normal_angle,
+                         double* mean_effector_error = nullptr);
 
 }  // namespace mocapsolve
 

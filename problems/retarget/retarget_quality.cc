@@ -65,12 +65,10 @@ std::vector<LimbDirections> CollectLimbDirections(const JointMap& map,
                                                   const std::vector<Vector3dVector>& source_positions,
                                                   const std::vector<Vector3dVector>& target_positions) {
   std::vector<LimbDirections> limbs;
-  for (const auto& [from, to] : HumanoidLimbs()) {
-    const int t0 = TargetJoint(map, from), t1 = TargetJoint(map, to);
-    const int s0 = SourceJoint(map, from, t0), s1 = SourceJoint(map, to, t1);
-    if (s0 < 0 || s1 < 0 || t0 < 0 || t1 < 0) continue;
+  for (const MappedLimb& mapped : MappedLimbs(map)) {
+    const int s0 = mapped.source_from, s1 = mapped.source_to, t0 = mapped.target_from, t1 = mapped.target_to;
     LimbDirections limb;
-    limb.limb = from;
+    limb.limb = mapped.limb;
     const size_t frames = std::min(source_positions.size(), target_positions.size());
     for (size_t f = 0; f < frames; ++f) {
       const Eigen::Vector3d s = source_positions[f][s1] - source_positions[f][s0];
@@ -207,6 +205,21 @@ void MeasureSelfJointError(const RetargetQualityInputs& in, const std::vector<Ve
 }
 
 }  // namespace
+
+std::vector<MappedLimb> MappedLimbs(const JointMap& map) {
+  std::vector<MappedLimb> limbs;
+  for (const auto& [from, to] : HumanoidLimbs()) {
+    MappedLimb limb;
+    limb.limb = from;
+    limb.target_from = TargetJoint(map, from);
+    limb.target_to = TargetJoint(map, to);
+    limb.source_from = SourceJoint(map, from, limb.target_from);
+    limb.source_to = SourceJoint(map, to, limb.target_to);
+    if (limb.source_from < 0 || limb.source_to < 0 || limb.target_from < 0 || limb.target_to < 0) continue;
+    limbs.push_back(limb);
+  }
+  return limbs;
+}
 
 const std::vector<std::pair<std::string, std::string>>& HumanoidLimbs() {
   static const std::vector<std::pair<std::string, std::string>> limbs = {

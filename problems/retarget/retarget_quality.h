@@ -92,6 +92,15 @@ RetargetQuality MeasureRetargetQuality(const RetargetQualityInputs& inputs);
 // The eight limbs: (role, next role), arms first.
 const std::vector<std::pair<std::string, std::string>>& HumanoidLimbs();
 
+// The joints of each limb found on both sides, as the limb measure takes them: the target's
+// role joints (the joint map's links, else the target's own roles) and the source joints
+// mapped to them (else the map's or the source's own roles). HumanoidLimbs order.
+struct MappedLimb {
+  std::string limb;  // The first role's name ("left_upper_arm", ...).
+  int source_from = -1, source_to = -1, target_from = -1, target_to = -1;
+};
+std::vector<MappedLimb> MappedLimbs(const JointMap& map);
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_PROBLEMS_RETARGET_RETARGET_QUALITY_H_
