@@ -89,11 +89,42 @@ TEST(DofQuaternionManifold, PlusJacobianOnSetMatchesOnTheSet) {
     const Eigen::Vector4d off = Eigen::Quaterniond(ExpMap(Eigen::Vector3d(0.3, 0.2, 0.1))).coeffs();
     double unused[8];
     EXPECT_FALSE(manifold.PlusJacobianOnSet(off.data(), unused));
-    if (k == 2) {  // Second angle beyond pi/2: left to PlusJacobian.
-      const double far[2] = {0.2, 2.0};
-      Eigen::Vector4d q;
-      manifold.Compose(far, q.data());
-      EXPECT_FALSE(manifold.PlusJacobianOnSet(q.data(), unused));
+    if (k == 2) {  // Second angle beyond pi/2: the same columns as PlusJacobian's.
+      for (const double t0 : {0.2, -2.5, 3.0}) {
+        for (const double t1 : {2.0, -1.7, 3.1, -3.0}) {
+          const double far[2] = {t0, t1};
+          Eigen::Vector4d q;
+          manifold.Compose(far, q.data());
+          double expected[8], got[8];
+          manifold.PlusJacobian(q.data(), expected);
+          ASSERT_TRUE(manifold.PlusJacobianOnSet(q.data(), got));
+          for (int i = 0; i < 4 * k; ++i) EXPECT_NEAR(got[i], expected[i], 1e-14);
+        }
+      }
+    }
+  }
+}
+
+// Every point of a two-axis set, the second angle up to a full half turn either way, is
+// its own projection: Plus(q, 0) = q (sign included) and small steps stay small. (With an
+// Euler decomposition alone, a second angle past pi/2 was read as another point of the
+// set: Plus(q, 0) was a different rotation, every step from there was rejected, and a
+// per-frame solve that crossed pi/2 froze for the frames after it.)
+TEST(DofQuaternionManifold, EveryPointOfTheSetIsItsOwnProjection) {
+  const std::vector<std::vector<int>> axis_lists = {{0, 1}, {1, 0}, {0, 2}, {2, 0}, {1, 2}, {2, 1}};
+  for (const auto& axes : axis_lists) {
+    DofQuaternionManifold manifold(axes);
+    for (double t0 = -3.1; t0 < 3.2; t0 += 0.31) {
+      for (double t1 = -3.1; t1 < 3.2; t1 += 0.29) {
+        const double angles[2] = {t0, t1};
+        Eigen::Vector4d q, same, moved;
+        manifold.Compose(angles, q.data());
+        const double zero[2] = {0.0, 0.0}, small[2] = {1e-3, -1e-3};
+        manifold.Plus(q.data(), zero, same.data());
+        EXPECT_LT((same - q).norm(), 1e-14) << t0 << " " << t1;
+        manifold.Plus(q.data(), small, moved.data());
+        EXPECT_LT(AngularDistance(Eigen::Quaterniond(moved), Eigen::Quaterniond(q)), 2e-3) << t0 << " " << t1;
+      }
     }
   }
 }
