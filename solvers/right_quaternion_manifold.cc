@@ -60,9 +60,10 @@ bool BeyondHalfTurn(const double* x, int a0, int a1) {
 
 // There, the angles from the rank-1 factorization of q = Q0(t0) Q1(t1):
 //   [w, v_a1; v_a0, eps v_c] = [cos(t0/2); sin(t0/2)] [cos(t1/2), sin(t1/2)],
-// exact for any point of the set (no branch, no gimbal lock) and sign-preserving:
-// Compose of the angles gives q itself. Off the set, one power step of the best rank-1
-// approximation (from its larger column).
+// exact for any point of the set (no branch, no gimbal lock), each angle then wrapped into
+// (-pi, pi] as the Euler path's are: Compose of the angles is q or -q (its w >= 0), so a
+// solve's path does not depend on the sign its start was stored with. Off the set, one
+// power step of the best rank-1 approximation (from its larger column).
 void RankOneAngles(const double* x, int a0, int a1, double* angles) {
   const int c = 3 - a0 - a1;
   const double eps = a1 == (a0 + 1) % 3 ? 1.0 : -1.0;
@@ -70,8 +71,8 @@ void RankOneAngles(const double* x, int a0, int a1, double* angles) {
   const int k = m.col(0).squaredNorm() >= m.col(1).squaredNorm() ? 0 : 1;
   const Eigen::Vector2d u = m.col(k).normalized();
   const Eigen::Vector2d v = m.transpose() * u;
-  angles[0] = 2.0 * std::atan2(u[1], u[0]);
-  angles[1] = 2.0 * std::atan2(v[1], v[0]);
+  angles[0] = std::remainder(2.0 * std::atan2(u[1], u[0]), 2.0 * kPi);
+  angles[1] = std::remainder(2.0 * std::atan2(v[1], v[0]), 2.0 * kPi);
 }
 
 }  // namespace
@@ -132,13 +133,11 @@ bool DofQuaternionManifold::PlusJacobianOnSet(const double* x, double* jacobian)
     const double eps = a1 == (a0 + 1) % 3 ? 1.0 : -1.0;  // e_a0 x e_a1 = eps e_c.
     if (std::abs(q.w() * q.vec()[c] - eps * q.vec()[a0] * q.vec()[a1]) > 1e-12) return false;
   }
-  // The projection Compose(Angles(q)) is q itself beyond a half turn of the second angle
-  // (RankOneAngles); elsewhere it has w = prod cos(t_i / 2) >= 0 (angles in (-pi, pi]):
-  // q or -q.
-  const bool beyond = k == 2 && BeyondHalfTurn(x, axes_[0], axes_[1]);
-  if (!beyond && std::abs(q.w()) <= 1e-12) return false;
+  // The projection Compose(Angles(q)) has w = prod cos(t_i / 2) >= 0 (angles in (-pi, pi],
+  // the Euler path's or, beyond a quarter turn of the second, RankOneAngles'): q or -q.
+  if (std::abs(q.w()) <= 1e-12) return false;
   Eigen::Quaterniond on_set = q;
-  if (!beyond && q.w() < 0.0) on_set.coeffs() = -on_set.coeffs();
+  if (q.w() < 0.0) on_set.coeffs() = -on_set.coeffs();
   for (int i = 0; i < k; ++i) {
     Eigen::Quaterniond axis(0.0, 0.0, 0.0, 0.0);
     axis.vec()[axes_[i]] = 0.5;

@@ -43,7 +43,7 @@ class RightQuaternionManifold : public ceres::Manifold {
 //   PlusJacobian    = [1/2 (0, e_a0) (x) q,  1/2 q (x) (0, e_a1)]   (4 x k, x y z w rows)
 // Angles(q) projects q onto the set (exact for q on it: an Euler decomposition while the
 // second angle is within pi/2, whose middle angle cannot go further; beyond it, the
-// rank-1 factorization of q's components, which keeps Plus(q, 0) = q there instead of
+// rank-1 factorization of q's components, which keeps Plus(q, 0) = +-q there instead of
 // jumping to another point of the set: a solve that stepped past pi/2 then had every
 // later step rejected and froze). For one axis this is q exp(d e_a);
 // for two it is exact, unlike restricting increments q exp(d0 e_a0 + d1 e_a1), whose
@@ -67,9 +67,8 @@ class DofQuaternionManifold : public ceres::Manifold {
   // (its w is >= 0), so the same columns from q, negated when q's w < 0. False, with
   // `jacobian` untouched, if q is off the set by more than 1e-12 (one axis: the other vector
   // components; two: w v_c - eps v_a0 v_a1, which vanishes exactly on it), or if
-  // |w| <= 1e-12 with the second angle within pi/2 (beyond it the projection is q itself).
-  // (That sign: for a stored q with w < 0 and the second angle within pi/2, Plus(q, 0) = -q,
-  // and these columns then pair with the ambient Jacobian at -q, not at q.)
+  // |w| <= 1e-12. (That sign: for a stored q with w < 0, Plus(q, 0) = -q, and these columns
+  // then pair with the ambient Jacobian at -q, not at q.)
   bool PlusJacobianOnSet(const double* x, double* jacobian) const;
 
  private:
