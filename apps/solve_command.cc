@@ -5,6 +5,7 @@
 
 #include "apps/command.h"
 #include "settings/frame_limit_settings.h"
+#include "settings/solver_agreement_settings.h"
 #include "apps/common_flags.h"
 #include "apps/option_flags.h"
 #include "apps/progress.h"
@@ -43,6 +44,7 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   FrameLimitSettings limit;
   ReadOptionFlags(FrameLimitOption(), &limit);
   config.max_frames = limit.max_frames;
+  ReadOptionFlags(SolverAgreementOptions(), &config.agreement);
   const SolverSettings& solver = config.solver;
   MarkerTake take;
   SetStage("inputs");
@@ -73,6 +75,12 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   status = RunSolve(take, config, show_progress, &result);
   if (!status.ok()) return status;
   const SequenceSolveReport& sequence = result.per_frame;
+  if (config.agreement.compare_solvers) {
+    const SolverAgreementReport& a = result.agreement;
+    std::printf("solver agreement: %d of %d frames (%.2f %%) with dls and ceres final costs within %g; %zu listed "
+                "in the report\n", a.frames_within, a.frames_compared, 100.0 * a.fraction_within, a.tolerance,
+                a.worst.size());
+  }
   if (solver.mode == "clip") {
     const ClipSolveReport& clip = result.clip;
     std::printf("clip (%s): %d parameters, %d residual blocks, %d iterations in %.3f s, cost "
@@ -135,6 +143,6 @@ extern const Command kSolveCommand = {
     "--residuals_csv the residual of every frame of the written motion (--plot draws it).",
     __FILE__, SolveMain,
     {SharedOptions("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,residuals_csv,report"),
-     FrameLimitOption().options(), SolverOptions().options(), ViewPageOption().options(), SolvePlotOption().options()}};
+     FrameLimitOption().options(), SolverOptions().options(), SolverAgreementOptions().options(), ViewPageOption().options(), SolvePlotOption().options()}};
 
 }  // namespace mocapsolve

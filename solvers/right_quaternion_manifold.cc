@@ -48,7 +48,43 @@ bool RightQuaternionManifold::MinusJacobian(const double* x, double* jacobian) c
 
 DofQuaternionManifold::DofQuaternionManifold(std::vector<int> axes) : axes_(std::move(axes)) {}
 
+namespace {
+
+// Two axes a0, a1 (c the third, e_a0 x e_a1 = eps e_c): is q's second angle beyond pi/2
+// (sin^2(t1/2) = v_a1^2 + v_c^2 above cos^2(t1/2) = w^2 + v_a0^2), where an Euler
+// decomposition (middle angle in [-pi/2, pi/2]) reads a point of the set as another one?
+bool BeyondHalfTurn(const double* x, int a0, int a1) {
+  const int c = 3 - a0 - a1;
+  return x[a1] * x[a1] + x[c] * x[c] >= x[3] * x[3] + x[a0] * x[a0] - 1e-9;
+}
+
+// There, the angles from the rank-1 factorization of q = Q0(t0) Q1(t1):
+//   [w, v_a1; v_a0, eps v_c] = [cos(t0/2); sin(t0/2)] [cos(t1/2), sin(t1/2)],
+// exact for any point of the set (no branch, no gimbal lock), each angle then wrapped into
+// (-pi, pi] as the Euler path's are: Compose of the angles is q or -q (its w >= 0), so a
+// solve's path does not depend on the sign its start was stored with. Off the set, one
+// power step of the best rank-1 approximation (from its larger column).
+void RankOneAngles(const double* x, int a0, int a1, double* angles) {
+  const int c = 3 - a0 - a1;
+  const double eps = a1 == (a0 + 1) % 3 ? 1.0 : -1.0;
+  const Eigen::Matrix2d m = (Eigen::Matrix2d() << x[3], x[a1], x[a0], eps * x[c]).finished();
+  const int k = m.col(0).squaredNorm() >= m.col(1).squaredNorm() ? 0 : 1;
+  const Eigen::Vector2d u = m.col(k).normalized();
+  const Eigen::Vector2d v = m.transpose() * u;
+  angles[0] = std::remainder(2.0 * std::atan2(u[1], u[0]), 2.0 * kPi);
+  angles[1] = std::remainder(2.0 * std::atan2(v[1], v[0]), 2.0 * kPi);
+}
+
+}  // namespace
+
 void DofQuaternionManifold::Angles(const double* x, double* angles) const {
+  if (axes_.size() == 2 && BeyondHalfTurn(x, axes_[0], axes_[1])) {
+    double unit[4];
+    const double norm = Eigen::Map<const Eigen::Vector4d>(x).norm();
+    for (int i = 0; i < 4; ++i) unit[i] = x[i] / norm;
+    RankOneAngles(unit, axes_[0], axes_[1], angles);
+    return;
+  }
   AnglesAboutAxes(Eigen::Quaterniond(Eigen::Map<const Eigen::Quaterniond>(x)), axes_, angles);
 }
 
@@ -96,14 +132,9 @@ bool DofQuaternionManifold::PlusJacobianOnSet(const double* x, double* jacobian)
     const int a0 = axes_[0], a1 = axes_[1], c = 3 - a0 - a1;
     const double eps = a1 == (a0 + 1) % 3 ? 1.0 : -1.0;  // e_a0 x e_a1 = eps e_c.
     if (std::abs(q.w() * q.vec()[c] - eps * q.vec()[a0] * q.vec()[a1]) > 1e-12) return false;
-    // Angles puts the second angle in [-pi/2, pi/2] (an Euler decomposition's middle
-    // angle): beyond it (sin^2(t1/2) = v_a1^2 + v_c^2 >= cos^2(t1/2) = w^2 + v_a0^2) the
-    // projection is another point of the set, so leave it to PlusJacobian.
-    const double s1 = q.vec()[a1] * q.vec()[a1] + q.vec()[c] * q.vec()[c];
-    if (s1 >= q.w() * q.w() + q.vec()[a0] * q.vec()[a0] - 1e-9) return false;
   }
-  // The projection Compose(Angles(q)) has w = prod cos(t_i / 2) >= 0 (angles in (-pi, pi]):
-  // it is q or -q.
+  // The projection Compose(Angles(q)) has w = prod cos(t_i / 2) >= 0 (angles in (-pi, pi],
+  // the Euler path's or, beyond a quarter turn of the second, RankOneAngles'): q or -q.
   if (std::abs(q.w()) <= 1e-12) return false;
   Eigen::Quaterniond on_set = q;
   if (q.w() < 0.0) on_set.coeffs() = -on_set.coeffs();

@@ -41,7 +41,11 @@ class RightQuaternionManifold : public ceres::Manifold {
 //   Plus(q, delta)  = Compose(Angles(q) + delta)
 //   Minus(y, x)     = wrap(Angles(y) - Angles(x)) into (-pi, pi]
 //   PlusJacobian    = [1/2 (0, e_a0) (x) q,  1/2 q (x) (0, e_a1)]   (4 x k, x y z w rows)
-// Angles(q) projects q onto the set (exact for q on it). For one axis this is q exp(d e_a);
+// Angles(q) projects q onto the set (exact for q on it: an Euler decomposition while the
+// second angle is within pi/2, whose middle angle cannot go further; beyond it, the
+// rank-1 factorization of q's components, which keeps Plus(q, 0) = +-q there instead of
+// jumping to another point of the set: a solve that stepped past pi/2 then had every
+// later step rejected and froze). For one axis this is q exp(d e_a);
 // for two it is exact, unlike restricting increments q exp(d0 e_a0 + d1 e_a1), whose
 // compositions would creep along the third axis. Residuals report the same ambient
 // Jacobians as for the full manifold.
@@ -62,11 +66,9 @@ class DofQuaternionManifold : public ceres::Manifold {
   // Angles/Compose round trip (atan2, sin, cos) that projects it: the projection is q or -q
   // (its w is >= 0), so the same columns from q, negated when q's w < 0. False, with
   // `jacobian` untouched, if q is off the set by more than 1e-12 (one axis: the other vector
-  // components; two: w v_c - eps v_a0 v_a1, which vanishes exactly on it), if |w| <= 1e-12,
-  // or, for two axes, if the second angle is beyond pi/2 (where Angles' Euler decomposition
-  // projects q onto another point of the set: Plus(q, 0) != +-q there).
-  // (That sign: for a stored q with w < 0, Plus(q, 0) = -q, and these columns then pair
-  // with the ambient Jacobian at -q, not at q; see the report of issue 18.)
+  // components; two: w v_c - eps v_a0 v_a1, which vanishes exactly on it), or if
+  // |w| <= 1e-12. (That sign: for a stored q with w < 0, Plus(q, 0) = -q, and these columns
+  // then pair with the ambient Jacobian at -q, not at q.)
   bool PlusJacobianOnSet(const double* x, double* jacobian) const;
 
  private:

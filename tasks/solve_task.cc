@@ -17,6 +17,30 @@ double ResidualScale(const Skeleton& skeleton) {
 
 const char* ResidualUnit(const Skeleton& skeleton) { return skeleton.unit().known() ? "mm" : "skeleton units"; }
 
+constexpr int kListedFrames = 20;  // Differing frames the report lists, worst first.
+
+// The solver_agreement block: the share of frames within the tolerance, each solver's
+// time per frame and RMS, and the frames that differ most (costs as the solvers report
+// them; RMS in the report's unit).
+JsonObject AgreementJson(const SolverAgreementReport& agreement, double scale) {
+  auto per_frame_ms = [](const SequenceSolveReport& r) { return r.frames > 0 ? 1e3 * r.solve_seconds / r.frames : 0.0; };
+  std::vector<JsonObject> worst;
+  for (const SolverAgreementFrame& f : agreement.worst) {
+    JsonObject frame;
+    frame.Add("frame", f.frame).Add("dls_cost", f.dls_cost).Add("ceres_cost", f.ceres_cost)
+        .Add("relative_difference", f.relative).Add("dls_rms", f.dls_rms * scale).Add("ceres_rms", f.ceres_rms * scale);
+    worst.push_back(frame);
+  }
+  JsonObject json;
+  json.Add("tolerance", agreement.tolerance).Add("frames_compared", agreement.frames_compared)
+      .Add("frames_within", agreement.frames_within).Add("fraction_within", agreement.fraction_within)
+      .Add("dls_ms_per_frame", per_frame_ms(agreement.dls)).Add("ceres_ms_per_frame", per_frame_ms(agreement.ceres))
+      .Add("dls_rms_marker_residual", agreement.dls.rms_marker_error * scale)
+      .Add("ceres_rms_marker_residual", agreement.ceres.rms_marker_error * scale)
+      .Add("worst_frames", worst);
+  return json;
+}
+
 }  // namespace
 
 Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolveProgress& progress,
@@ -58,6 +82,12 @@ Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolvePr
       .Add("frames_at_iteration_limit", sequence.unconverged_frames)
       .Add("total_final_cost", sequence.total_final_cost).Add("residual_unit", ResidualUnit(skeleton));
   result->report.Add("per_frame", frame_json);
+  if (config.agreement.compare_solvers) {
+    status = CompareSolvers(skeleton, take.markers, observed, frame_options, RestPose(skeleton),
+                            config.agreement.agreement_tolerance, kListedFrames, &result->agreement);
+    if (!status.ok()) return Status::Error(take.name + ": " + status.message());
+    result->report.Add("solver_agreement", AgreementJson(result->agreement, scale));
+  }
   if (progress.per_frame_done) progress.per_frame_done(sequence);
   if (solver.mode != "clip") return Status::Ok();
 

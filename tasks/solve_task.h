@@ -15,6 +15,8 @@
 #include "pipeline/subject.h"
 #include "problems/marker_solve/marker_clip_solver.h"
 #include "problems/marker_solve/sequence_solver.h"
+#include "problems/marker_solve/solver_agreement.h"
+#include "settings/solver_agreement_settings.h"
 #include "settings/solver_settings.h"
 
 namespace mocapsolve {
@@ -22,6 +24,7 @@ namespace mocapsolve {
 struct SolveConfig {
   SolverSettings solver;
   int max_frames = 0;  // Solve only the first N frames (0 = all).
+  SolverAgreementSettings agreement;  // compare_solvers: both per-frame solvers, compared.
 };
 
 struct SolveProgress {
@@ -35,6 +38,7 @@ struct SolveResult {
   Motion motion;           // On the take's skeleton, at the file's frame rate.
   SequenceSolveReport per_frame;  // Skeleton units.
   ClipSolveReport clip;           // mode=clip.
+  SolverAgreementReport agreement;  // compare_solvers.
   // What --report records: the residuals in mm (residual_unit; skeleton units when the
   // skeleton's unit is unknown), seconds.
   JsonObject report;

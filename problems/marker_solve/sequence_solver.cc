@@ -48,6 +48,7 @@ Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
     if (status.ok()) {
       MarkerSolveOptions search = options;
       search.prior_rotation_weight = search.prior_translation_weight = search.rest_rotation_weight = 0.0;
+      search.solver = SolverKind::kDls;  // One start for every solver (see InitialPose's search).
       MarkerFrameSolver solver(skeleton, markers, search);
       FrameSolveReport report;
       if (solver.Solve(observed, &start, &report).ok()) {
@@ -73,6 +74,12 @@ Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
   // frame then keeps (Ceres' Cauchy at 1 cm held 02_01's left forearm wrong for 65
   // frames). The first frame's own solve then applies the loss from this start.
   search.loss = "none";
+  // One search for every solver: the lean DLS kernel's, whatever options.solver is, so that
+  // Ceres and DLS start the take from the same pose. (Each ran its own search before: on
+  // cmu_02_05 the two ended the first frame in different places of the directions only the
+  // rest prior decides, which the warm start then carried through the take, a cost a
+  // third apart on every frame at the same marker RMS.)
+  search.solver = SolverKind::kDls;
   MarkerFrameSolver solver(skeleton, markers, search);
   double best = std::numeric_limits<double>::infinity();
   Pose best_pose;
@@ -135,6 +142,7 @@ Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
   double sum_sq = 0.0;
   long samples = 0;
   report->frame_rms.assign(observed.size(), std::nan(""));
+  report->frame_cost.assign(observed.size(), std::nan(""));
   const auto start = std::chrono::steady_clock::now();
   for (size_t f = 0; f < observed.size(); ++f) {
     FrameSolveReport frame;
@@ -147,6 +155,7 @@ Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
       report->total_final_cost += frame.final_cost;
       if (frame.iterations >= max_iterations) ++report->unconverged_frames;
       report->frame_rms[f] = frame.rms_marker_error;
+      report->frame_cost[f] = frame.final_cost;
       report->max_frame_rms = std::max(report->max_frame_rms, frame.rms_marker_error);
       sum_sq += frame.rms_marker_error * frame.rms_marker_error * frame.markers_used;
       samples += frame.markers_used;

@@ -3,7 +3,8 @@
 // coarse search (or, with root_from_markers, from the markers' geometry): the root is placed at the markers' centroid and tried in the 24
 // axis-aligned orientations (when it has three rotation dofs), and the best solve is
 // kept, so a take need not start near the skeleton's rest orientation. The search is
-// plain least squares even when the options ask for a robust loss (see InitialPose).
+// plain least squares even when the options ask for a robust loss (see InitialPose), and
+// always runs on the lean DLS kernel, so that every solver starts the take from one pose.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SEQUENCE_SOLVER_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_SEQUENCE_SOLVER_H_
 
@@ -24,6 +25,7 @@ struct SequenceSolveReport {
   double max_frame_rms = 0.0;
   double total_final_cost = 0.0;
   std::vector<double> frame_rms;  // Per frame.
+  std::vector<double> frame_cost;  // Per frame: the solver's final cost (NaN where unsolved).
 };
 
 // observed[f][m] in model units (MarkerObservations); `initial` supplies the joints no

@@ -21,6 +21,7 @@
 #include "settings/file_settings.h"
 #include "settings/foot_joint_settings.h"
 #include "settings/frame_limit_settings.h"
+#include "settings/solver_agreement_settings.h"
 #include "settings/repair_settings.h"
 #include "settings/retarget_run_settings.h"
 #include "settings/retarget_settings.h"
@@ -214,7 +215,8 @@ TEST(CommandFlags, DeclaredOptionsAreEachCommandsFlags) {
       {"pipeline", RetargetRunSettingOptions().Only("animation_only").options()},
       {"pipeline", TakeSettingOptions().options()},
       {"solve", FrameLimitOption().options()},
-      {"retarget", FrameLimitOption().options()}};
+      {"retarget", FrameLimitOption().options()},
+      {"solve", SolverAgreementOptions().options()}};
   for (const Use& use : uses) {
     std::string help;
     ASSERT_EQ(testing::RunCli(use.command + " --help", &help), 0) << use.command;

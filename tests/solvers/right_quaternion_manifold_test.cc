@@ -1,5 +1,6 @@
 #include "solvers/right_quaternion_manifold.h"
 
+#include <algorithm>
 #include <random>
 
 #include <ceres/manifold_test_utils.h>
@@ -61,12 +62,14 @@ TEST(DofQuaternionManifold, InvariantsHoldOnItsSet) {
     DofQuaternionManifold manifold(axes);
     const int k = manifold.TangentSize();
     Eigen::VectorXd delta(k);
-    double x_angles[2] = {0.4, -1.1}, y_angles[2] = {-2.0, 0.7};
     for (int i = 0; i < k; ++i) delta[i] = 0.1 * (i + 1);
-    Eigen::Vector4d x, y;
-    manifold.Compose(x_angles, x.data());
-    manifold.Compose(y_angles, y.data());
-    EXPECT_THAT_MANIFOLD_INVARIANTS_HOLD(manifold, x, delta, y, 1e-6);
+    for (const double second : {-1.1}) {
+      double x_angles[2] = {0.4, second}, y_angles[2] = {-2.0, 0.7};
+      Eigen::Vector4d x, y;
+      manifold.Compose(x_angles, x.data());
+      manifold.Compose(y_angles, y.data());
+      EXPECT_THAT_MANIFOLD_INVARIANTS_HOLD(manifold, x, delta, y, 1e-6);
+    }
   }
 }
 
@@ -89,11 +92,55 @@ TEST(DofQuaternionManifold, PlusJacobianOnSetMatchesOnTheSet) {
     const Eigen::Vector4d off = Eigen::Quaterniond(ExpMap(Eigen::Vector3d(0.3, 0.2, 0.1))).coeffs();
     double unused[8];
     EXPECT_FALSE(manifold.PlusJacobianOnSet(off.data(), unused));
-    if (k == 2) {  // Second angle beyond pi/2: left to PlusJacobian.
-      const double far[2] = {0.2, 2.0};
-      Eigen::Vector4d q;
-      manifold.Compose(far, q.data());
-      EXPECT_FALSE(manifold.PlusJacobianOnSet(q.data(), unused));
+    if (k == 2) {  // Second angle beyond pi/2: the same columns as PlusJacobian's.
+      for (const double t0 : {0.2, -2.5, 3.0}) {
+        for (const double t1 : {2.0, -1.7, 3.1, -3.0}) {
+          const double far[2] = {t0, t1};
+          Eigen::Vector4d q;
+          manifold.Compose(far, q.data());
+          double expected[8], got[8];
+          manifold.PlusJacobian(q.data(), expected);
+          ASSERT_TRUE(manifold.PlusJacobianOnSet(q.data(), got));
+          for (int i = 0; i < 4 * k; ++i) EXPECT_NEAR(got[i], expected[i], 1e-14);
+        }
+      }
+    }
+  }
+}
+
+// Every point of a two-axis set, the second angle up to a full half turn either way, is
+// its own projection: Plus(q, 0) = +-q, small steps stay small, and PlusJacobian is
+// Plus's derivative (central differences). (With an
+// Euler decomposition alone, a second angle past pi/2 was read as another point of the
+// set: Plus(q, 0) was a different rotation, every step from there was rejected, and a
+// per-frame solve that crossed pi/2 froze for the frames after it.)
+TEST(DofQuaternionManifold, EveryPointOfTheSetIsItsOwnProjection) {
+  const std::vector<std::vector<int>> axis_lists = {{0, 1}, {1, 0}, {0, 2}, {2, 0}, {1, 2}, {2, 1}};
+  for (const auto& axes : axis_lists) {
+    DofQuaternionManifold manifold(axes);
+    for (double t0 = -3.1; t0 < 3.2; t0 += 0.31) {
+      for (double t1 = -3.1; t1 < 3.2; t1 += 0.29) {
+        const double angles[2] = {t0, t1};
+        Eigen::Vector4d q, same, moved;
+        manifold.Compose(angles, q.data());
+        const double zero[2] = {0.0, 0.0}, small[2] = {1e-3, -1e-3};
+        manifold.Plus(q.data(), zero, same.data());
+        EXPECT_LT(std::min((same - q).norm(), (same + q).norm()), 1e-14) << t0 << " " << t1;
+        manifold.Plus(q.data(), small, moved.data());
+        EXPECT_LT(AngularDistance(Eigen::Quaterniond(moved), Eigen::Quaterniond(q)), 2e-3) << t0 << " " << t1;
+        double jacobian[8];
+        manifold.PlusJacobian(q.data(), jacobian);
+        for (int i = 0; i < 2; ++i) {
+          double plus_h[2] = {0.0, 0.0}, minus_h[2] = {0.0, 0.0};
+          plus_h[i] = 1e-6;
+          minus_h[i] = -1e-6;
+          Eigen::Vector4d a, b;
+          manifold.Plus(q.data(), plus_h, a.data());
+          manifold.Plus(q.data(), minus_h, b.data());
+          const Eigen::Vector4d numeric = (a - b) / 2e-6;
+          for (int r = 0; r < 4; ++r) EXPECT_NEAR(jacobian[r * 2 + i], numeric[r], 1e-8) << t0 << " " << t1;
+        }
+      }
     }
   }
 }

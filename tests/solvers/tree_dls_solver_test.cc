@@ -238,11 +238,13 @@ TEST_F(TreeDlsSolverTest, AdaptiveDampingConverges) {
   DlsOptions options;
   options.function_tolerance = 1e-10;
   options.parameter_tolerance = 0.0;
-  options.max_iterations = 200;
+  // The two-dof joint's second angle passes a quarter turn on the way (265 iterations to
+  // 663.06; a manifold that misread poses past it stopped every step there, at 769.55).
+  options.max_iterations = 400;
   DlsSummary summary;
   solver.Solve(options, &summary);
   EXPECT_TRUE(summary.IsSolutionUsable()) << summary.BriefReport();
-  EXPECT_LT(summary.final_cost, summary.initial_cost);
+  EXPECT_LT(summary.final_cost, 700.0) << summary.BriefReport();
   EXPECT_NE(summary.termination, DlsTermination::kNoConvergence) << summary.BriefReport();
 }
 
