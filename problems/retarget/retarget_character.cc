@@ -132,6 +132,7 @@ bool CharacterRetargetOptions::IsValid(std::string* error) const {
   if (!(clip.contact_height > 0.0)) return *error = "skating contact height must be > 0", false;
   if (setup.subsample.ratio < 1) return *error = "subsample ratio must be >= 1", false;
   if (first_frame_solves < 1) return *error = "first frame solves must be >= 1", false;
+  if (!(root_motion.smoothing_seconds >= 0.0)) return *error = "root motion smoothing must be >= 0", false;
   return true;
 }
 
@@ -246,6 +247,11 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
   quality.own_scale = own_scale;
   quality.foot_skate_cm_s = out.result_plant_skating_cm_s;
   out.quality = MeasureRetargetQuality(quality);
+  const int hips = out.joint_map.target_roles.humanoid ? out.joint_map.target_roles.Find("pelvis")
+                                                       : FirstBranchingJoint(target_skeleton);
+  status = ApplyRootMotion(target_skeleton, hips, options.root_motion, &out.clip.motion, &out.root_motion);
+  if (!status.ok()) return status;
+  if (!out.root_motion.note.empty()) out.notes.push_back(out.root_motion.note);
   *result = std::move(out);
   return Status::Ok();
 }

@@ -23,6 +23,9 @@
 // the vertex tracking is not run (its figures are measured at that motion), nor the foot
 // plants (the transfer adds no skating), and the notes say so.
 //
+// Root motion (options.root_motion): keep, root_bone or in_place (root_motion.h), after
+// the solve and the quality figures; the notes say which and the track's length.
+//
 // Foot plants (options.plant_feet): contacts of the source's foot joints (AutoFootJoints,
 // or options.foot_joints) by DetectFootContacts (edit_propagation/foot_contacts.h): height
 // above the joint's lowest point <= contact_height * h_s and speed <= contact_speed * h_s
@@ -51,6 +54,7 @@
 #include "problems/retarget/retarget_clip.h"
 #include "problems/retarget/retarget_quality.h"
 #include "problems/retarget/retarget_setup.h"
+#include "problems/retarget/root_motion.h"
 
 namespace mocapsolve {
 
@@ -74,6 +78,9 @@ struct CharacterRetargetOptions {
   double contact_height = 0.03;  // Source heights above the joint's lowest point.
   double contact_speed = 0.15;   // Source heights per second.
   int first_frame_solves = 5;    // Sets clip.first_frame_solves (see retarget_clip.h).
+  // Game-engine root convention, applied last (root_motion.h); the track follows the
+  // target's pelvis role (a non-humanoid: FirstBranchingJoint).
+  RootMotionOptions root_motion;
 
   bool IsValid(std::string* error) const;
 };
@@ -93,8 +100,12 @@ struct CharacterRetargetResult {
   int plant_pairs = 0;                    // (joint, frame pair)s in contact.
   double source_plant_skating_cm_s = 0.0;
   double result_plant_skating_cm_s = 0.0;
-  // Limb directions, skating, penetration, self joint error, coverage (retarget_quality.h).
+  // Limb directions, skating, penetration, self joint error, coverage (retarget_quality.h),
+  // measured before the root motion step: below the root, root_bone leaves every world
+  // position as it was and in_place shifts them by the removed track (the figures are
+  // those in the track's frame).
   RetargetQuality quality;
+  RootMotionResult root_motion;  // The track and heading (empty for keep).
   std::vector<std::string> notes;
   double setup_seconds = 0.0;
 };
