@@ -37,6 +37,11 @@ const OptionGroup<RetargetSettings>& RetargetSettingOptions() {
       .Add(&S::root_smoothing, "root_smoothing", "s",
            "Standard deviation of the Gaussian that smooths the root track (ground projection and heading of "
            "the hips) for root_bone and in_place; 0 = the hips' own path.", 0)
+      .Add(&S::stride, "stride",
+           "Stride length of a skeleton-only source on the target: height (the source's path times the height "
+           "ratio) or legs (times the leg-length ratio: a character whose legs are a smaller share of its "
+           "height takes shorter steps, so planted feet slide less).",
+           {"height", "legs"})
       .Add(&S::subsample, "subsample", "vertices per sample",
            "Subsampling ratio #V : #tracked vertices of the source mesh.")
       .Add(&S::iterations, "iterations", "iterations",
@@ -169,6 +174,7 @@ Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRe
     return Status::Error("--root_motion: unknown mode '" + settings.root_motion + "' (keep, root_bone, in_place)");
   }
   options.root_motion.smoothing_seconds = settings.root_smoothing;
+  options.stride_to_legs = settings.stride == "legs";
 
   std::string error;
   if (!options.IsValid(&error)) return Status::Error("retarget options: " + error);

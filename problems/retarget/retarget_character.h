@@ -81,6 +81,9 @@ struct CharacterRetargetOptions {
   // Game-engine root convention, applied last (root_motion.h); the track follows the
   // target's pelvis role (a non-humanoid: FirstBranchingJoint).
   RootMotionOptions root_motion;
+  // A skeleton-only source's horizontal root motion scaled by the leg-length ratio over the
+  // height ratio before the solve (stride_scale.h); off: the height ratio alone.
+  bool stride_to_legs = false;
 
   bool IsValid(std::string* error) const;
 };

@@ -5,7 +5,7 @@
 // Skeleton-only sources: a CMU BVH walk onto Xbot, and their bad inputs (a target without
 // a skin, a joint map naming an unknown joint, a source that cannot be aligned).
 // --root_motion: RobotExpressive's run onto itself with its root bone carrying the track;
-// on Xbot (the hips are the root) an error; an unknown mode an error.
+// on Xbot (the hips are the root) an error; an unknown mode an error; --stride=legs noted.
 #include <algorithm>
 #include <fstream>
 #include <string>
@@ -350,6 +350,17 @@ TEST(RetargetCli, RootMotionModes) {
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
   EXPECT_EQ(testing::RunCli("retarget --quiet --source=" + walk + " --target=" + xbot + " --max_frames=5 "
                             "--root_motion=in_place --out=" + xbot_out, &output), 0) << output;
+  // --stride=legs: RobotExpressive's legs are a smaller share of its height than the CMU actor's.
+  const std::string stride_report = testing::TempPath("robot_stride.json");
+  ASSERT_EQ(testing::RunCli("retarget --quiet --source=" + walk + " --target=" + robot + " --max_frames=5 "
+                            "--stride=legs --out=" + testing::TempPath("robot_stride.bvh") + " --report=" + stride_report,
+                            &output), 0) << output;
+  ASSERT_TRUE(ReadJsonFile(stride_report, &root).ok());
+  bool scaled = false;
+  for (const JsonNode& note : root.Find("notes")->items) {
+    scaled |= note.string.find("stride scaled by the leg-length ratio: 0.7") != std::string::npos;
+  }
+  EXPECT_TRUE(scaled);
 }
 
 }  // namespace
