@@ -63,9 +63,12 @@ bool ParseRootMotionMode(const std::string& text, RootMotionMode* mode) {
 
 const char* RootMotionModeName(RootMotionMode mode) {
   switch (mode) {
-    case RootMotionMode::kRootBone: return "root_bone";
-    case RootMotionMode::kInPlace: return "in_place";
-    default: return "keep";
+    case RootMotionMode::kRootBone:
+      return "root_bone";
+    case RootMotionMode::kInPlace:
+      return "in_place";
+    default:
+      return "keep";
   }
 }
 
@@ -120,8 +123,8 @@ Status ApplyRootMotion(const Skeleton& skeleton, int hips, const RootMotionOptio
   if (options.mode == RootMotionMode::kKeep || motion->num_frames() == 0) return Status::Ok();
   if (hips < 0 || hips >= skeleton.num_joints()) return Status::Error("root motion: no hips joint");
   if (options.mode == RootMotionMode::kRootBone && hips == 0) {
-    return Status::Error("--root_motion=root_bone: the target has no root bone above its hips ('" +
-                         skeleton.name(0) + "' is the skeleton's root); use keep or in_place");
+    return Status::Error("--root_motion=root_bone: the target has no root bone above its hips ('" + skeleton.name(0) +
+                         "' is the skeleton's root); use keep or in_place");
   }
   if (options.smoothing_seconds > 0.0 && !(motion->frame_rate > 0.0)) {
     return Status::Error("root motion: the clip has no frame rate to smooth the track over");

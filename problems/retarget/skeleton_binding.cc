@@ -88,9 +88,12 @@ Eigen::Matrix3d SourceUpRotation(const Skeleton& source, const Motion& source_mo
     up_sum += fk.world_positions[s_high] - fk.world_positions[s_low];
   }
   const Eigen::Vector3d target_d = q[high] - q[low];
-  const double target_elevation = target_d.norm() > 0.0 ? std::asin(std::clamp(target_d.y() / target_d.norm(), -1.0, 1.0)) : M_PI / 2;
+  const double target_elevation =
+      target_d.norm() > 0.0 ? std::asin(std::clamp(target_d.y() / target_d.norm(), -1.0, 1.0)) : M_PI / 2;
   const Eigen::Vector3d d = up_sum.norm() > 0.0 ? Eigen::Vector3d(up_sum.normalized()) : Eigen::Vector3d::UnitY();
-  auto miss = [&](int axis, double sign) { return std::abs(std::asin(std::clamp(sign * d[axis], -1.0, 1.0)) - target_elevation); };
+  auto miss = [&](int axis, double sign) {
+    return std::abs(std::asin(std::clamp(sign * d[axis], -1.0, 1.0)) - target_elevation);
+  };
   int axis = 1;
   double sign = 1.0, best = miss(1, 1.0) - 0.1;
   for (int a = 0; a < 3; ++a) {

@@ -30,15 +30,24 @@ Skeleton MakeRig(bool with_root_bone) {
     double x, y, z;  // Armature frame: Z up, -Y forward.
   };
   const J joints[] = {
-      {"Root", "", 0, 0, 0},           {"Hips", "Root", 0, 0, 0.95},
-      {"Spine", "Hips", 0, 0.01, 0.2}, {"Chest", "Spine", 0, 0, 0.25},
-      {"Neck", "Chest", 0, 0, 0.2},    {"Head", "Neck", 0, 0.02, 0.1},
-      {"UpperArm.L", "Chest", 0.2, 0, 0.15}, {"LowerArm.L", "UpperArm.L", 0.28, 0, 0},
-      {"Hand.L", "LowerArm.L", 0.25, 0, 0},  {"UpperArm.R", "Chest", -0.2, 0, 0.15},
-      {"LowerArm.R", "UpperArm.R", -0.28, 0, 0}, {"Hand.R", "LowerArm.R", -0.25, 0, 0},
-      {"UpperLeg.L", "Hips", 0.1, 0, -0.05}, {"LowerLeg.L", "UpperLeg.L", 0, 0.01, -0.42},
-      {"Foot.L", "LowerLeg.L", 0, 0, -0.4},  {"UpperLeg.R", "Hips", -0.1, 0, -0.05},
-      {"LowerLeg.R", "UpperLeg.R", 0, 0.01, -0.42}, {"Foot.R", "LowerLeg.R", 0, 0, -0.4},
+      {"Root", "", 0, 0, 0},
+      {"Hips", "Root", 0, 0, 0.95},
+      {"Spine", "Hips", 0, 0.01, 0.2},
+      {"Chest", "Spine", 0, 0, 0.25},
+      {"Neck", "Chest", 0, 0, 0.2},
+      {"Head", "Neck", 0, 0.02, 0.1},
+      {"UpperArm.L", "Chest", 0.2, 0, 0.15},
+      {"LowerArm.L", "UpperArm.L", 0.28, 0, 0},
+      {"Hand.L", "LowerArm.L", 0.25, 0, 0},
+      {"UpperArm.R", "Chest", -0.2, 0, 0.15},
+      {"LowerArm.R", "UpperArm.R", -0.28, 0, 0},
+      {"Hand.R", "LowerArm.R", -0.25, 0, 0},
+      {"UpperLeg.L", "Hips", 0.1, 0, -0.05},
+      {"LowerLeg.L", "UpperLeg.L", 0, 0.01, -0.42},
+      {"Foot.L", "LowerLeg.L", 0, 0, -0.4},
+      {"UpperLeg.R", "Hips", -0.1, 0, -0.05},
+      {"LowerLeg.R", "UpperLeg.R", 0, 0.01, -0.42},
+      {"Foot.R", "LowerLeg.R", 0, 0, -0.4},
       {"FootIK.L", "Root", 0.1, 0, 0.08},
   };
   std::vector<JointSpec> specs;
@@ -75,8 +84,8 @@ Motion MakeWalk(const Skeleton& skeleton, std::vector<Eigen::Vector3d>* path = n
     if (f > 0) ground += 1.2 / 30.0 * forward;
     if (path != nullptr) path->push_back(ground);
     Pose pose = RestPose(skeleton);
-    const Eigen::Vector3d world = ground + kSway * std::sin(4 * M_PI * t) * side +
-                                  Eigen::Vector3d(0, 0.95 + 0.02 * std::cos(8 * M_PI * t), 0);
+    const Eigen::Vector3d world =
+        ground + kSway * std::sin(4 * M_PI * t) * side + Eigen::Vector3d(0, 0.95 + 0.02 * std::cos(8 * M_PI * t), 0);
     const Eigen::Quaterniond yaw(Eigen::AngleAxisd(h + 0.1 * std::sin(4 * M_PI * t), Eigen::Vector3d::UnitY()));
     if (hips == 0) {
       pose.translations[0] = world;
@@ -87,9 +96,11 @@ Motion MakeWalk(const Skeleton& skeleton, std::vector<Eigen::Vector3d>* path = n
     }
     for (const char* leg : {"UpperLeg.L", "UpperLeg.R"}) {
       const double sign = std::string(leg).back() == 'L' ? 1.0 : -1.0;
-      pose.rotations[skeleton.FindJoint(leg)] = Eigen::AngleAxisd(sign * 0.5 * std::sin(2 * M_PI * t), Eigen::Vector3d::UnitX());
+      pose.rotations[skeleton.FindJoint(leg)] =
+          Eigen::AngleAxisd(sign * 0.5 * std::sin(2 * M_PI * t), Eigen::Vector3d::UnitX());
     }
-    pose.rotations[skeleton.FindJoint("UpperArm.L")] = Eigen::AngleAxisd(0.3 * std::sin(2 * M_PI * t), Eigen::Vector3d::UnitY());
+    pose.rotations[skeleton.FindJoint("UpperArm.L")] =
+        Eigen::AngleAxisd(0.3 * std::sin(2 * M_PI * t), Eigen::Vector3d::UnitY());
     motion.frames.push_back(pose);
   }
   return motion;
@@ -162,7 +173,8 @@ TEST(RootMotionTest, RootBoneCarriesTheSmoothedTrackAndNothingElseMoves) {
       EXPECT_LT(after.rotations[f][j].angularDistance(before.rotations[f][j]), 1e-12);
     }
     // The root bone: on the floor, under the hips within the sway, facing the heading.
-    const Eigen::Vector3d root = after.positions[f][0], hips_ground(before.positions[f][hips].x(), 0, before.positions[f][hips].z());
+    const Eigen::Vector3d root = after.positions[f][0],
+                          hips_ground(before.positions[f][hips].x(), 0, before.positions[f][hips].z());
     EXPECT_NEAR(root.y(), 0.0, 1e-12);
     EXPECT_LT((root - hips_ground).norm(), kSway + 0.01) << "frame " << f;
     const Eigen::Quaterniond turn = after.rotations[f][0] * rig.rest_rotation(0).conjugate();
@@ -259,7 +271,7 @@ TEST(RootMotionTest, TheRetargetAppliesTheModeAfterItsQualityFigures) {
   const World a = WorldFrames(rig, keep.clip.motion), b = WorldFrames(rig, root_bone.clip.motion);
   EXPECT_LT((a.positions.back()[0] - a.positions[0][0]).norm(), 1e-9);  // keep: the root stays.
   EXPECT_GT((b.positions.back()[0] - b.positions[0][0]).norm(), 3.0);   // root_bone: it walks.
-  EXPECT_LT((a.positions[60][14] - b.positions[60][14]).norm(), 1e-9);   // Foot.L where it was.
+  EXPECT_LT((a.positions[60][14] - b.positions[60][14]).norm(), 1e-9);  // Foot.L where it was.
 }
 
 }  // namespace

@@ -28,7 +28,7 @@ namespace {
 
 struct FixtureJoint {
   std::string name;
-  int parent;  // -1: a skeleton root.
+  int parent;              // -1: a skeleton root.
   Eigen::Vector3d offset;  // Metres, Y up (before the variant's nodes above).
   bool has_vertices = true;
 };
@@ -84,8 +84,8 @@ std::vector<FixtureJoint> Joints(const Variant& v) {
 
 // Appends `data` (4-byte aligned) to buffer 0 as a new view and accessor; returns the accessor.
 int AddAccessor(tinygltf::Model* model, const std::vector<float>& data, int type, int count,
-                std::vector<double> min = {}, std::vector<double> max = {}, int component = TINYGLTF_COMPONENT_TYPE_FLOAT,
-                const std::vector<unsigned char>& bytes = {}) {
+                std::vector<double> min = {}, std::vector<double> max = {},
+                int component = TINYGLTF_COMPONENT_TYPE_FLOAT, const std::vector<unsigned char>& bytes = {}) {
   std::vector<unsigned char>& buffer = model->buffers[0].data;
   tinygltf::BufferView view;
   view.buffer = 0;
@@ -121,7 +121,8 @@ tinygltf::Primitive Primitive(tinygltf::Model* model, const std::vector<float>& 
   const int nv = static_cast<int>(positions.size() / 3);
   std::vector<double> lo(3, 1e30), hi(3, -1e30);
   for (int v = 0; v < nv; ++v) {
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(positions[3 * v + k])), hi[k] = std::max(hi[k], double(positions[3 * v + k]));
+    for (int k = 0; k < 3; ++k)
+      lo[k] = std::min(lo[k], double(positions[3 * v + k])), hi[k] = std::max(hi[k], double(positions[3 * v + k]));
   }
   std::vector<unsigned char> indices;
   for (int t = 0; t < nv / 4; ++t) {
@@ -137,8 +138,8 @@ tinygltf::Primitive Primitive(tinygltf::Model* model, const std::vector<float>& 
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   primitive.attributes["POSITION"] = AddAccessor(model, positions, TINYGLTF_TYPE_VEC3, nv, lo, hi);
   if (with_normals) primitive.attributes["NORMAL"] = AddAccessor(model, normals, TINYGLTF_TYPE_VEC3, nv);
-  primitive.indices = AddAccessor(model, {}, TINYGLTF_TYPE_SCALAR, 3 * nv, {}, {},
-                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, indices);
+  primitive.indices =
+      AddAccessor(model, {}, TINYGLTF_TYPE_SCALAR, 3 * nv, {}, {}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, indices);
   return primitive;
 }
 
@@ -181,7 +182,8 @@ void WriteFixture(const Variant& v, const std::string& path) {
     node.name = joints[j].name;
     node.translation = {local[j].x(), local[j].y(), local[j].z()};
     model.nodes.push_back(node);
-    if (joints[j].parent >= 0) model.nodes[first_joint_node + joints[j].parent].children.push_back(first_joint_node + j);
+    if (joints[j].parent >= 0)
+      model.nodes[first_joint_node + joints[j].parent].children.push_back(first_joint_node + j);
   }
   for (size_t k = 0; k + 1 < chain.size(); ++k) model.nodes[chain[k]].children.push_back(chain[k + 1]);
   std::vector<int> roots;
@@ -198,11 +200,13 @@ void WriteFixture(const Variant& v, const std::string& path) {
   std::vector<unsigned char> joint_bytes;
   const Eigen::Affine3d inverse_above = above.inverse();
   for (int j = 0; j < n; ++j) {
-    const Eigen::Vector3d in_parent = inverse_above * (above * (unit * (v.armature ? Eigen::Vector3d(z_up.conjugate() * world[j]) : world[j])));
+    const Eigen::Vector3d in_parent =
+        inverse_above * (above * (unit * (v.armature ? Eigen::Vector3d(z_up.conjugate() * world[j]) : world[j])));
     const Eigen::Matrix4d ibm = (above * Eigen::Translation3d(in_parent)).matrix().inverse();
     for (int k = 0; k < 16; ++k) ibms.push_back(static_cast<float>(ibm(k % 4, k / 4)));
     if (!joints[j].has_vertices || (v.rigid_parts && joints[j].name == "Head")) continue;
-    Tetra(above * (unit * (v.armature ? Eigen::Vector3d(z_up.conjugate() * world[j]) : world[j])), 0.03, &positions, &normals);
+    Tetra(above * (unit * (v.armature ? Eigen::Vector3d(z_up.conjugate() * world[j]) : world[j])), 0.03, &positions,
+          &normals);
     for (int c = 0; c < 4; ++c) {
       joint_bytes.insert(joint_bytes.end(), {static_cast<unsigned char>(j), 0, 0, 0});
       weights.insert(weights.end(), {1, 0, 0, 0});
@@ -211,8 +215,8 @@ void WriteFixture(const Variant& v, const std::string& path) {
   tinygltf::Primitive body = Primitive(&model, positions, normals, v.normals);
   const int nv = static_cast<int>(positions.size() / 3);
   body.attributes["WEIGHTS_0"] = AddAccessor(&model, weights, TINYGLTF_TYPE_VEC4, nv);
-  body.attributes["JOINTS_0"] = AddAccessor(&model, {}, TINYGLTF_TYPE_VEC4, nv, {}, {},
-                                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, joint_bytes);
+  body.attributes["JOINTS_0"] =
+      AddAccessor(&model, {}, TINYGLTF_TYPE_VEC4, nv, {}, {}, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, joint_bytes);
   tinygltf::Mesh mesh;
   mesh.primitives.push_back(body);
   model.meshes.push_back(mesh);
@@ -237,7 +241,8 @@ void WriteFixture(const Variant& v, const std::string& path) {
     node.mesh = static_cast<int>(model.meshes.size()) - 1;
     model.nodes.push_back(node);
     for (int j = 0; j < n; ++j) {
-      if (joints[j].name == "Head") model.nodes[first_joint_node + j].children.push_back(static_cast<int>(model.nodes.size()) - 1);
+      if (joints[j].name == "Head")
+        model.nodes[first_joint_node + j].children.push_back(static_cast<int>(model.nodes.size()) - 1);
     }
   }
   // The clip.
@@ -273,12 +278,14 @@ void WriteFixture(const Variant& v, const std::string& path) {
       const Eigen::Quaterniond q(Eigen::AngleAxisd(a.norm(), a.norm() > 0 ? a.normalized() : Eigen::Vector3d::UnitX()));
       rotations.insert(rotations.end(), {float(q.x()), float(q.y()), float(q.z()), float(q.w())});
       Eigen::Vector3d t = local[j];
-      if (joints[j].name == "Hips") t += (v.armature ? unit : 1.0) * Eigen::Vector3d(0.01 * f, 0.02 * std::sin(f), v.armature ? 0.0 : 0.04 * f);
+      if (joints[j].name == "Hips")
+        t += (v.armature ? unit : 1.0) * Eigen::Vector3d(0.01 * f, 0.02 * std::sin(f), v.armature ? 0.0 : 0.04 * f);
       if (joints[j].name == "FootIK.L") t += Eigen::Vector3d(0, 0, 0.03 * f);
       translations.insert(translations.end(), {float(t.x()), float(t.y()), float(t.z())});
     }
     channel(first_joint_node + j, "rotation", rotations, TINYGLTF_TYPE_VEC4);
-    if (joints[j].name == "Hips" || joints[j].name == "FootIK.L") channel(first_joint_node + j, "translation", translations, TINYGLTF_TYPE_VEC3);
+    if (joints[j].name == "Hips" || joints[j].name == "FootIK.L")
+      channel(first_joint_node + j, "translation", translations, TINYGLTF_TYPE_VEC3);
   }
   model.animations.push_back(animation);
   tinygltf::Scene scene;
@@ -322,7 +329,8 @@ TEST_P(FixtureRoundTripTest, JointsWithinOneThousandthOfTheHeight) {
   ASSERT_EQ(got.size(), truth.size());
   double worst = 0.0;
   for (size_t f = 0; f < truth.size(); ++f) {
-    for (int j = 0; j < character.skeleton.num_joints(); ++j) worst = std::max(worst, (truth[f][j] - got[f][j]).norm() / height);
+    for (int j = 0; j < character.skeleton.num_joints(); ++j)
+      worst = std::max(worst, (truth[f][j] - got[f][j]).norm() / height);
   }
   std::printf("fixture self round trip %-16s %2d joints: max joint error %.6f %% of height %.4g\n", v.name.c_str(),
               character.skeleton.num_joints(), 100.0 * worst, height);
@@ -331,15 +339,16 @@ TEST_P(FixtureRoundTripTest, JointsWithinOneThousandthOfTheHeight) {
   EXPECT_LE(worst, 1e-3) << v.name;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    GameAndDccExports, FixtureRoundTripTest,
-    ::testing::Values(Variant{"plain"}, Variant{"floor_root_bone", false, true},
-                      Variant{"armature_cm", false, false, true}, Variant{"moved_node", false, false, false, true},
-                      Variant{"rigid_parts", false, false, false, false, true},
-                      Variant{"with_normals", false, false, false, false, false, true},
-                      Variant{"game_rig", false, true, true, true, true},
-                      Variant{"quadruped", true}, Variant{"quadruped_rig", true, true, true, true, true}),
-    [](const ::testing::TestParamInfo<Variant>& info) { return info.param.name; });
+INSTANTIATE_TEST_SUITE_P(GameAndDccExports, FixtureRoundTripTest,
+                         ::testing::Values(Variant{"plain"}, Variant{"floor_root_bone", false, true},
+                                           Variant{"armature_cm", false, false, true},
+                                           Variant{"moved_node", false, false, false, true},
+                                           Variant{"rigid_parts", false, false, false, false, true},
+                                           Variant{"with_normals", false, false, false, false, false, true},
+                                           Variant{"game_rig", false, true, true, true, true},
+                                           Variant{"quadruped", true},
+                                           Variant{"quadruped_rig", true, true, true, true, true}),
+                         [](const ::testing::TestParamInfo<Variant>& info) { return info.param.name; });
 
 }  // namespace
 }  // namespace mocapsolve

@@ -13,7 +13,8 @@ Skeleton MakeLeg() {
   std::vector<JointSpec> specs(6);
   const char* names[] = {"Root", "Hips", "Thigh", "Shin", "Foot", "FootIK"};
   const int parents[] = {-1, 0, 1, 2, 3, 0};
-  const Eigen::Vector3d offsets[] = {{0, 0, 0}, {0, 0.95, 0}, {0.1, -0.05, 0}, {0, -0.4, 0}, {0, -0.3, 0.3}, {0.1, 0.1, 0}};
+  const Eigen::Vector3d offsets[] = {{0, 0, 0},    {0, 0.95, 0},   {0.1, -0.05, 0},
+                                     {0, -0.4, 0}, {0, -0.3, 0.3}, {0.1, 0.1, 0}};
   for (int j = 0; j < 6; ++j) specs[j].name = names[j], specs[j].parent = parents[j], specs[j].offset = offsets[j];
   Skeleton skeleton;
   EXPECT_TRUE(Skeleton::Create(specs, {}, Metres(), &skeleton).ok());
