@@ -299,6 +299,7 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
         .Add("source_foot_skating_cm_per_s", c.result.source_plant_skating_cm_s)
         .Add("result_foot_skating_cm_per_s", c.result.result_plant_skating_cm_s)
         .Add("mean_bone_angle_deg", c.result.mean_bone_angle_deg)
+        .Add("root_motion", c.result.root_motion.note.empty() ? std::string("keep") : c.result.root_motion.note)
         .Add("delivered_frames", c.delivered_motion().num_frames())
         .Add("delivered_frame_rate", c.delivered_motion().frame_rate)
         .Add("setup_seconds", c.result.setup_seconds)

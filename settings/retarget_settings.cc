@@ -28,6 +28,20 @@ const OptionGroup<RetargetSettings>& RetargetSettingOptions() {
            "point (fraction of the source height).")
       .Add(&S::plant_speed, "plant_speed", "source heights/s",
            "Foot contact: source foot joint slower than this (source heights/s).")
+      .Add(&S::root_motion, "root_motion",
+           "Where the clip's horizontal motion goes: keep (as solved), root_bone (carried by the target's root "
+           "bone at the floor above the hips, as game engines' root motion wants: the hips' ground projection "
+           "and heading, smoothed; every other joint stays where it was) or in_place (removed: the clip "
+           "walks on the spot, heading kept; a root bone stays at rest).",
+           {"keep", "root_bone", "in_place"})
+      .Add(&S::root_smoothing, "root_smoothing", "s",
+           "Standard deviation of the Gaussian that smooths the root track (ground projection and heading of "
+           "the hips) for root_bone and in_place; 0 = the hips' own path.", 0)
+      .Add(&S::stride, "stride",
+           "Stride length of a skeleton-only source on the target: height (the source's path times the height "
+           "ratio) or legs (times the leg-length ratio: a character whose legs are a smaller share of its "
+           "height takes shorter steps, so planted feet slide less).",
+           {"height", "legs"})
       .Add(&S::subsample, "subsample", "vertices per sample",
            "Subsampling ratio #V : #tracked vertices of the source mesh.")
       .Add(&S::iterations, "iterations", "iterations",
@@ -162,6 +176,11 @@ Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRe
   options.contact_height = settings.plant_height;
   options.contact_speed = settings.plant_speed;
   options.foot_joints = SplitCommaList(settings.foot_joints);
+  if (!ParseRootMotionMode(settings.root_motion, &options.root_motion.mode)) {
+    return Status::Error("--root_motion: unknown mode '" + settings.root_motion + "' (keep, root_bone, in_place)");
+  }
+  options.root_motion.smoothing_seconds = settings.root_smoothing;
+  options.stride_to_legs = settings.stride == "legs";
 
   std::string error;
   if (!options.IsValid(&error)) return Status::Error("retarget options: " + error);

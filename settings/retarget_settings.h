@@ -24,6 +24,9 @@ struct RetargetSettings {
   double plant_weight = 10.0;
   double plant_height = 0.03;   // Fraction of the source height.
   double plant_speed = 0.15;    // Source heights per second.
+  std::string root_motion = "keep";  // keep | root_bone | in_place (problems/retarget/root_motion.h).
+  double root_smoothing = 0.15;      // Seconds: the root track's Gaussian standard deviation.
+  std::string stride = "height";     // height | legs (problems/retarget/stride_scale.h).
   std::string foot_joints;      // Comma-separated source joints; "" = names with foot/toe/ankle.
   int subsample = 128;
   int iterations = 10;

@@ -11,6 +11,7 @@
 #include "problems/retarget/limb_goals.h"
 #include "problems/retarget/own_skeleton.h"
 #include "problems/retarget/skeleton_binding.h"
+#include "problems/retarget/stride_scale.h"
 
 namespace mocapsolve {
 namespace {
@@ -141,6 +142,28 @@ void SetLimbGoals(const Skeleton& source, const Motion& motion, const Skeleton& 
                    Format("%g", clip->solve.limb_direction_weight) + ")");
 }
 
+// Stride: the source root's horizontal motion scaled by the leg-length ratio over the
+// height ratio (stride_scale.h), when both skeletons are humanoids with legs (noted).
+void ScaleStrideToLegs(const Skeleton& source, const Skeleton& target, const JointMap& map, double height_ratio,
+                       Motion* motion, std::vector<std::string>* notes) {
+  std::vector<std::pair<int, int>> source_legs, target_legs;  // (thigh, foot) per side, as the map links them.
+  for (const std::string side : {"left_", "right_"}) {
+    int thigh[2] = {-1, -1}, foot[2] = {-1, -1};
+    for (const JointMapRole& role : map.roles) {
+      if (role.role == side + "thigh") thigh[0] = role.source, thigh[1] = role.target;
+      if (role.role == side + "foot") foot[0] = role.source, foot[1] = role.target;
+    }
+    source_legs.emplace_back(thigh[0], foot[0]);
+    target_legs.emplace_back(thigh[1], foot[1]);
+  }
+  const double source_leg = LegLength(source, source_legs), target_leg = LegLength(target, target_legs);
+  if (!(source_leg > 0.0) || !(target_leg > 0.0) || !(height_ratio > 0.0)) return;
+  const double factor = target_leg / source_leg / height_ratio;
+  ScaleRootStride(factor, motion);
+  notes->push_back(Format("stride scaled by the leg-length ratio: %.3g of the height ratio's (legs %.3g, height "
+                          "ratio %.3g)", factor, target_leg / source_leg, height_ratio));
+}
+
 }  // namespace
 
 bool CharacterRetargetOptions::IsValid(std::string* error) const {
@@ -151,6 +174,7 @@ bool CharacterRetargetOptions::IsValid(std::string* error) const {
   if (!(clip.contact_height > 0.0)) return *error = "skating contact height must be > 0", false;
   if (setup.subsample.ratio < 1) return *error = "subsample ratio must be >= 1", false;
   if (first_frame_solves < 1) return *error = "first frame solves must be >= 1", false;
+  if (!(root_motion.smoothing_seconds >= 0.0)) return *error = "root motion smoothing must be >= 0", false;
   return true;
 }
 
@@ -195,6 +219,9 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
                                            &binding);
     if (!status.ok()) return status;
     motion = RotateMotionWorld(*source.skeleton, source_motion, binding.up);
+    if (!out.own_skeleton && options.stride_to_legs) {
+      ScaleStrideToLegs(*source.skeleton, target_skeleton, out.joint_map, binding.scale, &motion, &out.notes);
+    }
     source_mesh = &binding.mesh;
     setup_options.source_world_from_bind = Eigen::Matrix3d::Identity();
     source_height = binding.source_height;
@@ -266,6 +293,11 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
   quality.own_scale = own_scale;
   quality.foot_skate_cm_s = out.result_plant_skating_cm_s;
   out.quality = MeasureRetargetQuality(quality);
+  const int hips = out.joint_map.target_roles.humanoid ? out.joint_map.target_roles.Find("pelvis")
+                                                       : FirstBranchingJoint(target_skeleton);
+  status = ApplyRootMotion(target_skeleton, hips, options.root_motion, &out.clip.motion, &out.root_motion);
+  if (!status.ok()) return status;
+  if (!out.root_motion.note.empty()) out.notes.push_back(out.root_motion.note);
   *result = std::move(out);
   return Status::Ok();
 }

@@ -26,6 +26,8 @@
 // Limb directions (options.clip.solve.limb_direction_weight > 0, the clip solved): the
 // eight limbs found on both sides are asked to point as the source's do (limb_goals.h,
 // LimbDirectionResidual), against the vertex tracking; the notes say how many.
+// Root motion (options.root_motion): keep, root_bone or in_place (root_motion.h), after
+// the solve and the quality figures; the notes say which and the track's length.
 //
 // Foot plants (options.plant_feet): contacts of the source's foot joints (AutoFootJoints,
 // or options.foot_joints) by DetectFootContacts (edit_propagation/foot_contacts.h): height
@@ -55,6 +57,7 @@
 #include "problems/retarget/retarget_clip.h"
 #include "problems/retarget/retarget_quality.h"
 #include "problems/retarget/retarget_setup.h"
+#include "problems/retarget/root_motion.h"
 
 namespace mocapsolve {
 
@@ -78,6 +81,12 @@ struct CharacterRetargetOptions {
   double contact_height = 0.03;  // Source heights above the joint's lowest point.
   double contact_speed = 0.15;   // Source heights per second.
   int first_frame_solves = 5;    // Sets clip.first_frame_solves (see retarget_clip.h).
+  // Game-engine root convention, applied last (root_motion.h); the track follows the
+  // target's pelvis role (a non-humanoid: FirstBranchingJoint).
+  RootMotionOptions root_motion;
+  // A skeleton-only source's horizontal root motion scaled by the leg-length ratio over the
+  // height ratio before the solve (stride_scale.h); off: the height ratio alone.
+  bool stride_to_legs = false;
 
   bool IsValid(std::string* error) const;
 };
@@ -97,8 +106,12 @@ struct CharacterRetargetResult {
   int plant_pairs = 0;                    // (joint, frame pair)s in contact.
   double source_plant_skating_cm_s = 0.0;
   double result_plant_skating_cm_s = 0.0;
-  // Limb directions, skating, penetration, self joint error, coverage (retarget_quality.h).
+  // Limb directions, skating, penetration, self joint error, coverage (retarget_quality.h),
+  // measured before the root motion step: below the root, root_bone leaves every world
+  // position as it was and in_place shifts them by the removed track (the figures are
+  // those in the track's frame).
   RetargetQuality quality;
+  RootMotionResult root_motion;  // The track and heading (empty for keep).
   std::vector<std::string> notes;
   double setup_seconds = 0.0;
 };

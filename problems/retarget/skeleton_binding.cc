@@ -60,10 +60,15 @@ Vector3dVector TargetBindPositions(const Skeleton& target, const Pose& target_bi
   return q;
 }
 
-// U (header, step 2): the rotation taking the source's up axis to +Y. The up axis is the
-// coordinate axis nearest to the mean, over (up to 100) frames of the motion, of the vector
-// from the lowest to the highest mapped joint of the target's bind pose `q`. A source not
-// +y up is noted.
+// U (header, step 2): the rotation taking the source's up axis to +Y. d_t is the vector
+// from the lowest to the highest mapped joint of the target's bind pose `q` (Y up), d_s the
+// mean, over (up to 100) frames of the motion, of the same vector on the source. The up
+// axis is the signed coordinate axis a of the source whose turn to +Y gives d_s the
+// elevation of d_t: the one minimizing |asin(a . d_s / |d_s|) - asin(d_t.y / |d_t|)| (the
+// heading is free, so this is the best angle between the turned d_s and d_t). For an
+// upright humanoid (d_t vertical) that is the axis nearest to d_s; for a quadruped, whose
+// head is ahead of and above its feet, it is not. +y is kept unless another axis is better
+// by more than 0.1 rad. A source not +y up is noted.
 Eigen::Matrix3d SourceUpRotation(const Skeleton& source, const Motion& source_motion, const JointMap& map,
                                  const Vector3dVector& q, std::vector<std::string>* notes) {
   const int nt = static_cast<int>(q.size());
@@ -82,10 +87,22 @@ Eigen::Matrix3d SourceUpRotation(const Skeleton& source, const Motion& source_mo
     ForwardKinematics(source, nf > 0 ? source_motion.frames[f] : RestPose(source), &fk);
     up_sum += fk.world_positions[s_high] - fk.world_positions[s_low];
   }
-  int axis = 0;
-  up_sum.cwiseAbs().maxCoeff(&axis);
+  const Eigen::Vector3d target_d = q[high] - q[low];
+  const double target_elevation =
+      target_d.norm() > 0.0 ? std::asin(std::clamp(target_d.y() / target_d.norm(), -1.0, 1.0)) : M_PI / 2;
+  const Eigen::Vector3d d = up_sum.norm() > 0.0 ? Eigen::Vector3d(up_sum.normalized()) : Eigen::Vector3d::UnitY();
+  auto miss = [&](int axis, double sign) {
+    return std::abs(std::asin(std::clamp(sign * d[axis], -1.0, 1.0)) - target_elevation);
+  };
+  int axis = 1;
+  double sign = 1.0, best = miss(1, 1.0) - 0.1;
+  for (int a = 0; a < 3; ++a) {
+    for (double s : {1.0, -1.0}) {
+      if (miss(a, s) < best) axis = a, sign = s, best = miss(a, s);
+    }
+  }
   Eigen::Vector3d up_axis = Eigen::Vector3d::Zero();
-  up_axis[axis] = up_sum[axis] < 0 ? -1.0 : 1.0;
+  up_axis[axis] = sign;
   if (axis != 1 || up_axis[axis] < 0) {
     notes->push_back(std::string("source up axis: ") + (up_axis[axis] < 0 ? "-" : "+") + "xyz"[axis] +
                      " (turned to +y)");

@@ -4,6 +4,8 @@
 // animation, bad blend-mask file, output over an input) as one-line errors with exit 1.
 // Skeleton-only sources: a CMU BVH walk onto Xbot, and their bad inputs (a target without
 // a skin, a joint map naming an unknown joint, a source that cannot be aligned).
+// --root_motion: RobotExpressive's run onto itself with its root bone carrying the track;
+// on Xbot (the hips are the root) an error; an unknown mode an error; --stride=legs noted.
 #include <algorithm>
 #include <fstream>
 #include <string>
@@ -308,6 +310,57 @@ TEST(RetargetCli, SkeletonSourceBadInputsFailWithOneLine) {
   std::string output;  // The refusal lists what each side was found to be.
   testing::RunCli(cases.back().arguments, &output);
   EXPECT_THAT(output, HasSubstr("target: humanoid (roles: pelvis, spine_1"));
+}
+
+TEST(RetargetCli, RootMotionModes) {
+  MOCAPSOLVE_DATA_FILE(robot, "gltf/RobotExpressive.glb");
+  MOCAPSOLVE_DATA_FILE(xbot, "gltf/Xbot.glb");
+  MOCAPSOLVE_DATA_FILE(walk, "bvh/16_15.bvh");
+  const std::string bvh = testing::TempPath("robot_running.bvh");
+  std::string output;
+  ASSERT_EQ(testing::RunCli("convert --quiet " + robot + " " + bvh + " --animation=Running", &output), 0) << output;
+  const std::string report = testing::TempPath("robot_root_bone.json");
+  const std::string out = testing::TempPath("robot_root_bone.bvh");
+  ASSERT_EQ(testing::RunCli("retarget --quiet --source=" + bvh + " --target=" + robot + " --root_motion=root_bone --out=" +
+                                out + " --report=" + report,
+                            &output),
+            0)
+      << output;
+  JsonNode root;
+  ASSERT_TRUE(ReadJsonFile(report, &root).ok());
+  bool noted = false;
+  for (const JsonNode& note : root.Find("notes")->items) {
+    noted |= note.string.find("root motion root_bone: the track of 'Body'") != std::string::npos &&
+             note.string.find("carried by the root bone 'Bone'") != std::string::npos;
+  }
+  EXPECT_TRUE(noted);
+  Skeleton skeleton;
+  Motion motion;
+  ASSERT_TRUE(ReadBvh(out, &skeleton, &motion).ok());
+  // The root bone 'Bone' moves with the run (the clip itself runs on the spot: the track is short).
+  ASSERT_EQ(skeleton.name(0), "Bone");
+  const std::string xbot_out = testing::TempPath("xbot_root_bone.bvh");
+  EXPECT_EQ(testing::RunCli("retarget --quiet --source=" + walk + " --target=" + xbot + " --max_frames=5 "
+                            "--root_motion=root_bone --out=" + xbot_out, &output), 1);
+  EXPECT_THAT(output, HasSubstr("no root bone above its hips ('mixamorig:Hips'"));
+  EXPECT_FALSE(testing::FileExists(xbot_out));
+  EXPECT_EQ(testing::RunCli("retarget --quiet --source=" + walk + " --target=" + xbot + " --max_frames=5 "
+                            "--root_motion=engine --out=" + xbot_out, &output), 1);
+  EXPECT_THAT(output, HasSubstr("root_motion"));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  EXPECT_EQ(testing::RunCli("retarget --quiet --source=" + walk + " --target=" + xbot + " --max_frames=5 "
+                            "--root_motion=in_place --out=" + xbot_out, &output), 0) << output;
+  // --stride=legs: RobotExpressive's legs are a smaller share of its height than the CMU actor's.
+  const std::string stride_report = testing::TempPath("robot_stride.json");
+  ASSERT_EQ(testing::RunCli("retarget --quiet --source=" + walk + " --target=" + robot + " --max_frames=5 "
+                            "--stride=legs --out=" + testing::TempPath("robot_stride.bvh") + " --report=" + stride_report,
+                            &output), 0) << output;
+  ASSERT_TRUE(ReadJsonFile(stride_report, &root).ok());
+  bool scaled = false;
+  for (const JsonNode& note : root.Find("notes")->items) {
+    scaled |= note.string.find("stride scaled by the leg-length ratio: 0.7") != std::string::npos;
+  }
+  EXPECT_TRUE(scaled);
 }
 
 }  // namespace
