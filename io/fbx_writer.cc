@@ -534,14 +534,28 @@ Status SceneBuilder::Build(std::string* bytes) {
   return fbx::EncodeFbxBinary(pointers, bytes);
 }
 
+Status CheckDepth(int depth, const std::string& what, const std::string& name) {
+  if (depth <= kMaxFbxSkeletonDepth) return Status::Ok();
+  return Status::Error(what + " " + QuoteToken(name) + ": " + std::to_string(depth) +
+                       " levels below the root, deeper than the " + std::to_string(kMaxFbxSkeletonDepth) +
+                       " FBX importers read (Blender's recurses once per level)");
+}
+
 Status CheckWritable(const Skeleton& skeleton, const Motion& motion, const FbxWriteOptions& options,
                      const FbxSkinnedMesh* mesh) {
   if (skeleton.num_joints() == 0) return Status::Error("the skeleton has no joints");
+  std::vector<int> depth(skeleton.num_joints(), 0);  // Joints are in preorder: parents first.
   for (int j = 0; j < skeleton.num_joints(); ++j) {
-    if (Status s = CheckName(skeleton.name(j), "joint " + std::to_string(j)); !s.ok()) return s;
+    const std::string what = "joint " + std::to_string(j);
+    if (Status s = CheckName(skeleton.name(j), what); !s.ok()) return s;
+    if (skeleton.parent(j) >= 0) depth[j] = depth[skeleton.parent(j)] + 1;
+    if (Status s = CheckDepth(depth[j], what, skeleton.name(j)); !s.ok()) return s;
   }
   for (size_t e = 0; e < skeleton.end_sites().size(); ++e) {
-    if (Status s = CheckName(skeleton.end_sites()[e].name, "end site " + std::to_string(e)); !s.ok()) return s;
+    const EndSite& site = skeleton.end_sites()[e];
+    const std::string what = "end site " + std::to_string(e);
+    if (Status s = CheckName(site.name, what); !s.ok()) return s;
+    if (Status s = CheckDepth(depth[site.parent] + 1, what, site.name); !s.ok()) return s;
   }
   if (Status s = CheckName(options.take_name, "take"); !s.ok()) return s;
   if (!(options.unit_scale_factor >= 0.0) || !std::isfinite(options.unit_scale_factor)) {

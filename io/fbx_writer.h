@@ -46,7 +46,10 @@
 //   CustomFrameRate), TimeSpan = the clip. Takes holds the take too.
 //
 // Errors (nothing is written): a joint name FBX cannot hold (empty, embedded NUL, the
-// "\x00\x01" separator, over 2^31 bytes) names the joint; a motion that does not fit the
+// "\x00\x01" separator, over 2^31 bytes) names the joint; a joint or end site more than
+// kMaxFbxSkeletonDepth levels below the root names it (FBX itself nests models through
+// Connections without a bound, but Blender 3.4's importer recurses in Python once per
+// level and fails with a RecursionError on a 999-joint chain; 980 imports); a motion that does not fit the
 // skeleton, a non-positive frame rate, no frames; a mesh whose sizes do not match. Output
 // is written atomically (io/atomic_file.h).
 #ifndef MOCAPSOLVE_IO_FBX_WRITER_H_
@@ -65,6 +68,10 @@
 #include "kinematics/status.h"
 
 namespace mocapsolve {
+
+// Deepest joint (levels below the root, end sites included) the writer writes: a margin
+// under the ~990 levels where Blender 3.4's FBX importer runs out of Python recursion.
+constexpr int kMaxFbxSkeletonDepth = 900;
 
 struct FbxWriteOptions {
   std::string take_name = "Take 001";    // The AnimationStack's name; non-empty, no NUL.
