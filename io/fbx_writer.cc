@@ -373,6 +373,20 @@ void SceneBuilder::AddMesh(const std::vector<int64_t>& joint_models) {
     normals.AddChild("Normals").DoubleArray(
         std::vector<double>(mesh.rest_normals().data(), mesh.rest_normals().data() + 3 * nv));
   }
+  if (mesh.has_texcoords()) {  // Per polygon vertex, indexing one UV per vertex; FBX's v runs up, glTF's down.
+    Node& uv = geom.AddChild("LayerElementUV").Int32(0);
+    uv.AddChild("Version").Int32(101);
+    uv.AddChild("Name").String("UVMap");
+    uv.AddChild("MappingInformationType").String("ByPolygonVertex");
+    uv.AddChild("ReferenceInformationType").String("IndexToDirect");
+    std::vector<double> values(2 * nv);
+    for (int v = 0; v < nv; ++v) {
+      values[2 * v] = mesh.texcoords()(0, v);
+      values[2 * v + 1] = 1.0 - mesh.texcoords()(1, v);
+    }
+    uv.AddChild("UV").DoubleArray(values);
+    uv.AddChild("UVIndex").Int32Array(std::vector<int32_t>(triangles.data(), triangles.data() + triangles.size()));
+  }
   Node& material_layer = geom.AddChild("LayerElementMaterial").Int32(0);
   material_layer.AddChild("Version").Int32(101);
   material_layer.AddChild("Name").String("");
@@ -382,8 +396,9 @@ void SceneBuilder::AddMesh(const std::vector<int64_t>& joint_models) {
   // Layer 0 lists the elements above (after them, as the SDK and Blender write it).
   Node& layer = geom.AddChild("Layer").Int32(0);
   layer.AddChild("Version").Int32(100);
-  for (const char* type : {"LayerElementNormal", "LayerElementMaterial"}) {
+  for (const char* type : {"LayerElementNormal", "LayerElementUV", "LayerElementMaterial"}) {
     if (std::string_view(type) == "LayerElementNormal" && !mesh.has_normals()) continue;
+    if (std::string_view(type) == "LayerElementUV" && !mesh.has_texcoords()) continue;
     Node& element = layer.AddChild("LayerElement");
     element.AddChild("Type").String(type);
     element.AddChild("TypedIndex").Int32(0);

@@ -32,7 +32,9 @@
 //   (-180, 180]: a joint that turns twice ends near 720).
 // - Skinned mesh (optional): a Mesh model at the origin with a Geometry (Vertices = the
 //   rest positions, PolygonVertexIndex = the triangles, the last index of each stored as
-//   ~index; normals ByVertice when the mesh has them), one grey Phong Material, a Skin
+//   ~index; normals ByVertice when the mesh has them; its texture coordinates, where it
+//   has them, as LayerElementUV "UVMap": ByPolygonVertex, IndexToDirect, one (u, 1 - v) per
+//   vertex indexed by the triangles, FBX's v running up where glTF's runs down), one grey Phong Material, a Skin
 //   deformer with one Cluster per joint (Indexes/Weights of the vertices it moves,
 //   TransformLink = the joint's world transform at bind = joint_from_bind^-1, Transform =
 //   joint_from_bind, the mesh being at the origin) and a BindPose listing the mesh and

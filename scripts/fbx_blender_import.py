@@ -6,7 +6,9 @@
 # empty scene (bpy.ops.import_scene.fbx); RESULT.json gets, per case, what Blender shows:
 # the action's frame range and the scene's rate, the armature's axes, the largest
 # difference (metres) of bone heads and of the deformed mesh's vertices from ours, the
-# vertex count and the vertices whose weights do not sum to 1. Lines "fbx_check: case NAME"
+# vertex count, the vertices whose weights do not sum to 1, and where the case gives the
+# texture coordinates (glTF's u, v) of its checked vertices, the largest difference of the
+# first UV layer's (u, 1 - v) at their polygon corners. Lines "fbx_check: case NAME"
 # go to stdout before each import, so the caller attributes Blender's messages to a case.
 #
 # Frames: Blender's armature object carries the file's axes and unit (FBX Y up turned Z
@@ -53,6 +55,21 @@ def check_case(case):
             if abs(sum(g.weight for g in v.groups) - 1.0) > 1e-4:
                 unweighted += 1
     out["badly_weighted"] = unweighted
+    worst_uv, uv_loops = 0.0, 0
+    if case.get("uvs") and len(meshes) == 1 and meshes[0].data.uv_layers:
+        mesh = meshes[0].data
+        uv_data = mesh.uv_layers[0].data
+        expected_uv = dict(zip(case["vertex_indices"], case["uvs"]))
+        for loop in mesh.loops:
+            uv = expected_uv.get(loop.vertex_index)
+            if uv is None:
+                continue
+            got = uv_data[loop.index].uv
+            worst_uv = max(worst_uv, abs(got[0] - uv[0]), abs(got[1] - (1.0 - uv[1])))
+            uv_loops += 1
+        out["uv_data"] = len(uv_data)
+        out["loops"] = len(mesh.loops)
+    out["worst_uv"], out["uv_loops"] = worst_uv, uv_loops
     arm_from_world = arm.matrix_world.inverted()
     worst_bone, worst_bone_at, compared, missing = 0.0, "", 0, 0
     worst_vertex, worst_vertex_at = 0.0, ""

@@ -5,7 +5,8 @@ each file with no error or warning; its armature's bone heads at 10 sampled fram
 forward kinematics within 0.1 mm (after the unit scale), the action spans the clip's frames
 at its rate, and a skinned mesh keeps its vertex count, every vertex's weights sum to 1 and
 the mesh Blender deforms lies on ours (linear blend skinning, mocapsolve.skin) within 0.1 mm
-at those frames. Cases: the project's generated walk (a BVH skeleton, no data needed), a
+at those frames; where the source has texture coordinates (TEXCOORD_0) the mesh has one UV
+layer with ours at every polygon corner. Cases: the project's generated walk (a BVH skeleton, no data needed), a
 generated skinned character under an `Armature` node scaled 0.01 (no data needed), CMU 16_15
 (walk) retargeted onto Xbot by `retarget --out=X.fbx`, and RobotExpressive's walk, whose
 head, torso and limbs are meshes parented to bones (read as rigid parts of the skinned mesh).
@@ -169,6 +170,9 @@ def expected_case(name, fbx, motion_path, animation="", character_path=None):
         case["num_vertices"] = nv
         case["vertex_indices"] = indices
         case["vertices"] = {str(f): skinned[f, indices].tolist() for f in sampled_frames(nf)}
+        texcoords = character.texcoords
+        if len(texcoords):
+            case["uvs"] = texcoords[indices].tolist()
     return case
 
 
@@ -249,4 +253,10 @@ def test_blender_imports_fbx(imported, name):
         summary += "; %d vertices, %d checked, within %.4g mm (%s)" % (
             got["vertices"], len(case["vertex_indices"]), got["worst_vertex"] * 1e3, got["worst_vertex_at"])
         assert got["worst_vertex"] <= TOLERANCE_M, summary
+        if "uvs" in case:  # One UV layer, a UV at every polygon corner, ours within float precision.
+            assert got["uv_layers"] == [1] and got["uv_data"] == got["loops"], (got["uv_layers"], got.get("uv_data"))
+            assert got["uv_loops"] > 0 and got["worst_uv"] <= 1e-6, (got["uv_loops"], got["worst_uv"])
+            summary += "; UVs at %d corners within %.2g" % (got["uv_loops"], got["worst_uv"])
+        else:
+            assert got["uv_layers"] == [0], got["uv_layers"]
     print(summary)
