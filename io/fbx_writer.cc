@@ -373,6 +373,20 @@ void SceneBuilder::AddMesh(const std::vector<int64_t>& joint_models) {
     normals.AddChild("Normals").DoubleArray(
         std::vector<double>(mesh.rest_normals().data(), mesh.rest_normals().data() + 3 * nv));
   }
+  if (mesh.has_texcoords()) {  // Per polygon vertex, indexing one UV per vertex; FBX's v runs up, glTF's down.
+    Node& uv = geom.AddChild("LayerElementUV").Int32(0);
+    uv.AddChild("Version").Int32(101);
+    uv.AddChild("Name").String("UVMap");
+    uv.AddChild("MappingInformationType").String("ByPolygonVertex");
+    uv.AddChild("ReferenceInformationType").String("IndexToDirect");
+    std::vector<double> values(2 * nv);
+    for (int v = 0; v < nv; ++v) {
+      values[2 * v] = mesh.texcoords()(0, v);
+      values[2 * v + 1] = 1.0 - mesh.texcoords()(1, v);
+    }
+    uv.AddChild("UV").DoubleArray(values);
+    uv.AddChild("UVIndex").Int32Array(std::vector<int32_t>(triangles.data(), triangles.data() + triangles.size()));
+  }
   Node& material_layer = geom.AddChild("LayerElementMaterial").Int32(0);
   material_layer.AddChild("Version").Int32(101);
   material_layer.AddChild("Name").String("");
@@ -382,8 +396,9 @@ void SceneBuilder::AddMesh(const std::vector<int64_t>& joint_models) {
   // Layer 0 lists the elements above (after them, as the SDK and Blender write it).
   Node& layer = geom.AddChild("Layer").Int32(0);
   layer.AddChild("Version").Int32(100);
-  for (const char* type : {"LayerElementNormal", "LayerElementMaterial"}) {
+  for (const char* type : {"LayerElementNormal", "LayerElementUV", "LayerElementMaterial"}) {
     if (std::string_view(type) == "LayerElementNormal" && !mesh.has_normals()) continue;
+    if (std::string_view(type) == "LayerElementUV" && !mesh.has_texcoords()) continue;
     Node& element = layer.AddChild("LayerElement");
     element.AddChild("Type").String(type);
     element.AddChild("TypedIndex").Int32(0);
@@ -534,14 +549,28 @@ Status SceneBuilder::Build(std::string* bytes) {
   return fbx::EncodeFbxBinary(pointers, bytes);
 }
 
+Status CheckDepth(int depth, const std::string& what, const std::string& name) {
+  if (depth <= kMaxFbxSkeletonDepth) return Status::Ok();
+  return Status::Error(what + " " + QuoteToken(name) + ": " + std::to_string(depth) +
+                       " levels below the root, deeper than the " + std::to_string(kMaxFbxSkeletonDepth) +
+                       " FBX importers read (Blender's recurses once per level)");
+}
+
 Status CheckWritable(const Skeleton& skeleton, const Motion& motion, const FbxWriteOptions& options,
                      const FbxSkinnedMesh* mesh) {
   if (skeleton.num_joints() == 0) return Status::Error("the skeleton has no joints");
+  std::vector<int> depth(skeleton.num_joints(), 0);  // Joints are in preorder: parents first.
   for (int j = 0; j < skeleton.num_joints(); ++j) {
-    if (Status s = CheckName(skeleton.name(j), "joint " + std::to_string(j)); !s.ok()) return s;
+    const std::string what = "joint " + std::to_string(j);
+    if (Status s = CheckName(skeleton.name(j), what); !s.ok()) return s;
+    if (skeleton.parent(j) >= 0) depth[j] = depth[skeleton.parent(j)] + 1;
+    if (Status s = CheckDepth(depth[j], what, skeleton.name(j)); !s.ok()) return s;
   }
   for (size_t e = 0; e < skeleton.end_sites().size(); ++e) {
-    if (Status s = CheckName(skeleton.end_sites()[e].name, "end site " + std::to_string(e)); !s.ok()) return s;
+    const EndSite& site = skeleton.end_sites()[e];
+    const std::string what = "end site " + std::to_string(e);
+    if (Status s = CheckName(site.name, what); !s.ok()) return s;
+    if (Status s = CheckDepth(depth[site.parent] + 1, what, site.name); !s.ok()) return s;
   }
   if (Status s = CheckName(options.take_name, "take"); !s.ok()) return s;
   if (!(options.unit_scale_factor >= 0.0) || !std::isfinite(options.unit_scale_factor)) {

@@ -32,7 +32,9 @@
 //   (-180, 180]: a joint that turns twice ends near 720).
 // - Skinned mesh (optional): a Mesh model at the origin with a Geometry (Vertices = the
 //   rest positions, PolygonVertexIndex = the triangles, the last index of each stored as
-//   ~index; normals ByVertice when the mesh has them), one grey Phong Material, a Skin
+//   ~index; normals ByVertice when the mesh has them; its texture coordinates, where it
+//   has them, as LayerElementUV "UVMap": ByPolygonVertex, IndexToDirect, one (u, 1 - v) per
+//   vertex indexed by the triangles, FBX's v running up where glTF's runs down), one grey Phong Material, a Skin
 //   deformer with one Cluster per joint (Indexes/Weights of the vertices it moves,
 //   TransformLink = the joint's world transform at bind = joint_from_bind^-1, Transform =
 //   joint_from_bind, the mesh being at the origin) and a BindPose listing the mesh and
@@ -46,7 +48,10 @@
 //   CustomFrameRate), TimeSpan = the clip. Takes holds the take too.
 //
 // Errors (nothing is written): a joint name FBX cannot hold (empty, embedded NUL, the
-// "\x00\x01" separator, over 2^31 bytes) names the joint; a motion that does not fit the
+// "\x00\x01" separator, over 2^31 bytes) names the joint; a joint or end site more than
+// kMaxFbxSkeletonDepth levels below the root names it (FBX itself nests models through
+// Connections without a bound, but Blender 3.4's importer recurses in Python once per
+// level and fails with a RecursionError on a 999-joint chain; 980 imports); a motion that does not fit the
 // skeleton, a non-positive frame rate, no frames; a mesh whose sizes do not match. Output
 // is written atomically (io/atomic_file.h).
 #ifndef MOCAPSOLVE_IO_FBX_WRITER_H_
@@ -65,6 +70,10 @@
 #include "kinematics/status.h"
 
 namespace mocapsolve {
+
+// Deepest joint (levels below the root, end sites included) the writer writes: a margin
+// under the ~990 levels where Blender 3.4's FBX importer runs out of Python recursion.
+constexpr int kMaxFbxSkeletonDepth = 900;
 
 struct FbxWriteOptions {
   std::string take_name = "Take 001";    // The AnimationStack's name; non-empty, no NUL.

@@ -66,6 +66,7 @@ const std::vector<int> kFloat = {TINYGLTF_COMPONENT_TYPE_FLOAT};
 const std::vector<int> kWeightTypes = {TINYGLTF_COMPONENT_TYPE_FLOAT,
                                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+const std::vector<int> kTexcoordTypes = kWeightTypes;  // glTF: float, normalized ubyte or ushort.
 const std::vector<int> kJointTypes = {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
 const std::vector<int> kIndexTypes = {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
@@ -154,14 +155,43 @@ struct Influence {
   double weight;
 };
 
-// Merges every primitive of the meshes bound to `skin`.
+// The triangles of one primitive of `count` vertices, offset by `base`, appended.
+Status AppendTriangles(const tinygltf::Model& model, const std::string& file, const std::string& where,
+                       const tinygltf::Primitive& prim, size_t count, size_t base, std::vector<int>* triangles) {
+  if (prim.indices < 0) {
+    if (count % 3 != 0) {
+      return Status::Error(file + ": " + where + ": " + std::to_string(count) +
+                           " non-indexed vertices is not a multiple of 3");
+    }
+    for (size_t v = 0; v < count; ++v) triangles->push_back(static_cast<int>(base + v));
+    return Status::Ok();
+  }
+  std::vector<double> idx;
+  size_t c = 0;
+  Status status = ReadAccessor(model, prim.indices, 1, kIndexTypes, file, where + ": indices", &idx, &c);
+  if (!status.ok()) return status;
+  if (c % 3 != 0) {
+    return Status::Error(file + ": " + where + ": indices count " + std::to_string(c) + " is not a multiple of 3");
+  }
+  for (double i : idx) {
+    if (i >= static_cast<double>(count)) {
+      return Status::Error(file + ": " + where + ": index " + std::to_string(static_cast<long long>(i)) +
+                           " out of range (" + std::to_string(count) + " vertices)");
+    }
+    triangles->push_back(static_cast<int>(base + static_cast<size_t>(i)));
+  }
+  return Status::Ok();
+}
+
+// Merges every primitive of the meshes bound to `skin`; *texcoords (TEXCOORD_0) is left
+// empty unless every primitive has them, as *normals.
 Status ReadMeshes(const tinygltf::Model& model, const std::string& file, int skin,
                   std::vector<Eigen::Vector3d>* positions, std::vector<Eigen::Vector3d>* normals,
-                  std::vector<std::vector<Influence>>* influences, std::vector<int>* triangles,
-                  std::vector<std::string>* warnings) {
+                  std::vector<Eigen::Vector2d>* texcoords, std::vector<std::vector<Influence>>* influences,
+                  std::vector<int>* triangles, std::vector<std::string>* warnings) {
   const size_t num_skin_joints = model.skins[skin].joints.size();
   std::vector<bool> seen_mesh(model.meshes.size(), false);
-  bool all_normals = true;
+  bool all_normals = true, all_texcoords = true;
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     const tinygltf::Node& node = model.nodes[n];
     if (node.skin != skin || node.mesh < 0) continue;
@@ -205,6 +235,13 @@ Status ReadMeshes(const tinygltf::Model& model, const std::string& file, int ski
       } else {
         all_normals = false;
       }
+      std::vector<double> uv;
+      if (attribute("TEXCOORD_0") >= 0 && all_texcoords) {
+        status = ReadAccessor(model, attribute("TEXCOORD_0"), 2, kTexcoordTypes, file, where + ": TEXCOORD_0", &uv, &c);
+        if (!status.ok()) return status;
+        if (c != count) return Status::Error(file + ": " + where + ": TEXCOORD_0 and POSITION differ in count");
+      }
+      all_texcoords = all_texcoords && !uv.empty();
       const size_t base = positions->size();
       std::vector<std::vector<Influence>> vertex_influences(count);
       for (int set = 0; set < 2; ++set) {
@@ -266,34 +303,15 @@ Status ReadMeshes(const tinygltf::Model& model, const std::string& file, int ski
         positions->emplace_back(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
         normals->push_back(nrm.empty() ? Eigen::Vector3d::Zero()
                                        : Eigen::Vector3d(nrm[3 * v], nrm[3 * v + 1], nrm[3 * v + 2]));
+        if (all_texcoords) texcoords->emplace_back(uv[2 * v], uv[2 * v + 1]);
         influences->push_back(std::move(vertex_influences[v]));
       }
-      if (prim.indices >= 0) {
-        std::vector<double> idx;
-        status = ReadAccessor(model, prim.indices, 1, kIndexTypes, file, where + ": indices", &idx, &c);
-        if (!status.ok()) return status;
-        if (c % 3 != 0) {
-          return Status::Error(file + ": " + where + ": indices count " + std::to_string(c) +
-                               " is not a multiple of 3");
-        }
-        for (double i : idx) {
-          if (i >= static_cast<double>(count)) {
-            return Status::Error(file + ": " + where + ": index " +
-                                 std::to_string(static_cast<long long>(i)) + " out of range (" +
-                                 std::to_string(count) + " vertices)");
-          }
-          triangles->push_back(static_cast<int>(base + static_cast<size_t>(i)));
-        }
-      } else {
-        if (count % 3 != 0) {
-          return Status::Error(file + ": " + where + ": " + std::to_string(count) +
-                               " non-indexed vertices is not a multiple of 3");
-        }
-        for (size_t v = 0; v < count; ++v) triangles->push_back(static_cast<int>(base + v));
-      }
+      status = AppendTriangles(model, file, where, prim, count, base, triangles);
+      if (!status.ok()) return status;
     }
   }
   if (!all_normals) normals->clear();
+  if (!all_texcoords) texcoords->clear();
   return Status::Ok();
 }
 
@@ -562,9 +580,10 @@ Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& op
 
   // Mesh: rest_positions = sum_b w_b X_b (c_b IBM_b v0); normals likewise.
   std::vector<Eigen::Vector3d> positions, normals;
+  std::vector<Eigen::Vector2d> texcoords;
   std::vector<std::vector<Influence>> influences;
   std::vector<int> triangles;
-  status = ReadMeshes(model, file, out.skin, &positions, &normals, &influences, &triangles,
+  status = ReadMeshes(model, file, out.skin, &positions, &normals, &texcoords, &influences, &triangles,
                       &out.warnings);
   if (!status.ok()) return status;
   std::vector<Eigen::Matrix<double, 3, 4>> position_maps(num_skin);
@@ -579,6 +598,8 @@ Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& op
   }
   SkinnedMeshSpec spec;
   BlendRestVertices(positions, normals, influences, rig.skin_joints, position_maps, normal_ibm, world_bind, &spec);
+  spec.texcoords.resize(2, static_cast<Eigen::Index>(texcoords.size()));
+  for (size_t v = 0; v < texcoords.size(); ++v) spec.texcoords.col(static_cast<Eigen::Index>(v)) = texcoords[v];
   int rigid_parts = 0;
   status = gltf_internal::AppendRigidParts(model, file, graph, rig, world_bind, &spec, &triangles, &rigid_parts,
                                            &out.warnings);

@@ -41,7 +41,8 @@
 // non-zero weight). Per glTF, the mesh node's own transform is ignored. A mesh without
 // NORMAL (Fox) gets area-weighted vertex normals from its triangles (the sum of the
 // adjacent triangles' cross products over the vertices at one bind position, normalized),
-// with a warning saying so.
+// with a warning saying so. TEXCOORD_0 (float or normalized u8/u16) is carried as the
+// mesh's texcoords (SkinnedMesh::texcoords, glTF's u, v) when every primitive has it.
 //   Bind data: glTF skins with v(t) = sum_b w_b G_b(t) IBM_b v0 (G_b the joint node's world
 // matrix, scale included). Write IBM_b^-1 = [k_b Q_b | p_b] (uniform scale k_b, rotation
 // Q_b) and c_b for joint b's accumulated node scale; then G_b(t) = W_b(t) * scale(c_b) with

@@ -6,6 +6,8 @@ namespace mocapsolve::gltf_internal {
 namespace {
 
 const std::vector<int> kFloatOnly = {TINYGLTF_COMPONENT_TYPE_FLOAT};
+const std::vector<int> kTexcoordTypes = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
 const std::vector<int> kIndices = {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
                                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT};
 
@@ -54,6 +56,19 @@ Status AppendPrimitive(const tinygltf::Model& model, const std::string& file, co
     for (size_t v = 0; v < count; ++v) idx.push_back(static_cast<double>(v));
   }
   const Eigen::Index base = spec->rest_positions.cols();
+  if (base > 0 && spec->texcoords.cols() == base) {  // The mesh so far has UVs: this part's too, or none.
+    std::vector<double> uv;
+    if (attribute("TEXCOORD_0") >= 0) {
+      status = ReadAccessor(model, attribute("TEXCOORD_0"), 2, kTexcoordTypes, file, where + ": TEXCOORD_0", &uv, &c);
+      if (!status.ok()) return status;
+    }
+    if (uv.size() == 2 * count) {
+      spec->texcoords.conservativeResize(2, base + static_cast<Eigen::Index>(count));
+      for (size_t v = 0; v < count; ++v) spec->texcoords.col(base + v) = Eigen::Vector2d(uv[2 * v], uv[2 * v + 1]);
+    } else {
+      spec->texcoords.resize(2, 0);
+    }
+  }
   spec->rest_positions.conservativeResize(3, base + static_cast<Eigen::Index>(count));
   if (with_normals) spec->rest_normals.conservativeResize(3, base + static_cast<Eigen::Index>(count));
   for (size_t v = 0; v < count; ++v) {

@@ -8,8 +8,9 @@
 //     x_bind = X_j (s_j (W_j^-1 W_n v)),   n_bind = R(X_j) R(W_j^-1 W_n) n,
 // W the nodes' default world similarities, s_j joint j's accumulated scale at rest (the
 // model's joint frames are unscaled), X_j its bind transform (the reader's world_bind). Its triangles
-// follow (offset). Primitives that are not triangles, or lack NORMAL while the skinned mesh
-// has normals, are skipped (a warning).
+// follow (offset), and their TEXCOORD_0 where the skinned mesh has texture coordinates
+// (a part without them leaves the whole mesh without). Primitives that are not triangles,
+// or lack NORMAL while the skinned mesh has normals, are skipped (a warning).
 #ifndef MOCAPSOLVE_IO_GLTF_RIGID_PARTS_H_
 #define MOCAPSOLVE_IO_GLTF_RIGID_PARTS_H_
 

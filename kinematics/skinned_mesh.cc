@@ -15,12 +15,15 @@ Status SkinnedMesh::Create(const Skeleton& skeleton, SkinnedMeshSpec spec, Skinn
   if (spec.rest_normals.cols() != 0 && spec.rest_normals.cols() != nv) {
     return Status::Error("skin: normal count differs from vertex count");
   }
+  if (spec.texcoords.cols() != 0 && spec.texcoords.cols() != nv) {
+    return Status::Error("skin: texture coordinate count differs from vertex count");
+  }
   if (static_cast<int>(spec.joint_from_bind.size()) != nj) {
     return Status::Error("skin: " + std::to_string(spec.joint_from_bind.size()) +
                          " inverse bind matrices for " + std::to_string(nj) + " joints");
   }
-  if (!spec.rest_positions.allFinite() || !spec.rest_normals.allFinite()) {
-    return Status::Error("skin: non-finite rest position or normal");
+  if (!spec.rest_positions.allFinite() || !spec.rest_normals.allFinite() || !spec.texcoords.allFinite()) {
+    return Status::Error("skin: non-finite rest position, normal or texture coordinate");
   }
   SkinnedMesh m;
   m.row_begin_.reserve(nv + 1);
@@ -46,6 +49,7 @@ Status SkinnedMesh::Create(const Skeleton& skeleton, SkinnedMeshSpec spec, Skinn
   }
   m.rest_positions_ = std::move(spec.rest_positions);
   m.rest_normals_ = std::move(spec.rest_normals);
+  m.texcoords_ = std::move(spec.texcoords);
   m.joint_from_bind_ = std::move(spec.joint_from_bind);
   *mesh = std::move(m);
   return Status::Ok();

@@ -31,6 +31,7 @@ struct SkinInfluence {
 struct SkinnedMeshSpec {
   Eigen::Matrix3Xd rest_positions;                 // 3 x #V, bind space.
   Eigen::Matrix3Xd rest_normals;                   // 3 x #V unit normals, or 3 x 0.
+  Eigen::Matrix2Xd texcoords;                      // 2 x #V texture coordinates (glTF's u, v), or 2 x 0.
   std::vector<std::vector<SkinInfluence>> influences;  // #V lists.
   std::vector<Eigen::Isometry3d> joint_from_bind;  // #J inverse bind transforms.
 };
@@ -45,6 +46,8 @@ class SkinnedMesh {
   int num_vertices() const { return static_cast<int>(rest_positions_.cols()); }
   int num_joints() const { return static_cast<int>(joint_from_bind_.size()); }
   bool has_normals() const { return rest_normals_.cols() == rest_positions_.cols(); }
+  bool has_texcoords() const { return num_vertices() > 0 && texcoords_.cols() == rest_positions_.cols(); }
+  const Eigen::Matrix2Xd& texcoords() const { return texcoords_; }  // Only carried (skinning ignores them).
   const Eigen::Matrix3Xd& rest_positions() const { return rest_positions_; }
   const Eigen::Matrix3Xd& rest_normals() const { return rest_normals_; }
   int weight_begin(int vertex) const { return row_begin_[vertex]; }
@@ -59,6 +62,7 @@ class SkinnedMesh {
  private:
   Eigen::Matrix3Xd rest_positions_;
   Eigen::Matrix3Xd rest_normals_;
+  Eigen::Matrix2Xd texcoords_;
   std::vector<int> row_begin_;
   std::vector<int> joints_;
   std::vector<double> weights_;

@@ -302,6 +302,11 @@ void BindKinematics(py::module_& m) {
         std::copy(c.triangles.data(), c.triangles.data() + c.triangles.size(), out.mutable_data());
         return out;
       })
+      .def_property_readonly("texcoords", [](const GltfCharacter& c) {
+        py::array_t<double> out({py::ssize_t{c.mesh.texcoords().cols()}, py::ssize_t{2}});
+        std::copy(c.mesh.texcoords().data(), c.mesh.texcoords().data() + c.mesh.texcoords().size(), out.mutable_data());
+        return out;
+      }, "(vertices, 2) texture coordinates (glTF's u, v: TEXCOORD_0), or (0, 2) when the file has none.")
       .def_property_readonly("num_vertices", [](const GltfCharacter& c) { return c.mesh.num_vertices(); })
       .def_property_readonly("rest_pose", [](const GltfCharacter& c) { return c.rest_pose; })
       .def_property_readonly("bind_pose", [](const GltfCharacter& c) { return c.bind_pose; })

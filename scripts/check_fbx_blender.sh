@@ -5,7 +5,8 @@
 # (`mocapsolve fk`) within 0.1 mm, whose action spans the clip's frames, at the clip's
 # rate, with the file's axes (Y up) and unit. For a glTF character IN (written with its
 # skinned mesh) the mesh's vertex and vertex-group counts are printed.
-# Not part of the test suite yet (it needs Blender); prints PASS or FAIL and exits 0 or 1.
+# For any one input by hand; the test suite runs the same import on the files the pipeline
+# writes (tests/python/test_fbx_blender.py). Prints PASS or FAIL and exits 0 or 1.
 #
 # Usage: scripts/check_fbx_blender.sh [IN [ANIMATION]]
 #   IN         .bvh, .amc (no: needs --skeleton), or a glTF character (.glb/.gltf); default

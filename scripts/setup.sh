@@ -20,13 +20,19 @@ fuzz_packages=(clang libclang-rt-14-dev libfuzzer-14-dev)
 # then reconfigures and builds as usual, so build/bin/mocapsolve_peers_bench appears.
 # Not in the default list: CI stays lean, and the build never requires them.
 peer_packages=(liborocos-kdl-dev libmujoco-dev libdart-dev)
+# Opt-in: `setup.sh --with-blender` also installs Debian's Blender (3.4, about 700 MB with
+# its libraries) for the FBX import check (tests/python/test_fbx_blender.py: every FBX the
+# pipeline writes imported headless; without Blender it skips, or fails when real data is
+# required, as CI requires it), then builds as usual.
+blender_packages=(blender)
 only_install=0
 reconfigure=0
 for option in "$@"; do
   case "$option" in
     --fuzz) packages+=("${fuzz_packages[@]}"); only_install=1 ;;
     --with-peers) packages+=("${peer_packages[@]}"); reconfigure=1 ;;
-    *) echo "setup: unknown option '$option' (known: --fuzz, --with-peers)" >&2; exit 1 ;;
+    --with-blender) packages+=("${blender_packages[@]}") ;;
+    *) echo "setup: unknown option '$option' (known: --fuzz, --with-peers, --with-blender)" >&2; exit 1 ;;
   esac
 done
 missing=()

@@ -4,6 +4,7 @@
 // clip is the file's first; a malformed or out-of-range value is one line naming the
 // option, exit 1, nothing written. Fixtures: the demo walk and the test humanoid.
 #include <algorithm>
+#include <cstdio>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -168,6 +169,35 @@ TEST_F(DeliveryCli, RetargetAndPipelineDeliverTheCutResampledTake) {
   EXPECT_THAT(output, HasSubstr("--frames=100:200: the clip has 121 frames, 0:120"));
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
   EXPECT_FALSE(testing::FileExists(none));
+}
+
+// A skeleton FBX importers cannot read back (Blender's recurses once per level) is one
+// line naming the joint, exit 1, and no file; the same chain one joint shorter is written.
+TEST(FbxDelivery, FbxOfASkeletonTooDeepIsAnErrorNamingTheJoint) {
+  for (const int joints : {901, 902}) {
+    std::string bvh = "HIERARCHY\nROOT j0\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation "
+                      "Xrotation Yrotation\n";
+    for (int j = 1; j < joints; ++j) bvh += "JOINT j" + std::to_string(j) + "\n{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation "
+                                            "Xrotation Yrotation\n";
+    for (int j = 0; j < joints; ++j) bvh += "}\n";
+    bvh += "MOTION\nFrames: 1\nFrame Time: 0.0333333\n";
+    for (int c = 0; c < 3 + 3 * joints; ++c) bvh += c == 0 ? "0" : " 0";
+    bvh += "\n";
+    const std::string in = testing::TempPath("chain.bvh"), out = testing::TempPath("chain.fbx");
+    testing::WriteTextFile(in, bvh);
+    std::remove(out.c_str());
+    std::string output;
+    const int code = testing::RunCli("convert " + in + " " + out, &output);
+    if (joints == 901) {
+      EXPECT_EQ(code, 0) << output;
+      EXPECT_TRUE(testing::FileExists(out));
+      continue;
+    }
+    EXPECT_EQ(code, 1) << output;
+    EXPECT_THAT(output, HasSubstr("joint 901 'j901': 901 levels below the root, deeper than the 900"));
+    EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+    EXPECT_FALSE(testing::FileExists(out));
+  }
 }
 
 }  // namespace

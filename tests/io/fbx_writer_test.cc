@@ -360,6 +360,32 @@ TEST(FbxWriter, NameWithNulIsAnErrorNamingTheJointAndNothingIsWritten) {
   EXPECT_FALSE(testing::FileExists(path));
 }
 
+// A chain of `n` joints, each 1 cm above its parent.
+Skeleton Chain(int n) {
+  std::vector<JointSpec> joints(n);
+  for (int j = 0; j < n; ++j) joints[j] = Joint("j" + std::to_string(j), j - 1, {0, j == 0 ? 0.0 : 0.01, 0});
+  Skeleton skeleton;
+  EXPECT_TRUE(Skeleton::Create(joints, {}, Metres(), &skeleton).ok());
+  return skeleton;
+}
+
+TEST(FbxWriter, SkeletonDeeperThanImportersReadIsAnErrorNamingTheJoint) {
+  Motion motion;
+  motion.frame_rate = 30;
+  const Skeleton deepest = Chain(kMaxFbxSkeletonDepth + 1);  // Its last joint is kMaxFbxSkeletonDepth below the root.
+  motion.frames.assign(1, RestPose(deepest));
+  std::string bytes;
+  EXPECT_TRUE(SerializeFbx(deepest, motion, {}, nullptr, &bytes).ok());
+  const Skeleton too_deep = Chain(kMaxFbxSkeletonDepth + 2);
+  motion.frames.assign(1, RestPose(too_deep));
+  const std::string path = testing::TempPath("deep.fbx");
+  const Status status = WriteFbx(path, too_deep, motion);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("joint 901 'j901': 901 levels below the root, deeper than the 900"),
+            std::string::npos) << status.message();
+  EXPECT_FALSE(testing::FileExists(path));
+}
+
 TEST(FbxWriter, EmptyMotionAndBadRateAreErrors) {
   const Skeleton skeleton = TestSkeleton();
   Motion motion;

@@ -57,6 +57,16 @@ def test_skinning_and_skinned_jacobians():
     assert np.allclose(jn, numeric_jacobian(lambda p: skinned(p, 1), pose, size), atol=1e-6)
 
 
+def test_texcoords_where_the_file_has_them():
+    """TEXCOORD_0 of every primitive, one (u, v) per vertex; none where the file has none
+    (RobotExpressive), or a rigid part lacks them."""
+    cesium = mocapsolve.read_character(data_file("gltf/CesiumMan.glb"))
+    assert cesium.texcoords.shape == (cesium.num_vertices, 2)
+    assert np.isfinite(cesium.texcoords).all() and np.ptp(cesium.texcoords[:, 0]) > 0.5
+    robot = mocapsolve.read_character(data_file("gltf/RobotExpressive.glb"))
+    assert robot.texcoords.shape == (0, 2)
+
+
 def test_calibrate_writes_the_cli_subject(cmu02, tmp_path):
     subject, report = mocapsolve.calibrate(cmu02["amc"], cmu02["c3d"], skeleton=cmu02["asf"], axes="y,z,x")
     assert report["axes"] == "y,z,x" and report["rms_mm"] < 20
