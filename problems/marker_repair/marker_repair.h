@@ -27,8 +27,9 @@
 //      moves that marker past its gate (a joint whose rotation no marker pins down, such
 //      as a head carrying one marker, may differ between Y and Y^ without condemning it).
 //   5. Gap preprocessing (3.3.4): smart trimming (cut up to trim_max frames on each side of
-//      a gap, stopping where the velocity difference between original and reference is
-//      smallest), then small-track removal, then small-gap filling, in that order. Samples
+//      a gap, stopping at the first edge whose velocity difference between original and
+//      reference is typical of the marker, else where it is smallest: the thesis' rule),
+//      then small-track removal, then small-gap filling, in that order. Samples
 //      relabelled in 3c/3d are neither trimmed nor dropped with a small track.
 //   6. Marker filling: X^ plus the offset from it, kriged from the samples beside each gap
 //      (signal/offset_kriging.h; or Algorithm 3's Hermite blend of the edge offsets). With

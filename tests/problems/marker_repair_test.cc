@@ -5,6 +5,7 @@
 #include "problems/marker_repair/marker_repair.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -133,6 +134,37 @@ TEST(MarkerRepair, UndoesASwapAndFillsGapsAtTheEndsAndOfOneFrame) {
   EXPECT_LT(worst, 1.0);  // cm: back on their own paths, not the swapped ones.
   for (int f : {0, 5, 7, 112, 119}) EXPECT_LT((repaired[f][ends] - clean[f][ends]).norm(), 1.0) << f;
   EXPECT_LT((repaired[30][one] - clean[30][one]).norm(), 0.5);
+}
+
+// One sample missing from a clean, noisy track (a point the labeller left unlabelled, a
+// one-frame dropout): smart trimming stops at the first edge as good as the rest of the
+// track, instead of at the smallest slope difference among trim_max candidates (which,
+// with noise, lay anywhere up to 120 frames away and replaced that many captured samples).
+TEST(MarkerRepair, OneMissingSampleOfACleanTrackCutsLittle) {
+  const testing::DemoTake take = testing::MakeDemoTake(240, 120.0, 5);
+  auto noisy = take.clean;
+  std::uint32_t state = 12345;
+  auto uniform = [&state]() {  // Deterministic noise of +-0.1 cm per axis.
+    state = state * 1664525u + 1013904223u;
+    return (static_cast<double>(state >> 8) / 16777216.0 - 0.5) * 0.2;
+  };
+  for (auto& frame : noisy) {
+    for (Eigen::Vector3d& p : frame) p += Eigen::Vector3d(uniform(), uniform(), uniform());
+  }
+  const int marker = take.markers.FindMarker("LeftForeArm_1");
+  ASSERT_GE(marker, 0);
+  auto corrupted = noisy;
+  corrupted[120][marker] = Eigen::Vector3d::Constant(std::nan(""));
+  const RepairOptions options = testing::DemoRepairOptions(ReferenceKind::kTracker);  // trim_max 120.
+  ASSERT_EQ(options.trim_max, 120);
+  std::vector<std::vector<Eigen::Vector3d>> repaired;
+  Motion motion;
+  RepairReport report;
+  ASSERT_TRUE(RepairMarkers(take.skeleton, take.markers, corrupted, options, &repaired, &motion, &report).ok());
+  int replaced = 0;
+  for (int f = 0; f < 240; ++f) replaced += f != 120 && !(repaired[f][marker] == corrupted[f][marker]);
+  EXPECT_LE(replaced, 10) << "captured samples of the track replaced around a one-sample gap";
+  EXPECT_LT((repaired[120][marker] - take.clean[120][marker]).norm(), 0.5);
 }
 
 // A whole foot hidden (every marker of the foot and toe for 40 frames of the walk): the
