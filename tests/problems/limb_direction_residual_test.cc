@@ -12,7 +12,6 @@
 #include <random>
 
 #include <ceres/dynamic_autodiff_cost_function.h>
-#include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
 #include "kinematics/demo_character.h"
@@ -26,6 +25,7 @@
 #include "problems/retarget/synthetic_skinned_character.h"
 #include "solvers/right_quaternion_manifold.h"
 #include "tests/kinematics/test_rigs.h"
+#include "tests/problems/manifold_gradient_check.h"
 
 namespace mocapsolve {
 namespace {
@@ -62,27 +62,11 @@ class LimbDirectionResidualTest : public ::testing::Test {
 };
 
 TEST_F(LimbDirectionResidualTest, GradientCheckerOnTheManifold) {
-  RightQuaternionManifold quaternion_manifold;
   for (const testing::NamedPose& sample : testing::ResidualPoseSweep(skeleton_, 31)) {
     for (int k : Joints()) {
       LimbDirectionResidual residual(&skeleton_, k, local_, &goal_, scale_);
-      std::vector<const double*> parameters = {sample.pose.translations[0].data()};
-      std::vector<const ceres::Manifold*> manifolds = {nullptr};
-      for (int j : residual.joints()) {
-        parameters.push_back(sample.pose.rotations[j].coeffs().data());
-        manifolds.push_back(&quaternion_manifold);
-      }
-      ceres::NumericDiffOptions options;
-      ceres::GradientChecker checker(&residual, &manifolds, options);
-      ceres::GradientChecker::ProbeResults results;
-      checker.Probe(parameters.data(), 1e-7, &results);
-      ASSERT_TRUE(results.return_value);
-      for (size_t b = 0; b < results.local_jacobians.size(); ++b) {
-        const ceres::Matrix& analytic = results.local_jacobians[b];
-        const ceres::Matrix& numeric = results.local_numeric_jacobians[b];
-        EXPECT_LT((analytic - numeric).cwiseAbs().maxCoeff(), 1e-7 * std::max(1.0, numeric.cwiseAbs().maxCoeff()))
-            << sample.name << " joint " << k << " block " << b << "\n" << results.error_log;
-      }
+      testing::ExpectJacobianMatchesNumericOnManifold(residual, residual.joints(), sample.pose,
+                                                      sample.name + " joint " + std::to_string(k));
     }
   }
 }
