@@ -85,7 +85,7 @@ Status RetargetMain(const std::vector<std::string>& arguments) {
   const std::string name = RetargetAnimationName(task_inputs, run.animation_name);
   SetStage("writing");
   if (!Files().out.empty()) {
-    status = WriteRetargeted(Files().out, task, name, run.animation_only);
+    status = WriteRetargeted(Files().out, task, name, run.animation_only, config.delivery.fbx_key_tolerance_mm);
     if (!status.ok()) return status;
   }
   // --view: the source's skeleton beside the target character playing the result.

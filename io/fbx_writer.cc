@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/curve_key_reduction.h"
 #include "io/fbx_binary.h"
 #include "io/input_limits.h"
 #include "kinematics/forward_kinematics.h"
@@ -134,7 +135,11 @@ class SceneBuilder {
                       const Eigen::Quaterniond& pre_rotation, EulerOrder order, bool t_animated, bool r_animated);
   void AddMesh(const std::vector<int64_t>& joint_models);
   void AddAnimation(const std::vector<int64_t>& joint_models);
-  void AddCurve(int64_t curve_node, const char* channel, const std::vector<float>& values, double default_value);
+  void AddCurve(int64_t curve_node, const char* channel, const std::vector<float>& values, double default_value,
+                double tolerance);
+  std::vector<double> RotationKeyTolerances() const;
+  // Joint j's "R" curve node on Lcl Rotation with its three curves; `values` is workspace.
+  void AddRotationCurves(int j, int64_t joint_model, int64_t layer, double tolerance, std::vector<float> values[3]);
 
   const Skeleton& skeleton_;
   const Motion& motion_;
@@ -144,6 +149,7 @@ class SceneBuilder {
   Node objects_{"Objects"};
   Node connections_{"Connections"};
   std::vector<bool> translation_animated_;
+  std::vector<bool> rotation_animated_;
   std::vector<Eigen::Vector3d> rest_translations_;
   std::vector<Eigen::Quaterniond> rest_rotations_;
   int64_t time_stop_ = 0;
@@ -262,33 +268,75 @@ int64_t SceneBuilder::AddLimbNode(const std::string& name, const Eigen::Vector3d
 }
 
 void SceneBuilder::AddCurve(int64_t curve_node, const char* channel, const std::vector<float>& values,
-                            double default_value) {
+                            double default_value, double tolerance) {
   // A constant curve keeps its first and last key: the clip's length stays in every curve,
   // and assimp drops a curve of one key per axis that is within 3.5e-4 of the model's
   // default value (IsRedundantAnimationData), which would lose such a difference.
-  bool constant = values.size() > 2;
-  for (float v : values) constant = constant && v == values[0];
+  const CurveKeys keys = ReduceLinearKeys(values, tolerance);
   std::vector<int64_t> times;
-  std::vector<float> kept;
-  for (size_t k = 0; k < values.size(); ++k) {
-    if (constant && k != 0 && k + 1 != values.size()) continue;
-    times.push_back(KeyTime(static_cast<int>(k)));
-    kept.push_back(values[k]);
-  }
-  const size_t keys = times.size();
+  for (int k : keys.frames) times.push_back(KeyTime(k));
   const int64_t id = NewId();
   Node& curve = objects_.AddChild("AnimationCurve").Int64(id).String(NameClass("", "AnimCurve")).String("");
   curve.AddChild("Default").Double(default_value);
   curve.AddChild("KeyVer").Int32(4008);
   curve.AddChild("KeyTime").Int64Array(times);
-  curve.AddChild("KeyValueFloat").FloatArray(kept);
+  curve.AddChild("KeyValueFloat").FloatArray(keys.values);
   // One attribute for all keys: linear interpolation (bit 2) with the SDK's default tangent
   // flags (as Blender writes them).
   curve.AddChild("KeyAttrFlags").Int32Array({(1 << 2) | (1 << 8) | (1 << 13) | (1 << 14)});
   curve.AddChild("KeyAttrDataFloat").FloatArray({0.0f, 0.0f, 9.419963346924634e-30f, 0.0f});
-  curve.AddChild("KeyAttrRefCount").Int32Array({static_cast<int32_t>(keys)});
+  curve.AddChild("KeyAttrRefCount").Int32Array({static_cast<int32_t>(times.size())});
   ++curves_;
   ConnectProperty(id, curve_node, channel);
+}
+
+std::vector<double> SceneBuilder::RotationKeyTolerances() const {
+  // A joint's reach: the longest path of rest offsets from it to a joint or end site below
+  // it; a joint with nothing below it reaches as far as its own bone (its skin does).
+  const int nj = skeleton_.num_joints();
+  std::vector<double> reach(nj, 0.0);
+  for (const EndSite& site : skeleton_.end_sites()) {
+    reach[site.parent] = std::max(reach[site.parent], site.offset.norm());
+  }
+  for (int j = nj - 1; j >= 0; --j) {  // Parents come first: children are done before them.
+    if (reach[j] == 0.0) reach[j] = rest_translations_[j].norm();
+    const int parent = skeleton_.parent(j);
+    if (parent >= 0) reach[parent] = std::max(reach[parent], rest_translations_[j].norm() + reach[j]);
+  }
+  // Three Euler angles each off by at most tau turn the joint by at most 3 tau, which moves
+  // a point at distance r by at most 3 tau r: tau = tolerance / (3 r), in degrees.
+  const double tolerance = options_.key_tolerance_mm / (10.0 * UnitScaleFactor());
+  std::vector<double> degrees(nj, 0.0);
+  for (int j = 0; j < nj; ++j) {
+    if (reach[j] > 0.0) degrees[j] = tolerance / (3.0 * reach[j]) * 180.0 / M_PI;
+  }
+  return degrees;
+}
+
+void SceneBuilder::AddRotationCurves(int j, int64_t joint_model, int64_t layer, double tolerance,
+                                     std::vector<float> values[3]) {
+  const EulerOrder order = JointOrder(j);
+  const int nf = motion_.num_frames();
+  const char* axes[3] = {"d|X", "d|Y", "d|Z"};
+  Eigen::Vector3d previous = Eigen::Vector3d::Zero();
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();
+  for (int f = 0; f < nf; ++f) {
+    Eigen::Vector3d angles = EulerFromQuaternion(motion_.frames[f].rotations[j], order);
+    if (f > 0) angles = NearestEquivalentEuler(angles, previous);
+    previous = angles;
+    const Eigen::Vector3d by_axis = ByAxisDegrees(angles, order);
+    if (f == 0) first = by_axis;
+    for (int a = 0; a < 3; ++a) values[a][f] = static_cast<float>(by_axis[a]);
+  }
+  const int64_t rotation_node = NewId();
+  Node& rnode = objects_.AddChild("AnimationCurveNode").Int64(rotation_node)
+                    .String(NameClass("R", "AnimCurveNode")).String("");
+  Node& rprops = rnode.AddChild("Properties70");
+  for (int a = 0; a < 3; ++a) P(&rprops, axes[a], "Number", "", "A").Double(first[a]);
+  ++curve_nodes_;
+  Connect(rotation_node, layer);
+  ConnectProperty(rotation_node, joint_model, "Lcl Rotation");
+  for (int a = 0; a < 3; ++a) AddCurve(rotation_node, axes[a], values[a], first[a], tolerance);
 }
 
 void SceneBuilder::AddAnimation(const std::vector<int64_t>& joint_models) {
@@ -307,29 +355,12 @@ void SceneBuilder::AddAnimation(const std::vector<int64_t>& joint_models) {
   Connect(layer, stack);
   const int nf = motion_.num_frames();
   const char* axes[3] = {"d|X", "d|Y", "d|Z"};
+  const std::vector<double> rotation_tolerances = RotationKeyTolerances();
+  const double translation_tolerance = options_.key_tolerance_mm / (10.0 * UnitScaleFactor());
   for (int j = 0; j < skeleton_.num_joints(); ++j) {
-    const EulerOrder order = JointOrder(j);
     std::vector<float> values[3];
     for (auto& v : values) v.resize(nf);
-    Eigen::Vector3d previous = Eigen::Vector3d::Zero();
-    Eigen::Vector3d first = Eigen::Vector3d::Zero();
-    for (int f = 0; f < nf; ++f) {
-      Eigen::Vector3d angles = EulerFromQuaternion(motion_.frames[f].rotations[j], order);
-      if (f > 0) angles = NearestEquivalentEuler(angles, previous);
-      previous = angles;
-      const Eigen::Vector3d by_axis = ByAxisDegrees(angles, order);
-      if (f == 0) first = by_axis;
-      for (int a = 0; a < 3; ++a) values[a][f] = static_cast<float>(by_axis[a]);
-    }
-    const int64_t rotation_node = NewId();
-    Node& rnode = objects_.AddChild("AnimationCurveNode").Int64(rotation_node)
-                      .String(NameClass("R", "AnimCurveNode")).String("");
-    Node& rprops = rnode.AddChild("Properties70");
-    for (int a = 0; a < 3; ++a) P(&rprops, axes[a], "Number", "", "A").Double(first[a]);
-    ++curve_nodes_;
-    Connect(rotation_node, layer);
-    ConnectProperty(rotation_node, joint_models[j], "Lcl Rotation");
-    for (int a = 0; a < 3; ++a) AddCurve(rotation_node, axes[a], values[a], first[a]);
+    if (rotation_animated_[j]) AddRotationCurves(j, joint_models[j], layer, rotation_tolerances[j], values);
     if (!translation_animated_[j]) continue;
     for (int f = 0; f < nf; ++f) {
       for (int a = 0; a < 3; ++a) values[a][f] = static_cast<float>(motion_.frames[f].translations[j][a]);
@@ -343,7 +374,7 @@ void SceneBuilder::AddAnimation(const std::vector<int64_t>& joint_models) {
     ++curve_nodes_;
     Connect(translation_node, layer);
     ConnectProperty(translation_node, joint_models[j], "Lcl Translation");
-    for (int a = 0; a < 3; ++a) AddCurve(translation_node, axes[a], values[a], t0[a]);
+    for (int a = 0; a < 3; ++a) AddCurve(translation_node, axes[a], values[a], t0[a], translation_tolerance);
   }
 }
 
@@ -494,12 +525,21 @@ Status SceneBuilder::Build(std::string* bytes) {
       translation_animated_[j] = (motion_.frames[f].translations[j] - rest_translations_[j]).norm() > tolerance;
     }
   }
+  // A joint that never turns from its default rotation gets no rotation curves (importers
+  // keep the model's Lcl Rotation): still fingers are a third of a character's curves.
+  rotation_animated_.assign(nj, false);
+  rotation_animated_[0] = true;  // The root's curves carry the take's length.
+  for (int j = 1; j < nj; ++j) {
+    for (int f = 0; f < nf && !rotation_animated_[j]; ++f) {
+      rotation_animated_[j] = motion_.frames[f].rotations[j].angularDistance(rest_rotations_[j]) > 1e-9;
+    }
+  }
   std::vector<int64_t> joint_models(nj);
   for (int j = 0; j < nj; ++j) {
     const Eigen::Quaterniond pre = skeleton_.has_rest_rotation(j) ? skeleton_.rest_rotation(j)
                                                                    : Eigen::Quaterniond::Identity();
     joint_models[j] = AddLimbNode(skeleton_.name(j), rest_translations_[j], rest_rotations_[j], pre, JointOrder(j),
-                                  translation_animated_[j], true);
+                                  translation_animated_[j], rotation_animated_[j]);
     Connect(joint_models[j], skeleton_.parent(j) < 0 ? 0 : joint_models[skeleton_.parent(j)]);
   }
   for (const EndSite& site : skeleton_.end_sites()) {
@@ -630,10 +670,11 @@ Status WriteFbx(const std::string& path, const Skeleton& skeleton, const Motion&
 }
 
 Status WriteFbxCharacter(const std::string& path, const GltfCharacter& character, const Motion& motion,
-                         const std::string& take_name, bool animation_only) {
+                         const std::string& take_name, bool animation_only, double key_tolerance_mm) {
   FbxWriteOptions options;
   options.take_name = take_name;
   options.rest_pose = character.rest_pose;
+  options.key_tolerance_mm = key_tolerance_mm;
   FbxSkinnedMesh mesh;
   mesh.mesh = &character.mesh;
   mesh.triangles = &character.triangles;

@@ -67,6 +67,7 @@ std::string CharacterOutputPath(const std::string& out_dir, const std::string& c
 Status CharacterFilesFromSettings(const DeliverySettings& delivery, bool animation_only,
                                   CharacterFileOptions* files) {
   files->animation_only = animation_only;
+  files->fbx_key_tolerance_mm = delivery.fbx_key_tolerance;
   return DeliveryFormats(delivery, &files->formats);
 }
 
@@ -402,7 +403,8 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
       if (format == "glb") {
         status = WriteGltfWithAnimation(c.document, c.character, motion, inputs.name, path, gltf);
       } else if (format == "fbx") {
-        status = WriteFbxCharacter(path, c.character, motion, inputs.name, character_files.animation_only);
+        status = WriteFbxCharacter(path, c.character, motion, inputs.name, character_files.animation_only,
+                                   character_files.fbx_key_tolerance_mm);
       } else if (format == "bvh") {
         status = WriteBvh(path, c.character.skeleton, motion, BvhWriteOptions());
       } else {

@@ -136,6 +136,7 @@ struct CharacterFileOptions {
   // (io/fbx_writer.h: WriteFbxCharacter) and bvh (the take on the character's skeleton).
   std::vector<std::string> formats = {"glb"};
   bool animation_only = false;  // glb and fbx: skeleton, skin and the take, no meshes.
+  double fbx_key_tolerance_mm = 0.0;  // FbxWriteOptions::key_tolerance_mm.
 };
 
 // The delivery settings (--formats) and --animation_only as CharacterFileOptions; an error

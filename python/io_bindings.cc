@@ -7,6 +7,7 @@
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
+#include "settings/delivery_settings.h"
 #include "settings/file_read_settings.h"
 #include "settings/retarget_run_settings.h"
 #include "python/bindings.h"
@@ -223,10 +224,11 @@ void BindIo(py::module_& m) {
       "read_motion(target) or retarget()) as a new animation clip_name, to path (.glb/.gltf).");
 
   m.def("write_fbx", [](const std::string& path, const Skeleton& skeleton, const Motion& motion,
-                        const std::string& clip_name, const std::string& euler_order) {
+                        const std::string& clip_name, const std::string& euler_order, double fbx_key_tolerance) {
         if (FileExtension(path) != ".fbx") throw py::value_error(path + ": expected a .fbx output");
         FbxWriteOptions options;
         options.take_name = clip_name;
+        options.key_tolerance_mm = fbx_key_tolerance;
         if (!euler_order.empty()) {
           EulerOrder order;
           if (!ParseEulerOrder(euler_order, &order)) {
@@ -238,20 +240,22 @@ void BindIo(py::module_& m) {
         ThrowIfError(WriteFbx(path, skeleton, motion, options));
       }, py::arg("path"), py::arg("skeleton"), py::arg("motion"), py::kw_only(), py::arg("clip_name") = "mocapsolve",
       py::arg("euler_order") = "",
+      py::arg("fbx_key_tolerance") = DeclaredDefault(DeliverySettingOptions(), "fbx_key_tolerance"),
       "Writes motion on skeleton to path as binary FBX 7.4 (atomically), as `mocapsolve convert\n"
       "IN OUT.fbx`: the skeleton as LimbNodes and the clip as the take clip_name; euler_order\n"
-      "(XYZ, ..., ZYX) overrides each joint's rotation order.");
+      "(XYZ, ..., ZYX) overrides each joint's rotation order; fbx_key_tolerance (mm) as the CLI's.");
   m.def("write_fbx", [](const std::string& path, const std::string& target, const Motion& motion,
-                        const std::string& clip_name, bool animation_only) {
+                        const std::string& clip_name, bool animation_only, double fbx_key_tolerance) {
         if (FileExtension(path) != ".fbx") throw py::value_error(path + ": expected a .fbx output");
         RequireReadable(target);
         py::gil_scoped_release release;
         GltfCharacter character;
         Status status = ReadGltfCharacter(target, GltfReadOptions(), &character);
-        if (status.ok()) status = WriteFbxCharacter(path, character, motion, clip_name, animation_only);
+        if (status.ok()) status = WriteFbxCharacter(path, character, motion, clip_name, animation_only, fbx_key_tolerance);
         ThrowIfError(status);
       }, py::arg("path"), py::arg("target"), py::arg("motion"), py::kw_only(), py::arg("clip_name") = "mocapsolve",
       py::arg("animation_only") = DeclaredDefault(RetargetRunSettingOptions(), "animation_only"),
+      py::arg("fbx_key_tolerance") = DeclaredDefault(DeliverySettingOptions(), "fbx_key_tolerance"),
       "Writes the character file `target` (.glb/.gltf) with `motion` (on its skeleton, e.g. from\n"
       "read_motion(target) or retarget()) as binary FBX 7.4 (atomically), as `convert IN OUT.fbx\n"
       "--target=`: the character's skeleton, skinned mesh (not with animation_only) and the clip\n"

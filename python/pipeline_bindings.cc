@@ -65,13 +65,10 @@ void BindPipeline(py::module_& m) {
   py::class_<DeliverySettings> delivery(m, "DeliverySettings",
       "Which files a take is delivered as, one per flag of `mocapsolve pipeline`/`batch` (same\n"
       "names and defaults: formats='glb', a comma-separated list of glb, fbx, bvh; out_fps;\n"
-      "frames and seconds, 'A:B' ranges). pipeline()\n"
+      "frames and seconds, 'A:B' ranges; fbx_key_tolerance, mm). pipeline()\n"
       "and batch() take them as keywords.");
   delivery.def(py::init<>(), "Every option at the CLI's default.");
-  delivery.def_readwrite("formats", &DeliverySettings::formats)
-      .def_readwrite("out_fps", &DeliverySettings::out_fps)
-      .def_readwrite("frames", &DeliverySettings::frames)
-      .def_readwrite("seconds", &DeliverySettings::seconds);
+  BindOptionFields(delivery, DeliverySettingOptions());  // formats, out_fps, frames, ...
   delivery.def("validate", [](const DeliverySettings& s) {
         ClipDelivery checked;
         ThrowIfError(ClipDeliveryFromSettings(s, &checked));

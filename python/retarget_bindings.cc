@@ -66,7 +66,8 @@ void BindRetarget(py::module_& m) {
           py::gil_scoped_release release;
           status = RunRetarget(inputs, config, nullptr, task.get());
           if (status.ok() && !out.empty()) {
-            status = WriteRetargeted(out, *task, RetargetAnimationName(inputs, animation_name), animation_only);
+            status = WriteRetargeted(out, *task, RetargetAnimationName(inputs, animation_name), animation_only,
+                                     config.delivery.fbx_key_tolerance_mm);
           }
         }
         ThrowIfError(status);

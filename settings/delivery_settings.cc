@@ -24,7 +24,13 @@ const OptionGroup<DeliverySettings>& DeliverySettingOptions() {
            "the start); \"\" = all.")
       .Add(&S::seconds, "seconds",
            "Deliver the frames at times A:B seconds from the clip's start only ('A:' to the end, ':B' from the "
-           "start); \"\" = all. Not with --frames.");
+           "start); \"\" = all. Not with --frames.")
+      .Add(&S::fbx_key_tolerance, "fbx_key_tolerance", "mm",
+           "FBX files: drop the keys that linear interpolation between the kept ones reproduces within this "
+           "distance at every point a joint moves (a joint's rotation keys within E / (3 x its reach), as a DCC "
+           "tool's key reducer; the errors of a chain's joints add up: 1.4-2.2 E measured on five characters). "
+           "FBX stores a time with every key of every curve; 0.005 mm made animation-only files of 120 fps takes "
+           "2-23 % smaller. 0 keeps every frame's key (exact).", 0.0, 1000.0);
   return *group;
 }
 
@@ -73,6 +79,7 @@ Status ClipDeliveryFromSettings(const DeliverySettings& settings, ClipDelivery* 
   if (!status.ok()) return status;
   *delivery = ClipDelivery();
   delivery->out_fps = settings.out_fps;
+  delivery->fbx_key_tolerance_mm = settings.fbx_key_tolerance;
   if (!settings.frames.empty() && !settings.seconds.empty()) {
     return Status::Error("--frames and --seconds: give one range, not both");
   }

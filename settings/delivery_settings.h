@@ -11,6 +11,8 @@
 // --out_bvh, convert's OUT) can be cut, --frames=A:B (first and last frame, both included,
 // 0-based) or --seconds=A:B (the frames at times in [A, B]), either end left open ("A:",
 // ":B"), and then resampled, --out_fps=R (0 keeps the rate): signal/clip_delivery.h.
+// --fbx_key_tolerance=E (mm) lets the FBX writer drop keys that linear interpolation
+// reproduces within E at any point its joint moves (io/fbx_writer.h); 0 keeps every key.
 // Declared once; the CLI's flags, config keys and Python's keywords.
 #ifndef MOCAPSOLVE_SETTINGS_DELIVERY_SETTINGS_H_
 #define MOCAPSOLVE_SETTINGS_DELIVERY_SETTINGS_H_
@@ -28,6 +30,7 @@ struct DeliverySettings {
   double out_fps = 0.0;         // Frames per second; 0 = the clip's.
   std::string frames;           // "A:B", frames of the clip; "" = all.
   std::string seconds;          // "A:B", seconds from the clip's start; "" = all.
+  double fbx_key_tolerance = 0.0;  // mm; FBX key reduction (io/curve_key_reduction.h); 0 = exact.
 };
 
 const OptionGroup<DeliverySettings>& DeliverySettingOptions();

@@ -34,6 +34,8 @@ struct ClipRange {
 struct ClipDelivery {
   ClipRange range;
   double out_fps = 0.0;  // 0 = the clip's rate.
+  // The FBX writer's key reduction bound (io/fbx_writer.h, FbxWriteOptions), mm; 0 = exact.
+  double fbx_key_tolerance_mm = 0.0;
 
   bool keeps_clip() const { return range.unit == ClipRange::Unit::kAll && out_fps == 0.0; }
 };

@@ -97,7 +97,7 @@ Status ConvertToFbx(const ConvertInputs& inputs, const ConvertSettings& settings
     Motion mapped;
     status = MotionForCharacter(skeleton, motion, character, &mapped);
     if (!status.ok()) return Status::Error(in + " onto " + target + ": " + status.message());
-    status = WriteFbxCharacter(out, character, mapped, settings.clip_name, false);
+    status = WriteFbxCharacter(out, character, mapped, settings.clip_name, false, delivery.fbx_key_tolerance_mm);
     if (!status.ok()) return status;
     AppendF(&result->summary, "wrote %s: %s with take '%s' (%d frames at %.6g fps)\n", out.c_str(), target.c_str(),
             settings.clip_name.c_str(), mapped.num_frames(), mapped.frame_rate);
@@ -107,6 +107,7 @@ Status ConvertToFbx(const ConvertInputs& inputs, const ConvertSettings& settings
   }
   FbxWriteOptions options;
   options.take_name = settings.clip_name;
+  options.key_tolerance_mm = delivery.fbx_key_tolerance_mm;
   if (!settings.euler_order.empty()) {
     EulerOrder order;
     status = EulerOrderSetting(settings, &order);

@@ -194,11 +194,11 @@ std::string RetargetAnimationName(const RetargetInputs& inputs, const std::strin
 }
 
 Status WriteRetargeted(const std::string& out, const RetargetTaskResult& result, const std::string& animation_name,
-                       bool animation_only) {
+                       bool animation_only, double fbx_key_tolerance_mm) {
   const Motion& motion = result.delivered;
   if (IsTextOutputPath(out, ".bvh")) return WriteBvh(out, result.target.skeleton, motion);  // "-": stdout.
   if (FileExtension(out) == ".fbx") {
-    return WriteFbxCharacter(out, result.target, motion, animation_name, animation_only);
+    return WriteFbxCharacter(out, result.target, motion, animation_name, animation_only, fbx_key_tolerance_mm);
   }
   GltfWriteOptions write_options;
   write_options.animation_only = animation_only;

@@ -73,9 +73,9 @@ std::string RetargetAnimationName(const RetargetInputs& inputs, const std::strin
 // Writes the delivered result to `out`: a .bvh (the target skeleton), a .glb/.gltf (the target file
 // with the result added as a new animation; animation_only: skeleton, skin and animation),
 // or a .fbx (io/fbx_writer.h: the target's skeleton, mesh unless animation_only, the result
-// as the take named `animation_name`).
+// as the take named `animation_name`, keys reduced within fbx_key_tolerance_mm).
 Status WriteRetargeted(const std::string& out, const RetargetTaskResult& result, const std::string& animation_name,
-                       bool animation_only);
+                       bool animation_only, double fbx_key_tolerance_mm = 0.0);
 
 // The console line after RunRetarget: frames, tracked vertices, the vertex, normal and
 // foot-skating errors and the time per frame.

@@ -249,6 +249,54 @@ TEST(FbxWriter, SkeletonAndClipReadBackThroughAssimp) {
   std::printf("assimp round trip: largest joint position error %.3g cm\n", worst);
 }
 
+// Key reduction (FbxWriteOptions::key_tolerance_mm): fewer keys, every joint and end site
+// read back by assimp within the bound (E per joint, adding along the chain: the deepest
+// point, LeftHand_End, has four animated joints above it), and a joint that never turns
+// has no curves but reads back in place.
+TEST(FbxWriter, KeyReductionStaysWithinItsBound) {
+  const Skeleton skeleton = TestSkeleton();
+  Motion motion = TestMotion(skeleton, 300);
+  for (int f = 0; f < motion.num_frames(); ++f) {  // Slow, smooth turns (a retargeted take's), the head still.
+    for (int j = 0; j < skeleton.num_joints(); ++j) {
+      motion.frames[f].rotations[j] = ExpMap(Eigen::Vector3d(0.5 * std::sin(0.02 * f + j), 0.3 * std::cos(0.015 * f),
+                                                             0.2 * std::sin(0.01 * f * (j + 1))));
+    }
+    motion.frames[f].rotations[2] = Eigen::Quaterniond::Identity();
+  }
+  std::string exact, reduced;
+  ASSERT_TRUE(SerializeFbx(skeleton, motion, {}, nullptr, &exact).ok());
+  FbxWriteOptions options;
+  options.key_tolerance_mm = 0.5;
+  ASSERT_TRUE(SerializeFbx(skeleton, motion, options, nullptr, &reduced).ok());
+  size_t exact_keys = 0, reduced_keys = 0, rotation_nodes = 0;
+  for (const auto& [bytes, keys] : {std::pair{&exact, &exact_keys}, std::pair{&reduced, &reduced_keys}}) {
+    const std::vector<FbxRecord> top = ParseFbxFile(*bytes);
+    const FbxRecord* objects = Find(top, "Objects");
+    ASSERT_NE(objects, nullptr);
+    for (const FbxRecord& object : objects->children) {
+      if (object.name == "AnimationCurveNode" && bytes == &reduced && object.properties.size() > 1 &&
+          object.properties[1].text.rfind("R", 0) == 0) {
+        ++rotation_nodes;
+      }
+      if (object.name != "AnimationCurve") continue;
+      const FbxRecord* times = Find(object.children, "KeyTime");
+      ASSERT_NE(times, nullptr);
+      *keys += times->properties[0].numbers.size();
+    }
+  }
+  EXPECT_EQ(rotation_nodes, static_cast<size_t>(skeleton.num_joints() - 1)) << "not the still head";
+  EXPECT_LT(reduced_keys, exact_keys * 3 / 4);
+  EXPECT_LT(reduced.size(), exact.size());
+  const std::string path = testing::TempPath("reduced.fbx");
+  ASSERT_TRUE(WriteFileAtomically(path, reduced).ok());
+  Skeleton back;
+  Motion back_motion;
+  Status status = ReadMotionFile(path, {}, &back, &back_motion);
+  ASSERT_TRUE(status.ok()) << status.message();
+  const double worst = CompareWorldPositions(skeleton, motion, back, back_motion, 4 * 0.05 + 0.001);  // cm.
+  std::printf("keys %zu -> %zu at 0.5 mm: largest joint error %.3g mm\n", exact_keys, reduced_keys, 10 * worst);
+}
+
 TEST(FbxWriter, FileStructureFollowsTheFormat) {
   const Skeleton skeleton = TestSkeleton();
   const Motion motion = TestMotion(skeleton, 5);
@@ -326,7 +374,13 @@ TEST(FbxWriter, FullTurnsGiveContinuousEulerCurves) {
   for (const FbxRecord& r : Find(top, "Objects")->children) {
     if (r.name != "AnimationCurve") continue;
     const std::vector<double>& v = Find(r.children, "KeyValueFloat")->properties[0].numbers;
-    for (size_t k = 1; k < v.size(); ++k) largest_step = std::max(largest_step, std::abs(v[k] - v[k - 1]));
+    const std::vector<double>& t = Find(r.children, "KeyTime")->properties[0].numbers;
+    ASSERT_EQ(t.size(), v.size());
+    // Per frame: a key may stand for a run the line between its neighbours reproduces.
+    for (size_t k = 1; k < v.size(); ++k) {
+      const double frames = (t[k] - t[k - 1]) / (46186158000.0 / 30.0);
+      largest_step = std::max(largest_step, std::abs(v[k] - v[k - 1]) / frames);
+    }
     for (double a : v) largest_angle = std::max(largest_angle, std::abs(a));
     ++curves;
   }
