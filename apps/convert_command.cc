@@ -56,7 +56,7 @@ extern const Command kConvertCommand = {
     "OUT is written atomically and may not be an input.",
     __FILE__, ConvertMain,
     {SharedOptions("skeleton,skeleton_units,amc_fps,animation,sample_fps,target,axes,include_model_outputs,"
-                   "subject_prefix,report"),
+                   "subject_prefix,ignore_markers,report"),
      ConvertSettingOptions().options(), DeliverySettingOptions().Without("formats").options()}};
 
 }  // namespace mocapsolve

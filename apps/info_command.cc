@@ -145,6 +145,6 @@ extern const Command kInfoCommand = {
     "skins and the animations. Motions: frame count and rate, duration, the file's length\n"
     "unit (BVH does not state one) and the bounding box of the root's path. Markers: labels,\n"
     "frames, rate, unit, missing samples and gap runs.",
-    __FILE__, InfoMain, {SharedOptions("skeleton,skeleton_units,amc_fps,animation,sample_fps,include_model_outputs,subject_prefix,report")}};
+    __FILE__, InfoMain, {SharedOptions("skeleton,skeleton_units,amc_fps,animation,sample_fps,include_model_outputs,subject_prefix,ignore_markers,report")}};
 
 }  // namespace mocapsolve

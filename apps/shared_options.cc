@@ -36,7 +36,7 @@ void ReadLeniently(const OptionGroup<Settings>& group, Settings* settings) {
 
 std::vector<Option> SharedOptions(const std::string& names) {
   std::string all = names;
-  if (Named(names, "markers")) all += ",include_model_outputs,subject_prefix";
+  if (Named(names, "markers")) all += ",include_model_outputs,subject_prefix,ignore_markers";
   std::vector<Option> options;
   Append(FileSettingOptions(), all, &options);
   Append(FileReadSettingOptions(), all, &options);

@@ -1,9 +1,11 @@
 #include "io/marker_file.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "io/c3d_reader.h"
 #include "io/c3d_writer.h"
+#include "io/comma_list.h"
 #include "io/input_limits.h"
 #include "io/motion_file.h"
 #include "io/trc_reader.h"
@@ -29,6 +31,37 @@ MarkerReadOptions& DefaultOptions() {
 void SetDefaultMarkerReadOptions(const MarkerReadOptions& options) { DefaultOptions() = options; }
 
 const MarkerReadOptions& DefaultMarkerReadOptions() { return DefaultOptions(); }
+
+namespace {
+
+// The column of `label`: the label itself, else the one label whose name after a subject
+// prefix ("Nick01:RTOE") is it; -1 when none, -2 when several.
+int IgnoredColumn(const std::vector<std::string>& all, const std::string& label) {
+  const auto it = std::find(all.begin(), all.end(), label);
+  if (it != all.end()) return static_cast<int>(it - all.begin());
+  int found = -1;
+  for (size_t m = 0; m < all.size(); ++m) {
+    const size_t colon = all[m].rfind(':');
+    if (colon == std::string::npos || all[m].compare(colon + 1, std::string::npos, label) != 0) continue;
+    found = found == -1 ? static_cast<int>(m) : -2;
+  }
+  return found;
+}
+
+Status IgnoreMarkers(const std::string& labels, MarkerTrajectories* trajectories) {
+  for (const std::string& label : SplitCommaList(labels)) {
+    const int m = IgnoredColumn(trajectories->labels(), label);
+    if (m == -1) return Status::Error("--ignore_markers: the file has no marker " + QuoteToken(label));
+    if (m == -2) {
+      return Status::Error("--ignore_markers: " + QuoteToken(label) +
+                           " names markers of several subjects; give the whole label ('Name:" + label + "')");
+    }
+    for (int f = 0; f < trajectories->num_frames(); ++f) trajectories->SetMissing(f, m);
+  }
+  return Status::Ok();
+}
+
+}  // namespace
 
 Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories) {
   return ReadMarkerFile(path, trajectories, DefaultMarkerReadOptions());
@@ -57,6 +90,8 @@ Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories,
     status = Status::Error(path + ": unknown marker format " + QuoteToken(ext) + " (expected .c3d or .trc)");
   }
   if (!status.ok()) return status;
+  status = IgnoreMarkers(options.ignore_markers, trajectories);
+  if (!status.ok()) return Status::Error(path + ": " + status.message());
   // What every writer can represent (io/input_limits.h): a rate of 1e308 or 1e-310 is
   // refused here, not written as NaN or 0.
   status = CheckMarkerBounds(*trajectories);

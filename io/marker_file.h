@@ -14,6 +14,9 @@ namespace mocapsolve {
 struct MarkerReadOptions {
   bool include_model_outputs = false;  // C3dReadOptions::include_model_outputs.
   std::string subject_prefix;          // C3dReadOptions::subject_prefix.
+  // Comma-separated labels whose every sample is read as missing; a label the file does
+  // not have is an error naming it.
+  std::string ignore_markers;
   // Receives the reader's warnings (duplicate labels renamed, model outputs set apart);
   // null: each is printed to stderr as "warning: ...".
   std::vector<std::string>* warnings = nullptr;

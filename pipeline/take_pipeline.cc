@@ -240,6 +240,10 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   figures.farthest_marker = checks.farthest_marker;
   figures.torso_error_deg = checks.torso_frames > 0 ? checks.torso_error_mean_deg : std::nan("");
   result->verdict = CheckQuality(options.gate, figures);
+  if (!result->verdict.pass) {  // Only the marker checks so far: which markers and frames carry them.
+    result->blame = BlameMarkers(take.skeleton, take.markers, take.observed, result->solved, mm);
+    result->gate_advice = GateAdvice(result->blame, inputs.markers_path);
+  }
   for (const CharacterOutput& output : result->characters) {
     CheckRetargetQuality(options.gate, output.result.quality, output.name, &result->verdict);
   }
@@ -320,6 +324,17 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
       .Add("max_marker_bone_distance_cm", result.figures.max_marker_offset_cm)
       .Add("farthest_marker", result.figures.farthest_marker)
       .Add("torso_error_deg", result.figures.torso_error_deg);
+  if (!result.gate_advice.empty()) {
+    std::vector<JsonObject> blame;
+    for (size_t k = 0; k < result.blame.size() && k < 10; ++k) {
+      const MarkerBlame& b = result.blame[k];
+      JsonObject o;
+      o.Add("marker", b.label).Add("rms_mm", b.rms_mm).Add("share", b.share)
+          .Add("worst_frames", std::vector<JsonValue>{JsonValue(b.worst_first), JsonValue(b.worst_last)});
+      blame.push_back(o);
+    }
+    gate.Add("blame", blame).Add("advice", result.gate_advice);
+  }
   JsonObject report;
   report.Add("take", inputs.name)
       .Add("markers", inputs.markers_path)

@@ -42,6 +42,7 @@
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/motion.h"
 #include "kinematics/status.h"
+#include "pipeline/gate_blame.h"
 #include "pipeline/quality_gate.h"
 #include "pipeline/subject.h"
 #include "settings/delivery_settings.h"
@@ -114,6 +115,10 @@ struct TakeResult {
   std::vector<CharacterOutput> characters;
   QualityFigures figures;
   QualityVerdict verdict;
+  // When a marker check of the gate failed: the markers to blame and what to try
+  // (pipeline/gate_blame.h); else empty.
+  std::vector<MarkerBlame> blame;
+  std::string gate_advice;
   std::vector<StageTime> timings;
   double seconds = 0.0;               // The whole take (reading included, writing not).
 };

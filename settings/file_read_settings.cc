@@ -27,7 +27,12 @@ const OptionGroup<FileReadSettings>& FileReadSettingOptions() {
       .Add(&S::subject_prefix, "subject_prefix",
            "C3D with several subjects (SUBJECTS:LABEL_PREFIXES, 'Name:LASI' labels): read this subject's points "
            "(name, 'Name:' or a SUBJECTS:NAMES entry), its prefix stripped; the other subjects' points are "
-           "ignored. Without it such a file is an error listing its subjects.");
+           "ignored. Without it such a file is an error listing its subjects.")
+      .Add(&S::ignore_markers, "ignore_markers",
+           "Marker labels (comma-separated, as the file spells them, or without a subject's 'Name:' prefix) read "
+           "as missing in "
+           "every frame: a marker that came off or was mislabelled through the take, which the quality gate's "
+           "advice names; the repair fills it from the solved motion like any gap.");
   return *group;
 }
 
@@ -45,6 +50,7 @@ MarkerReadOptions MarkerReadOptionsOf(const FileReadSettings& settings) {
   MarkerReadOptions options;
   options.include_model_outputs = settings.include_model_outputs;
   options.subject_prefix = settings.subject_prefix;
+  options.ignore_markers = settings.ignore_markers;
   return options;
 }
 

@@ -24,6 +24,7 @@ struct FileReadSettings {
   double marker_scale = 0.0;        // Marker units -> skeleton units; 0 = from the files' units.
   bool include_model_outputs = false;  // C3D: model outputs read as markers.
   std::string subject_prefix;       // C3D of several subjects: whose points are read.
+  std::string ignore_markers;       // Comma-separated labels read as missing in every frame.
 };
 
 const OptionGroup<FileReadSettings>& FileReadSettingOptions();

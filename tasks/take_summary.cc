@@ -28,6 +28,7 @@ std::string TakeSummary(const TakeInputs& inputs, const TakeResult& result) {
 std::string TakeGateFailures(const TakeResult& result) {
   std::string failures;
   for (const std::string& f : result.verdict.failures) failures += (failures.empty() ? "" : "; ") + f;
+  if (!result.gate_advice.empty()) failures += "\n  " + result.gate_advice;
   return failures;
 }
 

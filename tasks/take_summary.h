@@ -12,7 +12,8 @@ namespace mocapsolve {
 
 std::string TakeSummary(const TakeInputs& inputs, const TakeResult& result);
 
-// The quality gate's failures, "; "-separated ("" when it passed).
+// The quality gate's failures, "; "-separated ("" when it passed), and on a failed marker
+// check a second line: the markers to blame and what to try (pipeline/gate_blame.h).
 std::string TakeGateFailures(const TakeResult& result);
 
 }  // namespace mocapsolve
