@@ -9,6 +9,7 @@
 #include "kinematics/forward_kinematics.h"
 #include "problems/edit_propagation/foot_contacts.h"
 #include "problems/retarget/foot_clearance.h"
+#include "problems/retarget/role_sides.h"
 #include "problems/retarget/limb_goals.h"
 #include "problems/retarget/own_skeleton.h"
 #include "problems/retarget/skeleton_binding.h"
@@ -239,6 +240,11 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
         WorldFromBindRotation(*source.skeleton, bind, source.rest_pose.rotations.empty() ? bind : source.rest_pose);
     motion = source_motion;
   }
+  // The facings of both meshes signed by the humanoid roles' sides (role_sides.h).
+  setup_options.target_left = LeftOfCharacter(target_skeleton, *target.mesh, out.joint_map.target_roles,
+                                              setup_options.target_world_from_bind);
+  setup_options.source_left = LeftOfCharacter(*source.skeleton, *source_mesh, out.joint_map.source_roles,
+                                              setup_options.source_world_from_bind);
   AddHumanoidPositionJoints(target_skeleton, out.joint_map, &setup_options, &out.notes);
   Status status = BuildRetargetSetup(*source_mesh, target_skeleton, *target.mesh, setup_options, &out.setup);
   if (!status.ok()) return status;
