@@ -23,6 +23,10 @@ const OptionGroup<RetargetSettings>& RetargetSettingOptions() {
       .Add(&S::plant_weight, "plant_weight", "",
            "Weight of a planted foot joint (per sigma of position error, as a "
            "position-tracked vertex has 1); 0 = off.")
+      .Add(&S::floor_weight, "floor_weight", "",
+           "Weight that keeps the target's feet and toes out of the floor: each foot and toes joint at or above "
+           "its rest height over the character's sole (per sigma of depth, as a position-tracked vertex has 1; "
+           "plant anchors are lifted to it too); 0 = off.")
       .Add(&S::plant_height, "plant_height", "source heights",
            "Foot contact: source foot joint at most this high above its lowest "
            "point (fraction of the source height).")
@@ -156,6 +160,7 @@ Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRe
   if (!(settings.contact_height > 0.0)) return Status::Error("--contact_height: must be > 0");
   if (settings.mapping_normal_weight < 0.0) return Status::Error("--mapping_normal_weight: must be >= 0");
   if (!(settings.plant_weight >= 0.0)) return Status::Error("--plant_weight: must be >= 0");
+  if (!(settings.floor_weight >= 0.0)) return Status::Error("--floor_weight: must be >= 0");
   if (!(settings.plant_height > 0.0) || !(settings.plant_speed > 0.0)) {
     return Status::Error("--plant_height and --plant_speed: must be > 0");
   }
@@ -173,6 +178,7 @@ Status RetargetOptionsFromSettings(const RetargetSettings& settings, CharacterRe
   options.setup.mapping_normal_weight = settings.mapping_normal_weight;
   options.setup.transfer_normals = settings.transfer_normals;
   options.plant_feet = settings.plant_feet && settings.plant_weight > 0.0;
+  options.floor_weight = settings.floor_weight;
   options.contact_height = settings.plant_height;
   options.contact_speed = settings.plant_speed;
   options.foot_joints = SplitCommaList(settings.foot_joints);

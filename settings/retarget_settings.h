@@ -21,7 +21,8 @@ struct RetargetSettings {
   double limit_weight = 0.0;    // Soft joint limits (--limit_weight), per radian.
   std::string joint_map;        // JSON (ReadJointMapFile); "" = automatic.
   bool plant_feet = true;
-  double plant_weight = 10.0;
+  double plant_weight = 30.0;
+  double floor_weight = 10.0;   // Per sigma of depth under the floor; 0 = off.
   double plant_height = 0.03;   // Fraction of the source height.
   double plant_speed = 0.15;    // Source heights per second.
   std::string root_motion = "keep";  // keep | root_bone | in_place (problems/retarget/root_motion.h).

@@ -114,6 +114,7 @@ JsonObject RetargetReportJson(const RetargetInputs& inputs, const CharacterRetar
       .Add("result_foot_skating_heights_per_s", result.result_foot_skating)
       .Add("plant_joints", plant_joints)
       .Add("plant_weight", options.plant_feet ? solve.plant_weight : 0.0)
+      .Add("floor_weight", options.floor_weight)
       .Add("contact_samples", retarget.contact_samples)
       .Add("plant_contact_pairs", retarget.plant_pairs)
       .Add("source_plant_skating_cm_per_s", retarget.source_plant_skating_cm_s)

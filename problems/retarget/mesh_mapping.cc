@@ -17,7 +17,8 @@ using KdTree6 = nanoflann::KDTreeEigenMatrixAdaptor<Matrix6Xd, 6, nanoflann::met
 
 }  // namespace
 
-CharacterFrame ComputeCharacterFrame(const Eigen::Matrix3Xd& rest_positions, bool align_facing) {
+CharacterFrame ComputeCharacterFrame(const Eigen::Matrix3Xd& rest_positions, bool align_facing,
+                                     const Eigen::Vector3d& left) {
   CHECK_GT(rest_positions.cols(), 0);
   CharacterFrame frame;
   const Eigen::Vector3d mean = rest_positions.rowwise().mean();
@@ -41,7 +42,12 @@ CharacterFrame ComputeCharacterFrame(const Eigen::Matrix3Xd& rest_positions, boo
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(spread);
   const Eigen::Vector2d side = eigen.eigenvectors().col(1);  // Largest eigenvalue.
   Eigen::Vector2d forward(-side.y(), side.x());
-  if (num_feet > 0 && forward.dot(feet / num_feet) < 0.0) forward = -forward;
+  const Eigen::Vector2d left_forward(-left.z(), left.x());  // (left x up) in (x, z).
+  if (left_forward.norm() > 1e-9 * frame.height) {
+    if (forward.dot(left_forward) < 0.0) forward = -forward;
+  } else if (num_feet > 0 && forward.dot(feet / num_feet) < 0.0) {
+    forward = -forward;
+  }
   // F turns forward (x, z) onto +Z: a rotation about Y by -atan2(forward_x, forward_z).
   const double yaw = std::atan2(forward.x(), forward.y());
   frame.facing = Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitY()).toRotationMatrix();

@@ -33,8 +33,12 @@ struct CharacterFrame {
 };
 
 // From the rest (bind-pose) vertex positions in the world, 3 x #V, #V > 0. A flat mesh
-// gets height 1.
-CharacterFrame ComputeCharacterFrame(const Eigen::Matrix3Xd& rest_positions, bool align_facing = true);
+// gets height 1. The facing: the major horizontal axis of the vertices is left-right;
+// forward is signed by `left` (the character's left in the world, e.g. role_sides.h:
+// forward = left x up) when it has a horizontal part, else by where the lowest vertices
+// lie (toes ahead of the ankles).
+CharacterFrame ComputeCharacterFrame(const Eigen::Matrix3Xd& rest_positions, bool align_facing = true,
+                                     const Eigen::Vector3d& left = Eigen::Vector3d::Zero());
 
 // For each column s of `source_samples` (3 x #S, source rest positions of the samples),
 // the index of the nearest column of `target_rest` (3 x #V_t) in the common frame. With

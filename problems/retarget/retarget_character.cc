@@ -8,6 +8,8 @@
 
 #include "kinematics/forward_kinematics.h"
 #include "problems/edit_propagation/foot_contacts.h"
+#include "problems/retarget/foot_clearance.h"
+#include "problems/retarget/role_sides.h"
 #include "problems/retarget/limb_goals.h"
 #include "problems/retarget/own_skeleton.h"
 #include "problems/retarget/skeleton_binding.h"
@@ -172,6 +174,7 @@ bool CharacterRetargetOptions::IsValid(std::string* error) const {
     return *error = "contact height and speed must be > 0", false;
   }
   if (!(clip.contact_height > 0.0)) return *error = "skating contact height must be > 0", false;
+  if (!(floor_weight >= 0.0) || !std::isfinite(floor_weight)) return *error = "floor weight must be >= 0", false;
   if (setup.subsample.ratio < 1) return *error = "subsample ratio must be >= 1", false;
   if (first_frame_solves < 1) return *error = "first frame solves must be >= 1", false;
   if (!(root_motion.smoothing_seconds >= 0.0)) return *error = "root motion smoothing must be >= 0", false;
@@ -237,6 +240,11 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
         WorldFromBindRotation(*source.skeleton, bind, source.rest_pose.rotations.empty() ? bind : source.rest_pose);
     motion = source_motion;
   }
+  // The facings of both meshes signed by the humanoid roles' sides (role_sides.h).
+  setup_options.target_left = LeftOfCharacter(target_skeleton, *target.mesh, out.joint_map.target_roles,
+                                              setup_options.target_world_from_bind);
+  setup_options.source_left = LeftOfCharacter(*source.skeleton, *source_mesh, out.joint_map.source_roles,
+                                              setup_options.source_world_from_bind);
   AddHumanoidPositionJoints(target_skeleton, out.joint_map, &setup_options, &out.notes);
   Status status = BuildRetargetSetup(*source_mesh, target_skeleton, *target.mesh, setup_options, &out.setup);
   if (!status.ok()) return status;
@@ -272,6 +280,9 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
     out.plant_joints.push_back(target_skeleton.name(t));
   }
   out.contact_samples = contacts.ContactSamples();  // 0 without contacts.
+  clip.solve.floor_weight = out.own_skeleton ? 0.0 : options.floor_weight;
+  clip.solve.floor_joints = TargetFootJoints(out.joint_map);
+  clip.solve.floor_heights = FootRestClearances(target_skeleton, clip.solve.floor_joints, target_rest, target.mesh);
   SetLimbGoals(*source.skeleton, motion, target_skeleton, target_rest, out, &clip, &out.notes);
   out.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   status = RetargetClip(*source.skeleton, *source_mesh, motion, target_skeleton, *target.mesh, out.setup, clip,

@@ -87,6 +87,10 @@ struct CharacterRetargetOptions {
   // A skeleton-only source's horizontal root motion scaled by the leg-length ratio over the
   // height ratio before the solve (stride_scale.h); off: the height ratio alone.
   bool stride_to_legs = false;
+  // The floor (floor_residual.h) under the target's foot and toes role joints: each kept at
+  // or above its rest clearance over y = 0 of the result's world (the source's floor, turned
+  // and scaled), weight per sigma of depth; 0 = off. Plant anchors are lifted to it too.
+  double floor_weight = 10.0;
 
   bool IsValid(std::string* error) const;
 };

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -80,6 +81,15 @@ class FootSkatingSums {
   double source_sum_ = 0.0, result_sum_ = 0.0;
   int pairs_ = 0, frames_ = 0;
 };
+
+// The floor's lowest height for target joint k (options.floor_heights), -inf when the floor
+// is off or k is no floor joint.
+double LowestHeight(const RetargetSolveOptions& options, int k) {
+  for (size_t i = 0; i < options.floor_joints.size(); ++i) {
+    if (options.floor_weight > 0.0 && options.floor_joints[i] == k) return options.floor_heights[i];
+  }
+  return -std::numeric_limits<double>::infinity();
+}
 
 // The start pose, warm start and plants against the clip and the target skeleton.
 Status CheckClipInputs(const Skeleton& target_skeleton, const RetargetClipOptions& options, const Pose& start,
@@ -224,6 +234,7 @@ Status RetargetClip(const Skeleton& source_skeleton, const SkinnedMesh& source_m
       for (int p = 0; p < np; ++p) {
         if (options.plant_contacts[p][f] && !anchored[p]) {
           anchors.col(p) = plant_fk.world_positions[options.solve.plant_joints[p]];
+          anchors(1, p) = std::max(anchors(1, p), LowestHeight(options.solve, options.solve.plant_joints[p]));
           anchored[p] = 1;
         }
       }

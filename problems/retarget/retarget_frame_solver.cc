@@ -13,6 +13,7 @@
 #include "problems/marker_solve/joint_limit_residual.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 #include "problems/marker_solve/pose_prior_residual.h"
+#include "problems/retarget/floor_residual.h"
 #include "problems/retarget/foot_plant_residual.h"
 #include "problems/retarget/limb_direction_residual.h"
 #include "problems/retarget/tracked_vertex_residual.h"
@@ -22,6 +23,11 @@
 
 namespace mocapsolve {
 namespace {
+
+// The lean kernel's floor: at most this many active-set rounds per frame, and a joint counts
+// as under its lowest height when deeper than this share of sigma.
+constexpr int kFloorRounds = 3;
+constexpr double kFloorSlack = 1e-3;
 
 // The root translation's chart in units of sigma: Plus(t, d) = t + sigma d. With it the
 // translation columns of J are on the scale of the (normalized) rotation columns, so a
@@ -68,6 +74,11 @@ bool RetargetSolveOptions::IsValid(std::string* error) const {
   }
   for (const Limb& limb : limbs) {
     if (limb.joint < 0 || !limb.local.allFinite()) return *error = "a limb without a joint or direction", false;
+  }
+  if (!(floor_weight >= 0.0) || !std::isfinite(floor_weight)) return *error = "floor weight must be >= 0", false;
+  if (floor_heights.size() != floor_joints.size()) return *error = "one floor height per floor joint", false;
+  for (size_t k = 0; k < floor_joints.size(); ++k) {
+    if (floor_joints[k] < 0 || !std::isfinite(floor_heights[k])) return *error = "a floor joint or height", false;
   }
   if (solver == SolverKind::kCeres && !ceres.IsValid(error)) return false;
   return true;
@@ -146,6 +157,20 @@ class RetargetFrameSolver::Impl {
                                                              &goals_[nt + np + l], options.limb_direction_weight));
       for (int j : limb_residuals_.back()->joints()) solved[j] = true;
     }
+    const int nf = options.floor_weight > 0.0 ? static_cast<int>(options.floor_joints.size()) : 0;
+    floor_scale_ = options.floor_weight / sigma;
+    floor_goals_.assign(nf, Eigen::Vector3d::Zero());
+    floor_active_.assign(nf, 0);
+    floor_plant_.assign(nf, -1);
+    for (int k = 0; k < nf; ++k) {
+      CHECK(options.floor_joints[k] < nj) << "floor joint " << options.floor_joints[k];
+      floor_residuals_.emplace_back(
+          new FloorResidual(&skeleton, options.floor_joints[k], &options_.floor_heights[k], &floor_scale_));
+      for (int j : floor_residuals_.back()->joints()) solved[j] = true;
+      for (int p = 0; p < np; ++p) {
+        if (options.plant_joints[p] == options.floor_joints[k]) floor_plant_[k] = p;
+      }
+    }
     for (int j = 0; j < nj; ++j) {
       if (solved[j]) solved_joints_.push_back(j);
     }
@@ -199,6 +224,10 @@ class RetargetFrameSolver::Impl {
       const LimbDirectionResidual& limb = *limb_residuals_[l];
       tree_->AddDirectionRow({{limb.joint(), 1.0, limb.local()}}, &goals_[nt + np + l], limb.scale());
     }
+    for (int k = 0; k < nf; ++k) {
+      floor_rows_.push_back(
+          tree_->AddPointRow({{floor_residuals_[k]->joint(), 1.0, Eigen::Vector3d::Zero()}}, &floor_goals_[k], 0.0));
+    }
     if (translation_prior_) tree_->AddBlockCost(-1, translation_prior_.get());
     for (const Extra& extra : extras_) tree_->AddBlockCost(extra.joint, extra.cost.get());
     tree_->set_time_stages(options.time_stages);
@@ -245,6 +274,23 @@ class RetargetFrameSolver::Impl {
         result.initial_cost = summary.initial_cost;
         result.final_cost = summary.final_cost;
         result.iterations = summary.iterations;
+        // The floor's active set: rounds of rows toward the lowest heights, each round's goal
+        // raised by what the last left under (the other rows pull the joint down a little).
+        for (int round = 0; round < kFloorRounds; ++round) {
+          const int under = ActivateFloorRows(pose, round > 0);
+          if (round == 0) result.floor_contacts = under;
+          if (under == 0) break;
+          tree_->Solve(DlsIterationOptions(), &summary);
+          if (!summary.IsSolutionUsable()) {
+            for (int row : floor_rows_) tree_->SetRowScale(row, 0.0);
+            std::fill(floor_active_.begin(), floor_active_.end(), 0);
+            return Status::Error("retarget: the DLS solve failed: " + summary.BriefReport());
+          }
+          result.final_cost = summary.final_cost;
+          result.iterations += summary.iterations;
+        }
+        for (int row : floor_rows_) tree_->SetRowScale(row, 0.0);
+        std::fill(floor_active_.begin(), floor_active_.end(), 0);
         break;
       }
       case SolverKind::kDlsGeneric: {
@@ -306,6 +352,40 @@ class RetargetFrameSolver::Impl {
     int joint;
   };
 
+  // The lean kernel's floor (active set): each floor joint more than kFloorSlack under its
+  // lowest height h at the current parameters gets its point row toward (x, h, z), scale
+  // floor_weight / sigma; with `raise`, a row already on has its goal raised by the depth
+  // left instead. `pose` (the warm start) receives the current parameters. Returns how many
+  // joints are under.
+  int ActivateFloorRows(Pose* pose, bool raise) {
+    if (floor_rows_.empty()) return 0;
+    GetParameters(pose);
+    if (!floor_fk_) floor_fk_.reset(new FkData(skeleton_));
+    ForwardKinematics(skeleton_, *pose, floor_fk_.get());
+    int under = 0;
+    for (size_t k = 0; k < floor_rows_.size(); ++k) {
+      const Eigen::Vector3d& p = floor_fk_->world_positions[floor_residuals_[k]->joint()];
+      const double lowest = options_.floor_heights[k];
+      const double depth = lowest - p.y();
+      if (!(depth > kFloorSlack * sigma_)) continue;
+      if (raise && floor_active_[k]) {
+        floor_goals_[k].y() += depth;
+      } else {
+        // A planted joint is held over its anchor (lifted to the floor as well), not where
+        // this solve let it slide.
+        const int plant = floor_plant_[k];
+        const Eigen::Vector3d& at = plant >= 0 && plant_scales_[plant] > 0.0
+                                        ? goals_[setup_.tracked.size() + plant] : p;
+        floor_goals_[k] = Eigen::Vector3d(at.x(), lowest, at.z());
+        tree_->SetRowScale(floor_rows_[k], floor_scale_);
+        floor_active_[k] = 1;
+      }
+      ++under;
+    }
+    if (!raise && under == 0) std::fill(floor_active_.begin(), floor_active_.end(), 0);
+    return under;
+  }
+
   // Both DLS paths: a fixed number of iterations, every step taken (Buss).
   DlsOptions DlsIterationOptions() const {
     DlsOptions dls;
@@ -361,6 +441,11 @@ class RetargetFrameSolver::Impl {
       for (int j : residual->joints()) blocks.push_back(&rotations_[4 * j]);
       ceres_problem_->AddResidualBlock(residual.get(), nullptr, blocks);
     }
+    for (const auto& residual : floor_residuals_) {
+      std::vector<double*> blocks = {translation_.data()};
+      for (int j : residual->joints()) blocks.push_back(&rotations_[4 * j]);
+      ceres_problem_->AddResidualBlock(residual.get(), nullptr, blocks);
+    }
     if (translation_prior_) {
       ceres_problem_->AddResidualBlock(translation_prior_.get(), nullptr, translation_.data());
     }
@@ -388,6 +473,11 @@ class RetargetFrameSolver::Impl {
       for (int j : residual->joints()) blocks.push_back(block[j]);
       dls_problem_.AddResidualBlock(residual.get(), nullptr, blocks);
     }
+    for (const auto& residual : floor_residuals_) {
+      std::vector<int> blocks = {translation};
+      for (int j : residual->joints()) blocks.push_back(block[j]);
+      dls_problem_.AddResidualBlock(residual.get(), nullptr, blocks);
+    }
     if (translation_prior_) dls_problem_.AddResidualBlock(translation_prior_.get(), nullptr, {translation});
     for (const Extra& extra : extras_) {
       dls_problem_.AddResidualBlock(extra.cost.get(), nullptr, {block[extra.joint]});
@@ -409,6 +499,13 @@ class RetargetFrameSolver::Impl {
   std::vector<std::unique_ptr<FootPlantResidual>> plant_residuals_;
   std::vector<double> plant_scales_;  // plant_weight / sigma while planted, else 0.
   std::vector<std::unique_ptr<LimbDirectionResidual>> limb_residuals_;
+  std::vector<std::unique_ptr<FloorResidual>> floor_residuals_;
+  double floor_scale_ = 0.0;                  // floor_weight / sigma.
+  std::vector<Eigen::Vector3d> floor_goals_;  // The lean kernel's active-set goals.
+  std::vector<int> floor_rows_;               // Its floor rows (off outside Solve).
+  std::vector<char> floor_active_;            // Per floor row: on in this Solve.
+  std::vector<int> floor_plant_;              // Per floor row: the plant on its joint, or -1.
+  std::unique_ptr<FkData> floor_fk_;
   std::unique_ptr<ceres::CostFunction> translation_prior_;
   std::vector<Extra> extras_;
   std::vector<int> solved_joints_;

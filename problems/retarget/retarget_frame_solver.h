@@ -21,7 +21,14 @@
 //   optional limb directions: LimbDirectionResidual (limb_direction_residual.h) per
 //     options.limbs entry, 3 rows, scale limb_direction_weight, toward the goal direction
 //     of the frame (SetLimbGoals; a zero goal gives the row no gradient). Only when
-//     limb_direction_weight > 0.
+//     limb_direction_weight > 0;
+//   optional floor: per options.floor_joints entry k, joint k kept at or above its lowest
+//     height h_k (options.floor_heights: the floor plus the joint's rest clearance,
+//     foot_clearance.h), weight floor_weight / sigma. Ceres and the generic DLS take
+//     FloorResidual (floor_residual.h, one-sided, one row); the lean kernel, whose rows are
+//     3-row points, an active set: after the frame's solve each joint under its h_k gets a
+//     point row toward (x_k, h_k, z_k) of that solution and the frame is solved once more
+//     (from it), the rows then off again. Only when floor_weight > 0.
 //
 // DLS (kDls, kDlsGeneric): a fixed number of iterations, every step taken (Buss), with
 //   delta = J^T (J J^T + lambda I)^-1 e   (eq. 18)   =   (J^T J + lambda I)^-1 J^T e,
@@ -70,7 +77,7 @@ struct RetargetSolveOptions {
   // Foot plants (FootPlantResidual, foot_plant_residual.h): target joints that may be held
   // at an anchor (SetPlants), each weighted plant_weight / sigma while planted.
   std::vector<int> plant_joints;
-  double plant_weight = 10.0;
+  double plant_weight = 30.0;
   // Limb directions (LimbDirectionResidual): target joint a and the limb's unit direction
   // in a's frame (LimbDirectionInJoint), each asked to point along its goal (SetLimbGoals)
   // with weight limb_direction_weight (per unit of direction difference, ~ per radian);
@@ -81,6 +88,11 @@ struct RetargetSolveOptions {
   };
   std::vector<Limb> limbs;
   double limb_direction_weight = 0.0;
+  // The floor (FloorResidual): target joints kept at or above a height (target world y,
+  // one per joint), weight floor_weight per sigma of depth; no rows when it is 0.
+  std::vector<int> floor_joints;
+  std::vector<double> floor_heights;
+  double floor_weight = 0.0;
   ceres::Solver::Options ceres;    // kCeres; max_num_iterations is set from iterations.
 
   bool IsValid(std::string* error) const;
@@ -105,6 +117,7 @@ struct RetargetFrameReport {
   double initial_cost = 0.0;
   double final_cost = 0.0;
   int iterations = 0;
+  int floor_contacts = 0;  // Floor joints under their lowest height after the first solve.
   double mean_position_error = 0.0;  // Mean |v - g| over all tracked vertices, target units.
   double mean_normal_angle = 0.0;    // Mean angle between n and m (radians), all tracked.
   double mean_effector_error = 0.0;  // Mean |v - g| over the position-tracked ones (hands, feet,
@@ -136,7 +149,8 @@ class RetargetFrameSolver {
   void ResetStageTimes();
 
   // The lean kernel's residual (3 #tracked, then 3 per plant joint, then 3 per limb when
-  // the limb term is on) and tangent Jacobian in
+  // the limb term is on, then 3 per floor joint when the floor is on: zero, its active-set
+  // rows being off outside Solve) and tangent Jacobian in
   // the pose tangent layout of kinematic_jacobians.h (3 + 3 #J columns; unsolved joints'
   // columns zero), at `pose` with the given goals (TreeDlsSolver::Linearize). For tests.
   void Linearize(const Eigen::Matrix3Xd& goal_positions, const Eigen::Matrix3Xd& goal_normals,

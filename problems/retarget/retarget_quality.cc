@@ -8,6 +8,7 @@
 
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/skinning.h"
+#include "problems/retarget/foot_clearance.h"
 
 namespace mocapsolve {
 namespace {
@@ -108,32 +109,20 @@ void MeasureLimbDirections(const std::vector<LimbDirections>& limbs, RetargetQua
   quality->limb_p95_deg = Percentile95(all);
 }
 
-// Rest clearance of each joint of `feet` above the skeleton's lowest point (joint, or vertex
-// when a mesh is given) in `rest`; its depth under y = 0 per frame, times `scale`.
+// Depth of each joint of `feet` under its rest clearance above y = 0 (foot_clearance.h) per
+// frame, times `scale`.
 void MeasurePenetration(const Skeleton& skeleton, const std::vector<int>& feet, const Pose& rest,
                         const SkinnedMesh* mesh, const std::vector<Vector3dVector>& positions, double scale,
                         double* deepest, double* share_over, double share_depth) {
   *deepest = 0.0;
   *share_over = 0.0;
   if (feet.empty() || positions.empty()) return;
-  FkData fk(skeleton);
-  ForwardKinematics(skeleton, rest, &fk);
-  const Vector3dVector rest_positions = fk.world_positions;
-  double floor = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& p : rest_positions) floor = std::min(floor, p.y());
-  if (mesh != nullptr && mesh->num_vertices() > 0) {
-    std::vector<Eigen::Isometry3d> transforms;
-    ComputeSkinningTransforms(*mesh, fk, &transforms);
-    Eigen::Matrix3Xd vertices;
-    SkinMesh(*mesh, transforms, &vertices, nullptr);
-    floor = std::min(floor, vertices.row(1).minCoeff());
-  }
+  const std::vector<double> clearances = FootRestClearances(skeleton, feet, rest, mesh);
   int over = 0;
   for (const Vector3dVector& frame : positions) {
     double frame_depth = 0.0;
-    for (int j : feet) {
-      const double clearance = rest_positions[j].y() - floor;
-      frame_depth = std::max(frame_depth, (clearance - frame[j].y()) * scale);
+    for (size_t k = 0; k < feet.size(); ++k) {
+      frame_depth = std::max(frame_depth, (clearances[k] - frame[feet[k]].y()) * scale);
     }
     *deepest = std::max(*deepest, frame_depth);
     over += frame_depth > share_depth ? 1 : 0;
@@ -221,6 +210,15 @@ std::vector<MappedLimb> MappedLimbs(const JointMap& map) {
   return limbs;
 }
 
+std::vector<int> TargetFootJoints(const JointMap& map) {
+  std::vector<int> feet;
+  for (const char* role : {"left_foot", "right_foot", "left_toes", "right_toes"}) {
+    const int j = TargetJoint(map, role);
+    if (j >= 0 && std::find(feet.begin(), feet.end(), j) == feet.end()) feet.push_back(j);
+  }
+  return feet;
+}
+
 const std::vector<std::pair<std::string, std::string>>& HumanoidLimbs() {
   static const std::vector<std::pair<std::string, std::string>> limbs = {
       {"left_upper_arm", "left_forearm"}, {"left_forearm", "left_hand"},  {"right_upper_arm", "right_forearm"},
@@ -237,10 +235,7 @@ RetargetQuality MeasureRetargetQuality(const RetargetQualityInputs& in) {
   MeasureLimbDirections(CollectLimbDirections(*in.joint_map, source_positions, target_positions), &quality);
   quality.foot_skate_cm_s = in.foot_skate_cm_s;
   const Pose target_rest = in.target_rest.rotations.empty() ? RestPose(*in.target) : in.target_rest;
-  std::vector<int> target_feet;
-  for (const char* role : {"left_foot", "right_foot", "left_toes", "right_toes"}) {
-    if (TargetJoint(*in.joint_map, role) >= 0) target_feet.push_back(TargetJoint(*in.joint_map, role));
-  }
+  const std::vector<int> target_feet = TargetFootJoints(*in.joint_map);
   MeasurePenetration(*in.target, target_feet, target_rest, in.target_mesh, target_positions, cm,
                      &quality.penetration_cm, &quality.penetration_frame_share, 1.0);
   MeasureSelfJointError(in, source_positions, target_positions, cm, &quality);

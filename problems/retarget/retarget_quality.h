@@ -89,6 +89,10 @@ struct RetargetQualityInputs {
 
 RetargetQuality MeasureRetargetQuality(const RetargetQualityInputs& inputs);
 
+// The target's foot and toes role joints (the joint map's links, else the target's own
+// roles; each once): the joints the penetration measure and the floor term take.
+std::vector<int> TargetFootJoints(const JointMap& map);
+
 // The eight limbs: (role, next role), arms first.
 const std::vector<std::pair<std::string, std::string>>& HumanoidLimbs();
 

@@ -92,8 +92,8 @@ Status BuildRetargetSetup(const SkinnedMesh& source_mesh, const Skeleton& target
   Eigen::Matrix3Xd source_rest, source_normals, target_rest, target_normals;
   BindPoseMesh(source_mesh, options.source_world_from_bind, &source_rest, &source_normals);
   BindPoseMesh(target_mesh, options.target_world_from_bind, &target_rest, &target_normals);
-  result.source_frame = ComputeCharacterFrame(source_rest);
-  result.target_frame = ComputeCharacterFrame(target_rest);
+  result.source_frame = ComputeCharacterFrame(source_rest, true, options.source_left);
+  result.target_frame = ComputeCharacterFrame(target_rest, true, options.target_left);
   result.scale = result.target_frame.height / result.source_frame.height;
 
   const std::vector<int> samples =

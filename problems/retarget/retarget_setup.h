@@ -61,6 +61,10 @@ struct RetargetSetupOptions {
   // while the animated world is Y up.
   Eigen::Matrix3d source_world_from_bind = Eigen::Matrix3d::Identity();
   Eigen::Matrix3d target_world_from_bind = Eigen::Matrix3d::Identity();
+  // Each character's left in its world (role_sides.h), which signs its facing
+  // (ComputeCharacterFrame); zero: the lowest vertices sign it.
+  Eigen::Vector3d source_left = Eigen::Vector3d::Zero();
+  Eigen::Vector3d target_left = Eigen::Vector3d::Zero();
   // Explicit position joints (target joint names); empty: automatic from the patterns.
   std::vector<std::string> position_joints;
   std::vector<std::string> position_name_patterns = {"hand", "foot", "toe", "head"};

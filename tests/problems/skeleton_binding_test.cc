@@ -159,7 +159,11 @@ TEST(SkeletonBindingTest, RetargetsTheWalkOntoAnAPoseCharacterAndAZUpCopyAlike) 
   // Same proportions, different rest pose and units: the limbs follow the source's
   // (measured: see the README; the mesh tracking leaves a few degrees).
   EXPECT_LT(angle / count, 5.0);
-  EXPECT_LT(y_up.clip.mean_position_error, 0.01);
+  // The goals (the cylinder mesh carried by the source) put the feet's cylinders 9.3 cm into
+  // the floor; the floor term lifts them (0.18 cm left) at the cost of the vertex error:
+  // 0.000 -> 0.013 of the height (without the floor < 0.01 held).
+  EXPECT_LT(y_up.clip.mean_position_error, 0.02);
+  EXPECT_LT(y_up.quality.penetration_cm, 1.0);
 
   // The walk in a Z-up world (y -> z): the up axis is found and turned back.
   const Eigen::Matrix3d y_to_z = Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();

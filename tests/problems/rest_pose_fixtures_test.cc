@@ -1,0 +1,237 @@
+// Rest poses and facings without flags: shared humanoids bound again in their node rest pose
+// (Soldier's is not its bind pose: its facing was signed wrongly from the mesh alone before
+// the roles signed it, role_sides.h), re-posed in memory into an A-pose
+// bind pose (upper arms 40 degrees down from the file's rest, the mesh bound again there),
+// turned to face 90 or 180 degrees about the vertical, every joint renamed at random, and the
+// same as a skeleton-only source (the figures' rows in BENCHMARKS.md, "Feet and rest poses").
+// CMU 131_02 (BVH) onto each variant must keep the eight
+// limb directions within 10 degrees of the source's on average and 20 at the 95th
+// percentile (retarget_quality.h, after one constant rotation), the planted feet within
+// 1 cm/s and out of the floor within 1 cm; the figures are printed. Skipped without
+// MOCAPSOLVE_DATA.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "io/gltf_reader.h"
+#include "io/motion_file.h"
+#include "kinematics/forward_kinematics.h"
+#include "kinematics/skinning.h"
+#include "problems/retarget/retarget_character.h"
+#include "settings/retarget_settings.h"
+#include "tests/test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+// A character as the retarget sees it, owning its parts.
+struct Variant {
+  std::string name;
+  Skeleton skeleton;
+  SkinnedMesh mesh;
+  Pose pose;       // Bind and rest pose (world, +y up).
+  Pose bind_pose;  // When set: the bind pose (`pose` the rest pose), as the file has them.
+};
+
+// The character as read (its own bind and rest poses, mesh as bound).
+Variant AsRead(const GltfCharacter& character) {
+  Variant v;
+  v.name = "file as read";
+  v.skeleton = character.skeleton;
+  v.mesh = character.mesh;
+  v.pose = character.rest_pose;
+  v.bind_pose = character.bind_pose;
+  return v;
+}
+
+Eigen::Isometry3d WorldFromJoint(const FkData& fk, int j) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = fk.world_rotations[j].toRotationMatrix();
+  t.translation() = fk.world_positions[j];
+  return t;
+}
+
+// `character` re-posed: its rest pose with each of `arms` turned `arm_deg` down toward -y
+// (about the axis perpendicular to the arm and the vertical), then the whole figure turned
+// `yaw_deg` about +y; the mesh skinned into that pose and bound there (new inverse bind
+// matrices), so that pose is its bind and rest pose. Joint names j<random> when `rename`.
+Variant Repose(const GltfCharacter& character, const std::vector<int>& arms, double arm_deg, double yaw_deg,
+               bool rename, const std::string& name) {
+  const Skeleton& skeleton = character.skeleton;
+  Pose pose = character.rest_pose;
+  FkData fk(skeleton);
+  for (int a : arms) {
+    ForwardKinematics(skeleton, pose, &fk);
+    const int child = [&] {
+      for (int j = 0; j < skeleton.num_joints(); ++j) {
+        if (skeleton.parent(j) == a) return j;
+      }
+      return -1;
+    }();
+    const Eigen::Vector3d along = (fk.world_positions[child] - fk.world_positions[a]).normalized();
+    const Eigen::Vector3d axis = along.cross(-Eigen::Vector3d::UnitY()).normalized();
+    const Eigen::Quaterniond turn(Eigen::AngleAxisd(arm_deg * M_PI / 180.0, axis));
+    const Eigen::Quaterniond& world = fk.world_rotations[a];
+    pose.rotations[a] = pose.rotations[a] * (world.conjugate() * turn * world);  // W' = turn W.
+  }
+  ForwardKinematics(skeleton, pose, &fk);
+  const Eigen::Quaterniond yaw(Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitY()));
+  const Eigen::Quaterniond root_world = fk.world_rotations[0];
+  const Eigen::Vector3d root_position = fk.world_positions[0];
+  pose.rotations[0] = pose.rotations[0] * (root_world.conjugate() * yaw * root_world);
+  ForwardKinematics(skeleton, pose, &fk);
+  pose.translations[0] += yaw * root_position - fk.world_positions[0];
+  ForwardKinematics(skeleton, pose, &fk);
+
+  Variant v;
+  v.name = name;
+  std::vector<JointSpec> specs;
+  std::mt19937 rng(7);
+  for (int j = 0; j < skeleton.num_joints(); ++j) {
+    specs.push_back(skeleton.joint(j));
+    if (rename) specs.back().name = "n" + std::to_string(rng() % 1000000) + "_" + std::to_string(j);
+  }
+  EXPECT_TRUE(Skeleton::Create(specs, {}, skeleton.unit(), &v.skeleton).ok());
+  std::vector<Eigen::Isometry3d> transforms;
+  ComputeSkinningTransforms(character.mesh, fk, &transforms);
+  SkinnedMeshSpec spec;
+  SkinMesh(character.mesh, transforms, &spec.rest_positions,
+           character.mesh.has_normals() ? &spec.rest_normals : nullptr);
+  spec.influences.resize(character.mesh.num_vertices());
+  for (int i = 0; i < character.mesh.num_vertices(); ++i) {
+    for (int k = character.mesh.weight_begin(i); k < character.mesh.weight_end(i); ++k) {
+      spec.influences[i].push_back({character.mesh.weight_joint(k), character.mesh.weight(k)});
+    }
+  }
+  for (int j = 0; j < skeleton.num_joints(); ++j) spec.joint_from_bind.push_back(WorldFromJoint(fk, j).inverse());
+  EXPECT_TRUE(SkinnedMesh::Create(v.skeleton, spec, &v.mesh).ok());
+  v.pose = pose;
+  return v;
+}
+
+// The options `mocapsolve retarget` runs with when given no flags.
+CharacterRetargetOptions DefaultOptions() {
+  CharacterRetargetOptions options;
+  EXPECT_TRUE(RetargetOptionsFromSettings(RetargetSettings(), &options).ok());
+  return options;
+}
+
+struct Figures {
+  double limb_mean, limb_p95, skate, penetration;
+};
+
+Figures Retarget(const Skeleton& source, const SkinnedMesh* source_mesh, const Pose& source_pose,
+                 const Motion& motion, const Variant& target) {
+  RetargetCharacter source_view, target_view;
+  source_view.skeleton = &source;
+  source_view.mesh = source_mesh;
+  source_view.bind_pose = source_view.rest_pose = source_pose;
+  target_view.skeleton = &target.skeleton;
+  target_view.mesh = &target.mesh;
+  target_view.bind_pose = target.bind_pose.rotations.empty() ? target.pose : target.bind_pose;
+  target_view.rest_pose = target.pose;
+  CharacterRetargetResult result;
+  const Status status = RetargetMotionOntoCharacter(source_view, motion, target_view, DefaultOptions(), &result);
+  EXPECT_TRUE(status.ok()) << target.name << ": " << status.message();
+  const RetargetQuality& q = result.quality;
+  if (std::getenv("REST_POSE_FIXTURES_LIMBS") != nullptr) {
+    for (const LimbDirectionError& l : q.limbs) std::printf("  %s %.1f / %.1f\n", l.limb.c_str(), l.mean_deg, l.p95_deg);
+    std::printf("  align %.1f deg; %s\n", q.alignment_deg, result.notes.size() > 1 ? result.notes[1].c_str() : "");
+  }
+  return {q.limb_mean_deg, q.limb_p95_deg, q.foot_skate_cm_s, q.penetration_cm};
+}
+
+void ExpectWithinTargets(const Figures& f, const std::string& label) {
+  std::printf("%-44s limbs %5.1f / %5.1f deg  skate %.2f cm/s  penetration %.2f cm\n", label.c_str(), f.limb_mean,
+              f.limb_p95, f.skate, f.penetration);
+  EXPECT_LE(f.limb_mean, 10.0) << label;
+  EXPECT_LE(f.limb_p95, 20.0) << label;
+  EXPECT_LE(f.skate, 1.0) << label;
+  EXPECT_LE(f.penetration, 1.0) << label;
+}
+
+// Reads a character and its upper arms (the joints whose child is the forearm, by the file's
+// names).
+void ReadCharacter(const std::string& glb, GltfCharacter* character, std::vector<int>* arms) {
+  ASSERT_TRUE(ReadGltfCharacter(glb, GltfReadOptions(), character).ok());
+  for (int j = 0; j < character->skeleton.num_joints(); ++j) {
+    std::string n = character->skeleton.name(j);
+    std::transform(n.begin(), n.end(), n.begin(), ::tolower);
+    if (n == "mixamorig:leftarm" || n == "mixamorig:rightarm" || n == "arm_joint_l_1" || n == "arm_joint_r_1" ||
+        n == "skeleton_arm_joint_l__4_" || n == "skeleton_arm_joint_r") {
+      arms->push_back(j);
+    }
+  }
+  ASSERT_EQ(arms->size(), 2u) << glb;
+}
+
+class RestPoseFixturesTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(RestPoseFixturesTest, CmuWalkOntoAPoseAndTurnedVariantsKeepsLimbDirections) {
+  MOCAPSOLVE_DATA_FILE(bvh, "bvh/131_02.bvh");
+  MOCAPSOLVE_DATA_FILE(glb, std::string("gltf/") + GetParam() + ".glb");
+  Skeleton source;
+  Motion motion;
+  ASSERT_TRUE(ReadMotionFile(bvh, MotionFileOptions(), &source, &motion).ok());
+  motion.frames.resize(std::min<size_t>(motion.frames.size(), 120));
+  GltfCharacter character;
+  std::vector<int> arms;
+  ReadCharacter(glb, &character, &arms);
+  if (::testing::Test::HasFatalFailure()) return;
+  std::vector<Variant> variants;
+  variants.push_back(AsRead(character));
+  for (Variant& v : std::vector<Variant>{
+      Repose(character, arms, 0.0, 0.0, false, "rest pose as read"),
+      Repose(character, arms, 40.0, 0.0, false, "A-pose bind"),
+      Repose(character, arms, 40.0, 90.0, false, "A-pose, facing +90"),
+      Repose(character, arms, 40.0, 180.0, false, "A-pose, facing 180"),
+      Repose(character, arms, 40.0, -90.0, true, "A-pose, facing -90, random names")}) {
+    variants.push_back(std::move(v));
+  }
+  for (const Variant& v : variants) {
+    ExpectWithinTargets(Retarget(source, nullptr, Pose(), motion, v), std::string(GetParam()) + ", " + v.name);
+  }
+}
+
+// An A-pose source: Xbot re-posed (A-pose, facing 180, random names) carrying 131_02 as
+// retargeted onto Xbot, as a skeleton-only source onto CesiumMan as read, and the reverse.
+TEST(RestPoseFixturesSourceTest, APoseTurnedRenamedSourceOntoAnotherCharacter) {
+  MOCAPSOLVE_DATA_FILE(bvh, "bvh/131_02.bvh");
+  MOCAPSOLVE_DATA_FILE(xbot_glb, "gltf/Xbot.glb");
+  MOCAPSOLVE_DATA_FILE(cesium_glb, "gltf/CesiumMan.glb");
+  Skeleton cmu;
+  Motion motion;
+  ASSERT_TRUE(ReadMotionFile(bvh, MotionFileOptions(), &cmu, &motion).ok());
+  motion.frames.resize(std::min<size_t>(motion.frames.size(), 120));
+  GltfCharacter characters[2];
+  std::vector<int> arms[2];
+  ReadCharacter(xbot_glb, &characters[0], &arms[0]);
+  ReadCharacter(cesium_glb, &characters[1], &arms[1]);
+  const char* names[2] = {"Xbot", "CesiumMan"};
+  for (int from = 0; from < 2; ++from) {
+    const int to = 1 - from;
+    const Variant source_as_read = Repose(characters[from], arms[from], 0.0, 0.0, false, "as read");
+    CharacterRetargetResult walk;
+    RetargetCharacter s, t;
+    s.skeleton = &cmu;
+    t.skeleton = &source_as_read.skeleton;
+    t.mesh = &source_as_read.mesh;
+    t.bind_pose = t.rest_pose = source_as_read.pose;
+    ASSERT_TRUE(RetargetMotionOntoCharacter(s, motion, t, DefaultOptions(), &walk).ok());
+    const Variant a_source = Repose(characters[from], arms[from], 40.0, 180.0, true, "A-pose source");
+    const Variant target = Repose(characters[to], arms[to], 0.0, 0.0, false, names[to]);
+    ExpectWithinTargets(Retarget(a_source.skeleton, nullptr, a_source.pose, walk.clip.motion, target),
+                        std::string(names[from]) + " A-pose source (facing 180, random names) onto " + names[to]);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Characters, RestPoseFixturesTest, ::testing::Values("Xbot", "Soldier", "CesiumMan", "Ely", "RiggedFigure"));
+
+}  // namespace
+}  // namespace mocapsolve
