@@ -6,6 +6,7 @@
 #include <Eigen/SVD>
 
 #include "kinematics/rotation.h"
+#include "signal/joint_gap_template.h"
 
 namespace mocapsolve {
 namespace {
@@ -176,8 +177,20 @@ std::vector<CarriedJointRun> FindUnobservedJointRuns(const Skeleton& skeleton, c
 
 void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& runs, int velocity_frames,
                  Motion* motion) {
+  CarryJoints(skeleton, runs, velocity_frames, nullptr, motion);
+}
+
+void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& runs, int velocity_frames,
+                 const JointTemplateOptions* templates, Motion* motion) {
   assert(velocity_frames >= 1);
   const int frames = motion->num_frames();
+  std::vector<std::vector<char>> carried;
+  if (templates != nullptr) {
+    carried.assign(skeleton.num_joints(), std::vector<char>(frames, 0));
+    for (const CarriedJointRun& run : runs) {
+      std::fill(carried[run.joint].begin() + run.first, carried[run.joint].begin() + run.last + 1, 1);
+    }
+  }
   for (size_t i = 0; i < runs.size(); ++i) {
     const CarriedJointRun& run = runs[i];
     assert(run.joint >= 0 && run.joint < skeleton.num_joints() && run.first >= 0 && run.last < frames &&
@@ -185,7 +198,14 @@ void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& r
     FreeSpan span{0, frames - 1};
     if (i > 0 && runs[i - 1].joint == run.joint) span.lo = runs[i - 1].last + 1;
     if (i + 1 < runs.size() && runs[i + 1].joint == run.joint) span.hi = runs[i + 1].first - 1;
-    CarryRun(skeleton, run, span, velocity_frames, motion);
+    const int tau = templates != nullptr && !skeleton.has_translation_channels(run.joint)
+                        ? FindTemplateShift(skeleton, *motion, carried, run, *templates)
+                        : 0;
+    if (tau != 0) {
+      CarryFromTemplate(run, tau, motion);
+    } else {
+      CarryRun(skeleton, run, span, velocity_frames, motion);
+    }
   }
 }
 

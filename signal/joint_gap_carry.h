@@ -43,6 +43,7 @@
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
+#include "signal/joint_gap_template.h"
 
 namespace mocapsolve {
 
@@ -61,6 +62,10 @@ std::vector<CarriedJointRun> FindUnobservedJointRuns(const Skeleton& skeleton, c
 // above. velocity_frames >= 1. Runs must fit the motion (CHECKed: programmer error).
 void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& runs, int velocity_frames,
                  Motion* motion);
+// The same, but a run whose joint has no animated translation follows a template from the
+// take where one matches (signal/joint_gap_template.h), the Hermite above where none does.
+void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& runs, int velocity_frames,
+                 const JointTemplateOptions* templates, Motion* motion);
 
 }  // namespace mocapsolve
 

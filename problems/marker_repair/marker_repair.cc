@@ -561,7 +561,8 @@ bool CarryUnobservedJoints(const RepairContext& ctx, const MarkerTrajectories& f
   if (!ctx.options.carry_joints) return false;
   const std::vector<CarriedJointRun> runs = FindUnobservedJointRuns(ctx.skeleton, ctx.markers, flagged);
   if (runs.empty()) return false;
-  CarryJoints(ctx.skeleton, runs, kCarryVelocityFrames, motion);
+  const JointTemplateOptions templates;
+  CarryJoints(ctx.skeleton, runs, kCarryVelocityFrames, &templates, motion);
   std::vector<char> carried(motion->num_frames(), 0);
   for (const CarriedJointRun& run : runs) std::fill(carried.begin() + run.first, carried.begin() + run.last + 1, 1);
   const Observations kept = TrajectoryObservations(flagged);
