@@ -88,10 +88,12 @@ const OptionGroup<RepairSettings>& RepairSettingOptions() {
            "0: off).")
       .Add(&S::carry_joints, "carry_joints",
            "Where a joint loses the markers that observe its rotation (at least 2 of them missing, "
-           "fewer than 3 and fewer than half left: a hidden foot, hand or head), carry it across "
-           "those frames in joint space (log-quaternion Hermite between the solved poses on both "
-           "sides, velocities matched), solve them again pulled toward the carried pose, and refill "
-           "the hidden markers from that motion; the report lists the joints carried and their frames.")
+           "fewer than 3 and fewer than half left, and no marker of its own bone left that fixes its "
+           "degrees of freedom: a hidden foot, hand or head), carry it across those frames in joint "
+           "space: along the same joint elsewhere in the take where the joints still seen moved "
+           "alike (a stride earlier or later), bent to meet the poses solved on both sides, else a "
+           "log-quaternion Hermite between those poses with velocities matched; solve them again "
+           "pulled toward the carried pose, and refill the hidden markers from that motion; the report lists the joints carried and their frames.")
       .Add(&S::reference, "reference",
            "The robust reference Y^: tracker (frame by frame, robust loss, "
            "pulled toward the previous frame; runs beside the naive solve) | clip (the "

@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <cassert>
 
+#include <Eigen/SVD>
+
 #include "kinematics/rotation.h"
+#include "signal/joint_gap_template.h"
 
 namespace mocapsolve {
 namespace {
 
 constexpr int kMinObservers = 3;
+constexpr double kMinLeverMetres = 0.03;
 
 struct HermiteBasis {
   double h10, h01, h11;  // h00 = 1 - h01 multiplies the start value, which is 0 here.
@@ -97,21 +101,70 @@ std::vector<std::vector<int>> Observers(const Skeleton& skeleton, const MarkerSe
   return observers;
 }
 
+// own[j]: the markers attached to joint j alone, with their offsets in its frame.
+struct OwnMarker {
+  int marker;
+  Eigen::Vector3d offset;
+};
+
+std::vector<std::vector<OwnMarker>> OwnMarkers(const Skeleton& skeleton, const MarkerSet& markers) {
+  std::vector<std::vector<OwnMarker>> own(skeleton.num_joints());
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    const std::vector<MarkerAttachment>& attachments = markers.marker(m).attachments;
+    const int j = attachments.front().joint;
+    bool single = true;
+    for (const MarkerAttachment& a : attachments) single &= a.joint == j;
+    if (!single) continue;
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    for (const MarkerAttachment& a : attachments) offset += a.weight * a.offset;
+    own[j].push_back({m, offset});
+  }
+  return own;
+}
+
+// True if the present markers of joint j's own bone fix its rotation dofs: the smallest
+// singular value of their velocity Jacobian, rows e_k x v_m (v_m the offset, e_k the dof
+// axes at zero angles), is at least the lever kMinLeverMetres.
+bool OwnMarkersFixDofs(const Skeleton& skeleton, int j, const std::vector<OwnMarker>& own,
+                       const MarkerTrajectories& observed, int f, double min_lever) {
+  const std::vector<int>& axes = skeleton.rotation_axes(j);
+  if (axes.empty() || own.empty() || min_lever <= 0.0) return false;
+  Eigen::MatrixXd jacobian(3 * own.size(), axes.size());
+  int rows = 0;
+  for (const OwnMarker& m : own) {
+    if (!observed.valid(f, m.marker)) continue;
+    for (size_t k = 0; k < axes.size(); ++k) {
+      jacobian.block<3, 1>(rows, k) = Eigen::Vector3d::Unit(axes[k]).cross(m.offset);
+    }
+    rows += 3;
+  }
+  if (rows < 3) return false;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian.topRows(rows));
+  return svd.singularValues().minCoeff() >= min_lever;
+}
+
 }  // namespace
 
 std::vector<CarriedJointRun> FindUnobservedJointRuns(const Skeleton& skeleton, const MarkerSet& markers,
                                                      const MarkerTrajectories& observed, int min_frames) {
   const int joints = skeleton.num_joints(), frames = observed.num_frames();
   const std::vector<std::vector<int>> observers = Observers(skeleton, markers);
+  const std::vector<std::vector<OwnMarker>> own = OwnMarkers(skeleton, markers);
+  const double min_lever = skeleton.unit().known() ? kMinLeverMetres / skeleton.unit().metres_per_unit : 0.0;
+  // lost[j][f], parents first: the own-marker rule needs the parent observed (a forearm
+  // marker on a wrist fixes the wrist's angle only together with the elbow's).
+  std::vector<std::vector<char>> lost(joints, std::vector<char>(frames + 1, 0));
   std::vector<CarriedJointRun> runs;
   for (int j = 0; j < joints; ++j) {
     if (observers[j].empty()) continue;
-    const int total = static_cast<int>(observers[j].size());
+    const int total = static_cast<int>(observers[j].size()), parent = skeleton.parent(j);
     int start = -1;
     for (int f = 0; f <= frames; ++f) {
       int present = 0;
       for (int k = 0; f < frames && k < total; ++k) present += observed.valid(f, observers[j][k]);
-      const bool seen = f == frames || present >= kMinObservers || 2 * present >= total || total - present < 2;
+      const bool seen = f == frames || present >= kMinObservers || 2 * present >= total || total - present < 2 ||
+                        ((parent < 0 || !lost[parent][f]) && OwnMarkersFixDofs(skeleton, j, own[j], observed, f, min_lever));
+      lost[j][f] = !seen;
       if (!seen && start < 0) start = f;
       if (seen && start >= 0) {
         if (f - start >= std::max(min_frames, 1)) runs.push_back({j, start, f - 1});
@@ -124,8 +177,20 @@ std::vector<CarriedJointRun> FindUnobservedJointRuns(const Skeleton& skeleton, c
 
 void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& runs, int velocity_frames,
                  Motion* motion) {
+  CarryJoints(skeleton, runs, velocity_frames, nullptr, motion);
+}
+
+void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& runs, int velocity_frames,
+                 const JointTemplateOptions* templates, Motion* motion) {
   assert(velocity_frames >= 1);
   const int frames = motion->num_frames();
+  std::vector<std::vector<char>> carried;
+  if (templates != nullptr) {
+    carried.assign(skeleton.num_joints(), std::vector<char>(frames, 0));
+    for (const CarriedJointRun& run : runs) {
+      std::fill(carried[run.joint].begin() + run.first, carried[run.joint].begin() + run.last + 1, 1);
+    }
+  }
   for (size_t i = 0; i < runs.size(); ++i) {
     const CarriedJointRun& run = runs[i];
     assert(run.joint >= 0 && run.joint < skeleton.num_joints() && run.first >= 0 && run.last < frames &&
@@ -133,7 +198,14 @@ void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& r
     FreeSpan span{0, frames - 1};
     if (i > 0 && runs[i - 1].joint == run.joint) span.lo = runs[i - 1].last + 1;
     if (i + 1 < runs.size() && runs[i + 1].joint == run.joint) span.hi = runs[i + 1].first - 1;
-    CarryRun(skeleton, run, span, velocity_frames, motion);
+    const int tau = templates != nullptr && !skeleton.has_translation_channels(run.joint)
+                        ? FindTemplateShift(skeleton, *motion, carried, run, *templates)
+                        : 0;
+    if (tau != 0) {
+      CarryFromTemplate(run, tau, motion);
+    } else {
+      CarryRun(skeleton, run, span, velocity_frames, motion);
+    }
   }
 }
 

@@ -12,9 +12,16 @@
 // those too made the refill worse, 8.65 -> 9.36 mm mean). With every marker of a foot hidden, the foot and toe
 // joints qualify, and so does the shank whose only markers left are a knee and a shin
 // marker (measured on CMU 02_05: its solve from those two drifts 40-60 mm at the ankle).
+// A joint whose parent is observed is observed too where the markers left on its own bone
+// (attached to it alone) fix its degrees of freedom: the smallest singular value of their
+// velocity Jacobian, rows e_k x v (v the marker's offset, e_k the dof axes at zero angles),
+// is at least 30 mm per radian. A knee hinge keeps its shin marker when the foot and ankle
+// markers are hidden: counting markers alone carried it (CMU 02_01: along two stance poses
+// while the shin marker showed mid-swing flexion 0.75 rad away; the re-solve pulled toward
+// that pose settled in a second basin, the foot's markers 250-300 mm off).
 // Observers of a child are observers of its parent, so a parent's runs lie inside its
-// children's, and carrying each joint's local rotation over its own runs moves the whole
-// unobserved part of a limb.
+// children's (but for a child its own markers fix), and carrying each joint's local
+// rotation over its own runs moves the whole unobserved part of a limb.
 //
 // Carry of a run with solved poses on both sides (frames a = s - 1 and b = e + 1): with
 // q_a, q_b the joint's local rotations (sign-continuous), n = b - a, the log of the
@@ -36,6 +43,7 @@
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
+#include "signal/joint_gap_template.h"
 
 namespace mocapsolve {
 
@@ -54,6 +62,10 @@ std::vector<CarriedJointRun> FindUnobservedJointRuns(const Skeleton& skeleton, c
 // above. velocity_frames >= 1. Runs must fit the motion (CHECKed: programmer error).
 void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& runs, int velocity_frames,
                  Motion* motion);
+// The same, but a run whose joint has no animated translation follows a template from the
+// take where one matches (signal/joint_gap_template.h), the Hermite above where none does.
+void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& runs, int velocity_frames,
+                 const JointTemplateOptions* templates, Motion* motion);
 
 }  // namespace mocapsolve
 

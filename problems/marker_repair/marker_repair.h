@@ -39,10 +39,13 @@
 //      is first extended over the samples beside it that are as rough (a noise run's ends
 //      and small draws pass the gates; signal/rough_run_extension.h). With carry_joints,
 //      the joints whose observing markers are (nearly) all cut or missing (a hidden foot,
-//      hand or head) are first carried across those frames in joint space, a
-//      log-quaternion Hermite between the poses on both sides (signal/joint_gap_carry.h),
+//      hand or head) are first carried across those frames in joint space, along the
+//      joint's own motion elsewhere in the take where one matches (signal/joint_gap_template.h),
+//      else a log-quaternion Hermite between the poses on both sides (signal/joint_gap_carry.h),
 //      and those frames solved again with the reference's options pulled toward the carried
-//      pose, so the joints the markers still see follow them; X^ comes from that motion.
+//      pose, so the joints the markers still see follow them; the fill_samples frames beside
+//      each run are solved again without the markers the run hides, so that the offsets the
+//      fill conditions on are taken against the same reconstruction; X^ comes from that motion.
 //   7. Re-solve Y- on the filled markers: only the frames whose markers changed, and the
 //      frames after each until the solution rejoins Y (within resync_tolerance), since
 //      elsewhere the per-frame problem, its warm start and its prior are Y's own. With

@@ -1,0 +1,82 @@
+#include "signal/joint_gap_template.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "kinematics/rotation.h"
+#include "signal/joint_gap_carry.h"
+
+namespace mocapsolve {
+namespace {
+
+double SquaredAngle(const Eigen::Quaterniond& p, const Eigen::Quaterniond& q) {
+  const double angle = p.angularDistance(q);
+  return angle * angle;
+}
+
+// Mean squared angle of the window at shift tau, or +inf if the shift does not qualify.
+double MatchCost(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
+                 const CarriedJointRun& run, int lo, int hi, int tau) {
+  const int frames = motion.num_frames(), j = run.joint;
+  const int a = run.first - 1, b = run.last + 1;
+  if (a + tau < 0 || b + tau >= frames) return std::numeric_limits<double>::infinity();
+  for (int f = a; f <= b; ++f) {
+    if (carried[j][f + tau]) return std::numeric_limits<double>::infinity();
+  }
+  double sum = 0.0;
+  int counted = 0, possible = 0;
+  for (int f = lo; f <= hi; ++f) {
+    const int g = f + tau;
+    if (g < 0 || g >= frames) {
+      possible += skeleton.num_joints();
+      continue;
+    }
+    for (int k = 1; k < skeleton.num_joints(); ++k) {
+      if (skeleton.num_rotation_dofs(k) == 0) continue;
+      const bool in_run = k == j && f > a && f < b;
+      if (in_run) continue;
+      ++possible;
+      if (carried[k][f] || carried[k][g]) continue;
+      sum += SquaredAngle(motion.frames[f].rotations[k], motion.frames[g].rotations[k]);
+      ++counted;
+    }
+  }
+  if (counted == 0 || 2 * counted < possible) return std::numeric_limits<double>::infinity();
+  return sum / counted;
+}
+
+}  // namespace
+
+int FindTemplateShift(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
+                      const CarriedJointRun& run, const JointTemplateOptions& options) {
+  const int frames = motion.num_frames();
+  const int a = run.first - 1, b = run.last + 1;
+  if (a < 0 || b >= frames) return 0;
+  const int lo = std::max(0, a - options.margin), hi = std::min(frames - 1, b + options.margin);
+  double best = options.max_rms_angle * options.max_rms_angle;
+  int best_tau = 0;
+  for (int tau = -a; tau + b < frames; ++tau) {
+    if (tau == 0) continue;
+    const double cost = MatchCost(skeleton, motion, carried, run, lo, hi, tau);
+    if (cost < best) {
+      best = cost;
+      best_tau = tau;
+    }
+  }
+  return best_tau;
+}
+
+void CarryFromTemplate(const CarriedJointRun& run, int tau, Motion* motion) {
+  const int j = run.joint, a = run.first - 1, b = run.last + 1;
+  std::vector<Pose>& poses = motion->frames;
+  const Eigen::Vector3d da = LogMap(poses[a + tau].rotations[j].conjugate() * poses[a].rotations[j]);
+  const Eigen::Vector3d db = LogMap(poses[b + tau].rotations[j].conjugate() * poses[b].rotations[j]);
+  const double n = b - a;
+  for (int f = a + 1; f < b; ++f) {
+    const double t = (f - a) / n, h = t * t * (3.0 - 2.0 * t);
+    poses[f].rotations[j] = (poses[f + tau].rotations[j] * ExpMap((1.0 - h) * da + h * db)).normalized();
+  }
+}
+
+}  // namespace mocapsolve

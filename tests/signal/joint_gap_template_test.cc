@@ -1,0 +1,87 @@
+// A template for a carried joint: the same joint one period away, found from the joints
+// the markers still see, and bent to meet both solved edges.
+#include "signal/joint_gap_template.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "kinematics/demo_character.h"
+#include "kinematics/rotation.h"
+#include "signal/joint_gap_carry.h"
+
+namespace mocapsolve {
+namespace {
+
+constexpr int kPeriod = 80;
+
+// Thigh, shin and foot swinging with one period, the foot with a second harmonic that no
+// cubic across half a period follows.
+Motion Periodic(const Skeleton& skeleton, int frames) {
+  const int thigh = skeleton.FindJoint("LeftUpLeg"), shin = skeleton.FindJoint("LeftLeg");
+  const int foot = skeleton.FindJoint("LeftFoot");
+  Motion motion;
+  motion.frame_rate = 60.0;
+  for (int f = 0; f < frames; ++f) {
+    Pose pose = RestPose(skeleton);
+    const double phase = 2.0 * M_PI * f / kPeriod;
+    pose.rotations[thigh] = ExpMap(Eigen::Vector3d(0.5 * std::sin(phase), 0.1 * std::cos(phase), 0.0));
+    pose.rotations[shin] = ExpMap(Eigen::Vector3d(0.6 + 0.6 * std::sin(phase + 1.0), 0.0, 0.0));
+    pose.rotations[foot] =
+        ExpMap(Eigen::Vector3d(0.3 * std::cos(phase) + 0.25 * std::sin(2.0 * phase), 0.0, 0.2 * std::sin(phase)));
+    motion.frames.push_back(pose);
+  }
+  return motion;
+}
+
+double MaxAngle(const Motion& a, const Motion& b, int joint, int first, int last) {
+  double worst = 0.0;
+  for (int f = first; f <= last; ++f) {
+    worst = std::max(worst, a.frames[f].rotations[joint].angularDistance(b.frames[f].rotations[joint]));
+  }
+  return worst;
+}
+
+TEST(JointGapTemplate, AFootHiddenForMostOfAStrideFollowsTheStrideBefore) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int foot = skeleton.FindJoint("LeftFoot");
+  const Motion truth = Periodic(skeleton, 300);
+  const CarriedJointRun run{foot, 150, 209};  // 60 frames, three quarters of a period.
+  std::vector<std::vector<char>> carried(skeleton.num_joints(), std::vector<char>(300, 0));
+  for (int f = run.first; f <= run.last; ++f) carried[foot][f] = 1;
+  Motion held = truth;
+  for (int f = run.first; f <= run.last; ++f) held.frames[f].rotations[foot] = Eigen::Quaterniond::Identity();
+
+  const int tau = FindTemplateShift(skeleton, held, carried, run, JointTemplateOptions());
+  ASSERT_NE(tau, 0);
+  EXPECT_EQ(std::abs(tau) % kPeriod, 0) << tau;
+
+  Motion hermite = held, templated = held;
+  CarryJoints(skeleton, {run}, 2, &hermite);
+  const JointTemplateOptions options;
+  CarryJoints(skeleton, {run}, 2, &options, &templated);
+  // The motion repeats exactly: the template is the truth up to rounding; the cubic misses
+  // the second harmonic by a tenth of a radian or more.
+  EXPECT_LT(MaxAngle(templated, truth, foot, run.first, run.last), 1e-9);
+  EXPECT_GT(MaxAngle(hermite, truth, foot, run.first, run.last), 0.1);
+  // Other joints and frames untouched.
+  EXPECT_EQ(MaxAngle(templated, held, foot, 0, run.first - 1), 0.0);
+  EXPECT_EQ(MaxAngle(templated, held, foot, run.last + 1, 299), 0.0);
+}
+
+TEST(JointGapTemplate, NoneWhereTheMotionDoesNotRepeat) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int thigh = skeleton.FindJoint("LeftUpLeg"), foot = skeleton.FindJoint("LeftFoot");
+  Motion motion = Periodic(skeleton, 300);
+  // The thigh lifts steadily: no other window moves as the one around the gap.
+  for (int f = 0; f < 300; ++f) motion.frames[f].rotations[thigh] = ExpMap(Eigen::Vector3d(0.01 * f, 0.0, 0.0));
+  const CarriedJointRun run{foot, 150, 209};
+  std::vector<std::vector<char>> carried(skeleton.num_joints(), std::vector<char>(300, 0));
+  for (int f = run.first; f <= run.last; ++f) carried[foot][f] = 1;
+  EXPECT_EQ(FindTemplateShift(skeleton, motion, carried, run, JointTemplateOptions()), 0);
+  // A run at the take's end has one solved side: no template either.
+  EXPECT_EQ(FindTemplateShift(skeleton, Periodic(skeleton, 300), carried, {foot, 250, 299}, JointTemplateOptions()), 0);
+}
+
+}  // namespace
+}  // namespace mocapsolve
