@@ -39,7 +39,7 @@ std::string SignalName(int signal) {
   }
 }
 
-// The last non-empty line of `text`, a progress line rewritten with '\r' reduced to its
+// The last non-empty, non-indented line of `text`, a progress line rewritten with '\r' reduced to its
 // last state.
 std::string LastLine(const std::string& text) {
   size_t end = text.size();
@@ -50,7 +50,9 @@ std::string LastLine(const std::string& text) {
     const size_t cr = line.find_last_of('\r', line.size() >= 1 ? line.size() - 1 : 0);
     if (cr != std::string::npos) line = line.substr(cr + 1);
     while (!line.empty() && (line.back() == ' ' || line.back() == '\r' || line.back() == '\t')) line.pop_back();
-    if (!line.empty()) return line;
+    // An indented line continues the one above it (the quality gate's advice under its
+    // failures): the error is the line it continues.
+    if (!line.empty() && line[0] != ' ' && line[0] != '\t') return line;
     if (begin == 0) break;
     end = begin - 1;
   }
