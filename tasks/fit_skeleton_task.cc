@@ -10,6 +10,7 @@
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
 #include "kinematics/quote_token.h"
+#include "pipeline/shipped_templates.h"
 #include "problems/marker_solve/associated_marker_set.h"
 #include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/lone_joint_gauge.h"
@@ -694,8 +695,9 @@ Status CheckSkeletonFitInputsGiven(bool template_subject, bool skeleton, bool ma
                          (skeleton ? "skeleton" : markerset ? "markerset" : "skeleton_units") +
                          " both given: the template subject holds the skeleton and marker set");
   }
-  if (!markers || (!template_subject && (!skeleton || !markerset))) {
-    return Status::Error("--markers and either --template_subject or --skeleton and --markerset are required");
+  if (!markers || (!template_subject && skeleton != markerset)) {
+    return Status::Error("--markers and either --template_subject, or --skeleton and --markerset, or none of them "
+                         "(the shipped template) are required");
   }
   return Status::Ok();
 }
@@ -706,6 +708,12 @@ Status LoadSkeletonFitTemplate(const std::string& template_subject, const std::s
   Status status = CheckSkeletonFitInputsGiven(!template_subject.empty(), !skeleton.empty(), !markerset.empty(),
                                               !skeleton_units.empty(), !inputs->markers_path.empty());
   if (!status.ok()) return status;
+  if (template_subject.empty() && skeleton.empty()) {
+    // The shipped template: a subject, as a template subject file is.
+    inputs->from_template_subject = true;
+    inputs->template_name = DefaultTemplateName();
+    return DefaultTemplateSubject(&inputs->templ);
+  }
   inputs->from_template_subject = !template_subject.empty();
   if (inputs->from_template_subject) {
     inputs->template_name = template_subject;

@@ -119,13 +119,15 @@ struct SkeletonFitResult {
   bool unit_known = false;
 };
 
-// Which inputs were given: a template subject, or a skeleton and a marker set (not both),
-// and the take's markers; else the one-line error every front end prints.
+// Which inputs were given: a template subject, or a skeleton and a marker set (not both), or
+// none of them (the shipped template), and the take's markers; else the one-line error every
+// front end prints.
 Status CheckSkeletonFitInputsGiven(bool template_subject, bool skeleton, bool markerset, bool skeleton_units,
                                    bool markers);
 
 // The template from files: a subject file, or a skeleton file (with `skeleton_units` when
-// it states none) and a marker set (CheckSkeletonFitInputsGiven first; set
+// it states none) and a marker set, or, with none of them, the shipped template
+// (pipeline/shipped_templates.h) (CheckSkeletonFitInputsGiven first; set
 // inputs->markers_path before).
 Status LoadSkeletonFitTemplate(const std::string& template_subject, const std::string& skeleton,
                                const std::string& markerset, const std::string& skeleton_units,
