@@ -196,6 +196,13 @@ Status ReadSubject(const std::string& path, Subject* subject) {
   return Interpret(path, root, subject);
 }
 
+Status ParseSubject(const std::string& text, const std::string& name, Subject* subject) {
+  JsonNode root;
+  Status status = ParseJson(text, name, &root);
+  if (!status.ok()) return status;
+  return Interpret(name, root, subject);
+}
+
 std::string FormatSubject(const std::string& /*path*/, const Subject& subject) {
   std::string out = "{\n  \"format\": \"" + std::string(kFormat) + "\",\n  \"version\": 1,\n";
   if (!subject.name.empty()) out += "  \"name\": " + JsonQuote(subject.name) + ",\n";

@@ -66,6 +66,9 @@ struct Subject {
 
 // Reads and validates a subject file (skeleton file paths resolved against its folder).
 Status ReadSubject(const std::string& path, Subject* subject);
+// The same from a subject file's text; `name` stands for the file in errors (skeleton paths
+// are resolved against the working directory).
+Status ParseSubject(const std::string& text, const std::string& name, Subject* subject);
 // A subject assembled from separate files, as the commands' --skeleton, --skeleton_units,
 // --markerset, --axes, --marker_scale and --amc_fps (and the Python keywords) name them.
 struct SubjectFiles {

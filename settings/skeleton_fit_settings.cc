@@ -39,7 +39,18 @@ const OptionGroup<SkeletonFitSettings>& SkeletonFitSettingOptions() {
            "a file of them (examples/ais_to_cmu_labels.txt); round 0 fits them under the take's labels, which the "
            "fitted subject keeps. auto: the first shipped map (examples/*_to_cmu_labels.txt) whose take labels are "
            "all in the take and whose template labels are all in the template but none in the take; \"\" or none: "
-           "labels as they are.");
+           "labels as they are.")
+      .Add(&S::associate, "associate",
+           "Which body segment each marker rides on, from the data when labels do not say: markers that move "
+           "rigidly together form a segment, the segments' layout (feet lowest, head highest, left/right about the "
+           "pelvis) names it, the up axis and units come from a body 1-2 m tall; non-marker points (model outputs, "
+           "static or rarely seen points) are left out. Round 0 then fits every associated marker on its segment's "
+           "joint and the detected axes and scale replace --axes/--marker_scale. auto: when fewer than 3 of the "
+           "template's labels are in the take and --template_labels names no map; always; never.",
+           {"auto", "always", "never"})
+      .Add(&S::min_association_confidence, "min_association_confidence", "",
+           "Associated markers below this confidence are left out of round 0; the attach rounds attach every marker "
+           "to the joint it moves least with (associated ones too).", 0.0, 1.0);
   return *group;
 }
 

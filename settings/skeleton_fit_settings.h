@@ -27,6 +27,10 @@ struct SkeletonFitSettings {
   // TEMPLATE:TAKE pairs or their file (problems/marker_solve/template_labels.h); "auto": a
   // shipped map that fits the take (template_label_maps.h); "" or "none": none.
   std::string template_labels = "auto";
+  // Marker association from the data (problems/marker_solve/marker_association.h): auto
+  // (when fewer than 3 template labels are in the take and no map is given), always, never.
+  std::string associate = "auto";
+  double min_association_confidence = 0.6;
 };
 
 const OptionGroup<SkeletonFitSettings>& SkeletonFitSettingOptions();

@@ -10,6 +10,8 @@
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
 #include "kinematics/quote_token.h"
+#include "pipeline/shipped_templates.h"
+#include "problems/marker_solve/associated_marker_set.h"
 #include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/lone_joint_gauge.h"
 #include "problems/marker_solve/marker_observations.h"
@@ -42,6 +44,29 @@ JsonObject ChecksJson(const SubjectChecks& checks) {
       .Add("max_left_right_asymmetry", checks.max_asymmetry)
       .Add("least_symmetric_pair", checks.least_symmetric_pair)
       .Add("markers", markers);
+  return json;
+}
+
+// The report's association: detected up and unit, per marker its segment, joint and
+// confidence, the points left out and why.
+JsonObject AssociationJson(const SkeletonFitResult& result) {
+  const MarkerAssociation& a = result.association;
+  std::vector<JsonObject> markers, excluded;
+  for (size_t i = 0; i < a.markers.size(); ++i) {
+    JsonObject o;
+    o.Add("label", a.markers[i].label).Add("segment", a.markers[i].role).Add("joint", result.association_joints[i])
+        .Add("confidence", a.markers[i].confidence).Add("cluster", a.markers[i].cluster);
+    markers.push_back(o);
+  }
+  for (const auto& [label, why] : a.excluded) {
+    JsonObject o;
+    o.Add("label", label).Add("reason", why);
+    excluded.push_back(o);
+  }
+  JsonObject json;
+  json.Add("up", a.UpName()).Add("unit", a.unit.name).Add("unit_from_data", a.unit_from_data)
+      .Add("height_m", a.height_m).Add("clusters", static_cast<int>(a.clusters.size())).Add("markers", markers)
+      .Add("excluded", excluded);
   return json;
 }
 
@@ -147,6 +172,57 @@ SubjectCheckOptions SkinCheckOptions(const Skeleton& skeleton, const std::vector
   return check_options;
 }
 
+// Whether round 0 goes by the association rather than the template's labels.
+bool UseAssociation(const SkeletonFitSettings& settings, const MarkerSet& template_markers,
+                    const MarkerTrajectories& file) {
+  if (settings.associate == "always") return true;
+  if (settings.associate != "auto" || TemplateLabelsGiven(settings)) return false;
+  int shared = 0;
+  for (int m = 0; m < template_markers.num_markers(); ++m) shared += file.FindMarker(template_markers.label(m)) >= 0;
+  return shared < 3;
+}
+
+// `file` with only the markers in `labels` (in that order).
+MarkerTrajectories KeepMarkers(const MarkerTrajectories& file, const std::vector<std::string>& labels) {
+  MarkerTrajectories kept(labels, file.num_frames());
+  kept.frame_rate = file.frame_rate;
+  kept.unit = file.unit;
+  kept.first_frame = file.first_frame;
+  for (size_t k = 0; k < labels.size(); ++k) {
+    const int m = file.FindMarker(labels[k]);
+    for (int f = 0; f < file.num_frames(); ++f) {
+      if (file.valid(f, m)) kept.SetSample(f, static_cast<int>(k), file.position(f, m), file.residual(f, m));
+    }
+  }
+  return kept;
+}
+
+// Round 0's markers from the association: every associated marker on its segment's joint;
+// the take cut to the markers (non-markers left out), its axes and scale as detected.
+Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings, MarkerTrajectories* file,
+                     SkeletonFitResult* result, Subject* mapping, AssociatedMarkerSet* set) {
+  const Skeleton& skeleton = inputs.templ.skeleton;
+  Status status = AssociateMarkers(*file, inputs.markers_path, MarkerAssociationOptions(), &result->association);
+  if (!status.ok()) return status;
+  status = MakeAssociatedMarkerSet(skeleton, result->association, settings.min_association_confidence, set);
+  if (!status.ok()) return Status::Error(inputs.markers_path + ": " + status.message());
+  result->associated = true;
+  std::vector<std::string> labels;
+  for (const AssociatedMarker& m : result->association.markers) {
+    labels.push_back(m.label);
+    const auto it = std::find_if(set->specs.begin(), set->specs.end(),
+                                 [&](const MarkerSpec& spec) { return spec.label == m.label; });
+    result->association_joints.push_back(it == set->specs.end() ? "" : set->joints[it - set->specs.begin()]);
+  }
+  *file = KeepMarkers(*file, labels);
+  mapping->axes = set->axes;
+  if (result->association.unit_from_data) {
+    file->unit = result->association.unit;
+    mapping->marker_scale = result->association.unit.metres_per_unit / skeleton.unit().metres_per_unit;
+  }
+  return Status::Ok();
+}
+
 // The take as the rounds fit it.
 struct FitTake {
   Subject mapping;                 // The template in the take's axes and scale, with the markers the take holds.
@@ -154,6 +230,9 @@ struct FitTake {
   MarkerTrajectories model_frame;  // Every trajectory of the file in the skeleton's frame and units (for attach).
   int frames = 0;
   SubjectCheckOptions check_options;
+  // Round 0's markers came from the association: the attach rounds re-attach them too (an
+  // association is a start, not a template's trusted attachment).
+  bool associated = false;
 };
 
 // Reads the take and sets it against the template: labels mapped, the template markers it
@@ -177,9 +256,18 @@ Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& s
   status = ApplyTemplateLabels(inputs, settings, file, events, result, &template_markers);
   if (!status.ok()) return status;
   std::vector<MarkerSpec> present;
-  status = PresentMarkers(template_markers, file, markers_path, events, result, &present);
+  AssociatedMarkerSet associated;
+  if (UseAssociation(settings, template_markers, file)) {
+    status = AssociateTake(inputs, settings, &file, result, &fit->mapping, &associated);
+    present = associated.specs;
+    fit->associated = true;
+  } else {
+    status = PresentMarkers(template_markers, file, markers_path, events, result, &present);
+  }
   if (!status.ok()) return status;
   fit->check_options = SkinCheckOptions(skeleton, present, units_per_cm);
+  fit->check_options.head_labels = associated.head_labels;
+  fit->check_options.pelvis_labels = associated.pelvis_labels;
   status = MarkerSet::Create(skeleton, std::move(present), &fit->mapping.markers);
   if (!status.ok()) return status;
   status = TakeForSubject(fit->mapping, std::move(file), markers_path, &fit->take);
@@ -277,7 +365,7 @@ Status AttachAllMarkers(const FitTake& fit, const RoundState& state, const Calib
   for (int m = 0; m < attached.marker_set.num_markers(); ++m) {
     MarkerSpec spec = attached.marker_set.marker(m);
     const int known = state.fitted_markers.FindMarker(spec.label);
-    if (known >= 0 && fit.mapping.markers.FindMarker(spec.label) >= 0) {
+    if (known >= 0 && fit.mapping.markers.FindMarker(spec.label) >= 0 && !fit.associated) {
       // As fitted (not clamped again: the fit kept it within its own radius, which
       // can exceed max_skin_cm for a template marker), so the round starts where the
       // last one ended.
@@ -470,8 +558,8 @@ Status KeepSubject(const SkeletonFitInputs& inputs, const FitTake& fit, RoundSta
   subject.name = inputs.templ.name.empty() ? "fitted" : "fitted from " + inputs.templ.name;
   subject.skeleton = std::move(best.skeleton);  // Inline: the fitted skeleton exists nowhere else.
   subject.markers = std::move(best.markers);
-  subject.axes = inputs.axes;
-  subject.marker_scale = inputs.marker_scale;
+  subject.axes = fit.mapping.axes;  // The detected ones when the markers were associated.
+  subject.marker_scale = fit.mapping.marker_scale;
   subject.amc_fps = inputs.amc_fps;
   // The rest prior's reference in later solves of this subject (directions no marker fixes
   // settle at the pose the subject typically holds, not at zero rotations).
@@ -589,6 +677,7 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
     label_json.push_back(o);
   }
   JsonObject json;
+  if (result.associated) json.Add("association", AssociationJson(result));
   json.Add("markers", inputs.markers_path).Add("template", inputs.template_name)
       .Add("template_labels", label_json).Add("template_labels_map", result.template_labels_map)
       .Add("frames", result.frames).Add("attach_rounds", result.attach_rounds).Add("kept_round", result.kept_round)
@@ -606,8 +695,9 @@ Status CheckSkeletonFitInputsGiven(bool template_subject, bool skeleton, bool ma
                          (skeleton ? "skeleton" : markerset ? "markerset" : "skeleton_units") +
                          " both given: the template subject holds the skeleton and marker set");
   }
-  if (!markers || (!template_subject && (!skeleton || !markerset))) {
-    return Status::Error("--markers and either --template_subject or --skeleton and --markerset are required");
+  if (!markers || (!template_subject && skeleton != markerset)) {
+    return Status::Error("--markers and either --template_subject, or --skeleton and --markerset, or none of them "
+                         "(the shipped template) are required");
   }
   return Status::Ok();
 }
@@ -618,6 +708,12 @@ Status LoadSkeletonFitTemplate(const std::string& template_subject, const std::s
   Status status = CheckSkeletonFitInputsGiven(!template_subject.empty(), !skeleton.empty(), !markerset.empty(),
                                               !skeleton_units.empty(), !inputs->markers_path.empty());
   if (!status.ok()) return status;
+  if (template_subject.empty() && skeleton.empty()) {
+    // The shipped template: a subject, as a template subject file is.
+    inputs->from_template_subject = true;
+    inputs->template_name = DefaultTemplateName();
+    return DefaultTemplateSubject(&inputs->templ);
+  }
   inputs->from_template_subject = !template_subject.empty();
   if (inputs->from_template_subject) {
     inputs->template_name = template_subject;
@@ -672,6 +768,14 @@ std::string SkeletonFitSummary(const SkeletonFitResult& result) {
   const SubjectChecks& checks = result.checks;
   const Skeleton& fitted = result.subject.skeleton;
   std::string text;
+  if (result.associated) {
+    const MarkerAssociation& a = result.association;
+    int fitted = 0;
+    for (const std::string& joint : result.association_joints) fitted += !joint.empty();
+    AppendF(&text, "association: %zu markers in %zu rigid groups, %d on template joints, %zu points left out as no "
+            "markers; up %s, %s%s, body %.2f m\n", a.markers.size(), a.clusters.size(), fitted, a.excluded.size(),
+            a.UpName().c_str(), a.unit.name.c_str(), a.unit_from_data ? " (from the data)" : "", a.height_m);
+  }
   AppendF(&text, "checks: marker RMS %.1f mm, max marker-to-bone %.1f cm (%s), max marker-to-joint %.1f cm, torso "
           "direction error mean %.1f max %.1f deg over %d frames, left/right asymmetry %.1f %%%s%s\n",
           checks.rms_mm, checks.max_bone_distance_cm, checks.farthest_marker.c_str(), checks.max_joint_distance_cm,

@@ -2,6 +2,10 @@
 // module's fit_skeleton()): the round logic around FitSkeletonToMarkers
 // (problems/marker_solve/skeleton_fit.h), so the command line and Python run one code path.
 //
+// Without labels to go by (fewer than 3 template labels in the take, no map given; or
+// settings.associate "always"), the take's markers are associated with body segments from
+// the data (marker_association.h; points that are no markers left out) and round 0 fits each
+// on its segment's template joint (associated_marker_set.h), in the detected axes and units.
 // Round 0 fits the template's bone-length scales s_j in [min_bone_scale, max_bone_scale]
 // (left = right) and marker offsets (each within max_skin_cm of its bone) on the markers
 // the take shares with the template by label (after renaming template markers to the take's
@@ -36,6 +40,7 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "pipeline/subject.h"
+#include "problems/marker_solve/marker_association.h"
 #include "problems/marker_solve/template_label_maps.h"
 #include "problems/marker_solve/template_labels.h"
 #include "settings/skeleton_fit_settings.h"
@@ -100,6 +105,11 @@ struct SkeletonFitResult {
   std::vector<std::string> absent;  // Template labels the take lacks.
   std::vector<TemplateLabel> template_labels;  // The map applied (settings.template_labels).
   std::string template_labels_map;  // Where it came from: its file, "inline", or "" (none applied).
+  // With settings.associate: the take's markers associated with segments from the data,
+  // and per associated marker the template joint round 0 fitted it on ("" left out).
+  bool associated = false;
+  MarkerAssociation association;
+  std::vector<std::string> association_joints;
   int frames = 0;           // Frames fitted.
   int attach_rounds = 0;    // Rounds asked for (after the -1 default).
   int kept_round = -1;
@@ -109,13 +119,15 @@ struct SkeletonFitResult {
   bool unit_known = false;
 };
 
-// Which inputs were given: a template subject, or a skeleton and a marker set (not both),
-// and the take's markers; else the one-line error every front end prints.
+// Which inputs were given: a template subject, or a skeleton and a marker set (not both), or
+// none of them (the shipped template), and the take's markers; else the one-line error every
+// front end prints.
 Status CheckSkeletonFitInputsGiven(bool template_subject, bool skeleton, bool markerset, bool skeleton_units,
                                    bool markers);
 
 // The template from files: a subject file, or a skeleton file (with `skeleton_units` when
-// it states none) and a marker set (CheckSkeletonFitInputsGiven first; set
+// it states none) and a marker set, or, with none of them, the shipped template
+// (pipeline/shipped_templates.h) (CheckSkeletonFitInputsGiven first; set
 // inputs->markers_path before).
 Status LoadSkeletonFitTemplate(const std::string& template_subject, const std::string& skeleton,
                                const std::string& markerset, const std::string& skeleton_units,

@@ -164,8 +164,10 @@ SubjectChecks CheckSubjectFit(const Skeleton& skeleton, const MarkerSet& markers
   }
   // 2. Torso direction.
   const int head = HeadJoint(skeleton);
-  const std::set<std::string> head_labels = {"LFHD", "RFHD", "LBHD", "RBHD"};
-  const std::set<std::string> pelvis_labels = {"LFWT", "RFWT", "LBWT", "RBWT", "LASI", "RASI", "LPSI", "RPSI"};
+  std::set<std::string> head_labels = {"LFHD", "RFHD", "LBHD", "RBHD"};
+  std::set<std::string> pelvis_labels = {"LFWT", "RFWT", "LBWT", "RBWT", "LASI", "RASI", "LPSI", "RPSI"};
+  if (!options.head_labels.empty()) head_labels = {options.head_labels.begin(), options.head_labels.end()};
+  if (!options.pelvis_labels.empty()) pelvis_labels = {options.pelvis_labels.begin(), options.pelvis_labels.end()};
   if (head > 0) {
     FkData fk(skeleton);
     double sum = 0.0;

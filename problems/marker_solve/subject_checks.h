@@ -14,7 +14,7 @@
 //  2. Torso direction. Per frame, the solved pelvis-to-head direction (the head joint's
 //     origin minus the root's) against the markers' own: the centroid of the observed
 //     head markers minus that of the pelvis markers, chosen by label (LFHD RFHD LBHD
-//     RBHD; LFWT RFWT LBWT RBWT LASI RASI LPSI RPSI), so a fit that moved markers along
+//     RBHD; LFWT RFWT LBWT RBWT LASI RASI LPSI RPSI, or the options' lists), so a fit that moved markers along
 //     with a tilted skeleton cannot hide. Frames with fewer than 2 markers of either group
 //     are skipped. The mean angle is checked; the max is reported.
 //  3. Symmetry. Each left/right pair of joints (names that differ only in a leading l/r
@@ -58,6 +58,8 @@ struct SubjectCheckOptions {
   double max_asymmetry = 0.05;
   double min_symmetry_bone_cm = 5.0;  // Shorter pairs (fingers, thumbs) are not compared.
   double max_rms_mm = 25.0;           // 4. The model must also explain the markers.
+  // 2. The head's and the pelvis' markers by label; empty: the labels above.
+  std::vector<std::string> head_labels, pelvis_labels;
 };
 
 struct MarkerDistance {

@@ -123,8 +123,9 @@ def test_bad_input_raises(cmu02, tmp_path):
         mocapsolve.fit_skeleton(squat, str(tmp_path / "nothing.json"))
     with pytest.raises(ValueError, match="both given"):
         mocapsolve.fit_skeleton(squat, cmu02["subject"], skeleton=cmu02["asf"])
+    # No template at all is the shipped one; a skeleton without its marker set is an error.
     with pytest.raises(ValueError, match="required"):
-        mocapsolve.fit_skeleton(squat)
+        mocapsolve.fit_skeleton(squat, skeleton=cmu02["asf"])
     with pytest.raises(TypeError, match="fit_iteration"):
         mocapsolve.fit_skeleton(squat, cmu02["subject"], fit_iteration=3)
 

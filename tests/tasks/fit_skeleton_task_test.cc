@@ -287,10 +287,17 @@ TEST(FitSubjectToTake, RenamedLabelsFitThroughTheTemplateLabelMap) {
   MarkerSolveOptions solve;
   solve.solver = SolverKind::kDls;
   SkeletonFitResult result;
+  // Without the association (--associate=never), labels are all the fit goes by.
+  settings.associate = "never";
   Status status = FitSubjectToTake(inputs, settings, solve, &result);
   ASSERT_FALSE(status.ok());
   EXPECT_EQ(status.message(), inputs.markers_path + ": fewer than 3 of the template marker set's labels "
                               "(--template_labels maps the template's labels to the take's)");
+  // By default the markers are associated with segments from the data instead.
+  settings.associate = "auto";
+  status = FitSubjectToTake(inputs, settings, solve, &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_TRUE(result.associated);
 
   settings.template_labels = pairs;
   status = FitSubjectToTake(inputs, settings, solve, &result);

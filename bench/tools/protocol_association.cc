@@ -1,0 +1,210 @@
+// Any lab's marker protocol, measured: each take's markers renamed at random, some dropped,
+// model-output-like points added, units and up axis changed; then the marker association
+// (problems/marker_solve/marker_association.h) and the subject fit from a template with no
+// label map (tasks/fit_skeleton_task.h, association on). Prints one table row and one JSON
+// line per take.
+//   protocol_association TEMPLATE.json [DATA_DIR] [--fit_max_frames=N] [--no_fit]
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <random>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "io/marker_file.h"
+#include "pipeline/subject.h"
+#include "problems/marker_solve/marker_association.h"
+#include "tasks/fit_skeleton_task.h"
+
+namespace ms = mocapsolve;
+
+namespace {
+
+// The segments a labelled marker of the shipped captures may ride on (joint markers: either
+// segment the joint connects). Labels without their subject prefix, upper case.
+std::set<std::string> TruthRoles(const std::string& raw) {
+  std::string label = raw.substr(raw.find(':') == std::string::npos ? 0 : raw.find(':') + 1);
+  const std::vector<std::pair<std::string, std::vector<std::string>>> table = {
+      {"^(ARIEL|[LR][FB]HD)$", {"head"}},
+      {"^(C7|T10|T7|CLAV|STRN|RBAK|MAN)$", {"chest"}},
+      {"^([LR][FBM]WT|[LR]ASI|SACR|P[123])$", {"pelvis"}},
+      {"^[LR](SHO|SH|FSH|BSH)$", {"chest", "upper_arm"}},
+      {"^[LR](UPA|ARM)$", {"upper_arm"}},
+      {"^[LR](ELB|IEL)$", {"upper_arm", "forearm"}},
+      {"^[LR](FRM|WRE|FOREARM)$", {"forearm"}},
+      {"^[LR](WRA|WRB|IWR|OWR|WR)$", {"forearm", "hand"}},
+      {"^[LR](FIN|IHAND|OHAND)$", {"hand"}},
+      {"^[LR](THI|HIP|TH[LA][PD])$", {"thigh"}},
+      {"^[LR](KNE|KNI|LEPI|PAT)$", {"thigh", "shin"}},
+      {"^[LR](SHN|TI[LA][APDT]|TILAT)$", {"shin"}},
+      {"^[LR](ANK|LMAL)$", {"shin", "foot"}},
+      {"^[LR](HEE|HEL|HEEL|TOE|MT1|MT5|P1MT|P5MT|MFS|MFL)$", {"foot"}},
+  };
+  std::set<std::string> roles;
+  for (const auto& [pattern, names] : table) {
+    if (!std::regex_match(label, std::regex(pattern))) continue;
+    const bool lateral = names[0] != "head" && names[0] != "pelvis" && !(names[0] == "chest" && names.size() == 1);
+    for (const std::string& n : names) {
+      if (lateral && n != "chest") roles.insert(std::string(label[0] == 'L' ? "left_" : "right_") + n);
+      else roles.insert(n);
+    }
+  }
+  return roles;
+}
+
+struct Scrambled {
+  ms::MarkerTrajectories take;
+  std::map<std::string, std::string> original;  // New label -> original.
+  int dropped = 0, added = 0;
+};
+
+// Renamed (P0..), 10 % of the markers dropped, 3 model-output-like points added (an angle
+// near the origin, a constant point, a point seen in 5 % of frames), metres when the file is
+// mm, and the axes rotated so that up is +y or -x.
+Scrambled Scramble(const ms::MarkerTrajectories& in, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::vector<int> order(in.num_markers());
+  for (int m = 0; m < in.num_markers(); ++m) order[m] = m;
+  std::shuffle(order.begin(), order.end(), rng);
+  const int keep = in.num_markers() - in.num_markers() / 10;
+  Scrambled out;
+  out.dropped = in.num_markers() - keep;
+  out.added = 3;
+  std::vector<std::string> labels;
+  for (int k = 0; k < keep; ++k) labels.push_back("P" + std::to_string(k));
+  for (const char* extra : {"Angle1", "Const2", "Rare3"}) labels.push_back(extra);
+  out.take = ms::MarkerTrajectories(labels, in.num_frames());
+  out.take.frame_rate = in.frame_rate;
+  const bool to_metres = in.unit.metres_per_unit == 0.001;
+  out.take.unit = to_metres ? ms::Metres() : in.unit;
+  const double scale = to_metres ? 0.001 : 1.0;
+  Eigen::Matrix3d rotation;
+  rotation << 1, 0, 0, 0, 0, 1, 0, -1, 0;  // z up -> +y up.
+  if (seed % 2 == 1) rotation << 0, 0, -1, 0, 1, 0, 1, 0, 0;  // z up -> -x up.
+  for (int f = 0; f < in.num_frames(); ++f) {
+    for (int k = 0; k < keep; ++k) {
+      if (in.valid(f, order[k])) out.take.SetSample(f, k, scale * (rotation * in.position(f, order[k])));
+    }
+    out.take.SetSample(f, keep, Eigen::Vector3d(10.0 + std::sin(f * 0.05), 20.0, -5.0) * 0.001 * 3);
+    out.take.SetSample(f, keep + 1, Eigen::Vector3d(0.1, 0.2, 0.3) * scale * 1000.0 * 0.001);
+    if (f % 20 == 0) out.take.SetSample(f, keep + 2, scale * (rotation * Eigen::Vector3d(100.0, 100.0, 1000.0)));
+  }
+  for (int k = 0; k < keep; ++k) out.original["P" + std::to_string(k)] = in.label(order[k]);
+  return out;
+}
+
+double Seconds(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: %s TEMPLATE.json [DATA_DIR] [--fit_max_frames=N] [--no_fit]\n", argv[0]);
+    return 1;
+  }
+  std::string data = "../shared/data";
+  int max_frames = 600;
+  bool fit = true;
+  for (int i = 2; i < argc; ++i) {
+    if (std::strncmp(argv[i], "--fit_max_frames=", 17) == 0) max_frames = std::atoi(argv[i] + 17);
+    else if (std::strcmp(argv[i], "--no_fit") == 0) fit = false;
+    else data = argv[i];
+  }
+  ms::Subject templ;
+  ms::Status status = ms::ReadSubject(argv[1], &templ);
+  if (!status.ok()) return std::fprintf(stderr, "%s\n", status.message().c_str()), 1;
+  std::printf("| take | seed | markers | associated correctly | excluded (of 3 added) | up, unit | fit RMS mm | torso deg | checks | association s | fit s |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const char* name : {"02_01", "cmu_02_05", "squat", "JA1Gait35", "nick_freeform_001"}) {
+    if (std::getenv("ASSOC_TAKE") && std::string(std::getenv("ASSOC_TAKE")) != name) continue;
+    ms::MarkerTrajectories take;
+    const std::string path = data + "/c3d/" + name + ".c3d";
+    status = ms::ReadMarkerFile(path, &take);
+    if (!status.ok()) return std::fprintf(stderr, "%s\n", status.message().c_str()), 1;
+    if (const char* pairs_env = std::getenv("ASSOC_PAIRS")) {
+      std::vector<int> all;
+      for (int m = 0; m < take.num_markers(); ++m) all.push_back(m);
+      const ms::PairwiseSpread p = ms::ComputePairwiseSpread(take, all, 0.001, ms::RigidClusterOptions());
+      std::string wanted = pairs_env;
+      for (int a = 0; a < take.num_markers(); ++a) {
+        for (int b = a + 1; b < take.num_markers(); ++b) {
+          const std::string la = take.label(a).substr(take.label(a).find(':') + 1), lb = take.label(b).substr(take.label(b).find(':') + 1);
+          if (wanted.find("," + la + ",") == std::string::npos || wanted.find("," + lb + ",") == std::string::npos) continue;
+          std::fprintf(stderr, "%s %s-%s spread %.1f mm dist %.0f mm\n", name, la.c_str(), lb.c_str(), 1000 * p.spread(a, b), 1000 * p.distance(a, b));
+        }
+      }
+      continue;
+    }
+    for (uint32_t seed : {1u, 2u}) {
+      Scrambled s = Scramble(take, seed);
+      if (const char* dir = std::getenv("ASSOC_WRITE")) {
+        ms::WriteMarkerFile(std::string(dir) + "/" + name + "_" + std::to_string(seed) + ".c3d", s.take);
+      }
+      const auto start = std::chrono::steady_clock::now();
+      ms::MarkerAssociation association;
+      status = ms::AssociateMarkers(s.take, name, ms::MarkerAssociationOptions(), &association);
+      const double association_seconds = Seconds(start);
+      int correct = 0, total = 0, excluded_added = 0;
+      std::string wrong;
+      for (const auto& a : association.markers) {
+        auto it = s.original.find(a.label);
+        if (it == s.original.end()) continue;
+        ++total;
+        const std::set<std::string> truth = TruthRoles(it->second);
+        if (truth.count(a.role)) ++correct;
+        else wrong += " " + it->second + "->" + a.role;
+      }
+      for (const auto& [label, why] : association.excluded) excluded_added += s.original.count(label) == 0;
+      const int markers = static_cast<int>(s.original.size());
+      if (!status.ok()) std::fprintf(stderr, "%s: %s\n", name, status.message().c_str());
+      double rms = -1.0, torso = -1.0, fit_seconds = 0.0;
+      bool passed = false;
+      if (fit && status.ok()) {
+        ms::SkeletonFitInputs inputs;
+        inputs.templ = templ;
+        inputs.markers_path = name;
+        inputs.trajectories = &s.take;
+        ms::SkeletonFitSettings settings;
+        settings.fit_max_frames = max_frames;
+        ms::SkeletonFitResult result;
+        const auto fit_start = std::chrono::steady_clock::now();
+        ms::MarkerSolveOptions solve;
+        status = ms::FitSubjectToTake(inputs, settings, solve, &result);
+        fit_seconds = Seconds(fit_start);
+        if (status.ok()) {
+          rms = result.checks.rms_mm, torso = result.checks.torso_error_mean_deg, passed = result.checks.ok();
+          if (!passed) std::fprintf(stderr, "%s: %s\n", name, result.checks.failures[0].c_str());
+        } else {
+          std::fprintf(stderr, "%s: %s\n", name, status.message().c_str());
+        }
+      }
+      std::printf("| %s | %u | %d | %d / %d | %d | %s, %s | %.2f | %.1f | %s | %.3f | %.1f |\n", name, seed, markers,
+                  correct, total, excluded_added, association.UpName().c_str(), association.unit.name.c_str(), rms,
+                  torso, passed ? "pass" : "FAIL", association_seconds, fit_seconds);
+      if (std::getenv("ASSOC_DEBUG")) {
+        for (size_t c = 0; c < association.clusters.size(); ++c) {
+          std::fprintf(stderr, "  cluster %zu:", c);
+          for (const auto& l : association.clusters[c]) {
+            const auto* a = association.Find(l);
+            std::fprintf(stderr, " %s(%s h%.2f s%.2f c%.2f)", s.original[l].c_str(), a->role.c_str(), a->height, a->side_m, a->confidence);
+          }
+          std::fprintf(stderr, "\n");
+        }
+      }
+      if (!wrong.empty()) std::fprintf(stderr, "%s seed %u wrong:%s\n", name, seed, wrong.c_str());
+      std::printf("{\"take\": \"%s\", \"seed\": %u, \"markers\": %d, \"correct\": %d, \"associated\": %d, "
+                  "\"excluded_added\": %d, \"fit_rms_mm\": %.3f, \"torso_deg\": %.2f, \"passed\": %s, "
+                  "\"association_seconds\": %.4f, \"fit_seconds\": %.2f}\n",
+                  name, seed, markers, correct, total, excluded_added, rms, torso, passed ? "true" : "false",
+                  association_seconds, fit_seconds);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,607 @@
+#include "problems/marker_solve/marker_association.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include <Eigen/Eigenvalues>
+
+namespace mocapsolve {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double Median(std::vector<double> v) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
+  if (v.empty()) return kNaN;
+  const size_t k = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+double Percentile(std::vector<double> v, double q) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
+  if (v.empty()) return kNaN;
+  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1)));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+// What the steps share: the take, the kept points, the sampled frames, the vertical.
+struct Scene {
+  const MarkerTrajectories* take = nullptr;
+  std::vector<int> kept;     // Indices into the take.
+  std::vector<bool> still;   // Per kept point: moves less than a tenth of the median point.
+  std::vector<int> frames;   // Sampled frames.
+  int up = 2, sign = 1;      // Vertical file axis and its sign.
+  double extent = 0.0;       // Median vertical extent, file units.
+  double metres = 1.0;       // Metres per file unit.
+  double floor = 0.0;        // File units, along sign * up.
+  double Height(const Eigen::Vector3d& x) const { return (sign * x[up] - floor) / extent; }
+  // Horizontal coordinates (a, b) with (e_a, e_b, e_up) right-handed.
+  Eigen::Vector2d Flat(const Eigen::Vector3d& x) const { return {x[(up + 1) % 3], x[(up + 2) % 3]}; }
+};
+
+// Step 1, before anything is known about the body: points rarely seen or far from it.
+void ExcludeStrayPoints(Scene* scene, MarkerAssociation* out) {
+  const MarkerTrajectories& take = *scene->take;
+  const int n = take.num_markers();
+  std::vector<std::vector<double>> dist(n);
+  std::vector<int> seen(n, 0);
+  for (int f : scene->frames) {
+    Eigen::Vector3d median;
+    for (int k = 0; k < 3; ++k) {
+      std::vector<double> c;
+      for (int m = 0; m < n; ++m) {
+        if (take.valid(f, m)) c.push_back(take.position(f, m)[k]);
+      }
+      median[k] = Median(c);
+    }
+    if (!median.allFinite()) continue;
+    for (int m = 0; m < n; ++m) {
+      if (take.valid(f, m)) dist[m].push_back((take.position(f, m) - median).norm()), ++seen[m];
+    }
+  }
+  std::vector<double> typical(n, kNaN), travel(n, kNaN);
+  for (int m = 0; m < n; ++m) {
+    typical[m] = Median(dist[m]);
+    // How far the point moves over the take: the 10-90 % range of each coordinate.
+    Eigen::Vector3d range;
+    for (int k = 0; k < 3; ++k) {
+      std::vector<double> c;
+      for (int f : scene->frames) {
+        if (take.valid(f, m)) c.push_back(take.position(f, m)[k]);
+      }
+      range[k] = Percentile(c, 0.9) - Percentile(c, 0.1);
+    }
+    travel[m] = range.norm();
+  }
+  const double body = Median(typical), moves = Median(travel);
+  for (int m = 0; m < n; ++m) {
+    if (seen[m] < 0.1 * static_cast<double>(scene->frames.size())) {
+      out->excluded.push_back({take.label(m), "observed in fewer than 10 % of the frames"});
+    } else if (typical[m] > 3.5 * body) {
+      out->excluded.push_back({take.label(m), "far from the body (not a marker: a model output?)"});
+    } else {
+      scene->kept.push_back(m);
+      scene->still.push_back(travel[m] < 0.1 * moves);
+    }
+  }
+  // Still while the body moves and apart from every point that moves (a squat's feet are
+  // still, but beside the ankles): over 0.75 times the median point's distance to the body.
+  std::vector<int> kept;
+  std::vector<bool> still;
+  for (size_t i = 0; i < scene->kept.size(); ++i) {
+    double nearest = kInf;
+    for (size_t j = 0; j < scene->kept.size() && scene->still[i]; ++j) {
+      if (scene->still[j]) continue;
+      std::vector<double> d;
+      for (int f : scene->frames) {
+        if (take.valid(f, scene->kept[i]) && take.valid(f, scene->kept[j])) {
+          d.push_back((take.position(f, scene->kept[i]) - take.position(f, scene->kept[j])).norm());
+        }
+      }
+      nearest = std::min(nearest, Median(d));
+    }
+    if (scene->still[i] && !(nearest <= 0.75 * body)) {
+      out->excluded.push_back({take.label(scene->kept[i]), "still while the body moves, apart from it (not a marker)"});
+    } else {
+      kept.push_back(scene->kept[i]);
+      still.push_back(scene->still[i]);
+    }
+  }
+  scene->kept = kept;
+  scene->still = still;
+}
+
+// Step 2: the vertical axis, its sign and the median extent.
+void DetectUp(Scene* scene) {
+  const MarkerTrajectories& take = *scene->take;
+  // Extents between each frame's second lowest and second highest point (one stray point
+  // does not stretch the body).
+  std::vector<double> extent[3];
+  for (int f : scene->frames) {
+    for (int k = 0; k < 3; ++k) {
+      std::vector<double> c;
+      for (int m : scene->kept) {
+        if (take.valid(f, m)) c.push_back(take.position(f, m)[k]);
+      }
+      if (c.size() < 4) continue;
+      std::sort(c.begin(), c.end());
+      extent[k].push_back(c[c.size() - 2] - c[1]);
+    }
+  }
+  Eigen::Vector3d median;
+  for (int k = 0; k < 3; ++k) median[k] = Median(extent[k]);
+  median.maxCoeff(&scene->up);
+  scene->extent = median[scene->up];
+  // Sign: feet apart at the bottom, one head at the top; else the steadier floor.
+  std::vector<double> spread_low, spread_high, lows, highs;
+  const int up = scene->up;
+  for (int f : scene->frames) {
+    std::vector<double> c;
+    for (int m : scene->kept) {
+      if (take.valid(f, m)) c.push_back(take.position(f, m)[up]);
+    }
+    if (c.size() < 4) continue;
+    std::sort(c.begin(), c.end());
+    const double lo = c[1], hi = c[c.size() - 2];
+    lows.push_back(lo), highs.push_back(hi);
+    for (int end = 0; end < 2; ++end) {
+      std::vector<Eigen::Vector2d> points;
+      for (int m : scene->kept) {
+        if (!take.valid(f, m)) continue;
+        const double z = take.position(f, m)[up];
+        if (end == 0 ? z < lo + 0.12 * (hi - lo) : z > hi - 0.12 * (hi - lo)) points.push_back(scene->Flat(take.position(f, m)));
+      }
+      if (points.size() < 2) continue;
+      Eigen::Vector2d c = Eigen::Vector2d::Zero();
+      for (const auto& p : points) c += p;
+      c /= static_cast<double>(points.size());
+      double s = 0.0;
+      for (const auto& p : points) s += (p - c).squaredNorm();
+      (end == 0 ? spread_low : spread_high).push_back(std::sqrt(s / static_cast<double>(points.size())));
+    }
+  }
+  // The floor first when clear: the lowest point of a frame stands still (a foot on the
+  // ground; median speed to the next frame) while the highest moves (walking, squatting),
+  // at least twice as fast; else the bottom of a body is two feet apart, its top one head.
+  std::vector<double> speed_low, speed_high;
+  for (int f : scene->frames) {
+    if (f + 1 >= take.num_frames()) continue;
+    int m_lo = -1, m_hi = -1;
+    for (int m : scene->kept) {
+      if (!take.valid(f, m)) continue;
+      if (m_lo < 0 || take.position(f, m)[up] < take.position(f, m_lo)[up]) m_lo = m;
+      if (m_hi < 0 || take.position(f, m)[up] > take.position(f, m_hi)[up]) m_hi = m;
+    }
+    if (m_lo >= 0 && take.valid(f + 1, m_lo)) speed_low.push_back((take.position(f + 1, m_lo) - take.position(f, m_lo)).norm());
+    if (m_hi >= 0 && take.valid(f + 1, m_hi)) speed_high.push_back((take.position(f + 1, m_hi) - take.position(f, m_hi)).norm());
+  }
+  const double slow = Median(speed_low), shigh = Median(speed_high);
+  const double low = Median(spread_low), high = Median(spread_high);
+  if (std::max(slow, shigh) > 2.0 * std::min(slow, shigh)) {
+    scene->sign = slow < shigh ? 1 : -1;
+  } else if (std::isfinite(low) && std::isfinite(high)) {
+    scene->sign = low >= high ? 1 : -1;
+  }
+  if (std::getenv("MOCAPSOLVE_ASSOCIATION_DEBUG")) {
+    std::fprintf(stderr, "up %d: lowest point's speed %.4g highest's %.4g, bottom spread %.4g top spread %.4g\n", up,
+                 slow, shigh, low, high);
+  }
+  std::vector<double> floors;
+  for (size_t i = 0; i < lows.size(); ++i) floors.push_back(scene->sign > 0 ? lows[i] : -highs[i]);
+  scene->floor = Percentile(floors, 0.02);
+}
+
+// Step 3: a body 0.9-2.3 m tall (the file's unit when it gives 0.8-2.5 m).
+Status DetectUnit(const std::string& path, Scene* scene, MarkerAssociation* out) {
+  const LengthUnit file = scene->take->unit;
+  if (file.known() && scene->extent * file.metres_per_unit >= 0.8 && scene->extent * file.metres_per_unit <= 2.5) {
+    out->unit = file;
+  } else {
+    double best = kInf;
+    for (const LengthUnit& u : {Millimetres(), Centimetres(), Metres(), LengthUnit{"in", 0.0254}}) {
+      const double h = scene->extent * u.metres_per_unit;
+      if (h < 0.9 || h > 2.3) continue;
+      const double score = std::abs(std::log(h / 1.6));
+      if (score < best) best = score, out->unit = u;
+    }
+    if (!std::isfinite(best)) {
+      char line[200];
+      std::snprintf(line, sizeof line, ": the points span %.4g file units vertically, a body in no unit (mm, cm, m, in)",
+                    scene->extent);
+      return Status::Error(path + line);
+    }
+    out->unit_from_data = true;
+  }
+  scene->metres = out->unit.metres_per_unit;
+  out->height_m = scene->extent * scene->metres;
+  out->up_axis = scene->up;
+  out->up_sign = scene->sign;
+  return Status::Ok();
+}
+
+// Per kept point (index into scene.kept): median height, and, in the pelvis' frame, the
+// median side (along l x up... see header: side0 = -d.l) and forward (f0 = up x l) coordinates.
+struct Layout {
+  std::vector<double> height, side, forward;
+};
+
+std::vector<double> MarkerHeights(const Scene& scene) {
+  std::vector<double> heights;
+  for (int m : scene.kept) {
+    std::vector<double> h;
+    for (int f : scene.frames) {
+      if (scene.take->valid(f, m)) h.push_back(scene.Height(scene.take->position(f, m)));
+    }
+    heights.push_back(Median(h));
+  }
+  return heights;
+}
+
+// Side (side0 = -d.l) and forward (f0 = up x l) coordinates of every kept point, medians
+// over frames, in the hip band's frame: origin the centroid of the points at heights
+// [0.4, 0.7] in that frame, l their principal horizontal axis (kept continuous). Also
+// `travel`: the band's displacement along f0 over the path length (walking is forward).
+void BodyFrameCoordinates(const Scene& scene, Layout* layout, double* travel) {
+  const MarkerTrajectories& take = *scene.take;
+  const size_t n = scene.kept.size();
+  std::vector<std::vector<double>> side(n), forward(n);
+  Eigen::Vector2d last = Eigen::Vector2d::Zero(), previous = Eigen::Vector2d::Constant(kNaN);
+  double along = 0.0, path = 0.0;
+  for (int f : scene.frames) {
+    std::vector<Eigen::Vector2d> points;
+    for (int m : scene.kept) {
+      if (!take.valid(f, m)) continue;
+      const double h = scene.Height(take.position(f, m));
+      if (h >= 0.4 && h <= 0.7) points.push_back(scene.Flat(take.position(f, m)));
+    }
+    if (points.size() < 3) continue;
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    for (const auto& p : points) c += p;
+    c /= static_cast<double>(points.size());
+    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+    for (const auto& p : points) cov += (p - c) * (p - c).transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+    Eigen::Vector2d l = eig.eigenvectors().col(1);
+    if (last.squaredNorm() > 0.0 && l.dot(last) < 0.0) l = -l;
+    if (last.squaredNorm() == 0.0 && l.x() + l.y() < 0.0) l = -l;  // Any fixed start.
+    last = l;
+    const Eigen::Vector2d f0 = scene.sign * Eigen::Vector2d(-l.y(), l.x());  // up x l.
+    // Across, the middle of the band's extremes (a missing marker on one side does not
+    // shift it as it shifts the centroid).
+    double lo = kInf, hi = -kInf;
+    for (const auto& p : points) lo = std::min(lo, (p - c).dot(l)), hi = std::max(hi, (p - c).dot(l));
+    c += 0.5 * (lo + hi) * l;
+    if (previous.allFinite()) along += (c - previous).dot(f0), path += (c - previous).norm();
+    previous = c;
+    for (size_t k = 0; k < n; ++k) {
+      if (!take.valid(f, scene.kept[k])) continue;
+      const Eigen::Vector2d d = (scene.Flat(take.position(f, scene.kept[k])) - c) * scene.metres;
+      side[k].push_back(-d.dot(l));
+      forward[k].push_back(d.dot(f0));
+    }
+  }
+  layout->side.resize(n);
+  layout->forward.resize(n);
+  for (size_t k = 0; k < n; ++k) layout->side[k] = Median(side[k]), layout->forward[k] = Median(forward[k]);
+  *travel = path > 0.0 ? along / path : 0.0;
+}
+
+double ClusterMedian(const std::vector<int>& cluster, const std::vector<double>& values) {
+  std::vector<double> v;
+  for (int i : cluster) v.push_back(values[i]);
+  return Median(v);
+}
+
+// Step 5's roles per marker, sides as "a_" (side0 > 0) and "b_" until forward is known.
+// Each cluster is a group: central (trunk), leg (a point below h 0.34, none above 0.6),
+// arm, or, below 0.6 and off centre, the group of the cluster it moves most rigidly with
+// (the trunk's counts as a leg: the hip); within a group each marker takes its role from its own height
+// (trunk: pelvis below 0.66, head above 0.91, chest between; leg: foot below 0.1, shin below
+// 0.29, thigh) or, on an arm, its distance from the side's shoulder (the arm's highest
+// point): upper arm within 0.5 of the farthest, forearm within 0.85, hand.
+struct RoleFinder {
+  const PairwiseSpread& pairs;
+  const std::vector<std::vector<int>>& clusters;
+  const Layout& layout;
+  std::vector<std::string> roles;    // Per kept point.
+  std::vector<double> certainty;     // Per kept point.
+  void Run();
+};
+
+void RoleFinder::Run() {
+  const size_t n = layout.height.size();
+  roles.assign(n, "");
+  certainty.assign(n, 1.0);
+  std::vector<int> group(clusters.size(), 0);  // 0 trunk, 1 leg, 2 arm.
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    double lo = kInf, hi = -kInf, side_lo = kInf, side_hi = -kInf;
+    for (int i : clusters[c]) {
+      lo = std::min(lo, layout.height[i]), hi = std::max(hi, layout.height[i]);
+      side_lo = std::min(side_lo, layout.side[i]), side_hi = std::max(side_hi, layout.side[i]);
+    }
+    // Central: the middle of its extremes across (a pelvis missing a marker on one side
+    // is still central), or spanning both sides.
+    const double mid = 0.5 * (side_lo + side_hi);
+    const bool central = std::abs(mid) < 0.07 || (side_lo < -0.05 && side_hi > 0.05);
+    if (central && !(lo < 0.3)) group[c] = 0;
+    else if (lo < 0.34 && hi < 0.6) group[c] = 1;
+    else if (hi < 0.6 && !central) group[c] = 3;  // Thigh or hand: decided below.
+    else group[c] = central ? 0 : 2;
+  }
+  // A cluster between the hips and the hands' height joins the group of the cluster it
+  // moves most rigidly with (a thigh with its shin or the pelvis, a hand with its forearm).
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    if (group[c] != 3) continue;
+    double best = kInf;
+    int best_group = 1;
+    for (size_t o = 0; o < clusters.size(); ++o) {
+      if (o == c || group[o] == 3) continue;
+      const double spread = MinClusterSpread(pairs, clusters[c], clusters[o]);
+      if (spread < best) best = spread, best_group = group[o] == 0 ? 1 : group[o];
+    }
+    group[c] = best_group;
+  }
+  // A limb cluster's side is its median's; a shin or foot (below h 0.3) takes the side of
+  // the leg cluster above it that it moves most rigidly with (a walk's feet pass under the
+  // body's midline, the thighs do not).
+  std::vector<double> side(clusters.size());
+  std::vector<size_t> order(clusters.size());
+  for (size_t c = 0; c < clusters.size(); ++c) side[c] = ClusterMedian(clusters[c], layout.side), order[c] = c;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return ClusterMedian(clusters[a], layout.height) > ClusterMedian(clusters[b], layout.height);
+  });
+  std::vector<bool> sided(clusters.size(), false);
+  for (size_t c : order) {
+    if (group[c] != 1) continue;
+    if (ClusterMedian(clusters[c], layout.height) >= 0.3 || std::abs(side[c]) >= 0.1) {
+      sided[c] = true;
+      continue;
+    }
+    double best = 0.05;
+    for (size_t o : order) {
+      if (o == c || group[o] != 1 || !sided[o]) continue;
+      const double spread = MinClusterSpread(pairs, clusters[c], clusters[o]);
+      if (spread < best) best = spread, side[c] = side[o] > 0.0 ? std::abs(side[c]) + 1e-6 : -std::abs(side[c]) - 1e-6;
+    }
+    sided[c] = true;
+  }
+  // Shoulders: per side, the arm point nearest the upper trunk (points of the trunk group
+  // above h 0.66; the whole trunk when none is).
+  std::vector<int> upper_trunk, trunk;
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    if (group[c] != 0) continue;
+    for (int i : clusters[c]) {
+      trunk.push_back(i);
+      if (layout.height[i] > 0.66) upper_trunk.push_back(i);
+    }
+  }
+  if (upper_trunk.empty()) upper_trunk = trunk;
+  int shoulder[2] = {-1, -1};
+  double shoulder_distance[2] = {kInf, kInf};
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    if (group[c] != 2) continue;
+    const int k = side[c] > 0.0 ? 0 : 1;
+    for (int i : clusters[c]) {
+      for (int t : upper_trunk) {
+        if (pairs.distance(i, t) < shoulder_distance[k]) shoulder_distance[k] = pairs.distance(i, t), shoulder[k] = i;
+      }
+    }
+  }
+  double reach[2] = {0.0, 0.0};
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    if (group[c] != 2) continue;
+    for (int i : clusters[c]) {
+      const int k = side[c] > 0.0 ? 0 : 1;
+      if (shoulder[k] >= 0 && std::isfinite(pairs.distance(i, shoulder[k]))) reach[k] = std::max(reach[k], pairs.distance(i, shoulder[k]));
+    }
+  }
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    for (int i : clusters[c]) {
+      const double h = layout.height[i];
+      const std::string prefix = (clusters[c].size() > 1 ? side[c] : layout.side[i]) > 0.0 ? "a_" : "b_";
+      if (group[c] == 0) {
+        roles[i] = h < 0.66 ? "pelvis" : h > 0.91 ? "head" : "chest";
+      } else if (group[c] == 1) {
+        roles[i] = prefix + (h < 0.1 ? "foot" : h < 0.29 ? "shin" : "thigh");
+      } else {
+        const int k = side[c] > 0.0 ? 0 : 1;
+        const double d = shoulder[k] < 0 ? 0.0 : pairs.distance(i, shoulder[k]) / std::max(reach[k], 1e-9);
+        roles[i] = prefix + (!(d >= 0.5) ? "upper_arm" : d < 0.85 ? "forearm" : "hand");
+      }
+      if (group[c] != 0 && std::abs(side[c]) < 0.03) certainty[i] = 0.7;
+    }
+  }
+}
+
+// Forward's sign: +1 when f0 is forward. Votes: the take walks forward (|travel| > 0.3);
+// the pelvis' front markers (ahead of its median) are wider apart than its back ones; the
+// feet reach ahead of the shins; side words in labels (half a vote).
+int ForwardSign(const Layout& layout, const std::vector<std::string>& roles, double travel,
+                const std::vector<std::string>& labels) {
+  double vote = std::abs(travel) > 0.3 ? (travel > 0.0 ? 1.0 : -1.0) : 0.0;
+  std::vector<double> pelvis_forward;
+  for (size_t i = 0; i < roles.size(); ++i) {
+    if (roles[i] == "pelvis") pelvis_forward.push_back(layout.forward[i]);
+  }
+  double middle = 0.0;
+  if (!pelvis_forward.empty()) {
+    middle = 0.5 * (*std::min_element(pelvis_forward.begin(), pelvis_forward.end()) +
+                    *std::max_element(pelvis_forward.begin(), pelvis_forward.end()));
+  }
+  double front_lo = kInf, front_hi = -kInf, back_lo = kInf, back_hi = -kInf;
+  for (size_t i = 0; i < roles.size(); ++i) {
+    if (roles[i] != "pelvis") continue;
+    const double s = layout.side[i];
+    if (layout.forward[i] > middle + 0.02) front_lo = std::min(front_lo, s), front_hi = std::max(front_hi, s);
+    if (layout.forward[i] < middle - 0.02) back_lo = std::min(back_lo, s), back_hi = std::max(back_hi, s);
+  }
+  const double front = front_hi - front_lo, back = back_hi - back_lo;
+  if (std::isfinite(front) && std::isfinite(back) && std::abs(front - back) > 0.04) vote += front > back ? 1.0 : -1.0;
+  for (const char* side : {"a_", "b_"}) {
+    std::vector<double> foot, shin;
+    for (size_t i = 0; i < roles.size(); ++i) {
+      if (roles[i] == std::string(side) + "foot") foot.push_back(layout.forward[i]);
+      if (roles[i] == std::string(side) + "shin") shin.push_back(layout.forward[i]);
+    }
+    double reach = -kInf;
+    for (double f : foot) reach = std::abs(f - Median(shin)) > std::abs(reach) ? f - Median(shin) : reach;
+    if (std::isfinite(reach) && std::abs(reach) > 0.05) vote += reach > 0.0 ? 1.0 : -1.0;
+  }
+  // Knees bulge forward of the hip-ankle line, and hands work ahead of the shoulders.
+  auto role_forward = [&](const std::string& role) {
+    std::vector<double> v;
+    for (size_t i = 0; i < roles.size(); ++i) {
+      if (roles[i] == role) v.push_back(layout.forward[i]);
+    }
+    return Median(v);
+  };
+  const double pelvis = role_forward("pelvis");
+  for (const char* side : {"a_", "b_"}) {
+    const std::string p(side);
+    const double knee = 0.5 * (role_forward(p + "thigh") + role_forward(p + "shin"));
+    const double bulge = knee - 0.5 * (pelvis + role_forward(p + "foot"));
+    if (std::isfinite(bulge) && std::abs(bulge) > 0.03) vote += bulge > 0.0 ? 1.0 : -1.0;
+    const double ahead = role_forward(p + "hand") - role_forward(p + "upper_arm");
+    if (std::isfinite(ahead) && std::abs(ahead) > 0.05) vote += ahead > 0.0 ? 0.5 : -0.5;
+  }
+  double names = 0.0;
+  for (size_t i = 0; i < labels.size(); ++i) {
+    const int word = LabelSide(labels[i]);
+    if (word != 0 && std::abs(layout.side[i]) > 0.03) names += (layout.side[i] > 0.0) == (word < 0) ? 1.0 : -1.0;
+  }
+  if (names != 0.0) vote += 0.5 * (names > 0.0 ? 1.0 : -1.0);
+  if (std::getenv("MOCAPSOLVE_ASSOCIATION_DEBUG")) {
+    std::fprintf(stderr, "forward vote %.1f (travel %.2f, pelvis front %.2f back %.2f, names %.0f)\n", vote, travel,
+                 front, back, names);
+  }
+  return vote >= 0.0 ? 1 : -1;
+}
+
+std::string FinalRole(const std::string& role, int forward) {
+  if (role.rfind("a_", 0) == 0) return (forward > 0 ? "left_" : "right_") + role.substr(2);
+  if (role.rfind("b_", 0) == 0) return (forward > 0 ? "right_" : "left_") + role.substr(2);
+  return role;
+}
+
+// Step 6: each marker's confidence.
+double MembershipConfidence(const PairwiseSpread& pairs, const std::vector<std::vector<int>>& clusters, int c,
+                            int i) {
+  if (clusters[c].size() < 2) return 0.6;
+  double own = 0.0;
+  int count = 0;
+  for (int j : clusters[c]) {
+    if (j != i && std::isfinite(pairs.spread(i, j))) own += pairs.spread(i, j), ++count;
+  }
+  own = count > 0 ? own / count : 0.0;
+  double other = kInf;
+  for (size_t o = 0; o < clusters.size(); ++o) {
+    if (static_cast<int>(o) != c) other = std::min(other, MeanClusterSpread(pairs, {i}, clusters[o]));
+  }
+  if (!std::isfinite(other)) return 1.0;
+  return std::clamp(1.0 - own / std::max(other, 1e-9), 0.0, 1.0);
+}
+
+}  // namespace
+
+int LabelSide(const std::string& raw) {
+  std::string label = raw.substr(raw.find(':') == std::string::npos ? 0 : raw.find(':') + 1);
+  std::string lower;
+  for (char ch : label) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (lower.rfind("left", 0) == 0) return -1;
+  if (lower.rfind("right", 0) == 0) return 1;
+  if (label.size() >= 2 && (label[0] == 'L' || label[0] == 'l' || label[0] == 'R' || label[0] == 'r')) {
+    const char next = label[1];
+    // LASI, L_IAS, "r should", LeftKnee: an upper-case letter, separator or space after the side letter.
+    if (std::isupper(static_cast<unsigned char>(next)) || next == '_' || next == ' ' || next == '.' || next == '-') {
+      return (label[0] == 'L' || label[0] == 'l') ? -1 : 1;
+    }
+  }
+  return 0;
+}
+
+const AssociatedMarker* MarkerAssociation::Find(const std::string& label) const {
+  for (const AssociatedMarker& m : markers) {
+    if (m.label == label) return &m;
+  }
+  return nullptr;
+}
+
+std::string MarkerAssociation::UpName() const {
+  return std::string(up_sign > 0 ? "+" : "-") + "xyz"[up_axis];
+}
+
+Status AssociateMarkers(const MarkerTrajectories& take, const std::string& path,
+                        const MarkerAssociationOptions& options, MarkerAssociation* out) {
+  *out = MarkerAssociation();
+  if (take.num_frames() == 0 || take.num_markers() == 0) return Status::Error(path + ": no frames or no points");
+  Scene scene;
+  scene.take = &take;
+  const int step = std::max(1, take.num_frames() / std::max(1, options.clusters.max_frames));
+  for (int f = 0; f < take.num_frames(); f += step) scene.frames.push_back(f);
+  ExcludeStrayPoints(&scene, out);
+  if (scene.kept.size() < 6) return Status::Error(path + ": fewer than 6 points observed often enough to be markers");
+  DetectUp(&scene);
+  Status status = DetectUnit(path, &scene, out);
+  if (!status.ok()) return status;
+  PairwiseSpread pairs = ComputePairwiseSpread(take, scene.kept, scene.metres, options.clusters);
+  // Points that move rigidly with nothing are no skin markers.
+  std::vector<int> kept;
+  for (size_t i = 0; i < scene.kept.size(); ++i) {
+    double lone = kInf;
+    for (size_t j = 0; j < scene.kept.size(); ++j) {
+      if (i != j) lone = std::min(lone, pairs.spread(i, j));
+    }
+    if (lone > options.max_lone_spread) {
+      out->excluded.push_back({take.label(scene.kept[i]), "moves rigidly with no other point (not a skin marker)"});
+    } else {
+      kept.push_back(scene.kept[i]);
+    }
+  }
+  if (kept.size() != scene.kept.size()) {
+    scene.kept = kept;
+    pairs = ComputePairwiseSpread(take, scene.kept, scene.metres, options.clusters);
+  }
+  const std::vector<std::vector<int>> clusters = ClusterRigidMarkers(pairs, options.clusters);
+  Layout layout;
+  layout.height = MarkerHeights(scene);
+  double travel = 0.0;
+  BodyFrameCoordinates(scene, &layout, &travel);
+  RoleFinder finder{pairs, clusters, layout, {}, {}};
+  finder.Run();
+  std::vector<std::string> labels;
+  // Without the subject prefix ("Nick01:"), as the fit's marker sets name them.
+  for (int m : scene.kept) labels.push_back(SplitSubjectPrefix(take.label(m), take.subject_prefixes).name);
+  const int forward = ForwardSign(layout, finder.roles, travel, labels);
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    std::vector<std::string> names;
+    for (int i : clusters[c]) {
+      AssociatedMarker a;
+      a.label = labels[i];
+      a.role = FinalRole(finder.roles[i], forward);
+      a.cluster = static_cast<int>(c);
+      a.height = layout.height[i];
+      a.side_m = forward * layout.side[i];
+      a.confidence = MembershipConfidence(pairs, clusters, static_cast<int>(c), i) * finder.certainty[i];
+      const int word = LabelSide(a.label);
+      const bool lateral = a.role.rfind("left_", 0) == 0 || a.role.rfind("right_", 0) == 0;
+      if (word != 0 && lateral && (word < 0) != (a.role.rfind("left_", 0) == 0)) a.confidence *= 0.5;
+      out->markers.push_back(a);
+      names.push_back(a.label);
+    }
+    out->clusters.push_back(names);
+  }
+  std::stable_sort(out->markers.begin(), out->markers.end(), [&](const AssociatedMarker& a, const AssociatedMarker& b) {
+    return take.FindMarker(a.label) < take.FindMarker(b.label);
+  });
+  return Status::Ok();
+}
+
+}  // namespace mocapsolve
