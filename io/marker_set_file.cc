@@ -68,8 +68,8 @@ class Interpreter {
     }
     const JsonNode* version = root.Find("version");
     if (version == nullptr) return Error(root, "missing \"version\"");
-    if (!version->is_number() || version->number != 1.0) {
-      return Error(*version, "version: expected 1 (the only version this build reads)");
+    if (!version->is_number() || (version->number != 1.0 && version->number != 2.0)) {
+      return Error(*version, "version: expected 1 or 2 (the versions this build reads)");
     }
     const JsonNode* units = root.Find("units");
     if (units == nullptr) return Error(root, "missing \"units\"");
@@ -126,9 +126,17 @@ class Interpreter {
     if (label->string.empty()) return Error(*label, "label: empty");
     context_ += QuoteToken(label->string) + ": ";
     if (!labels->insert(label->string).second) return Error(*label, "label: duplicate");
-    status = CheckKeys(node, {"label", "attachments"}, "");
+    status = CheckKeys(node, {"label", "attachments", "solve_weight"}, "");
     if (!status.ok()) return status;
     spec->label = label->string;
+    if (const JsonNode* solve_weight = node.Find("solve_weight")) {
+      status = CheckType(*solve_weight, JsonNode::Type::kNumber, "solve_weight");
+      if (!status.ok()) return status;
+      if (!(solve_weight->number > 0.0 && solve_weight->number <= kMaxWeight)) {
+        return Error(*solve_weight, "solve_weight: expected in (0, 1e6]");
+      }
+      spec->solve_weight = solve_weight->number;
+    }
     const JsonNode* attachments = node.Find("attachments");
     if (attachments == nullptr) return Error(node, "missing \"attachments\"");
     status = CheckType(*attachments, JsonNode::Type::kArray, "attachments");
@@ -213,7 +221,10 @@ Status ReadMarkerSet(const std::string& path, const Skeleton& skeleton, MarkerSe
 
 std::string FormatMarkerSet(const Skeleton& skeleton, const MarkerSet& marker_set,
                             const std::string& skeleton_description) {
-  std::string out = "{\n  \"format\": \"" + std::string(kFormat) + "\",\n  \"version\": 1,\n";
+  // Version 2 adds the per-marker "solve_weight"; a set without learned weights stays 1.
+  bool weighted = false;
+  for (int m = 0; m < marker_set.num_markers(); ++m) weighted |= marker_set.marker(m).solve_weight != 1.0;
+  std::string out = "{\n  \"format\": \"" + std::string(kFormat) + "\",\n  \"version\": " + (weighted ? "2" : "1") + ",\n";
   out += "  \"units\": " + JsonQuote(skeleton.unit().name) + ",\n";
   if (!skeleton_description.empty()) out += "  \"skeleton\": " + JsonQuote(skeleton_description) + ",\n";
   out += "  \"markers\": [";
@@ -229,7 +240,10 @@ std::string FormatMarkerSet(const Skeleton& skeleton, const MarkerSet& marker_se
              JsonValue(a.offset.x()).text() + ", " + JsonValue(a.offset.y()).text() + ", " +
              JsonValue(a.offset.z()).text() + "]}";
     }
-    out += "]}";
+    out += "]";
+    // Written only when learned (marker_weights.h): files without it read as weight 1.
+    if (spec.solve_weight != 1.0) out += ", \"solve_weight\": " + JsonValue(spec.solve_weight).text();
+    out += "}";
   }
   out += marker_set.num_markers() > 0 ? "\n  ]\n}\n" : "]\n}\n";
   return out;

@@ -2,10 +2,11 @@
 //
 //   x_m = sum_k w_mk * world_from_joint_{j_mk} * z_mk
 //
-// Format (version 1; keys in any order, unknown keys are an error so typos surface):
+// Format (version 2; keys in any order, unknown keys are an error so typos surface):
 //   {
 //     "format": "mocapsolve.markerset",          required, exactly this string
-//     "version": 1,                              required, 1
+//     "version": 2,                              required, 1 or 2 (1: no solve_weight;
+//                                                written as 1 when every weight is 1)
 //     "units": "cm",                             required: the length unit of the offsets
 //     "skeleton": "walk.bvh",                    optional, informative only
 //     "markers": [                               required, may be empty
@@ -13,8 +14,11 @@
 //        "attachments": [                        one or more
 //          {"joint": "root",                     a joint name of the skeleton
 //           "weight": 1.0,                       optional (default 1), in [0, 1e6]
-//           "offset": [x, y, z]}]}               z_mk in the joint's frame, `units`,
+//           "offset": [x, y, z]}],               z_mk in the joint's frame, `units`,
 //                                                each within +-1e9
+//        "solve_weight": 0.4}                    optional (default 1), in (0, 1e6]: the
+//                                                marker's relative weight in a solve
+//                                                (its learned tolerance, marker_weights.h)
 //     ]
 //   }
 // Weights are renormalized to sum to 1 per marker (MarkerSet::Create); a marker on one

@@ -18,6 +18,7 @@ Status MarkerSet::Create(const Skeleton& skeleton, std::vector<MarkerSpec> marke
     if (spec.label.empty()) return Status::Error("marker with an empty label");
     if (!labels.insert(spec.label).second) return Status::Error(where + ": duplicate label");
     if (spec.attachments.empty()) return Status::Error(where + ": no attachment");
+    if (!(spec.solve_weight > 0.0 && spec.solve_weight <= 1e6)) return Status::Error(where + ": solve weight not in (0, 1e6]");
     double total = 0.0;
     std::set<int> chain;
     for (const MarkerAttachment& a : spec.attachments) {

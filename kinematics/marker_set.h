@@ -30,6 +30,11 @@ struct MarkerAttachment {
 struct MarkerSpec {
   std::string label;
   std::vector<MarkerAttachment> attachments;
+  // Relative weight of the marker's residual in a solve (a per-marker tolerance: 1/sigma^2
+  // of its soft-tissue spread relative to the set's typical one, learned on a calibration
+  // take, problems/marker_solve/marker_weights.h); the solvers scale its rows by
+  // sqrt(solve_weight). Finite, in (0, 1e6]; 1 = as every other marker.
+  double solve_weight = 1.0;
 };
 
 class MarkerSet {

@@ -24,6 +24,10 @@ const OptionGroup<SkeletonFitSettings>& SkeletonFitSettingOptions() {
       .Add(&S::offset_prior, "offset_prior", "",
            "Weight of the prior that keeps marker offsets near the template's in the first fit, per frame, "
            "relative to a marker residual; 0: off.", 0.0)
+      .Add(&S::learn_weights, "learn_weights", "",
+           "Learn each marker's solve weight on the take: 1/sigma^2 of its residual spread in a solve of the fitted "
+           "subject, relative to the median marker's, at most 1 and at least this (soft tissue: upper arm, thigh); "
+           "written in the subject's marker set; 0: off (every marker weight 1).", 0.0, 1.0)
       .Add(&S::fit_outlier_mm, "fit_outlier_mm", "mm",
            "Leave out of every round's fit the samples of the template's markers farther than this, and than 5 "
            "times their marker's median residual, from their marker in the first fit (mislabels, ghosts); the fit "

@@ -22,6 +22,9 @@ struct SkeletonFitSettings {
   double min_bone_scale = 0.8;
   double max_bone_scale = 1.25;
   double offset_prior = 0.0;
+  // Per-marker solve weights learned on the take (problems/marker_solve/marker_weights.h):
+  // the lowest weight a loose marker gets; 0 = off (every marker weight 1).
+  double learn_weights = 0.0;
   double fit_outlier_mm = 200.0;  // 0 = off.
   std::string check = "fail";    // fail | warn | off.
   // TEMPLATE:TAKE pairs or their file (problems/marker_solve/template_labels.h); "auto": a

@@ -539,8 +539,23 @@ bool KeepBestRound(int round, int rounds, const Observations& observed, const Sk
 
 // The kept round as the fitted subject: lone joints regauged, the checks run against the
 // observations it was fitted to, its mean pose as the subject's rest prior.
-Status KeepSubject(const SkeletonFitInputs& inputs, const FitTake& fit, RoundState* state,
-                   SkeletonFitResult* result) {
+// With --learn_weights: each marker's solve weight from a solve of the kept subject on the
+// fitted frames (marker_weights.h), its own mean pose as the rest prior's reference.
+Status LearnWeights(const SkeletonFitSettings& settings, MarkerSolveOptions solve_options,
+                    const Observations& observed, SkeletonFitResult* result) {
+  if (!(settings.learn_weights > 0.0)) return Status::Ok();
+  Subject& subject = result->subject;
+  if (!solve_options.rest_rotations.empty()) solve_options.rest_rotations = subject.mean_pose;
+  MarkerWeightOptions options;
+  options.min_weight = settings.learn_weights;
+  Status status = LearnMarkerWeights(subject.skeleton, subject.markers, observed, solve_options, options,
+                                     &result->weights);
+  if (status.ok()) status = ApplyMarkerWeights(subject.skeleton, subject.markers, result->weights.weight, &subject.markers);
+  return status;
+}
+
+Status KeepSubject(const SkeletonFitInputs& inputs, const FitTake& fit, const SkeletonFitSettings& settings,
+                   const MarkerSolveOptions& solve_options, RoundState* state, SkeletonFitResult* result) {
   RoundFit& best = state->best;
   // A joint one marker alone constrains rests at its mean fitted pose (lone_joint_gauge.h):
   // the same fit, but a solve without that marker predicts it.
@@ -564,7 +579,7 @@ Status KeepSubject(const SkeletonFitInputs& inputs, const FitTake& fit, RoundSta
   // The rest prior's reference in later solves of this subject (directions no marker fixes
   // settle at the pose the subject typically holds, not at zero rotations).
   subject.mean_pose = MeanPose(subject.skeleton, result->motion);
-  return Status::Ok();
+  return LearnWeights(settings, solve_options, best.observed, result);
 }
 
 }  // namespace
@@ -639,7 +654,7 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
     kept.rms = state.best.rms;
     events.Emit(kept);
   }
-  status = KeepSubject(inputs, fit, &state, result);
+  status = KeepSubject(inputs, fit, settings, solve_options, &state, result);
   if (!status.ok()) return status;
   result->seconds = Seconds(start);
   return Status::Ok();

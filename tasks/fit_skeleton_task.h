@@ -45,6 +45,7 @@
 #include "problems/marker_solve/template_labels.h"
 #include "settings/skeleton_fit_settings.h"
 #include "problems/marker_solve/marker_frame_solver.h"
+#include "problems/marker_solve/marker_weights.h"
 #include "problems/marker_solve/skeleton_fit.h"
 #include "problems/marker_solve/subject_checks.h"
 
@@ -117,6 +118,7 @@ struct SkeletonFitResult {
   double seconds = 0.0;
   double mm_per_unit = 1.0; // 1 when the skeleton's unit is unknown.
   bool unit_known = false;
+  LearnedMarkerWeights weights;  // With --learn_weights (else empty).
 };
 
 // Which inputs were given: a template subject, or a skeleton and a marker set (not both), or

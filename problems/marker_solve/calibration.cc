@@ -215,14 +215,11 @@ Status CalibrateMarkers(const Skeleton& skeleton, const Motion& motion,
       // hip); when none qualifies, the joint with the nearest bone. Joints tied on the
       // spread (moving together in this motion, e.g. a forearm no marker has moved yet
       // and its upper arm) are told apart by the nearest bone, not the lowest index.
-      std::vector<double> distance;
+      std::vector<double> distance(candidates.size(), 0.0);
+      for (size_t c = 0; c < candidates.size(); ++c) distance[c] = DistanceToBone(skeleton, candidates[c], means[c]);
       if (options.max_bone_distance > 0.0) {
-        distance.assign(candidates.size(), 0.0);
         bool any = false;
-        for (size_t c = 0; c < candidates.size(); ++c) {
-          distance[c] = DistanceToBone(skeleton, candidates[c], means[c]);
-          any |= distance[c] <= options.max_bone_distance;
-        }
+        for (size_t c = 0; c < candidates.size(); ++c) any |= distance[c] <= options.max_bone_distance;
         const size_t nearest = std::min_element(distance.begin(), distance.end()) - distance.begin();
         for (size_t c = 0; c < candidates.size(); ++c) {
           const bool allowed = any ? distance[c] <= options.max_bone_distance : c == nearest;
@@ -236,7 +233,10 @@ Status CalibrateMarkers(const Skeleton& skeleton, const Motion& motion,
       double second_spread = std::numeric_limits<double>::infinity();
       for (size_t c = 0; c < candidates.size(); ++c) {
         if (spread[c] <= tie) {
-          if (chosen == candidates.size() || (!distance.empty() && distance[c] < distance[chosen])) chosen = c;
+          // Among tied joints: the nearest bone (with max_bone_distance), else the ancestor
+          // unless a tied joint's bone is clearly nearer (tie_nearer_factor).
+          const double factor = options.max_bone_distance > 0.0 ? 1.0 : options.tie_nearer_factor;
+          if (chosen == candidates.size() || (factor > 0.0 && factor * distance[c] < distance[chosen])) chosen = c;
         } else if (spread[c] < second_spread) {
           second_spread = spread[c];
           second = candidates[c];

@@ -19,7 +19,8 @@
 // parent) give the same rms up to round-off; among joints within
 // tie_tolerance of the best (relative, plus an absolute 1e-9 of the marker's mean distance
 // from the root, squared) the lowest index (the ancestor) wins, so results are
-// deterministic. CalibratedMarker::runner_up names the best joint outside that tie.
+// deterministic, unless a tied joint's bone is clearly nearer (tie_nearer_factor).
+// CalibratedMarker::runner_up names the best joint outside that tie.
 // Fixed attachments (a marker set given): the joints (and weights) come from it and only
 // the offsets are re-estimated; a blended marker x = sum_k w_k (p_k + R_k z_k) is linear
 // in (z_1..z_K), solved by least squares over all frames (minimum norm when the joints
@@ -73,6 +74,14 @@ struct CalibrationOptions {
   // joint qualifies, the joint with the nearest bone. Joints tied on the spread (moving
   // together in this motion) are told apart by the nearest bone, not the lowest index.
   double max_bone_distance = 0.0;
+  // Auto attach without max_bone_distance: among joints tied on the spread the ancestor
+  // (lowest index) wins, unless a tied joint's bone is this many times nearer to the
+  // marker's mean local position (0: the ancestor always). A motion that never moves a
+  // joint relative to its parent cannot tell them apart: CMU's 02_01 keeps the clavicles
+  // at zero, so LSHO/RSHO tie between the thorax (3.2 units from its bone) and the
+  // clavicle (0.8) and belong to the clavicle, on which later takes raise the shoulders
+  // (leave-one-out on cmu_02_05, BENCHMARKS.md); sternum and C7 markers stay on the thorax.
+  double tie_nearer_factor = 2.0;
 };
 
 struct CalibratedMarker {

@@ -134,7 +134,8 @@ Status BuildClipProblem(const Skeleton& skeleton, const MarkerSet& markers,
   for (int f = 0; f < num_frames; ++f) {
     for (int m = 0; m < nm; ++m) {
       if (!observed[f][m].allFinite()) continue;
-      auto residual = std::make_unique<MarkerResidual>(&skeleton, &markers, m, &observed[f][m], options.marker_weight);
+      auto residual = std::make_unique<MarkerResidual>(
+          &skeleton, &markers, m, &observed[f][m], options.marker_weight * std::sqrt(markers.marker(m).solve_weight));
       std::vector<int> blocks(1, f * blocks_per_frame);
       for (int j : residual->joints()) blocks.push_back(f * blocks_per_frame + joint_block[j]);
       p.residuals.push_back({std::move(residual), true, std::move(blocks)});

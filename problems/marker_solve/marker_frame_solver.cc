@@ -75,6 +75,17 @@ double RmsMarkerError(const Skeleton& skeleton, const MarkerSet& markers, const 
   return n > 0 ? std::sqrt(sum / n) : 0.0;
 }
 
+namespace {
+
+// A marker's residual scale: the solve's marker weight times sqrt of the marker's own
+// solve weight (kinematics/marker_set.h), so its cost is weighted by solve_weight.
+double RowScale(const MarkerSolveOptions& options, const MarkerSet& markers, int m) {
+  const double w = markers.marker(m).solve_weight;
+  return w == 1.0 ? options.marker_weight : options.marker_weight * std::sqrt(w);
+}
+
+}  // namespace
+
 class MarkerFrameSolver::Impl {
  public:
   Impl(const Skeleton& skeleton, const MarkerSet& markers, const MarkerSolveOptions& options)
@@ -85,7 +96,7 @@ class MarkerFrameSolver::Impl {
     std::vector<bool> moves(skeleton.num_joints(), false);
     for (int m = 0; m < markers.num_markers(); ++m) {
       residuals_.emplace_back(new MarkerResidual(&skeleton, &markers, m, &observed_[m],
-                                                 options.marker_weight));
+                                                 RowScale(options, markers, m)));
       for (int j : markers.InfluencingJoints(m)) moves[j] = true;
     }
     // Joints on some marker's chain get a block; those without rotation dofs (an ASF
@@ -172,7 +183,7 @@ class MarkerFrameSolver::Impl {
     } else {
       if (tree_ == nullptr) BuildTreeSolver();
       for (int m = 0; m < markers_.num_markers(); ++m) {
-        tree_->SetRowScale(m, visible[m] ? options_.marker_weight : 0.0);
+        tree_->SetRowScale(m, visible[m] ? RowScale(options_, markers_, m) : 0.0);
       }
       DlsSummary summary;
       tree_->Solve(options_.dls, &summary);
@@ -208,7 +219,7 @@ class MarkerFrameSolver::Impl {
       for (const MarkerAttachment& a : markers_.marker(m).attachments) {
         attachments.push_back({a.joint, a.weight, a.offset});
       }
-      tree_->AddPointRow(std::move(attachments), &observed_[m], options_.marker_weight);
+      tree_->AddPointRow(std::move(attachments), &observed_[m], RowScale(options_, markers_, m));
     }
     tree_->set_loss(loss_.get());
     for (size_t k = 0; k < rotation_priors_.size(); ++k) tree_->AddBlockCost(prior_joints_[k], rotation_priors_[k].get());

@@ -30,6 +30,7 @@ void ExpectSameMarkerSets(const MarkerSet& a, const MarkerSet& b, double toleran
       EXPECT_NEAR(x.weight, y.weight, tolerance) << a.label(m);
       EXPECT_NEAR((x.offset - y.offset).norm(), 0.0, tolerance) << a.label(m);
     }
+    EXPECT_EQ(a.marker(m).solve_weight, b.marker(m).solve_weight) << a.label(m);
   }
 }
 
@@ -64,6 +65,41 @@ TEST(MarkerSetFile, RoundTripIsExact) {
     ASSERT_TRUE(status.ok()) << status.message();
     ExpectSameMarkerSets(original, read, 0.0);  // Round-trip exact number printing.
   }
+}
+
+// Learned solve weights (version 2) round trip exactly; a set without them is still
+// written as version 1, and version 1 files (no solve_weight) read as weight 1.
+TEST(MarkerSetFile, SolveWeightsRoundTripAndVersionOneStillReads) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const MarkerSet plain = BlendedSet(skeleton);
+  std::vector<MarkerSpec> specs;
+  for (int m = 0; m < plain.num_markers(); ++m) specs.push_back(plain.marker(m));
+  specs[0].solve_weight = 0.123456789012345678;
+  specs[2].solve_weight = 1e-3;
+  MarkerSet weighted;
+  ASSERT_TRUE(MarkerSet::Create(skeleton, specs, &weighted).ok());
+  const std::string text = FormatMarkerSet(skeleton, weighted);
+  EXPECT_THAT(text, HasSubstr("\"version\": 2"));
+  EXPECT_THAT(text, HasSubstr("\"solve_weight\": 0.12345678901234568"));
+  MarkerSet read;
+  Status status = ParseMarkerSet(text, "w.json", skeleton, &read);
+  ASSERT_TRUE(status.ok()) << status.message();
+  ExpectSameMarkerSets(weighted, read, 0.0);
+  EXPECT_EQ(read.marker(1).solve_weight, 1.0);
+  const std::string v1 = FormatMarkerSet(skeleton, plain);
+  EXPECT_THAT(v1, HasSubstr("\"version\": 1"));
+  EXPECT_THAT(v1, ::testing::Not(HasSubstr("solve_weight")));
+  ASSERT_TRUE(ParseMarkerSet(v1, "v1.json", skeleton, &read).ok());
+  for (int m = 0; m < read.num_markers(); ++m) EXPECT_EQ(read.marker(m).solve_weight, 1.0);
+  // A weight out of range names the marker and the field.
+  std::string bad = text;
+  bad.replace(bad.find("0.12345678901234568"), 19, "-1");
+  status = ParseMarkerSet(bad, "bad.json", skeleton, &read);
+  EXPECT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("bad.json"));
+  EXPECT_THAT(status.message(), HasSubstr("solve_weight: expected in (0, 1e6]"));
+  specs[1].solve_weight = 0.0;
+  EXPECT_FALSE(MarkerSet::Create(skeleton, specs, &weighted).ok());
 }
 
 TEST(MarkerSetFile, FormatIsDocumentedShape) {
@@ -143,7 +179,7 @@ TEST(MarkerSetFile, BadInputsGiveOneLineErrorsNamingTheField) {
       {"joint index", head + R"({"label": "B", "attachments": [{"joint": 3, "offset": [1, 2, 3]}]}]})",
        "attachments[0].joint: expected string, got number"},
       {"wrong format", R"({"format": "other", "version": 1, "units": "cm", "markers": []})", "format: expected"},
-      {"version 2", R"({"format": "mocapsolve.markerset", "version": 2, "units": "cm", "markers": []})",
+      {"version 3", R"({"format": "mocapsolve.markerset", "version": 3, "units": "cm", "markers": []})",
        "version: expected 1"},
       {"no units", R"({"format": "mocapsolve.markerset", "version": 1, "markers": []})", "missing \"units\""},
       {"markers object", R"({"format": "mocapsolve.markerset", "version": 1, "units": "cm", "markers": {}})",

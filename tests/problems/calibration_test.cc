@@ -182,6 +182,35 @@ TEST(Calibration, AutoAttachRecoversJointsAndOffsetsExactly) {
   EXPECT_GT(result.rms, 0.01);
 }
 
+// A joint the motion never turns relative to its parent ties with it on the spread: the
+// marker goes to the ancestor unless the child's bone is tie_nearer_factor times nearer.
+TEST(Calibration, TiedJointsGoToTheClearlyNearerBone) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  Motion motion = JitteredWalk(skeleton, 60, 3);
+  const int child = skeleton.FindJoint("LeftForeArm");
+  const int parent = skeleton.parent(child);
+  ASSERT_GE(parent, 0);
+  for (Pose& pose : motion.frames) pose.rotations[child] = Eigen::Quaterniond::Identity();
+  ASSERT_TRUE(MoveTogether(skeleton, motion, parent, child));
+  // One marker 1 cm off the middle of the child's bone, one 1 cm off the parent's.
+  const Eigen::Vector3d child_bone = skeleton.joint(skeleton.FindJoint("LeftHand")).offset;
+  const Eigen::Vector3d parent_bone = skeleton.joint(child).offset;
+  const Eigen::Vector3d side = child_bone.unitOrthogonal();
+  std::vector<MarkerSpec> specs = {{"NEAR_CHILD", {{child, 1.0, 0.5 * child_bone + side}}},
+                                   {"NEAR_PARENT", {{parent, 1.0, 0.5 * parent_bone + parent_bone.unitOrthogonal()}}}};
+  MarkerSet truth;
+  ASSERT_TRUE(MarkerSet::Create(skeleton, specs, &truth).ok());
+  const MarkerTrajectories trajectories = Synthesize(skeleton, motion, truth);
+  CalibrationResult result;
+  ASSERT_TRUE(CalibrateMarkers(skeleton, motion, trajectories, {}, nullptr, &result).ok());
+  EXPECT_EQ(result.marker_set.marker(0).attachments[0].joint, child);
+  EXPECT_EQ(result.marker_set.marker(1).attachments[0].joint, parent);
+  CalibrationOptions ancestor;
+  ancestor.tie_nearer_factor = 0.0;
+  ASSERT_TRUE(CalibrateMarkers(skeleton, motion, trajectories, ancestor, nullptr, &result).ok());
+  EXPECT_EQ(result.marker_set.marker(0).attachments[0].joint, parent);
+}
+
 TEST(Calibration, FixedAttachmentsReestimateOffsetsIncludingBlends) {
   const Skeleton skeleton = MakeDemoSkeleton();
   const Motion motion = JitteredWalk(skeleton, 60, 3);
@@ -382,6 +411,18 @@ TEST(Calibration, Cmu0201RealData) {
   EXPECT_EQ(joint_of("RTHI"), "rfemur");
   EXPECT_EQ(joint_of("LELB"), "lhumerus");
   EXPECT_EQ(joint_of("LHEE"), "lfoot");
+  // The clavicles do not move in this AMC, so the shoulder markers tie between thorax and
+  // clavicle: the clavicle's bone is 4x nearer (tie_nearer_factor), while the sternum,
+  // CLAV and C7 markers, about as near to either, stay on the thorax.
+  EXPECT_EQ(joint_of("LSHO"), "lclavicle");
+  EXPECT_EQ(joint_of("RSHO"), "rclavicle");
+  for (const char* label : {"CLAV", "STRN", "C7"}) EXPECT_EQ(joint_of(label), "thorax") << label;
+  CalibrationOptions ancestor;
+  ancestor.tie_nearer_factor = 0.0;
+  CalibrationResult old_rule;
+  ASSERT_TRUE(CalibrateMarkers(skeleton, motion, trajectories, ancestor, nullptr, &old_rule).ok());
+  const int lsho = old_rule.marker_set.FindMarker("LSHO");
+  EXPECT_EQ(skeleton.name(old_rule.marker_set.marker(lsho).attachments[0].joint), "thorax");
 
   // Frame offsets of +-1 fit worse (measured 13.6 and 14.5 mm).
   for (int offset : {-1, 1}) {

@@ -309,7 +309,8 @@ TEST(CmuMarkerSolve, Cmu0201SolversAgreeOnTheCost) {
 
 // (b2) The lean tree kernel and the generic DLS solver on 02_01 with the command line's
 // defaults (prior 20 mm/rad, function tolerance 1e-6): the same iterations and poses to
-// round-off, so the same RMS residual (BENCHMARKS.md: 3.932 mm).
+// round-off, so the same RMS residual (BENCHMARKS.md: 3.932 mm with the shoulder markers
+// on the thorax; 3.958 mm, 1,397 iterations, since calibration puts them on the clavicles).
 TEST(CmuMarkerSolve, Cmu0201LeanAndGenericDlsAgree) {
   MOCAPSOLVE_CMU_0201(data);
   Motion solved[2];
@@ -329,7 +330,7 @@ TEST(CmuMarkerSolve, Cmu0201LeanAndGenericDlsAgree) {
               reports[0].total_iterations, reports[1].total_iterations);
   EXPECT_EQ(reports[0].total_iterations, reports[1].total_iterations);
   EXPECT_NEAR(reports[0].rms_marker_error * data.mm, reports[1].rms_marker_error * data.mm, 1e-6);
-  EXPECT_NEAR(reports[0].rms_marker_error * data.mm, 3.932, 0.0005);
+  EXPECT_NEAR(reports[0].rms_marker_error * data.mm, 3.958, 0.0005);
   double worst = 0.0;
   for (size_t f = 0; f < data.observed.size(); ++f) {
     for (int j = 0; j < data.skeleton.num_joints(); ++j) {
