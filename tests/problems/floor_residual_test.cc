@@ -15,6 +15,7 @@
 #include "kinematics/skinning.h"
 #include "problems/retarget/retarget_frame_solver.h"
 #include "tests/kinematics/test_rigs.h"
+#include "tests/problems/chain_fk_twin.h"
 #include "kinematics/rotation.h"
 #include "solvers/right_quaternion_manifold.h"
 
@@ -30,24 +31,7 @@ struct FloorTwin {
 
   template <typename T>
   bool operator()(T const* const* parameters, T* residuals) const {
-    std::vector<Eigen::Quaternion<T>> rotation(skeleton->num_joints());
-    std::vector<Eigen::Matrix<T, 3, 1>> position(skeleton->num_joints());
-    for (size_t s = 0; s < chain.size(); ++s) {
-      const int j = chain[s];
-      const T* p = parameters[1 + s];
-      const T norm = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
-      const Eigen::Quaternion<T> local = skeleton->rest_rotation(j).cast<T>() *
-                                         Eigen::Quaternion<T>(p[3] / norm, p[0] / norm, p[1] / norm, p[2] / norm);
-      if (j == 0) {
-        position[0] = Eigen::Matrix<T, 3, 1>(parameters[0][0], parameters[0][1], parameters[0][2]);
-        rotation[0] = local;
-      } else {
-        const int parent = skeleton->parent(j);
-        position[j] = position[parent] + rotation[parent] * skeleton->offset(j).cast<T>();
-        rotation[j] = rotation[parent] * local;
-      }
-    }
-    const T below = position[chain.back()][1] - T(lowest);
+    const T below = testing::ChainEndPosition(*skeleton, chain, parameters)[1] - T(lowest);
     residuals[0] = below < T(0.0) ? T(scale) * below : T(0.0);
     return true;
   }

@@ -18,6 +18,7 @@
 #include "problems/retarget/retarget_frame_solver.h"
 #include "solvers/right_quaternion_manifold.h"
 #include "tests/kinematics/test_rigs.h"
+#include "tests/problems/chain_fk_twin.h"
 #include "tests/problems/manifold_gradient_check.h"
 
 namespace mocapsolve {
@@ -31,24 +32,8 @@ struct FootPlantTwin {
 
   template <typename T>
   bool operator()(T const* const* parameters, T* residuals) const {
-    std::vector<Eigen::Quaternion<T>> rotation(skeleton->num_joints());
-    std::vector<Eigen::Matrix<T, 3, 1>> position(skeleton->num_joints());
-    for (size_t s = 0; s < chain.size(); ++s) {
-      const int j = chain[s];
-      const T* p = parameters[1 + s];
-      const T norm = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
-      const Eigen::Quaternion<T> local = skeleton->rest_rotation(j).cast<T>() *
-                                         Eigen::Quaternion<T>(p[3] / norm, p[0] / norm, p[1] / norm, p[2] / norm);
-      if (j == 0) {
-        position[0] = Eigen::Matrix<T, 3, 1>(parameters[0][0], parameters[0][1], parameters[0][2]);
-        rotation[0] = local;
-      } else {
-        const int parent = skeleton->parent(j);
-        position[j] = position[parent] + rotation[parent] * skeleton->offset(j).cast<T>();
-        rotation[j] = rotation[parent] * local;
-      }
-    }
-    for (int i = 0; i < 3; ++i) residuals[i] = T(scale) * (position[chain.back()][i] - T(anchor[i]));
+    const Eigen::Matrix<T, 3, 1> end = testing::ChainEndPosition(*skeleton, chain, parameters);
+    for (int i = 0; i < 3; ++i) residuals[i] = T(scale) * (end[i] - T(anchor[i]));
     return true;
   }
 };
