@@ -137,6 +137,8 @@ class SceneBuilder {
   void AddAnimation(const std::vector<int64_t>& joint_models);
   void AddCurve(int64_t curve_node, const char* channel, const std::vector<float>& values, double default_value,
                 double tolerance);
+  // FbxWriteOptions::key_tolerance_mm in the file's length unit (UnitScaleFactor: cm per unit).
+  double KeyToleranceInFileUnits() const { return options_.key_tolerance_mm / (10.0 * UnitScaleFactor()); }
   std::vector<double> RotationKeyTolerances() const;
   // Joint j's "R" curve node on Lcl Rotation with its three curves; `values` is workspace.
   void AddRotationCurves(int j, int64_t joint_model, int64_t layer, double tolerance, std::vector<float> values[3]);
@@ -305,7 +307,7 @@ std::vector<double> SceneBuilder::RotationKeyTolerances() const {
   }
   // Three Euler angles each off by at most tau turn the joint by at most 3 tau, which moves
   // a point at distance r by at most 3 tau r: tau = tolerance / (3 r), in degrees.
-  const double tolerance = options_.key_tolerance_mm / (10.0 * UnitScaleFactor());
+  const double tolerance = KeyToleranceInFileUnits();
   std::vector<double> degrees(nj, 0.0);
   for (int j = 0; j < nj; ++j) {
     if (reach[j] > 0.0) degrees[j] = tolerance / (3.0 * reach[j]) * 180.0 / M_PI;
@@ -356,7 +358,7 @@ void SceneBuilder::AddAnimation(const std::vector<int64_t>& joint_models) {
   const int nf = motion_.num_frames();
   const char* axes[3] = {"d|X", "d|Y", "d|Z"};
   const std::vector<double> rotation_tolerances = RotationKeyTolerances();
-  const double translation_tolerance = options_.key_tolerance_mm / (10.0 * UnitScaleFactor());
+  const double translation_tolerance = KeyToleranceInFileUnits();
   for (int j = 0; j < skeleton_.num_joints(); ++j) {
     std::vector<float> values[3];
     for (auto& v : values) v.resize(nf);
