@@ -11,6 +11,7 @@
 #include "io/fbx_binary.h"
 #include "io/input_limits.h"
 #include "kinematics/forward_kinematics.h"
+#include "kinematics/frame_rate.h"
 #include "kinematics/quote_token.h"
 
 namespace mocapsolve {
@@ -120,12 +121,8 @@ class SceneBuilder {
   }
   EulerOrder JointOrder(int j) const;
   double UnitScaleFactor() const;
-  // The take's rate, an integer when within 1e-5 of one: a BVH's frame time has 6
-  // significant digits (0.00833333 s is 120.0000048 fps), and FBX names whole rates.
-  double FrameRate() const {
-    const double rounded = std::round(motion_.frame_rate);
-    return std::abs(motion_.frame_rate - rounded) <= 1e-5 * rounded ? rounded : motion_.frame_rate;
-  }
+  // The take's rate, an integer when within 1e-5 of one (NominalFrameRate): FBX names whole rates.
+  double FrameRate() const { return NominalFrameRate(motion_.frame_rate); }
   int64_t KeyTime(int frame) const {
     return static_cast<int64_t>(std::llround(frame * static_cast<double>(kTicksPerSecond) / FrameRate()));
   }

@@ -14,6 +14,7 @@
 #include "io/input_limits.h"
 #include "io/gltf_scene.h"
 #include "io/motion_file.h"
+#include "kinematics/frame_rate.h"
 #include "kinematics/quote_token.h"
 
 namespace mocapsolve {
@@ -404,7 +405,8 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
   if (model.buffers.empty()) model.buffers.emplace_back();
 
   std::vector<float> times(nf);
-  for (int f = 0; f < nf; ++f) times[f] = static_cast<float>(f / motion.frame_rate);
+  const double key_rate = NominalFrameRate(motion.frame_rate);  // As the reader samples them.
+  for (int f = 0; f < nf; ++f) times[f] = static_cast<float>(f / key_rate);
   const int time_accessor = AppendFloatAccessor(&model, times, TINYGLTF_TYPE_SCALAR, nf, true);
 
   tinygltf::Animation animation;
