@@ -408,7 +408,7 @@ struct FbxJoints {
 };
 
 // The joints: the anchors, every node between one and the root (their lowest common
-// ancestor), and the root, in preorder (= flattened order: Flatten is a preorder DFS),
+// ancestor), the root, and the inner nodes without meshes below a joint, in preorder (= flattened order: Flatten is a preorder DFS),
 // named uniquely; the root's rest rotation is its ancestors' rotation (baked in).
 FbxJoints BuildJoints(const std::vector<FlatNode>& nodes, const std::vector<Similarity>& locals,
                       const std::vector<int>& anchors) {
@@ -425,6 +425,15 @@ FbxJoints BuildJoints(const std::vector<FlatNode>& nodes, const std::vector<Simi
     }
   }
   joints.is_joint[root] = true;
+  // A still chain below a joint (fingers a take leaves at rest get no curves from our
+  // writer, nor from Blender's with its default simplify) keeps its inner nodes as joints;
+  // its leaves become end sites (BuildSkeleton), and nodes with meshes stay out.
+  for (int i = root + 1; i < nn; ++i) {  // Preorder: a parent is decided before its children.
+    const aiNode* node = nodes[i].node;
+    if (!joints.is_joint[i] && joints.is_joint[nodes[i].parent] && node->mNumChildren > 0 && node->mNumMeshes == 0) {
+      joints.is_joint[i] = true;
+    }
+  }
   Rig& rig = joints.rig;
   joints.joint_of_node.assign(nn, -1);
   for (int i = 0; i < nn; ++i) {

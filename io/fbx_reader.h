@@ -5,10 +5,11 @@
 // (FbxReadOptions::skeleton_without_animation); cameras are ignored.
 //
 // Skeleton: the joints are the nodes with an animation channel in the chosen animation,
-// the nodes on the paths between them, and the root: the lowest common ancestor of all
-// animated nodes (an animated node itself in the CMU files: Hips). Preorder, children in
-// file order. A non-animated leaf child of a joint (Blender's "*_end" nodes) becomes an
-// EndSite. The root's ancestors (the armature object and assimp's root) are baked into
+// the nodes on the paths between them, the root: the lowest common ancestor of all
+// animated nodes (an animated node itself in the CMU files: Hips), and the nodes below a
+// joint that have children and no mesh (a still finger chain, which writers leave without
+// curves). Preorder, children in file order. A non-animated leaf child of a joint
+// (Blender's "*_end" nodes) becomes an EndSite. The root's ancestors (the armature object and assimp's root) are baked into
 // the root: their rotation is the root's rest rotation and their translation and scale
 // are applied to its translation; node scales are baked into offsets exactly as in
 // gltf_reader.h (uniform scales accumulated; a non-uniform scale is approximated by the

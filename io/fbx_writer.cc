@@ -136,7 +136,13 @@ class SceneBuilder {
                 double tolerance);
   // FbxWriteOptions::key_tolerance_mm in the file's length unit (UnitScaleFactor: cm per unit).
   double KeyToleranceInFileUnits() const { return options_.key_tolerance_mm / (10.0 * UnitScaleFactor()); }
-  std::vector<double> RotationKeyTolerances() const;
+  // Per joint, the key reduction's bound on its rotation curves (degrees) and its
+  // translation curves (file units), so that no point moves by more than the option's bound.
+  struct KeyTolerances {
+    std::vector<double> rotation_degrees;
+    std::vector<double> translation;
+  };
+  KeyTolerances KeyTolerancesOfJoints() const;
   // Joint j's "R" curve node on Lcl Rotation with its three curves; `values` is workspace.
   void AddRotationCurves(int j, int64_t joint_model, int64_t layer, double tolerance, std::vector<float> values[3]);
 
@@ -289,27 +295,61 @@ void SceneBuilder::AddCurve(int64_t curve_node, const char* channel, const std::
   ConnectProperty(id, curve_node, channel);
 }
 
-std::vector<double> SceneBuilder::RotationKeyTolerances() const {
-  // A joint's reach: the longest path of rest offsets from it to a joint or end site below
-  // it; a joint with nothing below it reaches as far as its own bone (its skin does).
+SceneBuilder::KeyTolerances SceneBuilder::KeyTolerancesOfJoints() const {
+  // A point p (joint or end site) is moved by the translation curves of itself and of each
+  // joint above it, and by the rotation curves of each joint strictly above it: m(p) curve
+  // sets. Joint j's rotation keys, each of three Euler angles off by at most tau_j, turn it
+  // by at most 3 tau_j, which moves a point below it by at most 3 tau_j r_j (r_j its reach:
+  // the longest path of offsets from j to a point below it); its translation keys move j and
+  // everything below by at most eps_j. With M_j the largest m(p) over the points a set of j's
+  // moves, tau_j = E / (3 r_j M_j) and eps_j = E / M_j: along any path the shares add to at
+  // most E, so no point of the file moves by more than E.
   const int nj = skeleton_.num_joints();
+  const int nf = motion_.num_frames();
+  std::vector<double> length(nj, 0.0);  // |offset|, its largest over the take where animated.
+  for (int j = 0; j < nj; ++j) {
+    length[j] = rest_translations_[j].norm();
+    for (int f = 0; translation_animated_[j] && f < nf; ++f) {
+      length[j] = std::max(length[j], motion_.frames[f].translations[j].norm());
+    }
+  }
+  std::vector<int> sets(nj, 0);  // m(j).
+  for (int j = 0; j < nj; ++j) {  // Parents come first.
+    const int parent = skeleton_.parent(j);
+    sets[j] = (parent < 0 ? 0 : sets[parent] + (rotation_animated_[parent] ? 1 : 0)) + (translation_animated_[j] ? 1 : 0);
+  }
   std::vector<double> reach(nj, 0.0);
+  std::vector<int> below(nj, 0);     // Largest m(p) over points strictly below j.
+  std::vector<int> at_or_below(nj);  // The same with j itself.
+  std::vector<bool> leaf(nj, true);
+  for (int j = 0; j < nj; ++j) {
+    if (skeleton_.parent(j) >= 0) leaf[skeleton_.parent(j)] = false;
+  }
   for (const EndSite& site : skeleton_.end_sites()) {
     reach[site.parent] = std::max(reach[site.parent], site.offset.norm());
+    below[site.parent] = std::max(below[site.parent], sets[site.parent] + (rotation_animated_[site.parent] ? 1 : 0));
+    leaf[site.parent] = false;
   }
-  for (int j = nj - 1; j >= 0; --j) {  // Parents come first: children are done before them.
-    if (reach[j] == 0.0) reach[j] = rest_translations_[j].norm();
+  for (int j = nj - 1; j >= 0; --j) {  // Children are done before their parents.
+    if (leaf[j]) {  // A point at its own bone's length stands for its skin.
+      reach[j] = length[j];
+      below[j] = sets[j] + (rotation_animated_[j] ? 1 : 0);
+    }
+    at_or_below[j] = std::max(sets[j], below[j]);
     const int parent = skeleton_.parent(j);
-    if (parent >= 0) reach[parent] = std::max(reach[parent], rest_translations_[j].norm() + reach[j]);
+    if (parent < 0) continue;
+    reach[parent] = std::max(reach[parent], length[j] + reach[j]);
+    below[parent] = std::max(below[parent], at_or_below[j]);
   }
-  // Three Euler angles each off by at most tau turn the joint by at most 3 tau, which moves
-  // a point at distance r by at most 3 tau r: tau = tolerance / (3 r), in degrees.
   const double tolerance = KeyToleranceInFileUnits();
-  std::vector<double> degrees(nj, 0.0);
+  KeyTolerances tolerances{std::vector<double>(nj, 0.0), std::vector<double>(nj, 0.0)};
   for (int j = 0; j < nj; ++j) {
-    if (reach[j] > 0.0) degrees[j] = tolerance / (3.0 * reach[j]) * 180.0 / M_PI;
+    if (rotation_animated_[j] && reach[j] > 0.0 && below[j] > 0) {
+      tolerances.rotation_degrees[j] = tolerance / (3.0 * reach[j] * below[j]) * 180.0 / M_PI;
+    }
+    if (translation_animated_[j]) tolerances.translation[j] = tolerance / std::max(at_or_below[j], 1);
   }
-  return degrees;
+  return tolerances;
 }
 
 void SceneBuilder::AddRotationCurves(int j, int64_t joint_model, int64_t layer, double tolerance,
@@ -354,12 +394,11 @@ void SceneBuilder::AddAnimation(const std::vector<int64_t>& joint_models) {
   Connect(layer, stack);
   const int nf = motion_.num_frames();
   const char* axes[3] = {"d|X", "d|Y", "d|Z"};
-  const std::vector<double> rotation_tolerances = RotationKeyTolerances();
-  const double translation_tolerance = KeyToleranceInFileUnits();
+  const KeyTolerances tolerances = KeyTolerancesOfJoints();
   for (int j = 0; j < skeleton_.num_joints(); ++j) {
     std::vector<float> values[3];
     for (auto& v : values) v.resize(nf);
-    if (rotation_animated_[j]) AddRotationCurves(j, joint_models[j], layer, rotation_tolerances[j], values);
+    if (rotation_animated_[j]) AddRotationCurves(j, joint_models[j], layer, tolerances.rotation_degrees[j], values);
     if (!translation_animated_[j]) continue;
     for (int f = 0; f < nf; ++f) {
       for (int a = 0; a < 3; ++a) values[a][f] = static_cast<float>(motion_.frames[f].translations[j][a]);
@@ -373,7 +412,7 @@ void SceneBuilder::AddAnimation(const std::vector<int64_t>& joint_models) {
     ++curve_nodes_;
     Connect(translation_node, layer);
     ConnectProperty(translation_node, joint_models[j], "Lcl Translation");
-    for (int a = 0; a < 3; ++a) AddCurve(translation_node, axes[a], values[a], t0[a], translation_tolerance);
+    for (int a = 0; a < 3; ++a) AddCurve(translation_node, axes[a], values[a], t0[a], tolerances.translation[j]);
   }
 }
 

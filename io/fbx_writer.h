@@ -28,12 +28,14 @@
 //   of a whole number taken as that number: a BVH's 0.00833333 s frame time is 120 fps), linear
 //   interpolation; a curve whose values are all equal has two keys (the first and last frame).
 //   With FbxWriteOptions::key_tolerance_mm = E > 0 the keys are reduced
-//   (io/curve_key_reduction.h): a translation curve within E (in file units), and joint j's
-//   rotation curves within E / (3 r_j) radians, r_j its reach (the longest path of rest
-//   offsets to a joint or end site below it; a leaf's own bone length): three Euler angles
-//   each off by tau turn the joint by at most 3 tau, which moves a point r away by 3 tau r.
-//   So each joint's reduction moves any point it carries by at most E; the errors of the
-//   joints along a chain add (measured 1.4-2.2 E at most on five characters). Angles are unrolled per
+//   (io/curve_key_reduction.h) so that no joint or end site moves by more than E: a point p
+//   is moved by m(p) curve sets (the translation curves of p and of each joint above it, the
+//   rotation curves of each joint strictly above it); joint j's set gets the share E / M_j,
+//   M_j the largest m(p) over the points it moves: its translation curves within E / M_j
+//   (file units), its rotation curves within E / (3 r_j M_j) radians, r_j its reach (the
+//   longest path of offsets to a point below it; a leaf's own bone length), as three Euler
+//   angles each off by tau turn the joint by at most 3 tau, which moves a point r away by
+//   3 tau r. The shares along any path add to at most E. Angles are unrolled per
 //   joint: each frame takes, of the two Euler triples of its rotation, (a, b, c) and
 //   (a + 180, 180 - b, c + 180), shifted by multiples of 360 per component, the one nearest
 //   the previous frame's, so consecutive keys never jump by 360 (angles may leave
