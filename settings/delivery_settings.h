@@ -12,7 +12,8 @@
 // 0-based) or --seconds=A:B (the frames at times in [A, B]), either end left open ("A:",
 // ":B"), and then resampled, --out_fps=R (0 keeps the rate): signal/clip_delivery.h.
 // --fbx_key_tolerance=E (mm) lets the FBX writer drop keys that linear interpolation
-// reproduces within E at any point its joint moves (io/fbx_writer.h); 0 keeps every key.
+// reproduces so that no joint or end site moves by more than E (io/fbx_writer.h); 0 keeps
+// every key.
 // Declared once; the CLI's flags, config keys and Python's keywords.
 #ifndef MOCAPSOLVE_SETTINGS_DELIVERY_SETTINGS_H_
 #define MOCAPSOLVE_SETTINGS_DELIVERY_SETTINGS_H_
