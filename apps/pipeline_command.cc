@@ -23,6 +23,7 @@
 #include "settings/pyramid_settings.h"
 #include "settings/repair_settings.h"
 #include "settings/retarget_settings.h"
+#include "settings/skeleton_fit_settings.h"
 #include "settings/view_page_settings.h"
 #include "tasks/take_summary.h"
 
@@ -43,22 +44,18 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
     std::printf("%s\n", ConfigJson(PipelineOptionFlags()).c_str());
     return Status::Ok();
   }
-  if (Files().subject.empty() || Files().markers.empty() || Files().out_dir.empty()) {
-    return Status::Error("--subject, --markers and --out_dir are required");
-  }
+  if (Files().markers.empty() || Files().out_dir.empty()) return Status::Error("--markers and --out_dir are required");
   if (!IsMarkerFile(Files().markers)) return Status::Error(Files().markers + ": expected a .c3d or .trc");
   std::string view_path;
   Status status = ViewPageOfTake(&view_path);
   if (!status.ok()) return status;
   Subject subject;
-  SetStage("inputs");
-  status = ReadSubject(Files().subject, &subject);
+  std::unique_ptr<AutoSubjectResult> fitted;
+  status = PipelineSubjectFromFlags(&subject, &fitted);
   if (!status.ok()) return status;
-
   TakePipelineOptions options;
   status = TakePipelineOptionsFromFlags(subject.skeleton, &options);
   if (!status.ok()) return status;
-
   TakeInputs inputs;
   TakeSettings take;
   ReadOptionFlags(TakeSettingOptions(), &take);
@@ -74,7 +71,6 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   status = CharacterFilesFromSettings(delivery, run.animation_only, &character_files);
   if (status.ok()) status = CheckCharacterFiles(Files().out_dir, inputs, character_files);
   if (!status.ok()) return status;
-
   TakeResult result;
   std::unique_ptr<Progress> progress;
   std::string shown;
@@ -87,31 +83,31 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
     progress->Update(done);
   });
   if (!status.ok()) return status;
-
   JsonObject report = TakeReport(inputs, result);
-  report.Add("command", "pipeline").Add("version", Version()).Add("subject", Files().subject).Add("config", Files().config)
+  AddPipelineSubject(fitted.get(), &report);
+  report.Add("command", "pipeline").Add("version", Version()).Add("config", Files().config)
       .Add("animation_only", run.animation_only)
       .Add("options", JsonValue::Raw(ConfigJson(PipelineOptionFlags())));
   const bool in_take_folder = view_path == ViewPagePath(Files().out_dir);
   report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
   SetStage("writing");
   status = MakeFolders(Files().out_dir);
+  if (status.ok() && fitted) status = WriteSubject(AutoSubjectPath(Files().out_dir), fitted->fit.subject);
   if (status.ok()) status = WriteTakeOutputs(Files().out_dir, inputs, result, report, view_path, character_files);
   if (status.ok()) status = WriteReport(report);
   if (!status.ok()) return status;
-
   std::fputs(TakeSummary(inputs, result).c_str(), stdout);
   const size_t files = result.characters.size() * character_files.formats.size();
-  std::printf("wrote %s (repaired markers, solved.bvh, %zu character file%s, report.json%s%s)\n",
-              Files().out_dir.c_str(), files, files == 1 ? "" : "s",
+  std::printf("wrote %s (%srepaired markers, solved.bvh, %zu character file%s, report.json%s%s)\n",
+              Files().out_dir.c_str(), fitted ? "subject.json, " : "", files, files == 1 ? "" : "s",
               view_path.empty() ? "" : ", ", in_take_folder ? "view.html" : view_path.c_str());
-  if (!result.verdict.pass) {
-    std::fprintf(stderr, "mocapsolve pipeline: %s: quality gate failed: %s\n", inputs.name.c_str(),
-                 TakeGateFailures(result).c_str());
-    SetExitCodeOnSuccess(3);
-  } else {
+  if (result.verdict.pass) {
     std::printf("quality gate: pass\n");
+    return Status::Ok();
   }
+  std::fprintf(stderr, "mocapsolve pipeline: %s: quality gate failed: %s\n", inputs.name.c_str(),
+               TakeGateFailures(result).c_str());
+  SetExitCodeOnSuccess(3);
   return Status::Ok();
 }
 
@@ -119,9 +115,13 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
 
 extern const Command kPipelineCommand = {
     "pipeline", "one take end to end: markers -> repair and solve -> filter -> characters",
-    "mocapsolve pipeline --subject=S.json --markers=TAKE.c3d|.trc [--character=C.glb[,C2.glb]] "
+    "mocapsolve pipeline [--subject=S.json|auto] --markers=TAKE.c3d|.trc [--character=C.glb[,C2.glb]] "
     "--out_dir=DIR [--view=auto|off|PAGE.html] [--config=pipeline.json] [--report=r.json]\n"
     "       mocapsolve pipeline --print_config [--config=pipeline.json]\n\n"
+    "--subject=auto or none: the subject is first fitted to the take as `fit_skeleton` fits it with\n"
+    "no template (shipped CMU subject 2; by labels, else by segments from the data; up axis from the\n"
+    "data; fit options: --fit_max_frames=600 ...) and must pass its checks (--check), else exit 1,\n"
+    "nothing written. DIR/subject.json keeps it for the actor's next takes; report: \"subject_fit\".\n"
     "Labels the take's points first when the file lacks some of the subject's labels (a raw,\n"
     "unlabelled capture; --label=auto|never|always and the label options, as `mocapsolve label`),\n"
     "then runs it through repair (thesis ch. 3: robust reference, gap detection and Hermite\n"
@@ -145,6 +145,6 @@ extern const Command kPipelineCommand = {
      FootJointOption().options(), RepairSolverOptions().options(),
      RepairSettingOptions().options(), RetargetSettingOptions().options(), QualityGateOptions().options(),
      PyramidSettingOptions().options(), DeliverySettingOptions().options(), TakeViewPageOption().options(),
-     LabelSettingOptions().options()}};
+     LabelSettingOptions().options(), AutoSubjectFitOptions().options()}};
 
 }  // namespace mocapsolve

@@ -1,5 +1,7 @@
 #include "apps/pipeline_flags.h"
 
+#include <cstdio>
+
 #include "apps/common_flags.h"
 #include "apps/delivery_flags.h"
 #include "apps/option_flags.h"
@@ -11,6 +13,7 @@
 #include "pipeline/quality_gate.h"
 #include "settings/delivery_settings.h"
 #include "settings/foot_joint_settings.h"
+#include "settings/skeleton_fit_settings.h"
 #include "settings/label_settings.h"
 #include "settings/retarget_run_settings.h"
 #include "settings/take_settings.h"
@@ -26,7 +29,7 @@ const std::string& PipelineOptionFlags() {
       TakeSettingOptions().Names() + "," + PyramidSettingOptions().Names() + "," + QualityGateOptions().Names() + "," +
       RetargetRunSettingOptions().Only("animation_only").Names() + "," + DeliverySettingOptions().Names() + "," +
       RepairSettingOptions().Names() + "," + RepairSolverOptions().Names() + "," + RetargetSettingOptions().Names() +
-      "," + FootJointOption().Names() + "," + LabelSettingOptions().Names());
+      "," + FootJointOption().Names() + "," + LabelSettingOptions().Names() + "," + AutoSubjectFitOptions().Names());
   return *names;
 }
 
@@ -65,6 +68,38 @@ Status ViewPageOfTake(std::string* path) {
   // A warning, not progress: printed with --quiet too.
   if (!warning.empty()) std::fprintf(stderr, "warning: pipeline: %s\n", warning.c_str());
   return status;
+}
+
+Status PipelineSubjectFromFlags(Subject* subject, std::unique_ptr<AutoSubjectResult>* fitted) {
+  SetStage("inputs");
+  if (!Files().subject.empty() && Files().subject != kAutoSubject) return ReadSubject(Files().subject, subject);
+  SetStage("subject");
+  SkeletonFitSettings settings;
+  ReadOptionFlags(AutoSubjectFitOptions(), &settings);
+  SolverSettings solver;
+  ReadOptionFlags(RepairSolverOptions(), &solver);
+  if (!Console().quiet) {
+    std::fprintf(stderr, "pipeline: %s: fitting the subject to the take (--subject=auto)\n", Files().markers.c_str());
+  }
+  auto fit = std::make_unique<AutoSubjectResult>();
+  Status status = FitAutoSubject(Files().markers, settings, solver, fit.get(), [&](const SkeletonFitEvent& e) {
+    bool to_stdout = false;
+    const std::string line = SkeletonFitEventLine(e, fit->inputs.templ.skeleton, &to_stdout);
+    if (!Console().quiet && !line.empty()) std::fprintf(stderr, "  %s", line.c_str());
+  });
+  if (!status.ok()) return status;
+  std::fputs(AutoSubjectLine(*fit).c_str(), stdout);
+  *subject = fit->fit.subject;
+  *fitted = std::move(fit);
+  return Status::Ok();
+}
+
+void AddPipelineSubject(const AutoSubjectResult* fitted, JsonObject* report) {
+  if (fitted == nullptr) {
+    report->Add("subject", Files().subject);
+  } else {
+    report->Add("subject", "subject.json").Add("subject_fit", AutoSubjectReport(*fitted));
+  }
 }
 
 }  // namespace mocapsolve

@@ -4,6 +4,7 @@
 #ifndef MOCAPSOLVE_APPS_PIPELINE_FLAGS_H_
 #define MOCAPSOLVE_APPS_PIPELINE_FLAGS_H_
 
+#include <memory>
 #include <string>
 
 #include <gflags/gflags.h>
@@ -11,6 +12,7 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "pipeline/take_pipeline.h"
+#include "tasks/auto_subject_task.h"
 
 namespace mocapsolve {
 
@@ -20,6 +22,15 @@ const std::string& PipelineOptionFlags();
 // The take's page, as --view says (auto, off or PAGE.html, which must be no input; a
 // missing viewer runtime is a warning for auto, an error for a page asked for): "" for none.
 Status ViewPageOfTake(std::string* path);
+
+// The take's subject: --subject's file, or with --subject=auto (or no --subject) the one
+// fitted from the take (tasks/auto_subject_task.h; *fitted holds the fit, else it stays
+// null), its rounds shown on stderr unless --quiet.
+Status PipelineSubjectFromFlags(Subject* subject, std::unique_ptr<AutoSubjectResult>* fitted);
+
+// The report's "subject" (--subject's file, or "subject.json" when fitted) and, when fitted,
+// "subject_fit" (AutoSubjectReport: template, method, frames, RMS, checks).
+void AddPipelineSubject(const AutoSubjectResult* fitted, JsonObject* report);
 
 // Every stage's options from the flags; errors name the flag.
 Status TakePipelineOptionsFromFlags(const Skeleton& skeleton, TakePipelineOptions* options);

@@ -68,7 +68,7 @@ Status ReadEntry(const JsonNode& object, const std::string& file, const std::str
       if (!value.is_string() || value.string.empty()) return Status::Error(where + ": expected a non-empty string");
       if (key == "name") take->name = value.string;
       if (key == "markers") take->markers = Resolve(folder, value.string);
-      if (key == "subject") take->subject = Resolve(folder, value.string);
+      if (key == "subject") take->subject = value.string == kAutoSubject ? value.string : Resolve(folder, value.string);
     } else if (key == "characters") {
       if (!value.is_array()) return Status::Error(where + ": expected an array of file names");
       take->characters.clear();
@@ -103,7 +103,9 @@ std::set<std::string> AllowedKeys(const BatchOptions& pipeline_options, bool is_
 Status FinishTake(const std::string& where, const std::string& name_where, const std::vector<std::string>& reserved,
                   BatchTake* take) {
   if (take->markers.empty()) return Status::Error(where + ": missing 'markers'");
-  if (take->subject.empty()) return Status::Error(where + ": missing 'subject' (in the take or in defaults)");
+  if (take->subject.empty()) {
+    return Status::Error(where + ": missing 'subject' (in the take or in defaults; \"auto\" fits one per take)");
+  }
   if (take->name.empty()) take->name = FileStem(take->markers);
   const Status status = CheckTakeName(take->name, reserved);
   return status.ok() ? status : Status::Error(name_where + ": " + status.message());
@@ -283,10 +285,10 @@ Status ManifestFromGlob(const std::string& markers_glob, const std::string& subj
   }
   ::globfree(&matches);
   if (paths.empty()) return Status::Error("--markers_glob='" + markers_glob + "': no file matches");
-  if (subject.empty()) return Status::Error("--markers_glob needs --subject");
+  if (subject.empty()) return Status::Error("--markers_glob needs --subject (a file, or auto: fitted per take)");
   BatchManifest result;
   result.pipeline = pipeline_options;
-  result.default_subject = AbsolutePath(subject);
+  result.default_subject = subject == kAutoSubject ? subject : AbsolutePath(subject);
   for (const std::string& c : characters) result.default_characters.push_back(AbsolutePath(c));
   result.has_default_characters = !characters.empty();
   std::map<std::string, int> stems;  // How many matches have each file stem.
@@ -323,7 +325,7 @@ std::string OptionsJson(const BatchOptions& options) {
 std::string FormatManifest(const BatchManifest& manifest, const BatchOptions& /*pipeline_options*/) {
   auto entry = [](JsonObject* object, const std::string& subject, const std::vector<std::string>& characters,
                   bool with_characters, const BatchOptions& options) {
-    if (!subject.empty()) object->Add("subject", AbsolutePath(subject));
+    if (!subject.empty()) object->Add("subject", subject == kAutoSubject ? subject : AbsolutePath(subject));
     if (with_characters) {
       std::vector<JsonValue> list;
       for (const std::string& c : characters) list.push_back(AbsolutePath(c));

@@ -11,7 +11,8 @@
 // "defaults" and each take may hold "subject", "characters" and any pipeline option (the
 // keys of `mocapsolve pipeline --print_config`, of the same JSON type as there); a take's
 // own values override the defaults, which override the pipeline's. A take needs "markers"
-// and (itself or in defaults) "subject"; "name" defaults to the marker file's name without
+// and (itself or in defaults) "subject" (a file, or "auto": fitted from each take by its own
+// pipeline, pipeline/subject.h kAutoSubject); "name" defaults to the marker file's name without
 // extension and must be unique and a plain folder name (it is the take's output folder):
 // not empty, at most 255 bytes, no '/', no control character (NUL included), not starting
 // with '.', and none of the batch's own files (summary.json/.csv/.html, summary.shard*,
@@ -35,6 +36,7 @@
 
 #include "io/json_reader.h"
 #include "kinematics/status.h"
+#include "pipeline/subject.h"
 
 namespace mocapsolve {
 

@@ -68,7 +68,7 @@ void CollectInputs(const BatchManifest& manifest, InputMap* files, InputMap* fol
     const BatchTake& take = manifest.takes[i];
     const int index = static_cast<int>(i);
     add(take.markers, index, "markers");
-    if (seen.count(take.subject) == 0) {
+    if (take.subject != kAutoSubject && seen.count(take.subject) == 0) {
       add(take.subject, index, "subject");
       add(SubjectSkeletonPath(take.subject), index, "skeleton");
     }

@@ -18,14 +18,17 @@ Status ComputeTakeKey(const BatchManifest& manifest, const BatchTake& take, cons
                       TakeKey* key, TakeKeyCache* cache) {
   TakeKey result;
   result.inputs.push_back({"markers", take.markers});
-  result.inputs.push_back({"subject", take.subject});
   std::string skeleton;
-  if (cache == nullptr) {
-    skeleton = SubjectSkeletonPath(take.subject);
-  } else if (const auto found = cache->skeletons.find(take.subject); found != cache->skeletons.end()) {
-    skeleton = found->second;
-  } else {
-    skeleton = cache->skeletons[take.subject] = SubjectSkeletonPath(take.subject);
+  // A subject fitted by the take's own pipeline is no file: the markers and options make it.
+  if (take.subject != kAutoSubject) {
+    result.inputs.push_back({"subject", take.subject});
+    if (cache == nullptr) {
+      skeleton = SubjectSkeletonPath(take.subject);
+    } else if (const auto found = cache->skeletons.find(take.subject); found != cache->skeletons.end()) {
+      skeleton = found->second;
+    } else {
+      skeleton = cache->skeletons[take.subject] = SubjectSkeletonPath(take.subject);
+    }
   }
   if (!skeleton.empty()) result.inputs.push_back({"skeleton", skeleton});
   for (const std::string& c : take.characters) result.inputs.push_back({"character", c});

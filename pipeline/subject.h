@@ -64,6 +64,10 @@ struct Subject {
   QuaternionVector mean_pose;
 };
 
+// What a subject path says instead of a file for a subject fitted from the take itself
+// (`pipeline --subject=auto`, a batch manifest's "subject": "auto"; tasks/auto_subject_task.h).
+inline constexpr char kAutoSubject[] = "auto";
+
 // Reads and validates a subject file (skeleton file paths resolved against its folder).
 Status ReadSubject(const std::string& path, Subject* subject);
 // The same from a subject file's text; `name` stands for the file in errors (skeleton paths

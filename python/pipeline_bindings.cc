@@ -17,11 +17,13 @@
 #include "settings/pyramid_settings.h"
 #include "settings/file_read_settings.h"
 #include "settings/retarget_run_settings.h"
+#include "settings/skeleton_fit_settings.h"
 #include "settings/label_settings.h"
 #include "settings/take_settings.h"
 #include "settings/view_settings.h"
 #include "python/bindings.h"
 #include "python/keyword_docs.h"
+#include "tasks/auto_subject_task.h"
 #include "tasks/batch_task.h"
 #include "tasks/view_task.h"
 
@@ -75,33 +77,54 @@ void BindPipeline(py::module_& m) {
       },
                "Raises ValueError (the CLI's message) if a value is invalid.");
   m.attr("DELIVERY_OPTION_NAMES") = DeliverySettingOptions().Names();
-  m.def("pipeline", [](SubjectPtr subject_arg, const std::string& markers, const std::vector<std::string>& characters,
+  m.def("pipeline", [](py::object subject_arg, const std::string& markers, const std::vector<std::string>& characters,
                        const std::string& out_dir, const std::string& take_name, int filter_levels,
                        const std::string& label, double kernel_a,
                        double tension, bool animation_only, const std::string& view, const py::kwargs& keywords) {
-        const Subject* subject = &Required(subject_arg, "subject");
+        const bool auto_subject = subject_arg.is_none() || (py::isinstance<py::str>(subject_arg) &&
+                                                            std::string(py::str(subject_arg)) == kAutoSubject);
+        if (py::isinstance<py::str>(subject_arg) && !auto_subject) {
+          throw py::value_error("subject: a Subject (read_subject), 'auto' or None, got '" +
+                                std::string(py::str(subject_arg)) + "'");
+        }
         RepairSettings repair_settings;
         SolverSettings solver_settings = RepairSolverOptions().Defaults();
         RetargetSettings retarget_settings;
         QualityGate gate_settings;
         DeliverySettings delivery_settings;
         LabelSettings label_settings;
+        SkeletonFitSettings fit_settings = AutoSubjectFitOptions().Defaults();
         ApplyKeywords(keywords,
                       {py::cast(&repair_settings, py::return_value_policy::reference),
                        py::cast(&solver_settings, py::return_value_policy::reference),
                        py::cast(&retarget_settings, py::return_value_policy::reference),
                        py::cast(&gate_settings, py::return_value_policy::reference),
                        py::cast(&delivery_settings, py::return_value_policy::reference),
-                       py::cast(&label_settings, py::return_value_policy::reference)},
+                       py::cast(&label_settings, py::return_value_policy::reference),
+                       py::cast(&fit_settings, py::return_value_policy::reference)},
                       RepairSettingOptions().Names() + "," + SolverOptions().Names() + "," +
                           RetargetSettingOptions().Names() + ",foot_joints," + QualityGateOptions().Names() + "," +
-                          DeliverySettingOptions().Names() + "," + LabelSettingOptions().Names());
+                          DeliverySettingOptions().Names() + "," + LabelSettingOptions().Names() + "," +
+                          AutoSubjectFitOptions().Names());
         ThrowIfError(QualityGateOptions().Validate(gate_settings));
+        ThrowIfError(ValidateSkeletonFitSettings(fit_settings));
         CharacterFileOptions character_files;
         ThrowIfError(CharacterFilesFromSettings(delivery_settings, animation_only, &character_files));
         if (!IsMarkerFile(markers)) throw py::value_error(markers + ": expected a .c3d or .trc");
         RequireReadable(markers);
         for (const std::string& path : characters) RequireReadable(path);
+        // subject='auto' (or None): fitted from the take first (tasks/auto_subject_task.h).
+        std::unique_ptr<AutoSubjectResult> fitted;
+        if (auto_subject) {
+          fitted = std::make_unique<AutoSubjectResult>();
+          Status fit_status = Status::Ok();
+          {
+            py::gil_scoped_release release;
+            fit_status = FitAutoSubject(markers, fit_settings, solver_settings, fitted.get());
+          }
+          ThrowIfError(fit_status);
+        }
+        const Subject* subject = fitted ? &fitted->fit.subject : &Required(subject_arg.cast<SubjectPtr>(), "subject");
         TakePipelineOptions options;
         ThrowIfError(RepairOptionsFromSettings(repair_settings, solver_settings, subject->skeleton, &options.repair));
         retarget_settings.solver = solver_settings.solver;
@@ -134,10 +157,12 @@ void BindPipeline(py::module_& m) {
           status = RunTakePipeline(inputs, options, result.get());
           if (status.ok()) {
             report = TakeReport(inputs, *result);
+            if (fitted) report.Add("subject_fit", AutoSubjectReport(*fitted));
             const bool in_take_folder = view_path == ViewPagePath(out_dir);
             report.Add("view", view_path.empty() ? JsonValue() : JsonValue(in_take_folder ? "view.html" : view_path));
             if (!out_dir.empty()) {
               status = MakeFolders(out_dir);
+              if (status.ok() && fitted) status = WriteSubject(AutoSubjectPath(out_dir), fitted->fit.subject);
               if (status.ok()) status = WriteTakeOutputs(out_dir, inputs, *result, report, view_path, character_files);
             }
           }
@@ -152,6 +177,7 @@ void BindPipeline(py::module_& m) {
         out["passed"] = result->verdict.pass;
         out["failures"] = result->verdict.failures;
         out["report"] = ReportToPython(report);
+        out["subject"] = fitted ? std::make_shared<Subject>(fitted->fit.subject) : subject_arg.cast<SubjectPtr>();
         return out;
       }, py::arg("subject"), py::arg("markers"), py::kw_only(), py::arg("characters") = std::vector<std::string>(),
       py::arg("out_dir") = "", py::arg("take_name") = DeclaredDefault(TakeSettingOptions(), "take_name"),
@@ -161,7 +187,10 @@ void BindPipeline(py::module_& m) {
       py::arg("tension") = PyramidSettings().tension, py::arg("animation_only") = DeclaredDefault(RetargetRunSettingOptions(), "animation_only"),
       py::arg("view") = "auto",
       (std::string(R"doc(One take end to end, as `mocapsolve pipeline`: repair and solve the markers (a .c3d/.trc
-path) of the subject, filter (filter_levels > 0), retarget onto each character (.glb
+path) of the subject (a Subject; or 'auto' or None: fitted from the take first, as the CLI's
+--subject=auto, with the fit_skeleton keywords, fit_max_frames=600 by default; a subject
+that fails its checks raises ValueError; out_dir then also gets subject.json and the report
+'subject_fit'), filter (filter_levels > 0), retarget onto each character (.glb
 paths), check the quality gate (the gate_* keywords, a QualityGate: see below).
 take_name: the take's name in the report ('' = the marker file's stem).
 filter_levels: the multiresolution filter's levels (0 = off), with kernel_a (the Cardinal
@@ -179,7 +208,7 @@ frames='A:B' / seconds='A:B' and out_fps cut and resample the take in the charac
 animation_only: each <character>.glb and .fbx then holds the character's skeleton, skin
 and the take only, no meshes (as the CLI's --animation_only).
 Returns a dict: 'solved' (Motion), 'repaired_markers' (Markers), 'characters' {name:
-Motion}, 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc") +
+Motion}, 'subject' (the Subject used), 'passed', 'failures', 'report' (the report.json contents). Releases the GIL.)doc") +
        KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(RepairSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Retarget keywords and defaults (RetargetSettings)", py::cast(RetargetSettings()), RetargetSettingOptions().Names() + ",foot_joints") +
        KeywordDefaults("Quality gate keywords and defaults (QualityGate; 0 turns a check off)", py::cast(QualityGate()),
                        QualityGateOptions().Names()) +

@@ -58,4 +58,13 @@ const OptionGroup<SkeletonFitSettings>& SkeletonFitSettingOptions() {
   return *group;
 }
 
+const OptionGroup<SkeletonFitSettings>& AutoSubjectFitOptions() {
+  static const OptionGroup<SkeletonFitSettings>* const group = new OptionGroup<SkeletonFitSettings>(
+      SkeletonFitSettingOptions().WithDefault(
+          "fit_max_frames", "600",
+          "--subject=auto: fit the subject on the first N frames only (0 = all; the pipeline then solves every "
+          "frame with it)."));
+  return *group;
+}
+
 }  // namespace mocapsolve

@@ -38,6 +38,11 @@ struct SkeletonFitSettings {
 
 const OptionGroup<SkeletonFitSettings>& SkeletonFitSettingOptions();
 
+// The same options for the subject `pipeline --subject=auto` fits on the fly (batch's takes,
+// Python's pipeline(subject='auto')): the fit on the first 600 frames by default (a fit's
+// time grows with the frames; 600 fit the shared captures, BENCHMARKS.md).
+const OptionGroup<SkeletonFitSettings>& AutoSubjectFitOptions();
+
 }  // namespace mocapsolve
 
 #endif  // MOCAPSOLVE_SETTINGS_SKELETON_FIT_SETTINGS_H_

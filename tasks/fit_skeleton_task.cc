@@ -223,6 +223,19 @@ Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings&
   return Status::Ok();
 }
 
+// The file axes that put the take's up (detected as the association detects it: the
+// feet are lowest) on the template's, for a take fitted by its labels with axes "auto".
+Status AxesFromData(const Skeleton& skeleton, const MarkerTrajectories& file, const std::string& markers_path,
+                    std::string* axes) {
+  MarkerAssociation association;
+  Status status = AssociateMarkers(file, markers_path, MarkerAssociationOptions(), &association);
+  AssociatedMarkerSet set;
+  if (status.ok()) status = MakeAssociatedMarkerSet(skeleton, association, 0.0, &set);
+  if (!status.ok()) return Status::Error(markers_path + ": the up axis from the data: " + status.message());
+  *axes = set.axes;
+  return Status::Ok();
+}
+
 // The take as the rounds fit it.
 struct FitTake {
   Subject mapping;                 // The template in the take's axes and scale, with the markers the take holds.
@@ -263,6 +276,7 @@ Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& s
     fit->associated = true;
   } else {
     status = PresentMarkers(template_markers, file, markers_path, events, result, &present);
+    if (status.ok() && fit->mapping.axes == kAxesFromData) status = AxesFromData(skeleton, file, markers_path, &fit->mapping.axes);
   }
   if (!status.ok()) return status;
   fit->check_options = SkinCheckOptions(skeleton, present, units_per_cm);

@@ -77,6 +77,9 @@ struct SkeletonFitEvent {
 };
 using SkeletonFitCallback = std::function<void(const SkeletonFitEvent&)>;
 
+// SkeletonFitInputs::axes: from the take's data.
+inline constexpr char kAxesFromData[] = "auto";
+
 struct SkeletonFitInputs {
   Subject templ;                    // Skeleton + marker set to start from.
   bool from_template_subject = true;  // Picks the -1 defaults (a subject file vs --skeleton/--markerset).
@@ -85,7 +88,10 @@ struct SkeletonFitInputs {
   // The take in memory (file axes and units, as read), used instead of reading markers_path
   // (which then only names it): a part of a take (evaluate's time split).
   const MarkerTrajectories* trajectories = nullptr;
-  std::string axes = "x,y,z";       // Take's file -> skeleton axes.
+  // Take's file -> skeleton axes; kAxesFromData: the rotation that puts the take's up,
+  // detected from its points as the marker association detects it (the feet lowest), on the
+  // template's (as an association always does).
+  std::string axes = "x,y,z";
   double marker_scale = 0.0;        // Take's units -> skeleton units; 0: from the units.
   double amc_fps = 120.0;           // Recorded in the subject.
 };

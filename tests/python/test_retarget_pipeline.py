@@ -189,3 +189,22 @@ def test_pipeline_label_matches_the_cli(tmp_path):
     assert mocapsolve.pipeline(subject, markers)["report"]["labelling"] is None  # auto: the labels match.
     with pytest.raises(ValueError, match=r"--label: unknown 'sometimes' \(auto, never, always\)"):
         mocapsolve.pipeline(subject, markers, label="sometimes")
+
+
+def test_pipeline_auto_subject_matches_the_cli(tmp_path):
+    """subject='auto' is the CLI's --subject=auto (one task, tasks/auto_subject_task.h): the
+    subject fitted from the take (02_01's CMU labels, a short fit) is the CLI's byte for byte,
+    written as out_dir/subject.json, with the report's subject_fit; a bad word raises."""
+    c3d = data_file("c3d/02_01.c3d")
+    short = dict(fit_max_frames=60, fit_iterations=3, attach_rounds=1, attach_iterations=2)
+    out_py, out_cli = str(tmp_path / "py"), str(tmp_path / "cli")
+    result = mocapsolve.pipeline("auto", c3d, out_dir=out_py, view="off", **short)
+    run_cli("pipeline", "--subject=auto", "--markers=" + c3d, "--out_dir=" + out_cli, "--view=off",
+            *["--%s=%s" % item for item in short.items()])
+    fit = result["report"]["subject_fit"]
+    assert fit["method"] == "labels" and fit["frames"] == 60 and fit["checks"]["passed"]
+    assert isinstance(result["subject"], mocapsolve.Subject)
+    py_subject = open(os.path.join(out_py, "subject.json"), "rb").read()
+    assert py_subject == open(os.path.join(out_cli, "subject.json"), "rb").read()
+    with pytest.raises(ValueError, match="subject: a Subject"):
+        mocapsolve.pipeline("S.json", c3d)

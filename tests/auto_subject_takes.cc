@@ -1,0 +1,75 @@
+#include "tests/auto_subject_takes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "kinematics/forward_kinematics.h"
+#include "kinematics/motion.h"
+#include "pipeline/shipped_templates.h"
+
+namespace mocapsolve::testing {
+
+MarkerTrajectories TemplateWalkTake(int frames, bool renamed) {
+  Subject templ;
+  EXPECT_TRUE(DefaultTemplateSubject(&templ).ok());
+  const Skeleton& skeleton = templ.skeleton;
+  const MarkerSet& markers = templ.markers;
+  std::vector<std::string> labels;
+  std::vector<int> order(markers.num_markers());
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(7));
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    labels.push_back(renamed ? "M" + std::to_string(order[m]) : markers.label(m));
+  }
+  MarkerTrajectories take(labels, frames);
+  take.frame_rate = 60.0;
+  take.unit = Millimetres();
+  const double mm = skeleton.unit().metres_per_unit * 1000.0;
+  FkData fk(skeleton);
+  for (int f = 0; f < frames; ++f) {
+    const double phase = 2.0 * M_PI * (f / take.frame_rate) / 1.1;  // A 1.1 s stride.
+    Pose pose = RestPose(skeleton);
+    pose.translations[0] = Eigen::Vector3d(0.0, 0.3 * std::cos(2.0 * phase), 1000.0 * f / take.frame_rate / mm);
+    pose.rotations[0] = Eigen::Quaterniond(Eigen::AngleAxisd(0.1 * std::sin(phase), Eigen::Vector3d::UnitY()));
+    for (int j = 1; j < skeleton.num_joints(); ++j) {
+      if (skeleton.num_rotation_dofs(j) == 0) continue;
+      // About the joint's last dof axis, so the pose stays within its dofs (mean * R_last).
+      const double degrees = skeleton.num_rotation_dofs(j) == 3 && j >= 11 && j <= 16 ? 5.0 : 18.0;
+      const double angle = degrees * M_PI / 180.0 * std::sin(phase + 0.9 * j);
+      const Eigen::Vector3d axis = Eigen::Vector3d::Unit(skeleton.rotation_axes(j).back());
+      pose.rotations[j] = templ.mean_pose[j] * Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis));
+    }
+    ForwardKinematics(skeleton, pose, &fk);
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      const Eigen::Vector3d x = markers.Position(m, fk) * mm;
+      take.SetSample(f, m, Eigen::Vector3d(x.x(), -x.z(), x.y()));
+    }
+  }
+  return take;
+}
+
+MarkerTrajectories RandomPointsTake(int frames, int points) {
+  std::vector<std::string> labels;
+  for (int m = 0; m < points; ++m) labels.push_back("P" + std::to_string(m));
+  MarkerTrajectories take(labels, frames);
+  take.frame_rate = 60.0;
+  take.unit = Millimetres();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> box(0.0, 2000.0), step(-30.0, 30.0);
+  std::vector<Eigen::Vector3d> at(points);
+  for (Eigen::Vector3d& x : at) x = Eigen::Vector3d(box(rng), box(rng), box(rng));
+  for (int f = 0; f < frames; ++f) {
+    for (int m = 0; m < points; ++m) {
+      at[m] += Eigen::Vector3d(step(rng), step(rng), step(rng));
+      take.SetSample(f, m, at[m]);
+    }
+  }
+  return take;
+}
+
+}  // namespace mocapsolve::testing

@@ -1,0 +1,25 @@
+// Takes for the subject fitted on the fly (tasks/auto_subject_task.h, `pipeline
+// --subject=auto`): the shipped template's own 41 markers (CMU subject 2) riding a
+// synthetic walk on its skeleton, so a fit from the template can explain them exactly;
+// and a cloud of random points that is no body.
+#ifndef MOCAPSOLVE_TESTS_AUTO_SUBJECT_TAKES_H_
+#define MOCAPSOLVE_TESTS_AUTO_SUBJECT_TAKES_H_
+
+#include <string>
+
+#include "kinematics/marker_trajectories.h"
+
+namespace mocapsolve::testing {
+
+// `frames` frames at 60 fps of the shipped template walking (its mean pose with every limb
+// swinging, the root moving forward), its markers in mm, written Z up (file (x, -z, y) of
+// the skeleton's (x, y, z)). renamed: labels M0, M1, ... in a shuffled order (a protocol
+// nobody mapped); else the template's own (CMU's LBWT, ...).
+MarkerTrajectories TemplateWalkTake(int frames, bool renamed);
+
+// `points` points at random positions in a 2 m box, each moving at random, `frames` frames, mm.
+MarkerTrajectories RandomPointsTake(int frames, int points);
+
+}  // namespace mocapsolve::testing
+
+#endif  // MOCAPSOLVE_TESTS_AUTO_SUBJECT_TAKES_H_

@@ -1,0 +1,97 @@
+// The subject fitted on the fly (tasks/auto_subject_task.h, `pipeline --subject=auto`) on
+// small synthetic takes (tests/auto_subject_takes.h): the shipped template's own markers
+// walking, Z up, by their CMU labels (the label path, the up axis found from the data) and
+// renamed at random (the association path); and random points, which must fail with one
+// line. The CLI's side (outputs, exit codes) is tests/apps/pipeline_cli_test.cc; the shared
+// captures are measured in BENCHMARKS.md.
+#include "tasks/auto_subject_task.h"
+
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "io/marker_file.h"
+#include "tests/auto_subject_takes.h"
+#include "tests/test_support.h"
+
+namespace mocapsolve {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A short fit: the walk's 90 frames, few iterations (the take is the template's own body).
+SkeletonFitSettings ShortFit() {
+  SkeletonFitSettings settings = AutoSubjectFitOptions().Defaults();
+  settings.fit_iterations = 4;
+  settings.attach_rounds = 1;
+  settings.attach_iterations = 3;
+  return settings;
+}
+
+SolverSettings Dls() {
+  SolverSettings solver;
+  solver.solver = "dls";
+  return solver;
+}
+
+// The file axis the skeleton's y (up) comes from: the middle of "a,b,c" (measured: "-x,z,y").
+std::string SkeletonUpFromFile(const std::string& axes) {
+  const size_t first = axes.find(','), second = axes.find(',', first + 1);
+  return first == std::string::npos || second == std::string::npos ? "" : axes.substr(first + 1, second - first - 1);
+}
+
+AutoSubjectResult FitWritten(const MarkerTrajectories& take, const std::string& name, Status* status) {
+  const std::string path = testing::TempPath(name);
+  EXPECT_TRUE(WriteMarkerFile(path, take).ok());
+  AutoSubjectResult result;
+  *status = FitAutoSubject(path, ShortFit(), Dls(), &result);
+  return result;
+}
+
+TEST(AutoSubject, PipelineDefaultFitsTheFirst600Frames) {
+  EXPECT_EQ(AutoSubjectFitOptions().Defaults().fit_max_frames, 600);
+  EXPECT_EQ(SkeletonFitSettingOptions().Defaults().fit_max_frames, 0);  // fit_skeleton's own: all.
+  EXPECT_EQ(AutoSubjectPath("out"), "out/subject.json");
+}
+
+TEST(AutoSubject, TakeWithTheTemplatesLabelsFitsByLabelsAndFindsUp) {
+  Status status = Status::Ok();
+  const AutoSubjectResult result = FitWritten(testing::TemplateWalkTake(90, false), "labelled.c3d", &status);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(result.method, "labels");
+  EXPECT_FALSE(result.fit.associated);
+  EXPECT_TRUE(result.fit.checks.ok());
+  EXPECT_LT(result.fit.checks.rms_mm, 5.0);
+  // Written Z up: the file's z is the skeleton's y (up), whichever horizontal turn was found.
+  EXPECT_EQ(SkeletonUpFromFile(result.fit.subject.axes), "z") << result.fit.subject.axes;
+  EXPECT_EQ(result.fit.subject.markers.num_markers(), 41);
+  const std::string report = AutoSubjectReport(result).ToString();
+  EXPECT_THAT(report, HasSubstr("\"method\": \"labels\""));
+  EXPECT_THAT(report, HasSubstr("\"template\": \"data/templates/cmu_02.json\""));
+  EXPECT_THAT(AutoSubjectLine(result), HasSubstr("checks passed"));
+}
+
+TEST(AutoSubject, RenamedLabelsFitByAssociation) {
+  Status status = Status::Ok();
+  const AutoSubjectResult result = FitWritten(testing::TemplateWalkTake(90, true), "renamed.c3d", &status);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(result.method, "association");
+  EXPECT_TRUE(result.fit.associated);
+  EXPECT_TRUE(result.fit.checks.ok()) << result.fit.checks.failures[0];
+  EXPECT_LE(result.fit.checks.rms_mm, 25.0);
+  EXPECT_EQ(SkeletonUpFromFile(result.fit.subject.axes), "z") << result.fit.subject.axes;
+  EXPECT_THAT(AutoSubjectReport(result).ToString(), HasSubstr("\"association\""));
+}
+
+TEST(AutoSubject, RandomPointsFailWithOneLine) {
+  Status status = Status::Ok();
+  FitWritten(testing::RandomPointsTake(90, 41), "random.c3d", &status);
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("random.c3d"));
+  EXPECT_THAT(status.message(), HasSubstr("--subject=auto"));
+  EXPECT_EQ(status.message().find('\n'), std::string::npos) << status.message();
+}
+
+}  // namespace
+}  // namespace mocapsolve
