@@ -514,9 +514,9 @@ Status DetectGaps(const RepairContext& ctx, const Motion& naive, const Reference
     }
   }
   // A sample the swap step gave to its label was chosen there by the kinematic fit of both
-  // assignments: the joint difference, which condemns whatever its bone's markers move
-  // (the naive solve and the reference still disagree beside a swap, e.g. on a wrist that
-  // three markers pin), does not undo that choice; the outlier test above still applies.
+  // assignments: the joint difference, which condemns every marker its joint moves past
+  // the gate, does not undo that choice (on the synthetic walk of scripts/synthetic_walk.py
+  // it cut a wrist marker's 57 relabelled samples); the outlier test above still applies.
   std::vector<std::vector<char>> swapped(x.num_frames(), std::vector<char>(x.num_markers(), 0));
   for (const MarkerSwap& swap : report->swaps) {
     for (int f = swap.first; f <= swap.last; ++f) {
