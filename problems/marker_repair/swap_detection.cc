@@ -31,8 +31,9 @@ Eigen::Vector3d Continued(const MarkerTrajectories& x, const Claims& claim, int 
   return b.allFinite() ? Eigen::Vector3d(2.0 * a - b) : a;
 }
 
+// With only_into_gaps, only into frames where one of the exchanged labels has no sample.
 void ExtendByContinuity(const SwapDetectionOptions& options, const MarkerResidualModel& model,
-                        const MarkerTrajectories& x, int step, Claims* claim) {
+                        const MarkerTrajectories& x, int step, Claims* claim, bool only_into_gaps = false) {
   const int nf = x.num_frames(), nm = x.num_markers();
   const int begin = step > 0 ? 1 : nf - 2, end = step > 0 ? nf : -1;
   for (int f = begin; f != end; f += step) {
@@ -57,6 +58,11 @@ void ExtendByContinuity(const SwapDetectionOptions& options, const MarkerResidua
       }
     }
     if (!free) continue;
+    if (only_into_gaps) {
+      bool gap = false;
+      for (const int l : labels) gap |= !x.valid(f, l);
+      if (!gap) continue;
+    }
     bool same = true;
     for (const auto& [from, to] : pairs) same &= (*claim)[f][from] == to;
     if (same) continue;
@@ -248,6 +254,11 @@ std::vector<MarkerSwap> UndoSwaps(const MarkerResidualModel& model, const SwapDe
   ExtendByContinuity(options, model, *x, +1, &claim);
   ExtendByContinuity(options, model, *x, -1, &claim);
   DecideByExchangeEvents(model, options, *x, &claim);
+  // The exchanges the events decided carried on into the frames beside them where one of
+  // the labels is missing (a swap that begins or ends inside a gap shows no event there),
+  // by the same continuity test.
+  ExtendByContinuity(options, model, *x, +1, &claim, true);
+  ExtendByContinuity(options, model, *x, -1, &claim, true);
   // Relabel, and gather the intervals (consecutive frames with the same exchanges).
   std::vector<MarkerSwap> swaps;
   std::vector<std::pair<int, int>> previous;
