@@ -11,8 +11,14 @@ with the ground truth (the take plus its wobble), in mm:
   * overall: mean error over every damaged sample, repair against naive (which leaves the
     swapped samples as they are), and the ratio; also over the occluded samples alone.
 
+With --misses, every swapped sample not restored bit for bit is listed, in runs per seed and
+marker: the swap (labels, frames, the gap that hides its start or end), where the run lies
+in it, and what the repair did: "left swapped" (the sample stayed under the other label),
+"relabelled, then cut" (the repair moved it back, then cut and refilled it, with the cause
+of the detected interval) or "cut" (refilled without having been relabelled).
+
 usage: score_damage.py --subject=S02.json --markers=02_01.c3d[,cmu_02_05.c3d] [--seeds=1,2,3]
-                       [--max_frames=N] [--repair key=value ...] [--json_out=scores.json]
+                       [--max_frames=N] [--repair key=value ...] [--json_out=scores.json] [--misses]
 """
 import argparse
 import json
@@ -23,6 +29,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import damage as damage_model  # noqa: E402
+
+SWAPPED_CODE = damage_model.SWAPPED
 
 
 def hermite_fill(x):
@@ -102,7 +110,60 @@ def score_one(subject, markers, seed, options, repair_kwargs):
     result["all"] = (list(err[damaged_any]), list(naive_err[damaged_any]))
     result["occluded"] = (list(err[occluded]), list(naive_err[occluded]))
     result["carried"] = report.get("carried_joints", [])
+    result["misses"] = swap_misses(markers.labels, events, mask, damaged, repaired, truth, err, report)
     return result
+
+
+def _covering(intervals, label, f):
+    label = label.split(":")[-1]
+    return sorted({i["what"] for i in intervals
+                   if i["marker"].split(":")[-1] == label and i["first_frame"] <= f <= i["last_frame"]})
+
+
+def swap_misses(labels, events, mask, damaged, repaired, truth, err, report):
+    """Runs of swapped samples not restored bit for bit, per marker, with what the repair did."""
+    relabelled = {}  # (frame, label) -> label it was renamed from.
+    for swap in report.get("swaps", []):
+        for pair in swap["markers_renamed_from_to"]:
+            for f in range(swap["first_frame"], swap["last_frame"] + 1):
+                relabelled[(f, pair["to"].split(":")[-1])] = pair["from"]
+    runs = []
+    for e in events:
+        if e["kind"] != "swap":
+            continue
+        a, b = (labels.index(l) for l in e["markers"])
+        for col, other in ((a, b), (b, a)):
+            current = None
+            for f in range(e["first_frame"], e["last_frame"] + 1):
+                if mask[f, col] != SWAPPED_CODE or np.all(repaired[f, col] == truth[f, col]):
+                    current = None
+                    continue
+                if np.all(repaired[f, col] == damaged[f, col]):
+                    what = "left swapped"
+                elif (f, labels[col].split(":")[-1]) in relabelled:
+                    what = "relabelled, then cut: " + "+".join(_covering(report.get("detected", []), labels[col], f))
+                else:
+                    what = "cut: " + "+".join(_covering(report.get("detected", []), labels[col], f))
+                if current is not None and current["what"] == what and current["last"] == f - 1:
+                    current["last"] = f
+                    current["err"].append(float(err[f, col]))
+                    continue
+                current = {"marker": labels[col], "other": labels[other], "first": f, "last": f, "what": what,
+                           "err": [float(err[f, col])], "swap": [e["first_frame"], e["last_frame"]],
+                           "gap": [e.get("gap_marker"), e.get("gap_first_frame"), e.get("gap_last_frame")]}
+                runs.append(current)
+    for r in runs:
+        r["mean_err_mm"] = float(np.mean(r.pop("err")))
+    return runs
+
+
+def print_misses(results):
+    for r in results:
+        for m in r["misses"]:
+            gap = "" if m["gap"][0] is None else ", gap of %s %d-%d" % tuple(m["gap"])
+            print("  seed %d: %s (swapped with %s over %d-%d%s): frames %d-%d (%d), %s; error %.1f mm" % (
+                r["seed"], m["marker"], m["other"], m["swap"][0], m["swap"][1], gap, m["first"], m["last"],
+                m["last"] - m["first"] + 1, m["what"], m["mean_err_mm"]))
 
 
 def summarize(name, results):
@@ -157,6 +218,7 @@ def main():
     parser.add_argument("--wobbles", type=int, default=20)
     parser.add_argument("--repair", nargs="*", default=[], help="repair keywords, key=value")
     parser.add_argument("--json_out", default="")
+    parser.add_argument("--misses", action="store_true", help="list the swapped samples not restored")
     args = parser.parse_args()
     import mocapsolve
     subject = mocapsolve.read_subject(args.subject)
@@ -178,6 +240,8 @@ def main():
         results = [score_one(subject, markers, int(s), options, kwargs) for s in args.seeds.split(",")]
         summary = summarize(os.path.basename(path), results)
         print_summary(summary)
+        if args.misses:
+            print_misses(results)
         summaries.append(summary)
     if args.json_out:
         with open(args.json_out, "w") as f:

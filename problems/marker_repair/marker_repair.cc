@@ -513,10 +513,20 @@ Status DetectGaps(const RepairContext& ctx, const Motion& naive, const Reference
       if (x.valid(f, m) && model.Outlying(f, m, x.position(f, m))) outliers_removed.SetMissing(f, m);
     }
   }
+  // A sample the swap step gave to its label was chosen there by the kinematic fit of both
+  // assignments: the joint difference, which condemns every marker its joint moves past
+  // the gate, does not undo that choice (on the synthetic walk of scripts/synthetic_walk.py
+  // it cut a wrist marker's 57 relabelled samples); the outlier test above still applies.
+  std::vector<std::vector<char>> swapped(x.num_frames(), std::vector<char>(x.num_markers(), 0));
+  for (const MarkerSwap& swap : report->swaps) {
+    for (int f = swap.first; f <= swap.last; ++f) {
+      for (const auto& [from, to] : swap.from_to) swapped[f][to] = x.valid(f, to);
+    }
+  }
   *flagged = outliers_removed;
   for (int f = 0; f < x.num_frames(); ++f) {
     for (int m = 0; m < x.num_markers(); ++m) {
-      if (bad[f][m] && flagged->valid(f, m)) flagged->SetMissing(f, m);
+      if (bad[f][m] && !swapped[f][m] && flagged->valid(f, m)) flagged->SetMissing(f, m);
     }
   }
   RecordNewGaps(*flagged, captured, x, outliers_removed, report);

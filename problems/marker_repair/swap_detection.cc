@@ -20,19 +20,122 @@ Eigen::Vector3d Relabelled(const MarkerTrajectories& x, const Claims& claim, int
   return x.position(f, n);
 }
 
-// Where label n is expected at frame f from frames f - step and f - 2 step (relabelled):
-// extrapolated at constant velocity, or the last sample; NaN if unknown.
-Eigen::Vector3d Continued(const MarkerTrajectories& x, const Claims& claim, int f, int step, int n) {
-  const int g = f - step, h = f - 2 * step;
-  if (g < 0 || g >= x.num_frames()) return Eigen::Vector3d::Constant(NAN);
-  const Eigen::Vector3d a = Relabelled(x, claim, g, n);
-  if (h < 0 || h >= x.num_frames()) return a;
+// Frames a label's continuation reaches back over where it has no (relabelled) sample, in
+// the pass into gaps: a label whose samples a gap hides while the swap goes on is continued
+// from before the gap.
+constexpr int kContinuityReach = 15;
+
+// Where label n is expected at frame f from its last two (relabelled) samples before f, in
+// the direction of step, the last within `reach` frames: extrapolated at constant velocity,
+// or the last sample; NaN if unknown.
+Eigen::Vector3d Continued(const MarkerTrajectories& x, const Claims& claim, int f, int step, int n, int reach = 1) {
+  auto inside = [&](int k) { return k >= 0 && k < x.num_frames(); };
+  int g = f - step;
+  Eigen::Vector3d a = Eigen::Vector3d::Constant(NAN);
+  for (; inside(g) && std::abs(f - g) <= reach; g -= step) {
+    a = Relabelled(x, claim, g, n);
+    if (a.allFinite()) break;
+  }
+  if (!a.allFinite()) return a;
+  const int h = g - step;
+  if (!inside(h)) return a;
   const Eigen::Vector3d b = Relabelled(x, claim, h, n);
-  return b.allFinite() ? Eigen::Vector3d(2.0 * a - b) : a;
+  return b.allFinite() ? Eigen::Vector3d(a + (a - b) * std::abs(f - g)) : a;
 }
 
+// The exchange `pairs` (claims at frame f - step) carried on to frame f if, by continuity,
+// it costs less than margin times the identity (see ExtendByContinuity).
+void ExtendExchange(const SwapDetectionOptions& options, const MarkerResidualModel& model,
+                    const MarkerTrajectories& x, int f, int step, const std::vector<std::pair<int, int>>& pairs,
+                    bool only_into_gaps, Claims* claim) {
+  const int nm = x.num_markers();
+  // Only where none of the labels involved has a claim of its own at f...
+  std::vector<int> labels;
+  for (const auto& [from, to] : pairs) labels.push_back(from), labels.push_back(to);
+  std::sort(labels.begin(), labels.end());
+  labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+  // ...or whose claims at f are part of the exchange at g (completed here).
+  bool free = true;
+  for (const int l : labels) {
+    const int to = (*claim)[f][l];
+    if (to >= 0) free &= std::find(pairs.begin(), pairs.end(), std::make_pair(l, to)) != pairs.end();
+    for (int m = 0; m < nm; ++m) {
+      if ((*claim)[f][m] == l) free &= std::find(pairs.begin(), pairs.end(), std::make_pair(m, l)) != pairs.end();
+    }
+  }
+  if (!free) return;
+  const int reach = only_into_gaps ? kContinuityReach : 1;
+  if (only_into_gaps) {
+    bool gap = false;
+    for (const int l : labels) gap |= !x.valid(f, l);
+    if (!gap) return;
+  }
+  bool same = true;
+  for (const auto& [from, to] : pairs) same &= (*claim)[f][from] == to;
+  if (same) return;
+  double identity = 0.0, swapped = 0.0, gate = std::numeric_limits<double>::infinity();
+  bool known = true;
+  for (const int l : labels) {
+    if (!x.valid(f, l)) continue;
+    const Eigen::Vector3d expected = Continued(x, *claim, f, step, l, reach);
+    known &= expected.allFinite();
+    if (known) identity += (x.position(f, l) - expected).norm();
+    gate = std::min(gate, model.typical_gate[l]);
+  }
+  int samples = 0;
+  for (const auto& [from, to] : pairs) {
+    if (!x.valid(f, from)) continue;
+    const Eigen::Vector3d expected = Continued(x, *claim, f, step, to, reach);
+    known &= expected.allFinite();
+    if (known) swapped += (x.position(f, from) - expected).norm();
+    ++samples;
+  }
+  if (!known || samples == 0 || identity <= gate || swapped > options.margin * identity) return;
+  if (only_into_gaps) {
+    // Continuity across a gap is a long extrapolation, and two nearby markers may lie
+    // closer than its error: the kinematic fit decides too, the exchange fitting the
+    // typical predictions no worse than the identity.
+    double fit_identity = 0.0, fit_swapped = 0.0;
+    for (const auto& [from, to] : pairs) {
+      if (!x.valid(f, from)) continue;
+      fit_identity += (x.position(f, from) - model.typical_predicted[f][from]).norm();
+      fit_swapped += (x.position(f, from) - model.typical_predicted[f][to]).norm();
+    }
+    if (fit_swapped > fit_identity) return;
+  }
+  for (const auto& [from, to] : pairs) (*claim)[f][from] = to;
+}
+
+// The exchanges of frame f - step's claims, grouped into cycles of labels (a -> b -> a).
+std::vector<std::vector<std::pair<int, int>>> ExchangeCycles(const std::vector<std::pair<int, int>>& pairs) {
+  std::vector<std::vector<std::pair<int, int>>> cycles;
+  std::vector<char> used(pairs.size(), 0);
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    if (used[i]) continue;
+    std::vector<int> labels = {pairs[i].first, pairs[i].second};
+    cycles.emplace_back();
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (size_t k = 0; k < pairs.size(); ++k) {
+        if (used[k]) continue;
+        const bool joins = std::count(labels.begin(), labels.end(), pairs[k].first) ||
+                           std::count(labels.begin(), labels.end(), pairs[k].second);
+        if (!joins) continue;
+        used[k] = 1, grew = true;
+        cycles.back().push_back(pairs[k]);
+        labels.push_back(pairs[k].first), labels.push_back(pairs[k].second);
+      }
+    }
+  }
+  return cycles;
+}
+
+// Claims carried frame by frame in the direction of step. With only_into_gaps, only into
+// frames where one of the exchanged labels has no sample, each cycle of labels judged on
+// its own (at a frame where several swaps go on, the others' gain would carry a swap that
+// ended), the continuation reaching across up to kContinuityReach frames.
 void ExtendByContinuity(const SwapDetectionOptions& options, const MarkerResidualModel& model,
-                        const MarkerTrajectories& x, int step, Claims* claim) {
+                        const MarkerTrajectories& x, int step, Claims* claim, bool only_into_gaps = false) {
   const int nf = x.num_frames(), nm = x.num_markers();
   const int begin = step > 0 ? 1 : nf - 2, end = step > 0 ? nf : -1;
   for (int f = begin; f != end; f += step) {
@@ -42,43 +145,11 @@ void ExtendByContinuity(const SwapDetectionOptions& options, const MarkerResidua
       if ((*claim)[g][m] >= 0) pairs.emplace_back(m, (*claim)[g][m]);
     }
     if (pairs.empty()) continue;
-    // Only where none of the labels involved has a claim of its own at f...
-    std::vector<int> labels;
-    for (const auto& [from, to] : pairs) labels.push_back(from), labels.push_back(to);
-    std::sort(labels.begin(), labels.end());
-    labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
-    // ...or whose claims at f are part of the exchange at g (completed here).
-    bool free = true;
-    for (const int l : labels) {
-      const int to = (*claim)[f][l];
-      if (to >= 0) free &= std::find(pairs.begin(), pairs.end(), std::make_pair(l, to)) != pairs.end();
-      for (int m = 0; m < nm; ++m) {
-        if ((*claim)[f][m] == l) free &= std::find(pairs.begin(), pairs.end(), std::make_pair(m, l)) != pairs.end();
-      }
+    if (!only_into_gaps) {
+      ExtendExchange(options, model, x, f, step, pairs, false, claim);
+      continue;
     }
-    if (!free) continue;
-    bool same = true;
-    for (const auto& [from, to] : pairs) same &= (*claim)[f][from] == to;
-    if (same) continue;
-    double identity = 0.0, swapped = 0.0, gate = std::numeric_limits<double>::infinity();
-    bool known = true;
-    for (const int l : labels) {
-      if (!x.valid(f, l)) continue;
-      const Eigen::Vector3d expected = Continued(x, *claim, f, step, l);
-      known &= expected.allFinite();
-      if (known) identity += (x.position(f, l) - expected).norm();
-      gate = std::min(gate, model.typical_gate[l]);
-    }
-    int samples = 0;
-    for (const auto& [from, to] : pairs) {
-      if (!x.valid(f, from)) continue;
-      const Eigen::Vector3d expected = Continued(x, *claim, f, step, to);
-      known &= expected.allFinite();
-      if (known) swapped += (x.position(f, from) - expected).norm();
-      ++samples;
-    }
-    if (!known || samples == 0 || identity <= gate || swapped > options.margin * identity) continue;
-    for (const auto& [from, to] : pairs) (*claim)[f][from] = to;
+    for (const auto& cycle : ExchangeCycles(pairs)) ExtendExchange(options, model, x, f, step, cycle, true, claim);
   }
 }
 
@@ -248,6 +319,11 @@ std::vector<MarkerSwap> UndoSwaps(const MarkerResidualModel& model, const SwapDe
   ExtendByContinuity(options, model, *x, +1, &claim);
   ExtendByContinuity(options, model, *x, -1, &claim);
   DecideByExchangeEvents(model, options, *x, &claim);
+  // The exchanges the events decided carried on into the frames beside them where one of
+  // the labels is missing (a swap that begins or ends inside a gap shows no event there),
+  // by the same continuity test.
+  ExtendByContinuity(options, model, *x, +1, &claim, true);
+  ExtendByContinuity(options, model, *x, -1, &claim, true);
   // Relabel, and gather the intervals (consecutive frames with the same exchanges).
   std::vector<MarkerSwap> swaps;
   std::vector<std::pair<int, int>> previous;

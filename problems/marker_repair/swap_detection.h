@@ -38,6 +38,13 @@
 // exchanged segments (|x_f - 2 x_(f-1) + x_(f-2)| <= t_l): a label that also jumps there
 // (overlapping swaps with a third label) forms a chain the pair's events do not describe. A run without events keeps the claims above (a
 // swap that begins inside a gap shows no event at its start).
+// The claims are then carried once more by continuity, forward and backward, only into
+// frames where one of the exchanged labels has no sample (the frames of a swap a gap
+// hides, which no event sees), each cycle of labels (a -> b -> a) on its own: a label is
+// continued from its last two relabelled samples within 15 frames (E = x_g + (x_g - x_h) |f - g|),
+// and the exchange must also fit the typical predictions no worse than the identity,
+//   sum |x_from - T_to| <= sum |x_from - T_from|,
+// since two nearby markers may lie closer than the extrapolation's error.
 // Then, per frame, label n takes sample x_fm; a label that gave its sample
 // away and received none becomes missing (a swap that begins or ends inside a gap: the
 // other label's sample was missing), to be filled as any gap. Chains of more than two
