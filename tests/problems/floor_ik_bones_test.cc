@@ -2,8 +2,8 @@
 // targets are children of its root bone `Bone`: they are found, the feet anchored on the shins; the
 // solve character keeps every joint's world transform in the bind and rest poses (so the
 // surface is the same), and a pose of the solve character goes back onto the character with
-// the same world transforms (the IK bones then carry translations). Xbot (rooted at the
-// hips) has none. Skipped without MOCAPSOLVE_DATA.
+// the same world transforms (the IK bones then carry translations). The five skinned
+// shared humanoids have none. Skipped without MOCAPSOLVE_DATA.
 #include <algorithm>
 #include <cstdio>
 #include <random>
@@ -55,8 +55,12 @@ TEST(FloorIkBonesTest, RobotExpressiveFeetAndPolesFollowTheirLegs) {
     const std::string anchor = c.skeleton.name(ik.anchors[k]);
     // The feet on their shins; the pole targets, in front of the knees, on the body whose
     // surface (the torso's rigid mesh under `Body`) is nearest.
-    if (bone.rfind("Foot", 0) == 0) EXPECT_EQ(anchor, "LowerLeg" + side) << bone;
-    if (bone.rfind("PoleTarget", 0) == 0) EXPECT_EQ(anchor, "Body") << bone;
+    if (bone.rfind("Foot", 0) == 0) {
+      EXPECT_EQ(anchor, "LowerLeg" + side) << bone;
+    } else {
+      EXPECT_EQ(bone.rfind("PoleTarget", 0), 0u) << bone;
+      EXPECT_EQ(anchor, "Body") << bone;
+    }
   }
 
   FloorIkSolveCharacter solve;
@@ -103,11 +107,16 @@ TEST(FloorIkBonesTest, RobotExpressiveFeetAndPolesFollowTheirLegs) {
   EXPECT_LT(angle, 1e-9);
 }
 
-TEST(FloorIkBonesTest, SkeletonRootedAtTheHipsHasNone) {
-  MOCAPSOLVE_DATA_FILE(glb, "gltf/Xbot.glb");
-  GltfCharacter c;
-  ASSERT_TRUE(ReadGltfCharacter(glb, GltfReadOptions(), &c).ok());
-  EXPECT_TRUE(Find(c).empty());
+// The other shared humanoids (rooted at the pelvis, or with no branch off a floor root): none,
+// so their retargets take the path they took before.
+TEST(FloorIkBonesTest, SharedSkinnedHumanoidsHaveNone) {
+  for (const char* name : {"Xbot", "Soldier", "CesiumMan", "Ely", "RiggedFigure"}) {
+    MOCAPSOLVE_DATA_FILE(glb, std::string("gltf/") + name + ".glb");
+    GltfCharacter c;
+    ASSERT_TRUE(ReadGltfCharacter(glb, GltfReadOptions(), &c).ok()) << name;
+    const FloorIkBones ik = Find(c);
+    EXPECT_TRUE(ik.empty()) << name << ": " << ik.Describe(c.skeleton);
+  }
 }
 
 }  // namespace
