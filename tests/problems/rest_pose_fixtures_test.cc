@@ -3,7 +3,9 @@
 // the roles signed it, role_sides.h), re-posed in memory into an A-pose
 // bind pose (upper arms 40 degrees down from the file's rest, the mesh bound again there),
 // turned to face 90 or 180 degrees about the vertical, every joint renamed at random, and the
-// same as a skeleton-only source (the figures' rows in BENCHMARKS.md, "Feet and rest poses").
+// same as a skeleton-only source (the figures' rows in BENCHMARKS.md, "Feet and rest poses"),
+// and re-rigged as a game export: an Armature joint, a root bone at the floor, the feet as IK
+// bones under it, in cm (WithFloorIkFeet; BENCHMARKS.md, "IK bones under a floor root").
 // CMU 131_02 (BVH) onto each variant must keep the eight
 // limb directions within 10 degrees of the source's on average and 20 at the 95th
 // percentile (retarget_quality.h, after one constant rotation), the planted feet within
