@@ -315,12 +315,20 @@ Status RetargetOntoSolveCharacter(const RetargetCharacter& source, const Motion&
   return Status::Ok();
 }
 
-// True when the source skeleton has every IK bone by name under a parent of the same name:
-// its clip drives them itself (the character's own skeleton, a clip made for the rig).
-bool SourceDrivesIkBones(const Skeleton& source, const Skeleton& target, const FloorIkBones& ik) {
+// True when the source skeleton has every IK bone under the same parent (by name, or by the
+// given joint map's names): its clip drives them itself (the character's own skeleton, a
+// clip made for the rig).
+bool SourceDrivesIkBones(const Skeleton& source, const Skeleton& target, const FloorIkBones& ik,
+                         const std::vector<std::pair<std::string, std::string>>& joint_map) {
+  auto source_name = [&](const std::string& target_name) {
+    for (const auto& link : joint_map) {
+      if (link.second == target_name) return link.first;
+    }
+    return target_name;
+  };
   for (int j : ik.bones) {
-    const int s = source.FindJoint(target.name(j));
-    if (s <= 0 || source.name(source.parent(s)) != target.name(target.parent(j))) return false;
+    const int s = source.FindJoint(source_name(target.name(j)));
+    if (s <= 0 || source.name(source.parent(s)) != source_name(target.name(target.parent(j)))) return false;
   }
   return true;
 }
@@ -355,7 +363,7 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
   const Pose rest = target.rest_pose.rotations.empty() ? bind : target.rest_pose;
   const JointMapSkeleton standing = StandingSkeleton(skeleton, bind, target.mesh, rest);
   const FloorIkBones ik = FindFloorIkBones(skeleton, standing.positions, FindRoles(standing), target.mesh);
-  if (ik.empty() || SourceDrivesIkBones(*source.skeleton, skeleton, ik)) {
+  if (ik.empty() || SourceDrivesIkBones(*source.skeleton, skeleton, ik, options.joint_map)) {
     return RetargetOntoSolveCharacter(source, source_motion, target, options, result, progress);
   }
   FloorIkSolveCharacter solve;
