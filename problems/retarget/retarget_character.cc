@@ -8,6 +8,7 @@
 
 #include "kinematics/forward_kinematics.h"
 #include "problems/edit_propagation/foot_contacts.h"
+#include "problems/retarget/floor_ik_bones.h"
 #include "problems/retarget/foot_clearance.h"
 #include "problems/retarget/role_sides.h"
 #include "problems/retarget/limb_goals.h"
@@ -181,11 +182,12 @@ bool CharacterRetargetOptions::IsValid(std::string* error) const {
   return true;
 }
 
-Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion& source_motion,
-                                   const RetargetCharacter& target, const CharacterRetargetOptions& options,
-                                   CharacterRetargetResult* result, const RetargetProgressCallback& progress) {
-  Status input_status = CheckInputs(source, source_motion, target, options);
-  if (!input_status.ok()) return input_status;
+namespace {
+
+// The retarget onto a character as the solve sees it (after CheckInputs).
+Status RetargetOntoSolveCharacter(const RetargetCharacter& source, const Motion& source_motion,
+                                  const RetargetCharacter& target, const CharacterRetargetOptions& options,
+                                  CharacterRetargetResult* result, const RetargetProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   const Skeleton& target_skeleton = *target.skeleton;
   const Pose target_bind = target.bind_pose.rotations.empty() ? RestPose(target_skeleton) : target.bind_pose;
@@ -310,6 +312,78 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
   if (!status.ok()) return status;
   if (!out.root_motion.note.empty()) out.notes.push_back(out.root_motion.note);
   *result = std::move(out);
+  return Status::Ok();
+}
+
+// True when the source skeleton has every IK bone under the same parent (by name, or by the
+// given joint map's names): its clip drives them itself (the character's own skeleton, a
+// clip made for the rig).
+bool SourceDrivesIkBones(const Skeleton& source, const Skeleton& target, const FloorIkBones& ik,
+                         const std::vector<std::pair<std::string, std::string>>& joint_map) {
+  auto source_name = [&](const std::string& target_name) {
+    for (const auto& link : joint_map) {
+      if (link.second == target_name) return link.first;
+    }
+    return target_name;
+  };
+  for (int j : ik.bones) {
+    const int s = source.FindJoint(source_name(target.name(j)));
+    if (s <= 0 || source.name(source.parent(s)) != source_name(target.name(target.parent(j)))) return false;
+  }
+  return true;
+}
+
+// A result on the solve character re-indexed onto the character (floor_ik_bones.h).
+void ResultOnCharacter(const Skeleton& skeleton, const FloorIkBones& ik, const FloorIkSolveCharacter& solve,
+                       CharacterRetargetResult* result) {
+  const std::vector<int>& to = solve.character_of_solve;
+  JointMap& map = result->joint_map;
+  for (int& t : map.target_of_source) t = t >= 0 ? to[t] : t;
+  std::vector<int> source_of_target(map.source_of_target.size(), -1);
+  for (size_t k = 0; k < map.source_of_target.size(); ++k) source_of_target[to[k]] = map.source_of_target[k];
+  map.source_of_target = std::move(source_of_target);
+  for (auto& role : map.target_roles.roles) role.second = role.second >= 0 ? to[role.second] : role.second;
+  for (JointMapRole& role : map.roles) role.target = role.target >= 0 ? to[role.target] : role.target;
+  for (int& j : result->setup.position_joints) j = to[j];
+  if (result->root_motion.hips >= 0) result->root_motion.hips = to[result->root_motion.hips];
+  if (result->root_motion.root_bone >= 0) result->root_motion.root_bone = to[result->root_motion.root_bone];
+  result->clip.motion = FloorIkMotionOnCharacter(skeleton, ik, solve, result->clip.motion);
+}
+
+}  // namespace
+
+Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion& source_motion,
+                                   const RetargetCharacter& target, const CharacterRetargetOptions& options,
+                                   CharacterRetargetResult* result, const RetargetProgressCallback& progress) {
+  Status status = CheckInputs(source, source_motion, target, options);
+  if (!status.ok()) return status;
+  // IK bones under a floor root follow their chains in the solve (floor_ik_bones.h).
+  const Skeleton& skeleton = *target.skeleton;
+  const Pose bind = target.bind_pose.rotations.empty() ? RestPose(skeleton) : target.bind_pose;
+  const Pose rest = target.rest_pose.rotations.empty() ? bind : target.rest_pose;
+  const JointMapSkeleton standing = StandingSkeleton(skeleton, bind, target.mesh, rest);
+  const FloorIkBones ik = FindFloorIkBones(skeleton, standing.positions, FindRoles(standing), target.mesh);
+  if (ik.empty() || SourceDrivesIkBones(*source.skeleton, skeleton, ik, options.joint_map)) {
+    return RetargetOntoSolveCharacter(source, source_motion, target, options, result, progress);
+  }
+  FloorIkSolveCharacter solve;
+  status = MakeFloorIkSolveCharacter(skeleton, *target.mesh, bind, rest, ik, &solve);
+  if (!status.ok()) return status;
+  RetargetCharacter solve_target;
+  solve_target.skeleton = &solve.skeleton;
+  solve_target.mesh = &solve.mesh;
+  solve_target.bind_pose = solve.bind_pose;
+  solve_target.rest_pose = solve.rest_pose;
+  CharacterRetargetOptions solve_options = options;
+  if (!options.clip.start_pose.rotations.empty()) {
+    solve_options.clip.start_pose = FloorIkPoseOnSolveCharacter(skeleton, ik, solve, options.clip.start_pose);
+  }
+  for (Pose& pose : solve_options.clip.warm_start.frames) pose = FloorIkPoseOnSolveCharacter(skeleton, ik, solve, pose);
+  status = RetargetOntoSolveCharacter(source, source_motion, solve_target, solve_options, result, progress);
+  if (!status.ok()) return status;
+  ResultOnCharacter(skeleton, ik, solve, result);
+  result->notes.push_back("IK bones under the floor root follow their chains in the solve and carry translation "
+                          "keys: " + ik.Describe(skeleton));
   return Status::Ok();
 }
 

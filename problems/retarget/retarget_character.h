@@ -23,6 +23,12 @@
 // the vertex tracking is not run (its figures are measured at that motion), nor the foot
 // plants (the transfer adds no skating), and the notes say so.
 //
+// IK bones under a floor root (floor_ik_bones.h): when the target has them and the source does
+// not drive them (the same bones under the same parents), the whole retarget runs on the
+// target with them re-parented under their anchors (same mesh, same world transforms), and
+// the result (motion, joint map, position joints, root track) is put back on the target's own
+// joints, the IK bones with translation keys; the figures are those of that solve; a note
+// names the bones and anchors.
 // Limb directions (options.clip.solve.limb_direction_weight > 0, the clip solved): the
 // eight limbs found on both sides are asked to point as the source's do (limb_goals.h,
 // LimbDirectionResidual), against the vertex tracking; the notes say how many.

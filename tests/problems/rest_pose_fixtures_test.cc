@@ -3,7 +3,9 @@
 // the roles signed it, role_sides.h), re-posed in memory into an A-pose
 // bind pose (upper arms 40 degrees down from the file's rest, the mesh bound again there),
 // turned to face 90 or 180 degrees about the vertical, every joint renamed at random, and the
-// same as a skeleton-only source (the figures' rows in BENCHMARKS.md, "Feet and rest poses").
+// same as a skeleton-only source (the figures' rows in BENCHMARKS.md, "Feet and rest poses"),
+// and re-rigged as a game export: an Armature joint, a root bone at the floor, the feet as IK
+// bones under it, in cm (WithFloorIkFeet; BENCHMARKS.md, "IK bones under a floor root").
 // CMU 131_02 (BVH) onto each variant must keep the eight
 // limb directions within 10 degrees of the source's on average and 20 at the 95th
 // percentile (retarget_quality.h, after one constant rotation), the planted feet within
@@ -113,6 +115,75 @@ Variant Repose(const GltfCharacter& character, const std::vector<int>& arms, dou
   EXPECT_TRUE(SkinnedMesh::Create(v.skeleton, spec, &v.mesh).ok());
   v.pose = pose;
   return v;
+}
+
+// `v` (bound and standing in v.pose) as a game rig: an `Armature` joint at the origin and a root
+// bone `Root` at the floor under the pelvis above the skeleton, the joints `feet` (with their
+// toes) re-parented under `Root` as IK bones, and the whole character scaled by `scale` (joint
+// translations, vertices and bind matrices; the unit `unit`), as a glTF export's Armature node
+// scaled by 1 / scale holds it. Every joint keeps its world transform (scaled), so the mesh is
+// bound as before: the feet's surface follows the IK bones, not the shins.
+Variant WithFloorIkFeet(const Variant& v, const std::vector<int>& feet, double scale, const LengthUnit& unit,
+                        const std::string& name) {
+  const Skeleton& skeleton = v.skeleton;
+  const int n = skeleton.num_joints();
+  FkData fk(skeleton);
+  ForwardKinematics(skeleton, v.pose, &fk);
+  double floor = 1e30;
+  for (int i = 0; i < v.mesh.num_vertices(); ++i) floor = std::min(floor, v.mesh.rest_positions()(1, i));
+  std::vector<bool> in_foot(n, false);
+  for (int f : feet) {
+    for (int j = f; j < skeleton.subtree_end(f); ++j) in_foot[j] = true;
+  }
+  // New order: Armature, Root, the skeleton without the feet, then each foot's subtree.
+  std::vector<int> old_of_new = {-1, -1}, new_of_old(n, -1);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int j = 0; j < n; ++j) {
+      if (in_foot[j] == (pass == 1)) new_of_old[j] = static_cast<int>(old_of_new.size()), old_of_new.push_back(j);
+    }
+  }
+  // World transforms (scaled) of the new joints.
+  std::vector<Eigen::Isometry3d> world(n + 2, Eigen::Isometry3d::Identity());
+  world[1].translation() = scale * Eigen::Vector3d(fk.world_positions[0].x(), floor, fk.world_positions[0].z());
+  for (int k = 2; k < n + 2; ++k) {
+    world[k] = WorldFromJoint(fk, old_of_new[k]);
+    world[k].translation() *= scale;
+  }
+  std::vector<JointSpec> specs(n + 2);
+  specs[0].name = "Armature";
+  specs[1].name = "Root";
+  specs[1].parent = 0;
+  specs[1].offset = world[1].translation();
+  Variant out;
+  out.name = name;
+  out.pose.translations.assign(n + 2, Eigen::Vector3d::Zero());
+  out.pose.rotations.assign(n + 2, Eigen::Quaterniond::Identity());
+  out.pose.translations[1] = specs[1].offset;
+  for (int k = 2; k < n + 2; ++k) {
+    const int j = old_of_new[k];
+    specs[k] = skeleton.joint(j);
+    const bool foot = std::find(feet.begin(), feet.end(), j) != feet.end();
+    specs[k].parent = j == 0 || foot ? 1 : new_of_old[skeleton.parent(j)];
+    const Eigen::Isometry3d& parent = world[specs[k].parent];
+    specs[k].offset = parent.rotation().transpose() * (world[k].translation() - parent.translation());
+    out.pose.translations[k] = specs[k].offset;
+    out.pose.rotations[k] = Eigen::Quaterniond(specs[k].rest_rotation.conjugate() *
+                                               Eigen::Quaterniond(parent.rotation()).conjugate() *
+                                               Eigen::Quaterniond(world[k].rotation())).normalized();
+  }
+  EXPECT_TRUE(Skeleton::Create(specs, {}, unit, &out.skeleton).ok());
+  SkinnedMeshSpec spec;
+  spec.rest_positions = scale * v.mesh.rest_positions();
+  spec.rest_normals = v.mesh.rest_normals();
+  spec.influences.resize(v.mesh.num_vertices());
+  for (int i = 0; i < v.mesh.num_vertices(); ++i) {
+    for (int k = v.mesh.weight_begin(i); k < v.mesh.weight_end(i); ++k) {
+      spec.influences[i].push_back({new_of_old[v.mesh.weight_joint(k)], v.mesh.weight(k)});
+    }
+  }
+  for (int k = 0; k < n + 2; ++k) spec.joint_from_bind.push_back(world[k].inverse());
+  EXPECT_TRUE(SkinnedMesh::Create(out.skeleton, spec, &out.mesh).ok());
+  return out;
 }
 
 // The options `mocapsolve retarget` runs with when given no flags.
@@ -230,6 +301,37 @@ TEST(RestPoseFixturesSourceTest, APoseTurnedRenamedSourceOntoAnotherCharacter) {
                         std::string(names[from]) + " A-pose source (facing 180, random names) onto " + names[to]);
   }
 }
+
+// A game rig: IK feet under a floor root bone, an Armature above it, units in cm (the shared
+// humanoids with the mixamo feet re-parented, WithFloorIkFeet). The feet's surface follows the IK
+// bones; the retarget drives them by the legs (floor_ik_bones.h), so 131_02 onto it keeps the
+// limbs, the plants and the floor as onto the character as read; the IK bones get translation
+// keys that put them where the legs end.
+class FloorIkFixturesTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(FloorIkFixturesTest, CmuWalkOntoIkFeetUnderAFloorRootKeepsLimbDirections) {
+  MOCAPSOLVE_DATA_FILE(bvh, "bvh/131_02.bvh");
+  MOCAPSOLVE_DATA_FILE(glb, std::string("gltf/") + GetParam() + ".glb");
+  Skeleton source;
+  Motion motion;
+  ASSERT_TRUE(ReadMotionFile(bvh, MotionFileOptions(), &source, &motion).ok());
+  motion.frames.resize(std::min<size_t>(motion.frames.size(), 120));
+  GltfCharacter character;
+  std::vector<int> arms;
+  ReadCharacter(glb, &character, &arms);
+  if (::testing::Test::HasFatalFailure()) return;
+  std::vector<int> feet;
+  for (const char* foot : {"mixamorig:LeftFoot", "mixamorig:RightFoot"}) {
+    feet.push_back(character.skeleton.FindJoint(foot));
+    ASSERT_GE(feet.back(), 0) << foot;
+  }
+  const Variant as_read = Repose(character, arms, 0.0, 0.0, false, "as read");
+  const Variant rig = WithFloorIkFeet(as_read, feet, 100.0, Centimetres(), "IK feet under a floor root, cm");
+  ASSERT_EQ(rig.skeleton.parent(rig.skeleton.FindJoint("mixamorig:LeftFoot")), rig.skeleton.FindJoint("Root"));
+  ExpectWithinTargets(Retarget(source, nullptr, Pose(), motion, rig), std::string(GetParam()) + ", " + rig.name);
+}
+
+INSTANTIATE_TEST_SUITE_P(Characters, FloorIkFixturesTest, ::testing::Values("Xbot", "Soldier"));
 
 INSTANTIATE_TEST_SUITE_P(Characters, RestPoseFixturesTest, ::testing::Values("Xbot", "Soldier", "CesiumMan", "Ely", "RiggedFigure"));
 
