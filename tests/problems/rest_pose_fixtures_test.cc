@@ -227,6 +227,12 @@ void ExpectWithinTargets(const Figures& f, const std::string& label) {
   EXPECT_LE(f.penetration, 1.0) << label;
 }
 
+// Reads the walk every test retargets: 131_02's first 120 frames.
+void ReadWalk(const std::string& bvh, Skeleton* skeleton, Motion* motion) {
+  ASSERT_TRUE(ReadMotionFile(bvh, MotionFileOptions(), skeleton, motion).ok());
+  motion->frames.resize(std::min<size_t>(motion->frames.size(), 120));
+}
+
 // Reads a character and its upper arms (the joints whose child is the forearm, by the file's
 // names).
 void ReadCharacter(const std::string& glb, GltfCharacter* character, std::vector<int>* arms) {
@@ -249,10 +255,9 @@ TEST_P(RestPoseFixturesTest, CmuWalkOntoAPoseAndTurnedVariantsKeepsLimbDirection
   MOCAPSOLVE_DATA_FILE(glb, std::string("gltf/") + GetParam() + ".glb");
   Skeleton source;
   Motion motion;
-  ASSERT_TRUE(ReadMotionFile(bvh, MotionFileOptions(), &source, &motion).ok());
-  motion.frames.resize(std::min<size_t>(motion.frames.size(), 120));
   GltfCharacter character;
   std::vector<int> arms;
+  ReadWalk(bvh, &source, &motion);
   ReadCharacter(glb, &character, &arms);
   if (::testing::Test::HasFatalFailure()) return;
   std::vector<Variant> variants;
@@ -278,12 +283,12 @@ TEST(RestPoseFixturesSourceTest, APoseTurnedRenamedSourceOntoAnotherCharacter) {
   MOCAPSOLVE_DATA_FILE(cesium_glb, "gltf/CesiumMan.glb");
   Skeleton cmu;
   Motion motion;
-  ASSERT_TRUE(ReadMotionFile(bvh, MotionFileOptions(), &cmu, &motion).ok());
-  motion.frames.resize(std::min<size_t>(motion.frames.size(), 120));
+  ReadWalk(bvh, &cmu, &motion);
   GltfCharacter characters[2];
   std::vector<int> arms[2];
   ReadCharacter(xbot_glb, &characters[0], &arms[0]);
   ReadCharacter(cesium_glb, &characters[1], &arms[1]);
+  if (::testing::Test::HasFatalFailure()) return;
   const char* names[2] = {"Xbot", "CesiumMan"};
   for (int from = 0; from < 2; ++from) {
     const int to = 1 - from;
@@ -314,10 +319,9 @@ TEST_P(FloorIkFixturesTest, CmuWalkOntoIkFeetUnderAFloorRootKeepsLimbDirections)
   MOCAPSOLVE_DATA_FILE(glb, std::string("gltf/") + GetParam() + ".glb");
   Skeleton source;
   Motion motion;
-  ASSERT_TRUE(ReadMotionFile(bvh, MotionFileOptions(), &source, &motion).ok());
-  motion.frames.resize(std::min<size_t>(motion.frames.size(), 120));
   GltfCharacter character;
   std::vector<int> arms;
+  ReadWalk(bvh, &source, &motion);
   ReadCharacter(glb, &character, &arms);
   if (::testing::Test::HasFatalFailure()) return;
   std::vector<int> feet;
