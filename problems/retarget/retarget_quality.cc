@@ -160,11 +160,16 @@ void MeasureCoverage(const Skeleton& target, const SkinnedMesh& mesh, const Join
   for (const auto& [from, to] : HumanoidLimbs()) {
     const int r = roles.Find(from) >= 0 ? part[roles.Find(from)] : -1;
     if (r < 0) continue;
+    // The limb's direction runs from its joint to the next role's: vertices on its own part
+    // or on the part at its end pin it (RobotExpressive's forearms carry no mesh; their
+    // hands' vertices place them).
+    const int end = roles.Find(to) >= 0 ? part[roles.Find(to)] : -1;
+    const int tracked = counts[r] + (end >= 0 && end != r ? counts[end] : 0);
     for (LimbDirectionError& limb : quality->limbs) {
-      if (limb.limb == from) limb.tracked_vertices = counts[r];
+      if (limb.limb == from) limb.tracked_vertices = tracked;
     }
-    if (first || counts[r] < quality->min_limb_vertices) {
-      quality->min_limb_vertices = counts[r];
+    if (first || tracked < quality->min_limb_vertices) {
+      quality->min_limb_vertices = tracked;
       quality->least_covered_limb = from;
       first = false;
     }

@@ -31,8 +31,11 @@
 //
 // Coverage: every tracked vertex (retarget_setup.h) counted on the body part of its target
 // vertex's heaviest joint; a joint's part is the role of its nearest ancestor (itself
-// included) that plays one (pelvis, spine_1, ..., left_thigh, ...). A limb tracked by few
-// vertices is not tracked: its rotation is the prior's, whatever the residual says.
+// included) that plays one (pelvis, spine_1, ..., left_thigh, ...). A limb's direction runs
+// from its joint to the next role's (HumanoidLimbs), so its tracked vertices are those of its
+// own part and of the part at its end (a forearm without mesh is placed by its hand's). A
+// limb tracked by few vertices is not tracked: its rotation is the prior's, whatever the
+// residual says.
 //
 // Lengths in cm when the target's unit is known, else target units. Non-humanoids (no
 // roles on either side): limb figures NaN, limb_count 0.
@@ -54,7 +57,7 @@ namespace mocapsolve {
 struct LimbDirectionError {
   std::string limb;  // "left_upper_arm", ...
   double mean_deg = 0.0, p95_deg = 0.0;
-  int tracked_vertices = 0;  // Coverage of the limb's body part.
+  int tracked_vertices = 0;  // On the limb's body part and the part at its end.
 };
 
 struct RetargetQuality {

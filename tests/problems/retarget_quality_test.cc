@@ -119,6 +119,15 @@ TEST_F(RetargetQualityTest, CoverageCountsTrackedVerticesPerBodyPartAndTheGateFa
   }
   const RetargetQuality bad = Measure(motion_, &hands_only);
   EXPECT_EQ(bad.min_limb_vertices, 0);
+  // A forearm's direction ends at its hand: the hand's vertices place it, so a forearm
+  // without mesh of its own (RobotExpressive's) is covered; bare upper arms are not.
+  const int left_forearm = skeleton_.FindJoint("LeftForeArm"), right_forearm = skeleton_.FindJoint("RightForeArm");
+  RetargetSetup bare_forearms;
+  for (const TrackedVertex& t : everywhere.tracked) {
+    const int j = DominantJoint(mesh_, t.target_vertex);
+    if (j != left_forearm && j != right_forearm) bare_forearms.tracked.push_back(t);
+  }
+  EXPECT_GT(Measure(motion_, &bare_forearms).min_limb_vertices, 3);
   const RetargetQuality good = Measure(motion_, &everywhere);
   EXPECT_GT(good.min_limb_vertices, 3);
   int total = 0;
