@@ -2,9 +2,12 @@
 # Builds the project with AddressSanitizer + UndefinedBehaviorSanitizer
 # (-DMOCAPSOLVE_SANITIZE=ON) in build-asan/ and runs the suite there; prints the build and
 # test wall times. .ci/run runs it after the Release suite.
-#   scripts/sanitize.sh [--only=FOLDERS] [extra ctest arguments, e.g. -R Bvh]
+#   scripts/sanitize.sh [--only=FOLDERS] [--layers=LAYERS] [extra ctest arguments, e.g. -R Bvh]
 # --only=io,apps builds the CLI and only the tests of those tests/ folders (CMake targets
 # tests_io, tests_apps) and runs the tests labelled with them.
+# --layers=io,tasks,... instruments only those library layers (MOCAPSOLVE_SANITIZE_LAYERS; the
+# CLI is always instrumented); the others compile with the Release flags, so ccache serves
+# them from build/. Without it (or with --layers=all) every layer is instrumented.
 # The build is made cheap, since it only has to find faults: the code under test (library,
 # CLI) is instrumented at -O1 with line tables only (-g1: sanitizer reports keep file:line,
 # without full debug info, which dominated compile and link time); the test files are not
@@ -19,16 +22,23 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 only=""
-if [ $# -gt 0 ] && [[ "$1" == --only=* ]]; then
-  only=${1#--only=}
+layers=all
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --only=*) only=${1#--only=} ;;
+    --layers=*) layers=${1#--layers=} ;;
+    *) break ;;
+  esac
   shift
-fi
+done
+[ "$layers" = all ] && layers=""
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 if [ ! -f build-asan/CMakeCache.txt ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXE_LINKER_FLAGS=-no-pie \
     -DMOCAPSOLVE_SANITIZE=ON -DMOCAPSOLVE_BUILD_BENCHMARKS=OFF -DMOCAPSOLVE_PYTHON=OFF "${launcher[@]}" >/dev/null
 fi
+cmake -S . -B build-asan "-DMOCAPSOLVE_SANITIZE_LAYERS=${layers//,/;}" >/dev/null
 targets=()
 labels=()
 if [ -n "$only" ]; then
@@ -39,7 +49,7 @@ if [ -n "$only" ]; then
   done
 fi
 start=$(date +%s)
-echo "sanitize.sh: building build-asan/ ${only:+(tests of $only only) }(log in build-asan/build.log; load $(cut -d' ' -f1-3 /proc/loadavg))"
+echo "sanitize.sh: building build-asan/ ${only:+(tests of $only only) }${layers:+(instrumented layers: $layers) }(log in build-asan/build.log; load $(cut -d' ' -f1-3 /proc/loadavg))"
 if ! nice cmake --build build-asan -j2 "${targets[@]}" >build-asan/build.log 2>&1; then
   grep -E 'error' build-asan/build.log | head -20 >&2
   exit 1
