@@ -86,6 +86,21 @@ bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std
                    double gate, bool rematch, bool free_points, double keep_ratio, MarkerFrameSolver* solver,
                    Pose* pose, GatedAssignment* matches);
 
+// Each limb (the subtree of every joint but the root that carries two or more markers: a
+// leg, a shin and foot, an arm, a hand, the head) started again: its joints set to
+// `start`'s rotations, its markers' matches dropped, then matched among the points the
+// other markers leave free in rounds of match-and-solve (the gate shrinking from 4 gates
+// to one), the rest of the body held by its own matches. A limb's new matches are kept
+// when they lower SolvedCost below keep_ratio times its value. Match-and-solve from a
+// whole-body placement can settle with a limb's markers each on its neighbour's point (a
+// chain shifted along an arm: a cycle longer than PolishMatches' moves) or with a hand
+// turned half a turn (its inner and outer markers exchanged), a basin a solve warm-started
+// there does not leave. The kept
+// matches are as made (distances and confidences untouched). Returns whether one was kept.
+bool RestartLimbs(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
+                  const Pose& start, double gate, double keep_ratio, MarkerFrameSolver* solver, Pose* pose,
+                  GatedAssignment* matches);
+
 // The cost PolishMatches compares: sum over markers of min(|x_m - M_m(pose)|^2, gate^2)
 // (an empty marker: gate^2) once the pose is solved from the matched points
 // (point_of_marker[m]: an index into `points`, -1 = none), warm-started at *pose (updated).
