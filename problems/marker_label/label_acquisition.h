@@ -18,7 +18,8 @@
 // the gate shrinks geometrically from 16 x `gate` to `gate` over the iterations), solve the pose from the
 // matched points (MarkerFrameSolver, warm-started). A placement scores
 //   sum over markers of min(e_m^2, 1)   (e_m = |u - p_m| / gate of its match; 1 when empty),
-// and the lowest wins. The body is found when at least `accept_fraction` of the markers
+// and the lowest wins; it is then polished (RestartLimbs, then PolishMatches, below).
+// The body is found when at least `accept_fraction` of the markers
 // are matched within `gate`, at an RMS distance of at most `max_rms` (measured on the
 // five real takes with their own subjects: 94-100 % matched at 3.7-10.3 mm; with another
 // person's or marker set's subject: 61-83 % at 18.4-22.7 mm). Lengths in skeleton units.
