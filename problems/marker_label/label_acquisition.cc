@@ -16,6 +16,8 @@ namespace mocapsolve {
 namespace {
 
 constexpr double kFirstGate = 16.0;  // The first matching round's gate, in gates.
+constexpr int kLimbRounds = 6;          // RestartLimbs' match-and-solve rounds per limb,
+constexpr double kLimbFirstGate = 4.0;  // the first at this many gates.
 
 struct Placement {
   Eigen::Isometry3d world_from_joint = Eigen::Isometry3d::Identity();
@@ -142,12 +144,85 @@ double RefinePlacement(const Skeleton& skeleton, const MarkerSet& markers, const
 }
 
 
+// The limbs: the subtree of every joint but the root that carries two or more markers
+// (a leg, a shin and foot, an arm, a hand, the head), as a mask over joints (parents
+// come before their children in a Skeleton).
+std::vector<std::vector<char>> Limbs(const Skeleton& skeleton, const MarkerSet& markers) {
+  const int n = skeleton.num_joints();
+  std::vector<int> carried(n, 0);  // Markers attached in the subtree of each joint.
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    for (const auto& attachment : markers.marker(m).attachments) ++carried[attachment.joint];
+  }
+  for (int j = n - 1; j > 0; --j) carried[skeleton.parent(j)] += carried[j];
+  std::vector<std::vector<char>> limbs;
+  for (int r = 1; r < n; ++r) {
+    if (carried[r] < 2) continue;
+    std::vector<char> in(n, 0);
+    in[r] = 1;
+    for (int j = r + 1; j < n; ++j) in[j] = skeleton.parent(j) >= 0 && in[skeleton.parent(j)];
+    limbs.push_back(std::move(in));
+  }
+  return limbs;
+}
+
 // Local search over the matches: exchanges of the points of two, or cycles of three,
 // matched markers whose points lie within 3 gates of each other, each kept when the
 // solved cost drops by more than 10 % (the refinement's fixed point can hold the markers
 // of a foot or a wrist in a rotated order the rounds cannot leave), then the matches made
 // again from the polished pose.
 }  // namespace
+
+bool RestartLimbs(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
+                  const Pose& start, double gate, double keep_ratio, MarkerFrameSolver* solver, Pose* pose,
+                  GatedAssignment* matches) {
+  const int num_markers = markers.num_markers();
+  const Eigen::Vector3d nan = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  bool changed = false;
+  double best = SolvedCost(skeleton, markers, points, matches->point_of_marker, gate, solver, pose);
+  for (const std::vector<char>& limb : Limbs(skeleton, markers)) {
+    std::vector<char> on_limb(num_markers, 0);
+    for (int m = 0; m < num_markers; ++m) {
+      for (const auto& attachment : markers.marker(m).attachments) on_limb[m] |= limb[attachment.joint];
+    }
+    Pose trial_pose = *pose;
+    for (int j = 0; j < skeleton.num_joints(); ++j) {
+      if (limb[j]) trial_pose.rotations[j] = start.rotations[j];
+    }
+    std::vector<int> trial = matches->point_of_marker;
+    std::vector<char> used(points.size(), 0);
+    for (int m = 0; m < num_markers; ++m) {
+      if (on_limb[m]) trial[m] = -1;
+      else if (trial[m] >= 0) used[trial[m]] = 1;
+    }
+    std::vector<Eigen::Vector3d> free_points;
+    std::vector<int> free_index;
+    for (size_t k = 0; k < points.size(); ++k) {
+      if (!used[k]) free_points.push_back(points[k]), free_index.push_back(static_cast<int>(k));
+    }
+    for (int round = 0; round < kLimbRounds; ++round) {
+      const double factor = std::pow(kLimbFirstGate, (kLimbRounds - 1.0 - round) / (kLimbRounds - 1.0));
+      std::vector<Eigen::Vector3d> predicted = ModelMarkerPositions(skeleton, markers, trial_pose);
+      for (int m = 0; m < num_markers; ++m) {
+        if (!on_limb[m]) predicted[m] = nan;
+      }
+      GatedAssignment found;
+      AssignGated(predicted, std::vector<double>(num_markers, gate * factor), free_points, &found);
+      std::vector<Eigen::Vector3d> observed(num_markers, nan);
+      for (int m = 0; m < num_markers; ++m) {
+        if (on_limb[m]) trial[m] = found.point_of_marker[m] >= 0 ? free_index[found.point_of_marker[m]] : -1;
+        if (trial[m] >= 0) observed[m] = points[trial[m]];
+      }
+      FrameSolveReport report;
+      Pose solved = trial_pose;
+      if (solver->Solve(observed, &solved, &report).ok() && report.usable) trial_pose = solved;
+    }
+    const double cost = SolvedCost(skeleton, markers, points, trial, gate, solver, &trial_pose);
+    if (cost < keep_ratio * best) {
+      best = cost, *pose = trial_pose, matches->point_of_marker = trial, changed = true;
+    }
+  }
+  return changed;
+}
 
 double SolvedCost(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
                   const std::vector<int>& point_of_marker, double gate, MarkerFrameSolver* solver, Pose* pose) {
@@ -291,6 +366,7 @@ Acquisition AcquireBody(const Skeleton& skeleton, const MarkerSet& markers, cons
   best.placements = static_cast<int>(placements.size());
   for (int round = 0; round < 2 && !best.matches.point_of_marker.empty(); ++round) {
     const std::vector<int> before = best.matches.point_of_marker;
+    RestartLimbs(skeleton, markers, points, start, options.gate, 0.99, solver, &best.pose, &best.matches);
     PolishMatches(skeleton, markers, points, options.gate, true, true, 0.99, solver, &best.pose, &best.matches);
     if (best.matches.point_of_marker == before) break;
     AcquisitionOptions final_gate = options;

@@ -18,7 +18,8 @@
 // the gate shrinks geometrically from 16 x `gate` to `gate` over the iterations), solve the pose from the
 // matched points (MarkerFrameSolver, warm-started). A placement scores
 //   sum over markers of min(e_m^2, 1)   (e_m = |u - p_m| / gate of its match; 1 when empty),
-// and the lowest wins. The body is found when at least `accept_fraction` of the markers
+// and the lowest wins; it is then polished (RestartLimbs, then PolishMatches, below).
+// The body is found when at least `accept_fraction` of the markers
 // are matched within `gate`, at an RMS distance of at most `max_rms` (measured on the
 // five real takes with their own subjects: 94-100 % matched at 3.7-10.3 mm; with another
 // person's or marker set's subject: 61-83 % at 18.4-22.7 mm). Lengths in skeleton units.
@@ -85,6 +86,21 @@ Acquisition AcquireBody(const Skeleton& skeleton, const MarkerSet& markers, cons
 bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
                    double gate, bool rematch, bool free_points, double keep_ratio, MarkerFrameSolver* solver,
                    Pose* pose, GatedAssignment* matches);
+
+// Each limb (the subtree of every joint but the root that carries two or more markers: a
+// leg, a shin and foot, an arm, a hand, the head) started again: its joints set to
+// `start`'s rotations, its markers' matches dropped, then matched among the points the
+// other markers leave free in rounds of match-and-solve (the gate shrinking from 4 gates
+// to one), the rest of the body held by its own matches. A limb's new matches are kept
+// when they lower SolvedCost below keep_ratio times its value. Match-and-solve from a
+// whole-body placement can settle with a limb's markers each on its neighbour's point (a
+// chain shifted along an arm: a cycle longer than PolishMatches' moves) or with a hand
+// turned half a turn (its inner and outer markers exchanged), a basin a solve warm-started
+// there does not leave. The kept
+// matches are as made (distances and confidences untouched). Returns whether one was kept.
+bool RestartLimbs(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
+                  const Pose& start, double gate, double keep_ratio, MarkerFrameSolver* solver, Pose* pose,
+                  GatedAssignment* matches);
 
 // The cost PolishMatches compares: sum over markers of min(|x_m - M_m(pose)|^2, gate^2)
 // (an empty marker: gate^2) once the pose is solved from the matched points

@@ -16,6 +16,10 @@ constexpr int kNever = std::numeric_limits<int>::max() / 2;  // `since` of a mar
 // markers the fit cannot tell apart (one marker on each of two short joints) differ by
 // about 1 % either way; a wrong acquisition corrected differs by 20 % (CMU 02_05, S02).
 constexpr double kTrackExchangeRatio = 0.95;
+// A marker matched in the second pass (SecondPass) needs this confidence: its prediction
+// leans on the pose solved from the others, a weaker witness than its own track (0.5 cost
+// real nick_freeform_001 and synthetic JA1Gait35 wrong runs of 57-163 frames; 0.7 none).
+constexpr double kSecondPassConfidence = 0.7;
 
 // What tracking carries from frame to frame.
 struct TrackState {
@@ -100,6 +104,7 @@ class Tracker {
         AssignGated(predicted, gate, points_[f], &matches);
       }
     }
+    SecondPass(f, &matches);
     if (options_.polish_every > 0 && ++since_polish_ >= options_.polish_every) Polish(f, &matches);
     if (options_.refill_every > 0 && ++since_refill_ >= options_.refill_every) {
       since_refill_ = 0;
@@ -127,6 +132,43 @@ class Tracker {
             state_.model[m] + step + (state_.since[m] < kNever ? state_.offset[m] : Eigen::Vector3d::Zero());
         (*gate)[m] = options_.reacquire_gate;
       }
+    }
+  }
+  // Markers left without a confident point (a dropout broke their velocity, so they were
+  // predicted within the wide reacquire_gate, where a neighbour 3 cm away makes any match
+  // doubtful) are matched again among the free points, from the pose solved from the
+  // frame's confident matches: predicted there with their last offsets, within `gate`,
+  // kept at a confidence of at least kSecondPassConfidence.
+  void SecondPass(int f, GatedAssignment* matches) {
+    const int num_markers = markers_.num_markers();
+    const std::vector<Eigen::Vector3d>& points = points_[f];
+    std::vector<Eigen::Vector3d> observed(num_markers, kNan);
+    std::vector<char> used(points.size(), 0);
+    int confident = 0;
+    for (int m = 0; m < num_markers; ++m) {
+      const int k = matches->point_of_marker[m];
+      if (k >= 0 && matches->confidence[m] >= options_.min_confidence) observed[m] = points[k], used[k] = 1, ++confident;
+    }
+    if (confident == num_markers || confident < 3 || confident == static_cast<int>(points.size())) return;
+    Pose pose = state_.pose;
+    FrameSolveReport report;
+    if (!solver_.Solve(observed, &pose, &report).ok() || !report.usable) return;
+    std::vector<Eigen::Vector3d> predicted = ModelMarkerPositions(skeleton_, markers_, pose), free_points;
+    std::vector<int> free_index;
+    for (size_t k = 0; k < points.size(); ++k) {
+      if (!used[k]) free_points.push_back(points[k]), free_index.push_back(static_cast<int>(k));
+    }
+    for (int m = 0; m < num_markers; ++m) {
+      if (observed[m].allFinite()) predicted[m] = kNan;
+      else if (state_.since[m] < kNever) predicted[m] += state_.offset[m];
+    }
+    GatedAssignment found;
+    AssignGated(predicted, std::vector<double>(num_markers, options_.gate), free_points, &found);
+    for (int m = 0; m < num_markers; ++m) {
+      const int k = found.point_of_marker[m];
+      if (k < 0 || found.confidence[m] < kSecondPassConfidence) continue;
+      matches->point_of_marker[m] = free_index[k];
+      matches->confidence[m] = found.confidence[m];
     }
   }
   // Markers without a point take free points near their model positions: matched within

@@ -15,7 +15,10 @@
 //      p_m = M_m(pose(f-1)) + s_m + (x_m(f') - M_m(pose(f')))         within `reacquire_gate`.
 //    Points and predictions are matched one to one (gated_assignment.h: gated, a cost for
 //    an empty label); a match whose confidence is below `min_confidence` leaves the point
-//    unlabelled rather than guess. The pose of the frame is solved from its labelled
+//    unlabelled rather than guess. Markers left without a confident point are matched
+//    again among the free points from the pose solved from the confident matches (each
+//    predicted with its last offset, within `gate`, kept at confidence >= 0.7). The pose
+//    of the frame is solved from its labelled
 //    points (MarkerFrameSolver, warm-started), for the next frame's model predictions.
 //    Every `polish_every` frames the frame's matches are checked by PolishMatches
 //    (label_acquisition.h: exchanges, 3-cycles and free points that lower the solved cost

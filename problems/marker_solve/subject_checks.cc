@@ -215,11 +215,13 @@ SubjectChecks CheckSubjectFit(const Skeleton& skeleton, const MarkerSet& markers
     }
   }
   // 3. Symmetry.
+  double longest = 0.0;
+  for (int j = 0; j < skeleton.num_joints(); ++j) longest = std::max(longest, skeleton.offset(j).norm());
   for (int j = 1; j < skeleton.num_joints(); ++j) {
     const int twin = MirrorJoint(skeleton, j);
     if (twin < j) continue;
     const double a = skeleton.offset(j).norm(), b = skeleton.offset(twin).norm();
-    if (std::max(a, b) * cm < options.min_symmetry_bone_cm) continue;
+    if (std::max(a, b) < options.min_symmetry_bone_share * longest) continue;
     const double asymmetry = std::abs(a - b) / std::max(a, b);
     if (asymmetry > checks.max_asymmetry) {
       checks.max_asymmetry = asymmetry;

@@ -19,8 +19,11 @@
 //     are skipped. The mean angle is checked; the max is reported.
 //  3. Symmetry. Each left/right pair of joints (names that differ only in a leading l/r
 //     or Left/Right, SideFreeName) has bone lengths |t_j| within `max_asymmetry`
-//     (relative to the longer); pairs shorter than min_symmetry_bone_cm (fingers: a template's
-//     own few-millimetre differences are large relative to them) are not compared.
+//     (relative to the longer); pairs whose longer bone is under min_symmetry_bone_share of
+//     the skeleton's longest bone are not compared (scale-free: fingers, whose template
+//     differences of a few millimetres are large relative to them: CMU's 02.asf gives its
+//     hands 0.661 and 0.730 units, so its fingers' offsets differ by 9.5 %, at 9-10 % of the
+//     tibia; every other CMU pair is >= 20 % of it).
 //  4. Residual. The marker RMS of the motion on the model, over every observed sample,
 //     within max_rms_mm: plausible geometry that does not explain the markers also fails.
 // Lengths are in skeleton units in the structs; *_cm fields convert with the skeleton's
@@ -56,7 +59,7 @@ struct SubjectCheckOptions {
   double max_marker_bone_distance_cm = 15.0;
   double max_torso_error_deg = 15.0;
   double max_asymmetry = 0.05;
-  double min_symmetry_bone_cm = 5.0;  // Shorter pairs (fingers, thumbs) are not compared.
+  double min_symmetry_bone_share = 0.15;  // Of the longest bone: shorter pairs (fingers) are not compared.
   double max_rms_mm = 25.0;           // 4. The model must also explain the markers.
   // 2. The head's and the pelvis' markers by label; empty: the labels above.
   std::vector<std::string> head_labels, pelvis_labels;

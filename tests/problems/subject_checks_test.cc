@@ -181,6 +181,17 @@ TEST(SubjectChecks, PassOnTheTruthFailOnWrongFits) {
   ASSERT_EQ(checks.failures.size(), 1u);
   EXPECT_NE(checks.failures[0].find("LeftLeg/RightLeg"), std::string::npos) << checks.failures[0];
 
+  // A short pair 9.5 % apart (as the fingers of CMU's subject 2 are), scaled past 5 cm:
+  // 13 % of the longest bone, not compared whatever the body's size (a fit that scaled
+  // the hands failed here when the threshold was 5 cm).
+  scale.assign(skeleton.num_joints(), 1.0);
+  scale[skeleton.FindJoint("LeftArm")] = 0.4;     // 5.6 cm.
+  scale[skeleton.FindJoint("RightArm")] = 0.362;  // 5.07 cm.
+  const Skeleton short_pair = Scaled(skeleton, scale);
+  checks = CheckSubjectFit(short_pair, markers, observed, motion, options);
+  EXPECT_LT(checks.max_asymmetry, 0.05) << checks.least_symmetric_pair;
+  for (const std::string& failure : checks.failures) EXPECT_EQ(failure.find("left/right"), std::string::npos) << failure;
+
   // Plausible geometry that does not explain the markers: every observation 3 cm off.
   options.max_rms_mm = max_rms_mm;
   Observations shifted = observed;
