@@ -56,7 +56,12 @@ int FindTemplateShift(const Skeleton& skeleton, const Motion& motion, const std:
   const int lo = std::max(0, a - options.margin), hi = std::min(frames - 1, b + options.margin);
   double best = options.max_rms_angle * options.max_rms_angle;
   int best_tau = 0;
-  for (int tau = -a; tau + b < frames; ++tau) {
+  int min_tau = -a, max_tau = frames - 1 - b;
+  if (options.max_shift_frames > 0) {
+    min_tau = std::max(min_tau, -options.max_shift_frames);
+    max_tau = std::min(max_tau, options.max_shift_frames);
+  }
+  for (int tau = min_tau; tau <= max_tau; ++tau) {
     if (tau == 0) continue;
     const double cost = MatchCost(skeleton, motion, carried, run, lo, hi, tau);
     if (cost < best) {
