@@ -901,10 +901,12 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   clock.Lap("Residual Model");
   // 3c. Swaps: relabel; 3d. unlabelled points labelled; then redo the naive solve where
   // the samples changed.
-  MarkerTrajectories captured = x;
   Observations relabelled;
   status = RelabelSamples(ctx, unlabelled, &clock, &naive, &reference, &model, &x, &relabelled, report);
   if (!status.ok()) return status;
+  // The samples as captured, x before relabelling: made again from the observations
+  // rather than copied before it, so that the relabelling does not hold a third copy.
+  MarkerTrajectories captured = ObservationTrajectories(markers, observed);
   const bool changed = !report->swaps.empty() || !report->unlabelled.empty();
   const Observations& input = changed ? relabelled : observed;
   // 4. Gap detection.
