@@ -162,10 +162,36 @@ Status EmbedBuffersAndImages(const std::string& file, tinygltf::Model* model) {
 }
 
 // The model's bytes: .glb if `binary`, else .gltf JSON (buffers as data: URIs).
+// A stream buffer that appends to a string: the file is written once, into *bytes, not
+// into an ostringstream's own buffer (grown by doubling) and then copied out of it (for
+// a long take's GLB, three to four times its keys at once).
+class StringAppendBuffer : public std::streambuf {
+ public:
+  explicit StringAppendBuffer(std::string* out) : out_(out) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (!traits_type::eq_int_type(c, traits_type::eof())) out_->push_back(traits_type::to_char_type(c));
+    return traits_type::not_eof(c);
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    out_->append(s, static_cast<size_t>(n));
+    return n;
+  }
+
+ private:
+  std::string* out_;
+};
+
 Status WriteModel(const std::string& file, tinygltf::Model* model, bool binary, std::string* bytes) {
   tinygltf::TinyGLTF writer;
   writer.SetImageWriter(&KeepImageAsIs, nullptr);
-  std::ostringstream stream;
+  size_t expected = size_t{1} << 20;  // The JSON chunk, headers and padding.
+  for (const tinygltf::Buffer& buffer : model->buffers) expected += buffer.data.size();
+  bytes->clear();
+  bytes->reserve(expected);
+  StringAppendBuffer appender(bytes);
+  std::ostream stream(&appender);
   bool ok = false;
   try {
     ok = writer.WriteGltfSceneToStream(model, stream, /*prettyPrint=*/!binary, binary);
@@ -173,7 +199,6 @@ Status WriteModel(const std::string& file, tinygltf::Model* model, bool binary, 
     return Status::Error(file + ": glTF writer: " + e.what());
   }
   if (!ok) return Status::Error(file + ": glTF writer failed");
-  *bytes = stream.str();
   return Status::Ok();
 }
 
@@ -403,6 +428,11 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
     if (!status.ok()) return status;
   }
   if (model.buffers.empty()) model.buffers.emplace_back();
+  // At most the animation's bytes (the times; per joint a rotation and a translation
+  // channel, each 4-byte aligned), reserved once: the buffer does not grow by doubling
+  // (up to three times a long take's keys at a reallocation).
+  model.buffers[0].data.reserve(model.buffers[0].data.size() + 4 * (static_cast<size_t>(nf) + 2) +
+                                static_cast<size_t>(nj) * (28 * static_cast<size_t>(nf) + 8));
 
   std::vector<float> times(nf);
   const double key_rate = NominalFrameRate(motion.frame_rate);  // As the reader samples them.

@@ -188,6 +188,9 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   if (progress) progress("repair", frames, frames);
   result->repaired_file = WithRepairedSamples(take, repaired, &result->repaired_samples, result->repair.unlabelled);
   result->repaired = std::move(repaired);
+  // The file's samples live on in repaired_file: the take keeps the file's metadata only
+  // (frame rate, unit, labels), not a second copy of a long take (1.2 KB per frame).
+  result->take.trajectories = TrajectoryFrames(take.trajectories, 0, 0);
   result->samples = frames * take.markers.num_markers();
   lap("repair and solve", stage_start);
 

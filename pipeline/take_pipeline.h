@@ -101,7 +101,9 @@ struct CharacterOutput {
 };
 
 struct TakeResult {
-  MarkerTake take;                    // The markers as read (labelled, when they were), with their mapping.
+  // The markers as read (labelled, when they were), with their mapping; take.trajectories
+  // keeps the file's metadata but no frames once repaired_file holds them.
+  MarkerTake take;
   // When the points were labelled first: LabellingReport (pipeline/take_labelling.h) with
   // "reason" (why: "always", or the subject's labels the file lacks); else empty.
   JsonObject labelling;

@@ -16,8 +16,11 @@ double SquaredAngle(const Eigen::Quaterniond& p, const Eigen::Quaterniond& q) {
 }
 
 // Mean squared angle of the window at shift tau, or +inf if the shift does not qualify.
+// Also +inf as soon as the sum so far shows the mean cannot be below `best` (the sum only
+// grows, and at most max_counted pairs count): such a shift would not be chosen anyway,
+// and most shifts are far off, so most windows stop after a few frames.
 double MatchCost(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
-                 const CarriedJointRun& run, int lo, int hi, int tau) {
+                 const CarriedJointRun& run, int lo, int hi, int tau, double best, double max_counted) {
   const int frames = motion.num_frames(), j = run.joint;
   const int a = run.first - 1, b = run.last + 1;
   if (a + tau < 0 || b + tau >= frames) return std::numeric_limits<double>::infinity();
@@ -41,6 +44,7 @@ double MatchCost(const Skeleton& skeleton, const Motion& motion, const std::vect
       sum += SquaredAngle(motion.frames[f].rotations[k], motion.frames[g].rotations[k]);
       ++counted;
     }
+    if (sum > best * max_counted * (1.0 + 1e-9)) return std::numeric_limits<double>::infinity();
   }
   if (counted == 0 || 2 * counted < possible) return std::numeric_limits<double>::infinity();
   return sum / counted;
@@ -56,9 +60,17 @@ int FindTemplateShift(const Skeleton& skeleton, const Motion& motion, const std:
   const int lo = std::max(0, a - options.margin), hi = std::min(frames - 1, b + options.margin);
   double best = options.max_rms_angle * options.max_rms_angle;
   int best_tau = 0;
-  for (int tau = -a; tau + b < frames; ++tau) {
+  int min_tau = -a, max_tau = frames - 1 - b;
+  if (options.max_shift_frames > 0) {
+    min_tau = std::max(min_tau, -options.max_shift_frames);
+    max_tau = std::min(max_tau, options.max_shift_frames);
+  }
+  int rotating = 0;  // Joints but the root with rotation dofs: at most this many pairs per frame count.
+  for (int k = 1; k < skeleton.num_joints(); ++k) rotating += skeleton.num_rotation_dofs(k) > 0 ? 1 : 0;
+  const double max_counted = static_cast<double>(rotating) * (hi - lo + 1);
+  for (int tau = min_tau; tau <= max_tau; ++tau) {
     if (tau == 0) continue;
-    const double cost = MatchCost(skeleton, motion, carried, run, lo, hi, tau);
+    const double cost = MatchCost(skeleton, motion, carried, run, lo, hi, tau, best, max_counted);
     if (cost < best) {
       best = cost;
       best_tau = tau;

@@ -131,24 +131,32 @@ bool SameSample(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 // (joint positions within `tolerance`).
 // Frames [begin, end) of step 7; motion->frames[begin - 1] (or naive's first frame) is
 // the previous pose. Returns the number of frames solved.
+// The samples of frame f of the problem solved again (NaN = missing), into *samples
+// (sized #M); called from both halves' threads at once, so it only reads. Read frame by
+// frame, so that a whole-take copy of trajectories as observations (1 KB per frame) is
+// not needed.
+using FrameSamples = std::function<void(size_t f, std::vector<Eigen::Vector3d>* samples)>;
+
 int ResolveChangedRange(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                        const Observations& repaired, const Motion& naive, const MarkerSolveOptions& options,
+                        const FrameSamples& repaired, const Motion& naive, const MarkerSolveOptions& options,
                         double tolerance, size_t begin, size_t end, Motion* motion) {
   int resolved = 0;
   MarkerFrameSolver solver(skeleton, markers, options);
   FkData fk(skeleton), fk_naive(skeleton);
+  std::vector<Eigen::Vector3d> samples(markers.num_markers());
   bool in_sync = true;
   for (size_t f = begin; f < end; ++f) {
+    repaired(f, &samples);
     bool changed = false;
     for (int m = 0; m < markers.num_markers() && !changed; ++m) {
-      changed = !SameSample(repaired[f][m], observed[f][m]);
+      changed = !SameSample(samples[m], observed[f][m]);
     }
     if (!changed && in_sync) continue;
     // The previous pose; at the start of a range, naive's (the other range may be
     // writing the frame before it).
     Pose pose = f > begin ? motion->frames[f - 1] : naive.frames[begin > 0 ? begin - 1 : 0];
     FrameSolveReport frame;
-    if (solver.Solve(repaired[f], &pose, &frame).ok()) motion->frames[f] = pose;
+    if (solver.Solve(samples, &pose, &frame).ok()) motion->frames[f] = pose;
     ++resolved;
     in_sync = false;
     if (!changed) {
@@ -170,11 +178,11 @@ int ResolveChangedRange(const Skeleton& skeleton, const MarkerSet& markers, cons
 // run on two threads. The halves are the same either way, so the result does not depend
 // on the thread count (a batch runs its takes single-threaded side by side).
 Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                            const Observations& repaired, const Motion& naive,
+                            const FrameSamples& repaired, const Motion& naive,
                             const MarkerSolveOptions& options, double tolerance, bool parallel, Motion* motion,
                             int* resolved) {
   *motion = naive;
-  const size_t n = repaired.size(), half = n >= 64 ? n / 2 : n;
+  const size_t n = observed.size(), half = n >= 64 ? n / 2 : n;
   int second = 0;
   auto solve_second = [&] {
     second = ResolveChangedRange(skeleton, markers, observed, repaired, naive, options, tolerance, half, n, motion);
@@ -190,6 +198,33 @@ Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, 
   *resolved += second;
   MakeSignContinuous(motion);
   return Status::Ok();
+}
+
+// The same with the repaired samples as observations, or as trajectories read frame by
+// frame (the samples TrajectoryObservations would give, without its copy).
+Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
+                            const Observations& repaired, const Motion& naive,
+                            const MarkerSolveOptions& options, double tolerance, bool parallel, Motion* motion,
+                            int* resolved) {
+  const FrameSamples samples = [&](size_t f, std::vector<Eigen::Vector3d>* out) { *out = repaired[f]; };
+  return ResolveChangedFrames(skeleton, markers, observed, samples, naive, options, tolerance, parallel, motion,
+                              resolved);
+}
+
+// Frame f of trajectories as observations (NaN = missing), into *out (sized #M).
+void TrajectoryFrame(const MarkerTrajectories& trajectories, int f, std::vector<Eigen::Vector3d>* out) {
+  for (int m = 0; m < trajectories.num_markers(); ++m) (*out)[m] = trajectories.position(f, m);
+}
+
+Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
+                            const MarkerTrajectories& repaired, const Motion& naive,
+                            const MarkerSolveOptions& options, double tolerance, bool parallel, Motion* motion,
+                            int* resolved) {
+  const FrameSamples samples = [&](size_t f, std::vector<Eigen::Vector3d>* out) {
+    TrajectoryFrame(repaired, static_cast<int>(f), out);
+  };
+  return ResolveChangedFrames(skeleton, markers, observed, samples, naive, options, tolerance, parallel, motion,
+                              resolved);
 }
 
 // Frames on each side of a carried run its edge velocities are measured over.
@@ -482,14 +517,15 @@ Status JointDifferenceSamples(const RepairContext& ctx, const Motion& naive, con
 
 // Names each new gap of `flagged` by its first cause: swap (a label left without a
 // sample), outlier, else joint difference; gaps the capture had are already recorded.
+// outlier: 1 for each sample (x.index) of x that the outlier test removed.
 void RecordNewGaps(const MarkerTrajectories& flagged, const MarkerTrajectories& captured,
-                   const MarkerTrajectories& x, const MarkerTrajectories& outliers_removed, RepairReport* report) {
+                   const MarkerTrajectories& x, const std::vector<char>& outlier, RepairReport* report) {
   for (const Gap& gap : FindGaps(flagged)) {
     bool natural = true, outlying = false, swapped = false;
     for (int f = gap.first; f <= gap.last; ++f) {
       natural &= !captured.valid(f, gap.marker);
       swapped |= captured.valid(f, gap.marker) && !x.valid(f, gap.marker);
-      outlying |= x.valid(f, gap.marker) && !outliers_removed.valid(f, gap.marker);
+      outlying |= outlier[x.index(f, gap.marker)] != 0;
     }
     if (!natural) {
       report->detected.push_back(
@@ -499,18 +535,20 @@ void RecordNewGaps(const MarkerTrajectories& flagged, const MarkerTrajectories& 
 }
 
 // Step 4: *flagged is x without its outliers (samples past their marker's gate) and the
-// samples the joint difference condemns; every interval found goes into the report.
-Status DetectGaps(const RepairContext& ctx, const Motion& naive, const Reference& reference,
-                  const MarkerResidualModel& model, const MarkerTrajectories& captured, const MarkerTrajectories& x,
-                  RepairReport* report, MarkerTrajectories* flagged) {
+// samples the joint difference condemns (`bad`, JointDifferenceSamples); every interval
+// found goes into the report. The outliers are kept as a mask, not as a third copy of
+// the take's samples (1.2 KB per frame of a long take).
+void DetectGaps(const MarkerResidualModel& model, const MarkerTrajectories& captured, const MarkerTrajectories& x,
+                const std::vector<std::vector<char>>& bad, RepairReport* report, MarkerTrajectories* flagged) {
   RecordInputIntervals(captured, report);
-  std::vector<std::vector<char>> bad;
-  const Status status = JointDifferenceSamples(ctx, naive, reference, model, x, &bad);
-  if (!status.ok()) return status;
-  MarkerTrajectories outliers_removed = x;
+  *flagged = x;
+  std::vector<char> outlier(static_cast<size_t>(x.num_frames()) * x.num_markers(), 0);
   for (int f = 0; f < x.num_frames(); ++f) {
     for (int m = 0; m < x.num_markers(); ++m) {
-      if (x.valid(f, m) && model.Outlying(f, m, x.position(f, m))) outliers_removed.SetMissing(f, m);
+      if (x.valid(f, m) && model.Outlying(f, m, x.position(f, m))) {
+        outlier[x.index(f, m)] = 1;
+        flagged->SetMissing(f, m);
+      }
     }
   }
   // A sample the swap step gave to its label was chosen there by the kinematic fit of both
@@ -523,14 +561,12 @@ Status DetectGaps(const RepairContext& ctx, const Motion& naive, const Reference
       for (const auto& [from, to] : swap.from_to) swapped[f][to] = x.valid(f, to);
     }
   }
-  *flagged = outliers_removed;
   for (int f = 0; f < x.num_frames(); ++f) {
     for (int m = 0; m < x.num_markers(); ++m) {
       if (bad[f][m] && !swapped[f][m] && flagged->valid(f, m)) flagged->SetMissing(f, m);
     }
   }
-  RecordNewGaps(*flagged, captured, x, outliers_removed, report);
-  return Status::Ok();
+  RecordNewGaps(*flagged, captured, x, outlier, report);
 }
 
 // Step 5, in the thesis' order: smart trimming, small-track removal, small-gap filling.
@@ -557,7 +593,7 @@ void PreprocessGaps(const RepairContext& ctx, const MarkerTrajectories& referenc
 Status RefitReference(const RepairContext& ctx, const Observations& input, const MarkerTrajectories& flagged,
                       const Motion& reference, Motion* refitted) {
   int resolved = 0;
-  return ResolveChangedFrames(ctx.skeleton, ctx.markers, input, TrajectoryObservations(flagged), reference,
+  return ResolveChangedFrames(ctx.skeleton, ctx.markers, input, flagged, reference,
                               ctx.options.tracker, ctx.resync_tolerance, ctx.options.parallel, refitted, &resolved);
 }
 
@@ -615,13 +651,14 @@ bool CarryUnobservedJoints(const RepairContext& ctx, const MarkerTrajectories& f
   CarryJoints(ctx.skeleton, runs, kCarryVelocityFrames, &templates, motion);
   std::vector<char> carried(motion->num_frames(), 0);
   for (const CarriedJointRun& run : runs) std::fill(carried.begin() + run.first, carried.begin() + run.last + 1, 1);
-  const Observations kept = TrajectoryObservations(flagged);
+  std::vector<Eigen::Vector3d> kept(flagged.num_markers());  // Frame by frame, not a copy of the take.
   MarkerFrameSolver solver(ctx.skeleton, ctx.markers, ctx.options.tracker);
   for (int f = 0; f < motion->num_frames(); ++f) {
     if (!carried[f]) continue;
+    TrajectoryFrame(flagged, f, &kept);
     Pose pose = motion->frames[f];
     FrameSolveReport frame;
-    if (solver.Solve(kept[f], &pose, &frame).ok()) motion->frames[f] = pose;
+    if (solver.Solve(kept, &pose, &frame).ok()) motion->frames[f] = pose;
   }
   ResolveGapEdges(ctx, flagged, runs, ctx.options.fill_samples, &solver, motion);
   report->carried = runs;
@@ -719,9 +756,12 @@ Status FillGaps(const RepairContext& ctx, const RoughRuns& rough, bool refit, co
 // without them. A smooth run (a marker flown off, a ghost) and a gap without samples are
 // filled from the refitted X^; a rough run, whose samples scatter about the true path so
 // that the robust solve averaged them, from X^ as solved (issue 16, BENCHMARKS.md).
-Status FillMarkers(const RepairContext& ctx, const Observations& input, const Reference& reference,
-                   const MarkerTrajectories& flagged, const MarkerTrajectories& unflagged,
+// With release_motion, Y^ itself (reference.motion) is freed once the refit has read it
+// (nothing after it does; 1.7 KB per frame of a long take while X^ is refitted).
+Status FillMarkers(const RepairContext& ctx, const Observations& input, Reference* reference_in,
+                   bool release_motion, const MarkerTrajectories& flagged, const MarkerTrajectories& unflagged,
                    MarkerTrajectories* before_small, MarkerTrajectories* x, RepairReport* report) {
+  const Reference& reference = *reference_in;
   const RepairOptions& options = ctx.options;
   MarkerTrajectories refit_paths;
   const bool refit = options.refit_reference && options.reference_kind == ReferenceKind::kTracker;
@@ -729,6 +769,7 @@ Status FillMarkers(const RepairContext& ctx, const Observations& input, const Re
     Motion refitted;
     const Status status = RefitReference(ctx, input, flagged, reference.motion, &refitted);
     if (!status.ok()) return status;
+    if (release_motion) Release(&reference_in->motion);
     CarryUnobservedJoints(ctx, flagged, &refitted, report);
     refit_paths = ReconstructedPaths(ctx.skeleton, ctx.markers, refitted);
   }
@@ -860,22 +901,26 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   clock.Lap("Residual Model");
   // 3c. Swaps: relabel; 3d. unlabelled points labelled; then redo the naive solve where
   // the samples changed.
-  MarkerTrajectories captured = x;
   Observations relabelled;
   status = RelabelSamples(ctx, unlabelled, &clock, &naive, &reference, &model, &x, &relabelled, report);
   if (!status.ok()) return status;
+  // The samples as captured, x before relabelling: made again from the observations
+  // rather than copied before it, so that the relabelling does not hold a third copy.
+  MarkerTrajectories captured = ObservationTrajectories(markers, observed);
   const bool changed = !report->swaps.empty() || !report->unlabelled.empty();
   const Observations& input = changed ? relabelled : observed;
   // 4. Gap detection.
-  MarkerTrajectories flagged;
-  status = DetectGaps(ctx, naive, reference, model, captured, x, report, &flagged);
+  std::vector<std::vector<char>> bad;
+  status = JointDifferenceSamples(ctx, naive, reference, model, x, &bad);
   if (!status.ok()) return status;
-  MarkerTrajectories unflagged = x;
+  // Preprocessing and filling read the paths, not these.
+  if (intermediates == nullptr) Release(&reference.reconstructed);
+  MarkerTrajectories flagged;
+  DetectGaps(model, captured, x, bad, report, &flagged);
+  Release(&bad);
+  MarkerTrajectories unflagged = std::move(x);
   x = flagged;
-  if (intermediates == nullptr) {  // Preprocessing and filling read the paths, not these.
-    Release(&reference.reconstructed);
-    Release(&model);
-  }
+  if (intermediates == nullptr) Release(&model);
   clock.Lap("Gap Detection");
   // 5. Preprocessing, in the thesis' order.
   MarkerTrajectories before_small;
@@ -883,7 +928,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   Release(&captured);
   clock.Lap("Gap Preprocessing");
   // 6. Marker filling from the reference.
-  status = FillMarkers(ctx, input, reference, flagged, unflagged, &before_small, &x, report);
+  status = FillMarkers(ctx, input, &reference, intermediates == nullptr, flagged, unflagged, &before_small, &x, report);
   if (!status.ok()) return status;
   // Every sample is now valid; those never marked bad are the input's, bit for bit.
   Release(&flagged);

@@ -106,15 +106,22 @@ void MeasurePlantSkating(const Skeleton& target_skeleton, const Motion& motion, 
                          const std::vector<int>& contact_targets, CharacterRetargetResult* out) {
   if (contacts.joints.empty()) return;
   const double cm = target_skeleton.unit().known() ? 100.0 * target_skeleton.unit().metres_per_unit : 1.0;
-  const std::vector<Vector3dVector> result_positions = ClipJointPositions(target_skeleton, out->clip.motion);
+  // The result's positions of the plant joints only ([k][f]), not of every joint (Xbot's
+  // 65: 1.6 KB per frame of a long take).
+  const int frames = out->clip.motion.num_frames();
+  std::vector<Vector3dVector> result_positions(contacts.joints.size(), Vector3dVector(frames));
+  FkData fk(target_skeleton);
+  for (int f = 0; f < frames; ++f) {
+    ForwardKinematics(target_skeleton, out->clip.motion.frames[f], &fk);
+    for (size_t k = 0; k < contacts.joints.size(); ++k) result_positions[k][f] = fk.world_positions[contact_targets[k]];
+  }
   double source_sum = 0.0, result_sum = 0.0;
   int pairs = 0;
   for (size_t k = 0; k < contacts.joints.size(); ++k) {
-    const int t = contact_targets[k];
     for (int f = 1; f < motion.num_frames(); ++f) {
       if (!contacts.in_contact[k][f - 1] || !contacts.in_contact[k][f]) continue;
       const Eigen::Vector3d a = contacts.positions[k][f] - contacts.positions[k][f - 1];
-      const Eigen::Vector3d b = result_positions[f][t] - result_positions[f - 1][t];
+      const Eigen::Vector3d b = result_positions[k][f] - result_positions[k][f - 1];
       source_sum += std::hypot(a.x(), a.z()) * out->height_ratio;
       result_sum += std::hypot(b.x(), b.z());
       ++pairs;

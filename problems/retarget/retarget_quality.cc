@@ -62,25 +62,25 @@ struct LimbDirections {
   std::vector<Eigen::Vector3d> source, target;
 };
 
-std::vector<LimbDirections> CollectLimbDirections(const JointMap& map,
-                                                  const std::vector<Vector3dVector>& source_positions,
-                                                  const std::vector<Vector3dVector>& target_positions) {
-  std::vector<LimbDirections> limbs;
-  for (const MappedLimb& mapped : MappedLimbs(map)) {
-    const int s0 = mapped.source_from, s1 = mapped.source_to, t0 = mapped.target_from, t1 = mapped.target_to;
-    LimbDirections limb;
-    limb.limb = mapped.limb;
-    const size_t frames = std::min(source_positions.size(), target_positions.size());
-    for (size_t f = 0; f < frames; ++f) {
-      const Eigen::Vector3d s = source_positions[f][s1] - source_positions[f][s0];
-      const Eigen::Vector3d t = target_positions[f][t1] - target_positions[f][t0];
-      if (s.norm() <= 0.0 || t.norm() <= 0.0) continue;  // A zero-length bone has no direction.
-      limb.source.push_back(s.normalized());
-      limb.target.push_back(t.normalized());
-    }
-    limbs.push_back(std::move(limb));
-  }
+// The limbs of the map, each with no directions yet.
+std::vector<LimbDirections> LimbsToCollect(const JointMap& map, std::vector<MappedLimb>* mapped) {
+  *mapped = MappedLimbs(map);
+  std::vector<LimbDirections> limbs(mapped->size());
+  for (size_t i = 0; i < mapped->size(); ++i) limbs[i].limb = (*mapped)[i].limb;
   return limbs;
+}
+
+// One frame's limb directions appended (frames in order: each limb's series is the clip's).
+void CollectLimbDirections(const std::vector<MappedLimb>& mapped, const Vector3dVector& source_positions,
+                           const Vector3dVector& target_positions, std::vector<LimbDirections>* limbs) {
+  for (size_t i = 0; i < mapped.size(); ++i) {
+    const MappedLimb& m = mapped[i];
+    const Eigen::Vector3d s = source_positions[m.source_to] - source_positions[m.source_from];
+    const Eigen::Vector3d t = target_positions[m.target_to] - target_positions[m.target_from];
+    if (s.norm() <= 0.0 || t.norm() <= 0.0) continue;  // A zero-length bone has no direction.
+    (*limbs)[i].source.push_back(s.normalized());
+    (*limbs)[i].target.push_back(t.normalized());
+  }
 }
 
 void MeasureLimbDirections(const std::vector<LimbDirections>& limbs, RetargetQuality* quality) {
@@ -110,25 +110,41 @@ void MeasureLimbDirections(const std::vector<LimbDirections>& limbs, RetargetQua
 }
 
 // Depth of each joint of `feet` under its rest clearance above y = 0 (foot_clearance.h) per
-// frame, times `scale`.
-void MeasurePenetration(const Skeleton& skeleton, const std::vector<int>& feet, const Pose& rest,
-                        const SkinnedMesh* mesh, const std::vector<Vector3dVector>& positions, double scale,
-                        double* deepest, double* share_over, double share_depth) {
-  *deepest = 0.0;
-  *share_over = 0.0;
-  if (feet.empty() || positions.empty()) return;
-  const std::vector<double> clearances = FootRestClearances(skeleton, feet, rest, mesh);
-  int over = 0;
-  for (const Vector3dVector& frame : positions) {
-    double frame_depth = 0.0;
-    for (size_t k = 0; k < feet.size(); ++k) {
-      frame_depth = std::max(frame_depth, (clearances[k] - frame[feet[k]].y()) * scale);
-    }
-    *deepest = std::max(*deepest, frame_depth);
-    over += frame_depth > share_depth ? 1 : 0;
+// frame, times `scale`: the deepest and the share of frames deeper than share_depth,
+// tallied frame by frame.
+class PenetrationTally {
+ public:
+  PenetrationTally(const Skeleton& skeleton, const std::vector<int>& feet, const Pose& rest, const SkinnedMesh* mesh,
+                   double scale, double share_depth)
+      : feet_(feet), scale_(scale), share_depth_(share_depth) {
+    if (!feet.empty()) clearances_ = FootRestClearances(skeleton, feet, rest, mesh);
   }
-  *share_over = double(over) / positions.size();
-}
+  void Add(const Vector3dVector& frame) {
+    ++frames_;
+    if (feet_.empty()) return;
+    double frame_depth = 0.0;
+    for (size_t k = 0; k < feet_.size(); ++k) {
+      frame_depth = std::max(frame_depth, (clearances_[k] - frame[feet_[k]].y()) * scale_);
+    }
+    deepest_ = std::max(deepest_, frame_depth);
+    over_ += frame_depth > share_depth_ ? 1 : 0;
+  }
+  void Result(double* deepest, double* share_over) const {
+    *deepest = 0.0;
+    *share_over = 0.0;
+    if (feet_.empty() || frames_ == 0) return;
+    *deepest = deepest_;
+    *share_over = double(over_) / frames_;
+  }
+
+ private:
+  std::vector<int> feet_;
+  double scale_, share_depth_;
+  std::vector<double> clearances_;
+  double deepest_ = 0.0;
+  int over_ = 0;
+  long frames_ = 0;
+};
 
 // Tracked vertices per body part (the role of the heaviest joint's nearest role ancestor).
 void MeasureCoverage(const Skeleton& target, const SkinnedMesh& mesh, const JointMap& map, const RetargetSetup& setup,
@@ -176,27 +192,34 @@ void MeasureCoverage(const Skeleton& target, const SkinnedMesh& mesh, const Join
   }
 }
 
-void MeasureSelfJointError(const RetargetQualityInputs& in, const std::vector<Vector3dVector>& source_positions,
-                           const std::vector<Vector3dVector>& target_positions, double cm,
-                           RetargetQuality* quality) {
-  quality->self_joint_error_mean_cm = quality->self_joint_error_max_cm = std::nan("");
-  if (!in.own_skeleton) return;
-  double sum = 0.0, max = 0.0;
-  int count = 0;
-  for (size_t f = 0; f < std::min(source_positions.size(), target_positions.size()); ++f) {
-    for (int j = 0; j < in.source->num_joints(); ++j) {
-      const int t = in.joint_map->target_of_source[j];
+// The own skeleton's joint error, tallied frame by frame (frames, then joints, in order).
+class SelfJointTally {
+ public:
+  SelfJointTally(const RetargetQualityInputs& in, double cm) : in_(in), cm_(cm) {}
+  void Add(const Vector3dVector& source_positions, const Vector3dVector& target_positions) {
+    if (!in_.own_skeleton) return;
+    for (int j = 0; j < in_.source->num_joints(); ++j) {
+      const int t = in_.joint_map->target_of_source[j];
       if (t < 0) continue;
-      const double e = (in.own_scale * source_positions[f][j] - target_positions[f][t]).norm() * cm;
-      sum += e;
-      max = std::max(max, e);
-      ++count;
+      const double e = (in_.own_scale * source_positions[j] - target_positions[t]).norm() * cm_;
+      sum_ += e;
+      max_ = std::max(max_, e);
+      ++count_;
     }
   }
-  if (count == 0) return;
-  quality->self_joint_error_mean_cm = sum / count;
-  quality->self_joint_error_max_cm = max;
-}
+  void Result(RetargetQuality* quality) const {
+    quality->self_joint_error_mean_cm = quality->self_joint_error_max_cm = std::nan("");
+    if (!in_.own_skeleton || count_ == 0) return;
+    quality->self_joint_error_mean_cm = sum_ / count_;
+    quality->self_joint_error_max_cm = max_;
+  }
+
+ private:
+  const RetargetQualityInputs& in_;
+  double cm_;
+  double sum_ = 0.0, max_ = 0.0;
+  int count_ = 0;
+};
 
 }  // namespace
 
@@ -235,15 +258,27 @@ const std::vector<std::pair<std::string, std::string>>& HumanoidLimbs() {
 RetargetQuality MeasureRetargetQuality(const RetargetQualityInputs& in) {
   RetargetQuality quality;
   const double cm = in.target->unit().known() ? 100.0 * in.target->unit().metres_per_unit : 1.0;
-  const std::vector<Vector3dVector> source_positions = ClipJointPositions(*in.source, *in.source_motion);
-  const std::vector<Vector3dVector> target_positions = ClipJointPositions(*in.target, *in.result);
-  MeasureLimbDirections(CollectLimbDirections(*in.joint_map, source_positions, target_positions), &quality);
-  quality.foot_skate_cm_s = in.foot_skate_cm_s;
   const Pose target_rest = in.target_rest.rotations.empty() ? RestPose(*in.target) : in.target_rest;
-  const std::vector<int> target_feet = TargetFootJoints(*in.joint_map);
-  MeasurePenetration(*in.target, target_feet, target_rest, in.target_mesh, target_positions, cm,
-                     &quality.penetration_cm, &quality.penetration_frame_share, 1.0);
-  MeasureSelfJointError(in, source_positions, target_positions, cm, &quality);
+  std::vector<MappedLimb> mapped;
+  std::vector<LimbDirections> limbs = LimbsToCollect(*in.joint_map, &mapped);
+  PenetrationTally penetration(*in.target, TargetFootJoints(*in.joint_map), target_rest, in.target_mesh, cm, 1.0);
+  SelfJointTally self(in, cm);
+  // One pass over the frames, both skeletons' joints of one frame at a time (the clip's
+  // would be 2.4 KB per frame of a long take onto Xbot).
+  const int frames = std::min(in.source_motion->num_frames(), in.result->num_frames());
+  FkData source_fk(*in.source), target_fk(*in.target);
+  for (int f = 0; f < in.result->num_frames(); ++f) {
+    ForwardKinematics(*in.target, in.result->frames[f], &target_fk);
+    penetration.Add(target_fk.world_positions);
+    if (f >= frames) continue;
+    ForwardKinematics(*in.source, in.source_motion->frames[f], &source_fk);
+    CollectLimbDirections(mapped, source_fk.world_positions, target_fk.world_positions, &limbs);
+    self.Add(source_fk.world_positions, target_fk.world_positions);
+  }
+  MeasureLimbDirections(limbs, &quality);
+  quality.foot_skate_cm_s = in.foot_skate_cm_s;
+  penetration.Result(&quality.penetration_cm, &quality.penetration_frame_share);
+  self.Result(&quality);
   if (in.setup != nullptr && in.target_mesh != nullptr) {
     MeasureCoverage(*in.target, *in.target_mesh, *in.joint_map, *in.setup, &quality);
   }

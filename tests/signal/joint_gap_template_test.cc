@@ -69,6 +69,21 @@ TEST(JointGapTemplate, AFootHiddenForMostOfAStrideFollowsTheStrideBefore) {
   EXPECT_EQ(MaxAngle(templated, held, foot, run.last + 1, 299), 0.0);
 }
 
+TEST(JointGapTemplate, SearchesOnlyShiftsWithinTheBound) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int foot = skeleton.FindJoint("LeftFoot");
+  const Motion motion = Periodic(skeleton, 300);
+  const CarriedJointRun run{foot, 150, 209};
+  std::vector<std::vector<char>> carried(skeleton.num_joints(), std::vector<char>(300, 0));
+  for (int f = run.first; f <= run.last; ++f) carried[foot][f] = 1;
+  JointTemplateOptions options;
+  options.max_shift_frames = kPeriod;  // One period away: found.
+  const int tau = FindTemplateShift(skeleton, motion, carried, run, options);
+  EXPECT_EQ(std::abs(tau), kPeriod);
+  options.max_shift_frames = kPeriod / 2;  // Half a period: nothing repeats that near.
+  EXPECT_EQ(FindTemplateShift(skeleton, motion, carried, run, options), 0);
+}
+
 TEST(JointGapTemplate, NoneWhereTheMotionDoesNotRepeat) {
   const Skeleton skeleton = MakeDemoSkeleton();
   const int thigh = skeleton.FindJoint("LeftUpLeg"), foot = skeleton.FindJoint("LeftFoot");
