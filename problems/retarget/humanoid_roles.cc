@@ -387,4 +387,16 @@ HumanoidRoles FindHumanoidRoles(const Skeleton& skeleton, const Vector3dVector& 
   return Finder(skeleton, world_positions, weighted).Run();
 }
 
+std::vector<int> BodyParts(const Skeleton& skeleton, const HumanoidRoles& roles) {
+  std::vector<int> part(skeleton.num_joints(), -1);
+  for (size_t r = 0; r < roles.roles.size(); ++r) {
+    const int j = roles.roles[r].second;
+    if (j >= 0 && j < skeleton.num_joints()) part[j] = static_cast<int>(r);
+  }
+  for (int j = 0; j < skeleton.num_joints(); ++j) {  // Parents come first.
+    if (part[j] < 0 && skeleton.parent(j) >= 0) part[j] = part[skeleton.parent(j)];
+  }
+  return part;
+}
+
 }  // namespace mocapsolve

@@ -71,6 +71,12 @@ std::vector<std::string> HumanoidRoleNames(int spine_joints);
 // -1 left, +1 right, 0 no side word in the joint's name.
 int NameSide(const std::string& name);
 
+// Body parts: per joint, the index into roles.roles of its nearest ancestor (itself included)
+// that plays a role, -1 for none (joints above the pelvis, or a non-humanoid). A part is
+// the role's joint and whatever hangs below it until the next role (fingers belong to the
+// hand, a forearm's twist bones to the forearm).
+std::vector<int> BodyParts(const Skeleton& skeleton, const HumanoidRoles& roles);
+
 // world_positions: the skeleton standing in its rest (or bind) pose, any up axis and facing.
 // weighted: per joint, whether it carries vertex weight; empty = unknown.
 HumanoidRoles FindHumanoidRoles(const Skeleton& skeleton, const Vector3dVector& world_positions,
