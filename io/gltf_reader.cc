@@ -490,8 +490,8 @@ void BlendRestVertices(const std::vector<Eigen::Vector3d>& positions, const std:
 // bind pose as skin `skin`'s, rest_positions = sum_b w_b X_b (c_b IBM'_b v0) with that skin's
 // own IBM', then appended (vertices, influences, triangles offset; texture coordinates kept
 // only if every part has them). Exact when its bind pose is skin `skin`'s (the same armature
-// exported twice), approximate otherwise as skin `skin`'s own spread is. A skin with a joint
-// outside the rig is left out with a warning.
+// exported twice), approximate otherwise as skin `skin`'s own spread is. A skin with meshes and
+// a joint outside the rig is left out with a warning.
 Status AppendOtherSkins(const tinygltf::Model& model, const std::string& file, int skin, const Rig& rig,
                         const std::vector<double>& rest_scales, const std::vector<Eigen::Isometry3d>& world_bind,
                         SkinnedMeshSpec* spec, std::vector<int>* triangles, bool* has_normals,
@@ -509,6 +509,9 @@ Status AppendOtherSkins(const tinygltf::Model& model, const std::string& file, i
       if (j < 0) break;
       skin_joints.push_back(j);
     }
+    bool has_mesh = false;
+    for (const tinygltf::Node& node : model.nodes) has_mesh = has_mesh || (node.skin == other && node.mesh >= 0);
+    if (!has_mesh) continue;
     if (skin_joints.size() != s.joints.size() || s.joints.empty()) {
       warnings->push_back(file + ": skin " + std::to_string(other) + " has joints outside skin " + std::to_string(skin) +
                           "'s skeleton; its meshes are left out");
@@ -676,9 +679,11 @@ Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& op
   spec.texcoords.resize(2, static_cast<Eigen::Index>(texcoords.size()));
   for (size_t v = 0; v < texcoords.size(); ++v) spec.texcoords.col(static_cast<Eigen::Index>(v)) = texcoords[v];
   bool has_normals = !normals.empty();
-  status = AppendOtherSkins(model, file, out.skin, rig, rest_scales, world_bind, &spec, &triangles, &has_normals,
-                            &out.warnings);
-  if (!status.ok()) return status;
+  if (options.skin.empty()) {  // The character: every skin over its joints. A chosen skin: that one.
+    status = AppendOtherSkins(model, file, out.skin, rig, rest_scales, world_bind, &spec, &triangles, &has_normals,
+                              &out.warnings);
+    if (!status.ok()) return status;
+  }
   int rigid_parts = 0;
   status = gltf_internal::AppendRigidParts(model, file, graph, rig, world_bind, &spec, &triangles, &rigid_parts,
                                            &out.warnings);
