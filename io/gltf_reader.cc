@@ -513,8 +513,8 @@ Status AppendOtherSkins(const tinygltf::Model& model, const std::string& file, i
     for (const tinygltf::Node& node : model.nodes) has_mesh = has_mesh || (node.skin == other && node.mesh >= 0);
     if (!has_mesh) continue;
     if (skin_joints.size() != s.joints.size() || s.joints.empty()) {
-      warnings->push_back(file + ": skin " + std::to_string(other) + " has joints outside skin " + std::to_string(skin) +
-                          "'s skeleton; its meshes are left out");
+      warnings->push_back(file + ": skin " + std::to_string(other) + " has joints outside skin " +
+                          std::to_string(skin) + "'s skeleton; its meshes are left out");
       continue;
     }
     std::vector<Eigen::Vector3d> positions, normals;

@@ -46,11 +46,13 @@ Status BuildRetargetSetup(const SkinnedMesh& source_mesh, const Skeleton& target
   if (!source_mesh.has_normals()) return Status::Error("retarget: the source mesh has no normals");
   if (!target_mesh.has_normals()) return Status::Error("retarget: the target mesh has no normals");
   if (options.same_vertices && source_mesh.num_vertices() != target_mesh.num_vertices()) {
-    return Status::Error("retarget: the source mesh is not the target's (" + std::to_string(source_mesh.num_vertices()) +
-                         " vertices, target " + std::to_string(target_mesh.num_vertices()) + ")");
+    return Status::Error("retarget: the source mesh is not the target's (" +
+                         std::to_string(source_mesh.num_vertices()) + " vertices, target " +
+                         std::to_string(target_mesh.num_vertices()) + ")");
   }
-  if (!options.source_parts.empty() && static_cast<int>(options.source_parts.size()) != source_mesh.num_vertices()) {
-    return Status::Error("retarget: source parts for " + std::to_string(options.source_parts.size()) + " vertices, mesh has " +
+  const int num_parts = static_cast<int>(options.source_parts.size());
+  if (num_parts > 0 && num_parts != source_mesh.num_vertices()) {
+    return Status::Error("retarget: source parts for " + std::to_string(num_parts) + " vertices, mesh has " +
                          std::to_string(source_mesh.num_vertices()));
   }
   if (options.subsample.ratio < 1) {

@@ -66,7 +66,9 @@ void AddQuota(const Eigen::Matrix3Xd& positions, const std::vector<bool>& eligib
     const int before = static_cast<int>(picked->size());
     FarthestPoints(positions, own_eligible, quota - count[g], &own_distance, picked);
     const int added = static_cast<int>(picked->size()) - before;
-    if (count[g] + added < quota) FarthestPoints(positions, members[g], quota - count[g] - added, &own_distance, picked);
+    if (count[g] + added < quota) {
+      FarthestPoints(positions, members[g], quota - count[g] - added, &own_distance, picked);
+    }
   }
 }
 
