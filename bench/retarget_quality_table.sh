@@ -2,9 +2,9 @@
 # The retarget quality table of BENCHMARKS.md ("Feet and rest poses"): CMU 131_02, 01_01
 # (BVH) and 02_01 (ASF/AMC) onto the six shared humanoids through `evaluate --method=retarget`,
 # one row per source and character (limb mean / p95, alignment, planted-foot skate,
-# penetration, vertex error) and the count of pairs within each target (limbs 10 / 20 deg,
-# skate <= 1 cm/s, penetration <= 1 cm). Extra arguments go to every evaluate call
-# (e.g. --limb_direction_weight=0).
+# penetration, vertex error, tracked vertices on the least covered limb) and the count of
+# pairs within each target (limbs 10 / 20 deg, skate <= 1 cm/s, penetration <= 1 cm). Extra
+# arguments go to every evaluate call (e.g. --limb_direction_weight=0).
 #
 #   bench/retarget_quality_table.sh [WORK_DIR=/tmp/mocapsolve-retarget-quality] [-- FLAGS...]
 # Environment: MOCAPSOLVE (binary, default build/bin/mocapsolve), MOCAPSOLVE_DATA (../shared/data).
@@ -33,8 +33,9 @@ end=$(date +%s.%N)
 import csv, json, sys
 work, start, end = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
 rows, met = [], {"limbs": 0, "skate": 0, "penetration": 0, "all": 0}
-print("| source | character | limb mean (deg) | limb p95 (deg) | align (deg) | skate (cm/s) | penetration (cm) | vertex error (of height) |")
-print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+print("| source | character | limb mean (deg) | limb p95 (deg) | align (deg) | skate (cm/s) | penetration (cm) "
+      "| vertex error (of height) | fewest limb vertices |")
+print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
 for take in ("131_02", "01_01", "02_01"):
     with open(f"{work}/{take}.csv") as f:
         for r in csv.DictReader(f):
@@ -44,7 +45,8 @@ for take in ("131_02", "01_01", "02_01"):
             met["limbs"] += limbs; met["skate"] += skate; met["penetration"] += pen
             met["all"] += limbs and skate and pen
             print(f"| {take} | {r['character']} | {lm:.1f} | {lp:.1f} | {float(r['alignment_deg']):.1f} | "
-                  f"{sk:.2f} | {pe:.1f} | {float(r['mean_vertex_error_fraction_of_height']):.4f} |")
+                  f"{sk:.2f} | {pe:.1f} | {float(r['mean_vertex_error_fraction_of_height']):.4f} | "
+                  f"{r['min_limb_vertices']} ({r['least_covered_limb']}) |")
             rows.append({"source": take, **r})
 n = len(rows)
 print(f"\nwithin: limbs 10/20 deg {met['limbs']}/{n}, skate <= 1 cm/s {met['skate']}/{n}, "

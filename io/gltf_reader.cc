@@ -484,6 +484,84 @@ void BlendRestVertices(const std::vector<Eigen::Vector3d>& positions, const std:
   }
 }
 
+
+// The meshes of the file's other skins whose joints are all joints of the rig (RobotExpressive
+// binds its left hand to a second skin over the same 43 joints): read and blended into the
+// bind pose as skin `skin`'s, rest_positions = sum_b w_b X_b (c_b IBM'_b v0) with that skin's
+// own IBM', then appended (vertices, influences, triangles offset; texture coordinates kept
+// only if every part has them). Exact when its bind pose is skin `skin`'s (the same armature
+// exported twice), approximate otherwise as skin `skin`'s own spread is. A skin with meshes and
+// a joint outside the rig is left out with a warning.
+Status AppendOtherSkins(const tinygltf::Model& model, const std::string& file, int skin, const Rig& rig,
+                        const std::vector<double>& rest_scales, const std::vector<Eigen::Isometry3d>& world_bind,
+                        SkinnedMeshSpec* spec, std::vector<int>* triangles, bool* has_normals,
+                        std::vector<std::string>* warnings) {
+  std::vector<int> joint_of_node(model.nodes.size(), -1);
+  for (size_t j = 0; j < rig.joint_nodes.size(); ++j) {
+    if (rig.joint_nodes[j] >= 0) joint_of_node[rig.joint_nodes[j]] = static_cast<int>(j);
+  }
+  for (int other = 0; other < static_cast<int>(model.skins.size()); ++other) {
+    if (other == skin) continue;
+    const tinygltf::Skin& s = model.skins[other];
+    std::vector<int> skin_joints;
+    for (int node : s.joints) {
+      const int j = node >= 0 && node < static_cast<int>(model.nodes.size()) ? joint_of_node[node] : -1;
+      if (j < 0) break;
+      skin_joints.push_back(j);
+    }
+    bool has_mesh = false;
+    for (const tinygltf::Node& node : model.nodes) has_mesh = has_mesh || (node.skin == other && node.mesh >= 0);
+    if (!has_mesh) continue;
+    if (skin_joints.size() != s.joints.size() || s.joints.empty()) {
+      warnings->push_back(file + ": skin " + std::to_string(other) + " has joints outside skin " +
+                          std::to_string(skin) + "'s skeleton; its meshes are left out");
+      continue;
+    }
+    std::vector<Eigen::Vector3d> positions, normals;
+    std::vector<Eigen::Vector2d> texcoords;
+    std::vector<std::vector<Influence>> influences;
+    std::vector<int> other_triangles;
+    Status status = ReadMeshes(model, file, other, &positions, &normals, &texcoords, &influences, &other_triangles,
+                               warnings);
+    if (!status.ok()) return status;
+    if (positions.empty()) continue;
+    BindData bind;
+    status = ReadBindData(model, file, other, &bind);
+    if (!status.ok()) return status;
+    std::vector<Eigen::Matrix<double, 3, 4>> position_maps(s.joints.size());
+    std::vector<Eigen::Matrix3d> normal_ibm(s.joints.size());
+    for (size_t k = 0; k < s.joints.size(); ++k) {
+      const int j = skin_joints[k];
+      position_maps[k].leftCols<3>() = world_bind[j].linear() * (rest_scales[j] * bind.ibm[k].topLeftCorner<3, 3>());
+      position_maps[k].col(3) = world_bind[j].linear() * (rest_scales[j] * bind.ibm[k].topRightCorner<3, 1>()) +
+                                world_bind[j].translation();
+      normal_ibm[k] = bind.ibm[k].topLeftCorner<3, 3>().inverse().transpose();
+    }
+    SkinnedMeshSpec part;
+    BlendRestVertices(positions, normals, influences, skin_joints, position_maps, normal_ibm, world_bind, &part);
+    const Eigen::Index before = spec->rest_positions.cols(), added = part.rest_positions.cols();
+    for (int t : other_triangles) triangles->push_back(static_cast<int>(before) + t);
+    spec->rest_positions.conservativeResize(3, before + added);
+    spec->rest_positions.rightCols(added) = part.rest_positions;
+    *has_normals = *has_normals && !normals.empty();
+    if (*has_normals) {
+      spec->rest_normals.conservativeResize(3, before + added);
+      spec->rest_normals.rightCols(added) = part.rest_normals;
+    } else {
+      spec->rest_normals.resize(3, 0);
+    }
+    if (spec->texcoords.cols() == before && static_cast<Eigen::Index>(texcoords.size()) == added) {
+      spec->texcoords.conservativeResize(2, before + added);
+      for (Eigen::Index v = 0; v < added; ++v) spec->texcoords.col(before + v) = texcoords[v];
+    } else {
+      spec->texcoords.resize(2, 0);
+    }
+    for (auto& influence : part.influences) spec->influences.push_back(std::move(influence));
+    warnings->push_back(file + ": skin " + std::to_string(other) + "'s meshes (" + std::to_string(added) +
+                        " vertices) are bound to skin " + std::to_string(skin) + "'s joints and read with them");
+  }
+  return Status::Ok();
+}
 }  // namespace
 
 Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& options,
@@ -600,6 +678,12 @@ Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& op
   BlendRestVertices(positions, normals, influences, rig.skin_joints, position_maps, normal_ibm, world_bind, &spec);
   spec.texcoords.resize(2, static_cast<Eigen::Index>(texcoords.size()));
   for (size_t v = 0; v < texcoords.size(); ++v) spec.texcoords.col(static_cast<Eigen::Index>(v)) = texcoords[v];
+  bool has_normals = !normals.empty();
+  if (options.skin.empty()) {  // The character: every skin over its joints. A chosen skin: that one.
+    status = AppendOtherSkins(model, file, out.skin, rig, rest_scales, world_bind, &spec, &triangles, &has_normals,
+                              &out.warnings);
+    if (!status.ok()) return status;
+  }
   int rigid_parts = 0;
   status = gltf_internal::AppendRigidParts(model, file, graph, rig, world_bind, &spec, &triangles, &rigid_parts,
                                            &out.warnings);
@@ -608,7 +692,7 @@ Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& op
     out.warnings.push_back(file + ": skin " + std::to_string(out.skin) + ": " + std::to_string(rigid_parts) +
                            " mesh nodes parented to its bones are rigid parts of the character (weight 1 on the bone)");
   }
-  if (normals.empty() && !triangles.empty()) {
+  if (!has_normals && !triangles.empty()) {
     spec.rest_normals = AreaWeightedNormals(spec.rest_positions, triangles);
     out.warnings.push_back(file + ": skin " + std::to_string(out.skin) +
                            ": the mesh has no normals; area-weighted vertex normals computed from its triangles");

@@ -38,7 +38,11 @@
 // POSITION, NORMAL, JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1 (u8/u16 joints; float or
 // normalized u8/u16 weights), sparse accessors, indices (u8/u16/u32, or none). Joints
 // with zero weight are dropped (an out-of-range joint index is an error only with a
-// non-zero weight). Per glTF, the mesh node's own transform is ignored. A mesh without
+// non-zero weight). Per glTF, the mesh node's own transform is ignored. Unless
+// GltfReadOptions::skin chooses a skin, the meshes of the file's other skins whose joints are
+// all joints of this skeleton (RobotExpressive's left hand has a skin of its own over the same
+// joints) follow, blended into the bind pose with their own inverse bind matrices (a note says
+// so); a skin with meshes and other joints is left out with a warning. A mesh without
 // NORMAL (Fox) gets area-weighted vertex normals from its triangles (the sum of the
 // adjacent triangles' cross products over the vertices at one bind position, normalized),
 // with a warning saying so. TEXCOORD_0 (float or normalized u8/u16) is carried as the

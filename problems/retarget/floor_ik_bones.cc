@@ -52,12 +52,26 @@ FloorIkBones FindFloorIkBones(const Skeleton& skeleton, const Vector3dVector& x,
   std::vector<bool> floor(skeleton.num_joints(), false);
   for (int a = skeleton.parent(pelvis); a >= 0; a = skeleton.parent(a)) floor[a] = true;
   std::vector<int> heaviest;  // Per vertex of the pelvis' subtree: its heaviest joint; found when needed.
+  // Anchors are body joints: where the weights are known, joints whose subtree carries some
+  // (not Rigify's ORG- copies of a limb, which lie on the skinned DEF- chain and tie with it).
+  std::vector<bool> body(skeleton.num_joints(), true);
+  if (mesh != nullptr && mesh->num_joints() == skeleton.num_joints() && mesh->num_vertices() > 0) {
+    std::vector<bool> carries(skeleton.num_joints(), false);
+    for (int k = 0; k < mesh->weight_end(mesh->num_vertices() - 1); ++k) {
+      if (mesh->weight(k) > 0.0) carries[mesh->weight_joint(k)] = true;
+    }
+    for (int j = skeleton.num_joints() - 1; j > 0; --j) {
+      if (carries[j]) carries[skeleton.parent(j)] = true;
+    }
+    body = carries;
+  }
   for (int j = 1; j < skeleton.num_joints(); ++j) {
     const int p = skeleton.parent(j);
     if (!floor[p] || skeleton.IsAncestorOrSelf(j, pelvis)) continue;
     double nearest = std::numeric_limits<double>::infinity();
     int anchor = -1;
     for (int a = pelvis; a < skeleton.subtree_end(pelvis); ++a) {
+      if (!body[a]) continue;
       const double d = (x[j] - x[a]).norm();
       if (d < nearest) nearest = d, anchor = a;
     }

@@ -16,11 +16,13 @@
 // subtree does not hold the pelvis is an IK bone when the body (the pelvis' subtree) is nearer
 // to it than p is:
 //     d_j = min( min_a |x_j - x_a|, min_v |x_j - v| ) < |x_j - x_p|,
-// a over the joints of the pelvis' subtree, v over the mesh's vertices (bind pose) whose
-// heaviest joint is one of them; the joint of the minimum (a, or v's heaviest joint) is its
-// anchor. Otherwise j joins F (an ik_foot_root at the floor's origin) and its children are
-// examined in turn. So a foot target at the ankle follows the shin whose surface ends there
-// (or the foot joint it sits on, Unreal's), a pole target in front of the knee follows the
+// a over the joints of the pelvis' subtree (with a mesh: those whose subtree carries vertex
+// weight, so an unskinned duplicate chain such as Rigify's ORG- bones, lying on the skinned
+// DEF- chain, is no anchor), v over the mesh's vertices (bind pose) whose heaviest joint is one
+// of them; the joint of the minimum (a, or v's heaviest joint) is its anchor. Otherwise j
+// joins F (an ik_foot_root at the floor's origin) and its children are examined in turn. So
+// a foot target at the ankle follows the shin whose surface ends there (or the foot joint it
+// sits on, Unreal's), a pole target in front of the knee follows the
 // knee, and a bone at the root (a root helper, a prop at the origin) stays. Non-humanoids (no
 // pelvis) and skeletons rooted at the pelvis have none (and cost nothing).
 //

@@ -51,8 +51,11 @@ class Finder {
     // hang from bones unskinned, as RobotExpressive's).
     const int carrying = static_cast<int>(std::count(weighted.begin(), weighted.end(), true));
     use_weights_ = !weighted.empty() && 2 * carrying >= s_.num_joints();
+    // Helpers (unskinned duplicate chains) wherever some joint carries weight: a full Rigify
+    // export has several times more control and ORG-/MCH- bones than DEF- ones.
+    helper_weights_ = !weighted.empty() && carrying > 0;
     subtree_weighted_.assign(s_.num_joints(), false);
-    for (int j = s_.num_joints() - 1; use_weights_ && j >= 0; --j) {
+    for (int j = s_.num_joints() - 1; helper_weights_ && j >= 0; --j) {
       subtree_weighted_[j] = subtree_weighted_[j] || weighted_[j];
       if (j > 0 && subtree_weighted_[j]) subtree_weighted_[s_.parent(j)] = true;
     }
@@ -98,7 +101,7 @@ class Finder {
     for (const std::string& w : Words(s_.name(j))) {
       if (w == "ik" || w == "mch" || w == "ctrl" || w == "pole" || w == "target" || w == "helper") return true;
     }
-    return use_weights_ && !subtree_weighted_[j];
+    return helper_weights_ && !subtree_weighted_[j];
   }
   // Children of j that are no helpers (all of them if only helpers).
   std::vector<int> Limbs(int j) const {
@@ -188,6 +191,7 @@ class Finder {
   const std::vector<bool>& weighted_;
   std::vector<std::vector<int>> children_;
   bool use_weights_ = false;
+  bool helper_weights_ = false;
   std::vector<bool> subtree_weighted_;  // Some joint of subtree(j) carries weight.
 };
 
@@ -385,6 +389,18 @@ HumanoidRoles FindHumanoidRoles(const Skeleton& skeleton, const Vector3dVector& 
     return out;
   }
   return Finder(skeleton, world_positions, weighted).Run();
+}
+
+std::vector<int> BodyParts(const Skeleton& skeleton, const HumanoidRoles& roles) {
+  std::vector<int> part(skeleton.num_joints(), -1);
+  for (size_t r = 0; r < roles.roles.size(); ++r) {
+    const int j = roles.roles[r].second;
+    if (j >= 0 && j < skeleton.num_joints()) part[j] = static_cast<int>(r);
+  }
+  for (int j = 0; j < skeleton.num_joints(); ++j) {  // Parents come first.
+    if (part[j] < 0 && skeleton.parent(j) >= 0) part[j] = part[skeleton.parent(j)];
+  }
+  return part;
 }
 
 }  // namespace mocapsolve

@@ -20,10 +20,11 @@
 // Chains. A limb's main chain follows, from the branch's first joint, the child with the
 // most joints (then the farthest reach, then the first), helpers last (a duplicated IK/FK
 // chain: words ik, mch, ctrl, pole, target, helper in its name, or no vertex weight in its
-// subtree where weights tell); helper branches are no limbs, spine or neck at the pelvis and chest either. Of its
-// segment lengths, the thigh (upper arm) is the first or second joint of the chain (after a
-// hip joint or clavicle) whose segment is long (>= 0.35 of the chain's longest); when both
-// are, and each is followed by a long one, the one whose length ratio to the next is
+// subtree where weights are known and some joint carries weight); helper branches are no
+// limbs, spine or neck at the pelvis and chest either. Of its segment lengths, the thigh
+// (upper arm) is the first or second joint of the chain (after a hip joint or clavicle)
+// whose segment is long (>= 0.35 of the chain's longest); when both are, and each is
+// followed by a long one, the one whose length ratio to the next is
 // nearest 1.05 (legs) or 1.2 (arms) on a log scale (CMU's long clavicle). The shin
 // (forearm) and foot (hand) follow it, then the toes; the clavicle is the joint before the
 // upper arm. The neck chain's first joint is the neck, its last the head (a last leaf
@@ -70,6 +71,12 @@ std::vector<std::string> HumanoidRoleNames(int spine_joints);
 
 // -1 left, +1 right, 0 no side word in the joint's name.
 int NameSide(const std::string& name);
+
+// Body parts: per joint, the index into roles.roles of its nearest ancestor (itself included)
+// that plays a role, -1 for none (joints above the pelvis, or a non-humanoid). A part is
+// the role's joint and whatever hangs below it until the next role (fingers belong to the
+// hand, a forearm's twist bones to the forearm).
+std::vector<int> BodyParts(const Skeleton& skeleton, const HumanoidRoles& roles);
 
 // world_positions: the skeleton standing in its rest (or bind) pose, any up axis and facing.
 // weighted: per joint, whether it carries vertex weight; empty = unknown.

@@ -255,6 +255,14 @@ Status RetargetOntoSolveCharacter(const RetargetCharacter& source, const Motion&
   setup_options.source_left = LeftOfCharacter(*source.skeleton, *source_mesh, out.joint_map.source_roles,
                                               setup_options.source_world_from_bind);
   AddHumanoidPositionJoints(target_skeleton, out.joint_map, &setup_options, &out.notes);
+  // Every body part of the source's mesh gets its quota of samples (vertex_subsampling.h).
+  const std::vector<int> source_parts = BodyParts(*source.skeleton, out.joint_map.source_roles);
+  setup_options.source_parts.resize(source_mesh->num_vertices());
+  for (int v = 0; v < source_mesh->num_vertices(); ++v) {
+    const int j = DominantJoint(*source_mesh, v);
+    setup_options.source_parts[v] = j >= 0 ? source_parts[j] : -1;
+  }
+  setup_options.same_vertices = setup_options.same_vertices || out.skeleton_only;
   Status status = BuildRetargetSetup(*source_mesh, target_skeleton, *target.mesh, setup_options, &out.setup);
   if (!status.ok()) return status;
   for (const std::string& note : out.setup.notes) out.notes.push_back(note);

@@ -154,11 +154,7 @@ void MeasureCoverage(const Skeleton& target, const SkinnedMesh& mesh, const Join
   for (const JointMapRole& r : map.roles) {
     if (r.target >= 0 && roles.Find(r.role) < 0) roles.roles.emplace_back(r.role, r.target);
   }
-  std::vector<int> part(target.num_joints(), -1);  // Index into roles.roles.
-  for (size_t r = 0; r < roles.roles.size(); ++r) part[roles.roles[r].second] = static_cast<int>(r);
-  for (int j = 0; j < target.num_joints(); ++j) {
-    if (part[j] < 0 && target.parent(j) >= 0) part[j] = part[target.parent(j)];
-  }
+  const std::vector<int> part = BodyParts(target, roles);  // Index into roles.roles.
   std::vector<int> counts(roles.roles.size() + 1, 0);  // Last: no part.
   for (const TrackedVertex& t : setup.tracked) {
     int heaviest = -1;

@@ -45,6 +45,16 @@ Status BuildRetargetSetup(const SkinnedMesh& source_mesh, const Skeleton& target
   }
   if (!source_mesh.has_normals()) return Status::Error("retarget: the source mesh has no normals");
   if (!target_mesh.has_normals()) return Status::Error("retarget: the target mesh has no normals");
+  if (options.same_vertices && source_mesh.num_vertices() != target_mesh.num_vertices()) {
+    return Status::Error("retarget: the source mesh is not the target's (" +
+                         std::to_string(source_mesh.num_vertices()) + " vertices, target " +
+                         std::to_string(target_mesh.num_vertices()) + ")");
+  }
+  const int num_parts = static_cast<int>(options.source_parts.size());
+  if (num_parts > 0 && num_parts != source_mesh.num_vertices()) {
+    return Status::Error("retarget: source parts for " + std::to_string(num_parts) + " vertices, mesh has " +
+                         std::to_string(source_mesh.num_vertices()));
+  }
   if (options.subsample.ratio < 1) {
     return Status::Error("retarget: subsample ratio must be >= 1, got " +
                          std::to_string(options.subsample.ratio));
@@ -97,15 +107,16 @@ Status BuildRetargetSetup(const SkinnedMesh& source_mesh, const Skeleton& target
   result.scale = result.target_frame.height / result.source_frame.height;
 
   const std::vector<int> samples =
-      SubsampleVertices(source_mesh, source_rest, source_normals, options.subsample);
+      SubsampleVertices(source_mesh, source_rest, source_normals, options.subsample, options.source_parts);
   Eigen::Matrix3Xd sample_rest(3, samples.size()), sample_normals(3, samples.size());
   for (size_t s = 0; s < samples.size(); ++s) {
     sample_rest.col(s) = source_rest.col(samples[s]);
     sample_normals.col(s) = source_normals.col(samples[s]);
   }
   const std::vector<int> mapping =
-      MapToNearestVertices(sample_rest, result.source_frame, target_rest, result.target_frame,
-                           sample_normals, target_normals, options.mapping_normal_weight);
+      options.same_vertices ? samples
+                            : MapToNearestVertices(sample_rest, result.source_frame, target_rest, result.target_frame,
+                                                   sample_normals, target_normals, options.mapping_normal_weight);
   // Target world -> source bind space, for transferred normals.
   const Eigen::Matrix3d source_bind_from_target_world =
       options.source_world_from_bind.transpose() * result.source_frame.facing.transpose() *

@@ -78,6 +78,14 @@ struct RetargetSetupOptions {
   // source vertex's skinning rotation), false = the source's skinned normal (eq. 16 as
   // written). Identical when the rest normals agree (same mesh, scaled copy).
   bool transfer_normals = true;
+  // Per source vertex, its body part (humanoid_roles.h BodyParts of its heaviest joint), -1
+  // none; empty: no per-part quota (vertex_subsampling.h step 4).
+  std::vector<int> source_parts;
+  // The source mesh is the target's own mesh bound to the source skeleton (skeleton_binding.h:
+  // the same vertices in the same order): each sample tracks its own vertex on the target,
+  // not the nearest one in the common frame (where the two skeletons' proportions differ, the
+  // nearest vertex to a sample on the source's hand can lie on the target's hip).
+  bool same_vertices = false;
 };
 
 struct TrackedVertex {

@@ -35,6 +35,43 @@ void FarthestPoints(const Eigen::Matrix3Xd& positions, const std::vector<int>& c
   }
 }
 
+// At least `quota` samples among the vertices of each group (group[i] in [0, num_groups), -1
+// none) that has vertices: farthest-point samples among the group's own vertices, measured
+// from its samples only (so they spread over its region), eligible ones first, then any.
+void AddQuota(const Eigen::Matrix3Xd& positions, const std::vector<bool>& eligible, const std::vector<int>& group,
+              int num_groups, int quota, std::vector<int>* picked) {
+  const int nv = static_cast<int>(positions.cols());
+  std::vector<int> count(num_groups, 0);
+  for (int i : *picked) {
+    if (group[i] >= 0) ++count[group[i]];
+  }
+  std::vector<std::vector<int>> members(num_groups);
+  for (int i = 0; i < nv; ++i) {
+    if (group[i] >= 0) members[group[i]].push_back(i);
+  }
+  for (int g = 0; g < num_groups; ++g) {
+    if (count[g] >= quota || members[g].empty()) continue;
+    std::vector<int> own_eligible;
+    for (int i : members[g]) {
+      if (eligible[i]) own_eligible.push_back(i);
+    }
+    std::vector<double> own_distance(nv, std::numeric_limits<double>::infinity());
+    for (int s : *picked) {
+      if (group[s] != g) continue;
+      for (int i : members[g]) {
+        own_distance[i] = std::min(own_distance[i], (positions.col(i) - positions.col(s)).squaredNorm());
+      }
+    }
+    for (int s : *picked) own_distance[s] = 0.0;
+    const int before = static_cast<int>(picked->size());
+    FarthestPoints(positions, own_eligible, quota - count[g], &own_distance, picked);
+    const int added = static_cast<int>(picked->size()) - before;
+    if (count[g] + added < quota) {
+      FarthestPoints(positions, members[g], quota - count[g] - added, &own_distance, picked);
+    }
+  }
+}
+
 }  // namespace
 
 int DominantJoint(const SkinnedMesh& mesh, int vertex) {
@@ -52,7 +89,7 @@ int DominantJoint(const SkinnedMesh& mesh, int vertex) {
 
 std::vector<int> SubsampleVertices(const SkinnedMesh& mesh, const Eigen::Matrix3Xd& positions,
                                    const Eigen::Matrix3Xd& normals,
-                                   const SubsampleOptions& options) {
+                                   const SubsampleOptions& options, const std::vector<int>& parts) {
   const int nv = mesh.num_vertices();
   CHECK_EQ(positions.cols(), nv);
   CHECK_EQ(normals.cols(), nv);
@@ -96,37 +133,14 @@ std::vector<int> SubsampleVertices(const SkinnedMesh& mesh, const Eigen::Matrix3
   for (int i = 0; i < nv; ++i) distance[i] = (positions.col(i) - positions.col(first)).squaredNorm();
   FarthestPoints(positions, candidates, target - 1, &distance, &picked);
 
-  // 3. At least min_per_joint samples per dominating joint.
+  // 3. At least min_per_joint samples per dominating joint, then min_per_part per part.
   std::vector<int> dominant(nv);
   for (int i = 0; i < nv; ++i) dominant[i] = DominantJoint(mesh, i);
-  std::vector<int> count(mesh.num_joints(), 0);
-  for (int i : picked) ++count[dominant[i]];
-  for (int j = 0; j < mesh.num_joints(); ++j) {
-    if (count[j] >= options.min_per_joint) continue;
-    std::vector<int> own_eligible, own_all;
-    for (int i = 0; i < nv; ++i) {
-      if (dominant[i] != j) continue;
-      own_all.push_back(i);
-      if (eligible[i]) own_eligible.push_back(i);
-    }
-    if (own_all.empty()) continue;
-    // Distances to the joint's own samples only, so they spread over the joint's region.
-    std::vector<double> own_distance(nv, std::numeric_limits<double>::infinity());
-    for (int s : picked) {
-      if (dominant[s] != j) continue;
-      for (int i : own_all) {
-        own_distance[i] = std::min(own_distance[i], (positions.col(i) - positions.col(s)).squaredNorm());
-      }
-    }
-    for (int s : picked) own_distance[s] = 0.0;
-    const int before = static_cast<int>(picked.size());
-    FarthestPoints(positions, own_eligible, options.min_per_joint - count[j], &own_distance, &picked);
-    const int added = static_cast<int>(picked.size()) - before;
-    if (count[j] + added < options.min_per_joint) {
-      FarthestPoints(positions, own_all, options.min_per_joint - count[j] - added, &own_distance,
-                     &picked);
-    }
-    count[j] = options.min_per_joint;
+  AddQuota(positions, eligible, dominant, mesh.num_joints(), options.min_per_joint, &picked);
+  if (!parts.empty()) {
+    CHECK_EQ(static_cast<int>(parts.size()), nv);
+    const int num_parts = *std::max_element(parts.begin(), parts.end()) + 1;
+    AddQuota(positions, eligible, parts, num_parts, options.min_per_part, &picked);
   }
   return picked;
 }

@@ -15,6 +15,12 @@
 //      least min_per_joint samples among the vertices it dominates, added by the same
 //      farthest-point rule restricted to them (eligible ones first; if the joint has too
 //      few eligible vertices, its ineligible ones too), so that each joint can be placed.
+//   4. Per body part (when `parts` is given: per vertex, a part index or -1): every part
+//      with vertices gets at least min_per_part samples by the same rule. A part is a role
+//      of humanoid_roles.h with the joints below it (BodyParts), so a limb made of several
+//      small rigid meshes (RobotExpressive's arm: no vertex of the forearm, a hand of 60
+//      vertices among 3,700) is tracked by a few vertices however sparse the whole-mesh
+//      sampling is there.
 // Deterministic for a given `first`.
 #ifndef MOCAPSOLVE_PROBLEMS_RETARGET_VERTEX_SUBSAMPLING_H_
 #define MOCAPSOLVE_PROBLEMS_RETARGET_VERTEX_SUBSAMPLING_H_
@@ -32,16 +38,18 @@ struct SubsampleOptions {
   double normal_threshold = 0.05;  // On 1 - cos(angle to the neighbours' mean normal).
   int neighbours = 8;             // For the mean normal.
   int min_per_joint = 3;
+  int min_per_part = 6;
   int first = 0;                  // Starting vertex of the farthest-point sampling.
 };
 
 // The joint with the largest skin weight on the vertex (lowest index on ties).
 int DominantJoint(const SkinnedMesh& mesh, int vertex);
 
-// `positions` and `normals` are 3 x mesh.num_vertices() (normals unit); CHECKs sizes.
+// `positions` and `normals` are 3 x mesh.num_vertices() (normals unit); `parts` empty or
+// one entry per vertex; CHECKs sizes.
 std::vector<int> SubsampleVertices(const SkinnedMesh& mesh, const Eigen::Matrix3Xd& positions,
                                    const Eigen::Matrix3Xd& normals,
-                                   const SubsampleOptions& options);
+                                   const SubsampleOptions& options, const std::vector<int>& parts = {});
 
 }  // namespace mocapsolve
 

@@ -173,10 +173,13 @@ TEST(GltfFbxCli, SkeletonFilesAndWarnings) {
   options.warnings = &warnings;
   Motion motion;
   ASSERT_TRUE(ReadMotionFile(robot, options, &skeleton, &motion).ok());
-  // And its body is rigid meshes under its bones (io/gltf_rigid_parts.h): the third warning.
-  ASSERT_EQ(warnings.size(), 3u);
+  // Its left hand is bound to a second skin over the same joints, read with the character (the
+  // third), and its body is rigid meshes under its bones (io/gltf_rigid_parts.h): the fourth.
+  ASSERT_EQ(warnings.size(), 4u);
   EXPECT_NE(warnings[0].find("'Leg.R': non-uniform or negative scale"), std::string::npos) << warnings[0];
-  EXPECT_NE(warnings[2].find("12 mesh nodes parented to its bones are rigid parts"), std::string::npos) << warnings[2];
+  EXPECT_NE(warnings[2].find("skin 1's meshes (554 vertices) are bound to skin 0's joints"), std::string::npos)
+      << warnings[2];
+  EXPECT_NE(warnings[3].find("12 mesh nodes parented to its bones are rigid parts"), std::string::npos) << warnings[3];
   std::string output;
   ASSERT_EQ(testing::RunCli("info " + robot, &output), 0);
   EXPECT_NE(output.find("warning: " + warnings[0]), std::string::npos) << output;

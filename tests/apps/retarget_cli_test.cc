@@ -281,9 +281,16 @@ TEST(RetargetCli, SkeletonSourceBadInputsFailWithOneLine) {
   MOCAPSOLVE_DATA_FILE(fox, "gltf/Fox.glb");  // A quadruped: no humanoid roles, no names in common.
   const std::string out = testing::TempPath("out.glb");
   const std::string unknown = testing::TempPath("unknown.json");
+  const std::string unknown_source = testing::TempPath("unknown_source.json");
+  const std::string cycle = testing::TempPath("cycle.gltf");
   const std::string skinless = testing::TempPath("skinless.gltf");
   {
     std::ofstream(unknown) << "{\"joints\": {\"lfemur\": \"mixamorig:NoSuchLeg\"}}";
+    std::ofstream(unknown_source) << "{\"joints\": {\"NoSuchThigh\": \"mixamorig:LeftUpLeg\"}}";
+    // Two joints, each the other's child: a cycle (glTF forbids it; the reader must say so).
+    std::ofstream(cycle) << "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [{\"name\": \"a\", \"children\": [1]}, "
+                            "{\"name\": \"b\", \"children\": [0]}], \"skins\": [{\"joints\": [0, 1]}], "
+                            "\"scenes\": [{\"nodes\": [0]}]}";
     std::ofstream(skinless) << "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [{\"name\": \"a\"}], "
                                "\"scenes\": [{\"nodes\": [0]}]}";
   }
@@ -294,7 +301,9 @@ TEST(RetargetCli, SkeletonSourceBadInputsFailWithOneLine) {
   };
   const std::vector<Case> cases = {
       {base + "--target=" + skinless, "has no skin"},
-      {base + "--target=" + target + " --joint_map=" + unknown, "no joint 'mixamorig:NoSuchLeg'"},
+      {base + "--target=" + target + " --joint_map=" + unknown, "target skeleton has no joint 'mixamorig:NoSuchLeg'"},
+      {base + "--target=" + target + " --joint_map=" + unknown_source, "source skeleton has no joint 'NoSuchThigh'"},
+      {base + "--target=" + cycle, "cycle.gltf: node 0 'a': is in a cycle"},
       {base + "--target=" + target + " --joint_map=" + testing::TempPath("missing.json"), "missing.json"},
       {base + "--target=" + target + " --foot_joints=NoFoot", "NoFoot"},
       {"retarget --quiet --source=" + fox + " --source_mesh=false --max_frames=3 --out=" + out + " --target=" + target,

@@ -288,6 +288,31 @@ TEST_P(GltfCharacters, LoadsWithJointCountAndSkinningMatchesGltf) {
   }
 }
 
+// RobotExpressive binds its right hand to skin 0 and its left hand to skin 1 (the same 43
+// joints, its own inverse bind matrices): both hands are read, the left one weighted to the
+// left arm's joints and lying as the mirror image of the right one (the robot is symmetric
+// about x = 0 in its bind pose), each 554 vertices.
+TEST(GltfOtherSkins, RobotExpressiveLeftHandFromItsSecondSkin) {
+  MOCAPSOLVE_DATA_FILE(path, "gltf/RobotExpressive.glb");
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(path, {}, &c).ok());
+  ASSERT_GT(c.mesh.num_vertices(), 2 * 554);
+  const Eigen::Matrix3Xd& rest = c.mesh.rest_positions();  // The bind pose.
+  Eigen::Vector3d right = Eigen::Vector3d::Zero(), left = Eigen::Vector3d::Zero();
+  for (int v = 0; v < 554; ++v) {
+    right += rest.col(v) / 554.0;
+    left += rest.col(554 + v) / 554.0;
+    for (int k = c.mesh.weight_begin(554 + v); k < c.mesh.weight_end(554 + v); ++k) {
+      const std::string& name = c.skeleton.name(c.mesh.weight_joint(k));
+      ASSERT_EQ(name.substr(name.size() - 2), ".L") << "vertex " << 554 + v;
+    }
+  }
+  const double height = rest.row(1).maxCoeff() - rest.row(1).minCoeff();
+  EXPECT_GT(std::abs(right.x()), 0.1 * height);
+  EXPECT_LT((Eigen::Vector3d(-left.x(), left.y(), left.z()) - right).norm(), 0.01 * height)
+      << "right hand " << right.transpose() << ", left " << left.transpose();
+}
+
 // RobotExpressive skins only its hands; its head, torso, arms and legs are mesh nodes
 // parented to bones. They are rigid parts of the character's mesh (weight 1 on the bone):
 // animated, each vertex is where glTF's node transforms put it.

@@ -286,9 +286,10 @@ TEST(LimbDirectionRetarget, TheTermBringsTheLimbsToTheSourcesAndTheGateStillFail
   EXPECT_FALSE(on.own_skeleton);
   ASSERT_EQ(on.quality.limbs.size(), 8u);
   EXPECT_LT(on.quality.limb_mean_deg, off.quality.limb_mean_deg);
-  // Off: upper arms and thighs 6-9 degrees off on average (hands and feet tracked by
-  // position at other proportions); on (weight 10): all within 1.5.
-  EXPECT_GT(off.quality.limb_mean_deg, 4.0);
+  // Off: 3.1 degrees off on average (hands and feet tracked by position at other
+  // proportions; 6-9 on the upper arms and thighs while the samples were mapped to the nearest
+  // target vertex instead of their own); on (weight 10): all within 1.5.
+  EXPECT_GT(off.quality.limb_mean_deg, 2.0);
   EXPECT_LT(on.quality.limb_mean_deg, 1.5);
   EXPECT_LT(on.quality.limb_p95_deg, 4.0);
   for (const LimbDirectionError& limb : on.quality.limbs) EXPECT_LT(limb.mean_deg, 2.5) << limb.limb;

@@ -15,107 +15,28 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "io/bvh_writer.h"
 #include "io/gltf_reader.h"
 #include "io/motion_file.h"
 #include "kinematics/forward_kinematics.h"
-#include "kinematics/skinning.h"
 #include "problems/retarget/retarget_character.h"
 #include "settings/retarget_settings.h"
+#include "tests/character_variants.h"
+#include "tests/game_rig_files.h"
 #include "tests/test_support.h"
 
 namespace mocapsolve {
 namespace {
 
-// A character as the retarget sees it, owning its parts.
-struct Variant {
-  std::string name;
-  Skeleton skeleton;
-  SkinnedMesh mesh;
-  Pose pose;       // Bind and rest pose (world, +y up).
-  Pose bind_pose;  // When set: the bind pose (`pose` the rest pose), as the file has them.
-};
-
-// The character as read (its own bind and rest poses, mesh as bound).
-Variant AsRead(const GltfCharacter& character) {
-  Variant v;
-  v.name = "file as read";
-  v.skeleton = character.skeleton;
-  v.mesh = character.mesh;
-  v.pose = character.rest_pose;
-  v.bind_pose = character.bind_pose;
-  return v;
-}
-
-Eigen::Isometry3d WorldFromJoint(const FkData& fk, int j) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear() = fk.world_rotations[j].toRotationMatrix();
-  t.translation() = fk.world_positions[j];
-  return t;
-}
-
-// `character` re-posed: its rest pose with each of `arms` turned `arm_deg` down toward -y
-// (about the axis perpendicular to the arm and the vertical), then the whole figure turned
-// `yaw_deg` about +y; the mesh skinned into that pose and bound there (new inverse bind
-// matrices), so that pose is its bind and rest pose. Joint names j<random> when `rename`.
-Variant Repose(const GltfCharacter& character, const std::vector<int>& arms, double arm_deg, double yaw_deg,
-               bool rename, const std::string& name) {
-  const Skeleton& skeleton = character.skeleton;
-  Pose pose = character.rest_pose;
-  FkData fk(skeleton);
-  for (int a : arms) {
-    ForwardKinematics(skeleton, pose, &fk);
-    const int child = [&] {
-      for (int j = 0; j < skeleton.num_joints(); ++j) {
-        if (skeleton.parent(j) == a) return j;
-      }
-      return -1;
-    }();
-    const Eigen::Vector3d along = (fk.world_positions[child] - fk.world_positions[a]).normalized();
-    const Eigen::Vector3d axis = along.cross(-Eigen::Vector3d::UnitY()).normalized();
-    const Eigen::Quaterniond turn(Eigen::AngleAxisd(arm_deg * M_PI / 180.0, axis));
-    const Eigen::Quaterniond& world = fk.world_rotations[a];
-    pose.rotations[a] = pose.rotations[a] * (world.conjugate() * turn * world);  // W' = turn W.
-  }
-  ForwardKinematics(skeleton, pose, &fk);
-  const Eigen::Quaterniond yaw(Eigen::AngleAxisd(yaw_deg * M_PI / 180.0, Eigen::Vector3d::UnitY()));
-  const Eigen::Quaterniond root_world = fk.world_rotations[0];
-  const Eigen::Vector3d root_position = fk.world_positions[0];
-  pose.rotations[0] = pose.rotations[0] * (root_world.conjugate() * yaw * root_world);
-  ForwardKinematics(skeleton, pose, &fk);
-  pose.translations[0] += yaw * root_position - fk.world_positions[0];
-  ForwardKinematics(skeleton, pose, &fk);
-
-  Variant v;
-  v.name = name;
-  std::vector<JointSpec> specs;
-  std::mt19937 rng(7);
-  for (int j = 0; j < skeleton.num_joints(); ++j) {
-    specs.push_back(skeleton.joint(j));
-    if (rename) specs.back().name = "n" + std::to_string(rng() % 1000000) + "_" + std::to_string(j);
-  }
-  EXPECT_TRUE(Skeleton::Create(specs, {}, skeleton.unit(), &v.skeleton).ok());
-  std::vector<Eigen::Isometry3d> transforms;
-  ComputeSkinningTransforms(character.mesh, fk, &transforms);
-  SkinnedMeshSpec spec;
-  SkinMesh(character.mesh, transforms, &spec.rest_positions,
-           character.mesh.has_normals() ? &spec.rest_normals : nullptr);
-  spec.influences.resize(character.mesh.num_vertices());
-  for (int i = 0; i < character.mesh.num_vertices(); ++i) {
-    for (int k = character.mesh.weight_begin(i); k < character.mesh.weight_end(i); ++k) {
-      spec.influences[i].push_back({character.mesh.weight_joint(k), character.mesh.weight(k)});
-    }
-  }
-  for (int j = 0; j < skeleton.num_joints(); ++j) spec.joint_from_bind.push_back(WorldFromJoint(fk, j).inverse());
-  EXPECT_TRUE(SkinnedMesh::Create(v.skeleton, spec, &v.mesh).ok());
-  v.pose = pose;
-  return v;
-}
+using testing::AsRead;
+using testing::Repose;
+using testing::Variant;
+using testing::WorldFromJoint;
 
 // `v` (bound and standing in v.pose) as a game rig: an `Armature` joint at the origin and a root
 // bone `Root` at the floor under the pelvis above the skeleton, the joints `feet` (with their
@@ -197,8 +118,9 @@ struct Figures {
   double limb_mean, limb_p95, skate, penetration;
 };
 
+// *out (may be null) receives the whole result.
 Figures Retarget(const Skeleton& source, const SkinnedMesh* source_mesh, const Pose& source_pose,
-                 const Motion& motion, const Variant& target) {
+                 const Motion& motion, const Variant& target, CharacterRetargetResult* out = nullptr) {
   RetargetCharacter source_view, target_view;
   source_view.skeleton = &source;
   source_view.mesh = source_mesh;
@@ -215,7 +137,9 @@ Figures Retarget(const Skeleton& source, const SkinnedMesh* source_mesh, const P
     for (const LimbDirectionError& l : q.limbs) std::printf("  %s %.1f / %.1f\n", l.limb.c_str(), l.mean_deg, l.p95_deg);
     std::printf("  align %.1f deg; %s\n", q.alignment_deg, result.notes.size() > 1 ? result.notes[1].c_str() : "");
   }
-  return {q.limb_mean_deg, q.limb_p95_deg, q.foot_skate_cm_s, q.penetration_cm};
+  const Figures figures = {q.limb_mean_deg, q.limb_p95_deg, q.foot_skate_cm_s, q.penetration_cm};
+  if (out != nullptr) *out = std::move(result);
+  return figures;
 }
 
 void ExpectWithinTargets(const Figures& f, const std::string& label) {
@@ -334,6 +258,117 @@ TEST_P(FloorIkFixturesTest, CmuWalkOntoIkFeetUnderAFloorRootKeepsLimbDirections)
   ASSERT_EQ(rig.skeleton.parent(rig.skeleton.FindJoint("mixamorig:LeftFoot")), rig.skeleton.FindJoint("Root"));
   ExpectWithinTargets(Retarget(source, nullptr, Pose(), motion, rig), std::string(GetParam()) + ", " + rig.name);
 }
+
+// Game rigs, every perturbation at once (tests/game_rig_files.h): the shared Mixamo characters'
+// files edited into an Unreal mannequin (root and ik_foot_root / ik_hand_root chains), Rigify
+// (DEF- skinned, ORG- and MCH- copies of the limbs; `.L/.R` and `.l/.r`), Biped (spaces,
+// clavicles under the neck, Bip01 and Footsteps), VRM and random names with the skinned feet
+// under a floor root; the top node scaled by 100, 0.01 or 1, z-up or y-up inside, under a node
+// with a non-uniform scale; read back through the glTF reader, then re-posed into an A-pose and
+// turned. On each: the joint map picks the deforming chain (the roles' joints are the skinned
+// ones, not the IK/ORG/MCH copies); CMU 131_02 keeps the targets above; and the result,
+// written as BVH and read back (names with spaces included), retargets onto the rig as itself
+// (self round trip, every joint and frame within 0.1 % of the height).
+struct GameRigCase {
+  const char* character;
+  testing::GameRigOptions options;
+  double yaw_deg;
+};
+
+std::string CaseName(const GameRigCase& c) {
+  char text[160];
+  std::snprintf(text, sizeof(text), "%s as %s%s, top scale %g, %s, above (%g %g %g), A-pose, facing %+g",
+                c.character, testing::SchemeName(c.options.scheme).c_str(),
+                c.options.lower_case_sides ? " (.l/.r)" : c.options.rigify_controls ? " (all bones)" : "",
+                c.options.armature_scale, c.options.z_up ? "z-up" : "y-up",
+                c.options.above_scale.x(), c.options.above_scale.y(), c.options.above_scale.z(), c.yaw_deg);
+  return text;
+}
+
+std::vector<GameRigCase> GameRigCases() {
+  using testing::GameRigScheme;
+  std::vector<GameRigCase> cases;
+  for (const char* character : {"Xbot", "Soldier"}) {
+    const auto add = [&](GameRigScheme scheme, bool lower, double scale, bool z_up, Eigen::Vector3d above, double yaw,
+                         bool controls = false) {
+      testing::GameRigOptions o;
+      o.scheme = scheme;
+      o.lower_case_sides = lower;
+      o.rigify_controls = controls;
+      o.armature_scale = scale;
+      o.z_up = z_up;
+      o.above_scale = above;
+      cases.push_back({character, o, yaw});
+    };
+    add(GameRigScheme::kUnreal, false, 100.0, true, Eigen::Vector3d(1.05, 0.95, 1.0), 90.0);
+    add(GameRigScheme::kRigify, false, 0.01, false, Eigen::Vector3d(1.0, 1.0, 1.0), 180.0);
+    add(GameRigScheme::kRigify, true, 100.0, true, Eigen::Vector3d(0.9, 1.1, 1.0), -90.0);
+    add(GameRigScheme::kRigify, false, 1.0, true, Eigen::Vector3d(1.0, 1.0, 1.0), 30.0, true);
+    add(GameRigScheme::kBiped, false, 0.01, true, Eigen::Vector3d(1.0, 1.0, 1.2), 45.0);
+    add(GameRigScheme::kVrm, false, 1.0, false, Eigen::Vector3d(1.0, 1.0, 1.0), -135.0);
+    add(GameRigScheme::kRandom, false, 100.0, true, Eigen::Vector3d(1.1, 1.0, 1.0), 180.0);
+  }
+  return cases;
+}
+
+class GameRigFixturesTest : public ::testing::TestWithParam<GameRigCase> {};
+
+TEST_P(GameRigFixturesTest, MapsTheDeformingChainKeepsLimbsAndComesBackAsItself) {
+  const GameRigCase& c = GetParam();
+  MOCAPSOLVE_DATA_FILE(bvh, "bvh/131_02.bvh");
+  MOCAPSOLVE_DATA_FILE(glb, std::string("gltf/") + c.character + ".glb");
+  Skeleton source;
+  Motion motion;
+  ReadWalk(bvh, &source, &motion);
+  GltfDocument document;
+  GltfCharacter character;
+  testing::MakeGameRig(glb, c.options, &document, &character);
+  if (::testing::Test::HasFatalFailure()) return;
+  const auto name = [&](const char* mixamo) { return testing::GameRigJointName(mixamo, c.options); };
+  std::vector<int> arms = {character.skeleton.FindJoint(name("LeftArm")), character.skeleton.FindJoint(name("RightArm"))};
+  ASSERT_GE(std::min(arms[0], arms[1]), 0);
+  const Variant rig = Repose(character, arms, 40.0, c.yaw_deg, false, CaseName(c));
+  CharacterRetargetResult walk;
+  ExpectWithinTargets(Retarget(source, nullptr, Pose(), motion, rig, &walk), rig.name);
+  // The roles are played by the skinned chain.
+  const std::vector<std::pair<const char*, const char*>> roles = {
+      {"pelvis", "Hips"},          {"left_upper_arm", "LeftArm"}, {"left_forearm", "LeftForeArm"},
+      {"left_hand", "LeftHand"},   {"right_upper_arm", "RightArm"}, {"right_forearm", "RightForeArm"},
+      {"right_hand", "RightHand"}, {"left_thigh", "LeftUpLeg"},   {"left_shin", "LeftLeg"},
+      {"left_foot", "LeftFoot"},   {"right_thigh", "RightUpLeg"}, {"right_shin", "RightLeg"},
+      {"right_foot", "RightFoot"}};
+  for (const auto& [role, mixamo] : roles) {
+    std::string found = "(none)";
+    for (const JointMapRole& r : walk.joint_map.roles) {
+      if (r.role == role && r.target >= 0) found = rig.skeleton.name(r.target);
+    }
+    EXPECT_EQ(found, name(mixamo)) << rig.name << ": role " << role;
+  }
+  // Self round trip through a BVH file.
+  const std::string path = testing::TempPath("self.bvh");
+  ASSERT_TRUE(WriteBvh(path, rig.skeleton, walk.clip.motion).ok());
+  Skeleton own;
+  Motion own_motion;
+  ASSERT_TRUE(ReadMotionFile(path, MotionFileOptions(), &own, &own_motion).ok());
+  CharacterRetargetResult back;
+  Retarget(own, nullptr, Pose(), own_motion, rig, &back);
+  ASSERT_EQ(back.clip.motion.num_frames(), walk.clip.motion.num_frames());
+  const Eigen::VectorXd heights = rig.mesh.rest_positions().row(1).transpose();
+  const double height = heights.maxCoeff() - heights.minCoeff();
+  FkData expected(rig.skeleton), got(rig.skeleton);
+  double worst = 0.0;
+  for (int f = 0; f < walk.clip.motion.num_frames(); ++f) {
+    ForwardKinematics(rig.skeleton, walk.clip.motion.frames[f], &expected);
+    ForwardKinematics(rig.skeleton, back.clip.motion.frames[f], &got);
+    for (int j = 0; j < rig.skeleton.num_joints(); ++j) {
+      worst = std::max(worst, (got.world_positions[j] - expected.world_positions[j]).norm() / height);
+    }
+  }
+  std::printf("%-44s self round trip (BVH) max joint error %.5f %% of height\n", rig.name.c_str(), 100.0 * worst);
+  EXPECT_LE(100.0 * worst, 0.1) << rig.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Rigs, GameRigFixturesTest, ::testing::ValuesIn(GameRigCases()));
 
 INSTANTIATE_TEST_SUITE_P(Characters, FloorIkFixturesTest, ::testing::Values("Xbot", "Soldier"));
 

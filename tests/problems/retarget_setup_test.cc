@@ -1,4 +1,4 @@
-// Subsampling (Algorithm 5 with the normal check and the per-joint minimum), mesh mapping
+// Subsampling (Algorithm 5 with the normal check, the per-joint and per-part minimums), mesh mapping
 // (eq. 11 in the common rest frame) and the setup's blend mask, on the synthetic cylinder
 // character over the demo skeleton.
 #include "problems/retarget/retarget_setup.h"
@@ -51,6 +51,33 @@ TEST_F(RetargetSetupTest, SubsamplingSpreadsAndCoversEveryJoint) {
   std::vector<int> fps(samples.begin(), samples.begin() + count), strided;
   for (int k = 0; k < count; ++k) strided.push_back(k * (nv / count));
   EXPECT_GT(min_gap(fps), min_gap(strided));
+}
+
+// Per body part: with one whole-mesh sample (ratio = #V) and no per-joint minimum, every
+// part with vertices still gets min_per_part samples, each on its own part (RobotExpressive's
+// arm parts were left with 0-2 of ~75 tracked vertices).
+TEST_F(RetargetSetupTest, EveryPartGetsItsQuota) {
+  Eigen::Matrix3Xd positions, normals;
+  BindPoseMesh(mesh_, Eigen::Matrix3d::Identity(), &positions, &normals);
+  SubsampleOptions options;
+  options.ratio = mesh_.num_vertices();
+  options.min_per_joint = 0;
+  options.min_per_part = 6;
+  std::vector<int> parts(mesh_.num_vertices());
+  for (int v = 0; v < mesh_.num_vertices(); ++v) parts[v] = DominantJoint(mesh_, v) % 4;
+  parts[0] = -1;  // No part.
+  const auto counts = [&](const std::vector<int>& samples) {
+    std::vector<int> count(4, 0);
+    for (int s : samples) {
+      if (parts[s] >= 0) ++count[parts[s]];
+    }
+    return count;
+  };
+  const std::vector<int> without = counts(SubsampleVertices(mesh_, positions, normals, options));
+  EXPECT_LT(*std::min_element(without.begin(), without.end()), options.min_per_part);
+  const std::vector<int> samples = SubsampleVertices(mesh_, positions, normals, options, parts);
+  EXPECT_EQ(std::set<int>(samples.begin(), samples.end()).size(), samples.size()) << "duplicates";
+  for (int count : counts(samples)) EXPECT_GE(count, options.min_per_part);
 }
 
 TEST_F(RetargetSetupTest, NormalCheckExcludesVerticesUnlikeTheirNeighbours) {
