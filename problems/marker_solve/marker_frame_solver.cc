@@ -183,6 +183,7 @@ class MarkerFrameSolver::Impl {
       bool seen = false;
       for (int m : own_markers_[h.joint]) seen = seen || visible[m];
       h.prior->set_weight(seen ? h.seen_weight : options_.hidden_rotation_weight);
+      if (!seen) report->held_joints.push_back(h.joint);
     }
     if (options_.solver == SolverKind::kCeres) {
       if (visible != ceres_visible_ || ceres_problem_ == nullptr) BuildCeresProblem(visible);

@@ -79,6 +79,8 @@ struct FrameSolveReport {
   bool usable = false;         // The solver returned a usable solution.
   int markers_used = 0;
   double rms_marker_error = 0.0;  // sqrt(mean |x_pred - x_obs|^2), skeleton units.
+  // Hidden joints held toward the reference with hidden_rotation_weight in this frame.
+  std::vector<int> held_joints;
   std::string brief;           // The solver's one-line report.
 };
 

@@ -153,6 +153,10 @@ Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
       pose = attempt;
       report->total_iterations += frame.iterations;
       report->total_final_cost += frame.final_cost;
+      for (int j : frame.held_joints) {
+        if (report->held_frames.empty()) report->held_frames.assign(skeleton.num_joints(), 0);
+        ++report->held_frames[j];
+      }
       if (frame.iterations >= max_iterations) ++report->unconverged_frames;
       report->frame_rms[f] = frame.rms_marker_error;
       report->frame_cost[f] = frame.final_cost;

@@ -173,6 +173,7 @@ TEST_P(MarkerFrameSolverTest, HiddenJointIsHeldAtTheReference) {
   FrameSolveReport report;
   ASSERT_TRUE(weak.Solve(hidden, &a, &report).ok()) << report.brief;
   ASSERT_TRUE(held.Solve(hidden, &b, &report).ok()) << report.brief;
+  EXPECT_EQ(report.held_joints, std::vector<int>{shoulder});  // Reported as held.
   // The arm's nine markers place the shoulder: the weak prior lands near the truth.
   EXPECT_LT(AngularDistance(a.rotations[shoulder], truth.rotations[shoulder]), 0.01);
   EXPECT_GT(AngularDistance(a.rotations[shoulder], mean_pose[shoulder]), 0.28);
@@ -182,6 +183,7 @@ TEST_P(MarkerFrameSolverTest, HiddenJointIsHeldAtTheReference) {
   a = b = walk.frames[2];
   ASSERT_TRUE(weak.Solve(all, &a, &report).ok()) << report.brief;
   ASSERT_TRUE(held.Solve(all, &b, &report).ok()) << report.brief;
+  EXPECT_TRUE(report.held_joints.empty());
   for (int j = 0; j < skeleton.num_joints(); ++j) {
     EXPECT_LT(AngularDistance(a.rotations[j], b.rotations[j]), 1e-12) << j;
   }
