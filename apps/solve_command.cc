@@ -66,6 +66,8 @@ Status SolveMain(const std::vector<std::string>& arguments) {
                 sequence.solve_seconds > 0 ? sequence.frames / sequence.solve_seconds : 0.0,
                 sequence.total_iterations, sequence.rms_marker_error * to_output, unit,
                 sequence.max_frame_rms * to_output, sequence.unsolved_frames, sequence.unconverged_frames);
+    const std::string held = HeldJointsText(skeleton, sequence);
+    if (!held.empty()) std::printf("hidden joints held at the subject's mean pose (frames): %s\n", held.c_str());
     if (solver.mode != "clip") return;
     if (!Console().quiet) std::fprintf(stderr, "clip solve: %d frames as one problem...\n", sequence.frames);
     SetStage("clip solve");

@@ -157,7 +157,7 @@ Status RepairOptionsFromSettings(const RepairSettings& settings, const SolverSet
   options->tracker = options->naive;
   // The robust reference judges the samples: no pull toward the subject's mean pose, a pose of
   // another take (with it, cmu_02_05's small-error precision fell 0.928 -> 0.901).
-  options->tracker.rest_rotation_weight = 0.0;
+  options->tracker.rest_rotation_weight = options->tracker.hidden_rotation_weight = 0.0;
   options->tracker.loss = settings.reference_loss;
   options->tracker.loss_scale = settings.reference_loss_cm * units_per_cm;
   options->tracker.prior_rotation_weight = settings.tracker_prior_weight * units_per_mm;

@@ -60,6 +60,11 @@ const OptionGroup<SolverSettings>& SolverOptions() {
               "below it: it decides only directions no visible marker constrains (a joint's twist "
               "while its other marker is missing), which settle at the subject's typical pose instead of "
               "drifting; -1 (default): 5 toward the subject's mean pose, off when it has none; 0 = off.")
+      .Add(&S::hidden_joint_prior_weight, "hidden_joint_prior_weight", "mm/rad",
+           "Per-frame pull toward the subject's mean pose of a joint whose own markers are all "
+              "missing in the frame (it replaces --rest_prior_weight on that joint then): only the "
+              "markers of the bones below it would place it, e.g. a clavicle whose one shoulder marker "
+              "is occluded, hinged on by the arm. Applies only with a subject's mean pose; 0 = off.", 0)
       .Add(&S::limit_weight, "limit_weight", "mm/rad",
            "Soft joint limits (ASF 'limits'): 1 radian beyond a limit "
               "costs as much as this many mm of marker error; 0 = off (default: CMU's own solve "
@@ -161,6 +166,9 @@ Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const Leng
   options->rest_rotation_weight =
       skeleton_unit.known() ? rest_mm / (1000.0 * skeleton_unit.metres_per_unit) : rest_mm;
   options->rest_prior_needs_reference = rest_auto;
+  options->hidden_rotation_weight = skeleton_unit.known()
+                                        ? settings.hidden_joint_prior_weight / (1000.0 * skeleton_unit.metres_per_unit)
+                                        : settings.hidden_joint_prior_weight;
   options->limit_weight = skeleton_unit.known()
                               ? settings.limit_weight / (1000.0 * skeleton_unit.metres_per_unit)
                               : settings.limit_weight;

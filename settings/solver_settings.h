@@ -21,6 +21,12 @@
 
 namespace mocapsolve {
 
+// The pull toward the subject's mean pose, mm per radian, of a joint whose own markers are
+// all missing in a frame (MarkerSolveOptions::hidden_rotation_weight): the markers of the
+// bones below it alone would place it (a clavicle hinged on by the arm when its one shoulder
+// marker is missing). Chosen by the leak-free leave-one-out (BENCHMARKS.md).
+inline constexpr double kHiddenJointPriorWeight = 100.0;
+
 struct SolverSettings {
   std::string solver = "dls";              // dls | dls_generic | ceres.
   std::string mode = "frame";              // frame | clip (read by the callers).
@@ -38,6 +44,8 @@ struct SolverSettings {
   double prior_translation_weight = 0.0;   // Per skeleton unit.
   double rest_prior_weight = -1.0;         // mm of marker error per radian away from rest; -1: auto
                                            // (kMeanPoseRestPriorWeight toward a mean pose, else off).
+  double hidden_joint_prior_weight = kHiddenJointPriorWeight;  // mm/rad toward the mean pose of a
+                                           // joint whose own markers are all missing; 0 = off.
   double limit_weight = 0.0;               // mm of marker error per radian past a limit.
   std::string smooth_order = "velocity";   // velocity | acceleration.
   double smooth_weight = 1.0;

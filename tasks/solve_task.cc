@@ -43,6 +43,16 @@ JsonObject AgreementJson(const SolverAgreementReport& agreement, double scale) {
 
 }  // namespace
 
+std::string HeldJointsText(const Skeleton& skeleton, const SequenceSolveReport& sequence) {
+  std::string text;
+  for (size_t j = 0; j < sequence.held_frames.size(); ++j) {
+    if (sequence.held_frames[j] == 0) continue;
+    text += (text.empty() ? "" : ", ") + skeleton.name(static_cast<int>(j)) + " " +
+            std::to_string(sequence.held_frames[j]);
+  }
+  return text;
+}
+
 Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolveProgress& progress,
                 SolveResult* result) {
   *result = SolveResult();
@@ -81,6 +91,13 @@ Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolvePr
       .Add("unsolved_frames", sequence.unsolved_frames)
       .Add("frames_at_iteration_limit", sequence.unconverged_frames)
       .Add("total_final_cost", sequence.total_final_cost).Add("residual_unit", ResidualUnit(skeleton));
+  if (!sequence.held_frames.empty()) {
+    JsonObject held;  // Hidden joints held at the subject's mean pose: frames each.
+    for (int j = 0; j < skeleton.num_joints(); ++j) {
+      if (sequence.held_frames[j] > 0) held.Add(skeleton.name(j), sequence.held_frames[j]);
+    }
+    frame_json.Add("hidden_joints_held_frames", held);
+  }
   result->report.Add("per_frame", frame_json);
   if (config.agreement.compare_solvers) {
     status = CompareSolvers(skeleton, take.markers, observed, frame_options, RestPose(skeleton),

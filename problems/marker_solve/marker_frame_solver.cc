@@ -22,7 +22,8 @@ bool MarkerSolveOptions::IsValid(std::string* error) const {
   if (!(loss_scale > 0.0) || !std::isfinite(loss_scale)) {
     return *error = "loss scale must be positive and finite", false;
   }
-  for (const double w : {prior_rotation_weight, rest_rotation_weight, prior_translation_weight, limit_weight}) {
+  for (const double w : {prior_rotation_weight, rest_rotation_weight, hidden_rotation_weight,
+                         prior_translation_weight, limit_weight}) {
     if (!(w >= 0.0) || !std::isfinite(w)) {
       return *error = "prior and limit weights must be finite and >= 0", false;
     }
@@ -120,11 +121,23 @@ class MarkerFrameSolver::Impl {
                                                                   : Eigen::Quaterniond::Identity();
       for (int i = 0; i < 4; ++i) rest_rotations_[4 * j + i] = q.coeffs()[i];
     }
-    if (options.rest_rotation_weight > 0.0 && (given > 0 || !options.rest_prior_needs_reference)) {
-      for (int j : solved_joints_) {
-        rotation_priors_.emplace_back(new RotationPriorResidual(&rest_rotations_[4 * j], options.rest_rotation_weight));
-        prior_joints_.push_back(j);
+    // Own markers per joint (a marker with attachments on several joints counts for each).
+    own_markers_.resize(skeleton.num_joints());
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      for (const MarkerAttachment& a : markers.marker(m).attachments) {
+        std::vector<int>& own = own_markers_[a.joint];
+        if (own.empty() || own.back() != m) own.push_back(m);
       }
+    }
+    const bool rest_on = options.rest_rotation_weight > 0.0 && (given > 0 || !options.rest_prior_needs_reference);
+    const bool hidden_on = options.hidden_rotation_weight > 0.0 && given > 0;
+    for (int j : solved_joints_) {
+      const bool hideable = hidden_on && !own_markers_[j].empty();
+      if (!rest_on && !hideable) continue;
+      const double weight = rest_on ? options.rest_rotation_weight : 0.0;
+      rotation_priors_.emplace_back(new RotationPriorResidual(&rest_rotations_[4 * j], weight));
+      prior_joints_.push_back(j);
+      if (hideable) hideable_.push_back({j, rotation_priors_.back().get(), weight});
     }
     if (options.limit_weight > 0.0) {
       for (int j : solved_joints_) {
@@ -166,6 +179,12 @@ class MarkerFrameSolver::Impl {
       }
     }
     if (num_visible == 0) return Status::Error("no marker observed");
+    for (const Hideable& h : hideable_) {
+      bool seen = false;
+      for (int m : own_markers_[h.joint]) seen = seen || visible[m];
+      h.prior->set_weight(seen ? h.seen_weight : options_.hidden_rotation_weight);
+      if (!seen) report->held_joints.push_back(h.joint);
+    }
     if (options_.solver == SolverKind::kCeres) {
       if (visible != ceres_visible_ || ceres_problem_ == nullptr) BuildCeresProblem(visible);
       ceres::Solver::Summary summary;
@@ -299,6 +318,14 @@ class MarkerFrameSolver::Impl {
   // Toward the previous solution, then toward rest_rotations_ (each optional).
   std::vector<std::unique_ptr<RotationPriorResidual>> rotation_priors_;
   std::vector<int> prior_joints_;  // The joint of each rotation prior.
+  std::vector<std::vector<int>> own_markers_;  // Per joint, the markers attached to it.
+  // A joint whose rest prior rises to hidden_rotation_weight while its own markers are missing.
+  struct Hideable {
+    int joint;
+    RotationPriorResidual* prior;
+    double seen_weight;  // The prior's weight while some own marker is observed.
+  };
+  std::vector<Hideable> hideable_;
   std::unique_ptr<TranslationPriorResidual> translation_prior_;
   std::vector<std::unique_ptr<JointLimitResidual>> limits_;
   std::vector<int> limit_joints_;

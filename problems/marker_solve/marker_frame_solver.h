@@ -15,7 +15,11 @@
 // a weight well below the previous-frame prior's and the markers', it decides only
 // directions no observed marker constrains, e.g. a joint's twist when its only other
 // marker is missing, which then relax toward the reference instead of keeping wherever
-// the solver's path left them), and soft joint limits (JointLimitResidual) where the skeleton has them.
+// the solver's path left them; a hidden joint -- one with markers of its own, none of them
+// observed in the frame -- is pulled toward the reference with hidden_rotation_weight
+// instead, since only the markers of the bones below it would place it, e.g. a clavicle
+// whose one shoulder marker is missing, hinged on by the arm: strong enough to hold it at
+// the subject's mean pose), and soft joint limits (JointLimitResidual) where the skeleton has them.
 // Each joint's rotation stays on its dof set (Skeleton::rotation_axes, RotationManifold).
 //
 // Units: observations in the skeleton's length units; marker residuals scaled by
@@ -51,6 +55,10 @@ struct MarkerSolveOptions {
   // The rest prior's reference, one local rotation per joint (a subject's mean pose);
   // empty: zero rotations. Another size is an error at Solve.
   QuaternionVector rest_rotations;
+  // Per radian, toward rest_rotations, of a joint with markers of its own none of which is
+  // observed in the frame (replaces rest_rotation_weight on that joint then); 0 = off.
+  // Only toward a given reference (non-empty rest_rotations).
+  double hidden_rotation_weight = 0.0;
   // The rest prior applies only toward a given reference (empty rest_rotations: off): the
   // default weight is meant for a subject's mean pose, not for zero rotations.
   bool rest_prior_needs_reference = false;
@@ -71,6 +79,8 @@ struct FrameSolveReport {
   bool usable = false;         // The solver returned a usable solution.
   int markers_used = 0;
   double rms_marker_error = 0.0;  // sqrt(mean |x_pred - x_obs|^2), skeleton units.
+  // Hidden joints held toward the reference with hidden_rotation_weight in this frame.
+  std::vector<int> held_joints;
   std::string brief;           // The solver's one-line report.
 };
 

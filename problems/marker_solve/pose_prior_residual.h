@@ -12,7 +12,8 @@
 //   r = weight (t - t_ref)        3 rows, Jacobian weight I (3 x 3)
 //
 // The references are read through pointers at each Evaluate, so a frame-by-frame
-// solver updates them in place.
+// solver updates them in place; a rotation prior's weight may be reset between solves
+// (set_weight: a frame solver raises a hidden joint's pull toward its mean pose).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_POSE_PRIOR_RESIDUAL_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_POSE_PRIOR_RESIDUAL_H_
 
@@ -26,6 +27,8 @@ class RotationPriorResidual : public ceres::SizedCostFunction<4, 4> {
       : reference_(reference_xyzw), weight_(weight) {}
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
+  void set_weight(double weight) { weight_ = weight; }
+  double weight() const { return weight_; }
 
  private:
   const double* reference_;

@@ -47,7 +47,8 @@ Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
     Status status = RootPoseFromMarkers(skeleton, markers, observed, &start);
     if (status.ok()) {
       MarkerSolveOptions search = options;
-      search.prior_rotation_weight = search.prior_translation_weight = search.rest_rotation_weight = 0.0;
+      search.prior_rotation_weight = search.prior_translation_weight = search.rest_rotation_weight =
+          search.hidden_rotation_weight = 0.0;
       search.solver = SolverKind::kDls;  // One start for every solver (see InitialPose's search).
       MarkerFrameSolver solver(skeleton, markers, search);
       FrameSolveReport report;
@@ -68,7 +69,8 @@ Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
   // pose (with the rest prior, the 24 starts of 02_01 could end in a wrong basin that the
   // first frame then kept: Ceres' tracker at 9.5 mm instead of 4.0 at exactly 5 mm/rad).
   MarkerSolveOptions search = options;
-  search.prior_rotation_weight = search.prior_translation_weight = search.rest_rotation_weight = 0.0;
+  search.prior_rotation_weight = search.prior_translation_weight = search.rest_rotation_weight =
+      search.hidden_rotation_weight = 0.0;
   // Plain least squares for the cold start: a robust loss (the repair's reference) makes
   // a limb posed wrongly a cheap local minimum, which a tracker pulled toward the previous
   // frame then keeps (Ceres' Cauchy at 1 cm held 02_01's left forearm wrong for 65
@@ -153,6 +155,10 @@ Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
       pose = attempt;
       report->total_iterations += frame.iterations;
       report->total_final_cost += frame.final_cost;
+      for (int j : frame.held_joints) {
+        if (report->held_frames.empty()) report->held_frames.assign(skeleton.num_joints(), 0);
+        ++report->held_frames[j];
+      }
       if (frame.iterations >= max_iterations) ++report->unconverged_frames;
       report->frame_rms[f] = frame.rms_marker_error;
       report->frame_cost[f] = frame.final_cost;

@@ -26,6 +26,9 @@ struct SequenceSolveReport {
   double total_final_cost = 0.0;
   std::vector<double> frame_rms;  // Per frame.
   std::vector<double> frame_cost;  // Per frame: the solver's final cost (NaN where unsolved).
+  // Per joint: the frames in which it was held toward the subject's mean pose as a hidden
+  // joint (MarkerSolveOptions::hidden_rotation_weight; empty when none was).
+  std::vector<int> held_frames;
 };
 
 // observed[f][m] in model units (MarkerObservations); `initial` supplies the joints no

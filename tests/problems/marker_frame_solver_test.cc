@@ -134,6 +134,73 @@ TEST_P(MarkerFrameSolverTest, RestPriorDecidesOnlyUnconstrainedJoints) {
   EXPECT_NE(status.message().find("rest pose"), std::string::npos) << status.message();
 }
 
+// A hidden joint -- its own markers all missing, the bones below it observed (a clavicle
+// without its shoulder marker, hinged on by the arm) -- is held toward the reference by
+// hidden_rotation_weight, not placed by the arm alone: here the arm's markers say the
+// shoulder is 0.3 rad from the subject's mean pose, and the weak rest prior follows them,
+// the hidden-joint prior keeps it nearer the mean. While one of its own markers is observed
+// the joint solves exactly as without it (the same solver, frame after frame).
+TEST_P(MarkerFrameSolverTest, HiddenJointIsHeldAtTheReference) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  std::mt19937 rng(7);
+  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, rng());
+  const Motion walk = MakeDemoWalk(skeleton, 3, 30.0);
+  const int shoulder = skeleton.FindJoint("LeftShoulder");
+  ASSERT_GE(shoulder, 0);
+  const QuaternionVector mean_pose = walk.frames[2].rotations;
+  Pose truth = walk.frames[2];
+  truth.rotations[shoulder] = mean_pose[shoulder] * Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()));
+  const std::vector<Eigen::Vector3d> all = Observe(skeleton, markers, truth);
+  std::vector<Eigen::Vector3d> hidden = all;
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    for (const MarkerAttachment& a : markers.marker(m).attachments) {
+      if (a.joint == shoulder) hidden[m] = Eigen::Vector3d::Constant(std::nan(""));
+    }
+  }
+  auto options_with = [&](double hidden_weight) {
+    MarkerSolveOptions options;
+    options.solver = GetParam();
+    options.ceres = DefaultFrameCeresOptions();
+    options.dls.function_tolerance = options.ceres.function_tolerance = 1e-12;
+    options.rest_rotation_weight = 0.05;
+    options.hidden_rotation_weight = hidden_weight;
+    options.rest_rotations = mean_pose;
+    return options;
+  };
+  MarkerFrameSolver weak(skeleton, markers, options_with(0.0));
+  MarkerFrameSolver held(skeleton, markers, options_with(20.0));
+  Pose a = walk.frames[2], b = walk.frames[2];
+  FrameSolveReport report;
+  ASSERT_TRUE(weak.Solve(hidden, &a, &report).ok()) << report.brief;
+  ASSERT_TRUE(held.Solve(hidden, &b, &report).ok()) << report.brief;
+  EXPECT_EQ(report.held_joints, std::vector<int>{shoulder});  // Reported as held.
+  // The arm's nine markers place the shoulder: the weak prior lands near the truth.
+  EXPECT_LT(AngularDistance(a.rotations[shoulder], truth.rotations[shoulder]), 0.01);
+  EXPECT_GT(AngularDistance(a.rotations[shoulder], mean_pose[shoulder]), 0.28);
+  // Held: at least twice nearer the mean pose than the arm alone would put it.
+  EXPECT_LT(AngularDistance(b.rotations[shoulder], mean_pose[shoulder]), 0.15);
+  // Own markers back: the same pose as without the hidden-joint prior.
+  a = b = walk.frames[2];
+  ASSERT_TRUE(weak.Solve(all, &a, &report).ok()) << report.brief;
+  ASSERT_TRUE(held.Solve(all, &b, &report).ok()) << report.brief;
+  EXPECT_TRUE(report.held_joints.empty());
+  for (int j = 0; j < skeleton.num_joints(); ++j) {
+    EXPECT_LT(AngularDistance(a.rotations[j], b.rotations[j]), 1e-12) << j;
+  }
+  EXPECT_LT(AngularDistance(b.rotations[shoulder], truth.rotations[shoulder]), 0.01);
+  // Without a given reference the hidden-joint prior is off (zero rotations are no mean pose).
+  MarkerSolveOptions no_reference = options_with(20.0);
+  no_reference.rest_rotations.clear();
+  MarkerFrameSolver unreferenced(skeleton, markers, no_reference);
+  MarkerSolveOptions plain = options_with(0.0);
+  plain.rest_rotations.clear();
+  MarkerFrameSolver reference_free(skeleton, markers, plain);
+  a = b = walk.frames[2];
+  ASSERT_TRUE(reference_free.Solve(hidden, &a, &report).ok()) << report.brief;
+  ASSERT_TRUE(unreferenced.Solve(hidden, &b, &report).ok()) << report.brief;
+  EXPECT_LT(AngularDistance(a.rotations[shoulder], b.rotations[shoulder]), 1e-12);
+}
+
 INSTANTIATE_TEST_SUITE_P(AllSolvers, MarkerFrameSolverTest,
                          ::testing::Values(SolverKind::kCeres, SolverKind::kDls, SolverKind::kDlsGeneric),
                          [](const auto& info) { return std::string(SolverKindName(info.param)); });
