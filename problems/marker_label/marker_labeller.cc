@@ -134,6 +134,21 @@ class Tracker {
       }
     }
   }
+  // The pose solved from the frame's matched points (`observed`, NaN = none; warm-started
+  // at *pose), the model's marker positions there, and the frame's points not `used`, with
+  // their indices. False when the solve fails.
+  bool PredictFromMatched(int f, const std::vector<Eigen::Vector3d>& observed, const std::vector<char>& used,
+                          Pose* pose, std::vector<Eigen::Vector3d>* predicted,
+                          std::vector<Eigen::Vector3d>* free_points, std::vector<int>* free_index) {
+    FrameSolveReport report;
+    if (!solver_.Solve(observed, pose, &report).ok() || !report.usable) return false;
+    *predicted = ModelMarkerPositions(skeleton_, markers_, *pose);
+    const std::vector<Eigen::Vector3d>& points = points_[f];
+    for (size_t k = 0; k < points.size(); ++k) {
+      if (!used[k]) free_points->push_back(points[k]), free_index->push_back(static_cast<int>(k));
+    }
+    return true;
+  }
   // Markers left without a confident point (a dropout broke their velocity, so they were
   // predicted within the wide reacquire_gate, where a neighbour 3 cm away makes any match
   // doubtful) are matched again among the free points, from the pose solved from the
@@ -151,13 +166,9 @@ class Tracker {
     }
     if (confident == num_markers || confident < 3 || confident == static_cast<int>(points.size())) return;
     Pose pose = state_.pose;
-    FrameSolveReport report;
-    if (!solver_.Solve(observed, &pose, &report).ok() || !report.usable) return;
-    std::vector<Eigen::Vector3d> predicted = ModelMarkerPositions(skeleton_, markers_, pose), free_points;
+    std::vector<Eigen::Vector3d> predicted, free_points;
     std::vector<int> free_index;
-    for (size_t k = 0; k < points.size(); ++k) {
-      if (!used[k]) free_points.push_back(points[k]), free_index.push_back(static_cast<int>(k));
-    }
+    if (!PredictFromMatched(f, observed, used, &pose, &predicted, &free_points, &free_index)) return;
     for (int m = 0; m < num_markers; ++m) {
       if (observed[m].allFinite()) predicted[m] = kNan;
       else if (state_.since[m] < kNever) predicted[m] += state_.offset[m];
@@ -188,13 +199,9 @@ class Tracker {
       if (k >= 0) used[k] = 1, observed[m] = points[k];
     }
     Pose pose = state_.pose;
-    FrameSolveReport report;
-    if (!solver_.Solve(observed, &pose, &report).ok() || !report.usable) return;
-    std::vector<Eigen::Vector3d> predicted = ModelMarkerPositions(skeleton_, markers_, pose), free_points;
+    std::vector<Eigen::Vector3d> predicted, free_points;
     std::vector<int> free_index;
-    for (size_t k = 0; k < points.size(); ++k) {
-      if (!used[k]) free_points.push_back(points[k]), free_index.push_back(static_cast<int>(k));
-    }
+    if (!PredictFromMatched(f, observed, used, &pose, &predicted, &free_points, &free_index)) return;
     for (int m = 0; m < num_markers; ++m) {
       if (matches->point_of_marker[m] >= 0) predicted[m] = kNan;
     }
@@ -204,6 +211,7 @@ class Tracker {
     for (int m = 0; m < num_markers; ++m) {
       if (found.point_of_marker[m] >= 0) with[m] = free_points[found.point_of_marker[m]];
     }
+    FrameSolveReport report;
     if (!solver_.Solve(with, &pose, &report).ok() || !report.usable) return;
     const std::vector<Eigen::Vector3d> model = ModelMarkerPositions(skeleton_, markers_, pose);
     for (int m = 0; m < num_markers; ++m) {
