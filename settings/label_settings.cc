@@ -50,6 +50,10 @@ Status LabellerOptionsFromSettings(const LabelSettings& settings, const LengthUn
   out.lost_fraction = settings.lost_fraction;
   out.acquire_frames = settings.acquire_frames;
   out.solve = solve;
+  // A marker is missing here because it is not labelled yet, not because it is hidden: a
+  // joint held at the subject's mean pose then predicts its markers away from the points
+  // they are to be matched to (the demo walk: 98.3 -> 94.7 % of points labelled with it).
+  out.solve.hidden_rotation_weight = 0.0;
   *options = out;
   return Status::Ok();
 }
