@@ -450,13 +450,23 @@ Status GltfDocument::Read(const std::string& path, GltfDocument* document) {
 namespace {
 
 // The mesh in the bind pose: each vertex (and normal) mapped by every influencing joint,
-// rest_positions = sum_b w_b X_b (c_b IBM_b v0), normals likewise (unit; +Y where they
-// cancel); the influences in skeleton joints.
+// rest_positions = sum_b w_b X_b (c_b IBM_b v0) (X_b = world_bind, c_b = rest_scales, per
+// skin joint b = skin_joints[k] with inverse bind matrix ibm[k]), normals likewise (unit;
+// +Y where they cancel); the influences in skeleton joints.
 void BlendRestVertices(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& normals,
                        const std::vector<std::vector<Influence>>& influences, const std::vector<int>& skin_joints,
-                       const std::vector<Eigen::Matrix<double, 3, 4>>& position_maps,
-                       const std::vector<Eigen::Matrix3d>& normal_ibm, const std::vector<Eigen::Isometry3d>& world_bind,
-                       SkinnedMeshSpec* out) {
+                       const std::vector<Eigen::Matrix4d>& ibm, const std::vector<double>& rest_scales,
+                       const std::vector<Eigen::Isometry3d>& world_bind, SkinnedMeshSpec* out) {
+  std::vector<Eigen::Matrix<double, 3, 4>> position_maps(skin_joints.size());
+  std::vector<Eigen::Matrix3d> normal_ibm(skin_joints.size());
+  for (size_t k = 0; k < skin_joints.size(); ++k) {
+    const int j = skin_joints[k];
+    // X_b * (c_b IBM_b) applied to (v0, 1).
+    position_maps[k].leftCols<3>() = world_bind[j].linear() * (rest_scales[j] * ibm[k].topLeftCorner<3, 3>());
+    position_maps[k].col(3) =
+        world_bind[j].linear() * (rest_scales[j] * ibm[k].topRightCorner<3, 1>()) + world_bind[j].translation();
+    normal_ibm[k] = ibm[k].topLeftCorner<3, 3>().inverse().transpose();
+  }
   SkinnedMeshSpec& spec = *out;
   const int nv = static_cast<int>(positions.size());
   spec.rest_positions.resize(3, nv);
@@ -528,17 +538,8 @@ Status AppendOtherSkins(const tinygltf::Model& model, const std::string& file, i
     BindData bind;
     status = ReadBindData(model, file, other, &bind);
     if (!status.ok()) return status;
-    std::vector<Eigen::Matrix<double, 3, 4>> position_maps(s.joints.size());
-    std::vector<Eigen::Matrix3d> normal_ibm(s.joints.size());
-    for (size_t k = 0; k < s.joints.size(); ++k) {
-      const int j = skin_joints[k];
-      position_maps[k].leftCols<3>() = world_bind[j].linear() * (rest_scales[j] * bind.ibm[k].topLeftCorner<3, 3>());
-      position_maps[k].col(3) = world_bind[j].linear() * (rest_scales[j] * bind.ibm[k].topRightCorner<3, 1>()) +
-                                world_bind[j].translation();
-      normal_ibm[k] = bind.ibm[k].topLeftCorner<3, 3>().inverse().transpose();
-    }
     SkinnedMeshSpec part;
-    BlendRestVertices(positions, normals, influences, skin_joints, position_maps, normal_ibm, world_bind, &part);
+    BlendRestVertices(positions, normals, influences, skin_joints, bind.ibm, rest_scales, world_bind, &part);
     const Eigen::Index before = spec->rest_positions.cols(), added = part.rest_positions.cols();
     for (int t : other_triangles) triangles->push_back(static_cast<int>(before) + t);
     spec->rest_positions.conservativeResize(3, before + added);
@@ -664,18 +665,8 @@ Status ReadGltfCharacter(const GltfDocument& document, const GltfReadOptions& op
   status = ReadMeshes(model, file, out.skin, &positions, &normals, &texcoords, &influences, &triangles,
                       &out.warnings);
   if (!status.ok()) return status;
-  std::vector<Eigen::Matrix<double, 3, 4>> position_maps(num_skin);
-  std::vector<Eigen::Matrix3d> normal_ibm(num_skin);
-  for (size_t k = 0; k < num_skin; ++k) {
-    const int j = rig.skin_joints[k];
-    // X_b * (c_b IBM_b) applied to (v0, 1).
-    position_maps[k].leftCols<3>() = world_bind[j].linear() * (rest_scales[j] * bind.ibm[k].topLeftCorner<3, 3>());
-    position_maps[k].col(3) = world_bind[j].linear() * (rest_scales[j] * bind.ibm[k].topRightCorner<3, 1>()) +
-                              world_bind[j].translation();
-    normal_ibm[k] = bind.ibm[k].topLeftCorner<3, 3>().inverse().transpose();
-  }
   SkinnedMeshSpec spec;
-  BlendRestVertices(positions, normals, influences, rig.skin_joints, position_maps, normal_ibm, world_bind, &spec);
+  BlendRestVertices(positions, normals, influences, rig.skin_joints, bind.ibm, rest_scales, world_bind, &spec);
   spec.texcoords.resize(2, static_cast<Eigen::Index>(texcoords.size()));
   for (size_t v = 0; v < texcoords.size(); ++v) spec.texcoords.col(static_cast<Eigen::Index>(v)) = texcoords[v];
   bool has_normals = !normals.empty();
