@@ -262,12 +262,40 @@ Status LoadTakeForSubject(const Subject& subject, const std::string& markers_pat
 
 Status RequireTakeData(const std::string& path, const MarkerTake& take) {
   if (Status status = RequireMarkerData(path, take.trajectories); !status.ok()) return status;
+  const int markers = take.markers.num_markers();
+  std::vector<char> seen(markers, 0);
   for (const std::vector<Eigen::Vector3d>& frame : take.observed) {
-    for (const Eigen::Vector3d& position : frame) {
-      if (position.allFinite()) return Status::Ok();
+    for (int m = 0; m < markers && m < static_cast<int>(frame.size()); ++m) seen[m] |= frame[m].allFinite();
+  }
+  if (std::find(seen.begin(), seen.end(), 1) == seen.end()) {
+    return Status::Error(path + ": no marker of the marker set is observed in any frame");
+  }
+  return RequireObservableSegments(path, take.skeleton, take.markers, seen);
+}
+
+Status RequireObservableSegments(const std::string& path, const Skeleton& skeleton, const MarkerSet& markers,
+                                 const std::vector<char>& seen) {
+  const int joints = skeleton.num_joints();
+  std::vector<char> carries(joints, 0), observed(joints, 0);
+  std::vector<std::string> labels_on(joints);
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    for (const MarkerAttachment& a : markers.marker(m).attachments) {
+      carries[a.joint] = 1;
+      observed[a.joint] |= seen[m];
+      labels_on[a.joint] += (labels_on[a.joint].empty() ? "" : ", ") + markers.label(m);
     }
   }
-  return Status::Error(path + ": no marker of the marker set is observed in any frame");
+  // A joint is observed through its own markers or any below it (parents come first).
+  for (int j = joints - 1; j > 0; --j) observed[skeleton.parent(j)] |= observed[j];
+  std::string blind;
+  for (int j = 0; j < joints; ++j) {
+    if (!carries[j] || observed[j]) continue;
+    blind += (blind.empty() ? "" : "; ") + skeleton.joint(j).name + " (" + labels_on[j] + ")";
+  }
+  if (blind.empty()) return Status::Ok();
+  return Status::Error(path + ": segments never observed (no sample in any frame of their markers or of any below "
+                       "them), so their joints cannot be solved in this take: " + blind +
+                       " (wrong subject or labels? a marker read as missing by --ignore_markers counts as never seen)");
 }
 
 namespace {

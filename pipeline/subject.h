@@ -123,7 +123,14 @@ Status TakeForSubject(const Subject& subject, MarkerTrajectories trajectories, c
 // Commands that compute on a take refuse one without data: RequireMarkerData
 // (io/marker_file.h), and at least one sample of the marker set's markers ("<path>: no
 // marker of the marker set is observed in any frame").
+// Also refuses a take in which some segment is never observed (RequireObservableSegments).
 Status RequireTakeData(const std::string& path, const MarkerTake& take);
+// A segment (a joint the marker set puts markers on) none of whose markers, nor any on the
+// joints below it, has a sample in any frame (seen[m]: marker m has one) leaves its joint
+// unobservable for the whole take: the solve would hold it at the prior and the repair would
+// invent its markers. The error names each such segment and its labels.
+Status RequireObservableSegments(const std::string& path, const Skeleton& skeleton, const MarkerSet& markers,
+                                 const std::vector<char>& seen);
 
 // The inverse for outputs: the take's file as read, with every sample of the set's
 // markers that differs from the observation (repaired[f][m], skeleton frame and units)

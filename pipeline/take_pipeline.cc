@@ -124,6 +124,7 @@ Status ReadTakeMarkers(const TakeInputs& inputs, const TakePipelineOptions& opti
     *label_seconds = SecondsSince(start);
   }
   status = TakeForSubject(subject, std::move(file), inputs.markers_path, &result->take);
+  if (status.ok()) status = RequireTakeData(inputs.markers_path, result->take);
   if (status.ok()) return status;
   const bool raw = options.label == "never" && !missing.empty();
   return Status::Error("read: " + status.message() + (raw ? " (a raw capture? --label=auto labels its points first)" : ""));

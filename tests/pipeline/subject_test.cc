@@ -150,6 +150,55 @@ std::string Edited(const std::string& text, const std::string& from, const std::
   return text.substr(0, at) + to + text.substr(at + from.size());
 }
 
+// A segment none of whose markers (nor any below it) is seen in any frame cannot be solved:
+// the take is refused, naming the segment and its labels; a segment seen only through the
+// markers below it is solvable and passes.
+TEST(Subject, ASegmentNeverObservedIsRefusedByName) {
+  const Subject subject = MakeSubject();
+  const Skeleton& skeleton = subject.skeleton;
+  auto joint_of = [&](int m) { return subject.markers.marker(m).attachments[0].joint; };
+  // A leaf joint carrying markers whose parent carries markers too.
+  int leaf = -1;
+  for (int m = 0; m < subject.markers.num_markers() && leaf < 0; ++m) {
+    const int j = joint_of(m);
+    bool has_child = false, parent_carries = false;
+    for (int k = 0; k < skeleton.num_joints(); ++k) has_child |= skeleton.parent(k) == j;
+    for (int n = 0; n < subject.markers.num_markers(); ++n) parent_carries |= joint_of(n) == skeleton.parent(j);
+    if (!has_child && parent_carries) leaf = j;
+  }
+  ASSERT_GE(leaf, 0);
+  const int parent = skeleton.parent(leaf);
+  auto take_without = [&](const std::vector<int>& blind_joints, MarkerTake* take) {
+    std::vector<std::string> labels;
+    for (int m = 0; m < subject.markers.num_markers(); ++m) labels.push_back(subject.markers.label(m));
+    MarkerTrajectories file(labels, 3);
+    file.unit = LengthUnitFromName("mm");
+    for (int m = 0; m < file.num_markers(); ++m) {
+      if (std::count(blind_joints.begin(), blind_joints.end(), joint_of(m))) continue;
+      for (int f = 0; f < 3; ++f) file.SetSample(f, m, Eigen::Vector3d(m, f, 2.0));
+    }
+    EXPECT_TRUE(TakeForSubject(subject, file, "blind.c3d", take).ok());
+    return RequireTakeData("blind.c3d", *take);
+  };
+  std::string leaf_labels, parent_labels, other_labels;
+  for (int m = 0; m < subject.markers.num_markers(); ++m) {
+    std::string& labels = joint_of(m) == leaf ? leaf_labels : joint_of(m) == parent ? parent_labels : other_labels;
+    labels += (labels.empty() ? "" : ", ") + subject.markers.label(m);
+  }
+  MarkerTake take;
+  EXPECT_TRUE(take_without({}, &take).ok());
+  EXPECT_TRUE(take_without({parent}, &take).ok()) << "seen through the markers below it";
+  Status status = take_without({leaf}, &take);
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), StartsWith("blind.c3d: segments never observed"));
+  EXPECT_THAT(status.message(), HasSubstr(": " + skeleton.name(leaf) + " (" + leaf_labels + ") ("));
+  status = take_without({leaf, parent}, &take);
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr(": " + skeleton.name(parent) + " (" + parent_labels + "); " +
+                                          skeleton.name(leaf) + " (" + leaf_labels + ") ("));
+  EXPECT_EQ(std::count(status.message().begin(), status.message().end(), '\n'), 0);
+}
+
 // A subject written from a skeleton file holds the skeleton inline: copied to another
 // folder (without the skeleton file), it still loads.
 // A take that lacks some of the subject's markers: one line naming, per segment, the labels
