@@ -48,7 +48,7 @@ void BindRepair(py::module_& m) {
                       {py::cast(&config.repair, py::return_value_policy::reference),
                        py::cast(&config.solver, py::return_value_policy::reference)},
                       RepairOptionNames());
-        const MarkerTakePtr take = TakeArgument(*subject, markers);
+        const MarkerTakePtr take = SolvableTakeArgument(*subject, markers);
         RepairResult result;
         Status status = Status::Ok();
         {
@@ -134,7 +134,7 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
                        py::cast(&config.damage, py::return_value_policy::reference)},
                       EvaluateSettingOptions().Names() + "," + RepairOptionNames() + "," +
                           CorruptionSettingOptions().Names());
-        const MarkerTakePtr take = TakeArgument(*subject, markers);
+        const MarkerTakePtr take = SolvableTakeArgument(*subject, markers);
         EvaluateResult result;
         Status status = Status::Ok();
         {

@@ -46,6 +46,12 @@ MarkerTakePtr TakeArgument(const Subject& subject, py::object markers) {
   return take;
 }
 
+MarkerTakePtr SolvableTakeArgument(const Subject& subject, py::object markers) {
+  MarkerTakePtr take = TakeArgument(subject, markers);
+  ThrowIfError(RequireTakeData(take->name, *take));
+  return take;
+}
+
 SolverSettings SettingsFromKeywords(const py::kwargs& keywords) {
   SolverSettings settings;
   ApplyKeywords(keywords, {py::cast(&settings, py::return_value_policy::reference)}, SolverOptions().Names());
@@ -206,7 +212,7 @@ void BindSolve(py::module_& m) {
         SolveConfig config;
         config.solver = SettingsFromKeywords(keywords);
         config.max_frames = max_frames;
-        const MarkerTakePtr take = TakeArgument(*subject, markers);
+        const MarkerTakePtr take = SolvableTakeArgument(*subject, markers);
         SolveResult result;
         Status status = Status::Ok();
         double seconds_in_cpp = 0.0;

@@ -15,6 +15,9 @@ using MarkerTakePtr = std::shared_ptr<MarkerTake>;
 
 // `markers` a Take (returned as is) or a .c3d/.trc path loaded for the subject.
 MarkerTakePtr TakeArgument(const Subject& subject, py::object markers);
+// TakeArgument for the functions that solve it (solve, repair, evaluate): a take with no
+// data, or with a segment never observed, raises as the CLI refuses it (RequireTakeData).
+MarkerTakePtr SolvableTakeArgument(const Subject& subject, py::object markers);
 
 // SolverSettings (SolverOptions' defaults) with the keywords applied; unknown keywords
 // raise TypeError.

@@ -187,3 +187,17 @@ def test_one_frame_solver_shared_by_threads_gives_the_serial_results(subject):
             for (r, t), (rs, ts) in zip(parallel[c], serial[c]):
                 np.testing.assert_array_equal(r, rs)
                 np.testing.assert_array_equal(t, ts)
+
+
+# A segment never observed in the whole take (here every segment but the one marker kept)
+# cannot be solved: solve, repair and evaluate raise naming it, as the CLI refuses it.
+def test_a_take_with_a_segment_never_observed_is_refused(subject):
+    markers = ms.read_markers(os.path.join(GOOD, "small.c3d"))
+    positions = np.array(markers.positions)
+    positions[:, 1:, :] = np.nan
+    one_seen = ms.Markers(positions, list(markers.labels), markers.rate, units=markers.units)
+    assert ms.load_take(subject, one_seen) is not None  # Reading it is fine.
+    for call in (ms.solve, ms.repair, ms.evaluate):
+        with pytest.raises(ValueError) as e:
+            call(subject, one_seen)
+        one_line(e, "segments never observed")
