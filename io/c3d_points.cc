@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "io/c3d_points.h"
 
 #include <map>
@@ -134,7 +135,8 @@ bool IsPluginGaitOutputName(const std::string& name, std::string* kind) {
 }
 
 Status SelectC3dPoints(const C3dPointLists& lists, const std::string& subject_prefix,
-                       bool include_model_outputs, C3dPointSelection* selection) {
+                       bool include_model_outputs, C3dPointSelection* selection,
+                       const std::string& preferred_subject_prefix) {
   C3dPointSelection out;
   const int num_points = static_cast<int>(lists.labels.size());
   out.labels = lists.labels;
@@ -154,8 +156,21 @@ Status SelectC3dPoints(const C3dPointLists& lists, const std::string& subject_pr
                            ")");
     }
   } else if (present.size() > 1) {
-    return Status::Error(where + ": " + std::to_string(present.size()) + " subjects (" + JoinQuoted(present) +
-                         "); choose one with --subject_prefix=NAME");
+    // No choice: the subject the caller prefers (a subject file's own prefix), else the one
+    // with the most points (a body, not a prop's few), named in a warning.
+    chosen = preferred_subject_prefix.empty() ? "" : ChosenPrefix(lists, present, preferred_subject_prefix);
+    const bool preferred = !chosen.empty();
+    size_t most = 0;
+    for (const std::string& prefix : present) {
+      const size_t points = std::count_if(lists.labels.begin(), lists.labels.end(), [&](const std::string& label) {
+        return label.size() > prefix.size() && label.compare(0, prefix.size(), prefix) == 0;
+      });
+      if (!preferred && points > most) most = points, chosen = prefix;
+    }
+    out.warnings.push_back(where + ": " + std::to_string(present.size()) + " subjects (" + JoinQuoted(present) +
+                           "); reading " + QuoteToken(chosen) +
+                           (preferred ? " (the subject's own prefix)" : " (the one with the most points)") +
+                           "; --subject_prefix=NAME reads another");
   }
   if (!chosen.empty()) {
     for (int m = 0; m < num_points; ++m) {

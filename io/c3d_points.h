@@ -11,8 +11,10 @@
 //                  C3dReadOptions::subject_prefix the points of that subject are kept with
 //                  the prefix stripped, those of the other subjects are dropped, and points
 //                  without a prefix (unlabelled "*12", ...) are kept. Without it, a file of
-//                  two or more subjects is an error listing them; one subject's labels are
-//                  kept raw (FindMarker ignores the prefix).
+//                  two or more subjects is read as the preferred subject (a subject file's
+//                  own prefix, when the file has it) or else the one with the most points
+//                  (an actor, not a prop), and a warning lists the others; one subject's
+//                  labels are kept raw (FindMarker ignores the prefix).
 //   model outputs  points that are not markers: those listed by POINT:ANGLES, FORCES,
 //                  MOMENTS, POWERS, REACTIONS, SCALARS (Vicon Nexus, and BTK when it writes),
 //                  each list may go on in ANGLES2, ANGLES3, ...; and by name (subject prefix
@@ -64,10 +66,13 @@ const std::vector<std::string>& C3dModelOutputKinds();
 // "ANGLES", "FORCES", "MOMENTS", "POWERS" or "" (virtual points, centre of mass).
 bool IsPluginGaitOutputName(const std::string& name, std::string* kind = nullptr);
 
-// Applies the rules above. An error (several subjects and no choice, or a choice that is
-// not one of the file's subjects) is one line naming the parameter, without the file name.
+// Applies the rules above. An error (a choice that is not one of the file's subjects) is
+// one line naming the parameter, without the file name.
+// preferred_subject_prefix: the subject read from a file of several when subject_prefix
+// is empty and the file has it.
 Status SelectC3dPoints(const C3dPointLists& lists, const std::string& subject_prefix,
-                       bool include_model_outputs, C3dPointSelection* selection);
+                       bool include_model_outputs, C3dPointSelection* selection,
+                       const std::string& preferred_subject_prefix = "");
 
 }  // namespace mocapsolve
 

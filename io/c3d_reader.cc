@@ -282,7 +282,8 @@ Status C3dParser::SelectPoints(int num_points, C3dPointSelection* selection) con
     std::vector<std::string> labels = StringChunks("POINT", kind, &present);
     if (present) lists.output_lists.emplace_back(kind, std::move(labels));
   }
-  Status status = SelectC3dPoints(lists, options_.subject_prefix, options_.include_model_outputs, selection);
+  Status status = SelectC3dPoints(lists, options_.subject_prefix, options_.include_model_outputs, selection,
+                                  options_.preferred_subject_prefix);
   return status.ok() ? status : Status::Error(file_ + ": " + status.message());
 }
 

@@ -73,8 +73,10 @@ struct C3dReadOptions {
   // Read model outputs (c3d_points.h) as markers instead of setting them apart.
   bool include_model_outputs = false;
   // The subject whose points are read, its prefix stripped ("Daphnee", "Daphnee:" or a
-  // SUBJECTS:NAMES entry); "" = the file's only subject (several are an error).
+  // SUBJECTS:NAMES entry); "" = the file's only subject, or of several the preferred one
+  // below when the file has it, else the one with the most points (with a warning).
   std::string subject_prefix;
+  std::string preferred_subject_prefix;
 };
 
 // What the reader found, for reports and tests.

@@ -75,6 +75,7 @@ Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories,
     C3dReadOptions c3d;
     c3d.include_model_outputs = options.include_model_outputs;
     c3d.subject_prefix = options.subject_prefix;
+    c3d.preferred_subject_prefix = options.preferred_subject_prefix;
     C3dFileInfo info;
     status = ReadC3d(path, trajectories, &info, c3d);
     for (const std::string& warning : info.warnings) {

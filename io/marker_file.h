@@ -14,6 +14,7 @@ namespace mocapsolve {
 struct MarkerReadOptions {
   bool include_model_outputs = false;  // C3dReadOptions::include_model_outputs.
   std::string subject_prefix;          // C3dReadOptions::subject_prefix.
+  std::string preferred_subject_prefix;  // C3dReadOptions::preferred_subject_prefix.
   // Comma-separated labels whose every sample is read as missing; a label the file does
   // not have is an error naming it.
   std::string ignore_markers;

@@ -253,9 +253,16 @@ Status WriteSubject(const std::string& path, const Subject& subject) {
   return WriteFileAtomically(path, FormatSubject(path, subject));
 }
 
+Status ReadMarkerFileForSubject(const Subject& subject, const std::string& markers_path,
+                                MarkerTrajectories* trajectories) {
+  MarkerReadOptions options = DefaultMarkerReadOptions();
+  options.preferred_subject_prefix = subject.label_prefix;
+  return ReadMarkerFile(markers_path, trajectories, options);
+}
+
 Status LoadTakeForSubject(const Subject& subject, const std::string& markers_path, MarkerTake* take) {
   MarkerTrajectories trajectories;
-  Status status = ReadMarkerFile(markers_path, &trajectories);
+  Status status = ReadMarkerFileForSubject(subject, markers_path, &trajectories);
   if (!status.ok()) return status;
   return TakeForSubject(subject, std::move(trajectories), markers_path, take);
 }

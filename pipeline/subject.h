@@ -112,6 +112,10 @@ struct MarkerTake {
 Status SubjectFileTransform(const Subject& subject, const MarkerTrajectories& file, const std::string& name,
                             MarkerFileToModel* transform);
 
+// Reads a marker file as every command does (DefaultMarkerReadOptions), and of a file of
+// several subjects without --subject_prefix, the one with the subject's own label prefix.
+Status ReadMarkerFileForSubject(const Subject& subject, const std::string& markers_path,
+                                MarkerTrajectories* trajectories);
 // Reads the marker file at markers_path and maps it onto the subject: the label prefix
 // stripped, axes and scale applied, observed[f][m] gathered for every marker of the set
 // (an error names the ones the file lacks), and the unlabelled points kept.

@@ -100,7 +100,7 @@ Status ReadTakeMarkers(const TakeInputs& inputs, const TakePipelineOptions& opti
   *label_seconds = 0.0;
   const Subject& subject = *inputs.subject;
   MarkerTrajectories file;
-  Status status = ReadMarkerFile(inputs.markers_path, &file);
+  Status status = ReadMarkerFileForSubject(subject, inputs.markers_path, &file);
   if (!status.ok()) return Status::Error("read: " + status.message());
   const std::vector<std::string> missing = SubjectLabelsMissing(subject, file);
   if (options.label == "always" || (options.label == "auto" && !missing.empty())) {

@@ -27,7 +27,9 @@ const OptionGroup<FileReadSettings>& FileReadSettingOptions() {
       .Add(&S::subject_prefix, "subject_prefix",
            "C3D with several subjects (SUBJECTS:LABEL_PREFIXES, 'Name:LASI' labels): read this subject's points "
            "(name, 'Name:' or a SUBJECTS:NAMES entry), its prefix stripped; the other subjects' points are "
-           "ignored. Without it such a file is an error listing its subjects.")
+           "ignored. Without it such a file is read as the subject file's own subject (its label prefix) when the "
+           "file has it, else as the subject with the most points (an actor, not a prop), and a warning lists "
+           "the others.")
       .Add(&S::ignore_markers, "ignore_markers",
            "Marker labels (comma-separated, as the file spells them, or without a subject's 'Name:' prefix) read "
            "as missing in "

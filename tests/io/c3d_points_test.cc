@@ -2,6 +2,7 @@
 // layouts (no real file is copied in): duplicate labels (Motion Analysis), model outputs
 // (Vicon Nexus POINT:ANGLES, ..., Plug-in Gait virtual points), two subjects with label
 // prefixes (a person and a prop), labels with spaces and lower case, > 255 points.
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -291,12 +292,30 @@ VendorC3d TwoSubjectFixture(bool with_subjects_group) {
   return fixture;
 }
 
-TEST(C3dPoints, SeveralSubjectsWithoutAChoiceIsAnErrorListingThem) {
-  MarkerTrajectories t;
-  ExpectOneLineError(Read(TwoSubjectFixture(true), &t),
-                     "SUBJECTS:LABEL_PREFIXES: 2 subjects ('Daphnee:', 'boite:'); choose one with --subject_prefix");
-  // Without a SUBJECTS group the labels' "Name:" parts say the same.
-  ExpectOneLineError(Read(TwoSubjectFixture(false), &t), "POINT:LABELS (subject prefixes): 2 subjects");
+// Without a choice, a file of several subjects is read as the one with the most points (an
+// actor over a prop), or as the caller's preferred subject when the file has it; a warning
+// lists the subjects and says which was read.
+TEST(C3dPoints, SeveralSubjectsWithoutAChoiceReadTheLargestOrThePreferredOne) {
+  for (bool with_group : {true, false}) {
+    MarkerTrajectories t;
+    C3dFileInfo info;
+    ASSERT_TRUE(Read(TwoSubjectFixture(with_group), &t, &info, C3dReadOptions()).ok());
+    EXPECT_EQ(t.labels(), (std::vector<std::string>{"LASI", "RASI", "*5"}));
+    EXPECT_EQ(info.other_subject_points, 2);
+    const std::string where = with_group ? "SUBJECTS:LABEL_PREFIXES" : "POINT:LABELS (subject prefixes)";
+    const std::string warning = where + ": 2 subjects ('Daphnee:', 'boite:'); reading 'Daphnee:' (the one with "
+                                "the most points); --subject_prefix=NAME reads another";
+    EXPECT_EQ(std::count_if(info.warnings.begin(), info.warnings.end(),
+                            [&](const std::string& w) { return w.find(warning) != std::string::npos; }),
+              1);
+    C3dReadOptions options;
+    options.preferred_subject_prefix = "boite:";
+    ASSERT_TRUE(Read(TwoSubjectFixture(with_group), &t, &info, options).ok());
+    EXPECT_EQ(t.labels(), (std::vector<std::string>{"M1", "M2", "*5"}));
+    options.preferred_subject_prefix = "Nobody:";  // Not in the file: the largest again.
+    ASSERT_TRUE(Read(TwoSubjectFixture(with_group), &t, &info, options).ok());
+    EXPECT_EQ(t.labels(), (std::vector<std::string>{"LASI", "RASI", "*5"}));
+  }
 }
 
 TEST(C3dPoints, SubjectPrefixSelectsOneSubjectAndStripsItsPrefix) {
@@ -419,9 +438,11 @@ TEST(C3dPoints, CliReadsAndRewritesVendorFiles) {
   EXPECT_EQ(RunCli("info --include_model_outputs " + nexus, &output), 0) << output;
   EXPECT_EQ(output.find("model outputs"), std::string::npos) << output;
 
-  EXPECT_EQ(RunCli("info " + two, &output), 1) << output;
-  EXPECT_NE(output.find("2 subjects ('Daphnee:', 'boite:')"), std::string::npos) << output;
+  EXPECT_EQ(RunCli("info " + two, &output), 0) << output;
+  EXPECT_NE(output.find("2 subjects ('Daphnee:', 'boite:'); reading 'Daphnee:'"), std::string::npos) << output;
+  EXPECT_NE(output.find("markers:   3 (LASI, RASI, *5)"), std::string::npos) << output;
   EXPECT_EQ(RunCli("info --subject_prefix=boite " + two, &output), 0) << output;
+  EXPECT_NE(output.find("markers:   3 (M1, M2, *5)"), std::string::npos) << output;
   // Commands that read no marker file do not take the flags.
   EXPECT_EQ(RunCli("fk --subject_prefix=boite --motion=x.bvh --out=y.bvh", &output), 1) << output;
   EXPECT_NE(output.find("--subject_prefix: not a flag of `fk`"), std::string::npos) << output;

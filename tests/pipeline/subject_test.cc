@@ -199,6 +199,31 @@ TEST(Subject, ASegmentNeverObservedIsRefusedByName) {
   EXPECT_EQ(std::count(status.message().begin(), status.message().end(), '\n'), 0);
 }
 
+// A file of two actors with the same marker set: without --subject_prefix the take is read
+// as the subject file's own actor (its label prefix), even when the other has more points.
+TEST(Subject, ATwoActorFileIsReadAsTheSubjectsOwnActor) {
+  const Subject subject = MakeSubject();  // label_prefix "Subject1:".
+  std::vector<std::string> labels;
+  for (int m = 0; m < subject.markers.num_markers(); ++m) labels.push_back("Other:" + subject.markers.label(m));
+  labels.push_back("Other:EXTRA");  // The other actor has the most points.
+  for (int m = 0; m < subject.markers.num_markers(); ++m) labels.push_back("Subject1:" + subject.markers.label(m));
+  MarkerTrajectories file(labels, 2);
+  file.frame_rate = 60.0;
+  file.unit = LengthUnitFromName("mm");
+  const int own = subject.markers.num_markers() + 1;
+  for (int c = 0; c < file.num_markers(); ++c) file.SetSample(0, c, Eigen::Vector3d(c, 1.0, 2.0));
+  const std::string path = testing::TempPath("two_actors.c3d");
+  ASSERT_TRUE(WriteMarkerFile(path, file).ok());
+  MarkerTake take;
+  const Status status = LoadTakeForSubject(subject, path, &take);
+  ASSERT_TRUE(status.ok()) << status.message();
+  // Observations are in the skeleton frame (axes y,z,x, scale 0.1): x_file = c -> z.
+  EXPECT_DOUBLE_EQ(take.observed[0][0].z(), 0.1 * own);
+  MarkerTrajectories read;
+  ASSERT_TRUE(ReadMarkerFile(path, &read).ok());  // Without the subject: the larger actor.
+  EXPECT_EQ(read.num_markers(), subject.markers.num_markers() + 1);
+}
+
 // A subject written from a skeleton file holds the skeleton inline: copied to another
 // folder (without the skeleton file), it still loads.
 // A take that lacks some of the subject's markers: one line naming, per segment, the labels
