@@ -46,13 +46,7 @@ class Tracker {
           const std::vector<std::vector<Eigen::Vector3d>>& points, const Pose& start, LabellingResult* result)
       : skeleton_(skeleton), markers_(markers), options_(options), points_(points), start_(start),
         clusters_(RigidClusters(markers)), solver_(skeleton, markers, options.solve),
-        acquisition_solver_(skeleton, markers, WithoutFramePrior(options.solve)), result_(result) {
-    for (int m = 0; m < markers.num_markers(); ++m) {
-      const auto& attachments = markers.marker(m).attachments;
-      joint_of_.push_back(attachments.size() == 1 ? attachments[0].joint : -1);
-      offset_.push_back(attachments.size() == 1 ? attachments[0].offset : Eigen::Vector3d::Zero());
-    }
-  }
+        acquisition_solver_(skeleton, markers, WithoutFramePrior(options.solve)), result_(result) {}
 
   // The body in frame f, from scratch.
   Acquisition Find(int f) {
@@ -254,7 +248,7 @@ class Tracker {
   // chance. The exchange is applied to up to 6 frames of the track just before f (the
   // side already labelled) and kept when it lowers their summed solved cost by more than
   // kTrackExchangeRatio and does not move the points of markers riding on one joint
-  // further from the joint's shape (ShapeErrors: their distances against the subject's).
+  // further from the joint's shape (JointShapeErrors: their distances against the subject's).
   // The shape decides where the solved cost cannot: a marker alone on a free joint (squat's
   // ROHAND on the one-dof fingers) reaches a neighbour's point (ROWR's, one of three on the
   // wrist), and the whole-body fit, limited by the fitted subject's errors elsewhere,
@@ -300,8 +294,10 @@ class Tracker {
     for (int m = 0; m < num_markers; ++m) {
       if (source[m] >= 0) involved[m] = involved[source[m]] = 1;
     }
+    std::vector<std::vector<Eigen::Vector3d>> judged_points;
+    for (int g : frames) judged_points.push_back(points_[g]);
     double kept_shape = 0.0, moved_shape = 0.0;
-    ShapeErrors(frames, kept_labels, moved_labels, involved, &kept_shape, &moved_shape);
+    JointShapeErrors(markers_, judged_points, kept_labels, moved_labels, involved, &kept_shape, &moved_shape);
     if (moved_shape > kept_shape) return false;
     double kept = 0.0, moved = 0.0;
     for (size_t i = 0; i < frames.size(); ++i) {
@@ -311,36 +307,6 @@ class Tracker {
       moved += SolvedCost(skeleton_, markers_, points, moved_labels[i], options_.acquisition.gate, &acquisition_solver_, &pose);
     }
     return frames.empty() || moved < kTrackExchangeRatio * kept;
-  }
-  // How far the points given to markers riding on one joint are from the joint's shape,
-  // under the labels kept and moved: the sum over such pairs (m, n), one of them
-  // `involved`, of the RMS over the frames of
-  //   |u_m - u_n| - |z_m - z_n|        (u: the pair's points, z: their offsets on the joint),
-  // frame frames[i]'s points given by kept[i] and moved[i] (point_of_marker); a pair counts
-  // in the frames where both assignments give both of its markers a point.
-  void ShapeErrors(const std::vector<int>& frames, const std::vector<std::vector<int>>& kept,
-                   const std::vector<std::vector<int>>& moved, const std::vector<char>& involved, double* kept_error,
-                   double* moved_error) const {
-    const int num_markers = markers_.num_markers();
-    *kept_error = *moved_error = 0.0;
-    for (int m = 0; m < num_markers; ++m) {
-      if (joint_of_[m] < 0) continue;
-      for (int n = m + 1; n < num_markers; ++n) {
-        if (joint_of_[n] != joint_of_[m] || !(involved[m] || involved[n])) continue;
-        const double model = (offset_[m] - offset_[n]).norm();
-        double kept_sum = 0.0, moved_sum = 0.0;
-        int count = 0;
-        for (size_t i = 0; i < frames.size(); ++i) {
-          const std::vector<Eigen::Vector3d>& points = points_[frames[i]];
-          const int a = kept[i][m], b = kept[i][n], c = moved[i][m], d = moved[i][n];
-          if (a < 0 || b < 0 || c < 0 || d < 0) continue;
-          kept_sum += std::pow((points[a] - points[b]).norm() - model, 2);
-          moved_sum += std::pow((points[c] - points[d]).norm() - model, 2);
-          ++count;
-        }
-        if (count > 0) *kept_error += std::sqrt(kept_sum / count), *moved_error += std::sqrt(moved_sum / count);
-      }
-    }
   }
   const TrackState& state() const { return state_; }
   void set_state(const TrackState& state) { state_ = state; }
@@ -413,8 +379,6 @@ class Tracker {
   int since_polish_ = 0;
   int since_refill_ = 0;
   int previous_frame_ = -1;  // The frame stepped before (which side of f is labelled).
-  std::vector<int> joint_of_;            // Per marker: its joint when it rides on one, else -1.
-  std::vector<Eigen::Vector3d> offset_;  // Per marker: its offset on that joint.
 };
 
 std::string NotFoundMessage(const Skeleton& skeleton, const MarkerSet& markers, const LabellingResult& result,
