@@ -41,6 +41,20 @@ TEST(GatedAssignment, EmptyLabelRatherThanAFarPoint) {
   EXPECT_TRUE(result.conflict[1]);  // Its nearest point went to the other marker.
 }
 
+TEST(GatedAssignment, ACompetitorWithItsOwnPointDoesNotMakeAMatchDoubtful) {
+  // Marker 1 could take marker 0's point (e = 0.6) but has its own at e = 0.05: without
+  // the pair (0, k0) the best matching costs 0.84 more (marker 0 empty), so marker 0's
+  // competitor is at sqrt(0.4^2 + 0.84) = 1, c = 0.84 * 0.6; the nearest competitor
+  // alone (e = 0.6) would give 0.28.
+  GatedAssignment result;
+  AssignGated({{0, 0, 0}, {2, 0, 0}}, {2.0, 2.0}, {{0.8, 0, 0}, {2.1, 0, 0}}, &result);
+  EXPECT_EQ(result.point_of_marker, (std::vector<int>{0, 1}));
+  EXPECT_NEAR(result.confidence[0], 0.84 * 0.6, 1e-9);
+  // A real ambiguity stays doubtful: two points crossed between two markers.
+  AssignGated({{0, 0, 0}, {1, 0, 0}}, {2.0, 2.0}, {{0.45, 0, 0}, {0.55, 0, 0}}, &result);
+  EXPECT_LT(result.confidence[0], 0.3);
+}
+
 struct ScrambledDemo {
   Skeleton skeleton;
   MarkerSet markers;
