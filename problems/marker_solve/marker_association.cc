@@ -231,20 +231,16 @@ Status DetectUnit(const std::string& path, Scene* scene, MarkerAssociation* out)
 // median side (along l x up... see header: side0 = -d.l) and forward (f0 = up x l) coordinates.
 struct Layout {
   std::vector<double> height, side, forward;
-  std::vector<double> low;  // Per kept point: the 20th percentile of its height (a leg's stance).
 };
 
-// Per kept point: its height's median over frames and its 20th percentile (`low`).
-std::vector<double> MarkerHeights(const Scene& scene, std::vector<double>* low) {
+std::vector<double> MarkerHeights(const Scene& scene) {
   std::vector<double> heights;
-  low->clear();
   for (int m : scene.kept) {
     std::vector<double> h;
     for (int f : scene.frames) {
       if (scene.take->valid(f, m)) h.push_back(scene.Height(scene.take->position(f, m)));
     }
     heights.push_back(Median(h));
-    low->push_back(h.empty() ? kNaN : Percentile(h, 0.2));
   }
   return heights;
 }
@@ -308,8 +304,8 @@ double ClusterMedian(const std::vector<int>& cluster, const std::vector<double>&
 // Each cluster is a group: central (trunk), leg (a point below h 0.34, none above 0.6),
 // arm, or, below 0.6 and off centre, the group of the cluster it moves most rigidly with
 // (the trunk's counts as a leg: the hip); within a group each marker takes its role from its own height
-// (trunk: pelvis below 0.66, head above 0.91, chest between; leg, by the height's 20th
-// percentile, the stance: foot below 0.1, shin below 0.29, thigh) or, on an arm, its distance from the side's shoulder (the arm's highest
+// (trunk: pelvis below 0.66, head above 0.91, chest between; leg: foot below 0.1, shin below
+// 0.29, thigh) or, on an arm, its distance from the side's shoulder (the arm's highest
 // point): upper arm within 0.5 of the farthest, forearm within 0.85, hand.
 struct RoleFinder {
   const PairwiseSpread& pairs;
@@ -414,11 +410,7 @@ void RoleFinder::Run() {
       if (group[c] == 0) {
         roles[i] = h < 0.66 ? "pelvis" : h > 0.91 ? "head" : "chest";
       } else if (group[c] == 1) {
-        // A leg's roles by its stance height (the 20th percentile): a sprint's swing lifts a
-        // foot's median to a shin's (JA1Gait35, a 1.3 s sprint: LHEEL at 0.22 of the extent
-        // as a median, 0.06 at its 10th percentile; LP1MT 0.17 and 0.03).
-        const double stance = layout.low[i];
-        roles[i] = prefix + (stance < 0.1 ? "foot" : stance < 0.29 ? "shin" : "thigh");
+        roles[i] = prefix + (h < 0.1 ? "foot" : h < 0.29 ? "shin" : "thigh");
       } else {
         const int k = side[c] > 0.0 ? 0 : 1;
         const double d = shoulder[k] < 0 ? 0.0 : pairs.distance(i, shoulder[k]) / std::max(reach[k], 1e-9);
@@ -579,7 +571,7 @@ Status AssociateMarkers(const MarkerTrajectories& take, const std::string& path,
   }
   const std::vector<std::vector<int>> clusters = ClusterRigidMarkers(pairs, options.clusters);
   Layout layout;
-  layout.height = MarkerHeights(scene, &layout.low);
+  layout.height = MarkerHeights(scene);
   double travel = 0.0;
   BodyFrameCoordinates(scene, &layout, &travel);
   RoleFinder finder{pairs, clusters, layout, {}, {}};

@@ -25,8 +25,7 @@
 //     posterior ones) and toward which the feet point (toes ahead of the shank); left =
 //     up x forward. The head is the highest central cluster (h > 0.78); the chest is every
 //     other central cluster between them. On each side, the foot is the lowest cluster
-//     (h < 0.2; a leg marker's role from its height's 20th percentile, the stance, not its
-//     median, which a sprint's swing lifts), the shin and the thigh follow up the leg, each the cluster most rigidly
+//     (h < 0.2), the shin and the thigh follow up the leg, each the cluster most rigidly
 //     joined to the previous one (the smallest spread of any cross pair: the joint's
 //     markers) within the leg's heights; the upper arm is the side's cluster above the
 //     pelvis most rigidly joined to the chest (or head), the forearm and hand follow it the
