@@ -2,7 +2,9 @@
 // model-output-like points added, units and up axis changed; then the marker association
 // (problems/marker_solve/marker_association.h) and the subject fit from a template with no
 // label map (tasks/fit_skeleton_task.h, association on). Prints one table row and one JSON
-// line per take.
+// line per take. Variants ("seed"): 1 and 2 renamed P0.. (Scramble); 3, on the takes with
+// CMU-style waist labels, a Plug-in Gait export with Nexus model outputs (PluginGait).
+// Environment: ASSOC_TAKE=<take> and ASSOC_SEED=<1|2|3> run one take, one variant.
 //   protocol_association TEMPLATE.json [DATA_DIR] [--fit_max_frames=N] [--no_fit]
 #include <chrono>
 #include <cstdio>
@@ -197,10 +199,12 @@ int main(int argc, char** argv) {
       }
       continue;
     }
+    // The CMU and Vicon 53 sets (LFWT, LBWT: the waist markers Plug-in Gait calls ASI, PSI).
     const bool cmu_labels = take.FindMarker("TakeoMonday:LFWT") >= 0 || take.FindMarker("LFWT") >= 0;
     for (uint32_t seed : {1u, 2u, 3u}) {
-      // Seed 3: the take as a Plug-in Gait export (CMU-labelled takes only).
+      // Seed 3: the take as a Plug-in Gait export (takes with CMU-style waist labels).
       if (seed == 3 && !cmu_labels) continue;
+      if (std::getenv("ASSOC_SEED") && std::atoi(std::getenv("ASSOC_SEED")) != static_cast<int>(seed)) continue;
       Scrambled s = seed == 3 ? PluginGait(take) : Scramble(take, seed);
       if (const char* dir = std::getenv("ASSOC_WRITE")) {
         ms::WriteMarkerFile(std::string(dir) + "/" + name + "_" + std::to_string(seed) + ".c3d", s.take);
