@@ -2,7 +2,9 @@
 // model-output-like points added, units and up axis changed; then the marker association
 // (problems/marker_solve/marker_association.h) and the subject fit from a template with no
 // label map (tasks/fit_skeleton_task.h, association on). Prints one table row and one JSON
-// line per take.
+// line per take. Variants ("seed"): 1 and 2 renamed P0.. (Scramble); 3, on the takes with
+// CMU-style waist labels, a Plug-in Gait export with Nexus model outputs (PluginGait).
+// Environment: ASSOC_TAKE=<take> and ASSOC_SEED=<1|2|3> run one take, one variant.
 //   protocol_association TEMPLATE.json [DATA_DIR] [--fit_max_frames=N] [--no_fit]
 #include <chrono>
 #include <cstdio>
@@ -97,6 +99,62 @@ Scrambled Scramble(const ms::MarkerTrajectories& in, uint32_t seed) {
   return out;
 }
 
+// A Vicon Nexus Plug-in Gait export of a CMU take: the CMU labels under the Plug-in Gait
+// names (front and back waist -> ASI, PSI; shin -> TIB; back -> RBAK), no subject prefix,
+// the file's axes and millimetres kept, and Nexus' model outputs written as points, as
+// a lab's C3D holds them when its POINT groups do not set them apart: joint angles
+// (degrees), forces (N/kg), moments (N mm/kg), powers (W/kg), and two virtual points that
+// move with the body (the centre of mass, a hip joint centre).
+Scrambled PluginGait(const ms::MarkerTrajectories& in) {
+  const std::map<std::string, std::string> rename = {{"LFWT", "LASI"}, {"RFWT", "RASI"}, {"LBWT", "LPSI"},
+                                                     {"RBWT", "RPSI"}, {"LSHN", "LTIB"}, {"RSHN", "RTIB"},
+                                                     {"RBAC", "RBAK"}};
+  const std::vector<std::string> outputs = {"LKneeAngles", "RHipAngles", "LAnkleForce", "RKneeMoment",
+                                            "LHipPower", "CentreOfMass", "LHJC"};
+  Scrambled out;
+  out.added = static_cast<int>(outputs.size());
+  std::vector<std::string> labels;
+  for (int m = 0; m < in.num_markers(); ++m) {
+    std::string name = in.label(m).substr(in.label(m).find(':') == std::string::npos ? 0 : in.label(m).find(':') + 1);
+    if (rename.count(name)) name = rename.at(name);
+    labels.push_back(name);
+    out.original[labels.back()] = in.label(m);
+  }
+  for (const std::string& o : outputs) labels.push_back(o);
+  out.take = ms::MarkerTrajectories(labels, in.num_frames());
+  out.take.frame_rate = in.frame_rate;
+  out.take.unit = ms::Millimetres();
+  const double scale = in.unit.metres_per_unit / 0.001;
+  const int n = in.num_markers();
+  int pelvis[2] = {-1, -1};
+  for (int m = 0; m < n; ++m) {
+    if (labels[m] == "LASI") pelvis[0] = m;
+    if (labels[m] == "RASI") pelvis[1] = m;
+  }
+  for (int f = 0; f < in.num_frames(); ++f) {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    int seen = 0;
+    for (int m = 0; m < n; ++m) {
+      if (!in.valid(f, m)) continue;
+      out.take.SetSample(f, m, scale * in.position(f, m));
+      centre += scale * in.position(f, m), ++seen;
+    }
+    const double t = f / std::max(1.0, in.frame_rate);
+    const double w = 2.0 * M_PI * t;  // One cycle a second.
+    out.take.SetSample(f, n + 0, {35.0 + 30.0 * std::sin(w), 3.0 * std::cos(w), 8.0 * std::sin(2 * w)});
+    out.take.SetSample(f, n + 1, {20.0 * std::sin(w + 1.0), -4.0, 6.0 * std::cos(w)});
+    out.take.SetSample(f, n + 2, {2.0 * std::sin(w), 1.0, 9.8 + 3.0 * std::cos(w)});
+    out.take.SetSample(f, n + 3, {900.0 * std::sin(w), 150.0 * std::cos(w), 60.0});
+    out.take.SetSample(f, n + 4, {0.0, 0.0, 2.5 * std::sin(w + 0.5)});
+    if (seen > 0) out.take.SetSample(f, n + 5, centre / seen);
+    if (pelvis[0] >= 0 && pelvis[1] >= 0 && in.valid(f, pelvis[0]) && in.valid(f, pelvis[1])) {
+      const Eigen::Vector3d l = scale * in.position(f, pelvis[0]), r = scale * in.position(f, pelvis[1]);
+      out.take.SetSample(f, n + 6, 0.5 * (l + r) + 0.3 * (l - r) + Eigen::Vector3d(0, 0, -80.0));
+    }
+  }
+  return out;
+}
+
 double Seconds(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
@@ -141,8 +199,13 @@ int main(int argc, char** argv) {
       }
       continue;
     }
-    for (uint32_t seed : {1u, 2u}) {
-      Scrambled s = Scramble(take, seed);
+    // The CMU and Vicon 53 sets (LFWT, LBWT: the waist markers Plug-in Gait calls ASI, PSI).
+    const bool cmu_labels = take.FindMarker("TakeoMonday:LFWT") >= 0 || take.FindMarker("LFWT") >= 0;
+    for (uint32_t seed : {1u, 2u, 3u}) {
+      // Seed 3: the take as a Plug-in Gait export (takes with CMU-style waist labels).
+      if (seed == 3 && !cmu_labels) continue;
+      if (std::getenv("ASSOC_SEED") && std::atoi(std::getenv("ASSOC_SEED")) != static_cast<int>(seed)) continue;
+      Scrambled s = seed == 3 ? PluginGait(take) : Scramble(take, seed);
       if (const char* dir = std::getenv("ASSOC_WRITE")) {
         ms::WriteMarkerFile(std::string(dir) + "/" + name + "_" + std::to_string(seed) + ".c3d", s.take);
       }
@@ -151,10 +214,13 @@ int main(int argc, char** argv) {
       status = ms::AssociateMarkers(s.take, name, ms::MarkerAssociationOptions(), &association);
       const double association_seconds = Seconds(start);
       int correct = 0, total = 0, excluded_added = 0;
-      std::string wrong;
+      std::string wrong, kept_added;  // Kept added points: label->role.
       for (const auto& a : association.markers) {
         auto it = s.original.find(a.label);
-        if (it == s.original.end()) continue;
+        if (it == s.original.end()) {
+          kept_added += " " + a.label + "->" + a.role;
+          continue;
+        }
         ++total;
         const std::set<std::string> truth = TruthRoles(it->second);
         if (truth.count(a.role)) ++correct;
@@ -198,6 +264,7 @@ int main(int argc, char** argv) {
         }
       }
       if (!wrong.empty()) std::fprintf(stderr, "%s seed %u wrong:%s\n", name, seed, wrong.c_str());
+      if (!kept_added.empty()) std::fprintf(stderr, "%s seed %u added points kept:%s\n", name, seed, kept_added.c_str());
       std::printf("{\"take\": \"%s\", \"seed\": %u, \"markers\": %d, \"correct\": %d, \"associated\": %d, "
                   "\"excluded_added\": %d, \"fit_rms_mm\": %.3f, \"torso_deg\": %.2f, \"passed\": %s, "
                   "\"association_seconds\": %.4f, \"fit_seconds\": %.2f}\n",

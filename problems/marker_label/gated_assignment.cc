@@ -12,6 +12,7 @@ namespace mocapsolve {
 namespace {
 
 constexpr double kForbidden = 1e6;  // Cost of a pair that is not a candidate.
+constexpr size_t kMarginRows = 6;  // Larger groups (wide gates): confidence from the nearest competitor.
 using Candidates = std::vector<std::vector<std::pair<int, double>>>;  // (index, e) lists.
 
 int Find(std::vector<int>* parent, int i) {
@@ -21,7 +22,7 @@ int Find(std::vector<int>* parent, int i) {
 
 // Matches one group of markers and points (linked by candidate pairs) exactly.
 void MatchGroup(const std::vector<int>& markers, const std::vector<int>& points, const Candidates& by_marker,
-                GatedAssignment* result) {
+                GatedAssignment* result, std::vector<double>* margin) {
   if (markers.size() == 1 && points.size() == 1) {
     result->point_of_marker[markers[0]] = points[0];
     return;
@@ -35,10 +36,23 @@ void MatchGroup(const std::vector<int>& markers, const std::vector<int>& points,
       cost[r][c] = e * e;
     }
   }
+  const auto total = [&](const std::vector<int>& column) {
+    double sum = 0.0;
+    for (size_t r = 0; r < rows; ++r) sum += column[r] >= 0 ? cost[r][column[r]] : kForbidden;
+    return sum;
+  };
   const std::vector<int> column = MinimumCostAssignment(cost);
+  const double best = total(column);
   for (size_t r = 0; r < rows; ++r) {
     const int c = column[r];
-    if (c >= 0 && static_cast<size_t>(c) < np && cost[r][c] < kForbidden) result->point_of_marker[markers[r]] = points[c];
+    if (c < 0 || static_cast<size_t>(c) >= np || cost[r][c] >= kForbidden) continue;
+    result->point_of_marker[markers[r]] = points[c];
+    if (rows > kMarginRows) continue;
+    // The margin: what the group's best matching costs more without this pair.
+    const double kept = cost[r][c];
+    cost[r][c] = kForbidden;
+    (*margin)[markers[r]] = std::max(0.0, total(MinimumCostAssignment(cost)) - best);
+    cost[r][c] = kept;
   }
 }
 
@@ -52,7 +66,8 @@ int Nearest(const std::vector<std::pair<int, double>>& list) {
 }
 
 // Confidence and conflict of each marker once the matches are made.
-void ScoreMatches(const Candidates& by_marker, const Candidates& by_point, GatedAssignment* result) {
+void ScoreMatches(const Candidates& by_marker, const Candidates& by_point, const std::vector<double>& margin,
+                  GatedAssignment* result) {
   const int num_markers = static_cast<int>(by_marker.size());
   for (int m = 0; m < num_markers; ++m) {
     if (by_marker[m].empty()) continue;
@@ -72,6 +87,7 @@ void ScoreMatches(const Candidates& by_marker, const Candidates& by_point, Gated
     for (const auto& [n, en] : by_point[k]) {
       if (n != m) e_alt = std::min(e_alt, en);
     }
+    if (margin[m] >= 0.0) e_alt = std::sqrt(e * e + margin[m]);
     result->confidence[m] = (1.0 - e * e) * std::max(0.0, 1.0 - e / e_alt);
   }
 }
@@ -87,6 +103,7 @@ void AssignGated(const std::vector<Eigen::Vector3d>& predicted, const std::vecto
   result->distance.assign(num_markers, std::numeric_limits<double>::quiet_NaN());
   result->conflict.assign(num_markers, false);
   Candidates by_marker(num_markers), by_point(num_points);
+  std::vector<double> margin(num_markers, -1.0);  // Of each match in a group of more than one pair.
   std::vector<int> parent(num_markers + num_points);
   std::iota(parent.begin(), parent.end(), 0);
   for (int m = 0; m < num_markers; ++m) {
@@ -109,9 +126,9 @@ void AssignGated(const std::vector<Eigen::Vector3d>& predicted, const std::vecto
     if (!by_point[k].empty()) group_points[Find(&parent, num_markers + k)].push_back(k);
   }
   for (size_t g = 0; g < group_markers.size(); ++g) {
-    if (!group_markers[g].empty()) MatchGroup(group_markers[g], group_points[g], by_marker, result);
+    if (!group_markers[g].empty()) MatchGroup(group_markers[g], group_points[g], by_marker, result, &margin);
   }
-  ScoreMatches(by_marker, by_point, result);
+  ScoreMatches(by_marker, by_point, margin, result);
   for (int m = 0; m < num_markers; ++m) {
     const int k = result->point_of_marker[m];
     if (k >= 0) result->distance[m] = (points[k] - predicted[m]).norm();

@@ -15,9 +15,16 @@
 //
 // Confidence of a match (m, k), in [0, 1]:
 //   c = (1 - e_mk^2) * max(0, 1 - e_mk / e_alt),
-// e_alt the smallest normalized distance of a competitor: another candidate point of m,
-// or another marker n for which k is a candidate (e_nk); e_alt = infinity without one. A
-// match near its gate or with a competitor about as close scores low. A "conflict" is a
+// e_alt the competitor's normalized distance. In a group of up to 6 markers, from the
+// matching's margin: e_alt = sqrt(e_mk^2 + D), D what the group's best matching costs more
+// without the pair (m, k) (so one other candidate point i of m alone gives e_alt = e_mi,
+// as below, and a marker n that could take k but has its own nearer point does not make
+// the match doubtful: a hand marker next to a wrist marker, each tracked, real
+// nick_freeform_001 97.78 -> 98.49 %, synthetic 97.56 -> 98.52 %). In larger groups (the
+// wide gates of finding the body), the smallest normalized distance of a competitor:
+// another candidate point of m, or another marker n for which k is a candidate (e_nk);
+// e_alt = infinity without one. A match near its gate or with a competitor about as
+// close scores low. A "conflict" is a
 // marker whose nearest candidate point went to another marker, or that a competitor
 // claimed too (the one-to-one assignment decided between them: nearest-point labelling
 // would have given two markers the same point or swapped them).

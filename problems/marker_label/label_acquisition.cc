@@ -305,6 +305,34 @@ bool PolishMatches(const Skeleton& skeleton, const MarkerSet& markers, const std
   return changed;
 }
 
+void JointShapeErrors(const MarkerSet& markers, const std::vector<std::vector<Eigen::Vector3d>>& points,
+                      const std::vector<std::vector<int>>& kept, const std::vector<std::vector<int>>& moved,
+                      const std::vector<char>& involved, double* kept_error, double* moved_error) {
+  const int num_markers = markers.num_markers();
+  const auto joint_of = [&](int m) {
+    const auto& attachments = markers.marker(m).attachments;
+    return attachments.size() == 1 ? attachments[0].joint : -1;
+  };
+  *kept_error = *moved_error = 0.0;
+  for (int m = 0; m < num_markers; ++m) {
+    if (joint_of(m) < 0) continue;
+    for (int n = m + 1; n < num_markers; ++n) {
+      if (joint_of(n) != joint_of(m) || !(involved[m] || involved[n])) continue;
+      const double model = (markers.marker(m).attachments[0].offset - markers.marker(n).attachments[0].offset).norm();
+      double kept_sum = 0.0, moved_sum = 0.0;
+      int count = 0;
+      for (size_t i = 0; i < points.size(); ++i) {
+        const int a = kept[i][m], b = kept[i][n], c = moved[i][m], d = moved[i][n];
+        if (a < 0 || b < 0 || c < 0 || d < 0) continue;
+        kept_sum += std::pow((points[i][a] - points[i][b]).norm() - model, 2);
+        moved_sum += std::pow((points[i][c] - points[i][d]).norm() - model, 2);
+        ++count;
+      }
+      if (count > 0) *kept_error += std::sqrt(kept_sum / count), *moved_error += std::sqrt(moved_sum / count);
+    }
+  }
+}
+
 std::vector<Eigen::Vector3d> ModelMarkerPositions(const Skeleton& skeleton, const MarkerSet& markers,
                                                   const Pose& pose) {
   FkData fk(skeleton);

@@ -108,6 +108,18 @@ bool RestartLimbs(const Skeleton& skeleton, const MarkerSet& markers, const std:
 double SolvedCost(const Skeleton& skeleton, const MarkerSet& markers, const std::vector<Eigen::Vector3d>& points,
                   const std::vector<int>& point_of_marker, double gate, MarkerFrameSolver* solver, Pose* pose);
 
+// How far the points given to markers riding on one joint are from the joint's shape, under
+// two labellings of the same frames: the sum over pairs (m, n) of markers attached to one
+// joint only (weight 1), one of them `involved`, of the RMS over the frames of
+//   |u_m - u_n| - |z_m - z_n|        (u: the pair's points, z: their offsets on the joint),
+// frame i's points given by kept[i] and moved[i] (point_of_marker into points[i]); a pair
+// counts in the frames where both labellings give both of its markers a point. Model-free
+// of the pose: a marker alone on a free joint can reach a neighbour's point in a whole-body
+// fit, but its point does not keep the neighbour's distances to the neighbour's joint mates.
+void JointShapeErrors(const MarkerSet& markers, const std::vector<std::vector<Eigen::Vector3d>>& points,
+                      const std::vector<std::vector<int>>& kept, const std::vector<std::vector<int>>& moved,
+                      const std::vector<char>& involved, double* kept_error, double* moved_error);
+
 // Every marker's model position at `pose` (#M, skeleton units).
 std::vector<Eigen::Vector3d> ModelMarkerPositions(const Skeleton& skeleton, const MarkerSet& markers, const Pose& pose);
 

@@ -22,7 +22,9 @@
 //    points (MarkerFrameSolver, warm-started), for the next frame's model predictions.
 //    Every `polish_every` frames the frame's matches are checked by PolishMatches
 //    (label_acquisition.h: exchanges, 3-cycles and free points that lower the solved cost
-//    by more than 1 %), and
+//    by more than 1 %; an exchange of tracked labels is kept when the track's previous
+//    frames agree by more than 5 % and the distances among the markers of one joint do not
+//    move further from the subject's: |u_m - u_n| - |z_m - z_n|, RMS over those frames), and
 //    at the acquisition and every `refill_every` frames the markers without a point look
 //    for free points near the pose solved from the others (a lost limb comes back).
 // 3. Losses: a frame where fewer than `lost_fraction` of the markers found at acquisition

@@ -41,6 +41,20 @@ TEST(GatedAssignment, EmptyLabelRatherThanAFarPoint) {
   EXPECT_TRUE(result.conflict[1]);  // Its nearest point went to the other marker.
 }
 
+TEST(GatedAssignment, ACompetitorWithItsOwnPointDoesNotMakeAMatchDoubtful) {
+  // Marker 1 could take marker 0's point (e = 0.6) but has its own at e = 0.05: without
+  // the pair (0, k0) the best matching costs 0.84 more (marker 0 empty), so marker 0's
+  // competitor is at sqrt(0.4^2 + 0.84) = 1, c = 0.84 * 0.6; the nearest competitor
+  // alone (e = 0.6) would give 0.28.
+  GatedAssignment result;
+  AssignGated({{0, 0, 0}, {2, 0, 0}}, {2.0, 2.0}, {{0.8, 0, 0}, {2.1, 0, 0}}, &result);
+  EXPECT_EQ(result.point_of_marker, (std::vector<int>{0, 1}));
+  EXPECT_NEAR(result.confidence[0], 0.84 * 0.6, 1e-9);
+  // A real ambiguity stays doubtful: two points crossed between two markers.
+  AssignGated({{0, 0, 0}, {1, 0, 0}}, {2.0, 2.0}, {{0.45, 0, 0}, {0.55, 0, 0}}, &result);
+  EXPECT_LT(result.confidence[0], 0.3);
+}
+
 struct ScrambledDemo {
   Skeleton skeleton;
   MarkerSet markers;
@@ -154,6 +168,46 @@ TEST(RestartLimbs, ATurnedArmStartedAgain) {
   wrong_matches(&pose, &matches);
   EXPECT_TRUE(RestartLimbs(skeleton, markers, points, RestPose(skeleton), gate, 0.99, &solver, &pose, &matches));
   EXPECT_EQ(wrong(matches), 0);
+}
+
+// A marker of a three-marker cluster and the nearest marker on another joint exchanged
+// over 10 frames of the demo walk: the cluster's distances leave its shape (squat's ROWR,
+// on the wrist with two others, and ROHAND alone on the fingers, which a whole-body fit
+// preferred exchanged for 1,050 frames); the true labels keep it, and a pair one labelling
+// leaves without a point is not judged.
+TEST(JointShapeErrors, AnExchangeWithALoneMarkerBreaksTheClusterShape) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, 7);
+  const Motion walk = MakeDemoWalk(skeleton, 40, 120.0);
+  const int num_markers = markers.num_markers();
+  const std::vector<Eigen::Vector3d> rest = ModelMarkerPositions(skeleton, markers, walk.frames[0]);
+  // w: a cluster marker; h: the nearest marker on another joint.
+  const int w = 0;
+  int h = -1;
+  for (int m = 0; m < num_markers; ++m) {
+    if (markers.marker(m).attachments[0].joint == markers.marker(w).attachments[0].joint) continue;
+    if (h < 0 || (rest[m] - rest[w]).norm() < (rest[h] - rest[w]).norm()) h = m;
+  }
+  std::vector<std::vector<Eigen::Vector3d>> points;
+  std::vector<std::vector<int>> truth, exchanged, emptied;
+  for (int f = 0; f < 40; f += 4) {
+    points.push_back(ModelMarkerPositions(skeleton, markers, walk.frames[f]));
+    truth.emplace_back(num_markers);
+    for (int m = 0; m < num_markers; ++m) truth.back()[m] = m;
+    exchanged.push_back(truth.back());
+    std::swap(exchanged.back()[w], exchanged.back()[h]);
+    emptied.push_back(truth.back());
+    emptied.back()[w] = -1;
+  }
+  std::vector<char> involved(num_markers, 0);
+  involved[w] = involved[h] = 1;
+  double kept = -1.0, moved = -1.0;
+  JointShapeErrors(markers, points, truth, exchanged, involved, &kept, &moved);
+  EXPECT_LT(kept, 1e-9);  // The model's own points: the shape exactly.
+  EXPECT_GT(moved, 0.5 * (rest[h] - rest[w]).norm()) << "w and h are " << (rest[h] - rest[w]).norm() << " apart";
+  // w left empty: its pairs are not judged, h's own (unchanged) pairs count alike.
+  JointShapeErrors(markers, points, truth, emptied, involved, &kept, &moved);
+  EXPECT_EQ(kept, moved);
 }
 
 TEST(MarkerLabeller, RefusesATakeTenTimesTooLarge) {
