@@ -10,6 +10,7 @@
 #include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "settings/repair_settings.h"
+#include "pipeline/memory_estimate.h"
 #include "pipeline/retarget_quality_report.h"
 #include "pipeline/take_labelling.h"
 #include "pipeline/take_view.h"
@@ -47,6 +48,10 @@ bool TakePipelineOptions::IsValid(std::string* error) const {
   }
   if (label != "auto" && label != "never" && label != "always") {
     *error = "label: unknown '" + label + "' (auto, never, always)";
+    return false;
+  }
+  if (!(memory_mb >= 0.0) || !std::isfinite(memory_mb)) {
+    *error = "memory_mb: must be >= 0 (0 = no limit)";
     return false;
   }
   return gate.IsValid(error) && retarget.IsValid(error);
@@ -129,6 +134,22 @@ Status ReadTakeMarkers(const TakeInputs& inputs, const TakePipelineOptions& opti
   return Status::Error("read: " + status.message() + (raw ? " (a raw capture? --label=auto labels its points first)" : ""));
 }
 
+// Error when options.memory_mb is set and the take's estimate (its file's frame and marker
+// counts, the samples not read) is over it: the per-frame stages, plus the clip
+// reference's problem and the filter when asked.
+Status CheckTakeMemory(const TakeInputs& inputs, const TakePipelineOptions& options) {
+  if (!(options.memory_mb > 0.0)) return Status::Ok();
+  MarkerFileShape shape;
+  const Status status = ReadMarkerFileShape(inputs.markers_path, &shape);
+  if (!status.ok()) return Status::Error("read: " + status.message());
+  MemoryEstimate estimate = PipelineMemory(shape.frames, shape.markers);
+  if (options.repair.reference_kind == ReferenceKind::kClip) {
+    estimate.Add(ClipSolveMemory(shape.frames, shape.markers));
+  }
+  if (options.filter_levels > 0) estimate.Add(PipelineFilterMemory(shape.frames));
+  return CheckMemoryLimit(estimate, options.memory_mb, inputs.markers_path);
+}
+
 }  // namespace
 
 Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
@@ -141,10 +162,13 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
     result->timings.push_back({stage, SecondsSince(since)});
   };
 
+  Status status = CheckTakeMemory(inputs, options);
+  if (!status.ok()) return status;
+
   // Read: the markers through the subject's mapping; the characters.
   Clock::time_point stage_start = Clock::now();
   double label_seconds = 0.0;
-  Status status = ReadTakeMarkers(inputs, options, result, progress, &label_seconds);
+  status = ReadTakeMarkers(inputs, options, result, progress, &label_seconds);
   if (!status.ok()) return status;
   const MarkerTake& take = result->take;
   const int frames = static_cast<int>(take.observed.size());

@@ -70,6 +70,10 @@ struct TakePipelineOptions {
   std::string label = "auto";
   LabelSettings labelling;
   SolverSettings label_solver;
+  // MB the take may need (settings/memory_settings.h; 0 = no limit): a take whose estimate
+  // (pipeline/memory_estimate.h, from the file's frame and marker counts) is over it is
+  // refused before any stage runs.
+  double memory_mb = 0.0;
 
   bool IsValid(std::string* error) const;
 };
