@@ -64,7 +64,7 @@ Status CheckMemoryLimit(const MemoryEstimate& estimate, double limit_mb, const s
   std::string counts = Grouped(estimate.frames) + " frames";
   if (estimate.markers > 0) counts += ", " + std::to_string(estimate.markers) + " markers";
   return Status::Error("--memory_mb=" + Grouped(static_cast<long long>(limit_mb + 0.5)) + ": " + estimate.method +
-                       " on " + input + " (" + counts + ") need about " +
+                       " on " + input + " (" + counts + ") would need about " +
                        Grouped(static_cast<long long>(estimate.mb() + 0.5)) + figures);
 }
 

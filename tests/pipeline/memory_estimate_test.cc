@@ -36,7 +36,7 @@ TEST(MemoryEstimate, LimitRefusesWithTheFigure) {
   const Status refused = CheckMemoryLimit(clip, 1500.0, "take.c3d");
   ASSERT_FALSE(refused.ok());
   EXPECT_THAT(refused.message(), HasSubstr("--memory_mb=1,500: the clip solve on take.c3d (431,982 frames, 41 markers) "
-                                           "need about 77,6"));
+                                           "would need about 77,6"));
   EXPECT_THAT(refused.message(), HasSubstr("(23 MB + 184.0 KB per frame), over the limit; nothing was done"));
   EXPECT_EQ(refused.message().find('\n'), std::string::npos);
 }
