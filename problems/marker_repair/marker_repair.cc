@@ -7,6 +7,7 @@
 #include <limits>
 #include <thread>
 
+#include "kinematics/compact_motion.h"
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/marker_trajectories.h"
 #include "problems/marker_repair/marker_residual_model.h"
@@ -137,13 +138,35 @@ bool SameSample(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 // not needed.
 using FrameSamples = std::function<void(size_t f, std::vector<Eigen::Vector3d>* samples)>;
 
+// The earlier solution a re-solve starts from and rejoins: a Motion, or a CompactMotion
+// (kinematics/compact_motion.h) read frame by frame, so that a long take's reference and
+// naive solves need not be held whole in double between their uses.
+class EarlierSolution {
+ public:
+  EarlierSolution(const Motion& motion) : motion_(&motion) {}           // NOLINT: implicit.
+  EarlierSolution(const CompactMotion& motion) : compact_(&motion) {}   // NOLINT: implicit.
+  void Frame(size_t f, Pose* pose) const {
+    if (motion_ != nullptr) {
+      *pose = motion_->frames[f];
+    } else {
+      compact_->Frame(static_cast<int>(f), pose);
+    }
+  }
+  Motion Whole() const { return motion_ != nullptr ? *motion_ : compact_->ToMotion(); }
+
+ private:
+  const Motion* motion_ = nullptr;
+  const CompactMotion* compact_ = nullptr;
+};
+
 int ResolveChangedRange(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                        const FrameSamples& repaired, const Motion& naive, const MarkerSolveOptions& options,
+                        const FrameSamples& repaired, const EarlierSolution& naive, const MarkerSolveOptions& options,
                         double tolerance, size_t begin, size_t end, Motion* motion) {
   int resolved = 0;
   MarkerFrameSolver solver(skeleton, markers, options);
   FkData fk(skeleton), fk_naive(skeleton);
   std::vector<Eigen::Vector3d> samples(markers.num_markers());
+  Pose earlier;
   bool in_sync = true;
   for (size_t f = begin; f < end; ++f) {
     repaired(f, &samples);
@@ -154,20 +177,26 @@ int ResolveChangedRange(const Skeleton& skeleton, const MarkerSet& markers, cons
     if (!changed && in_sync) continue;
     // The previous pose; at the start of a range, naive's (the other range may be
     // writing the frame before it).
-    Pose pose = f > begin ? motion->frames[f - 1] : naive.frames[begin > 0 ? begin - 1 : 0];
+    Pose pose;
+    if (f > begin) {
+      pose = motion->frames[f - 1];
+    } else {
+      naive.Frame(begin > 0 ? begin - 1 : 0, &pose);
+    }
     FrameSolveReport frame;
     if (solver.Solve(samples, &pose, &frame).ok()) motion->frames[f] = pose;
     ++resolved;
     in_sync = false;
     if (!changed) {
       ForwardKinematics(skeleton, motion->frames[f], &fk);
-      ForwardKinematics(skeleton, naive.frames[f], &fk_naive);
+      naive.Frame(f, &earlier);
+      ForwardKinematics(skeleton, earlier, &fk_naive);
       double difference = 0.0;
       for (int j = 0; j < skeleton.num_joints(); ++j) {
         difference = std::max(difference, (fk.world_positions[j] - fk_naive.world_positions[j]).norm());
       }
       in_sync = difference <= tolerance;
-      if (in_sync) motion->frames[f] = naive.frames[f];
+      if (in_sync) motion->frames[f] = earlier;
     }
   }
   return resolved;
@@ -178,10 +207,10 @@ int ResolveChangedRange(const Skeleton& skeleton, const MarkerSet& markers, cons
 // run on two threads. The halves are the same either way, so the result does not depend
 // on the thread count (a batch runs its takes single-threaded side by side).
 Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                            const FrameSamples& repaired, const Motion& naive,
+                            const FrameSamples& repaired, const EarlierSolution& naive,
                             const MarkerSolveOptions& options, double tolerance, bool parallel, Motion* motion,
                             int* resolved) {
-  *motion = naive;
+  *motion = naive.Whole();
   const size_t n = observed.size(), half = n >= 64 ? n / 2 : n;
   int second = 0;
   auto solve_second = [&] {
@@ -203,7 +232,7 @@ Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, 
 // The same with the repaired samples as observations, or as trajectories read frame by
 // frame (the samples TrajectoryObservations would give, without its copy).
 Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                            const Observations& repaired, const Motion& naive,
+                            const Observations& repaired, const EarlierSolution& naive,
                             const MarkerSolveOptions& options, double tolerance, bool parallel, Motion* motion,
                             int* resolved) {
   const FrameSamples samples = [&](size_t f, std::vector<Eigen::Vector3d>* out) { *out = repaired[f]; };
@@ -217,7 +246,7 @@ void TrajectoryFrame(const MarkerTrajectories& trajectories, int f, std::vector<
 }
 
 Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                            const MarkerTrajectories& repaired, const Motion& naive,
+                            const MarkerTrajectories& repaired, const EarlierSolution& naive,
                             const MarkerSolveOptions& options, double tolerance, bool parallel, Motion* motion,
                             int* resolved) {
   const FrameSamples samples = [&](size_t f, std::vector<Eigen::Vector3d>* out) {
@@ -299,8 +328,11 @@ RepairContext MakeRepairContext(const Skeleton& skeleton, const MarkerSet& marke
 }
 
 // The reference Y^ and the marker paths it predicts, X^, as observations and as trajectories.
+// After gap detection Y^ is read only by its refit, frame by frame: it is then kept
+// compact (`kept`, float: kinematics/compact_motion.h) and `motion` freed.
 struct Reference {
   Motion motion;
+  CompactMotion kept;
   Observations reconstructed;
   MarkerTrajectories paths;
 };
@@ -591,7 +623,7 @@ void PreprocessGaps(const RepairContext& ctx, const MarkerTrajectories& referenc
 // Step 6 with the tracker: Y^ refitted without the cut samples where they were (the
 // trimmed samples kept), until it rejoins.
 Status RefitReference(const RepairContext& ctx, const Observations& input, const MarkerTrajectories& flagged,
-                      const Motion& reference, Motion* refitted) {
+                      const CompactMotion& reference, Motion* refitted) {
   int resolved = 0;
   return ResolveChangedFrames(ctx.skeleton, ctx.markers, input, flagged, reference,
                               ctx.options.tracker, ctx.resync_tolerance, ctx.options.parallel, refitted, &resolved);
@@ -756,8 +788,8 @@ Status FillGaps(const RepairContext& ctx, const RoughRuns& rough, bool refit, co
 // without them. A smooth run (a marker flown off, a ghost) and a gap without samples are
 // filled from the refitted X^; a rough run, whose samples scatter about the true path so
 // that the robust solve averaged them, from X^ as solved (issue 16, BENCHMARKS.md).
-// With release_motion, Y^ itself (reference.motion) is freed once the refit has read it
-// (nothing after it does; 1.7 KB per frame of a long take while X^ is refitted).
+// With release_motion, Y^ itself (reference.kept) is freed once the refit has read it
+// (nothing after it does; 0.5 KB per frame of a long take while X^ is refitted).
 Status FillMarkers(const RepairContext& ctx, const Observations& input, Reference* reference_in,
                    bool release_motion, const MarkerTrajectories& flagged, const MarkerTrajectories& unflagged,
                    MarkerTrajectories* before_small, MarkerTrajectories* x, RepairReport* report) {
@@ -767,9 +799,9 @@ Status FillMarkers(const RepairContext& ctx, const Observations& input, Referenc
   const bool refit = options.refit_reference && options.reference_kind == ReferenceKind::kTracker;
   if (refit) {
     Motion refitted;
-    const Status status = RefitReference(ctx, input, flagged, reference.motion, &refitted);
+    const Status status = RefitReference(ctx, input, flagged, reference.kept, &refitted);
     if (!status.ok()) return status;
-    if (release_motion) Release(&reference_in->motion);
+    if (release_motion) Release(&reference_in->kept);
     CarryUnobservedJoints(ctx, flagged, &refitted, report);
     refit_paths = ReconstructedPaths(ctx.skeleton, ctx.markers, refitted);
   }
@@ -778,7 +810,7 @@ Status FillMarkers(const RepairContext& ctx, const Observations& input, Referenc
     report->rough_extension_samples += ExtendRoughRuns(ctx, rough, unflagged, reference.paths, x, before_small);
   }
   if (!refit) {  // Gaps are filled from X^ as solved: carry its unobserved joints first.
-    Motion carried = reference.motion;
+    Motion carried = reference.kept.ToMotion();
     if (CarryUnobservedJoints(ctx, flagged, &carried, report)) {
       const MarkerTrajectories carried_paths = ReconstructedPaths(ctx.skeleton, ctx.markers, carried);
       return FillGaps(ctx, rough, refit, carried_paths, refit_paths, *before_small, x, report);
@@ -915,6 +947,15 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   if (!status.ok()) return status;
   // Preprocessing and filling read the paths, not these.
   if (intermediates == nullptr) Release(&reference.reconstructed);
+  // From here Y and Y^ are read only by the re-solves (step 6's refit of Y^, step 7 from
+  // Y), frame by frame: kept compact (float, kinematics/compact_motion.h: 0.5 instead of
+  // 1.8 KB per frame each while the gaps are detected and filled). Their rounding (< 1e-7
+  // relative) reaches the outputs only through those re-solves' starts and the frames
+  // they copy, far inside 0.01 mm (BENCHMARKS.md).
+  const CompactMotion naive_kept(naive);
+  Release(&naive);
+  reference.kept = CompactMotion(reference.motion);
+  Release(&reference.motion);
   MarkerTrajectories flagged;
   DetectGaps(model, captured, x, bad, report, &flagged);
   Release(&bad);
@@ -940,15 +981,15 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   clock.Lap("Marker Filling");
   // 7. Re-solve.
   if (progress) progress("re-solve", 0, num_frames);
-  status = ResolveChangedFrames(skeleton, markers, input, *repaired, naive, options.naive, ctx.resync_tolerance,
-                                options.parallel, motion, &report->resolved_frames);
+  status = ResolveChangedFrames(skeleton, markers, input, *repaired, naive_kept, options.naive,
+                                ctx.resync_tolerance, options.parallel, motion, &report->resolved_frames);
   if (!status.ok()) return status;
   if (progress) progress("re-solve", num_frames, num_frames);
   report->repaired_rms = RmsOver(skeleton, markers, *motion, *repaired);
   clock.Lap("IK (re-solve)");
   if (intermediates != nullptr) {
-    intermediates->naive = std::move(naive);
-    intermediates->reference = std::move(reference.motion);
+    intermediates->naive = naive_kept.ToMotion();
+    intermediates->reference = reference.kept.ToMotion();
     intermediates->reconstructed = std::move(reference.reconstructed);
     intermediates->residual_model = std::move(model);
   }
