@@ -251,6 +251,8 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
       status = DeliverClip(output.result.clip.motion, options.delivery, &output.delivered);
       if (!status.ok()) return Status::Error("deliver: " + output.path + ": " + status.message());
     }
+    output.take = CompactMotion(output.result.clip.motion);
+    output.result.clip.motion = Motion();
     lap(stage, stage_start);
   }
 
@@ -332,8 +334,8 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
         .Add("result_foot_skating_cm_per_s", c.result.result_plant_skating_cm_s)
         .Add("mean_bone_angle_deg", c.result.mean_bone_angle_deg)
         .Add("root_motion", c.result.root_motion.note.empty() ? std::string("keep") : c.result.root_motion.note)
-        .Add("delivered_frames", c.delivered_motion().num_frames())
-        .Add("delivered_frame_rate", c.delivered_motion().frame_rate)
+        .Add("delivered_frames", c.delivered_frames())
+        .Add("delivered_frame_rate", c.delivered_frame_rate())
         .Add("setup_seconds", c.result.setup_seconds)
         .Add("solve_seconds", r.solve_seconds)
         .Add("quality", RetargetQualityJson(c.result.quality, failures));
@@ -420,7 +422,7 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
     character.animation = inputs.name;
     GltfWriteOptions page_copy;
     page_copy.compact = true;  // Int16 rotations, still joints as one key: the page only plays it.
-    Status status = SerializeGltfWithAnimation(c.document, c.character, c.result.clip.motion, inputs.name,
+    Status status = SerializeGltfWithAnimation(c.document, c.character, c.take, inputs.name,
                                                /*binary=*/true, &character.glb, page_copy);
     if (!status.ok()) return status;
     view.characters.push_back(std::move(character));
@@ -438,17 +440,18 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
   GltfWriteOptions gltf;
   gltf.animation_only = character_files.animation_only;
   for (const CharacterOutput& c : result.characters) {
-    const Motion& motion = c.delivered_motion();
     for (const std::string& format : character_files.formats) {
       if (!status.ok()) break;
       const std::string path = CharacterFormatPath(out_dir, c.path, format);
-      if (format == "glb") {
-        status = WriteGltfWithAnimation(c.document, c.character, motion, inputs.name, path, gltf);
-      } else if (format == "fbx") {
-        status = WriteFbxCharacter(path, c.character, motion, inputs.name, character_files.animation_only,
-                                   character_files.fbx_key_tolerance_mm);
+      if (format == "glb") {  // From the compact take, frame by frame, when it is the delivered clip.
+        status = c.delivered_is_clip
+                     ? WriteGltfWithAnimation(c.document, c.character, c.take, inputs.name, path, gltf)
+                     : WriteGltfWithAnimation(c.document, c.character, c.delivered, inputs.name, path, gltf);
+      } else if (format == "fbx") {  // These two expand it, one file at a time.
+        status = WriteFbxCharacter(path, c.character, c.delivered_motion(), inputs.name,
+                                   character_files.animation_only, character_files.fbx_key_tolerance_mm);
       } else if (format == "bvh") {
-        status = WriteBvh(path, c.character.skeleton, motion, BvhWriteOptions());
+        status = WriteBvh(path, c.character.skeleton, c.delivered_motion(), BvhWriteOptions());
       } else {
         status = Status::Error("--formats: unknown '" + format + "' (glb, fbx, bvh)");
       }
