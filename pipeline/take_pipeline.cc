@@ -205,10 +205,11 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   std::vector<std::vector<Eigen::Vector3d>> repaired;
   RepairOptions repair_options = options.repair;
   SetRepairRestRotations(take.mean_pose, &repair_options);
+  Motion solved;  // Until the retarget takes it over; result->solved keeps it compact.
   status = RepairMarkers(take.skeleton, take.markers, take.observed, take.unlabelled, repair_options, &repaired,
-                         &result->solved, &result->repair);
+                         &solved, &result->repair);
   if (!status.ok()) return Status::Error("repair: " + inputs.markers_path + ": " + status.message());
-  result->solved.frame_rate = take.trajectories.frame_rate;
+  solved.frame_rate = take.trajectories.frame_rate;
   if (progress) progress("repair", frames, frames);
   result->repaired_file = WithRepairedSamples(take, repaired, &result->repaired_samples, result->repair.unlabelled);
   result->repaired = std::move(repaired);
@@ -224,14 +225,36 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
     PyramidOptions pyramid = options.filter;
     pyramid.levels = options.filter_levels;
     Motion filtered;
-    status = FilterMotion(result->solved, pyramid, DropFinestBands(pyramid.levels, pyramid.levels), &filtered);
+    status = FilterMotion(solved, pyramid, DropFinestBands(pyramid.levels, pyramid.levels), &filtered);
     if (!status.ok()) return Status::Error("filter: " + status.message());
-    result->solved = std::move(filtered);
+    solved = std::move(filtered);
     lap("filter", stage_start);
   }
+  result->solved = CompactMotion(solved);
 
-  // 3. Retarget onto each character.
-  for (CharacterOutput& output : result->characters) {
+  // The quality gate's marker checks (its retarget checks follow the retargets), on the
+  // solve in double before the retarget takes it over.
+  const double mm = take.skeleton.unit().metres_per_unit * 1000.0;
+  QualityFigures& figures = result->figures;
+  figures.naive_rms_mm = result->repair.naive_rms * mm;
+  figures.repaired_rms_mm = result->repair.repaired_rms * mm;
+  figures.repaired_share = result->samples > 0 ? double(result->repaired_samples) / result->samples : 0.0;
+  figures.iteration_limit_share = double(result->repair.naive_unconverged_frames) / frames;
+  // The checks of a fitted subject, on this take: skin distance and torso direction.
+  const SubjectChecks checks = CheckSubjectFit(take.skeleton, take.markers, take.observed, solved);
+  figures.max_marker_offset_cm = checks.max_bone_distance_cm;
+  figures.farthest_marker = checks.farthest_marker;
+  figures.torso_error_deg = checks.torso_frames > 0 ? checks.torso_error_mean_deg : std::nan("");
+  result->verdict = CheckQuality(options.gate, figures);
+  if (!result->verdict.pass) {  // Only the marker checks so far: which markers and frames carry them.
+    result->blame = BlameMarkers(take.skeleton, take.markers, take.observed, solved, mm);
+    result->gate_advice = GateAdvice(result->blame, inputs.markers_path);
+  }
+
+  // 3. Retarget onto each character; the last one takes the solve over (its working copy
+  // is made in place: one whole-take copy of the solve less while it runs).
+  for (size_t k = 0; k < result->characters.size(); ++k) {
+    CharacterOutput& output = result->characters[k];
     stage_start = Clock::now();
     const std::string stage = "retarget onto " + output.name;
     RetargetCharacter source;  // Skeleton only: the character's mesh is bound to it.
@@ -241,7 +264,8 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
     target.mesh = &output.character.mesh;
     target.bind_pose = output.character.bind_pose;
     target.rest_pose = output.character.rest_pose;
-    status = RetargetMotionOntoCharacter(source, result->solved, target, options.retarget, &output.result,
+    Motion source_motion = k + 1 == result->characters.size() ? std::move(solved) : solved;
+    status = RetargetMotionOntoCharacter(source, std::move(source_motion), target, options.retarget, &output.result,
                                          [&](int done, int total) {
                                            if (progress) progress(stage, done, total);
                                          });
@@ -256,23 +280,7 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
     lap(stage, stage_start);
   }
 
-  // 4. The quality gate.
-  const double mm = take.skeleton.unit().metres_per_unit * 1000.0;
-  QualityFigures& figures = result->figures;
-  figures.naive_rms_mm = result->repair.naive_rms * mm;
-  figures.repaired_rms_mm = result->repair.repaired_rms * mm;
-  figures.repaired_share = result->samples > 0 ? double(result->repaired_samples) / result->samples : 0.0;
-  figures.iteration_limit_share = double(result->repair.naive_unconverged_frames) / frames;
-  // The checks of a fitted subject, on this take: skin distance and torso direction.
-  const SubjectChecks checks = CheckSubjectFit(take.skeleton, take.markers, take.observed, result->solved);
-  figures.max_marker_offset_cm = checks.max_bone_distance_cm;
-  figures.farthest_marker = checks.farthest_marker;
-  figures.torso_error_deg = checks.torso_frames > 0 ? checks.torso_error_mean_deg : std::nan("");
-  result->verdict = CheckQuality(options.gate, figures);
-  if (!result->verdict.pass) {  // Only the marker checks so far: which markers and frames carry them.
-    result->blame = BlameMarkers(take.skeleton, take.markers, take.observed, result->solved, mm);
-    result->gate_advice = GateAdvice(result->blame, inputs.markers_path);
-  }
+  // 4. The quality gate's retarget checks.
   for (const CharacterOutput& output : result->characters) {
     CheckRetargetQuality(options.gate, output.result.quality, output.name, &result->verdict);
   }
@@ -414,8 +422,9 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
   view.observed = &result.take.observed;
   view.repaired = &result.repaired;
   view.intervals = RepairViewIntervals(result.repair);
-  view.motion = &result.solved;
-  view.frame_rate = result.solved.frame_rate > 0 ? result.solved.frame_rate : 30.0;
+  const Motion solved = result.solved.ToMotion();  // The page's copy.
+  view.motion = &solved;
+  view.frame_rate = solved.frame_rate > 0 ? solved.frame_rate : 30.0;
   for (const CharacterOutput& c : result.characters) {
     ViewCharacter character;
     character.name = c.name;
@@ -436,7 +445,9 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
   Status status = CheckCharacterFiles(out_dir, inputs, character_files);
   if (!status.ok()) return Status::Error("write: " + status.message());
   status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
-  if (status.ok()) status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved, BvhWriteOptions());
+  if (status.ok()) {  // The solve expanded for its file only (the BVH text is made whole).
+    status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved.ToMotion(), BvhWriteOptions());
+  }
   GltfWriteOptions gltf;
   gltf.animation_only = character_files.animation_only;
   for (const CharacterOutput& c : result.characters) {

@@ -123,7 +123,9 @@ struct TakeResult {
   int labelled_samples = 0, labelled_points = 0;  // For the console line.
   MarkerTrajectories repaired_file;   // The input file with the repaired samples.
   std::vector<std::vector<Eigen::Vector3d>> repaired;  // [frame][marker], skeleton frame (NaN = missing).
-  Motion solved;                      // On the subject's skeleton (filtered if asked).
+  // On the subject's skeleton (filtered if asked), compact (kinematics/compact_motion.h:
+  // 0.5 instead of 1.8 KB per frame of the CMU subject's 31 joints).
+  CompactMotion solved;
   RepairReport repair;
   int repaired_samples = 0;           // Samples of the subject's markers that were rewritten.
   int samples = 0;                    // All samples of the subject's markers.

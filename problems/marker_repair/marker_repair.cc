@@ -462,7 +462,7 @@ void AssignUnlabelledStep(const RepairContext& ctx, const MarkerResidualModel& m
 // model refitted: it was fitted with the swapped samples in its window and without the
 // assigned ones.
 Status ResolveRelabelled(const RepairContext& ctx, const Observations& relabelled, const Reference& reference,
-                         const MarkerTrajectories& x, const RepairReport& report, Motion* naive,
+                         const MarkerTrajectories& x, const RepairReport& report, CompactMotion* naive,
                          MarkerResidualModel* model) {
   Motion solved;
   int resolved = 0;
@@ -470,7 +470,8 @@ Status ResolveRelabelled(const RepairContext& ctx, const Observations& relabelle
                                              ctx.options.naive, ctx.resync_tolerance, ctx.options.parallel, &solved,
                                              &resolved);
   if (!status.ok()) return status;
-  *naive = std::move(solved);
+  *naive = CompactMotion(solved);
+  Release(&solved);
   *model = FitMarkerResidualModel(ctx.skeleton, ctx.markers, reference.motion, reference.reconstructed, x,
                                   ctx.model_options);
   // The reference followed the swapped labels: its parent frames do not judge the
@@ -486,7 +487,7 @@ Status ResolveRelabelled(const RepairContext& ctx, const Observations& relabelle
 // Steps 3c and 3d, then the naive solve redone where the samples changed; steps 4-7 work
 // on the relabelled samples (*relabelled, when any changed).
 Status RelabelSamples(const RepairContext& ctx, const UnlabelledPoints& unlabelled, StageClock* clock,
-                      Motion* naive, Reference* reference, MarkerResidualModel* model, MarkerTrajectories* x,
+                      CompactMotion* naive, Reference* reference, MarkerResidualModel* model, MarkerTrajectories* x,
                       Observations* relabelled, RepairReport* report) {
   const RepairOptions& options = ctx.options;
   const bool assigning = options.assign_unlabelled && unlabelled.num_tracks() > 0;
@@ -524,7 +525,7 @@ void RecordInputIntervals(const MarkerTrajectories& captured, RepairReport* repo
 
 // DetectBad(Y, Y^) as marker samples (frames x markers): a joint difference condemns a
 // marker only where it moves the marker past its gate.
-Status JointDifferenceSamples(const RepairContext& ctx, const Motion& naive, const Reference& reference,
+Status JointDifferenceSamples(const RepairContext& ctx, const CompactMotion& naive, const Reference& reference,
                               const MarkerResidualModel& model, const MarkerTrajectories& x,
                               std::vector<std::vector<char>>* bad) {
   std::vector<std::vector<char>> bad_joints;
@@ -533,11 +534,13 @@ Status JointDifferenceSamples(const RepairContext& ctx, const Motion& naive, con
   if (!status.ok()) return status;
   *bad = BadMarkerSamples(ctx.markers, bad_joints);
   FkData fk_naive(ctx.skeleton);
+  Pose pose;
   for (int f = 0; f < x.num_frames(); ++f) {
     bool any = false;
     for (int m = 0; m < x.num_markers() && !any; ++m) any = (*bad)[f][m];
     if (!any) continue;
-    ForwardKinematics(ctx.skeleton, naive.frames[f], &fk_naive);
+    naive.Frame(f, &pose);
+    ForwardKinematics(ctx.skeleton, pose, &fk_naive);
     for (int m = 0; m < x.num_markers(); ++m) {
       if ((*bad)[f][m] && (ctx.markers.Position(m, fk_naive) - reference.reconstructed[f][m]).norm() <= model.gate[m]) {
         (*bad)[f][m] = 0;
@@ -922,6 +925,13 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   if (!status.ok()) return status;
   report->naive_rms = RmsOver(skeleton, markers, naive, observed);
   report->naive_unconverged_frames = sequence.unconverged_frames;
+  // From here Y is read only frame by frame (gap detection, the re-solves from it): kept
+  // compact (float, kinematics/compact_motion.h: 0.5 instead of 1.8 KB per frame while the
+  // residual model is fitted and the gaps are detected and filled). Its rounding (< 1e-7
+  // relative) reaches the outputs only through those re-solves' starts and the frames
+  // they copy, far inside 0.01 mm (BENCHMARKS.md).
+  CompactMotion naive_kept(naive);
+  Release(&naive);
   report->reference_rms = RmsOver(skeleton, markers, reference.motion, observed);
   // 3. Marker reconstruction.
   ReconstructReference(ctx, &reference);
@@ -934,7 +944,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   // 3c. Swaps: relabel; 3d. unlabelled points labelled; then redo the naive solve where
   // the samples changed.
   Observations relabelled;
-  status = RelabelSamples(ctx, unlabelled, &clock, &naive, &reference, &model, &x, &relabelled, report);
+  status = RelabelSamples(ctx, unlabelled, &clock, &naive_kept, &reference, &model, &x, &relabelled, report);
   if (!status.ok()) return status;
   // The samples as captured, x before relabelling: made again from the observations
   // rather than copied before it, so that the relabelling does not hold a third copy.
@@ -943,17 +953,11 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   const Observations& input = changed ? relabelled : observed;
   // 4. Gap detection.
   std::vector<std::vector<char>> bad;
-  status = JointDifferenceSamples(ctx, naive, reference, model, x, &bad);
+  status = JointDifferenceSamples(ctx, naive_kept, reference, model, x, &bad);
   if (!status.ok()) return status;
   // Preprocessing and filling read the paths, not these.
   if (intermediates == nullptr) Release(&reference.reconstructed);
-  // From here Y and Y^ are read only by the re-solves (step 6's refit of Y^, step 7 from
-  // Y), frame by frame: kept compact (float, kinematics/compact_motion.h: 0.5 instead of
-  // 1.8 KB per frame each while the gaps are detected and filled). Their rounding (< 1e-7
-  // relative) reaches the outputs only through those re-solves' starts and the frames
-  // they copy, far inside 0.01 mm (BENCHMARKS.md).
-  const CompactMotion naive_kept(naive);
-  Release(&naive);
+  // From here Y^ is read only by its refit (step 6), frame by frame: kept compact too.
   reference.kept = CompactMotion(reference.motion);
   Release(&reference.motion);
   MarkerTrajectories flagged;
