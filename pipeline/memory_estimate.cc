@@ -6,8 +6,8 @@ namespace mocapsolve {
 namespace {
 
 // Measured 2026-12-07 (BENCHMARKS.md, "Memory against the take's length"); KB, MB.
-constexpr double kPipelineBaseMb = 32.0;          // x1 (1,854 frames): 60,952 KB.
-constexpr double kPipelineSharedKb = 7.4;         // 15.0 KB per frame from x1 to x16,
+constexpr double kPipelineBaseMb = 28.0;          // x1 (1,854 frames): 54,728 KB.
+constexpr double kPipelineSharedKb = 6.6;         // 14.2 KB per frame from x1 to x16,
 constexpr double kPipelinePerMarkerKb = 7.6 / 41;  // of which ~7.6 KB marker samples (heaptrack).
 constexpr double kClipBaseMb = 23.0;              // solve --mode=clip, 300 and 1,854 frames:
 constexpr double kClipPerMarkerKb = 184.0 / 41;   // 184 KB per frame, its residual blocks per marker.
