@@ -9,6 +9,7 @@
 #include "apps/command.h"
 #include "apps/option_flags.h"
 #include "settings/band_settings.h"
+#include "settings/memory_settings.h"
 #include "apps/pyramid_flags.h"
 #include "apps/common_flags.h"
 #include "signal/laplacian_pyramid.h"
@@ -56,6 +57,7 @@ extern const Command kBandsCommand = {
     "w_0 weights the finest band. All ones returns the input (to rounding).",
     __FILE__, RunBands,
     {SharedOptions("motion,markers,out,skeleton,skeleton_units,amc_fps,report"),
-     BandSettingOptions().Only("weights").options(), PyramidSettingOptions().options()}};
+     BandSettingOptions().Only("weights").options(), PyramidSettingOptions().options(),
+     MemoryOption().options()}};
 
 }  // namespace mocapsolve

@@ -14,6 +14,8 @@
 #include "io/bvh_writer.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
+#include "pipeline/memory_estimate.h"
+#include "settings/memory_settings.h"
 #include "signal/motion_pyramid.h"
 
 namespace mocapsolve {
@@ -44,6 +46,9 @@ Status FilterFromFlags(const char* command, int levels, const std::vector<double
     Motion motion, filtered;
     status = LoadMotion(Files().motion, &skeleton, &motion);
     if (status.ok()) status = RequireFrames(Files().motion, motion);
+    MemorySettings memory;
+    ReadOptionFlags(MemoryOption(), &memory);
+    if (status.ok()) status = CheckMemoryLimit(PyramidFilterMemory(motion.num_frames()), memory.memory_mb, Files().motion);
     if (!status.ok()) return status;
     status = FilterMotion(motion, options, weights, &filtered);
     if (!status.ok()) return Status::Error(Files().motion + ": " + status.message());
@@ -104,6 +109,6 @@ extern const Command kFilterCommand = {
     "motion is written as BVH, markers as C3D or TRC (by --out's extension).",
     __FILE__, RunFilter,
     {SharedOptions("motion,markers,out,skeleton,skeleton_units,amc_fps,animation,sample_fps,report"),
-     BandSettingOptions().Only("levels").options(), PyramidSettingOptions().options()}};
+     BandSettingOptions().Only("levels").options(), PyramidSettingOptions().options(), MemoryOption().options()}};
 
 }  // namespace mocapsolve

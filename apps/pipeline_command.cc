@@ -145,6 +145,6 @@ extern const Command kPipelineCommand = {
      FootJointOption().options(), RepairSolverOptions().options(),
      RepairSettingOptions().options(), RetargetSettingOptions().options(), QualityGateOptions().options(),
      PyramidSettingOptions().options(), DeliverySettingOptions().options(), TakeViewPageOption().options(),
-     LabelSettingOptions().options(), AutoSubjectFitOptions().options()}};
+     LabelSettingOptions().options(), AutoSubjectFitOptions().options(), MemoryOption().options()}};
 
 }  // namespace mocapsolve

@@ -15,6 +15,7 @@
 #include "settings/foot_joint_settings.h"
 #include "settings/skeleton_fit_settings.h"
 #include "settings/label_settings.h"
+#include "settings/memory_settings.h"
 #include "settings/retarget_run_settings.h"
 #include "settings/take_settings.h"
 #include "settings/pyramid_settings.h"
@@ -45,6 +46,9 @@ Status TakePipelineOptionsFromFlags(const Skeleton& skeleton, TakePipelineOption
   if (status.ok()) status = PyramidOptionsFromFlags(take.filter_levels, &options->filter);
   if (!status.ok()) return status;
   ReadOptionFlags(QualityGateOptions(), &options->gate);
+  MemorySettings memory;
+  ReadOptionFlags(MemoryOption(), &memory);
+  options->memory_mb = memory.memory_mb;
   status = ClipDeliveryFromFlags(&options->delivery);
   if (!status.ok()) return status;
   std::string error;

@@ -1,6 +1,7 @@
 // The pipeline's flags (apps/pipeline_command.cc): the names a --config file may set, and
 // the TakePipelineOptions made from the parsed flags (repair, retarget, filter, gate,
-// delivery), each through its settings' one conversion.
+// delivery, --memory_mb: settings/memory_settings.h, included here for the command's option
+// list), each through its settings' one conversion.
 #ifndef MOCAPSOLVE_APPS_PIPELINE_FLAGS_H_
 #define MOCAPSOLVE_APPS_PIPELINE_FLAGS_H_
 
@@ -12,6 +13,7 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "pipeline/take_pipeline.h"
+#include "settings/memory_settings.h"
 #include "tasks/auto_subject_task.h"
 
 namespace mocapsolve {

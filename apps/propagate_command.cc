@@ -59,6 +59,7 @@ Status PropagateMain(const std::vector<std::string>& arguments) {
   config.foot_joints = feet.foot_joints;
   ReadOptionFlags(PropagateSettingOptions(), &config.propagate);
   ReadOptionFlags(FalloffSettingOptions(), &config.falloff);
+  ReadOptionFlags(MemoryOption(), &config.memory);
   config.solver = SolverSettingsFromFlags();
 
   Skeleton skeleton;
@@ -119,6 +120,6 @@ extern const Command kPropagateCommand = {
      FalloffSettingOptions().Only("sigma,sigma_scale,eigenpairs,region,knn,falloff_kernel,feature_joints,joint_weights,"
                                   "temporal_weight").options(),
      EditSettingOptions().options(), FootJointOption().options(), PropagateSettingOptions().options(),
-     PropagateMethodOption().options(), ViewPageOption().options()}};
+     PropagateMethodOption().options(), ViewPageOption().options(), MemoryOption().options()}};
 
 }  // namespace mocapsolve

@@ -1,7 +1,6 @@
 // mocapsolve solve: joint angles from optical markers.
 #include <algorithm>
 #include <cstdio>
-#include <memory>
 
 #include "apps/command.h"
 #include "settings/frame_limit_settings.h"
@@ -45,6 +44,7 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   ReadOptionFlags(FrameLimitOption(), &limit);
   config.max_frames = limit.max_frames;
   ReadOptionFlags(SolverAgreementOptions(), &config.agreement);
+  ReadOptionFlags(MemoryOption(), &config.memory);
   const SolverSettings& solver = config.solver;
   MarkerTake take;
   SetStage("inputs");
@@ -145,6 +145,6 @@ extern const Command kSolveCommand = {
     "--residuals_csv the residual of every frame of the written motion (--plot draws it).",
     __FILE__, SolveMain,
     {SharedOptions("subject,skeleton,skeleton_units,markers,markerset,out,axes,marker_scale,residuals_csv,report"),
-     FrameLimitOption().options(), SolverOptions().options(), SolverAgreementOptions().options(), ViewPageOption().options(), SolvePlotOption().options()}};
+     FrameLimitOption().options(), SolverOptions().options(), SolverAgreementOptions().options(), ViewPageOption().options(), SolvePlotOption().options(), MemoryOption().options()}};
 
 }  // namespace mocapsolve

@@ -510,8 +510,9 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
       return Error("POINT:LABELS", status.message());
     }
   }
-  MarkerTrajectories out(std::move(marker_labels), static_cast<int>(num_frames));
-  MarkerTrajectories outputs(std::move(output_labels), static_cast<int>(num_frames));
+  const int read_frames = options_.header_only ? 0 : static_cast<int>(num_frames);
+  MarkerTrajectories out(std::move(marker_labels), read_frames);
+  MarkerTrajectories outputs(std::move(output_labels), read_frames);
   out.frame_rate = outputs.frame_rate = rate;
   out.first_frame = outputs.first_frame = static_cast<int>(std::min<std::int64_t>(first, INT_MAX));
   const std::vector<std::string> units = Strings(Find("POINT", "UNITS"));
@@ -526,13 +527,14 @@ Status C3dParser::Parse(MarkerTrajectories* trajectories, C3dFileInfo* info) {
   found.data_start_block = static_cast<int>(data_start_block);
   found.analog_values_per_frame = analog_values;
   found.analog_channels = analog_channels;
+  found.frames = static_cast<int>(num_frames);
   found.model_output_points = selection.num_model_outputs;
   found.other_subject_points = selection.num_dropped;
   for (const std::string& warning : selection.warnings) found.warnings.push_back(file_ + ": " + warning);
 
   std::uint64_t offset = data_offset;
   // Without points there is nothing to decode (and the frame count may be 2^31).
-  for (int f = 0; num_points > 0 && f < num_frames; ++f) {
+  for (int f = 0; num_points > 0 && f < read_frames; ++f) {
     for (int m = 0; m < num_points; ++m, offset += 4 * word_bytes) {
       if (target[m].first < 0) continue;  // A point of another subject.
       MarkerTrajectories& into = target[m].first == 0 ? out : outputs;

@@ -77,6 +77,10 @@ struct C3dReadOptions {
   // below when the file has it, else the one with the most points (with a warning).
   std::string subject_prefix;
   std::string preferred_subject_prefix;
+  // Read the header and parameters only: the labels, rate and unit, no samples (the
+  // trajectories have 0 frames; C3dFileInfo::frames gives the file's count). For an
+  // estimate of a take's size before any work (io/marker_file.h: ReadMarkerFileShape).
+  bool header_only = false;
 };
 
 // What the reader found, for reports and tests.
@@ -88,6 +92,7 @@ struct C3dFileInfo {
   int data_start_block = 0;          // 1-based.
   int analog_values_per_frame = 0;   // Header word 3: analog samples skipped per frame.
   int analog_channels = 0;           // ANALOG:USED (0 when absent).
+  int frames = 0;                    // Frames in the file (also with header_only).
   int negative_residual_samples = 0; // Missing: negative residual word (or NaN coordinates).
   int zero_position_samples = 0;     // Missing because they were exactly (0,0,0).
   int model_output_points = 0;       // Points set apart as model outputs.

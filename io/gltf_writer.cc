@@ -14,6 +14,7 @@
 #include "io/input_limits.h"
 #include "io/gltf_scene.h"
 #include "io/motion_file.h"
+#include "kinematics/compact_motion.h"
 #include "kinematics/frame_rate.h"
 #include "kinematics/quote_token.h"
 
@@ -384,11 +385,66 @@ Status AnimationOnlyModel(const tinygltf::Model& full, const std::vector<int>& p
   return Status::Ok();
 }
 
-}  // namespace
+// The joint samples the writer reads, one (frame, joint) at a time, from a Motion or a
+// CompactMotion (kinematics/compact_motion.h: a long take is not expanded whole).
+class MotionSamples {
+ public:
+  explicit MotionSamples(const Motion& motion) : motion_(motion) {}
+  double frame_rate() const { return motion_.frame_rate; }
+  int num_frames() const { return motion_.num_frames(); }
+  const Eigen::Quaterniond& rotation(int f, int j) const { return motion_.frames[f].rotations[j]; }
+  const Eigen::Vector3d& translation(int f, int j) const { return motion_.frames[f].translations[j]; }
+  Status Validate(const Skeleton& skeleton) const {
+    // What the readers accept (io/input_limits.h): a frame time of 1e308 wrote a time
+    // accessor whose "max" was inf, JSON null.
+    if (Status s = CheckMotionBounds(skeleton, motion_); !s.ok()) return s;
+    return ValidateMotion(skeleton, motion_);
+  }
 
-Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
-                                  const Motion& motion, const std::string& animation_name,
-                                  bool binary, std::string* bytes, const GltfWriteOptions& options) {
+ private:
+  const Motion& motion_;
+};
+
+class CompactSamples {
+ public:
+  explicit CompactSamples(const CompactMotion& motion) : motion_(motion) {}
+  double frame_rate() const { return motion_.frame_rate(); }
+  int num_frames() const { return motion_.num_frames(); }
+  Eigen::Quaterniond rotation(int f, int j) const { return motion_.Rotation(f, j); }
+  Eigen::Vector3d translation(int f, int j) const { return motion_.Translation(f, j); }
+  // The checks of MotionSamples, frame by frame.
+  Status Validate(const Skeleton& skeleton) const {
+    Motion none;
+    none.frame_rate = motion_.frame_rate();
+    if (Status s = CheckMotionBounds(skeleton, none); !s.ok()) return s;
+    if (motion_.num_joints() != skeleton.num_joints()) {
+      return Status::Error("pose has the wrong joint count (" + std::to_string(motion_.num_joints()) + ", skeleton " +
+                           std::to_string(skeleton.num_joints()) + ")");
+    }
+    Pose pose;
+    for (int f = 0; f < motion_.num_frames(); ++f) {
+      motion_.Frame(f, &pose);
+      const std::string frame = "frame " + std::to_string(f);
+      for (int j = 0; j < skeleton.num_joints(); ++j) {
+        if (Status s = CheckCoordinates(pose.translations[j], frame + ", joint " + QuoteToken(skeleton.name(j)) +
+                                                                  " translation");
+            !s.ok()) {
+          return s;
+        }
+      }
+      if (Status s = ValidatePose(skeleton, pose, frame); !s.ok()) return s;
+    }
+    return Status::Ok();
+  }
+
+ private:
+  const CompactMotion& motion_;
+};
+
+template <class Samples>
+Status SerializeWithAnimation(const GltfDocument& source, const GltfCharacter& character, const Samples& motion,
+                              const std::string& animation_name, bool binary, std::string* bytes,
+                              const GltfWriteOptions& options) {
   const bool compact = options.compact;
   if (!source.loaded()) return Status::Error("glTF writer: source document not loaded");
   const std::string& file = source.name();
@@ -399,16 +455,11 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
       return Status::Error(file + ": already has an animation named " + QuoteToken(animation_name));
     }
   }
-  if (!(motion.frame_rate > 0.0) || !std::isfinite(motion.frame_rate)) {
+  if (!(motion.frame_rate() > 0.0) || !std::isfinite(motion.frame_rate())) {
     return Status::Error(file + ": animation " + QuoteToken(animation_name) + ": frame rate must be positive");
   }
-  if (motion.frames.empty()) return Status::Error(file + ": animation " + QuoteToken(animation_name) + " has no frames");
-  // What the readers accept (io/input_limits.h): a frame time of 1e308 wrote a time
-  // accessor whose "max" was inf, JSON null.
-  if (Status s = CheckMotionBounds(skeleton, motion); !s.ok()) {
-    return Status::Error(file + ": animation " + QuoteToken(animation_name) + ": " + s.message());
-  }
-  Status status = ValidateMotion(skeleton, motion);
+  if (motion.num_frames() == 0) return Status::Error(file + ": animation " + QuoteToken(animation_name) + " has no frames");
+  Status status = motion.Validate(skeleton);
   if (!status.ok()) return Status::Error(file + ": animation " + QuoteToken(animation_name) + ": " + status.message());
 
   tinygltf::Model model = source.model();
@@ -435,7 +486,7 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
                                 static_cast<size_t>(nj) * (28 * static_cast<size_t>(nf) + 8));
 
   std::vector<float> times(nf);
-  const double key_rate = NominalFrameRate(motion.frame_rate);  // As the reader samples them.
+  const double key_rate = NominalFrameRate(motion.frame_rate());  // As the reader samples them.
   for (int f = 0; f < nf; ++f) times[f] = static_cast<float>(f / key_rate);
   const int time_accessor = AppendFloatAccessor(&model, times, TINYGLTF_TYPE_SCALAR, nf, true);
 
@@ -475,9 +526,8 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
     const int node = rig.joint_nodes[j];
     if (node < 0) {  // The synthetic root must stay at rest.
       for (int f = 0; f < nf; ++f) {
-        const Pose& pose = motion.frames[f];
-        if (pose.translations[j].norm() > 1e-9 ||
-            pose.rotations[j].angularDistance(Eigen::Quaterniond::Identity()) > 1e-9) {
+        if (motion.translation(f, j).norm() > 1e-9 ||
+            motion.rotation(f, j).angularDistance(Eigen::Quaterniond::Identity()) > 1e-9) {
           return Status::Error(file + ": frame " + std::to_string(f) +
                                ": moves the synthetic root 'gltf_root', which has no node to animate");
         }
@@ -509,17 +559,16 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
     bool moves = p < 0 || rig.joint_nodes[p] < 0;  // Roots always get translations.
     const Eigen::Vector3d& offset = skeleton.offset(j);
     for (int f = 0; f < nf; ++f) {
-      const Pose& pose = motion.frames[f];
       const Eigen::Quaterniond q =
-          (above_inverse * skeleton.rest_rotation(j) * pose.rotations[j]).normalized();
+          (above_inverse * skeleton.rest_rotation(j) * motion.rotation(f, j)).normalized();
       rotations[4 * f + 0] = static_cast<float>(q.x());
       rotations[4 * f + 1] = static_cast<float>(q.y());
       rotations[4 * f + 2] = static_cast<float>(q.z());
       rotations[4 * f + 3] = static_cast<float>(q.w());
-      const Eigen::Vector3d t =
-          above_inverse * (pose.translations[j] / parent_scale - above.translation) / above.scale;
+      const Eigen::Vector3d translation = motion.translation(f, j);
+      const Eigen::Vector3d t = above_inverse * (translation / parent_scale - above.translation) / above.scale;
       for (int c = 0; c < 3; ++c) translations[3 * f + c] = static_cast<float>(t[c]);
-      if ((pose.translations[j] - offset).norm() > 1e-9 * (offset.norm() + 1.0)) moves = true;
+      if ((translation - offset).norm() > 1e-9 * (offset.norm() + 1.0)) moves = true;
     }
     add_channel(node, "rotation", rotations, TINYGLTF_TYPE_VEC4);
     if (moves) add_channel(node, "translation", translations, TINYGLTF_TYPE_VEC3);
@@ -533,6 +582,20 @@ Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacte
     model = std::move(slim);
   }
   return WriteModel(file, &model, binary, bytes);
+}
+
+}  // namespace
+
+Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
+                                  const Motion& motion, const std::string& animation_name,
+                                  bool binary, std::string* bytes, const GltfWriteOptions& options) {
+  return SerializeWithAnimation(source, character, MotionSamples(motion), animation_name, binary, bytes, options);
+}
+
+Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
+                                  const CompactMotion& motion, const std::string& animation_name,
+                                  bool binary, std::string* bytes, const GltfWriteOptions& options) {
+  return SerializeWithAnimation(source, character, CompactSamples(motion), animation_name, binary, bytes, options);
 }
 
 Status SerializeGltfAsGlb(const GltfDocument& source, std::string* glb) {
@@ -603,9 +666,12 @@ Status MotionForCharacter(const Skeleton& source, const Motion& motion, const Gl
   return Status::Ok();
 }
 
-Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
-                              const Motion& motion, const std::string& animation_name,
-                              const std::string& path, const GltfWriteOptions& options) {
+namespace {
+
+template <class AnyMotion>
+Status WriteWithAnimation(const GltfDocument& source, const GltfCharacter& character, const AnyMotion& motion,
+                          const std::string& animation_name, const std::string& path,
+                          const GltfWriteOptions& options) {
   const std::string ext = FileExtension(path);
   if (ext != ".glb" && ext != ".gltf") {
     return Status::Error(path + ": glTF output must end in .glb or .gltf");
@@ -618,6 +684,20 @@ Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& c
                                              ext == ".glb", &bytes, options);
   if (!status.ok()) return status;
   return WriteFileAtomically(path, bytes);
+}
+
+}  // namespace
+
+Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
+                              const Motion& motion, const std::string& animation_name,
+                              const std::string& path, const GltfWriteOptions& options) {
+  return WriteWithAnimation(source, character, motion, animation_name, path, options);
+}
+
+Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
+                              const CompactMotion& motion, const std::string& animation_name,
+                              const std::string& path, const GltfWriteOptions& options) {
+  return WriteWithAnimation(source, character, motion, animation_name, path, options);
 }
 
 }  // namespace mocapsolve

@@ -51,6 +51,7 @@
 #include <string>
 
 #include "io/gltf_reader.h"
+#include "kinematics/compact_motion.h"
 #include "kinematics/motion.h"
 #include "kinematics/status.h"
 
@@ -72,11 +73,19 @@ struct GltfWriteOptions {
 Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
                               const Motion& motion, const std::string& animation_name,
                               const std::string& path, const GltfWriteOptions& options = {});
+// The same from a CompactMotion (kinematics/compact_motion.h), read one joint of one frame
+// at a time: a long take is not expanded whole to be written.
+Status WriteGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
+                              const CompactMotion& motion, const std::string& animation_name,
+                              const std::string& path, const GltfWriteOptions& options = {});
 
 // The same, into memory: .glb bytes if `binary`, else .gltf JSON text. A .glb is
 // self-contained as SerializeGltfAsGlb makes it (a .gltf keeps its images' URIs).
 Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
                                   const Motion& motion, const std::string& animation_name,
+                                  bool binary, std::string* bytes, const GltfWriteOptions& options = {});
+Status SerializeGltfWithAnimation(const GltfDocument& source, const GltfCharacter& character,
+                                  const CompactMotion& motion, const std::string& animation_name,
                                   bool binary, std::string* bytes, const GltfWriteOptions& options = {});
 
 // The source as one self-contained .glb (bytes), e.g. a .gltf with external .bin files,

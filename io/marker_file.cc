@@ -99,6 +99,27 @@ Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories,
   return status.ok() ? status : Status::Error(path + ": " + status.message());
 }
 
+Status ReadMarkerFileShape(const std::string& path, MarkerFileShape* shape) {
+  *shape = MarkerFileShape();
+  MarkerTrajectories trajectories;
+  if (FileExtension(path) != ".c3d") {
+    const Status status = ReadMarkerFile(path, &trajectories);
+    if (!status.ok()) return status;
+    *shape = {trajectories.num_frames(), trajectories.num_markers(), trajectories.frame_rate};
+    return Status::Ok();
+  }
+  const MarkerReadOptions& options = DefaultMarkerReadOptions();
+  C3dReadOptions c3d;
+  c3d.include_model_outputs = options.include_model_outputs;
+  c3d.subject_prefix = options.subject_prefix;
+  c3d.header_only = true;
+  C3dFileInfo info;
+  const Status status = ReadC3d(path, &trajectories, &info, c3d);
+  if (!status.ok()) return status;
+  *shape = {info.frames, trajectories.num_markers(), trajectories.frame_rate};
+  return Status::Ok();
+}
+
 Status WriteMarkerFile(const std::string& path, const MarkerTrajectories& trajectories) {
   const std::string ext = FileExtension(path);
   // Nothing a reader would refuse (the C3D writer alone refused only float overflow).

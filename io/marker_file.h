@@ -32,6 +32,17 @@ const MarkerReadOptions& DefaultMarkerReadOptions();
 Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories);
 Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories,
                       const MarkerReadOptions& options);
+// A take's size without its samples, for an estimate before any work: frames and marker
+// labels (as ReadMarkerFile would read them, with the default read options). A C3D's
+// header and parameters only (the file is read, its samples are not decoded); a TRC is
+// read whole (its header's counts are not checked against its rows otherwise).
+struct MarkerFileShape {
+  int frames = 0;
+  int markers = 0;
+  double frame_rate = 0.0;
+};
+Status ReadMarkerFileShape(const std::string& path, MarkerFileShape* shape);
+
 Status WriteMarkerFile(const std::string& path, const MarkerTrajectories& trajectories);
 bool IsMarkerFile(const std::string& path);
 

@@ -10,6 +10,7 @@
 #include "io/marker_file.h"
 #include "io/motion_file.h"
 #include "settings/repair_settings.h"
+#include "pipeline/memory_estimate.h"
 #include "pipeline/retarget_quality_report.h"
 #include "pipeline/take_labelling.h"
 #include "pipeline/take_view.h"
@@ -47,6 +48,10 @@ bool TakePipelineOptions::IsValid(std::string* error) const {
   }
   if (label != "auto" && label != "never" && label != "always") {
     *error = "label: unknown '" + label + "' (auto, never, always)";
+    return false;
+  }
+  if (!(memory_mb >= 0.0) || !std::isfinite(memory_mb)) {
+    *error = "memory_mb: must be >= 0 (0 = no limit)";
     return false;
   }
   return gate.IsValid(error) && retarget.IsValid(error);
@@ -130,6 +135,22 @@ Status ReadTakeMarkers(const TakeInputs& inputs, const TakePipelineOptions& opti
   return Status::Error("read: " + status.message() + (raw ? " (a raw capture? --label=auto labels its points first)" : ""));
 }
 
+// Error when options.memory_mb is set and the take's estimate (its file's frame and marker
+// counts, the samples not read) is over it: the per-frame stages, plus the clip
+// reference's problem and the filter when asked.
+Status CheckTakeMemory(const TakeInputs& inputs, const TakePipelineOptions& options) {
+  if (!(options.memory_mb > 0.0)) return Status::Ok();
+  MarkerFileShape shape;
+  const Status status = ReadMarkerFileShape(inputs.markers_path, &shape);
+  if (!status.ok()) return Status::Error("read: " + status.message());
+  MemoryEstimate estimate = PipelineMemory(shape.frames, shape.markers);
+  if (options.repair.reference_kind == ReferenceKind::kClip) {
+    estimate.Add(ClipSolveMemory(shape.frames, shape.markers));
+  }
+  if (options.filter_levels > 0) estimate.Add(PipelineFilterMemory(shape.frames));
+  return CheckMemoryLimit(estimate, options.memory_mb, inputs.markers_path);
+}
+
 }  // namespace
 
 Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
@@ -142,10 +163,13 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
     result->timings.push_back({stage, SecondsSince(since)});
   };
 
+  Status status = CheckTakeMemory(inputs, options);
+  if (!status.ok()) return status;
+
   // Read: the markers through the subject's mapping; the characters.
   Clock::time_point stage_start = Clock::now();
   double label_seconds = 0.0;
-  Status status = ReadTakeMarkers(inputs, options, result, progress, &label_seconds);
+  status = ReadTakeMarkers(inputs, options, result, progress, &label_seconds);
   if (!status.ok()) return status;
   const MarkerTake& take = result->take;
   const int frames = static_cast<int>(take.observed.size());
@@ -182,10 +206,11 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   std::vector<std::vector<Eigen::Vector3d>> repaired;
   RepairOptions repair_options = options.repair;
   SetRepairRestRotations(take.mean_pose, &repair_options);
+  Motion solved;  // Until the retarget takes it over; result->solved keeps it compact.
   status = RepairMarkers(take.skeleton, take.markers, take.observed, take.unlabelled, repair_options, &repaired,
-                         &result->solved, &result->repair);
+                         &solved, &result->repair);
   if (!status.ok()) return Status::Error("repair: " + inputs.markers_path + ": " + status.message());
-  result->solved.frame_rate = take.trajectories.frame_rate;
+  solved.frame_rate = take.trajectories.frame_rate;
   if (progress) progress("repair", frames, frames);
   result->repaired_file = WithRepairedSamples(take, repaired, &result->repaired_samples, result->repair.unlabelled);
   result->repaired = std::move(repaired);
@@ -201,14 +226,36 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
     PyramidOptions pyramid = options.filter;
     pyramid.levels = options.filter_levels;
     Motion filtered;
-    status = FilterMotion(result->solved, pyramid, DropFinestBands(pyramid.levels, pyramid.levels), &filtered);
+    status = FilterMotion(solved, pyramid, DropFinestBands(pyramid.levels, pyramid.levels), &filtered);
     if (!status.ok()) return Status::Error("filter: " + status.message());
-    result->solved = std::move(filtered);
+    solved = std::move(filtered);
     lap("filter", stage_start);
   }
+  result->solved = CompactMotion(solved);
 
-  // 3. Retarget onto each character.
-  for (CharacterOutput& output : result->characters) {
+  // The quality gate's marker checks (its retarget checks follow the retargets), on the
+  // solve in double before the retarget takes it over.
+  const double mm = take.skeleton.unit().metres_per_unit * 1000.0;
+  QualityFigures& figures = result->figures;
+  figures.naive_rms_mm = result->repair.naive_rms * mm;
+  figures.repaired_rms_mm = result->repair.repaired_rms * mm;
+  figures.repaired_share = result->samples > 0 ? double(result->repaired_samples) / result->samples : 0.0;
+  figures.iteration_limit_share = double(result->repair.naive_unconverged_frames) / frames;
+  // The checks of a fitted subject, on this take: skin distance and torso direction.
+  const SubjectChecks checks = CheckSubjectFit(take.skeleton, take.markers, take.observed, solved);
+  figures.max_marker_offset_cm = checks.max_bone_distance_cm;
+  figures.farthest_marker = checks.farthest_marker;
+  figures.torso_error_deg = checks.torso_frames > 0 ? checks.torso_error_mean_deg : std::nan("");
+  result->verdict = CheckQuality(options.gate, figures);
+  if (!result->verdict.pass) {  // Only the marker checks so far: which markers and frames carry them.
+    result->blame = BlameMarkers(take.skeleton, take.markers, take.observed, solved, mm);
+    result->gate_advice = GateAdvice(result->blame, inputs.markers_path);
+  }
+
+  // 3. Retarget onto each character; the last one takes the solve over (its working copy
+  // is made in place: one whole-take copy of the solve less while it runs).
+  for (size_t k = 0; k < result->characters.size(); ++k) {
+    CharacterOutput& output = result->characters[k];
     stage_start = Clock::now();
     const std::string stage = "retarget onto " + output.name;
     RetargetCharacter source;  // Skeleton only: the character's mesh is bound to it.
@@ -218,7 +265,8 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
     target.mesh = &output.character.mesh;
     target.bind_pose = output.character.bind_pose;
     target.rest_pose = output.character.rest_pose;
-    status = RetargetMotionOntoCharacter(source, result->solved, target, options.retarget, &output.result,
+    Motion source_motion = k + 1 == result->characters.size() ? std::move(solved) : solved;
+    status = RetargetMotionOntoCharacter(source, std::move(source_motion), target, options.retarget, &output.result,
                                          [&](int done, int total) {
                                            if (progress) progress(stage, done, total);
                                          });
@@ -228,26 +276,12 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
       status = DeliverClip(output.result.clip.motion, options.delivery, &output.delivered);
       if (!status.ok()) return Status::Error("deliver: " + output.path + ": " + status.message());
     }
+    output.take = CompactMotion(output.result.clip.motion);
+    output.result.clip.motion = Motion();
     lap(stage, stage_start);
   }
 
-  // 4. The quality gate.
-  const double mm = take.skeleton.unit().metres_per_unit * 1000.0;
-  QualityFigures& figures = result->figures;
-  figures.naive_rms_mm = result->repair.naive_rms * mm;
-  figures.repaired_rms_mm = result->repair.repaired_rms * mm;
-  figures.repaired_share = result->samples > 0 ? double(result->repaired_samples) / result->samples : 0.0;
-  figures.iteration_limit_share = double(result->repair.naive_unconverged_frames) / frames;
-  // The checks of a fitted subject, on this take: skin distance and torso direction.
-  const SubjectChecks checks = CheckSubjectFit(take.skeleton, take.markers, take.observed, result->solved);
-  figures.max_marker_offset_cm = checks.max_bone_distance_cm;
-  figures.farthest_marker = checks.farthest_marker;
-  figures.torso_error_deg = checks.torso_frames > 0 ? checks.torso_error_mean_deg : std::nan("");
-  result->verdict = CheckQuality(options.gate, figures);
-  if (!result->verdict.pass) {  // Only the marker checks so far: which markers and frames carry them.
-    result->blame = BlameMarkers(take.skeleton, take.markers, take.observed, result->solved, mm);
-    result->gate_advice = GateAdvice(result->blame, inputs.markers_path);
-  }
+  // 4. The quality gate's retarget checks.
   for (const CharacterOutput& output : result->characters) {
     CheckRetargetQuality(options.gate, output.result.quality, output.name, &result->verdict);
   }
@@ -309,8 +343,8 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
         .Add("result_foot_skating_cm_per_s", c.result.result_plant_skating_cm_s)
         .Add("mean_bone_angle_deg", c.result.mean_bone_angle_deg)
         .Add("root_motion", c.result.root_motion.note.empty() ? std::string("keep") : c.result.root_motion.note)
-        .Add("delivered_frames", c.delivered_motion().num_frames())
-        .Add("delivered_frame_rate", c.delivered_motion().frame_rate)
+        .Add("delivered_frames", c.delivered_frames())
+        .Add("delivered_frame_rate", c.delivered_frame_rate())
         .Add("setup_seconds", c.result.setup_seconds)
         .Add("solve_seconds", r.solve_seconds)
         .Add("quality", RetargetQualityJson(c.result.quality, failures));
@@ -389,15 +423,16 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
   view.observed = &result.take.observed;
   view.repaired = &result.repaired;
   view.intervals = RepairViewIntervals(result.repair);
-  view.motion = &result.solved;
-  view.frame_rate = result.solved.frame_rate > 0 ? result.solved.frame_rate : 30.0;
+  const Motion solved = result.solved.ToMotion();  // The page's copy.
+  view.motion = &solved;
+  view.frame_rate = solved.frame_rate > 0 ? solved.frame_rate : 30.0;
   for (const CharacterOutput& c : result.characters) {
     ViewCharacter character;
     character.name = c.name;
     character.animation = inputs.name;
     GltfWriteOptions page_copy;
     page_copy.compact = true;  // Int16 rotations, still joints as one key: the page only plays it.
-    Status status = SerializeGltfWithAnimation(c.document, c.character, c.result.clip.motion, inputs.name,
+    Status status = SerializeGltfWithAnimation(c.document, c.character, c.take, inputs.name,
                                                /*binary=*/true, &character.glb, page_copy);
     if (!status.ok()) return status;
     view.characters.push_back(std::move(character));
@@ -411,21 +446,24 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
   Status status = CheckCharacterFiles(out_dir, inputs, character_files);
   if (!status.ok()) return Status::Error("write: " + status.message());
   status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
-  if (status.ok()) status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved, BvhWriteOptions());
+  if (status.ok()) {  // The solve expanded for its file only (the BVH text is made whole).
+    status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved.ToMotion(), BvhWriteOptions());
+  }
   GltfWriteOptions gltf;
   gltf.animation_only = character_files.animation_only;
   for (const CharacterOutput& c : result.characters) {
-    const Motion& motion = c.delivered_motion();
     for (const std::string& format : character_files.formats) {
       if (!status.ok()) break;
       const std::string path = CharacterFormatPath(out_dir, c.path, format);
-      if (format == "glb") {
-        status = WriteGltfWithAnimation(c.document, c.character, motion, inputs.name, path, gltf);
-      } else if (format == "fbx") {
-        status = WriteFbxCharacter(path, c.character, motion, inputs.name, character_files.animation_only,
-                                   character_files.fbx_key_tolerance_mm);
+      if (format == "glb") {  // From the compact take, frame by frame, when it is the delivered clip.
+        status = c.delivered_is_clip
+                     ? WriteGltfWithAnimation(c.document, c.character, c.take, inputs.name, path, gltf)
+                     : WriteGltfWithAnimation(c.document, c.character, c.delivered, inputs.name, path, gltf);
+      } else if (format == "fbx") {  // These two expand it, one file at a time.
+        status = WriteFbxCharacter(path, c.character, c.delivered_motion(), inputs.name,
+                                   character_files.animation_only, character_files.fbx_key_tolerance_mm);
       } else if (format == "bvh") {
-        status = WriteBvh(path, c.character.skeleton, motion, BvhWriteOptions());
+        status = WriteBvh(path, c.character.skeleton, c.delivered_motion(), BvhWriteOptions());
       } else {
         status = Status::Error("--formats: unknown '" + format + "' (glb, fbx, bvh)");
       }

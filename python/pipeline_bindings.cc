@@ -169,7 +169,7 @@ void BindPipeline(py::module_& m) {
         }
         ThrowIfError(status);
         py::dict out;
-        out["solved"] = result->solved;
+        out["solved"] = result->solved.ToMotion();
         out["repaired_markers"] = std::make_shared<MarkerTrajectories>(result->repaired_file);
         py::dict retargeted;
         for (const CharacterOutput& c : result->characters) retargeted[c.name.c_str()] = c.delivered_motion();

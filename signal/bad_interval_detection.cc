@@ -7,8 +7,17 @@
 
 namespace mocapsolve {
 
-Status DetectBadJoints(const Skeleton& skeleton, const Motion& naive, const Motion& reference,
-                       const BadJointThresholds& thresholds, std::vector<std::vector<char>>* bad_joints) {
+namespace {
+
+const Pose& PoseOf(const Motion& motion, int f, Pose*) { return motion.frames[f]; }
+const Pose& PoseOf(const CompactMotion& motion, int f, Pose* scratch) {
+  motion.Frame(f, scratch);
+  return *scratch;
+}
+
+template <class Naive>
+Status DetectBad(const Skeleton& skeleton, const Naive& naive, const Motion& reference,
+                 const BadJointThresholds& thresholds, std::vector<std::vector<char>>* bad_joints) {
   if (naive.num_frames() != reference.num_frames()) {
     return Status::Error("DetectBad: naive solve has " + std::to_string(naive.num_frames()) +
                          " frames, reference " + std::to_string(reference.num_frames()));
@@ -16,8 +25,9 @@ Status DetectBadJoints(const Skeleton& skeleton, const Motion& naive, const Moti
   const int nj = skeleton.num_joints();
   bad_joints->assign(naive.num_frames(), std::vector<char>(nj, 0));
   FkData a(skeleton), b(skeleton);
+  Pose scratch;
   for (int f = 0; f < naive.num_frames(); ++f) {
-    ForwardKinematics(skeleton, naive.frames[f], &a);
+    ForwardKinematics(skeleton, PoseOf(naive, f, &scratch), &a);
     ForwardKinematics(skeleton, reference.frames[f], &b);
     for (int j = 0; j < nj; ++j) {
       const bool far = (a.world_positions[j] - b.world_positions[j]).norm() > thresholds.position;
@@ -26,6 +36,18 @@ Status DetectBadJoints(const Skeleton& skeleton, const Motion& naive, const Moti
     }
   }
   return Status::Ok();
+}
+
+}  // namespace
+
+Status DetectBadJoints(const Skeleton& skeleton, const Motion& naive, const Motion& reference,
+                       const BadJointThresholds& thresholds, std::vector<std::vector<char>>* bad_joints) {
+  return DetectBad(skeleton, naive, reference, thresholds, bad_joints);
+}
+
+Status DetectBadJoints(const Skeleton& skeleton, const CompactMotion& naive, const Motion& reference,
+                       const BadJointThresholds& thresholds, std::vector<std::vector<char>>* bad_joints) {
+  return DetectBad(skeleton, naive, reference, thresholds, bad_joints);
 }
 
 std::vector<std::vector<char>> BadMarkerSamples(const MarkerSet& markers,

@@ -10,6 +10,7 @@
 
 #include <vector>
 
+#include "kinematics/compact_motion.h"
 #include "kinematics/marker_set.h"
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
@@ -24,6 +25,10 @@ struct BadJointThresholds {
 
 // J as frames x joints (row-major, 1 = bad). Both motions must have the same frames.
 Status DetectBadJoints(const Skeleton& skeleton, const Motion& naive, const Motion& reference,
+                       const BadJointThresholds& thresholds, std::vector<std::vector<char>>* bad_joints);
+// The same with the naive solve kept compact (kinematics/compact_motion.h), read frame by
+// frame.
+Status DetectBadJoints(const Skeleton& skeleton, const CompactMotion& naive, const Motion& reference,
                        const BadJointThresholds& thresholds, std::vector<std::vector<char>>* bad_joints);
 
 // M as frames x markers: a marker sample is bad when any joint it rides on is bad.

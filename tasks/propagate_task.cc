@@ -7,6 +7,7 @@
 #include "settings/method_settings.h"
 #include "io/comma_list.h"
 #include "io/motion_file.h"
+#include "pipeline/memory_estimate.h"
 #include "problems/edit_propagation/foot_contacts.h"
 #include "problems/edit_propagation/pose_edit.h"
 #include "tasks/console_text.h"
@@ -117,6 +118,10 @@ Status RunPropagate(const Skeleton& skeleton, const Motion& motion, const Propag
   status = PropagateSettingOptions().Validate(config.propagate);
   if (!status.ok()) return status;
   if (motion.num_frames() == 0) return Status::Error("the motion has no frames");
+  if (method == "green" || config.propagate.compare_falloffs) {  // The Green's function over every frame.
+    status = CheckMemoryLimit(GreenFunctionMemory(motion.num_frames()), config.memory.memory_mb, "the motion");
+    if (!status.ok()) return status;
+  }
   FalloffOptions falloff;
   status = FalloffOptionsFromSettings(config.falloff, motion.num_frames(), &falloff);
   if (!status.ok()) return status;

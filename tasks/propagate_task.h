@@ -17,6 +17,7 @@
 #include "kinematics/status.h"
 #include "pipeline/edit_weights.h"
 #include "settings/falloff_settings.h"
+#include "settings/memory_settings.h"
 #include "settings/propagate_settings.h"
 #include "settings/solver_settings.h"
 #include "viewer/view_scene.h"
@@ -32,6 +33,7 @@ struct PropagateConfig {
   PropagateSettings propagate;
   FalloffSettings falloff;
   SolverSettings solver;     // The IK solve's; sparse_library: the harmonic solve's.
+  MemorySettings memory;     // green (or compared with it): refused before any work over memory_mb.
 };
 
 struct FalloffComparison {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "kinematics/forward_kinematics.h"
+#include "pipeline/memory_estimate.h"
 
 namespace mocapsolve {
 namespace {
@@ -70,6 +71,11 @@ Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolvePr
   }
   const int total = static_cast<int>(take.observed.size());
   result->frames = config.max_frames > 0 ? std::min(config.max_frames, total) : total;
+  if (solver.mode == "clip") {  // The whole-clip problem's memory, before the per-frame solve.
+    status = CheckMemoryLimit(ClipSolveMemory(result->frames, take.markers.num_markers()), config.memory.memory_mb,
+                              take.name);
+    if (!status.ok()) return status;
+  }
   std::vector<std::vector<Eigen::Vector3d>> cut;
   if (result->frames < total) cut.assign(take.observed.begin(), take.observed.begin() + result->frames);
   const auto& observed = result->frames < total ? cut : take.observed;

@@ -17,6 +17,7 @@
 #include "problems/marker_solve/sequence_solver.h"
 #include "problems/marker_solve/solver_agreement.h"
 #include "settings/solver_agreement_settings.h"
+#include "settings/memory_settings.h"
 #include "settings/solver_settings.h"
 
 namespace mocapsolve {
@@ -25,6 +26,7 @@ struct SolveConfig {
   SolverSettings solver;
   int max_frames = 0;  // Solve only the first N frames (0 = all).
   SolverAgreementSettings agreement;  // compare_solvers: both per-frame solvers, compared.
+  MemorySettings memory;     // mode=clip: refused before any solve when its estimate is over memory_mb.
 };
 
 struct SolveProgress {

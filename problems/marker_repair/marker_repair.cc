@@ -7,6 +7,7 @@
 #include <limits>
 #include <thread>
 
+#include "kinematics/compact_motion.h"
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/marker_trajectories.h"
 #include "problems/marker_repair/marker_residual_model.h"
@@ -137,13 +138,35 @@ bool SameSample(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 // not needed.
 using FrameSamples = std::function<void(size_t f, std::vector<Eigen::Vector3d>* samples)>;
 
+// The earlier solution a re-solve starts from and rejoins: a Motion, or a CompactMotion
+// (kinematics/compact_motion.h) read frame by frame, so that a long take's reference and
+// naive solves need not be held whole in double between their uses.
+class EarlierSolution {
+ public:
+  EarlierSolution(const Motion& motion) : motion_(&motion) {}           // NOLINT: implicit.
+  EarlierSolution(const CompactMotion& motion) : compact_(&motion) {}   // NOLINT: implicit.
+  void Frame(size_t f, Pose* pose) const {
+    if (motion_ != nullptr) {
+      *pose = motion_->frames[f];
+    } else {
+      compact_->Frame(static_cast<int>(f), pose);
+    }
+  }
+  Motion Whole() const { return motion_ != nullptr ? *motion_ : compact_->ToMotion(); }
+
+ private:
+  const Motion* motion_ = nullptr;
+  const CompactMotion* compact_ = nullptr;
+};
+
 int ResolveChangedRange(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                        const FrameSamples& repaired, const Motion& naive, const MarkerSolveOptions& options,
+                        const FrameSamples& repaired, const EarlierSolution& naive, const MarkerSolveOptions& options,
                         double tolerance, size_t begin, size_t end, Motion* motion) {
   int resolved = 0;
   MarkerFrameSolver solver(skeleton, markers, options);
   FkData fk(skeleton), fk_naive(skeleton);
   std::vector<Eigen::Vector3d> samples(markers.num_markers());
+  Pose earlier;
   bool in_sync = true;
   for (size_t f = begin; f < end; ++f) {
     repaired(f, &samples);
@@ -154,20 +177,26 @@ int ResolveChangedRange(const Skeleton& skeleton, const MarkerSet& markers, cons
     if (!changed && in_sync) continue;
     // The previous pose; at the start of a range, naive's (the other range may be
     // writing the frame before it).
-    Pose pose = f > begin ? motion->frames[f - 1] : naive.frames[begin > 0 ? begin - 1 : 0];
+    Pose pose;
+    if (f > begin) {
+      pose = motion->frames[f - 1];
+    } else {
+      naive.Frame(begin > 0 ? begin - 1 : 0, &pose);
+    }
     FrameSolveReport frame;
     if (solver.Solve(samples, &pose, &frame).ok()) motion->frames[f] = pose;
     ++resolved;
     in_sync = false;
     if (!changed) {
       ForwardKinematics(skeleton, motion->frames[f], &fk);
-      ForwardKinematics(skeleton, naive.frames[f], &fk_naive);
+      naive.Frame(f, &earlier);
+      ForwardKinematics(skeleton, earlier, &fk_naive);
       double difference = 0.0;
       for (int j = 0; j < skeleton.num_joints(); ++j) {
         difference = std::max(difference, (fk.world_positions[j] - fk_naive.world_positions[j]).norm());
       }
       in_sync = difference <= tolerance;
-      if (in_sync) motion->frames[f] = naive.frames[f];
+      if (in_sync) motion->frames[f] = earlier;
     }
   }
   return resolved;
@@ -178,10 +207,10 @@ int ResolveChangedRange(const Skeleton& skeleton, const MarkerSet& markers, cons
 // run on two threads. The halves are the same either way, so the result does not depend
 // on the thread count (a batch runs its takes single-threaded side by side).
 Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                            const FrameSamples& repaired, const Motion& naive,
+                            const FrameSamples& repaired, const EarlierSolution& naive,
                             const MarkerSolveOptions& options, double tolerance, bool parallel, Motion* motion,
                             int* resolved) {
-  *motion = naive;
+  *motion = naive.Whole();
   const size_t n = observed.size(), half = n >= 64 ? n / 2 : n;
   int second = 0;
   auto solve_second = [&] {
@@ -203,7 +232,7 @@ Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, 
 // The same with the repaired samples as observations, or as trajectories read frame by
 // frame (the samples TrajectoryObservations would give, without its copy).
 Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                            const Observations& repaired, const Motion& naive,
+                            const Observations& repaired, const EarlierSolution& naive,
                             const MarkerSolveOptions& options, double tolerance, bool parallel, Motion* motion,
                             int* resolved) {
   const FrameSamples samples = [&](size_t f, std::vector<Eigen::Vector3d>* out) { *out = repaired[f]; };
@@ -217,7 +246,7 @@ void TrajectoryFrame(const MarkerTrajectories& trajectories, int f, std::vector<
 }
 
 Status ResolveChangedFrames(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                            const MarkerTrajectories& repaired, const Motion& naive,
+                            const MarkerTrajectories& repaired, const EarlierSolution& naive,
                             const MarkerSolveOptions& options, double tolerance, bool parallel, Motion* motion,
                             int* resolved) {
   const FrameSamples samples = [&](size_t f, std::vector<Eigen::Vector3d>* out) {
@@ -299,8 +328,11 @@ RepairContext MakeRepairContext(const Skeleton& skeleton, const MarkerSet& marke
 }
 
 // The reference Y^ and the marker paths it predicts, X^, as observations and as trajectories.
+// After gap detection Y^ is read only by its refit, frame by frame: it is then kept
+// compact (`kept`, float: kinematics/compact_motion.h) and `motion` freed.
 struct Reference {
   Motion motion;
+  CompactMotion kept;
   Observations reconstructed;
   MarkerTrajectories paths;
 };
@@ -430,7 +462,7 @@ void AssignUnlabelledStep(const RepairContext& ctx, const MarkerResidualModel& m
 // model refitted: it was fitted with the swapped samples in its window and without the
 // assigned ones.
 Status ResolveRelabelled(const RepairContext& ctx, const Observations& relabelled, const Reference& reference,
-                         const MarkerTrajectories& x, const RepairReport& report, Motion* naive,
+                         const MarkerTrajectories& x, const RepairReport& report, CompactMotion* naive,
                          MarkerResidualModel* model) {
   Motion solved;
   int resolved = 0;
@@ -438,7 +470,8 @@ Status ResolveRelabelled(const RepairContext& ctx, const Observations& relabelle
                                              ctx.options.naive, ctx.resync_tolerance, ctx.options.parallel, &solved,
                                              &resolved);
   if (!status.ok()) return status;
-  *naive = std::move(solved);
+  *naive = CompactMotion(solved);
+  Release(&solved);
   *model = FitMarkerResidualModel(ctx.skeleton, ctx.markers, reference.motion, reference.reconstructed, x,
                                   ctx.model_options);
   // The reference followed the swapped labels: its parent frames do not judge the
@@ -454,7 +487,7 @@ Status ResolveRelabelled(const RepairContext& ctx, const Observations& relabelle
 // Steps 3c and 3d, then the naive solve redone where the samples changed; steps 4-7 work
 // on the relabelled samples (*relabelled, when any changed).
 Status RelabelSamples(const RepairContext& ctx, const UnlabelledPoints& unlabelled, StageClock* clock,
-                      Motion* naive, Reference* reference, MarkerResidualModel* model, MarkerTrajectories* x,
+                      CompactMotion* naive, Reference* reference, MarkerResidualModel* model, MarkerTrajectories* x,
                       Observations* relabelled, RepairReport* report) {
   const RepairOptions& options = ctx.options;
   const bool assigning = options.assign_unlabelled && unlabelled.num_tracks() > 0;
@@ -492,7 +525,7 @@ void RecordInputIntervals(const MarkerTrajectories& captured, RepairReport* repo
 
 // DetectBad(Y, Y^) as marker samples (frames x markers): a joint difference condemns a
 // marker only where it moves the marker past its gate.
-Status JointDifferenceSamples(const RepairContext& ctx, const Motion& naive, const Reference& reference,
+Status JointDifferenceSamples(const RepairContext& ctx, const CompactMotion& naive, const Reference& reference,
                               const MarkerResidualModel& model, const MarkerTrajectories& x,
                               std::vector<std::vector<char>>* bad) {
   std::vector<std::vector<char>> bad_joints;
@@ -501,11 +534,13 @@ Status JointDifferenceSamples(const RepairContext& ctx, const Motion& naive, con
   if (!status.ok()) return status;
   *bad = BadMarkerSamples(ctx.markers, bad_joints);
   FkData fk_naive(ctx.skeleton);
+  Pose pose;
   for (int f = 0; f < x.num_frames(); ++f) {
     bool any = false;
     for (int m = 0; m < x.num_markers() && !any; ++m) any = (*bad)[f][m];
     if (!any) continue;
-    ForwardKinematics(ctx.skeleton, naive.frames[f], &fk_naive);
+    naive.Frame(f, &pose);
+    ForwardKinematics(ctx.skeleton, pose, &fk_naive);
     for (int m = 0; m < x.num_markers(); ++m) {
       if ((*bad)[f][m] && (ctx.markers.Position(m, fk_naive) - reference.reconstructed[f][m]).norm() <= model.gate[m]) {
         (*bad)[f][m] = 0;
@@ -591,7 +626,7 @@ void PreprocessGaps(const RepairContext& ctx, const MarkerTrajectories& referenc
 // Step 6 with the tracker: Y^ refitted without the cut samples where they were (the
 // trimmed samples kept), until it rejoins.
 Status RefitReference(const RepairContext& ctx, const Observations& input, const MarkerTrajectories& flagged,
-                      const Motion& reference, Motion* refitted) {
+                      const CompactMotion& reference, Motion* refitted) {
   int resolved = 0;
   return ResolveChangedFrames(ctx.skeleton, ctx.markers, input, flagged, reference,
                               ctx.options.tracker, ctx.resync_tolerance, ctx.options.parallel, refitted, &resolved);
@@ -756,8 +791,8 @@ Status FillGaps(const RepairContext& ctx, const RoughRuns& rough, bool refit, co
 // without them. A smooth run (a marker flown off, a ghost) and a gap without samples are
 // filled from the refitted X^; a rough run, whose samples scatter about the true path so
 // that the robust solve averaged them, from X^ as solved (issue 16, BENCHMARKS.md).
-// With release_motion, Y^ itself (reference.motion) is freed once the refit has read it
-// (nothing after it does; 1.7 KB per frame of a long take while X^ is refitted).
+// With release_motion, Y^ itself (reference.kept) is freed once the refit has read it
+// (nothing after it does; 0.5 KB per frame of a long take while X^ is refitted).
 Status FillMarkers(const RepairContext& ctx, const Observations& input, Reference* reference_in,
                    bool release_motion, const MarkerTrajectories& flagged, const MarkerTrajectories& unflagged,
                    MarkerTrajectories* before_small, MarkerTrajectories* x, RepairReport* report) {
@@ -767,9 +802,9 @@ Status FillMarkers(const RepairContext& ctx, const Observations& input, Referenc
   const bool refit = options.refit_reference && options.reference_kind == ReferenceKind::kTracker;
   if (refit) {
     Motion refitted;
-    const Status status = RefitReference(ctx, input, flagged, reference.motion, &refitted);
+    const Status status = RefitReference(ctx, input, flagged, reference.kept, &refitted);
     if (!status.ok()) return status;
-    if (release_motion) Release(&reference_in->motion);
+    if (release_motion) Release(&reference_in->kept);
     CarryUnobservedJoints(ctx, flagged, &refitted, report);
     refit_paths = ReconstructedPaths(ctx.skeleton, ctx.markers, refitted);
   }
@@ -778,7 +813,7 @@ Status FillMarkers(const RepairContext& ctx, const Observations& input, Referenc
     report->rough_extension_samples += ExtendRoughRuns(ctx, rough, unflagged, reference.paths, x, before_small);
   }
   if (!refit) {  // Gaps are filled from X^ as solved: carry its unobserved joints first.
-    Motion carried = reference.motion;
+    Motion carried = reference.kept.ToMotion();
     if (CarryUnobservedJoints(ctx, flagged, &carried, report)) {
       const MarkerTrajectories carried_paths = ReconstructedPaths(ctx.skeleton, ctx.markers, carried);
       return FillGaps(ctx, rough, refit, carried_paths, refit_paths, *before_small, x, report);
@@ -890,6 +925,13 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   if (!status.ok()) return status;
   report->naive_rms = RmsOver(skeleton, markers, naive, observed);
   report->naive_unconverged_frames = sequence.unconverged_frames;
+  // From here Y is read only frame by frame (gap detection, the re-solves from it): kept
+  // compact (float, kinematics/compact_motion.h: 0.5 instead of 1.8 KB per frame while the
+  // residual model is fitted and the gaps are detected and filled). Its rounding (< 1e-7
+  // relative) reaches the outputs only through those re-solves' starts and the frames
+  // they copy, far inside 0.01 mm (BENCHMARKS.md).
+  CompactMotion naive_kept(naive);
+  Release(&naive);
   report->reference_rms = RmsOver(skeleton, markers, reference.motion, observed);
   // 3. Marker reconstruction.
   ReconstructReference(ctx, &reference);
@@ -902,7 +944,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   // 3c. Swaps: relabel; 3d. unlabelled points labelled; then redo the naive solve where
   // the samples changed.
   Observations relabelled;
-  status = RelabelSamples(ctx, unlabelled, &clock, &naive, &reference, &model, &x, &relabelled, report);
+  status = RelabelSamples(ctx, unlabelled, &clock, &naive_kept, &reference, &model, &x, &relabelled, report);
   if (!status.ok()) return status;
   // The samples as captured, x before relabelling: made again from the observations
   // rather than copied before it, so that the relabelling does not hold a third copy.
@@ -911,10 +953,13 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   const Observations& input = changed ? relabelled : observed;
   // 4. Gap detection.
   std::vector<std::vector<char>> bad;
-  status = JointDifferenceSamples(ctx, naive, reference, model, x, &bad);
+  status = JointDifferenceSamples(ctx, naive_kept, reference, model, x, &bad);
   if (!status.ok()) return status;
   // Preprocessing and filling read the paths, not these.
   if (intermediates == nullptr) Release(&reference.reconstructed);
+  // From here Y^ is read only by its refit (step 6), frame by frame: kept compact too.
+  reference.kept = CompactMotion(reference.motion);
+  Release(&reference.motion);
   MarkerTrajectories flagged;
   DetectGaps(model, captured, x, bad, report, &flagged);
   Release(&bad);
@@ -940,15 +985,15 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   clock.Lap("Marker Filling");
   // 7. Re-solve.
   if (progress) progress("re-solve", 0, num_frames);
-  status = ResolveChangedFrames(skeleton, markers, input, *repaired, naive, options.naive, ctx.resync_tolerance,
-                                options.parallel, motion, &report->resolved_frames);
+  status = ResolveChangedFrames(skeleton, markers, input, *repaired, naive_kept, options.naive,
+                                ctx.resync_tolerance, options.parallel, motion, &report->resolved_frames);
   if (!status.ok()) return status;
   if (progress) progress("re-solve", num_frames, num_frames);
   report->repaired_rms = RmsOver(skeleton, markers, *motion, *repaired);
   clock.Lap("IK (re-solve)");
   if (intermediates != nullptr) {
-    intermediates->naive = std::move(naive);
-    intermediates->reference = std::move(reference.motion);
+    intermediates->naive = naive_kept.ToMotion();
+    intermediates->reference = reference.kept.ToMotion();
     intermediates->reconstructed = std::move(reference.reconstructed);
     intermediates->residual_model = std::move(model);
   }

@@ -191,8 +191,10 @@ bool CharacterRetargetOptions::IsValid(std::string* error) const {
 
 namespace {
 
-// The retarget onto a character as the solve sees it (after CheckInputs).
-Status RetargetOntoSolveCharacter(const RetargetCharacter& source, const Motion& source_motion,
+// The retarget onto a character as the solve sees it (after CheckInputs). `consumed`:
+// null, or source_motion itself, which the working copy is then moved from (after which
+// source_motion is not read).
+Status RetargetOntoSolveCharacter(const RetargetCharacter& source, const Motion& source_motion, Motion* consumed,
                                   const RetargetCharacter& target, const CharacterRetargetOptions& options,
                                   CharacterRetargetResult* result, const RetargetProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
@@ -230,7 +232,12 @@ Status RetargetOntoSolveCharacter(const RetargetCharacter& source, const Motion&
                                            target_bind, setup_options.target_world_from_bind, out.joint_map,
                                            &binding);
     if (!status.ok()) return status;
-    motion = RotateMotionWorld(*source.skeleton, source_motion, binding.up);
+    if (consumed != nullptr) {
+      motion = std::move(*consumed);
+      RotateMotionWorld(*source.skeleton, binding.up, &motion);
+    } else {
+      motion = RotateMotionWorld(*source.skeleton, source_motion, binding.up);
+    }
     if (!out.own_skeleton && options.stride_to_legs) {
       ScaleStrideToLegs(*source.skeleton, target_skeleton, out.joint_map, binding.scale, &motion, &out.notes);
     }
@@ -247,7 +254,7 @@ Status RetargetOntoSolveCharacter(const RetargetCharacter& source, const Motion&
     const Pose bind = source.bind_pose.rotations.empty() ? RestPose(*source.skeleton) : source.bind_pose;
     setup_options.source_world_from_bind =
         WorldFromBindRotation(*source.skeleton, bind, source.rest_pose.rotations.empty() ? bind : source.rest_pose);
-    motion = source_motion;
+    motion = consumed != nullptr ? std::move(*consumed) : source_motion;
   }
   // The facings of both meshes signed by the humanoid roles' sides (role_sides.h).
   setup_options.target_left = LeftOfCharacter(target_skeleton, *target.mesh, out.joint_map.target_roles,
@@ -365,11 +372,9 @@ void ResultOnCharacter(const Skeleton& skeleton, const FloorIkBones& ik, const F
   result->clip.motion = FloorIkMotionOnCharacter(skeleton, ik, solve, result->clip.motion);
 }
 
-}  // namespace
-
-Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion& source_motion,
-                                   const RetargetCharacter& target, const CharacterRetargetOptions& options,
-                                   CharacterRetargetResult* result, const RetargetProgressCallback& progress) {
+Status RetargetOntoCharacter(const RetargetCharacter& source, const Motion& source_motion, Motion* consumed,
+                             const RetargetCharacter& target, const CharacterRetargetOptions& options,
+                             CharacterRetargetResult* result, const RetargetProgressCallback& progress) {
   Status status = CheckInputs(source, source_motion, target, options);
   if (!status.ok()) return status;
   // IK bones under a floor root follow their chains in the solve (floor_ik_bones.h).
@@ -379,7 +384,7 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
   const JointMapSkeleton standing = StandingSkeleton(skeleton, bind, target.mesh, rest);
   const FloorIkBones ik = FindFloorIkBones(skeleton, standing.positions, FindRoles(standing), target.mesh);
   if (ik.empty() || SourceDrivesIkBones(*source.skeleton, skeleton, ik, options.joint_map)) {
-    return RetargetOntoSolveCharacter(source, source_motion, target, options, result, progress);
+    return RetargetOntoSolveCharacter(source, source_motion, consumed, target, options, result, progress);
   }
   FloorIkSolveCharacter solve;
   status = MakeFloorIkSolveCharacter(skeleton, *target.mesh, bind, rest, ik, &solve);
@@ -394,12 +399,28 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
     solve_options.clip.start_pose = FloorIkPoseOnSolveCharacter(skeleton, ik, solve, options.clip.start_pose);
   }
   for (Pose& pose : solve_options.clip.warm_start.frames) pose = FloorIkPoseOnSolveCharacter(skeleton, ik, solve, pose);
-  status = RetargetOntoSolveCharacter(source, source_motion, solve_target, solve_options, result, progress);
+  status = RetargetOntoSolveCharacter(source, source_motion, consumed, solve_target, solve_options, result, progress);
   if (!status.ok()) return status;
   ResultOnCharacter(skeleton, ik, solve, result);
   result->notes.push_back("IK bones under the floor root follow their chains in the solve and carry translation "
                           "keys: " + ik.Describe(skeleton));
   return Status::Ok();
+}
+
+}  // namespace
+
+Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion& source_motion,
+                                   const RetargetCharacter& target, const CharacterRetargetOptions& options,
+                                   CharacterRetargetResult* result, const RetargetProgressCallback& progress) {
+  return RetargetOntoCharacter(source, source_motion, nullptr, target, options, result, progress);
+}
+
+Status RetargetMotionOntoCharacter(const RetargetCharacter& source, Motion&& source_motion,
+                                   const RetargetCharacter& target, const CharacterRetargetOptions& options,
+                                   CharacterRetargetResult* result, const RetargetProgressCallback& progress) {
+  const Status status = RetargetOntoCharacter(source, source_motion, &source_motion, target, options, result, progress);
+  source_motion = Motion();
+  return status;
 }
 
 }  // namespace mocapsolve

@@ -130,6 +130,14 @@ Status RetargetMotionOntoCharacter(const RetargetCharacter& source, const Motion
                                    const RetargetCharacter& target, const CharacterRetargetOptions& options,
                                    CharacterRetargetResult* result,
                                    const RetargetProgressCallback& progress = nullptr);
+// The same, taking the source motion over (left empty): the working copy the retarget
+// makes of it (turned to the target's up) is made in place, so a caller that needs the
+// motion no more does not hold a long take's source twice (1.8 KB per frame of the CMU
+// subject's 31 joints). The result is the same as the call above's.
+Status RetargetMotionOntoCharacter(const RetargetCharacter& source, Motion&& source_motion,
+                                   const RetargetCharacter& target, const CharacterRetargetOptions& options,
+                                   CharacterRetargetResult* result,
+                                   const RetargetProgressCallback& progress = nullptr);
 
 }  // namespace mocapsolve
 

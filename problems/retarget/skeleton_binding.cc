@@ -320,13 +320,17 @@ std::vector<Eigen::Isometry3d> JointFromBind(const Skeleton& source, const Pose&
 
 Motion RotateMotionWorld(const Skeleton& skeleton, const Motion& motion, const Eigen::Matrix3d& rotation) {
   Motion out = motion;
+  RotateMotionWorld(skeleton, rotation, &out);
+  return out;
+}
+
+void RotateMotionWorld(const Skeleton& skeleton, const Eigen::Matrix3d& rotation, Motion* motion) {
   const Eigen::Quaterniond u(rotation);
   const Eigen::Quaterniond rest = skeleton.rest_rotation(0);
-  for (Pose& pose : out.frames) {
+  for (Pose& pose : motion->frames) {
     pose.translations[0] = rotation * pose.translations[0];
     pose.rotations[0] = (rest.conjugate() * u * rest * pose.rotations[0]).normalized();
   }
-  return out;
 }
 
 Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motion, const Skeleton& target,

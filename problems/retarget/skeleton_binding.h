@@ -82,6 +82,8 @@ struct SkeletonBinding {
 
 // The motion with its world turned by `rotation` (root translation and rotation).
 Motion RotateMotionWorld(const Skeleton& skeleton, const Motion& motion, const Eigen::Matrix3d& rotation);
+// The same in place.
+void RotateMotionWorld(const Skeleton& skeleton, const Eigen::Matrix3d& rotation, Motion* motion);
 
 // `source_motion` (may be empty: then U from the rest pose) decides the up axis.
 Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motion, const Skeleton& target,

@@ -291,6 +291,28 @@ TEST_F(PipelineCli, BadInputsWriteNothing) {
   EXPECT_FALSE(FolderExists(dir));
 }
 
+// --memory_mb: a take whose estimate (pipeline/memory_estimate.h: 28 MB + 6.6 KB + 0.19 KB
+// per marker per frame; this take's 60 frames and 60 markers need about 29 MB) is over the
+// limit is refused before any work with the figure, exit 1, nothing written; under it, it
+// runs.
+TEST_F(PipelineCli, MemoryLimitRefusesBeforeWork) {
+  const std::string dir = testing::TempPath("memory");
+  std::string output;
+  EXPECT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + dir + " --memory_mb=28 --view=off", &output), 1);
+  EXPECT_THAT(output, HasSubstr("--memory_mb=28: the pipeline's per-frame stages on " + markers_ + " (60 frames, "));
+  EXPECT_THAT(output, HasSubstr("would need about 29 MB (28 MB + "));
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+  EXPECT_FALSE(FolderExists(dir));
+  // The filter and a clip reference add their own per-frame figures.
+  EXPECT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + dir + " --memory_mb=28 --filter_levels=1 "
+                     "--reference=clip --view=off", &output), 1);
+  EXPECT_THAT(output, HasSubstr("the pipeline's per-frame stages, the clip solve, the filter on "));
+  EXPECT_FALSE(FolderExists(dir));
+  ASSERT_EQ(Pipeline("--markers=" + markers_ + " --out_dir=" + dir + " --memory_mb=40 --view=off", &output), 0)
+      << output;
+  EXPECT_TRUE(testing::FileExists(dir + "/solved.bvh"));
+}
+
 // The take's page: by default (--view=auto) written when the viewer's runtime is installed
 // and skipped with a warning when it is not; asked for (--view=PAGE.html) without the
 // runtime, an error before any work and nothing written; --view=off, none.

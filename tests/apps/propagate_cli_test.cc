@@ -138,6 +138,9 @@ TEST_F(PropagateCli, BadInputsFailWithOneLine) {
       {base + " --frame=9999 --ik_target=lwrist:0,0,0", "--frame: expected 0 <= frame < 471"},
       {base + " --edit=" + edit_ + " --method=spline --spline_width=0", "--spline_width must be positive"},
       {base + " --edit=" + edit_ + " --keep_contacts --foot_joints=hand", "--foot_joints: unknown joint"},
+      // The Green's function over 471 frames: 16.5 MB + 4.7 KB per frame.
+      {base + " --edit=" + edit_ + " --memory_mb=10", "--memory_mb=10: the Green's function on the motion (471 frames) "
+                                                      "would need about 19 MB"},
       {base + " --edit=/nonexistent/edit.json", "/nonexistent/edit.json"},
   };
   for (const auto& c : cases) {

@@ -70,6 +70,18 @@ TEST_F(SignalCli, FilterMotionAndMarkers) {
   EXPECT_THAT(text, HasSubstr("\"rms_change\""));
 }
 
+// --memory_mb: the pyramid's estimate (15 MB + 10.7 KB per frame) over the limit is refused
+// with the figure, nothing written.
+TEST_F(SignalCli, FilterRefusesOverMemoryLimit) {
+  std::string output;
+  const std::string out = testing::TempPath("limited.bvh");
+  EXPECT_EQ(testing::RunCli("filter --motion=" + demo_ + " --levels=2 --memory_mb=10 --out=" + out, &output), 1);
+  EXPECT_THAT(output, HasSubstr("--memory_mb=10: the pyramid filter on " + demo_ + " (90 frames) would need about 16 MB"));
+  EXPECT_FALSE(testing::FileExists(out));
+  EXPECT_EQ(testing::RunCli("filter --motion=" + demo_ + " --levels=2 --memory_mb=20 --out=" + out, &output), 0)
+      << output;
+}
+
 TEST_F(SignalCli, BandsWithUnitWeightsKeepsTheMotion) {
   std::string output;
   const std::string out = testing::TempPath("same.bvh");

@@ -73,6 +73,23 @@ TEST_F(SolveCli, BothSolversRecoverTheClip) {
   }
 }
 
+// --memory_mb with --mode=clip: the whole-clip problem's estimate (pipeline/memory_estimate.h:
+// 23 MB + 184 KB per frame at 41 markers, scaled by the take's markers) over the limit is
+// refused before any solve, with the figure; nothing written. The per-frame mode has no
+// whole-clip problem and runs.
+TEST_F(SolveCli, MemoryLimitRefusesTheClipSolve) {
+  const std::string out = testing::TempPath("limited.bvh");
+  int code = 0;
+  std::string output = Solve("--markerset=" + set_ + " --out=" + out + " --mode=clip --memory_mb=20", &code);
+  EXPECT_EQ(code, 1) << output;
+  EXPECT_THAT(output, HasSubstr("--memory_mb=20: the clip solve on " + markers_ + " (40 frames, "));
+  EXPECT_THAT(output, HasSubstr("MB (23 MB + "));
+  EXPECT_FALSE(testing::FileExists(out));
+  output = Solve("--markerset=" + set_ + " --out=" + out + " --memory_mb=20", &code);
+  EXPECT_EQ(code, 0) << output;
+  EXPECT_TRUE(testing::FileExists(out));
+}
+
 TEST_F(SolveCli, MarkerSetLabelMissingFromTheFile) {
   // Rename one marker of the set: the C3D has no column for it.
   std::string json = testing::ReadTextFile(set_);
