@@ -57,6 +57,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
@@ -77,6 +78,14 @@ struct SkeletonBinding {
   double mean_bone_angle_deg = 0.0;  // Aligned source bones vs the target's, mapped bones.
   double max_bone_angle_deg = 0.0;
   std::string worst_bone;            // Target joint of the worst bone.
+  double pelvis_residual_deg = 0.0;  // The pelvis children's fit residual r (pelvis_rest_correction.h).
+  double pelvis_tilt_kept = 0.0;     // w: 1 = its full rotation, 0 = a turn about up only.
+  // The source's start pose (its rest, or the frame the alignment started from) stood up
+  // (U) and turned by the pelvis's correction C: per source joint its world rotation where
+  // it stands in the target's bind pose when both rest poses are upright
+  // (retarget_quality.h's torso orientation).
+  std::vector<Eigen::Quaterniond> upright_world;
+  Vector3dVector upright_positions;  // The same pose's joint positions (only differences count).
   std::vector<std::string> notes;
 };
 
