@@ -114,7 +114,32 @@ struct Alignment {
   PelvisCorrection pelvis;  // The root-most mapped joint's correction (pelvis_rest_correction.h).
   std::vector<Eigen::Quaterniond> upright_world;  // C U times the start pose's world rotations.
   Vector3dVector upright_positions;               // C U times its joint positions.
+  double stand_deg = 0.0;                         // S's angle: how far the start pose is from standing.
 };
+
+// S (header, step 3): the minimal rotation taking the start pose's body axis, from the
+// centroid of the mapped joints to the highest mapped joint of the target's bind pose (the
+// head), stood up by U, to the target's bind pose's: a start pose that does not stand
+// (a rest pose lying down while the motion's root stands it up) is stood up by the whole
+// body, not by where its pelvis's children start.
+Eigen::Quaterniond StandUp(const JointMap& map, const Vector3dVector& positions, const Vector3dVector& q,
+                           const Eigen::Matrix3d& up) {
+  Eigen::Vector3d s_mean = Eigen::Vector3d::Zero(), t_mean = Eigen::Vector3d::Zero();
+  int count = 0, high = -1;
+  for (int t = 0; t < static_cast<int>(q.size()); ++t) {
+    const int j = map.source_of_target[t];
+    if (j < 0) continue;
+    s_mean += positions[j];
+    t_mean += q[t];
+    ++count;
+    if (high < 0 || q[t].y() > q[high].y()) high = t;
+  }
+  if (count < 2) return Eigen::Quaterniond::Identity();
+  const Eigen::Vector3d d_s = up * (positions[map.source_of_target[high]] - s_mean / count);
+  const Eigen::Vector3d d_t = q[high] - t_mean / count;
+  if (d_s.norm() <= 0.0 || d_t.norm() <= 0.0) return Eigen::Quaterniond::Identity();
+  return Eigen::Quaterniond::FromTwoVectors(d_s, d_t);
+}
 
 // Rest-pose alignment (header, step 3) from the source pose `start`: per mapped joint, in
 // preorder, the rotation (Kabsch) turning its bones to the target's bind-pose bones `q`;
@@ -125,12 +150,15 @@ void AlignFrom(const Skeleton& source, const Skeleton& target, const JointMap& m
   const int ns = source.num_joints();
   FkData fk(source);
   ForwardKinematics(source, start, &fk);
+  const Eigen::Quaterniond stand_up = StandUp(map, fk.world_positions, q, up);
+  result->stand_deg = RadToDeg(Eigen::AngleAxisd(stand_up).angle());
+  const Eigen::Quaterniond stand = stand_up * Eigen::Quaterniond(up);
   std::vector<Eigen::Quaterniond> correction(ns);
   std::vector<char> below_mapped(ns, 0);  // A mapped proper ancestor.
   int pelvis = -1;                        // The root-most mapped joint with mapped children.
   for (int j = 0; j < ns; ++j) {
     const int p = source.parent(j);
-    const Eigen::Quaterniond parent = p < 0 ? Eigen::Quaterniond(up) : correction[p];
+    const Eigen::Quaterniond parent = p < 0 ? stand : correction[p];
     correction[j] = parent;
     below_mapped[j] = p >= 0 && (below_mapped[p] || map.target_of_source[p] >= 0);
     const int t = map.target_of_source[j];
@@ -155,7 +183,7 @@ void AlignFrom(const Skeleton& source, const Skeleton& target, const JointMap& m
   result->pose = start;
   result->upright_world.resize(ns);
   result->upright_positions.resize(ns);
-  const Eigen::Quaterniond upright = (result->pelvis.rotation * Eigen::Quaterniond(up)).normalized();
+  const Eigen::Quaterniond upright = (result->pelvis.rotation * stand).normalized();
   for (int j = 0; j < ns; ++j) {
     result->upright_world[j] = (upright * fk.world_rotations[j]).normalized();
     result->upright_positions[j] = upright * fk.world_positions[j];
@@ -192,23 +220,29 @@ void AlignFrom(const Skeleton& source, const Skeleton& target, const JointMap& m
 
 // The alignment from the source's rest pose or, when that leaves a mapped bone more than
 // kRetryAngleDeg off (a rest pose with every bone along one axis, as the CMU FBX files
-// have), from frames of the motion; the start with the lowest mean angle wins (noted).
+// have) or does not stand (its body axis more than kStandDeg from the target's: CesiumMan's
+// node rest pose lies bent in a plane, its posture all in the animation), from frames of
+// the motion; the start with the lowest mean angle among those that stand wins (noted).
 Alignment BestAlignment(const Skeleton& source, const Motion& source_motion, const Skeleton& target,
                         const JointMap& map, const Vector3dVector& q, const Eigen::Matrix3d& up,
                         std::vector<std::string>* notes) {
-  constexpr double kRetryAngleDeg = 45.0;
+  constexpr double kRetryAngleDeg = 45.0, kStandDeg = 30.0;
+  auto better = [&](const Alignment& a, const Alignment& b) {  // Standing first, then the mean angle.
+    if ((a.stand_deg > kStandDeg) != (b.stand_deg > kStandDeg)) return b.stand_deg > kStandDeg;
+    return a.mean_angle < b.mean_angle;
+  };
   const std::vector<std::vector<int>> children = MappedChildren(source, map);
   const int nf = source_motion.num_frames();
   Alignment best;
   AlignFrom(source, target, map, q, children, up, RestPose(source), &best);
-  if (best.max_angle > kRetryAngleDeg && nf > 0) {
-    const double rest_angle = best.max_angle;
+  if ((best.max_angle > kRetryAngleDeg || best.stand_deg > kStandDeg) && nf > 0) {
+    const double rest_angle = best.max_angle, rest_stand = best.stand_deg;
     int chosen = -1;
     for (int k = 0; k < 8; ++k) {
       const int f = k * nf / 8;
       Alignment candidate;
       AlignFrom(source, target, map, q, children, up, source_motion.frames[f], &candidate);
-      if (candidate.mean_angle < best.mean_angle) {
+      if (better(candidate, best)) {
         best = std::move(candidate);
         chosen = f;
       }
@@ -216,8 +250,9 @@ Alignment BestAlignment(const Skeleton& source, const Motion& source_motion, con
     if (chosen >= 0) {
       char note[200];
       std::snprintf(note, sizeof note,
-                    "the source's rest pose aligns badly (a bone %.0f deg off); aligned from frame %d instead",
-                    rest_angle, chosen);
+                    "the source's rest pose aligns badly (a bone %.0f deg off, its body %.0f deg from standing); "
+                    "aligned from frame %d instead",
+                    rest_angle, rest_stand, chosen);
       notes->push_back(note);
     }
   }
