@@ -96,7 +96,8 @@ QualityVerdict CheckQuality(const QualityGate& gate, const QualityFigures& figur
 }
 
 std::string RetargetGateNames() {
-  return "gate_limb_mean_deg,gate_limb_p95_deg,gate_pelvis_p95_deg,gate_foot_skate_cm_s,gate_penetration_cm,gate_self_joint_cm,"
+  return "gate_limb_mean_deg,gate_limb_p95_deg,gate_pelvis_p95_deg,gate_foot_skate_cm_s,gate_penetration_cm,"
+         "gate_self_joint_cm,"
          "gate_limb_vertices";
 }
 

@@ -19,13 +19,16 @@
 //   r      = the fit's residual, sqrt(mean_c angle(E u_c, v_c)^2) (degrees): 0 when the two
 //            sets of children are one set turned (the same rig; a rig whose rest pose is
 //            not its bind pose), large when the designs differ;
-//   w      = 1 for r <= kAgreeDeg, 0 for r >= kDisagreeDeg, linear between;
+//   w      = 1 for r <= kPelvisAgreeDeg, 0 for r >= kPelvisDisagreeDeg, linear between, and
+//            0 for n < 3;
 //   result = slerp(Y, E, w): the tilt is kept only as far as both rigs' children agree.
 //
-// n = 1 (nothing to check the tilt against) counts as disagreeing: Y only. kAgreeDeg = 2,
-// kDisagreeDeg = 6: the shared characters' own BVH exports give r < 0.01; a different rig
-// gives 7-30 (BENCHMARKS.md, issue 29). Y is the identity when the horizontal parts sum to
-// nothing (every child straight up or down).
+// Fewer than three children count as disagreeing (Y only): two mirror children (the thighs,
+// CMU's root) fit any tilt about the axis between them exactly, so their fit says nothing
+// about a tilt. kPelvisAgreeDeg = 1, kPelvisDisagreeDeg = 3: the shared characters' own BVH exports give
+// r <= 0.0001; other rigs 4.7-38 (BENCHMARKS.md, issue 29). Y is the identity when the
+// horizontal parts sum to nothing (every child straight up or down). skeleton_binding.cc
+// stands the pelvis up (the whole body's axis) before this.
 #ifndef MOCAPSOLVE_PROBLEMS_RETARGET_PELVIS_REST_CORRECTION_H_
 #define MOCAPSOLVE_PROBLEMS_RETARGET_PELVIS_REST_CORRECTION_H_
 

@@ -164,7 +164,9 @@ class TorsoOrientationTally {
       const Eigen::Vector3d a =
           design_ * (source_fk.world_positions[neck_s_] - source_fk.world_positions[chest_s_]);
       const Eigen::Vector3d b = target_fk.world_positions[neck_t_] - target_fk.world_positions[chest_t_];
-      if (a.norm() > 0.0 && b.norm() > 0.0) chest_.push_back(std::atan2(a.cross(b).norm(), a.dot(b)) * kDegreesPerRadian);
+      if (a.norm() > 0.0 && b.norm() > 0.0) {
+        chest_.push_back(std::atan2(a.cross(b).norm(), a.dot(b)) * kDegreesPerRadian);
+      }
     }
   }
   void Result(RetargetQuality* quality) const {
