@@ -39,6 +39,10 @@ const OptionGroup<QualityGate>& QualityGateOptions() {
       .Add(&G::max_limb_p95_deg, "gate_limb_p95_deg", "degrees",
            "Quality gate, per character: the limbs' direction error, 95th percentile over limbs and frames, at most "
            "this (degrees; the target is 20); 0 = no check.")
+      .Add(&G::max_pelvis_p95_deg, "gate_pelvis_p95_deg", "degrees",
+           "Quality gate, per character: the pelvis's rotation against the source's, from their upright rest "
+           "poses, 95th percentile over frames, at most this (degrees; a torso carried tilted shows here, not in "
+           "the limbs); 0 = no check.")
       .Add(&G::max_foot_skate_cm_s, "gate_foot_skate_cm_s", "cm/s",
            "Quality gate, per character: planted feet's horizontal speed while the source's are in contact at most "
            "this (cm/s); 0 = no check.")
@@ -57,7 +61,7 @@ const OptionGroup<QualityGate>& QualityGateOptions() {
 bool QualityGate::IsValid(std::string* error) const {
   for (double value : {max_naive_rms_mm, max_repaired_rms_mm, max_repaired_share, max_iteration_limit_share,
                        max_marker_offset_cm, max_torso_error_deg, max_limb_mean_deg, max_limb_p95_deg,
-                       max_foot_skate_cm_s, max_penetration_cm, max_self_joint_error_cm}) {
+                       max_pelvis_p95_deg, max_foot_skate_cm_s, max_penetration_cm, max_self_joint_error_cm}) {
     if (!std::isfinite(value)) {
       *error = "quality gate: thresholds must be finite";
       return false;
@@ -92,7 +96,8 @@ QualityVerdict CheckQuality(const QualityGate& gate, const QualityFigures& figur
 }
 
 std::string RetargetGateNames() {
-  return "gate_limb_mean_deg,gate_limb_p95_deg,gate_foot_skate_cm_s,gate_penetration_cm,gate_self_joint_cm,"
+  return "gate_limb_mean_deg,gate_limb_p95_deg,gate_pelvis_p95_deg,gate_foot_skate_cm_s,gate_penetration_cm,"
+         "gate_self_joint_cm,"
          "gate_limb_vertices";
 }
 
@@ -107,6 +112,8 @@ void CheckRetargetQuality(const QualityGate& gate, const RetargetQuality& qualit
         " deg");
   check(gate.max_limb_p95_deg > 0, quality.limb_p95_deg, gate.max_limb_p95_deg, "limb direction error (95th pct)",
         " deg");
+  check(gate.max_pelvis_p95_deg > 0, quality.pelvis_orientation_p95_deg, gate.max_pelvis_p95_deg,
+        "pelvis orientation error (95th pct)", " deg");
   check(gate.max_foot_skate_cm_s > 0, quality.foot_skate_cm_s, gate.max_foot_skate_cm_s, "planted foot skate",
         " cm/s");
   check(gate.max_penetration_cm > 0, quality.penetration_cm, gate.max_penetration_cm, "ground penetration", " cm");

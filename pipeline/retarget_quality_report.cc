@@ -22,6 +22,10 @@ JsonObject RetargetQualityJson(const RetargetQuality& quality, const std::vector
       .Add("limb_mean_deg", quality.limb_mean_deg)
       .Add("limb_p95_deg", quality.limb_p95_deg)
       .Add("alignment_deg", quality.alignment_deg)
+      .Add("pelvis_orientation_mean_deg", quality.pelvis_orientation_mean_deg)
+      .Add("pelvis_orientation_p95_deg", quality.pelvis_orientation_p95_deg)
+      .Add("chest_orientation_mean_deg", quality.chest_orientation_mean_deg)
+      .Add("chest_orientation_p95_deg", quality.chest_orientation_p95_deg)
       .Add("limbs", limbs)
       .Add("foot_skate_cm_per_s", quality.foot_skate_cm_s)
       .Add("penetration_cm", quality.penetration_cm)
@@ -43,6 +47,11 @@ std::string RetargetQualityLine(const RetargetQuality& quality) {
                 quality.min_limb_vertices,
                 quality.least_covered_limb.empty() ? "none" : quality.least_covered_limb.c_str());
   std::string line = text;
+  if (!std::isnan(quality.pelvis_orientation_p95_deg)) {
+    std::snprintf(text, sizeof text, "; pelvis %.1f deg p95, chest %.1f deg p95", quality.pelvis_orientation_p95_deg,
+                  quality.chest_orientation_p95_deg);
+    line += text;
+  }
   if (!std::isnan(quality.self_joint_error_max_cm)) {
     std::snprintf(text, sizeof text, "; own skeleton: joint error %.3g cm max", quality.self_joint_error_max_cm);
     line += text;

@@ -12,14 +12,17 @@
 
 namespace mocapsolve {
 
-// {"limb_mean_deg", "limb_p95_deg", "alignment_deg", "limbs": [{"limb", "mean_deg", "p95_deg",
+// {"limb_mean_deg", "limb_p95_deg", "alignment_deg", "pelvis_orientation_mean_deg",
+// "pelvis_orientation_p95_deg", "chest_orientation_mean_deg", "chest_orientation_p95_deg"
+// (null when not measured), "limbs": [{"limb", "mean_deg", "p95_deg",
 // "tracked_vertices"}], "foot_skate_cm_per_s", "penetration_cm", "penetration_frame_share",
 // "self_joint_error_mean_cm", "self_joint_error_max_cm" (null
 // unless the own skeleton), "coverage": {part: vertices}, "min_limb_vertices",
 // "least_covered_limb", "pass", "failures"} (NaN as null).
 JsonObject RetargetQualityJson(const RetargetQuality& quality, const std::vector<std::string>& failures);
 
-// "limbs 4.2 deg mean, 9.8 deg p95; skate 0.31 cm/s; penetration 0.4 cm; fewest limb vertices 12 (left_shin)".
+// "limbs 4.2 deg mean, 9.8 deg p95; skate 0.31 cm/s; penetration 0.4 cm; fewest limb vertices 12 (left_shin)";
+// "; pelvis 3.1 deg p95, chest 6.0 deg p95" when measured.
 std::string RetargetQualityLine(const RetargetQuality& quality);
 
 }  // namespace mocapsolve

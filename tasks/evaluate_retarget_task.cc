@@ -41,7 +41,8 @@ Status RunEvaluateRetarget(const EvaluateRetargetInputs& inputs, const RetargetS
                   "       vertex err  verdict\n";
   result->table_csv = "character,limb_mean_deg,limb_p95_deg,alignment_deg,foot_skate_cm_per_s,penetration_cm,"
                       "self_joint_error_max_cm,min_limb_vertices,least_covered_limb,"
-                      "mean_vertex_error_fraction_of_height,pass\n";
+                      "mean_vertex_error_fraction_of_height,pass,pelvis_orientation_mean_deg,pelvis_orientation_p95_deg,"
+                      "chest_orientation_mean_deg,chest_orientation_p95_deg\n";
   std::vector<JsonObject> rows;
   for (size_t i = 0; i < inputs.characters.size(); ++i) {
     RetargetInputs one;
@@ -70,10 +71,11 @@ Status RunEvaluateRetarget(const EvaluateRetargetInputs& inputs, const RetargetS
             Figure(q.self_joint_error_max_cm, "%.3f").c_str(), q.min_limb_vertices,
             q.least_covered_limb.empty() ? "-" : q.least_covered_limb.c_str(), row.mean_vertex_error,
             row.verdict.pass ? "pass" : "FAIL");
-    AppendF(&result->table_csv, "%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%s,%.6g,%s\n", row.character.c_str(),
-            q.limb_mean_deg, q.limb_p95_deg, q.alignment_deg, q.foot_skate_cm_s, q.penetration_cm,
-            q.self_joint_error_max_cm, q.min_limb_vertices, q.least_covered_limb.c_str(),
-            row.mean_vertex_error, row.verdict.pass ? "true" : "false");
+    AppendF(&result->table_csv, "%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%s,%.6g,%s,%.6g,%.6g,%.6g,%.6g\n",
+            row.character.c_str(), q.limb_mean_deg, q.limb_p95_deg, q.alignment_deg, q.foot_skate_cm_s,
+            q.penetration_cm, q.self_joint_error_max_cm, q.min_limb_vertices, q.least_covered_limb.c_str(),
+            row.mean_vertex_error, row.verdict.pass ? "true" : "false", q.pelvis_orientation_mean_deg,
+            q.pelvis_orientation_p95_deg, q.chest_orientation_mean_deg, q.chest_orientation_p95_deg);
     JsonObject o;
     o.Add("character", row.character).Add("file", one.target).Add("frames", task.source_motion.num_frames())
         .Add("mean_vertex_error_fraction_of_height", row.mean_vertex_error).Add("ms_per_frame", row.ms_per_frame)

@@ -249,7 +249,8 @@ Status RetargetOntoSolveCharacter(const RetargetCharacter& source, const Motion&
     out.notes.push_back(std::to_string(out.joint_map.num_mapped()) + " joints mapped; rest poses aligned: " +
                         Format("mean bone angle %.1f deg, worst %.1f deg (", binding.mean_bone_angle_deg,
                                binding.max_bone_angle_deg) +
-                        binding.worst_bone + ")");
+                        binding.worst_bone + Format("); pelvis children fit %.1f deg, its tilt kept %.0f %%",
+                                                    binding.pelvis_residual_deg, 100.0 * binding.pelvis_tilt_kept));
   } else {
     const Pose bind = source.bind_pose.rotations.empty() ? RestPose(*source.skeleton) : source.bind_pose;
     setup_options.source_world_from_bind =
@@ -321,6 +322,10 @@ Status RetargetOntoSolveCharacter(const RetargetCharacter& source, const Motion&
   quality.result = &out.clip.motion;
   quality.target_mesh = target.mesh;
   quality.target_rest = target_rest;
+  quality.source_upright = out.skeleton_only ? &binding.upright_world : nullptr;
+  quality.source_upright_positions = out.skeleton_only ? &binding.upright_positions : nullptr;
+  quality.target_bind = target_bind;
+  quality.target_world_from_bind = setup_options.target_world_from_bind;
   quality.joint_map = &out.joint_map;
   quality.setup = out.own_skeleton ? nullptr : &out.setup;
   quality.height_ratio = out.height_ratio;

@@ -109,6 +109,79 @@ void MeasureLimbDirections(const std::vector<LimbDirections>& limbs, RetargetQua
   quality->limb_p95_deg = Percentile95(all);
 }
 
+// The pelvis's orientation and the chest's lean (header), tallied frame by frame.
+class TorsoOrientationTally {
+ public:
+  explicit TorsoOrientationTally(const RetargetQualityInputs& in) {
+    if (in.source_upright == nullptr || in.source_upright_positions == nullptr) return;
+    const JointMap& map = *in.joint_map;
+    const int ns = static_cast<int>(in.source_upright->size());
+    auto source_of = [&](int t, const char* role) { return t < 0 ? -1 : SourceJoint(map, role, t); };
+    pelvis_t_ = TargetJoint(map, "pelvis");
+    pelvis_s_ = source_of(pelvis_t_, "pelvis");
+    chest_t_ = TargetJoint(map, "chest");
+    neck_t_ = TargetJoint(map, "neck");
+    chest_s_ = source_of(chest_t_, "chest");
+    neck_s_ = source_of(neck_t_, "neck");
+    FkData fk(*in.target);
+    ForwardKinematics(*in.target, in.target_bind.rotations.empty() ? RestPose(*in.target) : in.target_bind, &fk);
+    const Vector3dVector& upright = *in.source_upright_positions;
+    auto zero_length = [&](int s, int t) {
+      return s < 0 || t < 0 || s >= ns || (upright[neck_s_] - upright[s]).norm() <= 0.0 ||
+             (fk.world_positions[neck_t_] - fk.world_positions[t]).norm() <= 0.0;
+    };
+    if (neck_s_ >= 0 && neck_s_ < ns && zero_length(chest_s_, chest_t_)) {  // CMU's BVH: Chest2 at lowerneck.
+      chest_t_ = TargetJoint(map, "spine_1");
+      chest_s_ = source_of(chest_t_, "spine_1");
+    }
+    const Eigen::Quaterniond world_from_bind(in.target_world_from_bind);
+    if (pelvis_s_ < 0 || pelvis_s_ >= ns) {
+      pelvis_s_ = -1;
+    } else {
+      pelvis_target_reference_ = world_from_bind * fk.world_rotations[pelvis_t_];
+      pelvis_source_reference_ = (*in.source_upright)[pelvis_s_];
+    }
+    if (chest_s_ < 0 || neck_s_ < 0 || chest_s_ >= ns || neck_s_ >= ns) {
+      chest_s_ = -1;
+      return;
+    }
+    const Eigen::Vector3d d0_s = (*in.source_upright_positions)[neck_s_] - (*in.source_upright_positions)[chest_s_];
+    const Eigen::Vector3d d0_t =
+        in.target_world_from_bind * (fk.world_positions[neck_t_] - fk.world_positions[chest_t_]);
+    if (d0_s.norm() <= 0.0 || d0_t.norm() <= 0.0) {
+      chest_s_ = -1;
+      return;
+    }
+    design_ = Eigen::Quaterniond::FromTwoVectors(d0_s, d0_t);
+  }
+  void Add(const FkData& source_fk, const FkData& target_fk) {
+    if (pelvis_s_ >= 0) {
+      const Eigen::Quaterniond d_s = source_fk.world_rotations[pelvis_s_] * pelvis_source_reference_.conjugate();
+      const Eigen::Quaterniond d_t = target_fk.world_rotations[pelvis_t_] * pelvis_target_reference_.conjugate();
+      pelvis_.push_back(Eigen::AngleAxisd((d_s.conjugate() * d_t).normalized()).angle() * kDegreesPerRadian);
+    }
+    if (chest_s_ >= 0) {
+      const Eigen::Vector3d a =
+          design_ * (source_fk.world_positions[neck_s_] - source_fk.world_positions[chest_s_]);
+      const Eigen::Vector3d b = target_fk.world_positions[neck_t_] - target_fk.world_positions[chest_t_];
+      if (a.norm() > 0.0 && b.norm() > 0.0) {
+        chest_.push_back(std::atan2(a.cross(b).norm(), a.dot(b)) * kDegreesPerRadian);
+      }
+    }
+  }
+  void Result(RetargetQuality* quality) const {
+    quality->pelvis_orientation_mean_deg = Mean(pelvis_);
+    quality->pelvis_orientation_p95_deg = Percentile95(pelvis_);
+    quality->chest_orientation_mean_deg = Mean(chest_);
+    quality->chest_orientation_p95_deg = Percentile95(chest_);
+  }
+
+ private:
+  int pelvis_s_ = -1, pelvis_t_ = -1, chest_s_ = -1, chest_t_ = -1, neck_s_ = -1, neck_t_ = -1;
+  Eigen::Quaterniond pelvis_source_reference_, pelvis_target_reference_, design_;
+  std::vector<double> pelvis_, chest_;
+};
+
 // Depth of each joint of `feet` under its rest clearance above y = 0 (foot_clearance.h) per
 // frame, times `scale`: the deepest and the share of frames deeper than share_depth,
 // tallied frame by frame.
@@ -259,6 +332,7 @@ RetargetQuality MeasureRetargetQuality(const RetargetQualityInputs& in) {
   std::vector<LimbDirections> limbs = LimbsToCollect(*in.joint_map, &mapped);
   PenetrationTally penetration(*in.target, TargetFootJoints(*in.joint_map), target_rest, in.target_mesh, cm, 1.0);
   SelfJointTally self(in, cm);
+  TorsoOrientationTally torso(in);
   // One pass over the frames, both skeletons' joints of one frame at a time (the clip's
   // would be 2.4 KB per frame of a long take onto Xbot).
   const int frames = std::min(in.source_motion->num_frames(), in.result->num_frames());
@@ -270,7 +344,9 @@ RetargetQuality MeasureRetargetQuality(const RetargetQualityInputs& in) {
     ForwardKinematics(*in.source, in.source_motion->frames[f], &source_fk);
     CollectLimbDirections(mapped, source_fk.world_positions, target_fk.world_positions, &limbs);
     self.Add(source_fk.world_positions, target_fk.world_positions);
+    torso.Add(source_fk, target_fk);
   }
+  torso.Result(&quality);
   MeasureLimbDirections(limbs, &quality);
   quality.foot_skate_cm_s = in.foot_skate_cm_s;
   penetration.Result(&quality.penetration_cm, &quality.penetration_frame_share);

@@ -15,6 +15,24 @@
 // mean of the limbs' means and the 95th percentile of all samples (degrees). R's angle is
 // reported (alignment_deg) so that a tilted result shows.
 //
+// Torso orientation (pelvis, chest): the limb directions cannot see a pelvis turned about
+// its own joint (RobotExpressive's torso box rides on its pelvis-role joint `Body`). Both
+// rest poses are taken to stand upright: the references are the target's bind pose in its
+// world and the source's upright pose (skeleton_binding.h's upright_world and
+// upright_positions: its start pose stood up and turned by the pelvis's rest correction,
+// pelvis_rest_correction.h). Pelvis: with W the pelvis role joint's world rotations of a
+// frame and B the references' (source s, target t), each side's rotation away from its
+// reference D_s = W_s B_s^-1, D_t = W_t B_t^-1 (world frame); the frame's error is the angle
+// of D_s^-1 D_t. Chest: its lean, from joint positions (a joint's own rotation can be
+// invisible: CMU's thorax has its neck and clavicles starting at one point, and that of a
+// chest joint carrying no vertex is free): the direction d from the chest role joint to the
+// neck role joint on each side (from the spine_1 role joint where the chest's starts at the
+// neck on either side: CMU's BVH Chest2 and lowerneck), d0 the references'; with Q the minimal rotation taking d0_s
+// to d0_t (the rigs' designs), the frame's error is the angle between Q d_s and d_t. A
+// target carried tilted (or, for the pelvis, twisted) against the source shows whatever the
+// tracking residual. Mean and 95th percentile over frames, degrees; NaN without an upright
+// pose (a source with its own mesh) or without the roles on both sides.
+//
 // Foot skate of planted feet: the mean horizontal speed of the target's foot joints over
 // the frame pairs where the source's are in contact (retarget_character.h's plant
 // skating, cm/s), copied in.
@@ -46,6 +64,9 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
 #include "kinematics/skinned_mesh.h"
@@ -65,6 +86,10 @@ struct RetargetQuality {
   double limb_mean_deg = 0.0;             // Mean of the limbs' means (NaN: no limbs).
   double limb_p95_deg = 0.0;              // 95th percentile of all samples (NaN: no limbs).
   double alignment_deg = 0.0;             // Angle of the constant rotation R.
+  double pelvis_orientation_mean_deg = 0.0;  // Torso orientation (NaN: not measured).
+  double pelvis_orientation_p95_deg = 0.0;
+  double chest_orientation_mean_deg = 0.0;  // The chest's lean (chest -> neck).
+  double chest_orientation_p95_deg = 0.0;
   double foot_skate_cm_s = 0.0;           // Planted feet (0: no contacts).
   double penetration_cm = 0.0;            // Deepest foot joint under the floor.
   double penetration_frame_share = 0.0;   // Frames with a foot joint > 1 cm under it.
@@ -82,6 +107,12 @@ struct RetargetQualityInputs {
   const Motion* result = nullptr;
   const SkinnedMesh* target_mesh = nullptr;
   Pose target_rest;                       // The target's rest (world) pose; empty = RestPose.
+  // Torso orientation: the source's upright world rotations (per source joint; nullptr = not
+  // measured), the target's bind pose and the rotation taking its bind world to its world.
+  const std::vector<Eigen::Quaterniond>* source_upright = nullptr;
+  const Vector3dVector* source_upright_positions = nullptr;  // With source_upright.
+  Pose target_bind;
+  Eigen::Matrix3d target_world_from_bind = Eigen::Matrix3d::Identity();
   const JointMap* joint_map = nullptr;
   const RetargetSetup* setup = nullptr;  // Coverage; nullptr = not tracked (own skeleton).
   double height_ratio = 1.0;             // Target units per source unit.

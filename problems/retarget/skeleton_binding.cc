@@ -10,30 +10,10 @@
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/rotation.h"
 #include "problems/retarget/mesh_mapping.h"
+#include "problems/retarget/pelvis_rest_correction.h"
 
 namespace mocapsolve {
 namespace {
-
-// argmin_R sum |R u_i - v_i|^2 over unit vectors (Kabsch), or the minimal rotation taking
-// the mean u to the mean v when the u are (nearly) parallel: then the rotation about them
-// is not determined (CMU's thorax, whose neck and both clavicles start at one point) and
-// the minimal one keeps the source's.
-Eigen::Quaterniond BestRotation(const std::vector<Eigen::Vector3d>& u, const std::vector<Eigen::Vector3d>& v) {
-  Eigen::Vector3d mean_u = Eigen::Vector3d::Zero(), mean_v = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < u.size(); ++i) {
-    mean_u += u[i];
-    mean_v += v[i];
-  }
-  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
-  for (size_t i = 0; i < u.size(); ++i) h += u[i] * v[i].transpose();
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  if (u.size() == 1 || svd.singularValues()(1) < 0.05 * svd.singularValues()(0)) {
-    return Eigen::Quaterniond::FromTwoVectors(mean_u, mean_v);
-  }
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
-  return Eigen::Quaterniond(Eigen::Matrix3d(svd.matrixV() * d * svd.matrixU().transpose())).normalized();
-}
 
 // The error for too few mapped joints, listing (up to 12 of) the target's unmapped joints.
 Status TooFewMappedJointsError(const Skeleton& target, const JointMap& map) {
@@ -131,21 +111,56 @@ struct Alignment {
   std::vector<Eigen::Quaterniond> world;
   double mean_angle = 0.0, max_angle = 0.0;
   std::string worst;
+  PelvisCorrection pelvis;  // The root-most mapped joint's correction (pelvis_rest_correction.h).
+  std::vector<Eigen::Quaterniond> upright_world;  // C U times the start pose's world rotations.
+  Vector3dVector upright_positions;               // C U times its joint positions.
+  double stand_deg = 0.0;                         // S's angle: how far the start pose is from standing.
 };
+
+// S (header, step 3): the minimal rotation taking the start pose's body axis, from the
+// centroid of the mapped joints to the highest mapped joint of the target's bind pose (the
+// head), stood up by U, to the target's bind pose's: a start pose that does not stand
+// (a rest pose lying down while the motion's root stands it up) is stood up by the whole
+// body, not by where its pelvis's children start.
+Eigen::Quaterniond StandUp(const JointMap& map, const Vector3dVector& positions, const Vector3dVector& q,
+                           const Eigen::Matrix3d& up) {
+  Eigen::Vector3d s_mean = Eigen::Vector3d::Zero(), t_mean = Eigen::Vector3d::Zero();
+  int count = 0, high = -1;
+  for (int t = 0; t < static_cast<int>(q.size()); ++t) {
+    const int j = map.source_of_target[t];
+    if (j < 0) continue;
+    s_mean += positions[j];
+    t_mean += q[t];
+    ++count;
+    if (high < 0 || q[t].y() > q[high].y()) high = t;
+  }
+  if (count < 2) return Eigen::Quaterniond::Identity();
+  const Eigen::Vector3d d_s = up * (positions[map.source_of_target[high]] - s_mean / count);
+  const Eigen::Vector3d d_t = q[high] - t_mean / count;
+  if (d_s.norm() <= 0.0 || d_t.norm() <= 0.0) return Eigen::Quaterniond::Identity();
+  return Eigen::Quaterniond::FromTwoVectors(d_s, d_t);
+}
 
 // Rest-pose alignment (header, step 3) from the source pose `start`: per mapped joint, in
 // preorder, the rotation (Kabsch) turning its bones to the target's bind-pose bones `q`;
 // then the aligned pose's mean and worst bone angles.
 void AlignFrom(const Skeleton& source, const Skeleton& target, const JointMap& map, const Vector3dVector& q,
-               const std::vector<std::vector<int>>& children, const Pose& start, Alignment* result) {
+               const std::vector<std::vector<int>>& children, const Eigen::Matrix3d& up, const Pose& start,
+               Alignment* result) {
   const int ns = source.num_joints();
   FkData fk(source);
   ForwardKinematics(source, start, &fk);
+  const Eigen::Quaterniond stand_up = StandUp(map, fk.world_positions, q, up);
+  result->stand_deg = RadToDeg(Eigen::AngleAxisd(stand_up).angle());
+  const Eigen::Quaterniond stand = stand_up * Eigen::Quaterniond(up);
   std::vector<Eigen::Quaterniond> correction(ns);
+  std::vector<char> below_mapped(ns, 0);  // A mapped proper ancestor.
+  int pelvis = -1;                        // The root-most mapped joint with mapped children.
   for (int j = 0; j < ns; ++j) {
-    const Eigen::Quaterniond parent =
-        source.parent(j) < 0 ? Eigen::Quaterniond::Identity() : correction[source.parent(j)];
+    const int p = source.parent(j);
+    const Eigen::Quaterniond parent = p < 0 ? stand : correction[p];
     correction[j] = parent;
+    below_mapped[j] = p >= 0 && (below_mapped[p] || map.target_of_source[p] >= 0);
     const int t = map.target_of_source[j];
     if (t < 0) continue;
     std::vector<Eigen::Vector3d> u, v;
@@ -156,9 +171,23 @@ void AlignFrom(const Skeleton& source, const Skeleton& target, const JointMap& m
       u.push_back(a.normalized());
       v.push_back(b.normalized());
     }
-    if (!u.empty()) correction[j] = (BestRotation(u, v) * parent).normalized();
+    if (u.empty()) continue;
+    if (below_mapped[j]) {
+      correction[j] = (BestRestRotation(u, v) * parent).normalized();
+    } else {
+      pelvis = j;
+      result->pelvis = PelvisRestCorrection(u, v);
+      correction[j] = (result->pelvis.rotation * parent).normalized();
+    }
   }
   result->pose = start;
+  result->upright_world.resize(ns);
+  result->upright_positions.resize(ns);
+  const Eigen::Quaterniond upright = (result->pelvis.rotation * stand).normalized();
+  for (int j = 0; j < ns; ++j) {
+    result->upright_world[j] = (upright * fk.world_rotations[j]).normalized();
+    result->upright_positions[j] = upright * fk.world_positions[j];
+  }
   result->world.resize(ns);
   for (int j = 0; j < ns; ++j) {
     result->world[j] = correction[j] * fk.world_rotations[j];
@@ -170,6 +199,9 @@ void AlignFrom(const Skeleton& source, const Skeleton& target, const JointMap& m
   ForwardKinematics(source, result->pose, &fk);
   int bones = 0;
   for (int j = 0; j < ns; ++j) {
+    // The pelvis's own bones are left off where its tilt is not (fully) kept: where they
+    // start is each rig's design, which the alignment no longer matches.
+    if (j == pelvis && result->pelvis.tilt_kept < 1.0) continue;
     for (int c : children[j]) {
       const Eigen::Vector3d a = fk.world_positions[c] - fk.world_positions[j];
       const Eigen::Vector3d b = q[map.target_of_source[c]] - q[map.target_of_source[j]];
@@ -188,22 +220,29 @@ void AlignFrom(const Skeleton& source, const Skeleton& target, const JointMap& m
 
 // The alignment from the source's rest pose or, when that leaves a mapped bone more than
 // kRetryAngleDeg off (a rest pose with every bone along one axis, as the CMU FBX files
-// have), from frames of the motion; the start with the lowest mean angle wins (noted).
+// have) or does not stand (its body axis more than kStandDeg from the target's: CesiumMan's
+// node rest pose lies bent in a plane, its posture all in the animation), from frames of
+// the motion; the start with the lowest mean angle among those that stand wins (noted).
 Alignment BestAlignment(const Skeleton& source, const Motion& source_motion, const Skeleton& target,
-                        const JointMap& map, const Vector3dVector& q, std::vector<std::string>* notes) {
-  constexpr double kRetryAngleDeg = 45.0;
+                        const JointMap& map, const Vector3dVector& q, const Eigen::Matrix3d& up,
+                        std::vector<std::string>* notes) {
+  constexpr double kRetryAngleDeg = 45.0, kStandDeg = 30.0;
+  auto better = [&](const Alignment& a, const Alignment& b) {  // Standing first, then the mean angle.
+    if ((a.stand_deg > kStandDeg) != (b.stand_deg > kStandDeg)) return b.stand_deg > kStandDeg;
+    return a.mean_angle < b.mean_angle;
+  };
   const std::vector<std::vector<int>> children = MappedChildren(source, map);
   const int nf = source_motion.num_frames();
   Alignment best;
-  AlignFrom(source, target, map, q, children, RestPose(source), &best);
-  if (best.max_angle > kRetryAngleDeg && nf > 0) {
-    const double rest_angle = best.max_angle;
+  AlignFrom(source, target, map, q, children, up, RestPose(source), &best);
+  if ((best.max_angle > kRetryAngleDeg || best.stand_deg > kStandDeg) && nf > 0) {
+    const double rest_angle = best.max_angle, rest_stand = best.stand_deg;
     int chosen = -1;
     for (int k = 0; k < 8; ++k) {
       const int f = k * nf / 8;
       Alignment candidate;
-      AlignFrom(source, target, map, q, children, source_motion.frames[f], &candidate);
-      if (candidate.mean_angle < best.mean_angle) {
+      AlignFrom(source, target, map, q, children, up, source_motion.frames[f], &candidate);
+      if (better(candidate, best)) {
         best = std::move(candidate);
         chosen = f;
       }
@@ -211,8 +250,9 @@ Alignment BestAlignment(const Skeleton& source, const Motion& source_motion, con
     if (chosen >= 0) {
       char note[200];
       std::snprintf(note, sizeof note,
-                    "the source's rest pose aligns badly (a bone %.0f deg off); aligned from frame %d instead",
-                    rest_angle, chosen);
+                    "the source's rest pose aligns badly (a bone %.0f deg off, its body %.0f deg from standing); "
+                    "aligned from frame %d instead",
+                    rest_angle, rest_stand, chosen);
       notes->push_back(note);
     }
   }
@@ -342,11 +382,15 @@ Status BindTargetMeshToSource(const Skeleton& source, const Motion& source_motio
   const Vector3dVector q = TargetBindPositions(target, target_bind_pose, target_world_from_bind);
   out.up = SourceUpRotation(source, source_motion, map, q, &out.notes);
 
-  Alignment best = BestAlignment(source, source_motion, target, map, q, &out.notes);
+  Alignment best = BestAlignment(source, source_motion, target, map, q, out.up, &out.notes);
   Pose aligned = std::move(best.pose);
   out.mean_bone_angle_deg = best.mean_angle;
   out.max_bone_angle_deg = best.max_angle;
   out.worst_bone = best.worst;
+  out.pelvis_residual_deg = best.pelvis.residual_deg;
+  out.pelvis_tilt_kept = best.pelvis.tilt_kept;
+  out.upright_world = std::move(best.upright_world);
+  out.upright_positions = std::move(best.upright_positions);
   FkData fk(source);
   ForwardKinematics(source, aligned, &fk);
 

@@ -21,16 +21,26 @@
 //    (the mapped joints whose nearest mapped proper ancestor is j) give the correction
 //        E_j = argmin_R sum |R u^_c - v^_c|^2   (Kabsch; the minimal rotation for one child)
 //    and D_j = E_j D_parent(j) (unmapped joints and mapped leaves: D_j = D_parent(j), so
-//    they follow rigidly). The aligned pose has world rotations D_j R^rest_j: every mapped
-//    bone points where the target's bind-pose bone points, which absorbs T vs A pose,
-//    facing and the up axis (the root's correction comes from its children: hips, spine).
+//    they follow rigidly). Above the first mapped joint D = S U: U (step 2) and S, the
+//    minimal rotation taking the start pose's body axis (the target's highest mapped joint,
+//    the head, against the mapped joints' centroid) to the target bind pose's. The first
+//    mapped joint (the pelvis) takes E = C of pelvis_rest_correction.h instead of Kabsch:
+//    a turn about up, the tilt kept only where both rigs' pelvis children are one set turned
+//    (where they start is each rig's design: RobotExpressive's Body -> Abdomen leans 40
+//    degrees back; a tilt taken from them tilts whatever rides on the pelvis through the
+//    take). The aligned pose has world rotations D_j R^rest_j: every mapped bone below the
+//    pelvis points where the target's bind-pose bone points, which absorbs T vs A pose,
+//    facing and the up axis; the pelvis's own bones are left out of the bone angles when
+//    its tilt is not (fully) kept. The upright pose C S U times the start pose is kept
+//    (upright_world, upright_positions) for retarget_quality.h's torso orientation.
 //    Twist about a bone with one mapped child is left as in the source's rest pose.
 //    Where the u_c are (nearly) parallel (CMU's thorax: neck and clavicles start at one
 //    point), the minimal rotation of their mean replaces Kabsch, whose twist about them
 //    would be arbitrary. If the rest pose leaves a mapped bone more than 45 degrees off
 //    (CMU FBX files: every bone of the rest pose along +y, the posture is all in the
-//    animation), eight frames of the motion are tried as the start instead and the one
-//    with the lowest mean bone angle is kept (noted).
+//    animation) or S turns it more than 30 degrees (it does not stand: CesiumMan's node
+//    rest lies bent in a plane), eight frames of the motion are tried as the start instead
+//    and the one with the lowest mean bone angle among those that stand is kept (noted).
 // 4. Scale k = h_t / h_s with h the vertical extent of the mapped joints (target bind
 //    pose; aligned source pose): the source's units (cm, CMU's 1/0.45 in, m) disappear.
 // 6. Placement: the aligned pose and the bound mesh are translated so that the bound
@@ -57,6 +67,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
@@ -77,6 +88,14 @@ struct SkeletonBinding {
   double mean_bone_angle_deg = 0.0;  // Aligned source bones vs the target's, mapped bones.
   double max_bone_angle_deg = 0.0;
   std::string worst_bone;            // Target joint of the worst bone.
+  double pelvis_residual_deg = 0.0;  // The pelvis children's fit residual r (pelvis_rest_correction.h).
+  double pelvis_tilt_kept = 0.0;     // w: 1 = its full rotation, 0 = a turn about up only.
+  // The source's start pose (its rest, or the frame the alignment started from) stood up
+  // (U) and turned by the pelvis's correction C: per source joint its world rotation where
+  // it stands in the target's bind pose when both rest poses are upright
+  // (retarget_quality.h's torso orientation).
+  std::vector<Eigen::Quaterniond> upright_world;
+  Vector3dVector upright_positions;  // The same pose's joint positions (only differences count).
   std::vector<std::string> notes;
 };
 

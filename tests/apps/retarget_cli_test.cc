@@ -360,7 +360,9 @@ TEST(RetargetCli, RootMotionModes) {
   EXPECT_EQ(testing::RunCli("retarget --quiet --source=" + walk + " --target=" + xbot + " --max_frames=5 "
                             "--root_motion=in_place --out=" + xbot_out, &output), 0) << output;
   // --stride=legs: RobotExpressive's legs are a smaller share of its height than the CMU actor's
-  // (0.808 along its bones, its IK feet on the shins in the solve; 0.759 hip to IK foot before).
+  // (0.902 along its bones, its IK feet on the shins in the solve; 0.808 while the rest alignment
+  // tilted the actor's pelvis by the robot's, the bound mesh then shorter: height ratio 0.0228
+  // against 0.0204 upright; 0.759 hip to IK foot before that).
   const std::string stride_report = testing::TempPath("robot_stride.json");
   ASSERT_EQ(testing::RunCli("retarget --quiet --source=" + walk + " --target=" + robot + " --max_frames=5 "
                             "--stride=legs --out=" + testing::TempPath("robot_stride.bvh") + " --report=" + stride_report,
@@ -368,7 +370,7 @@ TEST(RetargetCli, RootMotionModes) {
   ASSERT_TRUE(ReadJsonFile(stride_report, &root).ok());
   bool scaled = false;
   for (const JsonNode& note : root.Find("notes")->items) {
-    scaled |= note.string.find("stride scaled by the leg-length ratio: 0.8") != std::string::npos;
+    scaled |= note.string.find("stride scaled by the leg-length ratio: 0.90") != std::string::npos;
   }
   EXPECT_TRUE(scaled);
 }
