@@ -13,6 +13,7 @@
 #include "pipeline/shipped_templates.h"
 #include "problems/marker_solve/associated_marker_set.h"
 #include "problems/marker_solve/calibration.h"
+#include "problems/marker_solve/held_out_round.h"
 #include "problems/marker_solve/lone_joint_gauge.h"
 #include "problems/marker_solve/marker_observations.h"
 #include "problems/marker_solve/mean_pose.h"
@@ -350,6 +351,10 @@ struct RoundState {
   // Round 0's outliers (frame, label): samples of the template's markers that its fit left out.
   std::vector<std::pair<int, std::string>> template_outliers;
   RoundFit best;
+  // Every round that holds every marker of the take, with its held-out score: the kept
+  // round is chosen among them (KeepHeldOutRound), `best` only decides where rounds start.
+  std::vector<RoundFit> candidates;
+  std::vector<double> held_out;
 };
 
 // Each round starts from the best so far: a worse round must not feed the next.
@@ -551,6 +556,28 @@ bool KeepBestRound(int round, int rounds, const Observations& observed, const Sk
   return true;
 }
 
+// Scores `fit` (held_out_round.h) and adds it to the candidates; `round_index` is its
+// entry in result->rounds.
+Status AddCandidate(const RoundFit& fit, const MarkerSolveOptions& solve_options, const std::string& markers_path,
+                    int round_index, RoundState* state, SkeletonFitResult* result) {
+  double score = 0.0;
+  const Status status = HeldOutRoundScore(fit.skeleton, fit.markers, fit.motion, fit.observed, solve_options,
+                                          HeldOutRoundOptions(), &score);
+  if (!status.ok()) return Status::Error(markers_path + ": round " + std::to_string(fit.round) + ": " + status.message());
+  state->candidates.push_back(fit);
+  state->held_out.push_back(score);
+  if (round_index >= 0) result->rounds[round_index].held_out = score;
+  return Status::Ok();
+}
+
+// The kept round: the latest candidate whose held-out score is within the tolerance of
+// the lowest (KeptRound); the best by marker RMS when no round was a candidate.
+void KeepHeldOutRound(RoundState* state) {
+  const int kept = KeptRound(state->held_out, HeldOutRoundOptions().tolerance);
+  if (kept >= 0) state->best = std::move(state->candidates[kept]);
+  state->candidates.clear();
+}
+
 // The kept round as the fitted subject: lone joints regauged, the checks run against the
 // observations it was fitted to, its mean pose as the subject's rest prior.
 // With --learn_weights: each marker's solve weight from a solve of the kept subject on the
@@ -658,8 +685,20 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
     status = FitRound(fit, options, solve_options, round_markers, started, events, markers_path, &state, &observed,
                       result);
     if (!status.ok()) return status;
+    if (round == 1 && state.round0_complete) {
+      status = AddCandidate(state.best, solve_options, markers_path, 0, &state, result);
+      if (!status.ok()) return status;
+    }
+    if (round >= 1) {
+      const RoundFit fitted{round, state.report.rms.back(), state.fitted, state.fitted_markers, state.motion,
+                            state.report, observed};
+      status = AddCandidate(fitted, solve_options, markers_path, static_cast<int>(result->rounds.size()) - 1, &state,
+                            result);
+      if (!status.ok()) return status;
+    }
     if (!KeepBestRound(round, rounds, observed, started, events, &state)) break;
   }
+  KeepHeldOutRound(&state);
   if (rounds > 0 && state.best.round != rounds) {
     SkeletonFitEvent kept;
     kept.kind = SkeletonFitEvent::kKept;
@@ -690,6 +729,7 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
     JsonObject o;
     o.Add("round", round.round).Add("markers", round.markers).Add("rms_by_iteration", rms)
         .Add("outlier_samples", round.outlier_samples);
+    if (round.held_out >= 0.0) o.Add("held_out_median", round.held_out * mm);
     round_json.push_back(o);
   }
   const Skeleton& fitted = result.subject.skeleton;
@@ -787,7 +827,8 @@ std::string SkeletonFitEventLine(const SkeletonFitEvent& e, const Skeleton& temp
                                  : "fit_skeleton: round %d did not improve; stopping\n", e.round);
       break;
     case SkeletonFitEvent::kKept:
-      AppendF(&line, "fit_skeleton: keeping round %d (marker RMS %.2f %s)\n", e.round, e.rms * mm, unit);
+      AppendF(&line, "fit_skeleton: keeping round %d (marker RMS %.2f %s; the latest round within 5 %% of the lowest held-out leave-one-out median)\n",
+              e.round, e.rms * mm, unit);
       break;
   }
   return line;

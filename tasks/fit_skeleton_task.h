@@ -101,6 +101,9 @@ struct SkeletonFitRound {
   int markers = 0;
   std::vector<double> rms;  // Before and after each iteration, skeleton units.
   int outlier_samples = 0;  // Left out of the round's fit (--fit_outlier_mm): round 0's, in every round.
+  // Held-out score (problems/marker_solve/held_out_round.h), skeleton units; negative for a
+  // round that was no candidate (round 0 without every marker of the take).
+  double held_out = -1.0;
 };
 
 struct SkeletonFitResult {
