@@ -140,9 +140,10 @@ def _vendor_c3d(tmp_path, labels):
 
 def test_read_markers_picks_a_subject_and_numbers_duplicates(tmp_path):
     path = _vendor_c3d(tmp_path, ["Daphnee:LASI", "boite:M1", "Daphnee:RASI", "Daphnee:LASI"])
-    # Two subjects and no choice: one line that lists them.
-    with pytest.raises(ValueError, match="subject_prefix"):
-        mocapsolve.read_markers(path)
+    # Two subjects and no choice: the one with the most points, a warning listing them.
+    with pytest.warns(UserWarning, match="2 subjects .* reading 'Daphnee:'"):
+        largest = mocapsolve.read_markers(path)
+    assert list(largest.labels) == ["LASI", "RASI", "LASI#2"]
     with pytest.warns(UserWarning, match="LASI"):
         markers = mocapsolve.read_markers(path, subject_prefix="Daphnee")
     assert list(markers.labels) == ["LASI", "RASI", "LASI#2"]
