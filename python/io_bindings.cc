@@ -110,7 +110,8 @@ void BindIo(py::module_& m) {
       "FORCES, MOMENTS, POWERS, REACTIONS, SCALARS, and Plug-in Gait's virtual points) as markers\n"
       "(default False: they are set apart, with a warning).\n"
       "subject_prefix: in a C3D of several subjects ('Daphnee:LASI', 'boite:M1'), the subject whose\n"
-      "points are read, prefix stripped (default '': required when the file has several).\n"
+      "points are read, prefix stripped (default '': of several, the one with the most points,\n"
+      "with a warning naming them).\n"
       "Duplicate labels are numbered (RKNE, RKNE#2) with a warning (warnings.warn).");
   m.def("write_markers", [](const std::string& path, MarkerTrajectories& markers) {
         SyncMask(&markers);
