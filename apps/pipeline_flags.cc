@@ -30,7 +30,8 @@ const std::string& PipelineOptionFlags() {
       TakeSettingOptions().Names() + "," + PyramidSettingOptions().Names() + "," + QualityGateOptions().Names() + "," +
       RetargetRunSettingOptions().Only("animation_only").Names() + "," + DeliverySettingOptions().Names() + "," +
       RepairSettingOptions().Names() + "," + RepairSolverOptions().Names() + "," + RetargetSettingOptions().Names() +
-      "," + FootJointOption().Names() + "," + LabelSettingOptions().Names() + "," + AutoSubjectFitOptions().Names());
+      "," + FootJointOption().Names() + "," + LabelSettingOptions().Names() + "," + AutoSubjectFitOptions().Names() +
+      "," + MemoryOption().Names());
   return *names;
 }
 
