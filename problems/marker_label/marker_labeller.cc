@@ -289,10 +289,13 @@ class Tracker {
         if (source[m] >= 0) trial[m] = current[source[m]];
       }
       // A marker that gave its point away but took none of the others' (a free point, or
-      // none) has no known point at g: empty under both assignments.
+      // none) has no known point at g under the move: empty there, and holding its own
+      // under the labels kept. (Empty under both, the move always won: one marker given a
+      // point against none, a subject marker absent from the take taking its neighbour's
+      // point at every check, cmu_02_05 without LHEE/LTOE/LMT5.)
       for (int m = 0; m < num_markers; ++m) {
         const int n = source[m];
-        if (n >= 0 && source[n] < 0) trial[n] = current[n] = -1;
+        if (n >= 0 && source[n] < 0) trial[n] = -1;
       }
       if (trial == current) continue;
       frames.push_back(g), kept_labels.push_back(std::move(current)), moved_labels.push_back(std::move(trial));
