@@ -238,9 +238,9 @@ class Tracker {
   // foot mates are absent from the take) can hold a neighbour's point (the ankle marker's,
   // on the shin) at any frame, the foot turned to put it there, and the whole-body cost is
   // the same either way (one marker empty); but without the point the shin, held by its
-  // other markers, still predicts the ankle marker on it, while the foot at the mean pose
-  // puts the heel marker 5-10 cm away. Handed over when n's prediction (with its last
-  // offset) is within `gate` and less than half m's distance; m starts afresh (no offset:
+  // other markers, still predicts the ankle marker on it (10 mm off), while the foot at
+  // the mean pose puts the heel marker 78 mm away. Handed over when n's prediction (with
+  // its last offset) is within `gate` and less than half m's distance; m starts afresh (no offset:
   // its old one would pull it back), the pose becomes the one solved without the point.
   // Candidates: n's model position at the tracked pose within the acquisition gate of a
   // held point. (Applied at the periodic checks too, it handed over 2 points on the five
@@ -265,7 +265,8 @@ class Tracker {
         std::vector<Eigen::Vector3d> observed(num_markers, kNan);
         for (int i = 0; i < num_markers; ++i) {
           const int q = matches->point_of_marker[i];
-          if (q >= 0 && q != static_cast<int>(k) && matches->confidence[i] >= options_.min_confidence) observed[i] = points[q];
+          const bool held = q >= 0 && matches->confidence[i] >= options_.min_confidence;
+          if (held && q != static_cast<int>(k)) observed[i] = points[q];
         }
         Pose pose = state_.pose;
         for (int i : {m, n}) {
