@@ -4,7 +4,12 @@
 // skeleton's frame and units.
 //
 // 1. Find the body (label_acquisition.h) in the first frame where it can be found (at most
-//    `acquire_frames` tried; none: an error naming the best match).
+//    `acquire_frames` tried; none: an error naming the best match). A point matched there
+//    to a marker m goes to an empty marker n when, from the pose solved without it (the
+//    joints of m and n started again from the mean pose), n's model position is within
+//    `gate` of it and less than half as far as m's: a marker absent from the take (a heel
+//    marker whose foot mates are absent too) can hold a neighbour's point at one frame at
+//    no cost, the ankle marker left empty, and tracking would keep it.
 // 2. Track forward from there to the last frame, then backward to the first. Per frame,
 //    each marker is predicted: labelled in the two previous frames, at constant velocity
 //      p_m = x_m(f-1) + (x_m(f-1) - x_m(f-2))                       within `gate`;
