@@ -121,15 +121,14 @@ void ExcludeStrayPoints(Scene* scene, const RigidClusterOptions& options, Marker
       scene->still.push_back(travel[candidates[i]] < 0.1 * moves);
     }
   }
-  // Still while the body moves and apart from every other point (a squat's feet are still,
-  // but beside each other and the ankles; a foot's markers may all be over 0.75 B from every
-  // point that moves): over 0.75 times the median point's distance to the body.
+  // Still while the body moves and apart from every point that moves (a squat's feet are
+  // still, but beside the ankles): over 0.75 times the median point's distance to the body.
   std::vector<int> kept;
   std::vector<bool> still;
   for (size_t i = 0; i < scene->kept.size(); ++i) {
     double nearest = kInf;
     for (size_t j = 0; j < scene->kept.size() && scene->still[i]; ++j) {
-      if (j == i) continue;
+      if (scene->still[j]) continue;
       std::vector<double> d;
       for (int f : scene->frames) {
         if (take.valid(f, scene->kept[i]) && take.valid(f, scene->kept[j])) {

@@ -12,7 +12,7 @@
 //     wherever the body walks); one whose smallest pair spread (rigid_marker_clusters.h,
 //     in units of B) exceeds 0.13 B (nothing moves rigidly with it: a moment in N mm/kg);
 //     one still (it moves less than a tenth of the median point) while it keeps over 0.75 B
-//     from every other point left. After step 4, also a point that keeps its
+//     from every moving point that is left. After step 4, also a point that keeps its
 //     distance to no other (smallest pair spread > `max_lone_spread`, metres). Virtual
 //     points that move with the body (a centre of mass, a joint centre) are kept; a fit
 //     attaches them like markers. (The C3D reader already sets apart the model outputs
