@@ -226,9 +226,9 @@ Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings&
   return Status::Ok();
 }
 
-// A take fitted by its labels: the points the association leaves out as no markers (a
-// lab's model outputs written as points, a point still and apart from the body) and the
-// template does not name are cut from the take, or the attach rounds would put them on
+// A take fitted by its labels: the points the association finds surely no markers (a
+// lab's model outputs written as points: far from the body, at the file's origin, rigid
+// with nothing) and the template does not name are cut from the take, or the attach rounds would put them on
 // the skin; and, with axes "auto", the file axes that put the take's up (detected as the
 // association detects it: the feet are lowest) on the template's. An association that
 // fails cuts nothing (an error only when the axes depend on it).
@@ -249,7 +249,7 @@ Status LabelledTakeFromData(const Skeleton& skeleton, const MarkerSet& template_
     if (k >= 0) named[k] = true;
   }
   std::vector<bool> cut(file->num_markers(), false);
-  for (const auto& [label, why] : association.excluded) {
+  for (const std::string& label : association.non_markers) {
     for (int k = 0; k < file->num_markers(); ++k) cut[k] = cut[k] || (file->label(k) == label && !named[k]);
   }
   std::vector<std::string> labels;

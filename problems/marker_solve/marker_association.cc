@@ -101,8 +101,10 @@ void ExcludeStrayPoints(Scene* scene, const RigidClusterOptions& options, Marker
       out->excluded.push_back({take.label(m), "observed in fewer than 10 % of the frames"});
     } else if (typical[m] > 3.5 * body) {
       out->excluded.push_back({take.label(m), "far from the body (not a marker: a model output?)"});
+      out->non_markers.push_back(take.label(m));
     } else if (body_off_origin && Median(from_origin[m]) < kOriginOfBody * body) {
       out->excluded.push_back({take.label(m), "stays at the file's origin, the body does not (a model output's values?)"});
+      out->non_markers.push_back(take.label(m));
     } else {
       candidates.push_back(m);
     }
@@ -116,6 +118,7 @@ void ExcludeStrayPoints(Scene* scene, const RigidClusterOptions& options, Marker
     }
     if (candidates.size() > 1 && !(lone <= kLoneSpreadOfBody)) {
       out->excluded.push_back({take.label(candidates[i]), "moves rigidly with no other point (not a marker)"});
+      out->non_markers.push_back(take.label(candidates[i]));
     } else {
       scene->kept.push_back(candidates[i]);
       scene->still.push_back(travel[candidates[i]] < 0.1 * moves);
@@ -590,6 +593,7 @@ Status AssociateMarkers(const MarkerTrajectories& take, const std::string& path,
     }
     if (lone > options.max_lone_spread) {
       out->excluded.push_back({take.label(scene.kept[i]), "moves rigidly with no other point (not a skin marker)"});
+      out->non_markers.push_back(take.label(scene.kept[i]));
     } else {
       kept.push_back(scene.kept[i]);
     }

@@ -82,6 +82,9 @@ struct MarkerAssociation {
   double height_m = 0.0;        // Median vertical extent of the points.
   std::vector<AssociatedMarker> markers;                      // The kept points, in file order.
   std::vector<std::pair<std::string, std::string>> excluded;  // (label, reason).
+  // The excluded labels that are surely no markers (far from the body, at the file's
+  // origin, nothing rigid with them); not those rarely seen or still (a foot at rest).
+  std::vector<std::string> non_markers;
   std::vector<std::vector<std::string>> clusters;             // Labels per rigid cluster.
 
   const AssociatedMarker* Find(const std::string& label) const;
