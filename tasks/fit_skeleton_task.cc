@@ -228,10 +228,11 @@ Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings&
 
 // A take fitted by its labels: the points the association finds surely no markers (a
 // lab's model outputs written as points: far from the body, at the file's origin, rigid
-// with nothing) and the template does not name are cut from the take, or the attach rounds would put them on
-// the skin; and, with axes "auto", the file axes that put the take's up (detected as the
-// association detects it: the feet are lowest) on the template's. An association that
-// fails cuts nothing (an error only when the axes depend on it).
+// with nothing) and the template does not name are cut from the take, or the attach
+// rounds would put them on the skin; and, with axes "auto", the file axes that put the
+// take's up (detected as the association detects it: the feet are lowest) on the
+// template's. An association that fails cuts nothing (an error only when the axes depend
+// on it).
 Status LabelledTakeFromData(const Skeleton& skeleton, const MarkerSet& template_markers,
                             const std::string& markers_path, MarkerTrajectories* file, std::string* axes) {
   MarkerAssociation association;

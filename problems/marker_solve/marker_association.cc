@@ -18,7 +18,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Step 1's scale-free thresholds, in units of the body's size (the median point's median
 // distance to the per-frame median point, about 0.45 m on an adult):
 constexpr double kOriginOfBody = 0.2;      // A point this near the file's origin (about 9 cm).
-constexpr double kLoneSpreadOfBody = 0.13;  // No pair spread below this (about 6 cm).
+constexpr double kLoneSpreadOfBody = 0.13;  // A point whose every pair spread is over this (about 6 cm).
 
 double Median(std::vector<double> v) {
   v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
