@@ -50,7 +50,9 @@ const OptionGroup<SkeletonFitSettings>& SkeletonFitSettingOptions() {
            "pelvis) names it, the up axis and units come from a body 1-2 m tall; non-marker points (model outputs, "
            "static or rarely seen points) are left out. Round 0 then fits every associated marker on its segment's "
            "joint and the detected axes and scale replace --axes/--marker_scale. auto: when fewer than 3 of the "
-           "template's labels are in the take and --template_labels names no map; always; never.",
+           "template's labels are in the take and --template_labels names no map; always; never. A take fitted by "
+           "its labels still loses the points that are surely no markers (model outputs at the file's origin or far "
+           "from the body, points rigid with nothing) unless the template names them.",
            {"auto", "always", "never"})
       .Add(&S::min_association_confidence, "min_association_confidence", "",
            "Associated markers below this confidence are left out of round 0; the attach rounds attach every marker "

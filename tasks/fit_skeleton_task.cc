@@ -189,6 +189,8 @@ MarkerTrajectories KeepMarkers(const MarkerTrajectories& file, const std::vector
   kept.frame_rate = file.frame_rate;
   kept.unit = file.unit;
   kept.first_frame = file.first_frame;
+  kept.subject_prefixes = file.subject_prefixes;
+  kept.model_outputs = file.model_outputs;
   for (size_t k = 0; k < labels.size(); ++k) {
     const int m = file.FindMarker(labels[k]);
     for (int f = 0; f < file.num_frames(); ++f) {
@@ -224,16 +226,38 @@ Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings&
   return Status::Ok();
 }
 
-// The file axes that put the take's up (detected as the association detects it: the
-// feet are lowest) on the template's, for a take fitted by its labels with axes "auto".
-Status AxesFromData(const Skeleton& skeleton, const MarkerTrajectories& file, const std::string& markers_path,
-                    std::string* axes) {
+// A take fitted by its labels: the points the association finds surely no markers (a
+// lab's model outputs written as points: far from the body, at the file's origin, rigid
+// with nothing) and the template does not name are cut from the take, or the attach
+// rounds would put them on the skin; and, with axes "auto", the file axes that put the
+// take's up (detected as the association detects it: the feet are lowest) on the
+// template's. An association that fails cuts nothing (an error only when the axes depend
+// on it).
+Status LabelledTakeFromData(const Skeleton& skeleton, const MarkerSet& template_markers,
+                            const std::string& markers_path, MarkerTrajectories* file, std::string* axes) {
   MarkerAssociation association;
-  Status status = AssociateMarkers(file, markers_path, MarkerAssociationOptions(), &association);
+  Status status = AssociateMarkers(*file, markers_path, MarkerAssociationOptions(), &association);
   AssociatedMarkerSet set;
-  if (status.ok()) status = MakeAssociatedMarkerSet(skeleton, association, 0.0, &set);
-  if (!status.ok()) return Status::Error(markers_path + ": the up axis from the data: " + status.message());
-  *axes = set.axes;
+  if (status.ok() && *axes == kAxesFromData) status = MakeAssociatedMarkerSet(skeleton, association, 0.0, &set);
+  if (!status.ok()) {
+    if (*axes != kAxesFromData) return Status::Ok();
+    return Status::Error(markers_path + ": the up axis from the data: " + status.message());
+  }
+  if (*axes == kAxesFromData) *axes = set.axes;
+  std::vector<bool> named(file->num_markers(), false);
+  for (int m = 0; m < template_markers.num_markers(); ++m) {
+    const int k = file->FindMarker(template_markers.label(m));
+    if (k >= 0) named[k] = true;
+  }
+  std::vector<bool> cut(file->num_markers(), false);
+  for (const std::string& label : association.non_markers) {
+    for (int k = 0; k < file->num_markers(); ++k) cut[k] = cut[k] || (file->label(k) == label && !named[k]);
+  }
+  std::vector<std::string> labels;
+  for (int k = 0; k < file->num_markers(); ++k) {
+    if (!cut[k]) labels.push_back(file->label(k));
+  }
+  if (static_cast<int>(labels.size()) < file->num_markers()) *file = KeepMarkers(*file, labels);
   return Status::Ok();
 }
 
@@ -277,7 +301,7 @@ Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& s
     fit->associated = true;
   } else {
     status = PresentMarkers(template_markers, file, markers_path, events, result, &present);
-    if (status.ok() && fit->mapping.axes == kAxesFromData) status = AxesFromData(skeleton, file, markers_path, &fit->mapping.axes);
+    if (status.ok()) status = LabelledTakeFromData(skeleton, template_markers, markers_path, &file, &fit->mapping.axes);
   }
   if (!status.ok()) return status;
   fit->check_options = SkinCheckOptions(skeleton, present, units_per_cm);

@@ -4,7 +4,8 @@
 // label map (tasks/fit_skeleton_task.h, association on). Prints one table row and one JSON
 // line per take. Variants ("seed"): 1 and 2 renamed P0.. (Scramble); 3, on the takes with
 // CMU-style waist labels, a Plug-in Gait export with Nexus model outputs (PluginGait).
-// Environment: ASSOC_TAKE=<take> and ASSOC_SEED=<1|2|3> run one take, one variant.
+// Environment: ASSOC_TAKE=<take> and ASSOC_SEED=<1|2|3> run one take, one variant;
+// ASSOC_VERBOSE=1 lists each excluded point with its reason.
 //   protocol_association TEMPLATE.json [DATA_DIR] [--fit_max_frames=N] [--no_fit]
 #include <chrono>
 #include <cstdio>
@@ -226,7 +227,10 @@ int main(int argc, char** argv) {
         if (truth.count(a.role)) ++correct;
         else wrong += " " + it->second + "->" + a.role;
       }
-      for (const auto& [label, why] : association.excluded) excluded_added += s.original.count(label) == 0;
+      for (const auto& [label, why] : association.excluded) {
+        excluded_added += s.original.count(label) == 0;
+        if (std::getenv("ASSOC_VERBOSE")) std::fprintf(stderr, "%s seed %u excluded %s: %s\n", name, seed, label.c_str(), why.c_str());
+      }
       const int markers = static_cast<int>(s.original.size());
       if (!status.ok()) std::fprintf(stderr, "%s: %s\n", name, status.message().c_str());
       double rms = -1.0, torso = -1.0, fit_seconds = 0.0;

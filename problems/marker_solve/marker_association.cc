@@ -15,6 +15,10 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Step 1's scale-free thresholds, in units of the body's size (the median point's median
+// distance to the per-frame median point, about 0.45 m on an adult):
+constexpr double kOriginOfBody = 0.2;      // A point this near the file's origin (about 9 cm).
+constexpr double kLoneSpreadOfBody = 0.13;  // A point whose every pair spread is over this (about 6 cm).
 
 double Median(std::vector<double> v) {
   v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
@@ -47,12 +51,16 @@ struct Scene {
   Eigen::Vector2d Flat(const Eigen::Vector3d& x) const { return {x[(up + 1) % 3], x[(up + 2) % 3]}; }
 };
 
-// Step 1, before anything is known about the body: points rarely seen or far from it.
-void ExcludeStrayPoints(Scene* scene, MarkerAssociation* out) {
+// Step 1, before anything is known about the body (its up axis, its unit): points rarely
+// seen, far from it, left at the file's origin, moving rigidly with nothing, or still and
+// apart from it.
+void ExcludeStrayPoints(Scene* scene, const RigidClusterOptions& options, MarkerAssociation* out) {
   const MarkerTrajectories& take = *scene->take;
   const int n = take.num_markers();
   std::vector<std::vector<double>> dist(n);
   std::vector<int> seen(n, 0);
+  std::vector<std::vector<double>> from_origin(n);  // |x_m(f)|, file units.
+  std::vector<double> centre_from_origin;           // |median_f|.
   for (int f : scene->frames) {
     Eigen::Vector3d median;
     for (int k = 0; k < 3; ++k) {
@@ -63,8 +71,11 @@ void ExcludeStrayPoints(Scene* scene, MarkerAssociation* out) {
       median[k] = Median(c);
     }
     if (!median.allFinite()) continue;
+    centre_from_origin.push_back(median.norm());
     for (int m = 0; m < n; ++m) {
-      if (take.valid(f, m)) dist[m].push_back((take.position(f, m) - median).norm()), ++seen[m];
+      if (!take.valid(f, m)) continue;
+      dist[m].push_back((take.position(f, m) - median).norm()), ++seen[m];
+      from_origin[m].push_back(take.position(f, m).norm());
     }
   }
   std::vector<double> typical(n, kNaN), travel(n, kNaN);
@@ -82,14 +93,35 @@ void ExcludeStrayPoints(Scene* scene, MarkerAssociation* out) {
     travel[m] = range.norm();
   }
   const double body = Median(typical), moves = Median(travel);
+  // The body's centre away from the file's origin (over one median point distance).
+  const bool body_off_origin = Median(centre_from_origin) > body;
+  std::vector<int> candidates;
   for (int m = 0; m < n; ++m) {
     if (seen[m] < 0.1 * static_cast<double>(scene->frames.size())) {
       out->excluded.push_back({take.label(m), "observed in fewer than 10 % of the frames"});
     } else if (typical[m] > 3.5 * body) {
       out->excluded.push_back({take.label(m), "far from the body (not a marker: a model output?)"});
+      out->non_markers.push_back(take.label(m));
+    } else if (body_off_origin && Median(from_origin[m]) < kOriginOfBody * body) {
+      out->excluded.push_back({take.label(m), "stays at the file's origin, the body does not (a model output's values?)"});
+      out->non_markers.push_back(take.label(m));
     } else {
-      scene->kept.push_back(m);
-      scene->still.push_back(travel[m] < 0.1 * moves);
+      candidates.push_back(m);
+    }
+  }
+  // No rigid partner: every pair spread over kLoneSpreadOfBody times the body's size.
+  const PairwiseSpread pairs = ComputePairwiseSpread(take, candidates, 1.0 / body, options);
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    double lone = kInf;
+    for (size_t j = 0; j < candidates.size(); ++j) {
+      if (i != j) lone = std::min(lone, pairs.spread(i, j));
+    }
+    if (candidates.size() > 1 && !(lone <= kLoneSpreadOfBody)) {
+      out->excluded.push_back({take.label(candidates[i]), "moves rigidly with no other point (not a marker)"});
+      out->non_markers.push_back(take.label(candidates[i]));
+    } else {
+      scene->kept.push_back(candidates[i]);
+      scene->still.push_back(travel[candidates[i]] < 0.1 * moves);
     }
   }
   // Still while the body moves and apart from every point that moves (a squat's feet are
@@ -546,7 +578,7 @@ Status AssociateMarkers(const MarkerTrajectories& take, const std::string& path,
   scene.take = &take;
   const int step = std::max(1, take.num_frames() / std::max(1, options.clusters.max_frames));
   for (int f = 0; f < take.num_frames(); f += step) scene.frames.push_back(f);
-  ExcludeStrayPoints(&scene, out);
+  ExcludeStrayPoints(&scene, options.clusters, out);
   if (scene.kept.size() < 6) return Status::Error(path + ": fewer than 6 points observed often enough to be markers");
   DetectUp(&scene);
   Status status = DetectUnit(path, &scene, out);
@@ -561,6 +593,7 @@ Status AssociateMarkers(const MarkerTrajectories& take, const std::string& path,
     }
     if (lone > options.max_lone_spread) {
       out->excluded.push_back({take.label(scene.kept[i]), "moves rigidly with no other point (not a skin marker)"});
+      out->non_markers.push_back(take.label(scene.kept[i]));
     } else {
       kept.push_back(scene.kept[i]);
     }

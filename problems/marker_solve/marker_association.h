@@ -1,12 +1,22 @@
 // Marker association: which body segment each marker of a take rides on, from the take's
 // data alone, for a marker protocol nobody mapped (labels in any language or none).
 //
-//  1. Non-marker points. A point observed in fewer than 10 % of the frames, or whose median
-//     distance to the body (the per-frame median of all points) exceeds 6 times the median
-//     point's (a joint angle or force in a lab's model outputs, a point at the origin), is
-//     excluded and reported with the reason; so is, after step 4, a point that keeps its
-//     distance to no other (smallest pair spread > `max_lone_spread`: nothing rigid moves
-//     with it). (The C3D reader already sets apart the POINT groups' model outputs.)
+//  1. Non-marker points, before the up axis and the unit are known (a stray point moves the
+//     lowest or highest point those steps read), with scale-free rules; the body's size B
+//     is the median point's median distance to the per-frame median point (about 0.45 m).
+//     Excluded and reported with the reason, in this order: a point observed in fewer than
+//     10 % of the frames; one whose median distance to the per-frame median point exceeds
+//     3.5 B (far from the body); one whose median distance to the file's origin is below
+//     0.2 B while the body's centre is over B from it (a lab's model output written as a
+//     point: joint angles in degrees, forces in N/kg, powers in W/kg sit at the origin,
+//     wherever the body walks); one whose smallest pair spread (rigid_marker_clusters.h,
+//     in units of B) exceeds 0.13 B (nothing moves rigidly with it: a moment in N mm/kg);
+//     one still (it moves less than a tenth of the median point) while it keeps over 0.75 B
+//     from every moving point that is left. After step 4, also a point that keeps its
+//     distance to no other (smallest pair spread > `max_lone_spread`, metres). Virtual
+//     points that move with the body (a centre of mass, a joint centre) are kept; a fit
+//     attaches them like markers. (The C3D reader already sets apart the model outputs
+//     its POINT groups or Plug-in Gait names mark.)
 //  2. Up axis. Per sampled frame, the points' extent along each file axis; the axis with the
 //     largest median extent is vertical (a body is taller than it is wide, most of a take).
 //     Its sign: the bottom of a body is two feet apart, its top one head; the horizontal
@@ -72,6 +82,9 @@ struct MarkerAssociation {
   double height_m = 0.0;        // Median vertical extent of the points.
   std::vector<AssociatedMarker> markers;                      // The kept points, in file order.
   std::vector<std::pair<std::string, std::string>> excluded;  // (label, reason).
+  // The excluded labels that are surely no markers (far from the body, at the file's
+  // origin, nothing rigid with them); not those rarely seen or still (a foot at rest).
+  std::vector<std::string> non_markers;
   std::vector<std::vector<std::string>> clusters;             // Labels per rigid cluster.
 
   const AssociatedMarker* Find(const std::string& label) const;

@@ -5,6 +5,8 @@
 // captures is bench/tools/protocol_association.cc (BENCHMARKS.md).
 #include "problems/marker_solve/marker_association.h"
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <string>
@@ -107,6 +109,63 @@ TEST(MarkerAssociationTest, RecoversSegmentsUpAndUnitsOfARenamedSyntheticBody) {
         EXPECT_LE(a.confidence, 1.0);
       }
     }
+  }
+}
+
+// A lab's model outputs written as points (Nexus joint angles in degrees, a force in N/kg, a
+// power in W/kg, a moment in N mm/kg: numbers, not positions) beside the walk in mm, walked
+// on a treadmill at the file's origin: the angle-like points sit among the feet.
+TEST(MarkerAssociationTest, ExcludesModelOutputsNearTheOriginBeforeTheUpAxis) {
+  for (const bool z_up : {false, true}) {
+    SCOPED_TRACE(z_up ? "Z up" : "Y up");
+    const Take walk = MakeTake(z_up, true);
+    const MarkerTrajectories& in = walk.trajectories;
+    const std::vector<std::string> outputs = {"LKneeAngles", "RHipAngles", "LAnkleForce", "LHipPower", "RKneeMoment"};
+    std::vector<std::string> labels;
+    for (int m = 0; m < in.num_markers(); ++m) labels.push_back(in.label(m));
+    for (const std::string& o : outputs) labels.push_back(o);
+    MarkerTrajectories take(labels, in.num_frames());
+    take.frame_rate = in.frame_rate;
+    take.unit = Millimetres();  // The body in mm (the walk is in cm), as Nexus writes it.
+    // The walk's middle frame over the file's origin: each take's horizontal median at
+    // mid-take moved to 0, so the angle-like points sit among the feet half the take.
+    const int up = z_up ? 2 : 1, mid = in.num_frames() / 2;
+    Eigen::Vector3d shift;
+    for (int k = 0; k < 3; ++k) {
+      std::vector<double> c;
+      for (int m = 0; m < in.num_markers() - 2; ++m) {
+        if (in.valid(mid, m)) c.push_back(in.position(mid, m)[k]);
+      }
+      std::nth_element(c.begin(), c.begin() + c.size() / 2, c.end());
+      shift[k] = k == up ? 0.0 : -c[c.size() / 2];
+    }
+    for (int f = 0; f < in.num_frames(); ++f) {
+      for (int m = 0; m < in.num_markers(); ++m) {
+        if (in.valid(f, m)) take.SetSample(f, m, 10.0 * (in.position(f, m) + shift));
+      }
+      const double w = 2.0 * M_PI * f / in.frame_rate;  // One cycle a second.
+      const int n = in.num_markers();
+      take.SetSample(f, n + 0, {35.0 + 30.0 * std::sin(w), 3.0 * std::cos(w), 8.0 * std::sin(2 * w)});
+      take.SetSample(f, n + 1, {20.0 * std::sin(w + 1.0), -4.0, 6.0 * std::cos(w)});
+      take.SetSample(f, n + 2, {2.0 * std::sin(w), 1.0, 9.8 + 3.0 * std::cos(w)});
+      take.SetSample(f, n + 3, {0.0, 0.0, 2.5 * std::sin(w + 0.5)});
+      take.SetSample(f, n + 4, {900.0 * std::sin(w), 150.0 * std::cos(w), 60.0});
+    }
+    MarkerAssociation association;
+    ASSERT_TRUE(AssociateMarkers(take, "outputs.c3d", MarkerAssociationOptions(), &association).ok());
+    EXPECT_EQ(association.up_axis, z_up ? 2 : 1);
+    EXPECT_EQ(association.up_sign, 1);
+    EXPECT_EQ(association.unit.name, "mm");
+    for (const std::string& o : outputs) {
+      EXPECT_EQ(association.Find(o), nullptr) << o << " kept as a marker";
+      // Surely no marker: a fit by labels cuts it from the take.
+      const auto& non = association.non_markers;
+      EXPECT_NE(std::find(non.begin(), non.end(), o), non.end()) << o;
+    }
+    std::string wrong;
+    const int correct = CountCorrect(walk, association, &wrong);
+    // The same floor as the take without the outputs.
+    EXPECT_GE(correct, 0.9 * static_cast<double>(walk.joint.size())) << correct << " correct; wrong:" << wrong;
   }
 }
 
