@@ -234,7 +234,8 @@ Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings&
 // template's. An association that fails cuts nothing (an error only when the axes depend
 // on it).
 Status LabelledTakeFromData(const Skeleton& skeleton, const MarkerSet& template_markers,
-                            const std::string& markers_path, MarkerTrajectories* file, std::string* axes) {
+                            const std::string& markers_path, MarkerTrajectories* file, std::string* axes,
+                            std::vector<std::pair<std::string, std::string>>* not_markers) {
   MarkerAssociation association;
   Status status = AssociateMarkers(*file, markers_path, MarkerAssociationOptions(), &association);
   AssociatedMarkerSet set;
@@ -256,6 +257,10 @@ Status LabelledTakeFromData(const Skeleton& skeleton, const MarkerSet& template_
   std::vector<std::string> labels;
   for (int k = 0; k < file->num_markers(); ++k) {
     if (!cut[k]) labels.push_back(file->label(k));
+  }
+  for (const auto& [label, reason] : association.excluded) {
+    const int k = file->FindMarker(label);
+    if (k >= 0 && cut[k]) not_markers->emplace_back(label, reason);
   }
   if (static_cast<int>(labels.size()) < file->num_markers()) *file = KeepMarkers(*file, labels);
   return Status::Ok();
@@ -301,7 +306,18 @@ Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& s
     fit->associated = true;
   } else {
     status = PresentMarkers(template_markers, file, markers_path, events, result, &present);
-    if (status.ok()) status = LabelledTakeFromData(skeleton, template_markers, markers_path, &file, &fit->mapping.axes);
+    if (status.ok()) {
+      status = LabelledTakeFromData(skeleton, template_markers, markers_path, &file, &fit->mapping.axes,
+                                    &result->not_markers);
+    }
+    if (status.ok() && !result->not_markers.empty()) {
+      SkeletonFitEvent event;
+      event.kind = SkeletonFitEvent::kNotMarkers;
+      for (const auto& [label, reason] : result->not_markers) {
+        event.text += (event.text.empty() ? "" : "; ") + label + " (" + reason + ")";
+      }
+      events.Emit(event);
+    }
   }
   if (!status.ok()) return status;
   fit->check_options = SkinCheckOptions(skeleton, present, units_per_cm);
@@ -769,10 +785,17 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
     o.Add("template", label.templ).Add("take", label.take);
     label_json.push_back(o);
   }
+  std::vector<JsonObject> not_marker_json;
+  for (const auto& [label, reason] : result.not_markers) {
+    JsonObject o;
+    o.Add("label", label).Add("reason", reason);
+    not_marker_json.push_back(o);
+  }
   JsonObject json;
   if (result.associated) json.Add("association", AssociationJson(result));
   json.Add("markers", inputs.markers_path).Add("template", inputs.template_name)
       .Add("template_labels", label_json).Add("template_labels_map", result.template_labels_map)
+      .Add("not_markers", not_marker_json)
       .Add("frames", result.frames).Add("attach_rounds", result.attach_rounds).Add("kept_round", result.kept_round)
       .Add("seconds", result.seconds)
       .Add(result.unit_known ? "rms_mm" : "rms", result.report.rms.back() * mm)
@@ -831,6 +854,9 @@ std::string SkeletonFitEventLine(const SkeletonFitEvent& e, const Skeleton& temp
       break;
     case SkeletonFitEvent::kAbsentMarkers:
       AppendF(&line, "fit_skeleton: not in the file, left out: %s\n", e.text.c_str());
+      break;
+    case SkeletonFitEvent::kNotMarkers:
+      AppendF(&line, "fit_skeleton: not markers, left out: %s\n", e.text.c_str());
       break;
     case SkeletonFitEvent::kRoundStart:
       AppendF(&line, "fit_skeleton: round %d/%d: %d markers, %d frames, %d iterations (%.0f s so far)\n", e.round,

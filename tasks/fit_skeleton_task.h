@@ -61,6 +61,7 @@ struct SkeletonFitEvent {
   enum Kind {
     kTemplateLabels, // text: the label map applied (its file, "inline" or, for auto, the shipped file); markers: pairs.
     kAbsentMarkers,  // text: the template's labels the take lacks (left out).
+    kNotMarkers,     // text: the take's points found to be no markers (left out), with the reasons.
     kRoundStart,     // round, rounds, markers, frames, iterations.
     kFrames,         // round, iteration (the pose solve's step: 0 before the first step, outlier passes included;
                      // k the solve of step k), frames_done of frames.
@@ -113,6 +114,9 @@ struct SkeletonFitResult {
   SubjectChecks checks;
   std::vector<SkeletonFitRound> rounds;
   std::vector<std::string> absent;  // Template labels the take lacks.
+  // Fitting by labels: the take's points the association found to be no markers (model
+  // outputs, points at the file's origin, nothing rigid with them), left out: (label, reason).
+  std::vector<std::pair<std::string, std::string>> not_markers;
   std::vector<TemplateLabel> template_labels;  // The map applied (settings.template_labels).
   std::string template_labels_map;  // Where it came from: its file, "inline", or "" (none applied).
   // With settings.associate: the take's markers associated with segments from the data,

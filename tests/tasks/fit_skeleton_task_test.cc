@@ -4,6 +4,7 @@
 // Python binding is tested in tests/python/test_skeleton_fitting.py.
 #include "tasks/fit_skeleton_task.h"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -339,6 +340,57 @@ TEST(FitSubjectToTake, RenamedLabelsFitThroughTheTemplateLabelMap) {
   }
   EXPECT_EQ(legs, 4);
   EXPECT_NE(SkeletonFitReportJson(inputs, result).ToString().find("\"take\": \"take_"), std::string::npos);
+}
+
+// Fitting by labels, points that are no markers (a lab's joint angles written as points at
+// the file's origin while the body walks 3 m away) are left out, named with the reason in
+// the result and the report, not attached to the skin by the rounds.
+TEST(FitSubjectToTake, PointsThatAreNoMarkersAreLeftOutAndReported) {
+  const Skeleton templ = MakeDemoSkeleton();  // cm
+  const MarkerSet markers = MakeSyntheticMarkerSet(templ, 2, 7);
+  const Motion motion = MakeDemoWalk(templ, 40, 30.0);
+  std::vector<std::vector<Eigen::Vector3d>> observed;
+  FkData fk(templ);
+  for (const Pose& pose : motion.frames) {
+    ForwardKinematics(templ, pose, &fk);
+    observed.emplace_back();
+    for (int m = 0; m < markers.num_markers(); ++m) {
+      observed.back().push_back(markers.Position(m, fk) + Eigen::Vector3d(300.0, 0.0, 0.0));
+    }
+  }
+  MarkerTrajectories body = ObservationTrajectories(markers, observed);
+  std::vector<std::string> labels = body.labels();
+  for (const char* name : {"LKneeAngle_x", "RKneeAngle_x", "LHipPower_z"}) labels.push_back(name);
+  MarkerTrajectories take(labels, body.num_frames());
+  take.unit = templ.unit();
+  take.frame_rate = 30.0;
+  for (int f = 0; f < take.num_frames(); ++f) {
+    for (int m = 0; m < body.num_markers(); ++m) take.SetSample(f, m, body.position(f, m));
+    for (int k = 0; k < 3; ++k) {  // Degrees-like values that swing with the gait.
+      const double phase = 0.3 * f + k;
+      take.SetSample(f, body.num_markers() + k, Eigen::Vector3d(20.0 * std::sin(phase), 5.0 * k, 10.0 * std::cos(phase)));
+    }
+  }
+  SkeletonFitInputs inputs;
+  inputs.from_template_subject = false;
+  inputs.markers_path = ::mocapsolve::testing::TempPath("with_outputs.trc");
+  ASSERT_TRUE(WriteMarkerFile(inputs.markers_path, take).ok());
+  inputs.templ.skeleton = templ;
+  inputs.templ.markers = markers;
+  SkeletonFitSettings settings;
+  settings.fit_iterations = 2;
+  settings.check = "off";
+  MarkerSolveOptions solve;
+  solve.solver = SolverKind::kDls;
+  SkeletonFitResult result;
+  const Status status = FitSubjectToTake(inputs, settings, solve, &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_FALSE(result.associated) << "the labels are the template's";
+  ASSERT_EQ(result.not_markers.size(), 3u);
+  EXPECT_EQ(result.not_markers[0].first, "LKneeAngle_x");
+  EXPECT_EQ(result.subject.markers.num_markers(), markers.num_markers());
+  EXPECT_NE(SkeletonFitReportJson(inputs, result).ToString().find("\"not_markers\": [{\"label\": \"LKneeAngle_x\""),
+            std::string::npos);
 }
 
 TEST(FitSubjectToTake, MissingTakeNamesTheFile) {
