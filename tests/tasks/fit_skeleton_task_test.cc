@@ -262,6 +262,20 @@ TEST(FitSubjectToTake, CompleteTemplateRoundsStartWhereTheLastEnded) {
 // subject with 10 % longer legs, every label renamed ("X" -> "take_X"). Without a map the
 // template shares no label with the take and the fit refuses it; with the map round 0 fits
 // every marker, the fitted subject holds the take's labels, and thighs and shins lengthen.
+// The markers' model positions over a motion, moved by `shift`: [frame][marker].
+std::vector<std::vector<Eigen::Vector3d>> WalkObservations(const Skeleton& skeleton, const MarkerSet& markers,
+                                                           const Motion& motion,
+                                                           const Eigen::Vector3d& shift = Eigen::Vector3d::Zero()) {
+  std::vector<std::vector<Eigen::Vector3d>> observed;
+  FkData fk(skeleton);
+  for (const Pose& pose : motion.frames) {
+    ForwardKinematics(skeleton, pose, &fk);
+    observed.emplace_back();
+    for (int m = 0; m < markers.num_markers(); ++m) observed.back().push_back(markers.Position(m, fk) + shift);
+  }
+  return observed;
+}
+
 TEST(FitSubjectToTake, RenamedLabelsFitThroughTheTemplateLabelMap) {
   const Skeleton templ = MakeDemoSkeleton();  // cm
   std::vector<JointSpec> joints;
@@ -273,15 +287,8 @@ TEST(FitSubjectToTake, RenamedLabelsFitThroughTheTemplateLabelMap) {
   Skeleton subject;
   ASSERT_TRUE(Skeleton::Create(joints, templ.end_sites(), templ.unit(), &subject).ok());
   const MarkerSet subject_markers = MakeSyntheticMarkerSet(subject, 2, 7);
-  const Motion motion = MakeDemoWalk(subject, 40, 30.0);
-  std::vector<std::vector<Eigen::Vector3d>> observed;
-  FkData fk(subject);
-  for (const Pose& pose : motion.frames) {
-    ForwardKinematics(subject, pose, &fk);
-    observed.emplace_back();
-    for (int m = 0; m < subject_markers.num_markers(); ++m) observed.back().push_back(subject_markers.Position(m, fk));
-  }
-  MarkerTrajectories take = ObservationTrajectories(subject_markers, observed);
+  MarkerTrajectories take = ObservationTrajectories(
+      subject_markers, WalkObservations(subject, subject_markers, MakeDemoWalk(subject, 40, 30.0)));
   take.unit = templ.unit();
   take.frame_rate = 30.0;
   std::string pairs;
@@ -348,17 +355,8 @@ TEST(FitSubjectToTake, RenamedLabelsFitThroughTheTemplateLabelMap) {
 TEST(FitSubjectToTake, PointsThatAreNoMarkersAreLeftOutAndReported) {
   const Skeleton templ = MakeDemoSkeleton();  // cm
   const MarkerSet markers = MakeSyntheticMarkerSet(templ, 2, 7);
-  const Motion motion = MakeDemoWalk(templ, 40, 30.0);
-  std::vector<std::vector<Eigen::Vector3d>> observed;
-  FkData fk(templ);
-  for (const Pose& pose : motion.frames) {
-    ForwardKinematics(templ, pose, &fk);
-    observed.emplace_back();
-    for (int m = 0; m < markers.num_markers(); ++m) {
-      observed.back().push_back(markers.Position(m, fk) + Eigen::Vector3d(300.0, 0.0, 0.0));
-    }
-  }
-  MarkerTrajectories body = ObservationTrajectories(markers, observed);
+  MarkerTrajectories body = ObservationTrajectories(
+      markers, WalkObservations(templ, markers, MakeDemoWalk(templ, 40, 30.0), Eigen::Vector3d(300.0, 0.0, 0.0)));
   std::vector<std::string> labels = body.labels();
   for (const char* name : {"LKneeAngle_x", "RKneeAngle_x", "LHipPower_z"}) labels.push_back(name);
   MarkerTrajectories take(labels, body.num_frames());
