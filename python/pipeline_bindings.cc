@@ -9,6 +9,7 @@
 #include "io/atomic_file.h"
 #include "io/marker_file.h"
 #include "io/motion_file.h"
+#include "settings/memory_settings.h"
 #include "settings/repair_settings.h"
 #include "pipeline/quality_gate.h"
 #include "settings/retarget_settings.h"
@@ -64,6 +65,11 @@ void BindPipeline(py::module_& m) {
       "same names, defaults and units; 0 turns a check off). pipeline() takes them as keywords.");
   gate.def(py::init<>(), "Every threshold at the CLI's default.");
   BindOptionFields(gate, QualityGateOptions());  // gate_naive_rms_mm, ..., gate_limb_vertices.
+  py::class_<MemorySettings> memory(m, "MemorySettings",
+      "The memory a run may take (memory_mb, MB; 0 = no limit), as `mocapsolve pipeline --memory_mb`:\n"
+      "pipeline() takes it as a keyword and refuses, before any work, a take whose estimate is over it.");
+  memory.def(py::init<>(), "No limit, the CLI's default.");
+  BindOptionFields(memory, MemoryOption());
   py::class_<DeliverySettings> delivery(m, "DeliverySettings",
       "Which files a take is delivered as, one per flag of `mocapsolve pipeline`/`batch` (same\n"
       "names and defaults: formats='glb', a comma-separated list of glb, fbx, bvh; out_fps;\n"
@@ -94,6 +100,7 @@ void BindPipeline(py::module_& m) {
         DeliverySettings delivery_settings;
         LabelSettings label_settings;
         SkeletonFitSettings fit_settings = AutoSubjectFitOptions().Defaults();
+        MemorySettings memory_settings;
         ApplyKeywords(keywords,
                       {py::cast(&repair_settings, py::return_value_policy::reference),
                        py::cast(&solver_settings, py::return_value_policy::reference),
@@ -101,11 +108,12 @@ void BindPipeline(py::module_& m) {
                        py::cast(&gate_settings, py::return_value_policy::reference),
                        py::cast(&delivery_settings, py::return_value_policy::reference),
                        py::cast(&label_settings, py::return_value_policy::reference),
-                       py::cast(&fit_settings, py::return_value_policy::reference)},
+                       py::cast(&fit_settings, py::return_value_policy::reference),
+                       py::cast(&memory_settings, py::return_value_policy::reference)},
                       RepairSettingOptions().Names() + "," + SolverOptions().Names() + "," +
                           RetargetSettingOptions().Names() + ",foot_joints," + QualityGateOptions().Names() + "," +
                           DeliverySettingOptions().Names() + "," + LabelSettingOptions().Names() + "," +
-                          AutoSubjectFitOptions().Names());
+                          AutoSubjectFitOptions().Names() + "," + MemoryOption().Names());
         ThrowIfError(QualityGateOptions().Validate(gate_settings));
         ThrowIfError(ValidateSkeletonFitSettings(fit_settings));
         CharacterFileOptions character_files;
@@ -137,6 +145,7 @@ void BindPipeline(py::module_& m) {
         options.label_solver = solver_settings;
         ThrowIfError(PyramidOptionsFromSettings(PyramidSettings{kernel_a, tension}, filter_levels, &options.filter));
         options.gate = gate_settings;
+        options.memory_mb = memory_settings.memory_mb;
         ThrowIfError(ClipDeliveryFromSettings(delivery_settings, &options.delivery));
         std::string error;
         if (!options.IsValid(&error)) throw py::value_error(error);

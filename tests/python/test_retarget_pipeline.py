@@ -151,6 +151,11 @@ def test_pipeline_formats_match_the_cli(tmp_path):
         mocapsolve.pipeline(subject, markers, characters=[glb], frames="4:30")
     with pytest.raises(ValueError, match="--seconds: expected A:B"):
         mocapsolve.pipeline(subject, markers, seconds="1")
+    # memory_mb, as the CLI's --memory_mb: a take over the limit is refused before any work.
+    with pytest.raises(ValueError, match=r"--memory_mb=1: the pipeline's per-frame stages on .* over the limit"):
+        mocapsolve.pipeline(subject, markers, out_dir=str(tmp_path / "small"), memory_mb=1)
+    assert not os.path.exists(str(tmp_path / "small"))
+    assert mocapsolve.MemorySettings().memory_mb == 0
     # batch(formats=) reaches every take's worker, as the CLI's batch --formats.
     out_batch = str(tmp_path / "batch")
     result = mocapsolve.batch(markers_glob=markers, subject=subject_path, characters=[glb], out_dir=out_batch,
