@@ -248,25 +248,25 @@ class Tracker {
   void HandOver(int f, GatedAssignment* matches) {
     const int num_markers = markers_.num_markers();
     const std::vector<Eigen::Vector3d>& points = points_[f];
+    // Marker i holds its point when it is matched with confidence.
+    const auto holds = [&](int i) {
+      return matches->point_of_marker[i] >= 0 && matches->confidence[i] >= options_.min_confidence;
+    };
     std::vector<int> holder(points.size(), -1);
     for (int m = 0; m < num_markers; ++m) {
-      const int k = matches->point_of_marker[m];
-      if (k >= 0 && matches->confidence[m] >= options_.min_confidence) holder[k] = m;
+      if (holds(m)) holder[matches->point_of_marker[m]] = m;
     }
     const std::vector<Eigen::Vector3d> model = ModelMarkerPositions(skeleton_, markers_, state_.pose);
     const auto offset = [&](int n) { return state_.since[n] < kNever ? state_.offset[n] : Eigen::Vector3d::Zero(); };
     for (int n = 0; n < num_markers; ++n) {
-      const int own = matches->point_of_marker[n];
-      if (own >= 0 && matches->confidence[n] >= options_.min_confidence) continue;
+      if (holds(n)) continue;
       const Eigen::Vector3d at = model[n] + offset(n);
       for (size_t k = 0; k < points.size(); ++k) {
         const int m = holder[k];
         if (m < 0 || (points[k] - at).norm() >= options_.acquisition.gate) continue;
         std::vector<Eigen::Vector3d> observed(num_markers, kNan);
         for (int i = 0; i < num_markers; ++i) {
-          const int q = matches->point_of_marker[i];
-          const bool held = q >= 0 && matches->confidence[i] >= options_.min_confidence;
-          if (held && q != static_cast<int>(k)) observed[i] = points[q];
+          if (holds(i) && matches->point_of_marker[i] != static_cast<int>(k)) observed[i] = points[matches->point_of_marker[i]];
         }
         Pose pose = state_.pose;
         for (int i : {m, n}) {
