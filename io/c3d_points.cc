@@ -145,7 +145,7 @@ Status SelectC3dPoints(const C3dPointLists& lists, const std::string& subject_pr
 
   // Subjects.
   const std::vector<std::string> present = SubjectsPresent(lists);
-  const std::string where = lists.subject_prefixes.empty() ? "POINT:LABELS (subject prefixes)"
+  const std::string where = lists.subject_prefixes.empty() ? lists.labels_field + " (subject prefixes)"
                                                            : "SUBJECTS:LABEL_PREFIXES";
   std::string chosen;
   if (!subject_prefix.empty()) {

@@ -46,6 +46,8 @@ struct C3dPointLists {
   std::vector<std::string> subject_names;     // SUBJECTS:NAMES (may be empty).
   // ("ANGLES", its labels), ... for each model-output list the file has.
   std::vector<std::pair<std::string, std::vector<std::string>>> output_lists;
+  // Where the labels come from, for messages ("marker labels" for a TRC's header line).
+  std::string labels_field = "POINT:LABELS";
 };
 
 struct C3dPointSelection {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "io/c3d_points.h"
 #include "io/c3d_reader.h"
 #include "io/c3d_writer.h"
 #include "io/comma_list.h"
@@ -61,6 +62,40 @@ Status IgnoreMarkers(const std::string& labels, MarkerTrajectories* trajectories
   return Status::Ok();
 }
 
+void Warn(const MarkerReadOptions& options, const std::string& warning) {
+  if (options.warnings != nullptr) {
+    options.warnings->push_back(warning);
+  } else {
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  }
+}
+
+// A TRC has no SUBJECTS group: its subjects are its labels' "Name:" prefixes, and one is
+// read as a C3D's is (io/c3d_points.h: --subject_prefix, the subject file's own prefix, else
+// the one with the most points). Every column is a marker (no model-output rules).
+Status SelectTrcSubject(const MarkerReadOptions& options, MarkerTrajectories* trajectories) {
+  C3dPointLists lists;
+  lists.labels = trajectories->labels();
+  lists.labels_field = "marker labels";
+  C3dPointSelection selection;
+  const Status status = SelectC3dPoints(lists, options.subject_prefix, /*include_model_outputs=*/true, &selection,
+                                        options.preferred_subject_prefix);
+  if (!status.ok()) return status;
+  for (const std::string& warning : selection.warnings) Warn(options, warning);
+  std::vector<int> kept;
+  for (int m = 0; m < trajectories->num_markers(); ++m) {
+    if (selection.roles[m] == C3dPointSelection::Role::kMarker) kept.push_back(m);
+  }
+  if (kept.size() == static_cast<size_t>(trajectories->num_markers()) && selection.labels == lists.labels) {
+    return Status::Ok();
+  }
+  MarkerTrajectories chosen = TrajectoryColumns(*trajectories, kept);
+  for (size_t i = 0; i < kept.size(); ++i) chosen.set_label(static_cast<int>(i), selection.labels[kept[i]]);
+  chosen.subject_prefixes = selection.subject_prefixes;
+  *trajectories = std::move(chosen);
+  return Status::Ok();
+}
+
 }  // namespace
 
 Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories) {
@@ -78,15 +113,13 @@ Status ReadMarkerFile(const std::string& path, MarkerTrajectories* trajectories,
     c3d.preferred_subject_prefix = options.preferred_subject_prefix;
     C3dFileInfo info;
     status = ReadC3d(path, trajectories, &info, c3d);
-    for (const std::string& warning : info.warnings) {
-      if (options.warnings != nullptr) {
-        options.warnings->push_back(warning);
-      } else {
-        std::fprintf(stderr, "warning: %s\n", warning.c_str());
-      }
-    }
+    for (const std::string& warning : info.warnings) Warn(options, warning);
   } else if (ext == ".trc") {
     status = ReadTrc(path, trajectories);
+    if (status.ok()) {
+      status = SelectTrcSubject(options, trajectories);
+      if (!status.ok()) status = Status::Error(path + ": " + status.message());
+    }
   } else {
     status = Status::Error(path + ": unknown marker format " + QuoteToken(ext) + " (expected .c3d or .trc)");
   }

@@ -102,6 +102,24 @@ MarkerTrajectories TrajectoryFrames(const MarkerTrajectories& trajectories, int 
   return out;
 }
 
+MarkerTrajectories TrajectoryColumns(const MarkerTrajectories& trajectories, const std::vector<int>& columns) {
+  std::vector<std::string> labels;
+  for (const int m : columns) labels.push_back(trajectories.label(m));
+  MarkerTrajectories out(std::move(labels), trajectories.num_frames());
+  out.frame_rate = trajectories.frame_rate;
+  out.unit = trajectories.unit;
+  out.first_frame = trajectories.first_frame;
+  out.subject_prefixes = trajectories.subject_prefixes;
+  for (int f = 0; f < trajectories.num_frames(); ++f) {
+    for (size_t i = 0; i < columns.size(); ++i) {
+      if (!trajectories.valid(f, columns[i])) continue;
+      out.SetSample(f, static_cast<int>(i), trajectories.position(f, columns[i]),
+                    trajectories.residual(f, columns[i]), trajectories.camera_mask(f, columns[i]));
+    }
+  }
+  return out;
+}
+
 Status ConvertUnits(const LengthUnit& to, MarkerTrajectories* trajectories) {
   if (!trajectories->unit.known()) {
     return Status::Error("cannot convert marker units to " + to.name + ": source unit '" +

@@ -135,6 +135,10 @@ struct ModelOutputPoints {
 // was (residuals, camera masks); first_frame follows, model outputs are dropped.
 MarkerTrajectories TrajectoryFrames(const MarkerTrajectories& trajectories, int first, int count);
 
+// The markers `columns` of `trajectories` (indices, in that order), every sample as it was;
+// the metadata follows, model outputs are dropped.
+MarkerTrajectories TrajectoryColumns(const MarkerTrajectories& trajectories, const std::vector<int>& columns);
+
 // Rescales positions and residuals into `to` and sets unit. Fails (and changes nothing)
 // when either unit is unknown.
 Status ConvertUnits(const LengthUnit& to, MarkerTrajectories* trajectories);

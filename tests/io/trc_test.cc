@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "io/c3d_reader.h"
+#include "io/marker_file.h"
 #include "io/trc_reader.h"
 #include "io/trc_writer.h"
 #include "tests/test_support.h"
@@ -346,6 +347,40 @@ TEST(TrcBadFiles, HandmadeBadFilesFailWithOneLine) {
         << status.message();
     std::printf("%s\n", status.message().c_str());
   }
+}
+
+// Two actors' prefixed labels in one TRC (as Cortex and Nexus export them): read as one
+// actor, chosen as a C3D's subjects are, the other actor's columns dropped.
+TEST(TrcReader, TwoActorsAreReadAsOne) {
+  const std::string path = mocapsolve::testing::TempPath("two_actors.trc");
+  mocapsolve::testing::WriteTextFile(
+      path,
+      "PathFileType\t4\t(X/Y/Z)\ttwo_actors.trc\n"
+      "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\n"
+      "100\t100\t2\t3\tmm\n"
+      "Frame#\tTime\tAnn:LASI\t\t\tBob:LASI\t\t\tAnn:RASI\t\t\n"
+      "\t\tX1\tY1\tZ1\tX2\tY2\tZ2\tX3\tY3\tZ3\n"
+      "1\t0\t1\t2\t3\t10\t20\t30\t4\t5\t6\n"
+      "2\t0.01\t1\t2\t3\t10\t20\t30\t\t\t\n");
+  MarkerReadOptions options;
+  std::vector<std::string> warnings;
+  options.warnings = &warnings;
+  MarkerTrajectories t;
+  ASSERT_TRUE(ReadMarkerFile(path, &t, options).ok());
+  EXPECT_EQ(t.labels(), (std::vector<std::string>{"LASI", "RASI"}));  // Ann has the most points.
+  EXPECT_EQ(t.position(0, 1), Eigen::Vector3d(4, 5, 6));
+  EXPECT_FALSE(t.valid(1, 1));
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("2 subjects ('Ann:', 'Bob:'); reading 'Ann:'"), std::string::npos) << warnings[0];
+
+  options.preferred_subject_prefix = "Bob:";  // A subject file's own actor.
+  ASSERT_TRUE(ReadMarkerFile(path, &t, options).ok());
+  EXPECT_EQ(t.labels(), std::vector<std::string>{"LASI"});
+  EXPECT_EQ(t.position(1, 0), Eigen::Vector3d(10, 20, 30));
+
+  options.subject_prefix = "Carl";
+  const Status status = ReadMarkerFile(path, &t, options);
+  ExpectOneLineError(status, path + ": marker labels (subject prefixes): no subject 'Carl'", "'Ann:', 'Bob:'");
 }
 
 }  // namespace
