@@ -11,6 +11,7 @@
 #include "io/motion_file.h"
 #include "settings/repair_settings.h"
 #include "pipeline/memory_estimate.h"
+#include "pipeline/repair_report.h"
 #include "pipeline/retarget_quality_report.h"
 #include "pipeline/take_labelling.h"
 #include "pipeline/take_view.h"
@@ -322,6 +323,8 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
       .Add("rms_repaired_mm", result.repair.repaired_rms * mm)
       .Add("naive_frames_at_iteration_limit", result.repair.naive_unconverged_frames)
       .Add("resolved_frames", result.repair.resolved_frames)
+      .Add("carried_joints", CarriedJointsJson(take.skeleton, result.repair.carried))
+      .Add("naive_hidden_joints_held_frames", HeldJointsJson(take.skeleton, result.repair.naive_held_frames))
       .Add("timings", repair_timings);
   std::vector<JsonObject> characters;
   for (const CharacterOutput& c : result.characters) {

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "pipeline/repair_report.h"
+
 namespace mocapsolve {
 namespace {
 
@@ -42,13 +44,6 @@ JsonObject RepairReportJson(const MarkerTake& take, const RepairConfig& config, 
         .Add("mean_distance_mm", a.mean_distance * mm);
     assigned.push_back(o);
   }
-  std::vector<JsonObject> carried;
-  for (const CarriedJointRun& run : report.carried) {
-    JsonObject o;
-    o.Add("joint", take.skeleton.name(run.joint)).Add("first_frame", run.first).Add("last_frame", run.last)
-        .Add("frames", run.last - run.first + 1);
-    carried.push_back(o);
-  }
   std::vector<JsonObject> timings;
   for (const RepairStageTime& t : report.timings) {
     JsonObject o;
@@ -59,7 +54,8 @@ JsonObject RepairReportJson(const MarkerTake& take, const RepairConfig& config, 
   json.Add("frames", static_cast<int>(take.observed.size())).Add("swaps", swaps).Add("unlabelled_tracks", track_names)
       .Add("unlabelled_assigned", assigned).Add("unlabelled_removed_samples", result.unlabelled_removed_samples)
       .Add("detected", IntervalsJson(report.detected, markers)).Add("filled", IntervalsJson(report.filled, markers))
-      .Add("carried_joints", carried)
+      .Add("carried_joints", CarriedJointsJson(take.skeleton, report.carried))
+      .Add("naive_hidden_joints_held_frames", HeldJointsJson(take.skeleton, report.naive_held_frames))
       .Add("timings", timings).Add("rms_naive_mm", report.naive_rms * mm)
       .Add("rms_reference_mm", report.reference_rms * mm).Add("rms_repaired_mm", report.repaired_rms * mm)
       .Add("resolved_frames", report.resolved_frames).Add("reference", config.repair.reference)

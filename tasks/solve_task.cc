@@ -7,6 +7,7 @@
 
 #include "kinematics/forward_kinematics.h"
 #include "pipeline/memory_estimate.h"
+#include "pipeline/repair_report.h"
 
 namespace mocapsolve {
 namespace {
@@ -98,11 +99,7 @@ Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolvePr
       .Add("frames_at_iteration_limit", sequence.unconverged_frames)
       .Add("total_final_cost", sequence.total_final_cost).Add("residual_unit", ResidualUnit(skeleton));
   if (!sequence.held_frames.empty()) {
-    JsonObject held;  // Hidden joints held at the subject's mean pose: frames each.
-    for (int j = 0; j < skeleton.num_joints(); ++j) {
-      if (sequence.held_frames[j] > 0) held.Add(skeleton.name(j), sequence.held_frames[j]);
-    }
-    frame_json.Add("hidden_joints_held_frames", held);
+    frame_json.Add("hidden_joints_held_frames", HeldJointsJson(skeleton, sequence.held_frames));
   }
   result->report.Add("per_frame", frame_json);
   if (config.agreement.compare_solvers) {

@@ -159,6 +159,9 @@ struct RepairReport {
   double naive_rms = 0.0, reference_rms = 0.0, repaired_rms = 0.0;  // Skeleton units.
   int resolved_frames = 0;  // Frames step 7 solved again (the others are Y's).
   int naive_unconverged_frames = 0;  // Frames whose naive solve stopped at the iteration limit.
+  // Per joint: frames the naive solve held at the subject's mean pose as a hidden joint
+  // (SequenceSolveReport::held_frames; empty when none was).
+  std::vector<int> naive_held_frames;
 };
 
 // What the pipeline computed on the way, for evaluation (repair_evaluation.h).

@@ -212,6 +212,34 @@ TEST(MarkerRepair, CarriesTheJointsOfAHiddenFootAcrossTheGap) {
   EXPECT_LT(carried, 3.0);  // cm, noise-free walk.
 }
 
+// The same hidden foot, the naive solve holding hidden joints at a reference pose (as a
+// subject's mean pose does in `pipeline`): the report counts the frames each was held, the
+// foot's 40 and none for a joint whose markers were all seen.
+TEST(MarkerRepair, ReportsTheHiddenJointsItsNaiveSolveHeld) {
+  const testing::DemoTake take = testing::MakeDemoTake(120, 60.0, 5);
+  const Skeleton& skeleton = take.skeleton;
+  const int foot = skeleton.FindJoint("LeftFoot");
+  auto corrupted = take.clean;
+  for (int m = 0; m < take.markers.num_markers(); ++m) {
+    for (const MarkerAttachment& a : take.markers.marker(m).attachments) {
+      if (!skeleton.IsAncestorOrSelf(foot, a.joint)) continue;
+      for (int f = 40; f < 80; ++f) corrupted[f][m] = Eigen::Vector3d::Constant(std::nan(""));
+    }
+  }
+  RepairOptions options = testing::DemoRepairOptions(ReferenceKind::kTracker);
+  options.naive.rest_rotations.assign(skeleton.num_joints(), Eigen::Quaterniond::Identity());
+  options.naive.hidden_rotation_weight = 1.0;
+  std::vector<std::vector<Eigen::Vector3d>> repaired;
+  Motion motion;
+  RepairReport report;
+  ASSERT_TRUE(RepairMarkers(skeleton, take.markers, corrupted, options, &repaired, &motion, &report).ok());
+  ASSERT_EQ(report.naive_held_frames.size(), static_cast<size_t>(skeleton.num_joints()));
+  EXPECT_EQ(report.naive_held_frames[foot], 40);
+  for (int j = 0; j < skeleton.num_joints(); ++j) {
+    if (!skeleton.IsAncestorOrSelf(foot, j)) EXPECT_EQ(report.naive_held_frames[j], 0) << skeleton.name(j);
+  }
+}
+
 // Threads change the speed only: one thread gives the same markers and motion, bit for
 // bit, as two (a batch runs its takes single-threaded, side by side).
 TEST(MarkerRepair, ResultDoesNotDependOnThreads) {
