@@ -13,8 +13,11 @@
 //   |x_m - x_n| <= B_mn = |v_m - v_n| + r_m + r_n.
 // Pairs whose path crosses a joint with animated translation, and markers with more than
 // one attachment, have no bound. In each frame, a pair with |x_m - x_n| > B_mn + tolerance
-// is violated; the marker in most violated pairs (ties: the larger summed excess) is
-// flagged and its pairs dropped, until none is violated.
+// is violated; the marker in most violated pairs is flagged and its pairs dropped, until
+// none is violated. Ties (one violated pair: which end is off?) go against the marker with
+// fewer joint mates (markers on its joint) at their model distance within the tolerance,
+// then the larger summed excess: nick's RTOE, alone on its foot in those frames, against
+// RANK, held at its distances by the three other shin markers.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_LABEL_OFF_BODY_SAMPLES_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_LABEL_OFF_BODY_SAMPLES_H_
 
