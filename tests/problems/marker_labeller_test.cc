@@ -15,6 +15,7 @@
 #include "problems/marker_label/label_acquisition.h"
 #include "problems/marker_label/label_fixture.h"
 #include "problems/marker_label/marker_labeller.h"
+#include "problems/marker_label/off_body_samples.h"
 #include "problems/marker_solve/synthetic_marker_set.h"
 
 namespace mocapsolve {
@@ -246,6 +247,35 @@ TEST(JointShapeErrors, AnExchangeWithALoneMarkerBreaksTheClusterShape) {
   // w left empty: its pairs are not judged, h's own (unchanged) pairs count alike.
   JointShapeErrors(markers, points, truth, emptied, involved, &kept, &moved);
   EXPECT_EQ(kept, moved);
+}
+
+// The demo walk's own markers never break the skeleton's reach bound (tolerance 1e-6 cm:
+// the bound holds in every pose); a left-foot marker moved 1 m away in some frames (a
+// marker fallen off, a point on the floor labelled as it) is flagged there, and only it.
+TEST(OffBodySamples, AMarkerOffTheBodyAndOnlyIt) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, 7);
+  const Motion walk = MakeDemoWalk(skeleton, 60, 120.0);
+  std::vector<std::vector<Eigen::Vector3d>> observed;
+  for (int f = 0; f < walk.num_frames(); ++f) observed.push_back(ModelMarkerPositions(skeleton, markers, walk.frames[f]));
+  const auto flagged = [&](const std::vector<std::vector<char>>& off) {
+    int count = 0;
+    for (const auto& frame : off) {
+      for (char c : frame) count += c;
+    }
+    return count;
+  };
+  EXPECT_EQ(flagged(OffBodySamples(skeleton, markers, observed, 1e-6)), 0);
+  const int foot = skeleton.FindJoint("LeftFoot");
+  int moved = -1;
+  for (int m = 0; m < markers.num_markers() && moved < 0; ++m) {
+    if (markers.marker(m).attachments[0].joint == foot) moved = m;
+  }
+  ASSERT_GE(moved, 0);
+  for (int f = 20; f < 40; ++f) observed[f][moved] += Eigen::Vector3d(100.0, 0.0, 0.0);
+  const std::vector<std::vector<char>> off = OffBodySamples(skeleton, markers, observed, 10.0);
+  EXPECT_EQ(flagged(off), 20);
+  for (int f = 20; f < 40; ++f) EXPECT_TRUE(off[f][moved]) << "frame " << f;
 }
 
 TEST(MarkerLabeller, RefusesATakeTenTimesTooLarge) {
