@@ -25,7 +25,7 @@ const OptionGroup<FileReadSettings>& FileReadSettingOptions() {
            "virtual points such as PELO, CentreOfMass) as markers; by default they are left out of the markers "
            "and kept unchanged when the file is rewritten.")
       .Add(&S::subject_prefix, "subject_prefix",
-           "C3D with several subjects (SUBJECTS:LABEL_PREFIXES, 'Name:LASI' labels): read this subject's points "
+           "C3D or TRC with several subjects (SUBJECTS:LABEL_PREFIXES, 'Name:LASI' labels): read this subject's points "
            "(name, 'Name:' or a SUBJECTS:NAMES entry), its prefix stripped; the other subjects' points are "
            "ignored. Without it such a file is read as the subject file's own subject (its label prefix) when the "
            "file has it, else as the subject with the most points (an actor, not a prop), and a warning lists "
