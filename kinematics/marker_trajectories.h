@@ -1,13 +1,14 @@
 // MarkerTrajectories: labelled 3D marker positions over time, as read from C3D or TRC.
 //
 // Layout: #F frames of #M markers. Positions are one 3 x (#F * #M) matrix, frame-major:
-// the sample of marker m in frame f is column f * #M + m, so positions_of_frame(f) is a
+// the sample of marker m in frame f is column f * #M + m, so frame f's samples are a
 // contiguous 3 x #M block. Values are in `unit` (the file's unit; nothing is rescaled on
 // read) and in the file's axes (C3D data is often Z-up, TRC/OpenSim Y-up).
 //
 // Missing samples: a sample is either valid (finite position) or missing. Missing
-// samples hold NaN in `positions` *and* are flagged in the mask (valid(f, m) false); the
-// two always agree, so code may test either. Nothing here treats (0,0,0) as a position:
+// samples read as NaN (position()) *and* are flagged in the mask (valid(f, m) false); the
+// two always agree, so code may test either (the whole array, positions(), holds NaN there
+// too, except in a copy that shares its samples: see below). Nothing here treats (0,0,0) as a position:
 // readers translate their files' gap conventions (negative C3D residual, empty TRC
 // cells, ...) into this mask.
 //
