@@ -26,10 +26,62 @@ Status MarkerTrajectories::CheckLabels(const std::vector<std::string>& labels) {
 MarkerTrajectories::MarkerTrajectories(std::vector<std::string> labels, int num_frames)
     : num_frames_(std::max(num_frames, 0)), labels_(std::move(labels)) {
   const Eigen::Index samples = static_cast<Eigen::Index>(num_frames_) * num_markers();
-  positions_.setConstant(3, samples, std::numeric_limits<double>::quiet_NaN());
+  positions_ = std::make_shared<Eigen::Matrix3Xd>(3, samples);
+  positions_->setConstant(std::numeric_limits<double>::quiet_NaN());
   valid_mask_.assign(samples, 0);
-  residuals_.assign(samples, -1.0f);
-  camera_masks_.assign(samples, 0);
+}
+
+MarkerTrajectories::MarkerTrajectories(const MarkerTrajectories& other)
+    : frame_rate(other.frame_rate),
+      unit(other.unit),
+      first_frame(other.first_frame),
+      subject_prefixes(other.subject_prefixes),
+      model_outputs(other.model_outputs),
+      num_frames_(other.num_frames_),
+      labels_(other.labels_),
+      positions_(other.positions_ != nullptr ? std::make_shared<Eigen::Matrix3Xd>(*other.positions_) : nullptr),
+      valid_mask_(other.valid_mask_),
+      residuals_(other.residuals_),
+      camera_masks_(other.camera_masks_) {}
+
+MarkerTrajectories& MarkerTrajectories::operator=(const MarkerTrajectories& other) {
+  if (this != &other) *this = MarkerTrajectories(other);
+  return *this;
+}
+
+MarkerTrajectories MarkerTrajectories::SharingSamples() const {
+  MarkerTrajectories out;
+  out.frame_rate = frame_rate;
+  out.unit = unit;
+  out.first_frame = first_frame;
+  out.subject_prefixes = subject_prefixes;
+  out.model_outputs = model_outputs;
+  out.num_frames_ = num_frames_;
+  out.labels_ = labels_;
+  out.positions_ = positions_;
+  out.valid_mask_ = valid_mask_;
+  out.residuals_ = residuals_;
+  out.camera_masks_ = camera_masks_;
+  return out;
+}
+
+const Eigen::Matrix3Xd& MarkerTrajectories::positions() const {
+  static const Eigen::Matrix3Xd kNone;
+  return positions_ != nullptr ? *positions_ : kNone;
+}
+
+Eigen::Matrix3Xd& MarkerTrajectories::OwnPositions() {
+  if (positions_ == nullptr) {
+    positions_ = std::make_shared<Eigen::Matrix3Xd>();
+  } else if (positions_.use_count() > 1) {
+    // Missing samples' columns may hold the other's: NaN again, as in unshared trajectories.
+    auto own = std::make_shared<Eigen::Matrix3Xd>(*positions_);
+    for (size_t i = 0; i < valid_mask_.size(); ++i) {
+      if (valid_mask_[i] == 0) own->col(static_cast<Eigen::Index>(i)).setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+    positions_ = std::move(own);
+  }
+  return *positions_;
 }
 
 void MarkerTrajectories::SetSample(int frame, int marker, const Eigen::Vector3d& position,
@@ -39,18 +91,25 @@ void MarkerTrajectories::SetSample(int frame, int marker, const Eigen::Vector3d&
     return;
   }
   const Eigen::Index i = index(frame, marker);
-  positions_.col(i) = position;
+  OwnPositions().col(i) = position;
   valid_mask_[i] = 1;
-  residuals_[i] = residual >= 0.0f ? residual : 0.0f;  // Also maps NaN to 0.
-  camera_masks_[i] = camera_mask;
+  const float stored = residual >= 0.0f ? residual : 0.0f;  // Also maps NaN to 0.
+  if (residuals_.empty() && (stored != 0.0f || std::signbit(stored))) {
+    residuals_.resize(valid_mask_.size());
+    for (size_t k = 0; k < valid_mask_.size(); ++k) residuals_[k] = valid_mask_[k] != 0 ? 0.0f : -1.0f;
+  }
+  if (!residuals_.empty()) residuals_[i] = stored;
+  if (camera_masks_.empty() && camera_mask != 0) camera_masks_.assign(valid_mask_.size(), 0);
+  if (!camera_masks_.empty()) camera_masks_[i] = camera_mask;
 }
 
 void MarkerTrajectories::SetMissing(int frame, int marker) {
   const Eigen::Index i = index(frame, marker);
-  positions_.col(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+  // Shared positions stay as they are: the mask says the sample is missing.
+  if (positions_.use_count() == 1) positions_->col(i).setConstant(std::numeric_limits<double>::quiet_NaN());
   valid_mask_[i] = 0;
-  residuals_[i] = -1.0f;
-  camera_masks_[i] = 0;
+  if (!residuals_.empty()) residuals_[i] = -1.0f;
+  if (!camera_masks_.empty()) camera_masks_[i] = 0;
 }
 
 int MarkerTrajectories::CountMissing() const {
@@ -78,7 +137,7 @@ int MarkerTrajectories::FindMarker(const std::string& label) const {
 
 void MarkerTrajectories::ScaleLengths(double factor) {
   // Missing columns are NaN and stay NaN; residual -1 marks missing and must stay -1.
-  positions_ *= factor;
+  OwnPositions() *= factor;
   for (size_t i = 0; i < residuals_.size(); ++i) {
     if (valid_mask_[i]) residuals_[i] = static_cast<float>(residuals_[i] * factor);
   }

@@ -1,20 +1,29 @@
 // MarkerTrajectories: labelled 3D marker positions over time, as read from C3D or TRC.
 //
 // Layout: #F frames of #M markers. Positions are one 3 x (#F * #M) matrix, frame-major:
-// the sample of marker m in frame f is column f * #M + m, so positions_of_frame(f) is a
+// the sample of marker m in frame f is column f * #M + m, so frame f's samples are a
 // contiguous 3 x #M block. Values are in `unit` (the file's unit; nothing is rescaled on
 // read) and in the file's axes (C3D data is often Z-up, TRC/OpenSim Y-up).
 //
 // Missing samples: a sample is either valid (finite position) or missing. Missing
-// samples hold NaN in `positions` *and* are flagged in the mask (valid(f, m) false); the
-// two always agree, so code may test either. Nothing here treats (0,0,0) as a position:
+// samples read as NaN (position()) *and* are flagged in the mask (valid(f, m) false); the
+// two always agree, so code may test either (the whole array, positions(), holds NaN there
+// too, except in a copy that shares its samples: see below). Nothing here treats (0,0,0) as a position:
 // readers translate their files' gap conventions (negative C3D residual, empty TRC
 // cells, ...) into this mask.
 //
 // Residuals: per sample, the C3D residual in `unit` (0 = valid with no residual
 // information, e.g. TRC input or an interpolated C3D sample), -1 for missing samples.
 // Camera masks: the C3D camera-contribution bits (bit i = camera i+1 saw the marker);
-// 0 when unknown.
+// 0 when unknown. Neither array is allocated until a sample sets a residual or a camera
+// mask other than 0 (trajectories made from observations, X^ or a TRC file hold none: 5 of
+// a sample's 30 bytes).
+//
+// Shared samples: SharingSamples() makes a copy that shares the positions array with its
+// source (each keeps its own mask) until either of them writes a position; marking a
+// sample missing then changes the mask only. A repair keeps several masks over one take's
+// samples (captured, flagged, before the small gaps' fill): one positions array (24 of a
+// sample's bytes) instead of one each. An ordinary copy copies the positions.
 //
 // Labels are kept exactly as the file spells them ("TakeoMonday:LBWT"); subject prefixes
 // (C3D SUBJECTS:LABEL_PREFIXES, "TakeoMonday:") are recorded in `subject_prefixes` so
@@ -30,6 +39,7 @@
 #define MOCAPSOLVE_KINEMATICS_MARKER_TRAJECTORIES_H_
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -65,6 +75,14 @@ class MarkerTrajectories {
   MarkerTrajectories() = default;
   // #F frames of the labelled markers, every sample missing.
   MarkerTrajectories(std::vector<std::string> labels, int num_frames);
+  // Copies copy the positions (see SharingSamples); moves move them.
+  MarkerTrajectories(const MarkerTrajectories& other);
+  MarkerTrajectories& operator=(const MarkerTrajectories& other);
+  MarkerTrajectories(MarkerTrajectories&&) = default;
+  MarkerTrajectories& operator=(MarkerTrajectories&&) = default;
+  // A copy whose positions array is this one's until either writes a position (see the
+  // header comment): the same samples, masks, residuals and metadata.
+  MarkerTrajectories SharingSamples() const;
 
   int num_frames() const { return num_frames_; }
   int num_markers() const { return static_cast<int>(labels_.size()); }
@@ -78,12 +96,18 @@ class MarkerTrajectories {
 
   // Per-sample access; frame in [0, #F), marker in [0, #M).
   bool valid(int frame, int marker) const { return valid_mask_[index(frame, marker)] != 0; }
+  // NaN where missing.
   Eigen::Vector3d position(int frame, int marker) const {
-    return positions_.col(index(frame, marker));
+    const Eigen::Index i = index(frame, marker);
+    return valid_mask_[i] != 0 ? Eigen::Vector3d(positions_->col(i))
+                               : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   }
-  float residual(int frame, int marker) const { return residuals_[index(frame, marker)]; }
+  float residual(int frame, int marker) const {
+    const Eigen::Index i = index(frame, marker);
+    return !residuals_.empty() ? residuals_[i] : valid_mask_[i] != 0 ? 0.0f : -1.0f;
+  }
   std::uint8_t camera_mask(int frame, int marker) const {
-    return camera_masks_[index(frame, marker)];
+    return camera_masks_.empty() ? 0 : camera_masks_[index(frame, marker)];
   }
 
   // A non-finite position stores the sample as missing (keeps the mask and NaNs in step).
@@ -92,15 +116,13 @@ class MarkerTrajectories {
                  std::uint8_t camera_mask = 0);
   void SetMissing(int frame, int marker);
 
-  // Whole-array views. positions(): 3 x (#F * #M), NaN where missing.
-  const Eigen::Matrix3Xd& positions() const { return positions_; }
-  // 3 x #M block of frame f.
-  Eigen::Matrix3Xd::ConstColsBlockXpr positions_of_frame(int f) const {
-    return positions_.middleCols(index(f, 0), num_markers());
-  }
+  // Whole-array views. positions(): 3 x (#F * #M), NaN where missing, except in
+  // trajectories that share their samples (SharingSamples), where a missing sample's column
+  // may hold the other's sample: test valid() (or read position()).
+  const Eigen::Matrix3Xd& positions() const;
+  // The positions array to write into (Python's view of it), no longer shared, NaN where missing.
+  double* mutable_positions_data() { return OwnPositions().data(); }
   const std::vector<std::uint8_t>& valid_mask() const { return valid_mask_; }  // #F * #M, 1 = valid.
-  const std::vector<float>& residuals() const { return residuals_; }          // #F * #M.
-  const std::vector<std::uint8_t>& camera_masks() const { return camera_masks_; }
 
   int CountMissing() const;
   int CountMissing(int marker) const;  // Over all frames.
@@ -115,12 +137,16 @@ class MarkerTrajectories {
   void ScaleLengths(double factor);
 
  private:
+  // The positions to write into: copied first when shared (NaN where this one's mask is missing).
+  Eigen::Matrix3Xd& OwnPositions();
+
   int num_frames_ = 0;
   std::vector<std::string> labels_;
-  Eigen::Matrix3Xd positions_;
+  // Shared with copies made by SharingSamples; null when there are no samples (or moved from).
+  std::shared_ptr<Eigen::Matrix3Xd> positions_;
   std::vector<std::uint8_t> valid_mask_;
-  std::vector<float> residuals_;
-  std::vector<std::uint8_t> camera_masks_;
+  std::vector<float> residuals_;             // #F * #M, or empty: 0 where valid, -1 where missing.
+  std::vector<std::uint8_t> camera_masks_;   // #F * #M, or empty: 0 everywhere.
 };
 
 // Points of a C3D file that are not markers, kept for rewriting the file.

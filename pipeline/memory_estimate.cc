@@ -5,10 +5,10 @@
 namespace mocapsolve {
 namespace {
 
-// Measured 2026-12-07 (BENCHMARKS.md, "Memory against the take's length"); KB, MB.
-constexpr double kPipelineBaseMb = 28.0;          // x1 (1,854 frames): 54,728 KB.
-constexpr double kPipelineSharedKb = 6.6;         // 14.2 KB per frame from x1 to x16,
-constexpr double kPipelinePerMarkerKb = 7.6 / 41;  // of which ~7.6 KB marker samples (heaptrack).
+// Measured 2026-12-07 and -08 (BENCHMARKS.md, "Memory against the take's length"); KB, MB.
+constexpr double kPipelineBaseMb = 28.0;          // x1 (1,854 frames): 49,684 KB (fourth pass).
+constexpr double kPipelineSharedKb = 5.3;         // 11.3 KB per frame from x1 to x16,
+constexpr double kPipelinePerMarkerKb = 6.0 / 41;  // of which ~6.0 KB marker samples (heaptrack).
 constexpr double kClipBaseMb = 23.0;              // solve --mode=clip, 300 and 1,854 frames:
 constexpr double kClipPerMarkerKb = 184.0 / 41;   // 184 KB per frame, its residual blocks per marker.
 constexpr double kFilterBaseMb = 15.0;            // filter --levels=2 of solved.bvh, x1 and x4:

@@ -49,7 +49,7 @@ MemoryEstimate GreenFunctionMemory(int frames);
 
 // Ok without a limit (limit_mb <= 0) or when the estimate fits; else one line:
 //   "--memory_mb=500: the pipeline's per-frame stages on TAKE (431,982 frames, 41 markers)
-//    would need about 6,018 MB (28 MB + 14.2 KB per frame), over the limit; nothing was done"
+//    would need about 4,795 MB (28 MB + 11.3 KB per frame), over the limit; nothing was done"
 Status CheckMemoryLimit(const MemoryEstimate& estimate, double limit_mb, const std::string& input);
 
 }  // namespace mocapsolve

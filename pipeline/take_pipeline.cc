@@ -173,7 +173,7 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   status = ReadTakeMarkers(inputs, options, result, progress, &label_seconds);
   if (!status.ok()) return status;
   const MarkerTake& take = result->take;
-  const int frames = static_cast<int>(take.observed.size());
+  const int frames = result->frames = static_cast<int>(take.observed.size());
   if (frames == 0) return Status::Error("read: " + inputs.markers_path + ": the take has no frames");
   int first = 0, last = 0;  // The delivered range, checked before any work.
   status = ResolveClipRange(options.delivery.range, frames, take.trajectories.frame_rate, &first, &last);
@@ -252,6 +252,8 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
     result->blame = BlameMarkers(take.skeleton, take.markers, take.observed, solved, mm);
     result->gate_advice = GateAdvice(result->blame, inputs.markers_path);
   }
+  // Nothing reads the samples as observed from here (the page shows the repaired ones).
+  result->take.observed = std::vector<std::vector<Eigen::Vector3d>>();
 
   // 3. Retarget onto each character; the last one takes the solve over (its working copy
   // is made in place: one whole-take copy of the solve less while it runs).
@@ -292,7 +294,7 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
 
 JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
   const MarkerTake& take = result.take;
-  const int frames = static_cast<int>(take.observed.size());
+  const int frames = result.frames;
   const double mm = take.skeleton.unit().metres_per_unit * 1000.0;
   std::vector<JsonObject> timings;
   for (const StageTime& t : result.timings) {
@@ -423,7 +425,6 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
   view.title = inputs.name;
   view.skeleton = &result.take.skeleton;
   view.markers = &result.take.markers;
-  view.observed = &result.take.observed;
   view.repaired = &result.repaired;
   view.intervals = RepairViewIntervals(result.repair);
   const Motion solved = result.solved.ToMotion();  // The page's copy.

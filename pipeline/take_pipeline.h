@@ -115,8 +115,11 @@ struct CharacterOutput {
 
 struct TakeResult {
   // The markers as read (labelled, when they were), with their mapping; take.trajectories
-  // keeps the file's metadata but no frames once repaired_file holds them.
+  // keeps the file's metadata but no frames once repaired_file holds them, and
+  // take.observed is freed once the gate's marker checks have read it (1 KB per frame of a
+  // long take through the retarget and the writers).
   MarkerTake take;
+  int frames = 0;                     // The take's.
   // When the points were labelled first: LabellingReport (pipeline/take_labelling.h) with
   // "reason" (why: "always", or the subject's labels the file lacks); else empty.
   JsonObject labelling;

@@ -24,7 +24,7 @@ py::array PositionsView(py::object self) {
   const py::ssize_t d = sizeof(double);
   return py::array_t<double>({py::ssize_t{t.num_frames()}, py::ssize_t{t.num_markers()}, py::ssize_t{3}},
                              {3 * d * t.num_markers(), 3 * d, d},
-                             const_cast<double*>(t.positions().data()), self);
+                             t.mutable_positions_data(), self);
 }
 
 MarkersPtr MakeMarkers(const Array& positions, const std::vector<std::string>& labels, double rate,

@@ -6,7 +6,7 @@ namespace mocapsolve {
 
 std::string TakeSummary(const TakeInputs& inputs, const TakeResult& result) {
   std::string text;
-  const int frames = static_cast<int>(result.take.observed.size());
+  const int frames = result.frames;
   AppendF(&text, "pipeline %s: %d frames in %.2f s (%.0f frames/s)\n", inputs.name.c_str(), frames, result.seconds,
           result.seconds > 0 ? frames / result.seconds : 0.0);
   for (const StageTime& t : result.timings) AppendF(&text, "  %-32s %8.3f s\n", t.stage.c_str(), t.seconds);

@@ -311,11 +311,12 @@ struct RepairContext {
   double outlier;            // The fixed gate and the robust gates' cap: outlier_distance, else dp_max.
   double resync_tolerance;   // Re-solves of changed frames stop where the solution rejoins the earlier one.
   ResidualModelOptions model_options;  // Step 3b (and its refit after relabelling).
+  bool keep_reconstructed;   // X^ also as observations (Reference::reconstructed), for the intermediates.
 };
 
 // The context of one repair, its defaults resolved once for every step.
 RepairContext MakeRepairContext(const Skeleton& skeleton, const MarkerSet& markers, const Observations& observed,
-                                const RepairOptions& options) {
+                                const RepairOptions& options, bool keep_reconstructed) {
   const double outlier = options.outlier_distance > 0.0 ? options.outlier_distance : options.dp_max;
   ResidualModelOptions model_options;
   model_options.robust = options.robust_outliers;
@@ -324,10 +325,11 @@ RepairContext MakeRepairContext(const Skeleton& skeleton, const MarkerSet& marke
   model_options.max_distance = outlier;
   model_options.fixed_distance = outlier;
   const double resync_tolerance = options.resync_tolerance > 0.0 ? options.resync_tolerance : options.dp_max * 1e-3;
-  return {skeleton, markers, observed, options, outlier, resync_tolerance, model_options};
+  return {skeleton, markers, observed, options, outlier, resync_tolerance, model_options, keep_reconstructed};
 }
 
-// The reference Y^ and the marker paths it predicts, X^, as observations and as trajectories.
+// The reference Y^ and the marker paths it predicts, X^, as trajectories (and as
+// observations only for the intermediates: the same samples, 1 KB per frame of a long take).
 // After gap detection Y^ is read only by its refit, frame by frame: it is then kept
 // compact (`kept`, float: kinematics/compact_motion.h) and `motion` freed.
 struct Reference {
@@ -346,8 +348,12 @@ void Release(T* value) {
 
 // Step 3: X^ from Y^ (again whenever Y^ is redone).
 void ReconstructReference(const RepairContext& ctx, Reference* reference) {
-  reference->reconstructed = ReconstructMarkers(ctx.skeleton, ctx.markers, reference->motion);
-  reference->paths = ObservationTrajectories(ctx.markers, reference->reconstructed);
+  if (ctx.keep_reconstructed) {
+    reference->reconstructed = ReconstructMarkers(ctx.skeleton, ctx.markers, reference->motion);
+    reference->paths = ObservationTrajectories(ctx.markers, reference->reconstructed);
+  } else {
+    reference->paths = ReconstructedPaths(ctx.skeleton, ctx.markers, reference->motion);
+  }
 }
 
 // Error unless the options are valid, the observations fit the marker set, and the
@@ -472,7 +478,7 @@ Status ResolveRelabelled(const RepairContext& ctx, const Observations& relabelle
   if (!status.ok()) return status;
   *naive = CompactMotion(solved);
   Release(&solved);
-  *model = FitMarkerResidualModel(ctx.skeleton, ctx.markers, reference.motion, reference.reconstructed, x,
+  *model = FitMarkerResidualModel(ctx.skeleton, ctx.markers, reference.motion, reference.paths, x,
                                   ctx.model_options);
   // The reference followed the swapped labels: its parent frames do not judge the
   // relabelled samples (marker_residual_model.h).
@@ -542,7 +548,7 @@ Status JointDifferenceSamples(const RepairContext& ctx, const CompactMotion& nai
     naive.Frame(f, &pose);
     ForwardKinematics(ctx.skeleton, pose, &fk_naive);
     for (int m = 0; m < x.num_markers(); ++m) {
-      if ((*bad)[f][m] && (ctx.markers.Position(m, fk_naive) - reference.reconstructed[f][m]).norm() <= model.gate[m]) {
+      if ((*bad)[f][m] && (ctx.markers.Position(m, fk_naive) - reference.paths.position(f, m)).norm() <= model.gate[m]) {
         (*bad)[f][m] = 0;
       }
     }
@@ -576,7 +582,7 @@ void RecordNewGaps(const MarkerTrajectories& flagged, const MarkerTrajectories& 
 void DetectGaps(const MarkerResidualModel& model, const MarkerTrajectories& captured, const MarkerTrajectories& x,
                 const std::vector<std::vector<char>>& bad, RepairReport* report, MarkerTrajectories* flagged) {
   RecordInputIntervals(captured, report);
-  *flagged = x;
+  *flagged = x.SharingSamples();  // Its own mask over x's samples.
   std::vector<char> outlier(static_cast<size_t>(x.num_frames()) * x.num_markers(), 0);
   for (int f = 0; f < x.num_frames(); ++f) {
     for (int m = 0; m < x.num_markers(); ++m) {
@@ -616,7 +622,7 @@ void PreprocessGaps(const RepairContext& ctx, const MarkerTrajectories& referenc
     return x->valid(f, m) && !(captured.valid(f, m) && x->position(f, m) == captured.position(f, m));
   };
   report->removed_track_samples = RemoveSmallTracks(ctx.options.small_track, relabelled, x);
-  *before_small = *x;
+  *before_small = x->SharingSamples();  // x's samples until the small gaps' fill writes into x.
   report->polynomial_samples = FillSmallGaps(ctx.options.small_gap, x);
   for (const Gap& gap : FindGaps(*before_small)) {
     if (x->valid(gap.first, gap.marker)) report->filled.push_back({gap.marker, gap.first, gap.last, "polynomial"});
@@ -907,7 +913,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   if (Status status = CheckRepairInputs(markers, observed, unlabelled, options); !status.ok()) return status;
   *report = RepairReport();
   StageClock clock(report);
-  const RepairContext ctx = MakeRepairContext(skeleton, markers, observed, options);
+  const RepairContext ctx = MakeRepairContext(skeleton, markers, observed, options, intermediates != nullptr);
   // 1. Naive solve and 2. robust reference.
   Motion naive;
   Reference reference;
@@ -940,7 +946,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   // 3b. Residual model.
   MarkerTrajectories x = ObservationTrajectories(markers, observed);
   MarkerResidualModel model =
-      FitMarkerResidualModel(skeleton, markers, reference.motion, reference.reconstructed, x, ctx.model_options);
+      FitMarkerResidualModel(skeleton, markers, reference.motion, reference.paths, x, ctx.model_options);
   clock.Lap("Residual Model");
   // 3c. Swaps: relabel; 3d. unlabelled points labelled; then redo the naive solve where
   // the samples changed.
@@ -948,24 +954,25 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   status = RelabelSamples(ctx, unlabelled, &clock, &naive_kept, &reference, &model, &x, &relabelled, report);
   if (!status.ok()) return status;
   // The samples as captured, x before relabelling: made again from the observations
-  // rather than copied before it, so that the relabelling does not hold a third copy.
-  MarkerTrajectories captured = ObservationTrajectories(markers, observed);
+  // rather than copied before it, so that the relabelling does not hold a third copy; x's
+  // own samples when nothing was relabelled.
   const bool changed = !report->swaps.empty() || !report->unlabelled.empty();
+  MarkerTrajectories captured = changed ? ObservationTrajectories(markers, observed) : x.SharingSamples();
   const Observations& input = changed ? relabelled : observed;
   // 4. Gap detection.
   std::vector<std::vector<char>> bad;
   status = JointDifferenceSamples(ctx, naive_kept, reference, model, x, &bad);
   if (!status.ok()) return status;
-  // Preprocessing and filling read the paths, not these.
-  if (intermediates == nullptr) Release(&reference.reconstructed);
   // From here Y^ is read only by its refit (step 6), frame by frame: kept compact too.
   reference.kept = CompactMotion(reference.motion);
   Release(&reference.motion);
   MarkerTrajectories flagged;
   DetectGaps(model, captured, x, bad, report, &flagged);
   Release(&bad);
+  // unflagged, flagged and x (until its small gaps are filled) share one array of samples,
+  // each with its own mask (MarkerTrajectories::SharingSamples).
   MarkerTrajectories unflagged = std::move(x);
-  x = flagged;
+  x = flagged.SharingSamples();
   if (intermediates == nullptr) Release(&model);
   clock.Lap("Gap Detection");
   // 5. Preprocessing, in the thesis' order.

@@ -298,16 +298,19 @@ double MarkJumps(int nf, int m, const Valid& valid, const Value& d, const Confir
   FindWindowedPlateaus(nf, m, valid, d, confirm, options, jumped, plateaus);
   return step_gate;
 }
-}  // namespace
 
-MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const MarkerSet& markers,
-                                           const Motion& reference,
-                                           const std::vector<std::vector<Eigen::Vector3d>>& reconstructed,
-                                           const MarkerTrajectories& x, const ResidualModelOptions& options) {
+// The model with X^_fm read as reconstructed(f, m) (observations or trajectories).
+template <typename Reconstructed>
+MarkerResidualModel FitModel(const Skeleton& skeleton, const MarkerSet& markers, const Motion& reference,
+                             const Reconstructed& reconstructed, const MarkerTrajectories& x,
+                             const ResidualModelOptions& options) {
   const int nf = x.num_frames(), nm = markers.num_markers();
   MarkerResidualModel model;
-  model.predicted = reconstructed;
-  model.typical_predicted = reconstructed;
+  model.predicted.assign(nf, std::vector<Eigen::Vector3d>(nm));
+  for (int f = 0; f < nf; ++f) {
+    for (int m = 0; m < nm; ++m) model.predicted[f][m] = reconstructed(f, m);
+  }
+  model.typical_predicted = model.predicted;
   model.typical.assign(nm, Eigen::Vector3d::Zero());
   model.median_deviation.assign(nm, 0.0);
   model.scale.assign(nm, 0.0);
@@ -319,31 +322,45 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
   if (!options.robust) return model;
   std::vector<int> joint(nm);
   for (int m = 0; m < nm; ++m) joint[m] = MainJoint(markers.marker(m));
-  // Reference rotations of each marker's joint, and local residuals d_fm (frame-major).
-  std::vector<Eigen::Quaterniond> rotation(static_cast<size_t>(nf) * nm);
-  std::vector<Eigen::Vector3d> local(static_cast<size_t>(nf) * nm, Eigen::Vector3d::Zero());
-  std::vector<Eigen::Vector3d> unpinned(static_cast<size_t>(nf) * nm, Eigen::Vector3d::Zero());
+  // The reference's world rotation and origin of each joint that carries a marker, per
+  // frame (frame-major; held per joint, not per marker: a long take's largest array here).
+  std::vector<int> carriers, slot(nm);
+  for (int m = 0; m < nm; ++m) {
+    const auto it = std::find(carriers.begin(), carriers.end(), joint[m]);
+    slot[m] = static_cast<int>(it - carriers.begin());
+    if (it == carriers.end()) carriers.push_back(joint[m]);
+  }
+  const size_t nc = carriers.size();
+  std::vector<Eigen::Quaterniond> carrier_rotation(static_cast<size_t>(nf) * nc);
+  std::vector<Eigen::Vector3d> carrier_origin(static_cast<size_t>(nf) * nc);
   FkData fk(skeleton);
   for (int f = 0; f < nf; ++f) {
     ForwardKinematics(skeleton, reference.frames[f], &fk);
-    for (int m = 0; m < nm; ++m) {
-      const size_t i = static_cast<size_t>(f) * nm + m;
-      rotation[i] = fk.world_rotations[joint[m]];
+    for (size_t c = 0; c < nc; ++c) {
+      carrier_rotation[f * nc + c] = fk.world_rotations[carriers[c]];
+      carrier_origin[f * nc + c] = fk.world_positions[carriers[c]];
+    }
+  }
+  auto rotation = [&](int f, int m) -> const Eigen::Quaterniond& { return carrier_rotation[f * nc + slot[m]]; };
+  // Marker m's local residuals d_fm and u_fm (see below), every frame (0 where x is missing).
+  std::vector<Eigen::Vector3d> local(nf), unpinned(nf);
+  auto residuals_of = [&](int m) {
+    for (int f = 0; f < nf; ++f) {
+      local[f] = unpinned[f] = Eigen::Vector3d::Zero();
+      if (!x.valid(f, m)) continue;
       // X^ smoothed in time by the binomial [1 4 6 4 1] / 16 (exact on linear motion, zero
       // gain at the Nyquist rate): a per-frame reference that alternates between two
       // solutions (a solve that stopped early) makes no steps of the marker.
-      Eigen::Vector3d rebuilt = reconstructed[f][m];
+      Eigen::Vector3d rebuilt = reconstructed(f, m);
       if (f >= 2 && f + 2 < nf) {
-        rebuilt = (reconstructed[f - 2][m] + 4.0 * reconstructed[f - 1][m] + 6.0 * reconstructed[f][m] +
-                   4.0 * reconstructed[f + 1][m] + reconstructed[f + 2][m]) / 16.0;
+        rebuilt = (reconstructed(f - 2, m) + 4.0 * reconstructed(f - 1, m) + 6.0 * reconstructed(f, m) +
+                   4.0 * reconstructed(f + 1, m) + reconstructed(f + 2, m)) / 16.0;
       }
-      if (x.valid(f, m)) {
-        local[i] = rotation[i].conjugate() * (x.position(f, m) - rebuilt);
-        unpinned[i] = reference.frames[f].rotations[joint[m]] *
-                      (rotation[i].conjugate() * (x.position(f, m) - fk.world_positions[joint[m]]));
-      }
+      local[f] = rotation(f, m).conjugate() * (x.position(f, m) - rebuilt);
+      unpinned[f] = reference.frames[f].rotations[joint[m]] *
+                    (rotation(f, m).conjugate() * (x.position(f, m) - carrier_origin[f * nc + slot[m]]));
     }
-  }
+  };
   const int half = std::max(0, options.window / 2);
   // Each joint's own rotation, median-filtered (computed for the joints that need it): a
   // turn of 1-20 frames that follows a jumped marker is not in it.
@@ -362,7 +379,8 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
   std::vector<Plateau> plateaus;
   std::vector<Eigen::Vector3d> smooth(nf);
   for (int m = 0; m < nm; ++m) {
-    auto d = [&](int f) -> const Eigen::Vector3d& { return local[static_cast<size_t>(f) * nm + m]; };
+    residuals_of(m);
+    auto d = [&](int f) -> const Eigen::Vector3d& { return local[f]; };
     // Take-wide typical residual and gate.
     for (int k = 0; k < 3; ++k) {
       values.clear();
@@ -386,7 +404,7 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
     // the residual confirms. A step of the steady-frame signal is about the step of u
     // turned by the steady rotation, so u finds the markers that have a candidate at all.
     const int j = joint[m];
-    auto u = [&](int f) -> const Eigen::Vector3d& { return unpinned[static_cast<size_t>(f) * nm + m]; };
+    auto u = [&](int f) -> const Eigen::Vector3d& { return unpinned[f]; };
     auto confirmed = [&](int f, const Eigen::Vector3d& step_in_joint, double size) {
       return (d(f) - d(f - 1)).dot(step_in_joint.normalized()) >= kConfirmedShare * size;
     };
@@ -413,7 +431,7 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
     model.gate[m] = std::max(RobustGate(&deviations, options, &model.median_deviation[m], &model.scale[m]),
                              options.max_distance);
     for (int f = 0; f < nf; ++f) {
-      const Eigen::Quaterniond& r = rotation[static_cast<size_t>(f) * nm + m];
+      const Eigen::Quaterniond& r = rotation(f, m);
       model.typical_predicted[f][m] += r * model.typical[m];
       model.predicted[f][m] += r * smooth[f];
     }
@@ -439,6 +457,22 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
     for (int f = a; f <= plateau.last; ++f) (*plateau.target)[f][m] = 1;
   }
   return model;
+}
+
+}  // namespace
+
+MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const MarkerSet& markers,
+                                           const Motion& reference,
+                                           const std::vector<std::vector<Eigen::Vector3d>>& reconstructed,
+                                           const MarkerTrajectories& x, const ResidualModelOptions& options) {
+  return FitModel(skeleton, markers, reference, [&](int f, int m) { return reconstructed[f][m]; }, x, options);
+}
+
+MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const MarkerSet& markers,
+                                           const Motion& reference, const MarkerTrajectories& reconstructed,
+                                           const MarkerTrajectories& x, const ResidualModelOptions& options) {
+  return FitModel(skeleton, markers, reference, [&](int f, int m) { return reconstructed.position(f, m); }, x,
+                  options);
 }
 
 }  // namespace mocapsolve

@@ -118,6 +118,10 @@ MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const Marke
                                            const Motion& reference,
                                            const std::vector<std::vector<Eigen::Vector3d>>& reconstructed,
                                            const MarkerTrajectories& x, const ResidualModelOptions& options);
+// The same with X^ as trajectories (X^_fm = reconstructed.position(f, m)).
+MarkerResidualModel FitMarkerResidualModel(const Skeleton& skeleton, const MarkerSet& markers,
+                                           const Motion& reference, const MarkerTrajectories& reconstructed,
+                                           const MarkerTrajectories& x, const ResidualModelOptions& options);
 
 }  // namespace mocapsolve
 

@@ -30,12 +30,64 @@ TEST(MarkerTrajectories, StartsAllMissing) {
   }
 }
 
+// A copy sharing the samples keeps its own mask: marking a sample missing in one leaves the
+// other's, and writing a position in either copies the array first.
+TEST(MarkerTrajectories, SharingSamplesKeepsMasksApart) {
+  MarkerTrajectories a = ThreeMarkers();
+  a.SetSample(0, 0, Eigen::Vector3d(1, 2, 3));
+  a.SetSample(1, 0, Eigen::Vector3d(4, 5, 6), 0.25f, 3);
+  MarkerTrajectories b = a.SharingSamples();
+  EXPECT_EQ(b.positions().data(), a.positions().data());  // One array.
+  EXPECT_EQ(b.unit.name, "mm");
+  EXPECT_EQ(b.residual(1, 0), 0.25f);
+  EXPECT_EQ(b.camera_mask(1, 0), 3);
+  b.SetMissing(0, 0);
+  EXPECT_EQ(b.positions().data(), a.positions().data());  // Still one array.
+  EXPECT_FALSE(b.valid(0, 0));
+  EXPECT_TRUE(b.position(0, 0).array().isNaN().all());
+  EXPECT_EQ(b.residual(0, 0), -1.0f);
+  EXPECT_TRUE(a.valid(0, 0));
+  EXPECT_EQ(a.position(0, 0), Eigen::Vector3d(1, 2, 3));
+  b.SetSample(2, 2, Eigen::Vector3d(7, 8, 9));
+  EXPECT_NE(b.positions().data(), a.positions().data());  // Copied on write.
+  EXPECT_TRUE(b.positions().col(b.index(0, 0)).array().isNaN().all());  // NaN where b misses it.
+  EXPECT_EQ(b.position(1, 0), Eigen::Vector3d(4, 5, 6));
+  EXPECT_FALSE(a.valid(2, 2));
+  EXPECT_TRUE(a.position(2, 2).array().isNaN().all());
+  // Writing into the source copies it too; the other keeps the old sample.
+  MarkerTrajectories c = a.SharingSamples();
+  a.SetSample(1, 0, Eigen::Vector3d(0, 0, 1));
+  EXPECT_EQ(c.position(1, 0), Eigen::Vector3d(4, 5, 6));
+  a.ScaleLengths(2.0);
+  EXPECT_EQ(c.position(0, 0), Eigen::Vector3d(1, 2, 3));
+  // An ordinary copy has its own array.
+  const MarkerTrajectories d = c;
+  EXPECT_NE(d.positions().data(), c.positions().data());
+  EXPECT_EQ(d.position(1, 0), Eigen::Vector3d(4, 5, 6));
+}
+
+// Residuals and camera masks read as 0 (valid) and -1 (missing) until one is set.
+TEST(MarkerTrajectories, ResidualsReadTheSameWhetherStoredOrNot) {
+  MarkerTrajectories t = ThreeMarkers();
+  t.SetSample(0, 1, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(t.residual(0, 1), 0.0f);
+  EXPECT_EQ(t.residual(0, 0), -1.0f);
+  EXPECT_EQ(t.camera_mask(0, 1), 0);
+  t.SetSample(3, 2, Eigen::Vector3d(1, 2, 3), 1.5f);
+  EXPECT_EQ(t.residual(3, 2), 1.5f);
+  EXPECT_EQ(t.residual(0, 1), 0.0f);
+  EXPECT_EQ(t.residual(0, 0), -1.0f);
+  t.SetSample(0, 1, Eigen::Vector3d(1, 2, 3), -0.0f);  // Stored as it is.
+  EXPECT_TRUE(std::signbit(t.residual(0, 1)));
+  t.SetMissing(3, 2);
+  EXPECT_EQ(t.residual(3, 2), -1.0f);
+}
+
 TEST(MarkerTrajectories, FrameMajorLayoutAndMaskFollowsSamples) {
   MarkerTrajectories t = ThreeMarkers();
   t.SetSample(2, 1, Eigen::Vector3d(1, 2, 3), 0.5f, 7);
   EXPECT_EQ(t.index(2, 1), 2 * 3 + 1);
   EXPECT_EQ(t.positions().col(7), Eigen::Vector3d(1, 2, 3));
-  EXPECT_EQ(t.positions_of_frame(2).col(1), Eigen::Vector3d(1, 2, 3));
   EXPECT_TRUE(t.valid(2, 1));
   EXPECT_EQ(t.valid_mask()[7], 1);
   EXPECT_EQ(t.residual(2, 1), 0.5f);
