@@ -35,28 +35,17 @@ Status RunCorrupt(const std::vector<std::string>& arguments) {
   CorruptMarkers(options, &markers, &mask, &unlabelled);
   // The unlabelled damage's tracks become the output's unlabelled points ("*1", ... after
   // the file's own columns; a label the file already has gets a '*' more).
-  std::vector<std::string> labels = markers.labels();
+  std::vector<std::string> labels = markers.labels(), more;
   for (int k = 0; k < unlabelled.tracks.num_markers(); ++k) {
     std::string label = unlabelled.tracks.label(k);
     while (std::find(labels.begin(), labels.end(), label) != labels.end()) label = "*" + label;
     labels.push_back(label);
+    more.push_back(label);
   }
-  MarkerTrajectories out = markers;
-  if (unlabelled.tracks.num_markers() > 0) {
-    out = MarkerTrajectories(labels, markers.num_frames());
-    out.frame_rate = markers.frame_rate;
-    out.unit = markers.unit;
-    out.first_frame = markers.first_frame;
-    out.subject_prefixes = markers.subject_prefixes;
-    for (int f = 0; f < markers.num_frames(); ++f) {
-      for (int m = 0; m < markers.num_markers(); ++m) {
-        if (markers.valid(f, m)) {
-          out.SetSample(f, m, markers.position(f, m), markers.residual(f, m), markers.camera_mask(f, m));
-        }
-      }
-      for (int k = 0; k < unlabelled.tracks.num_markers(); ++k) {
-        out.SetSample(f, markers.num_markers() + k, unlabelled.tracks.position(f, k));
-      }
+  MarkerTrajectories out = more.empty() ? markers : WithMoreMarkers(markers, more);
+  for (int f = 0; f < markers.num_frames(); ++f) {
+    for (int k = 0; k < unlabelled.tracks.num_markers(); ++k) {
+      out.SetSample(f, markers.num_markers() + k, unlabelled.tracks.position(f, k));
     }
   }
   status = WriteMarkerFile(Files().out, out);

@@ -143,40 +143,50 @@ void MarkerTrajectories::ScaleLengths(double factor) {
   }
 }
 
-MarkerTrajectories TrajectoryFrames(const MarkerTrajectories& trajectories, int first, int count) {
-  first = std::max(0, std::min(first, trajectories.num_frames()));
-  count = std::max(0, std::min(count, trajectories.num_frames() - first));
-  MarkerTrajectories out(trajectories.labels(), count);
+namespace {
+
+// Frames [first, first + count) of the markers `columns`, then `more` markers with every
+// sample missing; metadata as the source's (first_frame following), no model outputs.
+MarkerTrajectories Subset(const MarkerTrajectories& trajectories, int first, int count, const std::vector<int>& columns,
+                          const std::vector<std::string>& more = {}) {
+  std::vector<std::string> labels;
+  for (const int m : columns) labels.push_back(trajectories.label(m));
+  labels.insert(labels.end(), more.begin(), more.end());
+  MarkerTrajectories out(std::move(labels), count);
   out.frame_rate = trajectories.frame_rate;
   out.unit = trajectories.unit;
   out.first_frame = trajectories.first_frame + first;
   out.subject_prefixes = trajectories.subject_prefixes;
   for (int f = 0; f < count; ++f) {
-    for (int m = 0; m < trajectories.num_markers(); ++m) {
-      if (!trajectories.valid(first + f, m)) continue;
-      out.SetSample(f, m, trajectories.position(first + f, m), trajectories.residual(first + f, m),
-                    trajectories.camera_mask(first + f, m));
+    for (size_t i = 0; i < columns.size(); ++i) {
+      if (!trajectories.valid(first + f, columns[i])) continue;
+      out.SetSample(f, static_cast<int>(i), trajectories.position(first + f, columns[i]),
+                    trajectories.residual(first + f, columns[i]), trajectories.camera_mask(first + f, columns[i]));
     }
   }
   return out;
 }
 
+std::vector<int> AllColumns(const MarkerTrajectories& trajectories) {
+  std::vector<int> columns(trajectories.num_markers());
+  for (int m = 0; m < trajectories.num_markers(); ++m) columns[m] = m;
+  return columns;
+}
+
+}  // namespace
+
+MarkerTrajectories TrajectoryFrames(const MarkerTrajectories& trajectories, int first, int count) {
+  first = std::max(0, std::min(first, trajectories.num_frames()));
+  count = std::max(0, std::min(count, trajectories.num_frames() - first));
+  return Subset(trajectories, first, count, AllColumns(trajectories));
+}
+
 MarkerTrajectories TrajectoryColumns(const MarkerTrajectories& trajectories, const std::vector<int>& columns) {
-  std::vector<std::string> labels;
-  for (const int m : columns) labels.push_back(trajectories.label(m));
-  MarkerTrajectories out(std::move(labels), trajectories.num_frames());
-  out.frame_rate = trajectories.frame_rate;
-  out.unit = trajectories.unit;
-  out.first_frame = trajectories.first_frame;
-  out.subject_prefixes = trajectories.subject_prefixes;
-  for (int f = 0; f < trajectories.num_frames(); ++f) {
-    for (size_t i = 0; i < columns.size(); ++i) {
-      if (!trajectories.valid(f, columns[i])) continue;
-      out.SetSample(f, static_cast<int>(i), trajectories.position(f, columns[i]),
-                    trajectories.residual(f, columns[i]), trajectories.camera_mask(f, columns[i]));
-    }
-  }
-  return out;
+  return Subset(trajectories, 0, trajectories.num_frames(), columns);
+}
+
+MarkerTrajectories WithMoreMarkers(const MarkerTrajectories& trajectories, const std::vector<std::string>& labels) {
+  return Subset(trajectories, 0, trajectories.num_frames(), AllColumns(trajectories), labels);
 }
 
 Status ConvertUnits(const LengthUnit& to, MarkerTrajectories* trajectories) {

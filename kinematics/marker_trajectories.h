@@ -165,6 +165,10 @@ MarkerTrajectories TrajectoryFrames(const MarkerTrajectories& trajectories, int 
 // the metadata follows, model outputs are dropped.
 MarkerTrajectories TrajectoryColumns(const MarkerTrajectories& trajectories, const std::vector<int>& columns);
 
+// The trajectories with markers `labels` added after their own, every sample of those
+// missing; the metadata follows, model outputs are dropped.
+MarkerTrajectories WithMoreMarkers(const MarkerTrajectories& trajectories, const std::vector<std::string>& labels);
+
 // Rescales positions and residuals into `to` and sets unit. Fails (and changes nothing)
 // when either unit is unknown.
 Status ConvertUnits(const LengthUnit& to, MarkerTrajectories* trajectories);
