@@ -65,6 +65,14 @@ const OptionGroup<SolverSettings>& SolverOptions() {
               "missing in the frame (it replaces --rest_prior_weight on that joint then): only the "
               "markers of the bones below it would place it, e.g. a clavicle whose one shoulder marker "
               "is occluded, hinged on by the arm. Applies only with a subject's mean pose; 0 = off.", 0)
+      .Add(&S::hidden_twist_prior_weight, "hidden_twist_prior_weight", "mm/rad",
+           "Per-frame pull toward the subject's mean pose of the twist of a joint with two or more "
+              "markers of its own of which only one is seen in the frame, about the line from the joint "
+              "to that marker (the one direction it leaves free; --rest_prior_weight holds the others), "
+              "e.g. a foot's turn about its heel marker while the toe marker is occluded; only where the "
+              "markers of the bones below observe that twist by less than a tenth of this (after the "
+              "joints below make up what they can: a humerus whose forearm hinges on it is left to the "
+              "forearm). Applies only with a subject's mean pose; 0 = off.", 0)
       .Add(&S::limit_weight, "limit_weight", "mm/rad",
            "Soft joint limits (ASF 'limits'): 1 radian beyond a limit "
               "costs as much as this many mm of marker error; 0 = off (default: CMU's own solve "
@@ -169,6 +177,9 @@ Status MarkerSolveOptionsFromSettings(const SolverSettings& settings, const Leng
   options->hidden_rotation_weight = skeleton_unit.known()
                                         ? settings.hidden_joint_prior_weight / (1000.0 * skeleton_unit.metres_per_unit)
                                         : settings.hidden_joint_prior_weight;
+  options->twist_rotation_weight = skeleton_unit.known()
+                                       ? settings.hidden_twist_prior_weight / (1000.0 * skeleton_unit.metres_per_unit)
+                                       : settings.hidden_twist_prior_weight;
   options->limit_weight = skeleton_unit.known()
                               ? settings.limit_weight / (1000.0 * skeleton_unit.metres_per_unit)
                               : settings.limit_weight;

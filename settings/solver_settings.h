@@ -26,6 +26,12 @@ namespace mocapsolve {
 // bones below it alone would place it (a clavicle hinged on by the arm when its one shoulder
 // marker is missing). Chosen by the leak-free leave-one-out (BENCHMARKS.md).
 inline constexpr double kHiddenJointPriorWeight = 100.0;
+// The pull toward the subject's mean pose, mm per radian, of a joint's twist about the line to
+// its one observed marker while its other own markers are missing, where the markers below
+// hardly observe that twist (MarkerSolveOptions::twist_rotation_weight): a foot that keeps
+// its heel marker but not its toe marker turns freely about the heel one. Chosen by the
+// leak-free leave-one-out (BENCHMARKS.md).
+inline constexpr double kHiddenTwistPriorWeight = 100.0;
 
 struct SolverSettings {
   std::string solver = "dls";              // dls | dls_generic | ceres.
@@ -46,6 +52,8 @@ struct SolverSettings {
                                            // (kMeanPoseRestPriorWeight toward a mean pose, else off).
   double hidden_joint_prior_weight = kHiddenJointPriorWeight;  // mm/rad toward the mean pose of a
                                            // joint whose own markers are all missing; 0 = off.
+  double hidden_twist_prior_weight = kHiddenTwistPriorWeight;  // mm/rad toward the mean pose of
+                                           // a joint's twist about its one seen marker; 0 = off.
   double limit_weight = 0.0;               // mm of marker error per radian past a limit.
   std::string smooth_order = "velocity";   // velocity | acceleration.
   double smooth_weight = 1.0;

@@ -9,6 +9,7 @@
 #include "problems/marker_solve/joint_limit_residual.h"
 #include "problems/marker_solve/marker_residual.h"
 #include "problems/marker_solve/pose_prior_residual.h"
+#include "problems/marker_solve/twist_observability.h"
 #include "solvers/right_quaternion_manifold.h"
 #include "solvers/tree_dls_solver.h"
 
@@ -23,7 +24,7 @@ bool MarkerSolveOptions::IsValid(std::string* error) const {
     return *error = "loss scale must be positive and finite", false;
   }
   for (const double w : {prior_rotation_weight, rest_rotation_weight, hidden_rotation_weight,
-                         prior_translation_weight, limit_weight}) {
+                         twist_rotation_weight, prior_translation_weight, limit_weight}) {
     if (!(w >= 0.0) || !std::isfinite(w)) {
       return *error = "prior and limit weights must be finite and >= 0", false;
     }
@@ -131,13 +132,24 @@ class MarkerFrameSolver::Impl {
     }
     const bool rest_on = options.rest_rotation_weight > 0.0 && (given > 0 || !options.rest_prior_needs_reference);
     const bool hidden_on = options.hidden_rotation_weight > 0.0 && given > 0;
+    const bool twist_on = options.twist_rotation_weight > 0.0 && given > 0;
     for (int j : solved_joints_) {
-      const bool hideable = hidden_on && !own_markers_[j].empty();
+      const bool hideable = (hidden_on && !own_markers_[j].empty()) || (twist_on && own_markers_[j].size() >= 2);
       if (!rest_on && !hideable) continue;
       const double weight = rest_on ? options.rest_rotation_weight : 0.0;
       rotation_priors_.emplace_back(new RotationPriorResidual(&rest_rotations_[4 * j], weight));
       prior_joints_.push_back(j);
-      if (hideable) hideable_.push_back({j, rotation_priors_.back().get(), weight});
+      if (!hideable) continue;
+      Hideable h{j, rotation_priors_.back().get(), weight, {}};
+      // Each own marker's direction from the joint, in the joint's frame (zero: at the origin).
+      for (int m : own_markers_[j]) {
+        Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+        for (const MarkerAttachment& a : markers.marker(m).attachments) {
+          if (a.joint == j && a.offset.norm() > 1e-9) axis = a.offset.normalized();
+        }
+        h.axes.push_back(axis);
+      }
+      hideable_.push_back(std::move(h));
     }
     if (options.limit_weight > 0.0) {
       for (int j : solved_joints_) {
@@ -180,10 +192,27 @@ class MarkerFrameSolver::Impl {
     }
     if (num_visible == 0) return Status::Error("no marker observed");
     for (const Hideable& h : hideable_) {
-      bool seen = false;
-      for (int m : own_markers_[h.joint]) seen = seen || visible[m];
-      h.prior->set_weight(seen ? h.seen_weight : options_.hidden_rotation_weight);
-      if (!seen) report->held_joints.push_back(h.joint);
+      int seen = 0, last_seen = -1;
+      const std::vector<int>& own = own_markers_[h.joint];
+      for (size_t k = 0; k < own.size(); ++k) {
+        if (visible[own[k]]) ++seen, last_seen = static_cast<int>(k);
+      }
+      h.prior->clear_axis();
+      h.prior->set_weight(h.seen_weight);
+      if (seen == 0 && options_.hidden_rotation_weight > 0.0) {
+        h.prior->set_weight(options_.hidden_rotation_weight);
+        report->held_joints.push_back(h.joint);
+      } else if (seen == 1 && own.size() >= 2 && options_.twist_rotation_weight > 0.0) {
+        // Held only where the markers below observe the twist by less than a tenth of the
+        // prior's weight at the warm start (a humerus whose forearm hinges on it is left to
+        // the forearm: observed at 60 mm/rad, it is better placed by it than by the mean pose).
+        const Eigen::Vector3d& axis = h.axes[last_seen];
+        if (!axis.isZero() && options_.marker_weight * TwistObservability(skeleton_, markers_, *pose, h.joint, axis,
+                                                                          &visible) < kTwistObservedFraction * options_.twist_rotation_weight) {
+          h.prior->set_axis(axis.data(), options_.twist_rotation_weight);
+          report->twist_held_joints.push_back(h.joint);
+        }
+      }
     }
     if (options_.solver == SolverKind::kCeres) {
       if (visible != ceres_visible_ || ceres_problem_ == nullptr) BuildCeresProblem(visible);
@@ -319,11 +348,15 @@ class MarkerFrameSolver::Impl {
   std::vector<std::unique_ptr<RotationPriorResidual>> rotation_priors_;
   std::vector<int> prior_joints_;  // The joint of each rotation prior.
   std::vector<std::vector<int>> own_markers_;  // Per joint, the markers attached to it.
-  // A joint whose rest prior rises to hidden_rotation_weight while its own markers are missing.
+  // A joint whose rest prior rises to hidden_rotation_weight while its own markers are missing
+  // (or, about one axis, to twist_rotation_weight while only one of two or more is seen).
   struct Hideable {
     int joint;
     RotationPriorResidual* prior;
     double seen_weight;  // The prior's weight while some own marker is observed.
+    // Per own marker (own_markers_ order), its unit direction from the joint in the joint's
+    // frame, zero for a marker at the origin: the twist axis while it is the only one seen.
+    std::vector<Eigen::Vector3d> axes;
   };
   std::vector<Hideable> hideable_;
   std::unique_ptr<TranslationPriorResidual> translation_prior_;

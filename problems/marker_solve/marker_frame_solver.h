@@ -19,7 +19,15 @@
 // observed in the frame -- is pulled toward the reference with hidden_rotation_weight
 // instead, since only the markers of the bones below it would place it, e.g. a clavicle
 // whose one shoulder marker is missing, hinged on by the arm: strong enough to hold it at
-// the subject's mean pose), and soft joint limits (JointLimitResidual) where the skeleton has them.
+// the subject's mean pose; a joint with two or more markers of its own of which exactly one is
+// observed is held with twist_rotation_weight about the line from the joint to that marker
+// only -- the one direction the marker leaves free, e.g. a foot's turn about its heel marker
+// while the toe marker is missing -- and by the rest prior about the others, where the markers
+// below observe that twist, after the joints below have made up what they can, by less than
+// kTwistObservedFraction of twist_rotation_weight at the warm start
+// (problems/marker_solve/twist_observability.h: a humerus whose forearm hinges on it is left to
+// the forearm), and
+// soft joint limits (JointLimitResidual) where the skeleton has them.
 // Each joint's rotation stays on its dof set (Skeleton::rotation_axes, RotationManifold).
 //
 // Units: observations in the skeleton's length units; marker residuals scaled by
@@ -44,6 +52,12 @@
 
 namespace mocapsolve {
 
+// A joint's twist about its one observed marker is held (twist_rotation_weight) only where the
+// markers below observe it by less than this fraction of the prior's weight: observed at all
+// (a forearm hinged on a humerus, 60 mm/rad against the prior's 100) it is better placed by
+// them than by the mean pose (BENCHMARKS.md: a gate at the full weight moved LUPA 3.9 -> 28 mm).
+inline constexpr double kTwistObservedFraction = 0.1;
+
 struct MarkerSolveOptions {
   SolverKind solver = SolverKind::kDls;  // As every command's --solver.
   double marker_weight = 1.0;
@@ -59,6 +73,13 @@ struct MarkerSolveOptions {
   // observed in the frame (replaces rest_rotation_weight on that joint then); 0 = off.
   // Only toward a given reference (non-empty rest_rotations).
   double hidden_rotation_weight = 0.0;
+  // Per radian, toward rest_rotations, of the twist of a joint with two or more markers of
+  // its own exactly one of which is observed, about the line from the joint to that marker
+  // (the rest prior's weight stays on the other directions), where the markers below observe
+  // that twist by less than kTwistObservedFraction of this weight (TwistObservability at the
+  // warm start, over the observed markers, times marker_weight; a marker at the joint's
+  // origin: never). 0 = off. Only toward a given reference.
+  double twist_rotation_weight = 0.0;
   // The rest prior applies only toward a given reference (empty rest_rotations: off): the
   // default weight is meant for a subject's mean pose, not for zero rotations.
   bool rest_prior_needs_reference = false;
@@ -81,6 +102,8 @@ struct FrameSolveReport {
   double rms_marker_error = 0.0;  // sqrt(mean |x_pred - x_obs|^2), skeleton units.
   // Hidden joints held toward the reference with hidden_rotation_weight in this frame.
   std::vector<int> held_joints;
+  // Joints held about the line to their one observed marker with twist_rotation_weight.
+  std::vector<int> twist_held_joints;
   std::string brief;           // The solver's one-line report.
 };
 

@@ -9,6 +9,7 @@
 #include "kinematics/demo_character.h"
 #include "kinematics/forward_kinematics.h"
 #include "problems/marker_solve/synthetic_marker_set.h"
+#include "problems/marker_solve/twist_observability.h"
 #include "kinematics/rotation.h"
 
 namespace mocapsolve {
@@ -199,6 +200,80 @@ TEST_P(MarkerFrameSolverTest, HiddenJointIsHeldAtTheReference) {
   ASSERT_TRUE(reference_free.Solve(hidden, &a, &report).ok()) << report.brief;
   ASSERT_TRUE(unreferenced.Solve(hidden, &b, &report).ok()) << report.brief;
   EXPECT_LT(AngularDistance(a.rotations[shoulder], b.rotations[shoulder]), 1e-12);
+}
+
+// A joint that keeps one of its own markers (the others missing) is held with
+// twist_rotation_weight about the line to that marker only, where the markers below observe that
+// twist by less than kTwistObservedFraction of the weight: the arm's markers turn the shoulder 0.3 rad about that
+// line away from the mean pose and the weak rest prior follows them, the twist prior keeps it
+// nearer the mean; a 0.3 rad turn about a normal direction (which the seen marker itself shows)
+// is recovered as without the prior. A weight below the arm's observability holds nothing.
+TEST_P(MarkerFrameSolverTest, OneSeenMarkerHoldsOnlyTheTwistAboutIt) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  std::mt19937 rng(7);
+  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, rng());
+  const Motion walk = MakeDemoWalk(skeleton, 3, 30.0);
+  const int shoulder = skeleton.FindJoint("LeftShoulder");
+  ASSERT_GE(shoulder, 0);
+  const QuaternionVector mean_pose = walk.frames[2].rotations;
+  int kept = -1;
+  std::vector<int> dropped;
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    for (const MarkerAttachment& a : markers.marker(m).attachments) {
+      if (a.joint != shoulder) continue;
+      if (kept < 0) {
+        kept = m;
+      } else {
+        dropped.push_back(m);
+      }
+    }
+  }
+  ASSERT_GE(kept, 0);
+  ASSERT_GE(dropped.size(), 1u);
+  const Eigen::Vector3d u = markers.marker(kept).attachments[0].offset.normalized();
+  auto options_with = [&](double twist_weight) {
+    MarkerSolveOptions options;
+    options.solver = GetParam();
+    options.ceres = DefaultFrameCeresOptions();
+    options.dls.function_tolerance = options.ceres.function_tolerance = 1e-12;
+    options.rest_rotation_weight = 0.05;
+    options.hidden_rotation_weight = 20.0;
+    options.twist_rotation_weight = twist_weight;
+    options.rest_rotations = mean_pose;
+    return options;
+  };
+  // The arm observes the twist (its ball joint off the line): held only by a weight well above
+  // that (at the warm start, the markers below the shoulder all observed).
+  const double observed = TwistObservability(skeleton, markers, walk.frames[2], shoulder, u);
+  ASSERT_GT(observed, 1.0);
+  MarkerFrameSolver weak(skeleton, markers, options_with(0.0));
+  MarkerFrameSolver below(skeleton, markers, options_with(0.9 * observed / kTwistObservedFraction));
+  MarkerFrameSolver held(skeleton, markers, options_with(2.0 * observed / kTwistObservedFraction));
+  auto solve = [&](MarkerFrameSolver& solver, const Eigen::Vector3d& turn, FrameSolveReport* report) {
+    Pose truth = walk.frames[2];
+    truth.rotations[shoulder] = mean_pose[shoulder] * Eigen::Quaterniond(Eigen::AngleAxisd(0.3, turn));
+    std::vector<Eigen::Vector3d> observed = Observe(skeleton, markers, truth);
+    for (int m : dropped) observed[m] = Eigen::Vector3d::Constant(std::nan(""));
+    Pose pose = walk.frames[2];
+    EXPECT_TRUE(solver.Solve(observed, &pose, report).ok()) << report->brief;
+    return std::make_pair(pose.rotations[shoulder], truth.rotations[shoulder]);
+  };
+  FrameSolveReport report;
+  const auto [free_twist, truth_twist] = solve(weak, u, &report);
+  EXPECT_TRUE(report.twist_held_joints.empty());
+  solve(below, u, &report);
+  EXPECT_TRUE(report.twist_held_joints.empty());
+  const auto [held_twist, unused] = solve(held, u, &report);
+  EXPECT_EQ(report.twist_held_joints, std::vector<int>{shoulder});
+  EXPECT_TRUE(report.held_joints.empty());
+  // The arm places the twist: the weak prior lands near the truth, 0.3 rad from the mean.
+  EXPECT_LT(AngularDistance(free_twist, truth_twist), 0.01);
+  EXPECT_GT(AngularDistance(free_twist, mean_pose[shoulder]), 0.28);
+  // Held about u: at least twice nearer the mean pose.
+  EXPECT_LT(AngularDistance(held_twist, mean_pose[shoulder]), 0.15);
+  // A turn about a direction normal to u moves the seen marker: recovered with the prior on.
+  const auto [held_swing, truth_swing] = solve(held, u.unitOrthogonal(), &report);
+  EXPECT_LT(AngularDistance(held_swing, truth_swing), 0.01);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllSolvers, MarkerFrameSolverTest,

@@ -127,6 +127,28 @@ struct RotationPriorTwin {
   }
 };
 
+// Twin of the anisotropic rotation prior, from the header's formula: b = q_ref (x) (u, 0) by
+// Eigen's quaternion product, r = 2 [w I + (w_u - w) b b^T] (q - s q_ref).
+struct AxisRotationPriorTwin {
+  Eigen::Vector4d reference;
+  Eigen::Vector3d axis;
+  double weight, axis_weight;
+  template <typename T>
+  bool operator()(const T* q, T* r) const {
+    const Eigen::Quaterniond ref(reference[3], reference[0], reference[1], reference[2]);
+    const Eigen::Vector4d b = (ref * Eigen::Quaterniond(0.0, axis.x(), axis.y(), axis.z())).coeffs();
+    T dot(0.0);
+    for (int k = 0; k < 4; ++k) dot += q[k] * reference[k];
+    const T sign = dot < T(0.0) ? T(-1.0) : T(1.0);
+    T along(0.0);
+    for (int k = 0; k < 4; ++k) along += b[k] * (q[k] - sign * reference[k]);
+    for (int k = 0; k < 4; ++k) {
+      r[k] = T(2.0 * weight) * (q[k] - sign * reference[k]) + T(2.0 * (axis_weight - weight) * b[k]) * along;
+    }
+    return true;
+  }
+};
+
 struct TranslationPriorTwin {
   Eigen::Vector3d reference;
   double weight;
@@ -151,12 +173,47 @@ TEST(PosePriors, MatchTwinsAndNumericDerivatives) {
       RotationPriorResidual analytic(reference.data(), 1.5);
       ceres::AutoDiffCostFunction<RotationPriorTwin, 4, 4> twin(new RotationPriorTwin{reference, 1.5});
       ExpectJacobiansMatch(analytic, twin, {q.data()}, {&manifold});
+      // With an axis (the twist about a marker's direction): weight 40 about it, 1.5 else.
+      const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.8, 0.5).normalized();
+      RotationPriorResidual anisotropic(reference.data(), 1.5);
+      anisotropic.set_axis(axis.data(), 40.0);
+      ceres::AutoDiffCostFunction<AxisRotationPriorTwin, 4, 4> axis_twin(
+          new AxisRotationPriorTwin{reference, axis, 1.5, 40.0});
+      ExpectJacobiansMatch(anisotropic, axis_twin, {q.data()}, {&manifold});
     }
   }
   const Eigen::Vector3d t_ref(1, 2, 3), t(0.5, -1, 4);
   TranslationPriorResidual analytic(t_ref.data(), 0.7);
   ceres::AutoDiffCostFunction<TranslationPriorTwin, 3, 3> twin(new TranslationPriorTwin{t_ref, 0.7});
   ExpectJacobiansMatch(analytic, twin, {t.data()}, {nullptr});
+}
+
+// The axis weight prices the twist about u alone: a turn of q_ref about u costs weight_u per
+// radian, a turn about a normal direction weight, and clearing the axis restores the isotropic
+// residual bit for bit.
+TEST(PosePriors, AxisWeightActsOnTheTwistOnly) {
+  const Eigen::Quaterniond reference = ExpMap(Eigen::Vector3d(0.4, -1.1, 0.7));
+  const Eigen::Vector3d u = Eigen::Vector3d(1.0, 2.0, -0.5).normalized();
+  const Eigen::Vector3d normal = u.unitOrthogonal();
+  RotationPriorResidual prior(reference.coeffs().data(), 2.0);
+  prior.set_axis(u.data(), 50.0);
+  auto cost = [&](const Eigen::Quaterniond& q) {
+    Eigen::Vector4d r;
+    const double* parameters[] = {q.coeffs().data()};
+    EXPECT_TRUE(prior.Evaluate(parameters, r.data(), nullptr));
+    return r.norm();
+  };
+  const double angle = 1e-4;
+  EXPECT_NEAR(cost(reference * ExpMap(angle * u)), 50.0 * angle, 1e-9);
+  EXPECT_NEAR(cost(reference * ExpMap(angle * normal)), 2.0 * angle, 1e-9);
+  const Eigen::Quaterniond q = reference * ExpMap(Eigen::Vector3d(0.2, 0.1, -0.3));
+  prior.clear_axis();
+  RotationPriorResidual isotropic(reference.coeffs().data(), 2.0);
+  Eigen::Vector4d a, b;
+  const double* parameters[] = {q.coeffs().data()};
+  ASSERT_TRUE(prior.Evaluate(parameters, a.data(), nullptr));
+  ASSERT_TRUE(isotropic.Evaluate(parameters, b.data(), nullptr));
+  EXPECT_EQ(a, b);
 }
 
 }  // namespace
