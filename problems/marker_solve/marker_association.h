@@ -28,7 +28,14 @@
 //     (nearest 1.6 m); none: an error that names the extent.
 //  4. Rigid clusters (rigid_marker_clusters.h).
 //  5. Layout. Heights h (above the floor: the 2nd percentile of the lowest point, divided by
-//     E) and, in the pelvis' frame, side and forward coordinates, each a median over frames.
+//     the stature: E, or, when the top is no head, the top's height over 0.86: a gait set
+//     without head markers ends at C7, found by an acromion beside it, in the top band, in
+//     another rigid cluster and moving nearly with it) and, in the hip band's frame, side
+//     and forward coordinates, each a median over frames. That frame faces the band's
+//     heading in a take that travels straight (a sprint's thighs swing wider fore and aft
+//     than the hips are wide), else its principal axis is the left-right line. A cluster
+//     below the knees with points over 0.12 m apart on both sides of the midline (planted
+//     feet keep their distance, so they cluster) is split into its two sides.
 //     The pelvis is the cluster of >= 2 markers at h in [0.38, 0.72] that is widest and most
 //     central; its horizontal principal axis is the left-right line, and forward is the
 //     side where its markers are wider apart (the anterior iliac spines are wider than the
@@ -37,7 +44,9 @@
 //     other central cluster between them. On each side, the foot is the lowest cluster
 //     (h < 0.2), the shin and the thigh follow up the leg, each the cluster most rigidly
 //     joined to the previous one (the smallest spread of any cross pair: the joint's
-//     markers) within the leg's heights; the upper arm is the side's cluster above the
+//     markers) within the leg's heights, read in the leg's stance (the frames where the
+//     side's lowest leg point is within 0.06 of the floor: a sprint's feet are in the air
+//     most of the take); the upper arm is the side's cluster above the
 //     pelvis most rigidly joined to the chest (or head), the forearm and hand follow it the
 //     same way. A cluster left over takes the role of the cluster it moves most rigidly with.
 //  6. Confidence per marker, in [0, 1]: its cluster's separation (own mean spread against
