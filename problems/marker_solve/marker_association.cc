@@ -450,6 +450,41 @@ void BodyFrameCoordinates(const Scene& scene, Layout* layout, double* travel) {
 }
 
 
+// A leg's roles from its heights in its stance: the sampled frames where the side's lowest
+// leg point (group 1, side of that sign) is within kStance of the floor (a sprint's feet
+// are in the air most of the take, so their median heights are a shin's); the medians when
+// fewer than a tenth of the frames are stance. Per kept point; the median height off legs.
+std::vector<double> StanceHeights(const Layout& layout, const std::vector<std::vector<int>>& clusters,
+                                  const std::vector<int>& group, const std::vector<double>& side) {
+  std::vector<double> leg_height = layout.height;
+  for (const double sign : {1.0, -1.0}) {
+    std::vector<int> leg;
+    for (size_t c = 0; c < clusters.size(); ++c) {
+      if (group[c] == 1 && side[c] * sign > 0.0) leg.insert(leg.end(), clusters[c].begin(), clusters[c].end());
+    }
+    if (leg.empty()) continue;
+    const size_t frames = layout.frame_height[leg[0]].size();
+    std::vector<bool> stance(frames, false);
+    size_t count = 0;
+    for (size_t f = 0; f < frames; ++f) {
+      double lowest = kInf;
+      for (int i : leg) {
+        if (std::isfinite(layout.frame_height[i][f])) lowest = std::min(lowest, layout.frame_height[i][f]);
+      }
+      stance[f] = lowest < kStance, count += stance[f];
+    }
+    if (static_cast<double>(count) < 0.1 * static_cast<double>(frames)) continue;
+    for (int i : leg) {
+      std::vector<double> h;
+      for (size_t f = 0; f < frames; ++f) {
+        if (stance[f]) h.push_back(layout.frame_height[i][f]);
+      }
+      if (std::isfinite(Median(h))) leg_height[i] = Median(h);
+    }
+  }
+  return leg_height;
+}
+
 // Step 5's roles per marker, sides as "a_" (side0 > 0) and "b_" until forward is known.
 // Each cluster is a group: central (trunk), leg (a point below h 0.34, none above 0.6),
 // arm, or, below 0.6 and off centre, the group of the cluster it moves most rigidly with
@@ -525,36 +560,7 @@ void RoleFinder::Run() {
     }
     sided[c] = true;
   }
-  // A leg's roles from its heights in its stance: the sampled frames where the side's
-  // lowest leg point is within kStance of the floor (a sprint's feet are in the air most of
-  // the take, so their median heights are a shin's); the medians when fewer than a tenth
-  // of the frames are stance.
-  std::vector<double> leg_height = layout.height;
-  for (const double sign : {1.0, -1.0}) {
-    std::vector<int> leg;
-    for (size_t c = 0; c < clusters.size(); ++c) {
-      if (group[c] == 1 && side[c] * sign > 0.0) leg.insert(leg.end(), clusters[c].begin(), clusters[c].end());
-    }
-    if (leg.empty()) continue;
-    const size_t frames = layout.frame_height[leg[0]].size();
-    std::vector<bool> stance(frames, false);
-    size_t count = 0;
-    for (size_t f = 0; f < frames; ++f) {
-      double lowest = kInf;
-      for (int i : leg) {
-        if (std::isfinite(layout.frame_height[i][f])) lowest = std::min(lowest, layout.frame_height[i][f]);
-      }
-      stance[f] = lowest < kStance, count += stance[f];
-    }
-    if (static_cast<double>(count) < 0.1 * static_cast<double>(frames)) continue;
-    for (int i : leg) {
-      std::vector<double> h;
-      for (size_t f = 0; f < frames; ++f) {
-        if (stance[f]) h.push_back(layout.frame_height[i][f]);
-      }
-      if (std::isfinite(Median(h))) leg_height[i] = Median(h);
-    }
-  }
+  const std::vector<double> leg_height = StanceHeights(layout, clusters, group, side);
   // Shoulders: per side, the arm point nearest the upper trunk (points of the trunk group
   // above h 0.66; the whole trunk when none is).
   std::vector<int> upper_trunk, trunk;
