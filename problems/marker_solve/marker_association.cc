@@ -545,7 +545,7 @@ void RoleFinder::Run() {
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
     return ClusterMedian(clusters[a], layout.height) > ClusterMedian(clusters[b], layout.height);
   });
-  std::vector<bool> sided(clusters.size(), false);
+  std::vector<bool> sided(clusters.size(), false), linked(clusters.size(), false);
   for (size_t c : order) {
     if (group[c] != 1) continue;
     if (ClusterMedian(clusters[c], layout.height) >= 0.3 || std::abs(side[c]) >= 0.1 || split[c]) {
@@ -556,7 +556,10 @@ void RoleFinder::Run() {
     for (size_t o : order) {
       if (o == c || group[o] != 1 || !sided[o]) continue;
       const double spread = MinClusterSpread(pairs, clusters[c], clusters[o]);
-      if (spread < best) best = spread, side[c] = side[o] > 0.0 ? std::abs(side[c]) + 1e-6 : -std::abs(side[c]) - 1e-6;
+      if (spread < best) {
+        best = spread, linked[c] = true;
+        side[c] = side[o] > 0.0 ? std::abs(side[c]) + 1e-6 : -std::abs(side[c]) - 1e-6;
+      }
     }
     sided[c] = true;
   }
@@ -604,7 +607,8 @@ void RoleFinder::Run() {
         const double d = shoulder[k] < 0 ? 0.0 : pairs.distance(i, shoulder[k]) / std::max(reach[k], 1e-9);
         roles[i] = prefix + (!(d >= 0.5) ? "upper_arm" : d < 0.85 ? "forearm" : "hand");
       }
-      if (group[c] != 0 && std::abs(side[c]) < 0.03) certainty[i] = 0.7;
+      // Side unclear: near the midline, unless a joint links it to a sided leg cluster.
+      if (group[c] != 0 && std::abs(side[c]) < 0.03 && !linked[c]) certainty[i] = 0.7;
     }
   }
 }

@@ -51,8 +51,9 @@
 //     same way. A cluster left over takes the role of the cluster it moves most rigidly with.
 //  6. Confidence per marker, in [0, 1]: its cluster's separation (own mean spread against
 //     the nearest other cluster's), times 0.6 for a one-marker cluster, 0.5 for a leftover
-//     role, 0.7 when the side is unclear (|side| < 3 cm), times 0.5 when a side word in its
-//     label (L..., R..., left, right) disagrees with the side found (1.0 when it agrees).
+//     role, 0.7 when the side is unclear (|side| < 3 cm, and no joint links it to a sided
+//     leg cluster), times 0.5 when a side word in its label (L..., R..., left, right)
+//     disagrees with the side found (1.0 when it agrees).
 // Roles are named as humanoid_roles.h names joints (pelvis, chest, head, left_thigh,
 // left_shin, left_foot, left_upper_arm, left_forearm, left_hand, right_...).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_MARKER_ASSOCIATION_H_
