@@ -293,6 +293,7 @@ constexpr double kTopBand = 0.1;
 constexpr double kShoulderBesideNeck = 0.12;  // Metres.
 constexpr double kNeckOfStature = 0.86;
 constexpr double kStance = 0.06;  // Of the stature: a foot on the floor (step 5's legs).
+constexpr double kOwnSide = 0.05;  // Metres: a low leg cluster this far off the midline keeps its side.
 double StatureScale(const PairwiseSpread& pairs, const std::vector<std::vector<int>>& clusters,
                     const std::vector<double>& height) {
   const size_t n = height.size();
@@ -552,9 +553,12 @@ void RoleFinder::Run() {
       sided[c] = true;
       continue;
     }
+    // A cluster 5 cm or more off the midline is not taken across it (its own leg's thigh
+    // may be missing: a dropped marker).
+    const double own = side[c];
     double best = 0.05;
     for (size_t o : order) {
-      if (o == c || group[o] != 1 || !sided[o]) continue;
+      if (o == c || group[o] != 1 || !sided[o] || (std::abs(own) >= kOwnSide && side[o] * own < 0.0)) continue;
       const double spread = MinClusterSpread(pairs, clusters[c], clusters[o]);
       if (spread < best) {
         best = spread, linked[c] = true;
