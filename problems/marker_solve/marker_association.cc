@@ -46,7 +46,8 @@ struct Scene {
   double extent = 0.0;       // Median vertical extent, file units.
   double metres = 1.0;       // Metres per file unit.
   double floor = 0.0;        // File units, along sign * up.
-  double Height(const Eigen::Vector3d& x) const { return (sign * x[up] - floor) / extent; }
+  double stature = 0.0;       // File units: the extent, or more when the top is no head.
+  double Height(const Eigen::Vector3d& x) const { return (sign * x[up] - floor) / stature; }
   // Horizontal coordinates (a, b) with (e_a, e_b, e_up) right-handed.
   Eigen::Vector2d Flat(const Eigen::Vector3d& x) const { return {x[(up + 1) % 3], x[(up + 2) % 3]}; }
 };
@@ -172,6 +173,7 @@ void DetectUp(Scene* scene) {
   for (int k = 0; k < 3; ++k) median[k] = Median(extent[k]);
   median.maxCoeff(&scene->up);
   scene->extent = median[scene->up];
+  scene->stature = scene->extent;
   // Sign: feet apart at the bottom, one head at the top; else the steadier floor.
   std::vector<double> spread_low, spread_high, lows, highs;
   const int up = scene->up;
@@ -261,49 +263,171 @@ Status DetectUnit(const std::string& path, Scene* scene, MarkerAssociation* out)
 
 // Per kept point (index into scene.kept): median height, and, in the pelvis' frame, the
 // median side (along l x up... see header: side0 = -d.l) and forward (f0 = up x l) coordinates.
+// `frame_height[k][i]`: point k's height in sampled frame i (NaN where it is not seen).
 struct Layout {
   std::vector<double> height, side, forward;
+  std::vector<std::vector<double>> frame_height;
 };
 
-std::vector<double> MarkerHeights(const Scene& scene) {
-  std::vector<double> heights;
+void MarkerHeights(const Scene& scene, Layout* layout) {
+  layout->height.clear();
+  layout->frame_height.clear();
   for (int m : scene.kept) {
     std::vector<double> h;
     for (int f : scene.frames) {
-      if (scene.take->valid(f, m)) h.push_back(scene.Height(scene.take->position(f, m)));
+      h.push_back(scene.take->valid(f, m) ? scene.Height(scene.take->position(f, m)) : kNaN);
     }
-    heights.push_back(Median(h));
+    layout->height.push_back(Median(h));
+    layout->frame_height.push_back(std::move(h));
   }
-  return heights;
+}
+
+// The stature over the points' extent, when the body's top is no head. The top band: the
+// points within kTopBand below the highest one. The top is the base of the neck (C7, a
+// gait set without head markers) when two points of that band in different rigid clusters
+// (a head's markers share one) keep kShoulderBesideNeck to 0.3 m apart and move nearly
+// together (pair spread under 3 cm): an acromion beside C7. A head stands a neck over the
+// shoulders, and hands raised to its height move against it. Then the stature is the
+// top's height over kNeckOfStature (C7 stands at 0.86 of it). Returns extent / stature.
+constexpr double kTopBand = 0.1;
+constexpr double kShoulderBesideNeck = 0.12;  // Metres.
+constexpr double kNeckOfStature = 0.86;
+constexpr double kStance = 0.06;  // Of the stature: a foot on the floor (step 5's legs).
+constexpr double kOwnSide = 0.05;  // Metres: a low leg cluster this far off the midline keeps its side.
+double StatureScale(const PairwiseSpread& pairs, const std::vector<std::vector<int>>& clusters,
+                    const std::vector<double>& height) {
+  const size_t n = height.size();
+  std::vector<int> cluster_of(n, -1);
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    for (int i : clusters[c]) cluster_of[i] = static_cast<int>(c);
+  }
+  double top = -kInf;
+  for (double h : height) {
+    if (std::isfinite(h)) top = std::max(top, h);
+  }
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = i + 1; j < n; ++j) {
+      if (!(height[i] > top - kTopBand) || !(height[j] > top - kTopBand) || cluster_of[i] == cluster_of[j]) continue;
+      if (pairs.distance(i, j) > kShoulderBesideNeck && pairs.distance(i, j) < 0.3 && pairs.spread(i, j) < 0.03) {
+        if (std::getenv("MOCAPSOLVE_ASSOCIATION_DEBUG")) {
+          std::fprintf(stderr, "neck: points %zu, %zu at h %.2f, %.2f, %.2f m apart\n", i, j, height[i], height[j],
+                       pairs.distance(i, j));
+        }
+        return std::min(1.0, kNeckOfStature / top);
+      }
+    }
+  }
+  return 1.0;
+}
+
+double ClusterMedian(const std::vector<int>& cluster, const std::vector<double>& values) {
+  std::vector<double> v;
+  for (int i : cluster) v.push_back(values[i]);
+  return Median(v);
+}
+
+// Both feet planted (a squat, a stand) keep their distance: the clustering joins them
+// (and, in a symmetric squat, the shins) into one "rigid" cluster. A cluster whose points
+// are all below kLowLimb of the stature and whose points on either side of the midline lie
+// over kFeetApart apart (their medians across) is split into its two sides (one foot or
+// shin is narrower than that; the trunk is never so low).
+constexpr double kLowLimb = 0.3;
+constexpr double kFeetApart = 0.12;  // Metres.
+std::vector<std::vector<int>> SplitFeetAcrossMidline(const std::vector<std::vector<int>>& clusters,
+                                                     const Layout& layout, std::vector<bool>* split) {
+  std::vector<std::vector<int>> out;
+  split->clear();
+  for (const std::vector<int>& cluster : clusters) {
+    std::vector<int> sides[2];
+    bool low = true;
+    for (int i : cluster) {
+      low = low && layout.height[i] < kLowLimb;
+      sides[layout.side[i] > 0.0 ? 0 : 1].push_back(i);
+    }
+    if (low && !sides[0].empty() && !sides[1].empty() &&
+        ClusterMedian(sides[0], layout.side) - ClusterMedian(sides[1], layout.side) > kFeetApart) {
+      out.push_back(sides[0]), out.push_back(sides[1]);
+      split->push_back(true), split->push_back(true);
+    } else {
+      out.push_back(cluster);
+      split->push_back(false);
+    }
+  }
+  return out;
 }
 
 // Side (side0 = -d.l) and forward (f0 = up x l) coordinates of every kept point, medians
-// over frames, in the hip band's frame: origin the centroid of the points at heights
-// [0.4, 0.7] in that frame, l their principal horizontal axis (kept continuous). Also
-// `travel`: the band's displacement along f0 over the path length (walking is forward).
+// over frames, in the hip band's frame: origin the middle of the points at heights
+// [0.4, 0.7] in that frame. Its forward is the band's heading where the body travels (over
+// kTravelSpeed, the band's displacement over kHeadingWindow: a walk, a run) and l = f0 x
+// up; elsewhere l is the band's principal horizontal axis (kept continuous). A sprint's
+// thighs swing wider fore and aft than the hips are wide, so the principal axis alone
+// turns the frame by 90 degrees there. Also `travel`: the band's displacement along f0
+// over the path length (walking is forward).
+constexpr double kTravelSpeed = 0.5;     // Metres per second.
+constexpr double kHeadingWindow = 0.5;   // Seconds.
+constexpr double kStraight = 0.8;
 void BodyFrameCoordinates(const Scene& scene, Layout* layout, double* travel) {
   const MarkerTrajectories& take = *scene.take;
   const size_t n = scene.kept.size();
+  // The band's points and centroid per sampled frame.
+  std::vector<std::vector<Eigen::Vector2d>> band(scene.frames.size());
+  std::vector<Eigen::Vector2d> centroid(scene.frames.size(), Eigen::Vector2d::Constant(kNaN));
+  for (size_t s = 0; s < scene.frames.size(); ++s) {
+    for (int m : scene.kept) {
+      if (!take.valid(scene.frames[s], m)) continue;
+      const double h = scene.Height(take.position(scene.frames[s], m));
+      if (h >= 0.4 && h <= 0.7) band[s].push_back(scene.Flat(take.position(scene.frames[s], m)));
+    }
+    if (band[s].size() < 3) continue;
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    for (const auto& p : band[s]) c += p;
+    centroid[s] = c / static_cast<double>(band[s].size());
+  }
+  const double rate = take.frame_rate > 0.0 ? take.frame_rate : 100.0;
+  auto heading = [&](size_t s) -> Eigen::Vector2d {
+    size_t a = s, b = s;
+    const double t = scene.frames[s] / rate;
+    while (a > 0 && t - scene.frames[a - 1] / rate <= 0.5 * kHeadingWindow) --a;
+    while (b + 1 < scene.frames.size() && scene.frames[b + 1] / rate - t <= 0.5 * kHeadingWindow) ++b;
+    const double dt = (scene.frames[b] - scene.frames[a]) / rate;
+    if (dt <= 0.0 || !centroid[a].allFinite() || !centroid[b].allFinite()) return Eigen::Vector2d::Zero();
+    const Eigen::Vector2d d = centroid[b] - centroid[a];
+    return d.norm() * scene.metres / dt > kTravelSpeed ? Eigen::Vector2d(d.normalized()) : Eigen::Vector2d::Zero();
+  };
+  // Straight travel: over kTravelSpeed in at least a quarter of the sampled frames, and
+  // their headings' sum over kStraight of its terms' lengths.
+  Eigen::Vector2d net = Eigen::Vector2d::Zero();
+  double length = 0.0;
+  for (size_t s = 0; s < scene.frames.size(); ++s) {
+    const Eigen::Vector2d ahead = heading(s);
+    net += ahead, length += ahead.norm();
+  }
+  const bool straight = length >= 0.25 * static_cast<double>(scene.frames.size()) && net.norm() > kStraight * length;
+  if (std::getenv("MOCAPSOLVE_ASSOCIATION_DEBUG")) {
+    std::fprintf(stderr, "travel: %.0f sampled frames over %.1f m/s, straightness %.2f\n", length,
+                 kTravelSpeed, length > 0.0 ? net.norm() / length : 0.0);
+  }
   std::vector<std::vector<double>> side(n), forward(n);
   Eigen::Vector2d last = Eigen::Vector2d::Zero(), previous = Eigen::Vector2d::Constant(kNaN);
   double along = 0.0, path = 0.0;
-  for (int f : scene.frames) {
-    std::vector<Eigen::Vector2d> points;
-    for (int m : scene.kept) {
-      if (!take.valid(f, m)) continue;
-      const double h = scene.Height(take.position(f, m));
-      if (h >= 0.4 && h <= 0.7) points.push_back(scene.Flat(take.position(f, m)));
-    }
+  for (size_t s = 0; s < scene.frames.size(); ++s) {
+    const int f = scene.frames[s];
+    const std::vector<Eigen::Vector2d>& points = band[s];
     if (points.size() < 3) continue;
-    Eigen::Vector2d c = Eigen::Vector2d::Zero();
-    for (const auto& p : points) c += p;
-    c /= static_cast<double>(points.size());
-    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-    for (const auto& p : points) cov += (p - c) * (p - c).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
-    Eigen::Vector2d l = eig.eigenvectors().col(1);
-    if (last.squaredNorm() > 0.0 && l.dot(last) < 0.0) l = -l;
-    if (last.squaredNorm() == 0.0 && l.x() + l.y() < 0.0) l = -l;  // Any fixed start.
+    Eigen::Vector2d c = centroid[s];
+    Eigen::Vector2d l;
+    const Eigen::Vector2d ahead = straight ? heading(s) : Eigen::Vector2d::Zero();
+    if (ahead.squaredNorm() > 0.0) {
+      l = scene.sign * Eigen::Vector2d(ahead.y(), -ahead.x());  // f0 = sign (-l.y, l.x) = ahead.
+    } else {
+      Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+      for (const auto& p : points) cov += (p - c) * (p - c).transpose();
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+      l = eig.eigenvectors().col(1);
+      if (last.squaredNorm() > 0.0 && l.dot(last) < 0.0) l = -l;
+      if (last.squaredNorm() == 0.0 && l.x() + l.y() < 0.0) l = -l;  // Any fixed start.
+    }
     last = l;
     const Eigen::Vector2d f0 = scene.sign * Eigen::Vector2d(-l.y(), l.x());  // up x l.
     // Across, the middle of the band's extremes (a missing marker on one side does not
@@ -326,10 +450,40 @@ void BodyFrameCoordinates(const Scene& scene, Layout* layout, double* travel) {
   *travel = path > 0.0 ? along / path : 0.0;
 }
 
-double ClusterMedian(const std::vector<int>& cluster, const std::vector<double>& values) {
-  std::vector<double> v;
-  for (int i : cluster) v.push_back(values[i]);
-  return Median(v);
+
+// A leg's roles from its heights in its stance: the sampled frames where the side's lowest
+// leg point (group 1, side of that sign) is within kStance of the floor (a sprint's feet
+// are in the air most of the take, so their median heights are a shin's); the medians when
+// fewer than a tenth of the frames are stance. Per kept point; the median height off legs.
+std::vector<double> StanceHeights(const Layout& layout, const std::vector<std::vector<int>>& clusters,
+                                  const std::vector<int>& group, const std::vector<double>& side) {
+  std::vector<double> leg_height = layout.height;
+  for (const double sign : {1.0, -1.0}) {
+    std::vector<int> leg;
+    for (size_t c = 0; c < clusters.size(); ++c) {
+      if (group[c] == 1 && side[c] * sign > 0.0) leg.insert(leg.end(), clusters[c].begin(), clusters[c].end());
+    }
+    if (leg.empty()) continue;
+    const size_t frames = layout.frame_height[leg[0]].size();
+    std::vector<bool> stance(frames, false);
+    size_t count = 0;
+    for (size_t f = 0; f < frames; ++f) {
+      double lowest = kInf;
+      for (int i : leg) {
+        if (std::isfinite(layout.frame_height[i][f])) lowest = std::min(lowest, layout.frame_height[i][f]);
+      }
+      stance[f] = lowest < kStance, count += stance[f];
+    }
+    if (static_cast<double>(count) < 0.1 * static_cast<double>(frames)) continue;
+    for (int i : leg) {
+      std::vector<double> h;
+      for (size_t f = 0; f < frames; ++f) {
+        if (stance[f]) h.push_back(layout.frame_height[i][f]);
+      }
+      if (std::isfinite(Median(h))) leg_height[i] = Median(h);
+    }
+  }
+  return leg_height;
 }
 
 // Step 5's roles per marker, sides as "a_" (side0 > 0) and "b_" until forward is known.
@@ -342,6 +496,7 @@ double ClusterMedian(const std::vector<int>& cluster, const std::vector<double>&
 struct RoleFinder {
   const PairwiseSpread& pairs;
   const std::vector<std::vector<int>>& clusters;
+  const std::vector<bool>& split;  // Per cluster: one side of a cluster split at the midline.
   const Layout& layout;
   std::vector<std::string> roles;    // Per kept point.
   std::vector<double> certainty;     // Per kept point.
@@ -383,28 +538,36 @@ void RoleFinder::Run() {
   }
   // A limb cluster's side is its median's; a shin or foot (below h 0.3) takes the side of
   // the leg cluster above it that it moves most rigidly with (a walk's feet pass under the
-  // body's midline, the thighs do not).
+  // body's midline, the thighs do not), unless it is one side of a split cluster (planted
+  // feet: the other foot is as rigid with the shin as its own).
   std::vector<double> side(clusters.size());
   std::vector<size_t> order(clusters.size());
   for (size_t c = 0; c < clusters.size(); ++c) side[c] = ClusterMedian(clusters[c], layout.side), order[c] = c;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
     return ClusterMedian(clusters[a], layout.height) > ClusterMedian(clusters[b], layout.height);
   });
-  std::vector<bool> sided(clusters.size(), false);
+  std::vector<bool> sided(clusters.size(), false), linked(clusters.size(), false);
   for (size_t c : order) {
     if (group[c] != 1) continue;
-    if (ClusterMedian(clusters[c], layout.height) >= 0.3 || std::abs(side[c]) >= 0.1) {
+    if (ClusterMedian(clusters[c], layout.height) >= 0.3 || std::abs(side[c]) >= 0.1 || split[c]) {
       sided[c] = true;
       continue;
     }
+    // A cluster 5 cm or more off the midline is not taken across it (its own leg's thigh
+    // may be missing: a dropped marker).
+    const double own = side[c];
     double best = 0.05;
     for (size_t o : order) {
-      if (o == c || group[o] != 1 || !sided[o]) continue;
+      if (o == c || group[o] != 1 || !sided[o] || (std::abs(own) >= kOwnSide && side[o] * own < 0.0)) continue;
       const double spread = MinClusterSpread(pairs, clusters[c], clusters[o]);
-      if (spread < best) best = spread, side[c] = side[o] > 0.0 ? std::abs(side[c]) + 1e-6 : -std::abs(side[c]) - 1e-6;
+      if (spread < best) {
+        best = spread, linked[c] = true;
+        side[c] = side[o] > 0.0 ? std::abs(side[c]) + 1e-6 : -std::abs(side[c]) - 1e-6;
+      }
     }
     sided[c] = true;
   }
+  const std::vector<double> leg_height = StanceHeights(layout, clusters, group, side);
   // Shoulders: per side, the arm point nearest the upper trunk (points of the trunk group
   // above h 0.66; the whole trunk when none is).
   std::vector<int> upper_trunk, trunk;
@@ -442,13 +605,14 @@ void RoleFinder::Run() {
       if (group[c] == 0) {
         roles[i] = h < 0.66 ? "pelvis" : h > 0.91 ? "head" : "chest";
       } else if (group[c] == 1) {
-        roles[i] = prefix + (h < 0.1 ? "foot" : h < 0.29 ? "shin" : "thigh");
+        roles[i] = prefix + (leg_height[i] < 0.1 ? "foot" : leg_height[i] < 0.29 ? "shin" : "thigh");
       } else {
         const int k = side[c] > 0.0 ? 0 : 1;
         const double d = shoulder[k] < 0 ? 0.0 : pairs.distance(i, shoulder[k]) / std::max(reach[k], 1e-9);
         roles[i] = prefix + (!(d >= 0.5) ? "upper_arm" : d < 0.85 ? "forearm" : "hand");
       }
-      if (group[c] != 0 && std::abs(side[c]) < 0.03) certainty[i] = 0.7;
+      // Side unclear: near the midline, unless a joint links it to a sided leg cluster.
+      if (group[c] != 0 && std::abs(side[c]) < 0.03 && !linked[c]) certainty[i] = 0.7;
     }
   }
 }
@@ -602,12 +766,16 @@ Status AssociateMarkers(const MarkerTrajectories& take, const std::string& path,
     scene.kept = kept;
     pairs = ComputePairwiseSpread(take, scene.kept, scene.metres, options.clusters);
   }
-  const std::vector<std::vector<int>> clusters = ClusterRigidMarkers(pairs, options.clusters);
+  const std::vector<std::vector<int>> rigid = ClusterRigidMarkers(pairs, options.clusters);
   Layout layout;
-  layout.height = MarkerHeights(scene);
+  MarkerHeights(scene, &layout);
+  scene.stature = scene.extent / StatureScale(pairs, rigid, layout.height);
+  if (scene.stature != scene.extent) MarkerHeights(scene, &layout);
   double travel = 0.0;
   BodyFrameCoordinates(scene, &layout, &travel);
-  RoleFinder finder{pairs, clusters, layout, {}, {}};
+  std::vector<bool> split;
+  const std::vector<std::vector<int>> clusters = SplitFeetAcrossMidline(rigid, layout, &split);
+  RoleFinder finder{pairs, clusters, split, layout, {}, {}};
   finder.Run();
   std::vector<std::string> labels;
   // Without the subject prefix ("Nick01:"), as the fit's marker sets name them.

@@ -28,7 +28,14 @@
 //     (nearest 1.6 m); none: an error that names the extent.
 //  4. Rigid clusters (rigid_marker_clusters.h).
 //  5. Layout. Heights h (above the floor: the 2nd percentile of the lowest point, divided by
-//     E) and, in the pelvis' frame, side and forward coordinates, each a median over frames.
+//     the stature: E, or, when the top is no head, the top's height over 0.86: a gait set
+//     without head markers ends at C7, found by an acromion beside it, in the top band, in
+//     another rigid cluster and moving nearly with it) and, in the hip band's frame, side
+//     and forward coordinates, each a median over frames. That frame faces the band's
+//     heading in a take that travels straight (a sprint's thighs swing wider fore and aft
+//     than the hips are wide), else its principal axis is the left-right line. A cluster
+//     below the knees with points over 0.12 m apart on both sides of the midline (planted
+//     feet keep their distance, so they cluster) is split into its two sides.
 //     The pelvis is the cluster of >= 2 markers at h in [0.38, 0.72] that is widest and most
 //     central; its horizontal principal axis is the left-right line, and forward is the
 //     side where its markers are wider apart (the anterior iliac spines are wider than the
@@ -37,13 +44,16 @@
 //     other central cluster between them. On each side, the foot is the lowest cluster
 //     (h < 0.2), the shin and the thigh follow up the leg, each the cluster most rigidly
 //     joined to the previous one (the smallest spread of any cross pair: the joint's
-//     markers) within the leg's heights; the upper arm is the side's cluster above the
+//     markers) within the leg's heights, read in the leg's stance (the frames where the
+//     side's lowest leg point is within 0.06 of the floor: a sprint's feet are in the air
+//     most of the take); the upper arm is the side's cluster above the
 //     pelvis most rigidly joined to the chest (or head), the forearm and hand follow it the
 //     same way. A cluster left over takes the role of the cluster it moves most rigidly with.
 //  6. Confidence per marker, in [0, 1]: its cluster's separation (own mean spread against
 //     the nearest other cluster's), times 0.6 for a one-marker cluster, 0.5 for a leftover
-//     role, 0.7 when the side is unclear (|side| < 3 cm), times 0.5 when a side word in its
-//     label (L..., R..., left, right) disagrees with the side found (1.0 when it agrees).
+//     role, 0.7 when the side is unclear (|side| < 3 cm, and no joint links it to a sided
+//     leg cluster), times 0.5 when a side word in its label (L..., R..., left, right)
+//     disagrees with the side found (1.0 when it agrees).
 // Roles are named as humanoid_roles.h names joints (pelvis, chest, head, left_thigh,
 // left_shin, left_foot, left_upper_arm, left_forearm, left_hand, right_...).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_MARKER_ASSOCIATION_H_

@@ -15,6 +15,7 @@
 
 #include "kinematics/demo_character.h"
 #include "kinematics/forward_kinematics.h"
+#include "kinematics/rotation.h"
 #include "problems/marker_solve/rigid_marker_clusters.h"
 #include "problems/marker_solve/synthetic_marker_set.h"
 
@@ -44,33 +45,127 @@ struct Take {
   std::map<std::string, std::string> joint;  // Label -> the demo joint it rides on.
 };
 
-// z_up: file axes (x, -z, y) of the demo's (x, y, z) (right-handed, Z up).
-Take MakeTake(bool z_up, bool unit_known) {
-  const Skeleton skeleton = MakeDemoSkeleton();
-  const Motion motion = MakeDemoWalk(skeleton, 240, 60.0);
-  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, 7);
+// z_up: file axes (x, -z, y) of the demo's (x, y, z) (right-handed, Z up). Markers on the
+// joints in `without` are left out (a protocol without them).
+Take MakeTakeOf(const Skeleton& skeleton, const Motion& motion, bool z_up, bool unit_known,
+                const std::set<std::string>& without = {}) {
+  const int frames = static_cast<int>(motion.frames.size());
+  const MarkerSet all = MakeSyntheticMarkerSet(skeleton, 3, 7);
+  std::vector<int> kept;
+  for (int m = 0; m < all.num_markers(); ++m) {
+    if (!without.count(skeleton.name(all.marker(m).attachments[0].joint))) kept.push_back(m);
+  }
+  const int n = static_cast<int>(kept.size());
   std::vector<std::string> labels;
   Take take;
-  for (int m = 0; m < markers.num_markers(); ++m) {
-    labels.push_back("Q" + std::to_string((m * 37) % markers.num_markers()));
-    take.joint[labels.back()] = skeleton.name(markers.marker(m).attachments[0].joint);
+  for (int k = 0; k < n; ++k) {
+    labels.push_back("Q" + std::to_string((k * 37) % n));
+    take.joint[labels.back()] = skeleton.name(all.marker(kept[k]).attachments[0].joint);
   }
   labels.push_back("still");
   labels.push_back("rare");
-  take.trajectories = MarkerTrajectories(labels, 240);
-  take.trajectories.frame_rate = 60.0;
+  take.trajectories = MarkerTrajectories(labels, frames);
+  take.trajectories.frame_rate = motion.frame_rate;
   take.trajectories.unit = unit_known ? Centimetres() : LengthUnit();
   FkData fk(skeleton);
-  for (int f = 0; f < 240; ++f) {
+  for (int f = 0; f < frames; ++f) {
     ForwardKinematics(skeleton, motion.frames[f], &fk);
-    for (int m = 0; m < markers.num_markers(); ++m) {
-      const Eigen::Vector3d x = markers.Position(m, fk);
-      take.trajectories.SetSample(f, m, z_up ? Eigen::Vector3d(x.x(), -x.z(), x.y()) : x);
+    for (int k = 0; k < n; ++k) {
+      const Eigen::Vector3d x = all.Position(kept[k], fk);
+      take.trajectories.SetSample(f, k, z_up ? Eigen::Vector3d(x.x(), -x.z(), x.y()) : x);
     }
-    take.trajectories.SetSample(f, markers.num_markers(), Eigen::Vector3d(500.0, 0.0, 500.0));
-    if (f % 30 == 0) take.trajectories.SetSample(f, markers.num_markers() + 1, Eigen::Vector3d(0.0, 100.0, 0.0));
+    take.trajectories.SetSample(f, n, Eigen::Vector3d(500.0, 0.0, 500.0));
+    if (f % 30 == 0) take.trajectories.SetSample(f, n + 1, Eigen::Vector3d(0.0, 100.0, 0.0));
   }
   return take;
+}
+
+Take MakeTake(bool z_up, bool unit_known) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  return MakeTakeOf(skeleton, MakeDemoWalk(skeleton, 240, 60.0), z_up, unit_known);
+}
+
+// Sets a demo joint's rotation as the demo walk does (degrees about x, y, z).
+void SetJoint(const Skeleton& skeleton, Pose* pose, const char* joint, double x_deg, double y_deg, double z_deg) {
+  const int j = skeleton.FindJoint(joint);
+  ASSERT_GE(j, 0) << joint;
+  pose->rotations[j] =
+      QuaternionFromEuler(Eigen::Vector3d(DegToRad(z_deg), DegToRad(x_deg), DegToRad(y_deg)), EulerOrder::kZXY);
+}
+
+// Moves the root so that the lower foot stands on the floor (y = 0) and stays put while it
+// is the lower one: the body travels by its strides, as on the ground.
+void GroundOnTheLowerFoot(const Skeleton& skeleton, Motion* motion) {
+  const int feet[2] = {skeleton.FindJoint("LeftFoot"), skeleton.FindJoint("RightFoot")};  // The ankles.
+  FkData fk(skeleton);
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero(), previous = Eigen::Vector3d::Zero();
+  int stance = -1;
+  for (Pose& pose : motion->frames) {
+    ForwardKinematics(skeleton, pose, &fk);
+    const int lower = fk.world_positions[feet[0]].y() < fk.world_positions[feet[1]].y() ? feet[0] : feet[1];
+    const Eigen::Vector3d foot = fk.world_positions[stance < 0 ? lower : stance];
+    if (stance >= 0) shift += previous - foot;  // The stance foot does not slide.
+    shift.y() = -fk.world_positions[lower].y();
+    stance = lower;
+    previous = fk.world_positions[lower];
+    pose.translations[0] += shift;
+  }
+}
+
+// A sprint of the demo character, on the ground: a stride of 0.7 s, the thighs swinging 55 degrees
+// each way (their markers spread wider fore and aft than the hips are wide) and the knees
+// bending to 110 degrees (the feet in the air most of the stride).
+Motion MakeSprint(const Skeleton& skeleton, int num_frames, double frame_rate) {
+  Motion motion;
+  motion.frame_rate = frame_rate;
+  for (int f = 0; f < num_frames; ++f) {
+    const double t = f / frame_rate, phase = 2.0 * kPi * t / 0.7;
+    const double s = std::sin(phase), c = std::cos(phase);
+    Pose pose = RestPose(skeleton);
+    SetJoint(skeleton, &pose, "Hips", 0, 10 * s, 0);
+    SetJoint(skeleton, &pose, "Chest", 8, -8 * s, 0);
+    SetJoint(skeleton, &pose, "LeftUpLeg", -20 - 45 * s, 0, 2);
+    SetJoint(skeleton, &pose, "LeftLeg", 60 + 50 * c, 0, 0);
+    SetJoint(skeleton, &pose, "RightUpLeg", -20 + 45 * s, 0, -2);
+    SetJoint(skeleton, &pose, "RightLeg", 60 - 50 * c, 0, 0);
+    SetJoint(skeleton, &pose, "LeftArm", 50 * s, 0, -70);
+    SetJoint(skeleton, &pose, "LeftForeArm", 0, -80, 0);
+    SetJoint(skeleton, &pose, "RightArm", -50 * s, 0, 70);
+    SetJoint(skeleton, &pose, "RightForeArm", 0, 80, 0);
+    motion.frames.push_back(pose);
+  }
+  GroundOnTheLowerFoot(skeleton, &motion);
+  return motion;
+}
+
+// Squats of the demo character with its feet planted: hips flexed a, knees 2a, ankles a
+// back (the feet flat), a from 0 to 70 degrees and back every 2 s; the root moved so that
+// the left ankle stays put (thigh and shin differ by 1 cm: the right one too, within a cm).
+Motion MakeSquats(const Skeleton& skeleton, int num_frames, double frame_rate) {
+  Motion motion;
+  motion.frame_rate = frame_rate;
+  FkData fk(skeleton);
+  const int ankle = skeleton.FindJoint("LeftFoot");
+  ForwardKinematics(skeleton, RestPose(skeleton), &fk);
+  const Eigen::Vector3d planted = fk.world_positions[ankle];
+  for (int f = 0; f < num_frames; ++f) {
+    const double t = f / frame_rate, a = 35.0 * (1.0 - std::cos(2.0 * kPi * t / 2.0));
+    Pose pose = RestPose(skeleton);
+    for (const char* side : {"Left", "Right"}) {
+      SetJoint(skeleton, &pose, (std::string(side) + "UpLeg").c_str(), -a, 0, 0);
+      SetJoint(skeleton, &pose, (std::string(side) + "Leg").c_str(), 2 * a, 0, 0);
+      SetJoint(skeleton, &pose, (std::string(side) + "Foot").c_str(), -a, 0, 0);
+    }
+    SetJoint(skeleton, &pose, "Chest", 0.4 * a, 10 * std::sin(2.0 * kPi * t / 3.0), 0);
+    SetJoint(skeleton, &pose, "LeftArm", -a, 0, -70 + 0.5 * a);
+    SetJoint(skeleton, &pose, "RightArm", -a, 0, 70 - 0.5 * a);
+    SetJoint(skeleton, &pose, "LeftForeArm", 0, -20 - 0.3 * a, 0);
+    SetJoint(skeleton, &pose, "RightForeArm", 0, 20 + 0.3 * a, 0);
+    ForwardKinematics(skeleton, pose, &fk);
+    pose.translations[0] += planted - fk.world_positions[ankle];
+    motion.frames.push_back(pose);
+  }
+  return motion;
 }
 
 int CountCorrect(const Take& take, const MarkerAssociation& association, std::string* wrong) {
@@ -110,6 +205,49 @@ TEST(MarkerAssociationTest, RecoversSegmentsUpAndUnitsOfARenamedSyntheticBody) {
       }
     }
   }
+}
+
+// A gait set without head markers (the top of the body is C7, not a head: every height
+// over the points' extent reads too high) on a sprint (the thighs swing wider than the hips,
+// the feet are in the air most of the take): before, the pelvis read as chest, the feet as
+// shins, the shoulders as a head (measured before: 9 and 7 of 54 right; now every one).
+TEST(MarkerAssociationTest, AGaitSetWithoutHeadMarkersOnASprint) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  for (const bool z_up : {false, true}) {
+    SCOPED_TRACE(z_up ? "Z up" : "Y up");
+    const Take take = MakeTakeOf(skeleton, MakeSprint(skeleton, 150, 100.0), z_up, true, {"Head", "Neck"});
+    MarkerAssociation association;
+    ASSERT_TRUE(AssociateMarkers(take.trajectories, "sprint.trc", MarkerAssociationOptions(), &association).ok());
+    EXPECT_EQ(association.up_axis, z_up ? 2 : 1);
+    EXPECT_EQ(association.up_sign, 1);
+    std::string wrong;
+    const int correct = CountCorrect(take, association, &wrong);
+    const int total = static_cast<int>(take.joint.size());
+    EXPECT_GE(correct, 0.9 * total) << correct << " of " << total << " correct; wrong:" << wrong;
+  }
+}
+
+// Squats with the feet planted: the two feet keep their distance (and, the squat being
+// symmetric, the shins too), so the rigid clusters join them into one; it is split by side
+// (before, both feet took one side's role).
+TEST(MarkerAssociationTest, PlantedFeetAreTwoFeet) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const Take take = MakeTakeOf(skeleton, MakeSquats(skeleton, 400, 60.0), false, true);
+  MarkerAssociation association;
+  ASSERT_TRUE(AssociateMarkers(take.trajectories, "squat.c3d", MarkerAssociationOptions(), &association).ok());
+  // Each foot's markers on one side, the two feet on two sides (which is left depends on
+  // the forward direction, which a symmetric squat leaves to weak votes).
+  std::map<std::string, std::set<std::string>> sides;  // Foot -> the sides its markers took.
+  for (const AssociatedMarker& a : association.markers) {
+    const std::string joint = take.joint.count(a.label) ? take.joint.at(a.label) : "";
+    if (joint != "LeftFoot" && joint != "RightFoot" && joint != "LeftToe" && joint != "RightToe") continue;
+    sides[joint.substr(0, joint.find("Foot") == std::string::npos ? joint.find("Toe") : joint.find("Foot"))].insert(
+        a.role.substr(0, a.role.find('_')));
+  }
+  ASSERT_EQ(sides.size(), 2u);
+  ASSERT_EQ(sides["Left"].size(), 1u);
+  ASSERT_EQ(sides["Right"].size(), 1u);
+  EXPECT_NE(*sides["Left"].begin(), *sides["Right"].begin()) << "both feet on the " << *sides["Left"].begin();
 }
 
 // A lab's model outputs written as points (Nexus joint angles in degrees, a force in N/kg, a
