@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <string>
+
+#include <Eigen/Geometry>
 
 namespace mocapsolve {
 namespace {
@@ -20,6 +23,13 @@ constexpr double kTrackExchangeRatio = 0.95;
 // leans on the pose solved from the others, a weaker witness than its own track (0.5 cost
 // real nick_freeform_001 and synthetic JA1Gait35 wrong runs of 57-163 frames; 0.7 none).
 constexpr double kSecondPassConfidence = 0.7;
+// RefindClusters: the rigid fit's RMS residual at most this many `gate`s; the turn of a
+// joint in one frame scored against kRefindTurn radians; the best choice taken when the
+// next is worse by kRefindMargin.
+constexpr double kRefindResidual = 0.4;
+constexpr double kRefindTurn = 0.7;
+constexpr double kRefindMargin = 0.5;
+constexpr double kRefindMaxChoices = 4096;  // A crowd of candidate points: left to SecondPass.
 
 // What tracking carries from frame to frame.
 struct TrackState {
@@ -112,6 +122,7 @@ class Tracker {
         AssignGated(predicted, gate, points_[f], &matches);
       }
     }
+    RefindClusters(f, &matches);
     SecondPass(f, &matches);
     if (options_.polish_every > 0 && ++since_polish_ >= options_.polish_every) Polish(f, &matches);
     if (options_.refill_every > 0 && ++since_refill_ >= options_.refill_every) {
@@ -156,6 +167,119 @@ class Tracker {
       if (!used[k]) free_points->push_back(points[k]), free_index->push_back(static_cast<int>(k));
     }
     return true;
+  }
+  // A joint's markers that miss their constant-velocity gates together (a kick's onset: a
+  // foot's speed jumps by 50-90 mm in a frame) are lost together, and the pose solved
+  // without them leaves the joint where it was: the next frames' model predictions miss
+  // too, or give a neighbour's point (a toe's three markers held shifted by one for the
+  // rest of the take on the demo walk's fast kicks). So a rigid cluster (>= 3 markers on
+  // one joint) with three or more markers labelled at f-1, two or more of them tracked and
+  // now without a confident point, is placed again as a whole: its markers that kept a
+  // point give it back (the first pass may have given a toe marker its mate's point), and
+  // each marker's candidates are the free points within `reacquire_gate` of its
+  // constant-velocity prediction (its last point without a velocity). Every one-to-one
+  // choice (a marker may stay empty while 3 or more are placed) is fitted by the rigid
+  // motion of the cluster's points at f-1 onto it (Umeyama without scale), kept when its
+  // RMS residual is within kRefindResidual `gate`, and scored by
+  //   residual^2 / (kRefindResidual gate)^2 + (turn / kRefindTurn)^2 + empty markers,
+  // a joint turning by much less than a third of a turn in a frame (a cyclic relabelling of
+  // three markers around a bone fits as well, turned 120 degrees). The best is taken when
+  // no other choice scores within kRefindMargin of it; otherwise the matches stand.
+  void RefindClusters(int f, GatedAssignment* matches) {
+    const std::vector<Eigen::Vector3d>& points = points_[f];
+    std::vector<char> used(points.size(), 0);
+    const auto confident = [&](int m) {
+      return matches->point_of_marker[m] >= 0 && matches->confidence[m] >= options_.min_confidence;
+    };
+    for (int m = 0; m < markers_.num_markers(); ++m) {
+      if (confident(m)) used[matches->point_of_marker[m]] = 1;
+    }
+    const auto keep = [&](const std::vector<int>& members) {  // Their matches stand.
+      for (int m : members) {
+        if (confident(m)) used[matches->point_of_marker[m]] = 1;
+      }
+    };
+    for (const RigidCluster& cluster : clusters_) {
+      // The cluster's markers tracked at f-1 are all placed again (those that kept a point
+      // may hold a lost mate's: the first pass matched a toe marker to its neighbour's).
+      std::vector<int> lost;
+      int missed = 0;
+      for (int m : cluster.markers) {
+        if (state_.since[m] != 1) continue;
+        lost.push_back(m);
+        if (confident(m)) used[matches->point_of_marker[m]] = 0;
+        else missed += state_.velocity[m];
+      }
+      if (missed < 2 || lost.size() < 3) {
+        keep(lost);
+        continue;
+      }
+      std::vector<std::vector<int>> candidates(lost.size());
+      for (size_t i = 0; i < lost.size(); ++i) {
+        const int m = lost[i];
+        const Eigen::Vector3d p = state_.velocity[m] ? Eigen::Vector3d(2.0 * state_.last[m] - state_.before[m]) : state_.last[m];
+        for (size_t k = 0; k < points.size(); ++k) {
+          if (!used[k] && (points[k] - p).norm() < options_.reacquire_gate) candidates[i].push_back(static_cast<int>(k));
+        }
+      }
+      double choices = 1.0;
+      for (const std::vector<int>& c : candidates) choices *= static_cast<double>(c.size() + 1);
+      if (choices > kRefindMaxChoices) {
+        keep(lost);
+        continue;
+      }
+      double best = std::numeric_limits<double>::infinity(), second = best;
+      std::vector<int> choice(lost.size(), -1), best_choice;
+      const double tolerance = kRefindResidual * options_.gate;
+      // Depth-first over the lost markers' candidates (-1: empty).
+      std::function<void(size_t)> visit = [&](size_t i) {
+        if (i < lost.size()) {
+          for (int k : candidates[i]) {
+            if (std::find(choice.begin(), choice.begin() + i, k) != choice.begin() + i) continue;
+            choice[i] = k;
+            visit(i + 1);
+          }
+          choice[i] = -1;
+          visit(i + 1);
+          return;
+        }
+        std::vector<Eigen::Vector3d> from, to;
+        int empty = 0;
+        for (size_t j = 0; j < lost.size(); ++j) {
+          if (choice[j] < 0) ++empty;
+          else from.push_back(state_.last[lost[j]]), to.push_back(points[choice[j]]);
+        }
+        if (from.size() < 3 || empty == static_cast<int>(lost.size())) return;
+        Eigen::Matrix3Xd a(3, from.size()), b(3, from.size());
+        for (size_t j = 0; j < from.size(); ++j) a.col(j) = from[j], b.col(j) = to[j];
+        const Eigen::Matrix4d t = Eigen::umeyama(a, b, false);
+        const Eigen::Matrix3d r = t.topLeftCorner<3, 3>();
+        const double residual =
+            std::sqrt(((r * a).colwise() + t.topRightCorner<3, 1>() - b).colwise().squaredNorm().mean());
+        if (residual > tolerance) return;
+        const double turn = Eigen::AngleAxisd(r).angle();
+        const double score = std::pow(residual / tolerance, 2) + std::pow(turn / kRefindTurn, 2) + empty;
+        if (score < best) second = best, best = score, best_choice = choice;
+        else second = std::min(second, score);
+      };
+      visit(0);
+      if (best_choice.empty() || second - best < kRefindMargin) {
+        keep(lost);
+        continue;
+      }
+      for (size_t j = 0; j < lost.size(); ++j) {
+        const int m = lost[j], k = best_choice[j];
+        if (k < 0) {
+          if (confident(m)) matches->point_of_marker[m] = -1, matches->confidence[m] = 0.0;
+          continue;
+        }
+        if (k != matches->point_of_marker[m] || !confident(m)) {
+          matches->point_of_marker[m] = k;
+          matches->confidence[m] = std::max(matches->confidence[m], kSecondPassConfidence);
+        }
+        used[k] = 1;
+      }
+    }
   }
   // Markers left without a confident point (a dropout broke their velocity, so they were
   // predicted within the wide reacquire_gate, where a neighbour 3 cm away makes any match

@@ -20,7 +20,13 @@
 //      p_m = M_m(pose(f-1)) + s_m + (x_m(f') - M_m(pose(f')))         within `reacquire_gate`.
 //    Points and predictions are matched one to one (gated_assignment.h: gated, a cost for
 //    an empty label); a match whose confidence is below `min_confidence` leaves the point
-//    unlabelled rather than guess. Markers left without a confident point are matched
+//    unlabelled rather than guess. A joint's markers that miss their constant-velocity
+//    gates together (two or more of a rigid cluster, >= 3 markers on one joint: a kick's
+//    onset) are placed again as a cluster among the free points within `reacquire_gate` of
+//    their predictions (and the points its other markers took): the one-to-one choice
+//    whose rigid fit to the cluster's points at f-1 leaves an RMS residual under 0.4 `gate`
+//    and turns the joint least (score residual^2/(0.4 gate)^2 + (turn/0.7 rad)^2 + empty
+//    markers; taken when the next choice scores 0.5 more). Markers still without a confident point are matched
 //    again among the free points from the pose solved from the confident matches (each
 //    predicted with its last offset, within `gate`, kept at confidence >= 0.7). The pose
 //    of the frame is solved from its labelled
