@@ -299,6 +299,31 @@ double MarkJumps(int nf, int m, const Valid& valid, const Value& d, const Confir
   return step_gate;
 }
 
+// A plateau is a displacement of the marker only where the captured marker itself
+// jumps: its second difference at the step in (and at the step out) at least
+// kPlateauRaw times the step. When the reference turns a joint toward a displaced
+// marker, the other markers of that joint (and of its children) get residual plateaus
+// of their own while their samples move smoothly. Missing neighbours: no evidence, kept.
+// Marks those plateaus' frames in their targets.
+void MarkRawPlateaus(const MarkerTrajectories& x, const std::vector<Plateau>& plateaus) {
+  const int nf = x.num_frames();
+  // |(x_f - x_(f-1)) - (x_g - x_(g-1))|, or +inf where a sample is missing.
+  auto jerk = [&](int m, int f, int g) -> double {
+    const int lo = std::min(f, g) - 1, hi = std::max(f, g);
+    if (lo < 0 || hi >= nf) return std::numeric_limits<double>::infinity();
+    for (int k = lo; k <= hi; ++k) {
+      if (!x.valid(k, m)) return std::numeric_limits<double>::infinity();
+    }
+    return ((x.position(f, m) - x.position(f - 1, m)) - (x.position(g, m) - x.position(g - 1, m))).norm();
+  };
+  for (const Plateau& plateau : plateaus) {
+    const int m = plateau.marker, a = plateau.first, b = plateau.last + 1;
+    const double least = kPlateauRaw * plateau.size;
+    if (jerk(m, a, a - 1) < least || jerk(m, b, b + 1) < least) continue;
+    for (int f = a; f <= plateau.last; ++f) (*plateau.target)[f][m] = 1;
+  }
+}
+
 // The model with X^_fm read as reconstructed(f, m) (observations or trajectories).
 template <typename Reconstructed>
 MarkerResidualModel FitModel(const Skeleton& skeleton, const MarkerSet& markers, const Motion& reference,
@@ -436,26 +461,7 @@ MarkerResidualModel FitModel(const Skeleton& skeleton, const MarkerSet& markers,
       model.predicted[f][m] += r * smooth[f];
     }
   }
-  // A plateau is a displacement of the marker only where the captured marker itself
-  // jumps: its second difference at the step in (and at the step out) at least
-  // kPlateauRaw times the step. When the reference turns a joint toward a displaced
-  // marker, the other markers of that joint (and of its children) get residual plateaus
-  // of their own while their samples move smoothly. Missing neighbours: no evidence, kept.
-  // |(x_f - x_(f-1)) - (x_g - x_(g-1))|, or +inf where a sample is missing.
-  auto jerk = [&](int m, int f, int g) -> double {
-    const int lo = std::min(f, g) - 1, hi = std::max(f, g);
-    if (lo < 0 || hi >= nf) return std::numeric_limits<double>::infinity();
-    for (int k = lo; k <= hi; ++k) {
-      if (!x.valid(k, m)) return std::numeric_limits<double>::infinity();
-    }
-    return ((x.position(f, m) - x.position(f - 1, m)) - (x.position(g, m) - x.position(g - 1, m))).norm();
-  };
-  for (const Plateau& plateau : plateaus) {
-    const int m = plateau.marker, a = plateau.first, b = plateau.last + 1;
-    const double least = kPlateauRaw * plateau.size;
-    if (jerk(m, a, a - 1) < least || jerk(m, b, b + 1) < least) continue;
-    for (int f = a; f <= plateau.last; ++f) (*plateau.target)[f][m] = 1;
-  }
+  MarkRawPlateaus(x, plateaus);
   return model;
 }
 

@@ -149,7 +149,7 @@ void ExpectWellDeclared(const OptionGroup<S>& group, const S& expected_defaults)
 
 TEST(Option, TheDeclaredGroupsAreWellFormed) {
   ExpectWellDeclared(SolverOptions(), SolverSettings());
-  EXPECT_EQ(SolverOptions().options().size(), 25u);
+  EXPECT_EQ(SolverOptions().options().size(), 26u);
   SolverSettings repair_defaults;
   repair_defaults.solver = "dls";
   ExpectWellDeclared(RepairSolverOptions(), repair_defaults);
