@@ -25,6 +25,22 @@ std::vector<Eigen::Vector3d> Observe(const Skeleton& skeleton, const MarkerSet& 
 
 class MarkerFrameSolverTest : public ::testing::TestWithParam<SolverKind> {};
 
+// The demo body with 3 markers a bone, its walk, the left shoulder and a mean pose (the
+// walk's frame 2): the hidden-joint and twist tests' arm.
+struct ShoulderFixture {
+  Skeleton skeleton = MakeDemoSkeleton();
+  MarkerSet markers;
+  Motion walk;
+  int shoulder = skeleton.FindJoint("LeftShoulder");
+  QuaternionVector mean_pose;
+  ShoulderFixture() {
+    std::mt19937 rng(7);
+    markers = MakeSyntheticMarkerSet(skeleton, 3, rng());
+    walk = MakeDemoWalk(skeleton, 3, 30.0);
+    mean_pose = walk.frames[2].rotations;
+  }
+};
+
 TEST_P(MarkerFrameSolverTest, RecoversNoiseFreePosesFrameByFrame) {
   const Skeleton skeleton = MakeDemoSkeleton();
   std::mt19937 rng(1);
@@ -142,13 +158,13 @@ TEST_P(MarkerFrameSolverTest, RestPriorDecidesOnlyUnconstrainedJoints) {
 // the hidden-joint prior keeps it nearer the mean. While one of its own markers is observed
 // the joint solves exactly as without it (the same solver, frame after frame).
 TEST_P(MarkerFrameSolverTest, HiddenJointIsHeldAtTheReference) {
-  const Skeleton skeleton = MakeDemoSkeleton();
-  std::mt19937 rng(7);
-  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, rng());
-  const Motion walk = MakeDemoWalk(skeleton, 3, 30.0);
-  const int shoulder = skeleton.FindJoint("LeftShoulder");
+  const ShoulderFixture fixture;
+  const Skeleton& skeleton = fixture.skeleton;
+  const MarkerSet& markers = fixture.markers;
+  const Motion& walk = fixture.walk;
+  const int shoulder = fixture.shoulder;
   ASSERT_GE(shoulder, 0);
-  const QuaternionVector mean_pose = walk.frames[2].rotations;
+  const QuaternionVector& mean_pose = fixture.mean_pose;
   Pose truth = walk.frames[2];
   truth.rotations[shoulder] = mean_pose[shoulder] * Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()));
   const std::vector<Eigen::Vector3d> all = Observe(skeleton, markers, truth);
@@ -209,13 +225,13 @@ TEST_P(MarkerFrameSolverTest, HiddenJointIsHeldAtTheReference) {
 // nearer the mean; a 0.3 rad turn about a normal direction (which the seen marker itself shows)
 // is recovered as without the prior. A weight below the arm's observability holds nothing.
 TEST_P(MarkerFrameSolverTest, OneSeenMarkerHoldsOnlyTheTwistAboutIt) {
-  const Skeleton skeleton = MakeDemoSkeleton();
-  std::mt19937 rng(7);
-  const MarkerSet markers = MakeSyntheticMarkerSet(skeleton, 3, rng());
-  const Motion walk = MakeDemoWalk(skeleton, 3, 30.0);
-  const int shoulder = skeleton.FindJoint("LeftShoulder");
+  const ShoulderFixture fixture;
+  const Skeleton& skeleton = fixture.skeleton;
+  const MarkerSet& markers = fixture.markers;
+  const Motion& walk = fixture.walk;
+  const int shoulder = fixture.shoulder;
   ASSERT_GE(shoulder, 0);
-  const QuaternionVector mean_pose = walk.frames[2].rotations;
+  const QuaternionVector& mean_pose = fixture.mean_pose;
   int kept = -1;
   std::vector<int> dropped;
   for (int m = 0; m < markers.num_markers(); ++m) {
