@@ -26,7 +26,7 @@ std::vector<Eigen::Vector3d> Observe(const Skeleton& skeleton, const MarkerSet& 
 class MarkerFrameSolverTest : public ::testing::TestWithParam<SolverKind> {};
 
 // The demo body with 3 markers a bone, its walk, the left shoulder and a mean pose (the
-// walk's frame 2): the hidden-joint and twist tests' arm.
+// walk's frame 2): the hidden-joint and twist tests' 
 struct ShoulderFixture {
   Skeleton skeleton = MakeDemoSkeleton();
   MarkerSet markers;
@@ -158,20 +158,15 @@ TEST_P(MarkerFrameSolverTest, RestPriorDecidesOnlyUnconstrainedJoints) {
 // the hidden-joint prior keeps it nearer the mean. While one of its own markers is observed
 // the joint solves exactly as without it (the same solver, frame after frame).
 TEST_P(MarkerFrameSolverTest, HiddenJointIsHeldAtTheReference) {
-  const ShoulderFixture fixture;
-  const Skeleton& skeleton = fixture.skeleton;
-  const MarkerSet& markers = fixture.markers;
-  const Motion& walk = fixture.walk;
-  const int shoulder = fixture.shoulder;
-  ASSERT_GE(shoulder, 0);
-  const QuaternionVector& mean_pose = fixture.mean_pose;
-  Pose truth = walk.frames[2];
-  truth.rotations[shoulder] = mean_pose[shoulder] * Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()));
-  const std::vector<Eigen::Vector3d> all = Observe(skeleton, markers, truth);
+  const ShoulderFixture arm;
+  ASSERT_GE(arm.shoulder, 0);
+  Pose truth = arm.walk.frames[2];
+  truth.rotations[arm.shoulder] = arm.mean_pose[arm.shoulder] * Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()));
+  const std::vector<Eigen::Vector3d> all = Observe(arm.skeleton, arm.markers, truth);
   std::vector<Eigen::Vector3d> hidden = all;
-  for (int m = 0; m < markers.num_markers(); ++m) {
-    for (const MarkerAttachment& a : markers.marker(m).attachments) {
-      if (a.joint == shoulder) hidden[m] = Eigen::Vector3d::Constant(std::nan(""));
+  for (int m = 0; m < arm.markers.num_markers(); ++m) {
+    for (const MarkerAttachment& a : arm.markers.marker(m).attachments) {
+      if (a.joint == arm.shoulder) hidden[m] = Eigen::Vector3d::Constant(std::nan(""));
     }
   }
   auto options_with = [&](double hidden_weight) {
@@ -181,41 +176,41 @@ TEST_P(MarkerFrameSolverTest, HiddenJointIsHeldAtTheReference) {
     options.dls.function_tolerance = options.ceres.function_tolerance = 1e-12;
     options.rest_rotation_weight = 0.05;
     options.hidden_rotation_weight = hidden_weight;
-    options.rest_rotations = mean_pose;
+    options.rest_rotations = arm.mean_pose;
     return options;
   };
-  MarkerFrameSolver weak(skeleton, markers, options_with(0.0));
-  MarkerFrameSolver held(skeleton, markers, options_with(20.0));
-  Pose a = walk.frames[2], b = walk.frames[2];
+  MarkerFrameSolver weak(arm.skeleton, arm.markers, options_with(0.0));
+  MarkerFrameSolver held(arm.skeleton, arm.markers, options_with(20.0));
+  Pose a = arm.walk.frames[2], b = arm.walk.frames[2];
   FrameSolveReport report;
   ASSERT_TRUE(weak.Solve(hidden, &a, &report).ok()) << report.brief;
   ASSERT_TRUE(held.Solve(hidden, &b, &report).ok()) << report.brief;
-  EXPECT_EQ(report.held_joints, std::vector<int>{shoulder});  // Reported as held.
+  EXPECT_EQ(report.held_joints, std::vector<int>{arm.shoulder});  // Reported as held.
   // The arm's nine markers place the shoulder: the weak prior lands near the truth.
-  EXPECT_LT(AngularDistance(a.rotations[shoulder], truth.rotations[shoulder]), 0.01);
-  EXPECT_GT(AngularDistance(a.rotations[shoulder], mean_pose[shoulder]), 0.28);
+  EXPECT_LT(AngularDistance(a.rotations[arm.shoulder], truth.rotations[arm.shoulder]), 0.01);
+  EXPECT_GT(AngularDistance(a.rotations[arm.shoulder], arm.mean_pose[arm.shoulder]), 0.28);
   // Held: at least twice nearer the mean pose than the arm alone would put it.
-  EXPECT_LT(AngularDistance(b.rotations[shoulder], mean_pose[shoulder]), 0.15);
+  EXPECT_LT(AngularDistance(b.rotations[arm.shoulder], arm.mean_pose[arm.shoulder]), 0.15);
   // Own markers back: the same pose as without the hidden-joint prior.
-  a = b = walk.frames[2];
+  a = b = arm.walk.frames[2];
   ASSERT_TRUE(weak.Solve(all, &a, &report).ok()) << report.brief;
   ASSERT_TRUE(held.Solve(all, &b, &report).ok()) << report.brief;
   EXPECT_TRUE(report.held_joints.empty());
-  for (int j = 0; j < skeleton.num_joints(); ++j) {
+  for (int j = 0; j < arm.skeleton.num_joints(); ++j) {
     EXPECT_LT(AngularDistance(a.rotations[j], b.rotations[j]), 1e-12) << j;
   }
-  EXPECT_LT(AngularDistance(b.rotations[shoulder], truth.rotations[shoulder]), 0.01);
+  EXPECT_LT(AngularDistance(b.rotations[arm.shoulder], truth.rotations[arm.shoulder]), 0.01);
   // Without a given reference the hidden-joint prior is off (zero rotations are no mean pose).
   MarkerSolveOptions no_reference = options_with(20.0);
   no_reference.rest_rotations.clear();
-  MarkerFrameSolver unreferenced(skeleton, markers, no_reference);
+  MarkerFrameSolver unreferenced(arm.skeleton, arm.markers, no_reference);
   MarkerSolveOptions plain = options_with(0.0);
   plain.rest_rotations.clear();
-  MarkerFrameSolver reference_free(skeleton, markers, plain);
-  a = b = walk.frames[2];
+  MarkerFrameSolver reference_free(arm.skeleton, arm.markers, plain);
+  a = b = arm.walk.frames[2];
   ASSERT_TRUE(reference_free.Solve(hidden, &a, &report).ok()) << report.brief;
   ASSERT_TRUE(unreferenced.Solve(hidden, &b, &report).ok()) << report.brief;
-  EXPECT_LT(AngularDistance(a.rotations[shoulder], b.rotations[shoulder]), 1e-12);
+  EXPECT_LT(AngularDistance(a.rotations[arm.shoulder], b.rotations[arm.shoulder]), 1e-12);
 }
 
 // A joint that keeps one of its own markers (the others missing) is held with
@@ -225,18 +220,13 @@ TEST_P(MarkerFrameSolverTest, HiddenJointIsHeldAtTheReference) {
 // nearer the mean; a 0.3 rad turn about a normal direction (which the seen marker itself shows)
 // is recovered as without the prior. A weight below the arm's observability holds nothing.
 TEST_P(MarkerFrameSolverTest, OneSeenMarkerHoldsOnlyTheTwistAboutIt) {
-  const ShoulderFixture fixture;
-  const Skeleton& skeleton = fixture.skeleton;
-  const MarkerSet& markers = fixture.markers;
-  const Motion& walk = fixture.walk;
-  const int shoulder = fixture.shoulder;
-  ASSERT_GE(shoulder, 0);
-  const QuaternionVector& mean_pose = fixture.mean_pose;
+  const ShoulderFixture arm;
+  ASSERT_GE(arm.shoulder, 0);
   int kept = -1;
   std::vector<int> dropped;
-  for (int m = 0; m < markers.num_markers(); ++m) {
-    for (const MarkerAttachment& a : markers.marker(m).attachments) {
-      if (a.joint != shoulder) continue;
+  for (int m = 0; m < arm.markers.num_markers(); ++m) {
+    for (const MarkerAttachment& a : arm.markers.marker(m).attachments) {
+      if (a.joint != arm.shoulder) continue;
       if (kept < 0) {
         kept = m;
       } else {
@@ -246,7 +236,7 @@ TEST_P(MarkerFrameSolverTest, OneSeenMarkerHoldsOnlyTheTwistAboutIt) {
   }
   ASSERT_GE(kept, 0);
   ASSERT_GE(dropped.size(), 1u);
-  const Eigen::Vector3d u = markers.marker(kept).attachments[0].offset.normalized();
+  const Eigen::Vector3d u = arm.markers.marker(kept).attachments[0].offset.normalized();
   auto options_with = [&](double twist_weight) {
     MarkerSolveOptions options;
     options.solver = GetParam();
@@ -255,24 +245,24 @@ TEST_P(MarkerFrameSolverTest, OneSeenMarkerHoldsOnlyTheTwistAboutIt) {
     options.rest_rotation_weight = 0.05;
     options.hidden_rotation_weight = 20.0;
     options.twist_rotation_weight = twist_weight;
-    options.rest_rotations = mean_pose;
+    options.rest_rotations = arm.mean_pose;
     return options;
   };
   // The arm observes the twist (its ball joint off the line): held only by a weight well above
   // that (at the warm start, the markers below the shoulder all observed).
-  const double observed = TwistObservability(skeleton, markers, walk.frames[2], shoulder, u);
+  const double observed = TwistObservability(arm.skeleton, arm.markers, arm.walk.frames[2], arm.shoulder, u);
   ASSERT_GT(observed, 1.0);
-  MarkerFrameSolver weak(skeleton, markers, options_with(0.0));
-  MarkerFrameSolver below(skeleton, markers, options_with(0.9 * observed / kTwistObservedFraction));
-  MarkerFrameSolver held(skeleton, markers, options_with(2.0 * observed / kTwistObservedFraction));
+  MarkerFrameSolver weak(arm.skeleton, arm.markers, options_with(0.0));
+  MarkerFrameSolver below(arm.skeleton, arm.markers, options_with(0.9 * observed / kTwistObservedFraction));
+  MarkerFrameSolver held(arm.skeleton, arm.markers, options_with(2.0 * observed / kTwistObservedFraction));
   auto solve = [&](MarkerFrameSolver& solver, const Eigen::Vector3d& turn, FrameSolveReport* report) {
-    Pose truth = walk.frames[2];
-    truth.rotations[shoulder] = mean_pose[shoulder] * Eigen::Quaterniond(Eigen::AngleAxisd(0.3, turn));
-    std::vector<Eigen::Vector3d> observed = Observe(skeleton, markers, truth);
+    Pose truth = arm.walk.frames[2];
+    truth.rotations[arm.shoulder] = arm.mean_pose[arm.shoulder] * Eigen::Quaterniond(Eigen::AngleAxisd(0.3, turn));
+    std::vector<Eigen::Vector3d> observed = Observe(arm.skeleton, arm.markers, truth);
     for (int m : dropped) observed[m] = Eigen::Vector3d::Constant(std::nan(""));
-    Pose pose = walk.frames[2];
+    Pose pose = arm.walk.frames[2];
     EXPECT_TRUE(solver.Solve(observed, &pose, report).ok()) << report->brief;
-    return std::make_pair(pose.rotations[shoulder], truth.rotations[shoulder]);
+    return std::make_pair(pose.rotations[arm.shoulder], truth.rotations[arm.shoulder]);
   };
   FrameSolveReport report;
   const auto [free_twist, truth_twist] = solve(weak, u, &report);
@@ -280,13 +270,13 @@ TEST_P(MarkerFrameSolverTest, OneSeenMarkerHoldsOnlyTheTwistAboutIt) {
   solve(below, u, &report);
   EXPECT_TRUE(report.twist_held_joints.empty());
   const auto [held_twist, unused] = solve(held, u, &report);
-  EXPECT_EQ(report.twist_held_joints, std::vector<int>{shoulder});
+  EXPECT_EQ(report.twist_held_joints, std::vector<int>{arm.shoulder});
   EXPECT_TRUE(report.held_joints.empty());
   // The arm places the twist: the weak prior lands near the truth, 0.3 rad from the mean.
   EXPECT_LT(AngularDistance(free_twist, truth_twist), 0.01);
-  EXPECT_GT(AngularDistance(free_twist, mean_pose[shoulder]), 0.28);
+  EXPECT_GT(AngularDistance(free_twist, arm.mean_pose[arm.shoulder]), 0.28);
   // Held about u: at least twice nearer the mean pose.
-  EXPECT_LT(AngularDistance(held_twist, mean_pose[shoulder]), 0.15);
+  EXPECT_LT(AngularDistance(held_twist, arm.mean_pose[arm.shoulder]), 0.15);
   // A turn about a direction normal to u moves the seen marker: recovered with the prior on.
   const auto [held_swing, truth_swing] = solve(held, u.unitOrthogonal(), &report);
   EXPECT_LT(AngularDistance(held_swing, truth_swing), 0.01);
