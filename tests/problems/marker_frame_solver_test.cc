@@ -26,7 +26,7 @@ std::vector<Eigen::Vector3d> Observe(const Skeleton& skeleton, const MarkerSet& 
 class MarkerFrameSolverTest : public ::testing::TestWithParam<SolverKind> {};
 
 // The demo body with 3 markers a bone, its walk, the left shoulder and a mean pose (the
-// walk's frame 2): the hidden-joint and twist tests' 
+// walk's frame 2): the arm of the hidden-joint and twist tests.
 struct ShoulderFixture {
   Skeleton skeleton = MakeDemoSkeleton();
   MarkerSet markers;
