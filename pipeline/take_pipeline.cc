@@ -327,6 +327,7 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
       .Add("resolved_frames", result.repair.resolved_frames)
       .Add("carried_joints", CarriedJointsJson(take.skeleton, result.repair.carried))
       .Add("naive_hidden_joints_held_frames", HeldJointsJson(take.skeleton, result.repair.naive_held_frames))
+      .Add("naive_twist_held_frames", HeldJointsJson(take.skeleton, result.repair.naive_twist_held_frames))
       .Add("timings", repair_timings);
   std::vector<JsonObject> characters;
   for (const CharacterOutput& c : result.characters) {

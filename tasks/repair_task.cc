@@ -56,6 +56,7 @@ JsonObject RepairReportJson(const MarkerTake& take, const RepairConfig& config, 
       .Add("detected", IntervalsJson(report.detected, markers)).Add("filled", IntervalsJson(report.filled, markers))
       .Add("carried_joints", CarriedJointsJson(take.skeleton, report.carried))
       .Add("naive_hidden_joints_held_frames", HeldJointsJson(take.skeleton, report.naive_held_frames))
+      .Add("naive_twist_held_frames", HeldJointsJson(take.skeleton, report.naive_twist_held_frames))
       .Add("timings", timings).Add("rms_naive_mm", report.naive_rms * mm)
       .Add("rms_reference_mm", report.reference_rms * mm).Add("rms_repaired_mm", report.repaired_rms * mm)
       .Add("resolved_frames", report.resolved_frames).Add("reference", config.repair.reference)

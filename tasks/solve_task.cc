@@ -46,13 +46,17 @@ JsonObject AgreementJson(const SolverAgreementReport& agreement, double scale) {
 }  // namespace
 
 std::string HeldJointsText(const Skeleton& skeleton, const SequenceSolveReport& sequence) {
-  std::string text;
-  for (size_t j = 0; j < sequence.held_frames.size(); ++j) {
-    if (sequence.held_frames[j] == 0) continue;
-    text += (text.empty() ? "" : ", ") + skeleton.name(static_cast<int>(j)) + " " +
-            std::to_string(sequence.held_frames[j]);
-  }
-  return text;
+  auto list = [&](const std::vector<int>& frames) {
+    std::string text;
+    for (size_t j = 0; j < frames.size(); ++j) {
+      if (frames[j] == 0) continue;
+      text += (text.empty() ? "" : ", ") + skeleton.name(static_cast<int>(j)) + " " + std::to_string(frames[j]);
+    }
+    return text;
+  };
+  const std::string whole = list(sequence.held_frames), twist = list(sequence.twist_held_frames);
+  if (twist.empty()) return whole;
+  return (whole.empty() ? "none" : whole) + "; about the line to their one seen marker only: " + twist;
 }
 
 Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolveProgress& progress,
@@ -100,6 +104,9 @@ Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolvePr
       .Add("total_final_cost", sequence.total_final_cost).Add("residual_unit", ResidualUnit(skeleton));
   if (!sequence.held_frames.empty()) {
     frame_json.Add("hidden_joints_held_frames", HeldJointsJson(skeleton, sequence.held_frames));
+  }
+  if (!sequence.twist_held_frames.empty()) {
+    frame_json.Add("twist_held_frames", HeldJointsJson(skeleton, sequence.twist_held_frames));
   }
   result->report.Add("per_frame", frame_json);
   if (config.agreement.compare_solvers) {

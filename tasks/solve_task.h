@@ -49,7 +49,8 @@ struct SolveResult {
 // Errors: invalid options (naming the option), or a take that cannot be solved (naming
 // take.name).
 // "lclavicle 120, rclavicle 4": the joints a per-frame solve held at the subject's mean pose
-// as hidden joints (SequenceSolveReport::held_frames) and in how many frames; "" if none.
+// as hidden joints (SequenceSolveReport::held_frames) and in how many frames, then
+// "; about the line to their one seen marker only: lfoot 12" for twist_held_frames; "" if none.
 std::string HeldJointsText(const Skeleton& skeleton, const SequenceSolveReport& sequence);
 
 Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolveProgress& progress,

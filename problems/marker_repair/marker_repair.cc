@@ -932,6 +932,7 @@ Status RepairMarkers(const Skeleton& skeleton, const MarkerSet& markers, const O
   report->naive_rms = RmsOver(skeleton, markers, naive, observed);
   report->naive_unconverged_frames = sequence.unconverged_frames;
   report->naive_held_frames = sequence.held_frames;
+  report->naive_twist_held_frames = sequence.twist_held_frames;
   // From here Y is read only frame by frame (gap detection, the re-solves from it): kept
   // compact (float, kinematics/compact_motion.h: 0.5 instead of 1.8 KB per frame while the
   // residual model is fitted and the gaps are detected and filled). Its rounding (< 1e-7

@@ -162,6 +162,7 @@ struct RepairReport {
   // Per joint: frames the naive solve held at the subject's mean pose as a hidden joint
   // (SequenceSolveReport::held_frames; empty when none was).
   std::vector<int> naive_held_frames;
+  std::vector<int> naive_twist_held_frames;  // SequenceSolveReport::twist_held_frames, the same.
 };
 
 // What the pipeline computed on the way, for evaluation (repair_evaluation.h).

@@ -159,6 +159,10 @@ Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
         if (report->held_frames.empty()) report->held_frames.assign(skeleton.num_joints(), 0);
         ++report->held_frames[j];
       }
+      for (int j : frame.twist_held_joints) {
+        if (report->twist_held_frames.empty()) report->twist_held_frames.assign(skeleton.num_joints(), 0);
+        ++report->twist_held_frames[j];
+      }
       if (frame.iterations >= max_iterations) ++report->unconverged_frames;
       report->frame_rms[f] = frame.rms_marker_error;
       report->frame_cost[f] = frame.final_cost;

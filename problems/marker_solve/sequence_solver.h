@@ -29,6 +29,9 @@ struct SequenceSolveReport {
   // Per joint: the frames in which it was held toward the subject's mean pose as a hidden
   // joint (MarkerSolveOptions::hidden_rotation_weight; empty when none was).
   std::vector<int> held_frames;
+  // Per joint: the frames in which it was held about the line to its one seen marker
+  // (MarkerSolveOptions::twist_rotation_weight; empty when none was).
+  std::vector<int> twist_held_frames;
 };
 
 // observed[f][m] in model units (MarkerObservations); `initial` supplies the joints no

@@ -8,6 +8,7 @@
 
 #include "kinematics/demo_character.h"
 #include "kinematics/forward_kinematics.h"
+#include "problems/marker_solve/sequence_solver.h"
 #include "problems/marker_solve/synthetic_marker_set.h"
 #include "problems/marker_solve/twist_observability.h"
 #include "kinematics/rotation.h"
@@ -280,6 +281,20 @@ TEST_P(MarkerFrameSolverTest, OneSeenMarkerHoldsOnlyTheTwistAboutIt) {
   // A turn about a direction normal to u moves the seen marker: recovered with the prior on.
   const auto [held_swing, truth_swing] = solve(held, u.unitOrthogonal(), &report);
   EXPECT_LT(AngularDistance(held_swing, truth_swing), 0.01);
+  // Over a sequence, the frames each joint was held so are counted (the reports' figure).
+  std::vector<std::vector<Eigen::Vector3d>> frames;
+  for (const Pose& pose : arm.walk.frames) {
+    frames.push_back(Observe(arm.skeleton, arm.markers, pose));
+    for (int m : dropped) frames.back()[m] = Eigen::Vector3d::Constant(std::nan(""));
+  }
+  Motion motion;
+  SequenceSolveReport sequence;
+  ASSERT_TRUE(SolveSequence(arm.skeleton, arm.markers, frames, options_with(2.0 * observed / kTwistObservedFraction),
+                            arm.walk.frames[0], &motion, &sequence).ok());
+  ASSERT_EQ(sequence.twist_held_frames.size(), static_cast<size_t>(arm.skeleton.num_joints()));
+  for (int j = 0; j < arm.skeleton.num_joints(); ++j) {
+    EXPECT_EQ(sequence.twist_held_frames[j], j == arm.shoulder ? 3 : 0) << arm.skeleton.name(j);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(AllSolvers, MarkerFrameSolverTest,
