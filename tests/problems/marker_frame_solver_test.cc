@@ -40,6 +40,19 @@ struct ShoulderFixture {
     walk = MakeDemoWalk(skeleton, 3, 30.0);
     mean_pose = walk.frames[2].rotations;
   }
+  // Tight tolerances, a weak rest prior toward the mean pose, and the hidden-joint and twist
+  // priors' weights.
+  MarkerSolveOptions Options(SolverKind solver, double hidden_weight, double twist_weight) const {
+    MarkerSolveOptions options;
+    options.solver = solver;
+    options.ceres = DefaultFrameCeresOptions();
+    options.dls.function_tolerance = options.ceres.function_tolerance = 1e-12;
+    options.rest_rotation_weight = 0.05;
+    options.hidden_rotation_weight = hidden_weight;
+    options.twist_rotation_weight = twist_weight;
+    options.rest_rotations = mean_pose;
+    return options;
+  }
 };
 
 TEST_P(MarkerFrameSolverTest, RecoversNoiseFreePosesFrameByFrame) {
@@ -170,16 +183,7 @@ TEST_P(MarkerFrameSolverTest, HiddenJointIsHeldAtTheReference) {
       if (a.joint == arm.shoulder) hidden[m] = Eigen::Vector3d::Constant(std::nan(""));
     }
   }
-  auto options_with = [&](double hidden_weight) {
-    MarkerSolveOptions options;
-    options.solver = GetParam();
-    options.ceres = DefaultFrameCeresOptions();
-    options.dls.function_tolerance = options.ceres.function_tolerance = 1e-12;
-    options.rest_rotation_weight = 0.05;
-    options.hidden_rotation_weight = hidden_weight;
-    options.rest_rotations = arm.mean_pose;
-    return options;
-  };
+  auto options_with = [&](double hidden_weight) { return arm.Options(GetParam(), hidden_weight, 0.0); };
   MarkerFrameSolver weak(arm.skeleton, arm.markers, options_with(0.0));
   MarkerFrameSolver held(arm.skeleton, arm.markers, options_with(20.0));
   Pose a = arm.walk.frames[2], b = arm.walk.frames[2];
@@ -238,17 +242,7 @@ TEST_P(MarkerFrameSolverTest, OneSeenMarkerHoldsOnlyTheTwistAboutIt) {
   ASSERT_GE(kept, 0);
   ASSERT_GE(dropped.size(), 1u);
   const Eigen::Vector3d u = arm.markers.marker(kept).attachments[0].offset.normalized();
-  auto options_with = [&](double twist_weight) {
-    MarkerSolveOptions options;
-    options.solver = GetParam();
-    options.ceres = DefaultFrameCeresOptions();
-    options.dls.function_tolerance = options.ceres.function_tolerance = 1e-12;
-    options.rest_rotation_weight = 0.05;
-    options.hidden_rotation_weight = 20.0;
-    options.twist_rotation_weight = twist_weight;
-    options.rest_rotations = arm.mean_pose;
-    return options;
-  };
+  auto options_with = [&](double twist_weight) { return arm.Options(GetParam(), 20.0, twist_weight); };
   // The arm observes the twist (its ball joint off the line): held only by a weight well above
   // that (at the warm start, the markers below the shoulder all observed).
   const double observed = TwistObservability(arm.skeleton, arm.markers, arm.walk.frames[2], arm.shoulder, u);

@@ -215,30 +215,38 @@ void ReadCharacter(const std::string& glb, GltfCharacter* character, std::vector
   ASSERT_EQ(arms->size(), 2u) << glb;
 }
 
+// The walk and a character as read, with its upper arms: what the fixtures below start from.
+struct WalkOnto {
+  Skeleton source;
+  Motion motion;
+  GltfCharacter character;
+  std::vector<int> arms;
+};
+void ReadWalkOnto(const std::string& bvh, const std::string& glb, WalkOnto* walk) {
+  ReadWalk(bvh, &walk->source, &walk->motion);
+  ReadCharacter(glb, &walk->character, &walk->arms);
+}
+
 class RestPoseFixturesTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(RestPoseFixturesTest, CmuWalkOntoAPoseAndTurnedVariantsKeepsLimbDirections) {
   MOCAPSOLVE_DATA_FILE(bvh, "bvh/131_02.bvh");
   MOCAPSOLVE_DATA_FILE(glb, std::string("gltf/") + GetParam() + ".glb");
-  Skeleton source;
-  Motion motion;
-  GltfCharacter character;
-  std::vector<int> arms;
-  ReadWalk(bvh, &source, &motion);
-  ReadCharacter(glb, &character, &arms);
+  WalkOnto walk;
+  ReadWalkOnto(bvh, glb, &walk);
   if (::testing::Test::HasFatalFailure()) return;
   std::vector<Variant> variants;
-  variants.push_back(AsRead(character));
+  variants.push_back(AsRead(walk.character));
   for (Variant& v : std::vector<Variant>{
-      Repose(character, arms, 0.0, 0.0, false, "rest pose as read"),
-      Repose(character, arms, 40.0, 0.0, false, "A-pose bind"),
-      Repose(character, arms, 40.0, 90.0, false, "A-pose, facing +90"),
-      Repose(character, arms, 40.0, 180.0, false, "A-pose, facing 180"),
-      Repose(character, arms, 40.0, -90.0, true, "A-pose, facing -90, random names")}) {
+      Repose(walk.character, walk.arms, 0.0, 0.0, false, "rest pose as read"),
+      Repose(walk.character, walk.arms, 40.0, 0.0, false, "A-pose bind"),
+      Repose(walk.character, walk.arms, 40.0, 90.0, false, "A-pose, facing +90"),
+      Repose(walk.character, walk.arms, 40.0, 180.0, false, "A-pose, facing 180"),
+      Repose(walk.character, walk.arms, 40.0, -90.0, true, "A-pose, facing -90, random names")}) {
     variants.push_back(std::move(v));
   }
   for (const Variant& v : variants) {
-    ExpectWithinTargets(Retarget(source, nullptr, Pose(), motion, v), std::string(GetParam()) + ", " + v.name);
+    ExpectWithinTargets(Retarget(walk.source, nullptr, Pose(), walk.motion, v), std::string(GetParam()) + ", " + v.name);
   }
 }
 
@@ -252,14 +260,10 @@ TEST_P(RestPoseFixturesTest, CmuWalkOntoAPoseAndTurnedVariantsKeepsLimbDirection
 TEST(RestPoseFixturesPelvisTest, PelvisWhoseChildrenLeanByDesignStaysUpright) {
   MOCAPSOLVE_DATA_FILE(bvh, "bvh/131_02.bvh");
   MOCAPSOLVE_DATA_FILE(glb, "gltf/Xbot.glb");
-  Skeleton source;
-  Motion motion;
-  GltfCharacter character;
-  std::vector<int> arms;
-  ReadWalk(bvh, &source, &motion);
-  ReadCharacter(glb, &character, &arms);
+  WalkOnto walk;
+  ReadWalkOnto(bvh, glb, &walk);
   if (::testing::Test::HasFatalFailure()) return;
-  const Variant as_read = Repose(character, arms, 0.0, 0.0, false, "Xbot as read");
+  const Variant as_read = Repose(walk.character, walk.arms, 0.0, 0.0, false, "Xbot as read");
   const Skeleton& s = as_read.skeleton;
   const int hips = s.FindJoint("mixamorig:Hips"), spine = s.FindJoint("mixamorig:Spine");
   const int left = s.FindJoint("mixamorig:LeftUpLeg"), right = s.FindJoint("mixamorig:RightUpLeg");
@@ -277,7 +281,7 @@ TEST(RestPoseFixturesPelvisTest, PelvisWhoseChildrenLeanByDesignStaysUpright) {
   EXPECT_GT(lean, 35.0);  // The fixture leans as RobotExpressive's Body -> Abdomen.
   for (const Variant* v : {&as_read, &leaning}) {
     CharacterRetargetResult result;
-    ExpectWithinTargets(Retarget(source, nullptr, Pose(), motion, *v, &result), v->name);
+    ExpectWithinTargets(Retarget(walk.source, nullptr, Pose(), walk.motion, *v, &result), v->name);
     const RetargetQuality& q = result.quality;
     std::printf("%-44s pelvis %.1f / %.1f deg, chest %.1f / %.1f deg (spine %.0f deg from up)\n", v->name.c_str(),
                 q.pelvis_orientation_mean_deg, q.pelvis_orientation_p95_deg, q.chest_orientation_mean_deg,
@@ -329,22 +333,18 @@ class FloorIkFixturesTest : public ::testing::TestWithParam<const char*> {};
 TEST_P(FloorIkFixturesTest, CmuWalkOntoIkFeetUnderAFloorRootKeepsLimbDirections) {
   MOCAPSOLVE_DATA_FILE(bvh, "bvh/131_02.bvh");
   MOCAPSOLVE_DATA_FILE(glb, std::string("gltf/") + GetParam() + ".glb");
-  Skeleton source;
-  Motion motion;
-  GltfCharacter character;
-  std::vector<int> arms;
-  ReadWalk(bvh, &source, &motion);
-  ReadCharacter(glb, &character, &arms);
+  WalkOnto walk;
+  ReadWalkOnto(bvh, glb, &walk);
   if (::testing::Test::HasFatalFailure()) return;
   std::vector<int> feet;
   for (const char* foot : {"mixamorig:LeftFoot", "mixamorig:RightFoot"}) {
-    feet.push_back(character.skeleton.FindJoint(foot));
+    feet.push_back(walk.character.skeleton.FindJoint(foot));
     ASSERT_GE(feet.back(), 0) << foot;
   }
-  const Variant as_read = Repose(character, arms, 0.0, 0.0, false, "as read");
+  const Variant as_read = Repose(walk.character, walk.arms, 0.0, 0.0, false, "as read");
   const Variant rig = WithFloorIkFeet(as_read, feet, 100.0, Centimetres(), "IK feet under a floor root, cm");
   ASSERT_EQ(rig.skeleton.parent(rig.skeleton.FindJoint("mixamorig:LeftFoot")), rig.skeleton.FindJoint("Root"));
-  ExpectWithinTargets(Retarget(source, nullptr, Pose(), motion, rig), std::string(GetParam()) + ", " + rig.name);
+  ExpectWithinTargets(Retarget(walk.source, nullptr, Pose(), walk.motion, rig), std::string(GetParam()) + ", " + rig.name);
 }
 
 // Game rigs, every perturbation at once (tests/game_rig_files.h): the shared Mixamo characters'
