@@ -208,7 +208,9 @@ int main(int argc, char** argv) {
       if (std::getenv("ASSOC_SEED") && std::atoi(std::getenv("ASSOC_SEED")) != static_cast<int>(seed)) continue;
       Scrambled s = seed == 3 ? PluginGait(take) : Scramble(take, seed);
       if (const char* dir = std::getenv("ASSOC_WRITE")) {
-        ms::WriteMarkerFile(std::string(dir) + "/" + name + "_" + std::to_string(seed) + ".c3d", s.take);
+        const ms::Status written =
+            ms::WriteMarkerFile(std::string(dir) + "/" + name + "_" + std::to_string(seed) + ".c3d", s.take);
+        if (!written.ok()) std::fprintf(stderr, "ASSOC_WRITE: %s\n", written.message().c_str());
       }
       const auto start = std::chrono::steady_clock::now();
       ms::MarkerAssociation association;

@@ -236,7 +236,9 @@ TEST(MarkerRepair, ReportsTheHiddenJointsItsNaiveSolveHeld) {
   ASSERT_EQ(report.naive_held_frames.size(), static_cast<size_t>(skeleton.num_joints()));
   EXPECT_EQ(report.naive_held_frames[foot], 40);
   for (int j = 0; j < skeleton.num_joints(); ++j) {
-    if (!skeleton.IsAncestorOrSelf(foot, j)) EXPECT_EQ(report.naive_held_frames[j], 0) << skeleton.name(j);
+    if (!skeleton.IsAncestorOrSelf(foot, j)) {
+      EXPECT_EQ(report.naive_held_frames[j], 0) << skeleton.name(j);
+    }
   }
 }
 

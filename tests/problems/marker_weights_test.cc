@@ -75,7 +75,9 @@ TEST(MarkerWeights, ASoftTissueMarkerGetsALowWeightAndThePoseFollowsTheOthers) {
     EXPECT_GE(learned.weight[m], options.min_weight);
     EXPECT_LE(learned.weight[m], 1.0);
     EXPECT_EQ(learned.samples[m], 40);
-    if (m != kNoisy) EXPECT_GT(learned.weight[m], 3.0 * learned.weight[kNoisy]) << m;
+    if (m != kNoisy) {
+      EXPECT_GT(learned.weight[m], 3.0 * learned.weight[kNoisy]) << m;
+    }
   }
   MarkerSet weighted;
   ASSERT_TRUE(ApplyMarkerWeights(take.skeleton, take.markers, learned.weight, &weighted).ok());

@@ -46,7 +46,9 @@ TEST(OffsetRefinement, MovesAMarkerByItsShiftWeightedAgainstThePrior) {
     EXPECT_EQ(report.refined, take.markers.num_markers());
     // The others did not move: their samples are their calibrated offsets (up to round-off).
     for (int m = 0; m < take.markers.num_markers(); ++m) {
-      if (m != moved) EXPECT_LT(report.shift[m], 1e-9);
+      if (m != moved) {
+        EXPECT_LT(report.shift[m], 1e-9);
+      }
     }
   }
 }
