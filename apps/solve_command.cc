@@ -53,21 +53,14 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   const Skeleton& skeleton = take.skeleton;
   const bool known = skeleton.unit().known();
   const char* unit = known ? "mm" : "skeleton units";
-  const double to_output = known ? skeleton.unit().metres_per_unit * 1000.0 : 1.0;
+  const double to_output = known ? skeleton.unit().metres_per_unit * 1000.0 : 1.0;  // For the plot.
   const int frames = limit.max_frames > 0 ? std::min<int>(limit.max_frames, take.observed.size())
                                           : static_cast<int>(take.observed.size());
   Progress progress("solve (" + solver.solver + ")", frames, Console().quiet);
   SolveProgress show_progress;
   show_progress.frames = [&](int done) { progress.Update(done); };
   show_progress.per_frame_done = [&](const SequenceSolveReport& sequence) {
-    std::printf("per-frame (%s): %d frames in %.3f s (%.0f frames/s), %ld iterations, RMS marker "
-                "residual %.4g %s (worst frame %.4g), unsolved frames %d, at iteration limit %d\n",
-                solver.solver.c_str(), sequence.frames, sequence.solve_seconds,
-                sequence.solve_seconds > 0 ? sequence.frames / sequence.solve_seconds : 0.0,
-                sequence.total_iterations, sequence.rms_marker_error * to_output, unit,
-                sequence.max_frame_rms * to_output, sequence.unsolved_frames, sequence.unconverged_frames);
-    const std::string held = HeldJointsText(skeleton, sequence);
-    if (!held.empty()) std::printf("hidden joints held at the subject's mean pose (frames): %s\n", held.c_str());
+    std::fputs(PerFrameSolveText(skeleton, solver.solver, sequence).c_str(), stdout);
     if (solver.mode != "clip") return;
     if (!Console().quiet) std::fprintf(stderr, "clip solve: %d frames as one problem...\n", sequence.frames);
     SetStage("clip solve");
@@ -77,19 +70,7 @@ Status SolveMain(const std::vector<std::string>& arguments) {
   status = RunSolve(take, config, show_progress, &result);
   if (!status.ok()) return status;
   const SequenceSolveReport& sequence = result.per_frame;
-  if (config.agreement.compare_solvers) {
-    const SolverAgreementReport& a = result.agreement;
-    std::printf("solver agreement: %d of %d frames (%.2f %%) with dls and ceres final costs within %g; %zu listed "
-                "in the report\n", a.frames_within, a.frames_compared, 100.0 * a.fraction_within, a.tolerance,
-                a.worst.size());
-  }
-  if (solver.mode == "clip") {
-    const ClipSolveReport& clip = result.clip;
-    std::printf("clip (%s): %d parameters, %d residual blocks, %d iterations in %.3f s, cost "
-                "%.6g -> %.6g, RMS marker residual %.4g %s\n",
-                clip.solver.c_str(), clip.parameters, clip.residual_blocks, clip.iterations, clip.solve_seconds,
-                clip.initial_cost, clip.final_cost, clip.rms_marker_error * to_output, unit);
-  }
+  std::fputs(SolveSummaryText(skeleton, config, result).c_str(), stdout);
   JsonObject report;
   if (Files().subject.empty()) {
     report.Add("skeleton", Files().skeleton).Add("markerset", Files().markerset);

@@ -8,6 +8,7 @@
 #include "kinematics/forward_kinematics.h"
 #include "pipeline/memory_estimate.h"
 #include "pipeline/repair_report.h"
+#include "tasks/console_text.h"
 
 namespace mocapsolve {
 namespace {
@@ -57,6 +58,39 @@ std::string HeldJointsText(const Skeleton& skeleton, const SequenceSolveReport& 
   const std::string whole = list(sequence.held_frames), twist = list(sequence.twist_held_frames);
   if (twist.empty()) return whole;
   return (whole.empty() ? "none" : whole) + "; about the line to their one seen marker only: " + twist;
+}
+
+std::string PerFrameSolveText(const Skeleton& skeleton, const std::string& solver,
+                              const SequenceSolveReport& sequence) {
+  const double scale = ResidualScale(skeleton);
+  std::string text;
+  AppendF(&text, "per-frame (%s): %d frames in %.3f s (%.0f frames/s), %ld iterations, RMS marker "
+          "residual %.4g %s (worst frame %.4g), unsolved frames %d, at iteration limit %d\n",
+          solver.c_str(), sequence.frames, sequence.solve_seconds,
+          sequence.solve_seconds > 0 ? sequence.frames / sequence.solve_seconds : 0.0, sequence.total_iterations,
+          sequence.rms_marker_error * scale, ResidualUnit(skeleton), sequence.max_frame_rms * scale,
+          sequence.unsolved_frames, sequence.unconverged_frames);
+  const std::string held = HeldJointsText(skeleton, sequence);
+  if (!held.empty()) AppendF(&text, "hidden joints held at the subject's mean pose (frames): %s\n", held.c_str());
+  return text;
+}
+
+std::string SolveSummaryText(const Skeleton& skeleton, const SolveConfig& config, const SolveResult& result) {
+  std::string text;
+  if (config.agreement.compare_solvers) {
+    const SolverAgreementReport& a = result.agreement;
+    AppendF(&text, "solver agreement: %d of %d frames (%.2f %%) with dls and ceres final costs within %g; %zu "
+            "listed in the report\n", a.frames_within, a.frames_compared, 100.0 * a.fraction_within, a.tolerance,
+            a.worst.size());
+  }
+  if (config.solver.mode == "clip") {
+    const ClipSolveReport& clip = result.clip;
+    AppendF(&text, "clip (%s): %d parameters, %d residual blocks, %d iterations in %.3f s, cost %.6g -> %.6g, RMS "
+            "marker residual %.4g %s\n", clip.solver.c_str(), clip.parameters, clip.residual_blocks,
+            clip.iterations, clip.solve_seconds, clip.initial_cost, clip.final_cost,
+            clip.rms_marker_error * ResidualScale(skeleton), ResidualUnit(skeleton));
+  }
+  return text;
 }
 
 Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolveProgress& progress,

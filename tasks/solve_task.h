@@ -56,6 +56,15 @@ std::string HeldJointsText(const Skeleton& skeleton, const SequenceSolveReport& 
 Status RunSolve(const MarkerTake& take, const SolveConfig& config, const SolveProgress& progress,
                 SolveResult* result);
 
+// The console lines of a solve, residuals in mm (skeleton units when its unit is unknown):
+// the per-frame solve's (frames, time, iterations, RMS, unsolved frames; then the joints
+// HeldJointsText names, when any), printed as soon as it is done, ...
+std::string PerFrameSolveText(const Skeleton& skeleton, const std::string& solver,
+                              const SequenceSolveReport& sequence);
+// ... and after the whole solve: both solvers' agreement (compare_solvers) and the clip
+// solve's (mode=clip); "" when neither ran.
+std::string SolveSummaryText(const Skeleton& skeleton, const SolveConfig& config, const SolveResult& result);
+
 // The motion's marker residual frame by frame (the first `frames` of the take), as CSV:
 // frame, time (s), markers observed, RMS and max residual (mm, or skeleton units).
 std::string FrameResidualsCsv(const MarkerTake& take, int frames, const Motion& motion);
