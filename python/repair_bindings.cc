@@ -115,13 +115,14 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
 
   py::class_<EvaluateSettings> evaluate(m, "EvaluateSettings",
       "`mocapsolve evaluate`'s own options, one per flag (trials, white_noise_mm, protocol, refine_offsets,\n"
-      "refine_prior_frames; same defaults).");
+      "refine_prior_frames, off_body_mm; same defaults).");
   evaluate.def(py::init<>(), "Every option at the CLI's default.");
   evaluate.def_readwrite("trials", &EvaluateSettings::trials)
       .def_readwrite("white_noise_mm", &EvaluateSettings::white_noise_mm)
       .def_readwrite("protocol", &EvaluateSettings::protocol)
       .def_readwrite("refine_offsets", &EvaluateSettings::refine_offsets)
-      .def_readwrite("refine_prior_frames", &EvaluateSettings::refine_prior_frames);
+      .def_readwrite("refine_prior_frames", &EvaluateSettings::refine_prior_frames)
+      .def_readwrite("off_body_mm", &EvaluateSettings::off_body_mm);
   m.def("evaluate", [](SubjectPtr subject_arg, py::object markers, const std::string& method,
                        const py::kwargs& keywords) {
         const Subject* subject = &Required(subject_arg, "subject");

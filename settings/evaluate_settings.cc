@@ -20,7 +20,13 @@ const OptionGroup<EvaluateSettings>& EvaluateSettingOptions() {
            "(towards the subject's, --refine_prior_frames) and solve again, this many times (0: the subject as is).",
            0, 20)
       .Add(&S::refine_prior_frames, "refine_prior_frames", "frames",
-           "The subject's offset in --refine_offsets counts as this many frames of observation.", 0.0);
+           "The subject's offset in --refine_offsets counts as this many frames of observation.", 0.0)
+      .Add(&S::off_body_mm, "off_body_mm", "mm",
+           "--method=leave_one_out: leave out of the solve that predicts a marker the other markers' samples that the "
+           "body cannot have put where they are (further from another marker than the skeleton reaches, by more than "
+           "this tolerance: a marker fallen off, a point on the floor), found without the left-out marker; its own "
+           "samples are all scored, and the report counts those off the body. 0 = every sample solved.",
+           0.0);
   return *group;
 }
 

@@ -18,6 +18,9 @@ struct EvaluateSettings {
   std::string protocol = "cross_take";
   int refine_offsets = 0;              // leave_one_out: offset refinements per left-out marker.
   double refine_prior_frames = 200.0;  // Their prior: the calibrated offset's weight, frames.
+  // leave_one_out: the others' samples off the body (off_body_samples.h) left out of the
+  // solve, with this tolerance, mm; 0 = off.
+  double off_body_mm = 100.0;
 };
 
 const OptionGroup<EvaluateSettings>& EvaluateSettingOptions();

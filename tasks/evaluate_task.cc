@@ -34,6 +34,9 @@ Status LeaveOneOut(const MarkerTake& evaluated, const EvaluateConfig& config,
   options.refine_rounds = config.evaluate.refine_offsets;
   options.refine.prior_frames = config.evaluate.refine_prior_frames;
   options.keep_predictions = config.keep_predictions;
+  // A skeleton of unknown unit has no mm: every sample solved.
+  options.off_body_tolerance =
+      skeleton.unit().known() ? config.evaluate.off_body_mm / (skeleton.unit().metres_per_unit * 1000.0) : 0.0;
   LeaveOneOutReport& loo = result->leave_one_out;
   status = LeaveOneMarkerOut(skeleton, markers, take.observed, options, &loo, [&](int done) {
     if (progress) progress(done, markers.num_markers());
@@ -42,7 +45,7 @@ Status LeaveOneOut(const MarkerTake& evaluated, const EvaluateConfig& config,
   result->leave_one_out_labels.clear();
   for (int m = 0; m < markers.num_markers(); ++m) result->leave_one_out_labels.push_back(markers.label(m));
   protocol.Add("refine_offsets", config.evaluate.refine_offsets)
-      .Add("refine_prior_frames", config.evaluate.refine_prior_frames);
+      .Add("refine_prior_frames", config.evaluate.refine_prior_frames).Add("off_body_mm", config.evaluate.off_body_mm);
 
   const bool known = skeleton.unit().known();
   const double mm = known ? skeleton.unit().metres_per_unit * 1000.0 : 1.0;
@@ -54,8 +57,8 @@ Status LeaveOneOut(const MarkerTake& evaluated, const EvaluateConfig& config,
                   e.median * mm, e.p95 * mm, e.max * mm, unit);
     result->table_csv += line;
     JsonObject o;
-    o.Add("marker", label).Add("samples", e.samples).Add("mean", e.mean * mm).Add("median", e.median * mm)
-        .Add("p95", e.p95 * mm).Add("max", e.max * mm);
+    o.Add("marker", label).Add("samples", e.samples).Add("off_body", e.off_body).Add("mean", e.mean * mm)
+        .Add("median", e.median * mm).Add("p95", e.p95 * mm).Add("max", e.max * mm);
     return o;
   };
   std::vector<JsonObject> rows;

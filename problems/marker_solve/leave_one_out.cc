@@ -10,6 +10,7 @@
 
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/motion.h"
+#include "problems/marker_label/off_body_samples.h"
 #include "problems/marker_solve/sequence_solver.h"
 
 namespace mocapsolve {
@@ -42,6 +43,15 @@ Status PredictionErrors(const Skeleton& skeleton, const MarkerSet& markers,
   const Eigen::Vector3d missing = Eigen::Vector3d::Constant(std::nan(""));
   std::vector<std::vector<Eigen::Vector3d>> without = observed;
   for (std::vector<Eigen::Vector3d>& frame : without) frame[m] = missing;
+  if (options.off_body_tolerance > 0.0) {
+    // Found without m: whether another marker's sample is dropped does not depend on m's.
+    const std::vector<std::vector<char>> off = OffBodySamples(skeleton, markers, without, options.off_body_tolerance);
+    for (size_t f = 0; f < without.size(); ++f) {
+      for (size_t n = 0; n < off[f].size(); ++n) {
+        if (off[f][n]) without[f][n] = missing;
+      }
+    }
+  }
   Motion motion;
   Status status = SolveWithout(skeleton, markers, without, options, &motion);
   MarkerSet set = markers;
@@ -94,6 +104,7 @@ Status LeaveOneMarkerOut(const Skeleton& skeleton, const MarkerSet& markers,
   if (!options.frame.IsValid(&error)) return Status::Error(error);
   if (options.clip && !options.clip_options.IsValid(&error)) return Status::Error(error);
   if (options.refine_rounds < 0) return Status::Error("refine_rounds must be >= 0");
+  if (!(options.off_body_tolerance >= 0.0)) return Status::Error("off_body_tolerance must be >= 0");
   const auto start = std::chrono::steady_clock::now();
 
   std::vector<std::vector<double>> errors(num_markers);
@@ -147,6 +158,14 @@ Status LeaveOneMarkerOut(const Skeleton& skeleton, const MarkerSet& markers,
     report->markers[m] = SummarizeErrors(&errors[m]);
   }
   report->all = SummarizeErrors(&all);
+  if (options.off_body_tolerance > 0.0) {
+    const std::vector<std::vector<char>> off = OffBodySamples(skeleton, markers, observed, options.off_body_tolerance);
+    for (size_t f = 0; f < observed.size(); ++f) {
+      for (int m = 0; m < num_markers; ++m) {
+        if (off[f][m] && observed[f][m].allFinite()) ++report->markers[m].off_body, ++report->all.off_body;
+      }
+    }
+  }
   report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return Status::Ok();
 }

@@ -12,7 +12,14 @@
 // No sample of m reaches its prediction: the solves see `observed` with m missing, and with
 // refine_rounds > 0 the other markers' offsets are re-estimated on the take between solves
 // (offset_refinement.h: each towards its calibrated offset; m, unobserved, keeps its own),
-// x^_m(f) then coming from the last solve. Which frames and subject are given is the caller's
+// x^_m(f) then coming from the last solve. With off_body_tolerance > 0 the other markers'
+// samples that the body cannot have put where they are (problems/marker_label/
+// off_body_samples.h: further from another marker than the skeleton reaches, by more than the
+// tolerance; a marker fallen off, a point on the floor) are left out of those solves, so an
+// impossible sample does not drag the pose that predicts m (nick_freeform_001's RTOE, 0.8-1.4
+// m from its ankle in 115 frames). They are found on the observations without m, so m's own
+// samples decide nothing; m is scored on all its samples, flagged or not (its
+// PredictionErrorSummary::off_body counts those flagged with every marker present). Which frames and subject are given is the caller's
 // protocol (tasks/evaluate_task.h: the subject from another take, or from the take's first
 // half with the second half given here).
 //
@@ -44,10 +51,12 @@ struct LeaveOneOutOptions {
   int refine_rounds = 0;     // Offset refinements (each followed by a solve) per left-out marker.
   OffsetRefinementOptions refine;
   bool keep_predictions = false;  // Fill LeaveOneOutReport::predicted.
+  double off_body_tolerance = 0.0;  // Skeleton units; 0: every sample of the others solved.
 };
 
 struct PredictionErrorSummary {
   int samples = 0;  // Frames where the marker was observed (and so could be scored).
+  int off_body = 0;  // Of those, samples off the body (with the others; off_body_tolerance > 0).
   double mean = 0.0, median = 0.0, p95 = 0.0, max = 0.0;  // Skeleton units.
 };
 

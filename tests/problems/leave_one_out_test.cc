@@ -2,7 +2,8 @@
 // three per bone every left-out marker is still predicted exactly; a marker whose
 // observations are moved by a known amount shows that amount and spoils no other; and the
 // result does not depend on the number of threads; no sample of a left-out marker reaches its
-// own prediction, with or without the per-take offset refinement.
+// own prediction, with or without the per-take offset refinement and the off-body drop; a
+// marker off the body in some frames is kept out of the solve that predicts the others.
 #include "problems/marker_solve/leave_one_out.h"
 
 #include <gtest/gtest.h>
@@ -78,8 +79,10 @@ TEST(LeaveOneOut, ResultDoesNotDependOnThreads) {
 
 TEST(LeaveOneOut, ALeftOutMarkersSamplesCannotReachItsPrediction) {
   const testing::DemoTake take = testing::MakeDemoTake(8, 30.0, 7);
-  for (int rounds : {0, 1}) {
+  for (int variant : {0, 1, 2}) {
+    const int rounds = variant == 1 ? 1 : 0;
     LeaveOneOutOptions options = Options(2);
+    if (variant == 2) options.off_body_tolerance = 10.0;  // cm: m's samples moved 30+ cm.
     options.frame.dls = DlsOptions();  // Default tolerances: the test compares two runs, not the truth.
     options.frame.dls.max_iterations = 10;
     options.refine_rounds = rounds;
@@ -100,10 +103,10 @@ TEST(LeaveOneOut, ALeftOutMarkersSamplesCannotReachItsPrediction) {
         EXPECT_FALSE(spoiled.predicted[m][f].allFinite());
         continue;
       }
-      EXPECT_EQ(spoiled.predicted[m][f], clean.predicted[m][f]) << "rounds " << rounds << " frame " << f;
+      EXPECT_EQ(spoiled.predicted[m][f], clean.predicted[m][f]) << "variant " << variant << " frame " << f;
     }
     EXPECT_GT(spoiled.markers[m].median, 20.0);  // Scored against the moved samples.
-    // The moved samples do reach the others' predictions, so a leak would be seen.
+    // The moved samples do reach the others' predictions, so a leak would be seen (variants 0, 1).
     double other_change = 0.0;
     for (int k = 0; k < take.markers.num_markers(); ++k) {
       if (k == m) continue;
@@ -111,8 +114,42 @@ TEST(LeaveOneOut, ALeftOutMarkersSamplesCannotReachItsPrediction) {
         other_change = std::max(other_change, (spoiled.predicted[k][f] - clean.predicted[k][f]).norm());
       }
     }
-    EXPECT_GT(other_change, 0.1) << "rounds " << rounds;  // cm.
+    if (variant == 2) {
+      // Off the body by more than the tolerance, m's moved samples are dropped from the others' solves.
+      EXPECT_LT(other_change, 1e-6);
+    } else {
+      EXPECT_GT(other_change, 0.1) << "variant " << variant;  // cm.
+    }
   }
+}
+
+TEST(LeaveOneOut, AMarkerOffTheBodyIsLeftOutOfTheOthersSolve) {
+  testing::DemoTake take = testing::MakeDemoTake(10, 30.0, 7);
+  // Marker k lies 2 m off in frames 3-6 (a marker fallen to the floor); everything else is exact.
+  const int k = 4;
+  for (int f = 3; f <= 6; ++f) take.clean[f][k] += Eigen::Vector3d(200.0, -50.0, 0.0);  // cm.
+  const int bone = take.markers.marker(k).attachments[0].joint;
+  auto worst_mate = [&](const LeaveOneOutReport& report) {
+    double worst = 0.0;
+    for (int m = 0; m < take.markers.num_markers(); ++m) {
+      if (m != k && take.markers.marker(m).attachments[0].joint == bone) worst = std::max(worst, report.markers[m].max);
+    }
+    return worst;
+  };
+  LeaveOneOutOptions options = Options(1);
+  LeaveOneOutReport all_in, dropped;
+  ASSERT_TRUE(LeaveOneMarkerOut(take.skeleton, take.markers, take.clean, options, &all_in).ok());
+  options.off_body_tolerance = 10.0;  // cm.
+  ASSERT_TRUE(LeaveOneMarkerOut(take.skeleton, take.markers, take.clean, options, &dropped).ok());
+  // Solved with k's samples in, k's bone mates are dragged by it; with them left out, exact.
+  EXPECT_GT(worst_mate(all_in), 5.0);
+  EXPECT_LT(worst_mate(dropped), 1e-3);
+  // k itself is still scored on every sample, its four off the body counted.
+  EXPECT_EQ(dropped.markers[k].samples, 10);
+  EXPECT_EQ(dropped.markers[k].off_body, 4);
+  EXPECT_EQ(dropped.all.off_body, 4);
+  EXPECT_EQ(all_in.markers[k].off_body, 0);
+  EXPECT_GT(dropped.markers[k].max, 150.0);
 }
 
 TEST(LeaveOneOut, SummaryUsesNearestRankPercentiles) {
@@ -134,6 +171,9 @@ TEST(LeaveOneOut, BadInputIsAnError) {
   auto short_frame = take.clean;
   short_frame[1].pop_back();
   EXPECT_FALSE(LeaveOneMarkerOut(take.skeleton, take.markers, short_frame, Options(1), &report).ok());
+  LeaveOneOutOptions negative = Options(1);
+  negative.off_body_tolerance = -1.0;
+  EXPECT_FALSE(LeaveOneMarkerOut(take.skeleton, take.markers, take.clean, negative, &report).ok());
 }
 
 }  // namespace
