@@ -169,7 +169,8 @@ double Seconds(std::chrono::steady_clock::time_point t) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s TEMPLATE.json [DATA_DIR] [--fit_max_frames=N] [--no_fit] [--bare_solve]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s TEMPLATE.json [DATA_DIR] [--fit_max_frames=N] [--no_fit] [--bare_solve]\n",
+                 argv[0]);
     return 1;
   }
   std::string data = "../shared/data";
@@ -251,7 +252,9 @@ int main(int argc, char** argv) {
         ms::SkeletonFitResult result;
         const auto fit_start = std::chrono::steady_clock::now();
         ms::MarkerSolveOptions solve;
-        if (!bare_solve) status = ms::MarkerSolveOptionsFromSettings(ms::SolverSettings(), templ.skeleton.unit(), &solve);
+        if (!bare_solve) {
+          status = ms::MarkerSolveOptionsFromSettings(ms::SolverSettings(), templ.skeleton.unit(), &solve);
+        }
         if (status.ok()) status = ms::FitSubjectToTake(inputs, settings, solve, &result);
         fit_seconds = Seconds(fit_start);
         if (status.ok()) {

@@ -20,7 +20,7 @@
 namespace mocapsolve {
 
 struct AssociatedMarkerSet {
-  std::vector<MarkerSpec> specs;          // The markers at or above the confidence (the pelvis': half), on their joints.
+  std::vector<MarkerSpec> specs;          // The markers at or above the bar (the pelvis': half), on their joints.
   std::vector<std::string> joints;        // Per spec, its joint's name (for the report).
   std::vector<std::string> left_out;      // Labels below the confidence or without a template joint.
   std::vector<std::string> head_labels, pelvis_labels;  // For the torso check.

@@ -40,7 +40,9 @@ TEST(AssociatedMarkerSet, ThePelvisMarkersAnchorRoundZeroBelowTheBar) {
   EXPECT_EQ(std::set<std::string>(set.left_out.begin(), set.left_out.end()), (std::set<std::string>{"P4", "C2", "T1"}));
   EXPECT_EQ(set.pelvis_labels.size(), 4u);
   for (size_t i = 0; i < set.specs.size(); ++i) {
-    if (set.specs[i].label[0] == 'P') EXPECT_EQ(set.joints[i], "Hips") << set.specs[i].label;
+    if (set.specs[i].label[0] == 'P') {
+      EXPECT_EQ(set.joints[i], "Hips") << set.specs[i].label;
+    }
   }
 }
 

@@ -352,7 +352,8 @@ TEST(MarkerAssociationTest, AFootStillTheWholeTakeIsKept) {
   std::normal_distribution<double> noise(0.0, 0.05);
   for (int f = 0; f < in.num_frames(); ++f) {
     for (int m = 0; m < in.num_markers(); ++m) {
-      if (in.valid(f, m)) take.trajectories.SetSample(f, m, in.position(f, m) + Eigen::Vector3d(noise(random), noise(random), noise(random)));
+      const Eigen::Vector3d jitter(noise(random), noise(random), noise(random));
+      if (in.valid(f, m)) take.trajectories.SetSample(f, m, in.position(f, m) + jitter);
     }
     take.trajectories.SetSample(f, in.num_markers(), Eigen::Vector3d(175.0, 0.0, 92.0));
   }
@@ -362,7 +363,8 @@ TEST(MarkerAssociationTest, AFootStillTheWholeTakeIsKept) {
   std::string excluded;
   for (const auto& [label, why] : association.excluded) excluded += " " + label + ": " + why + ";";
   for (const auto& [label, joint] : take.joint) {
-    if (joint.rfind("Left", 0) == 0 && (joint.find("Leg") != std::string::npos || joint == "LeftFoot" || joint == "LeftToe")) {
+    const bool leg = joint.find("Leg") != std::string::npos || joint == "LeftFoot" || joint == "LeftToe";
+    if (joint.rfind("Left", 0) == 0 && leg) {
       EXPECT_NE(association.Find(label), nullptr) << joint << " (" << label << ") left out;" << excluded;
     }
   }
