@@ -6,7 +6,11 @@
 // CMU-style waist labels, a Plug-in Gait export with Nexus model outputs (PluginGait).
 // Environment: ASSOC_TAKE=<take> and ASSOC_SEED=<1|2|3> run one take, one variant;
 // ASSOC_VERBOSE=1 lists each excluded point with its reason.
-//   protocol_association TEMPLATE.json [DATA_DIR] [--fit_max_frames=N] [--no_fit]
+// The fit's pose solves use the solver settings' defaults, as `fit_skeleton` and `pipeline
+// --subject=auto` do (pose prior, mean-pose and hidden-joint priors); --bare_solve uses a
+// default-constructed MarkerSolveOptions instead (no priors: what this tool measured before
+// 7 December 2026, a fit no command runs).
+//   protocol_association TEMPLATE.json [DATA_DIR] [--fit_max_frames=N] [--no_fit] [--bare_solve]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +25,7 @@
 #include "io/marker_file.h"
 #include "pipeline/subject.h"
 #include "problems/marker_solve/marker_association.h"
+#include "settings/solver_settings.h"
 #include "tasks/fit_skeleton_task.h"
 
 namespace ms = mocapsolve;
@@ -164,15 +169,17 @@ double Seconds(std::chrono::steady_clock::time_point t) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s TEMPLATE.json [DATA_DIR] [--fit_max_frames=N] [--no_fit]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s TEMPLATE.json [DATA_DIR] [--fit_max_frames=N] [--no_fit] [--bare_solve]\n",
+                 argv[0]);
     return 1;
   }
   std::string data = "../shared/data";
   int max_frames = 600;
-  bool fit = true;
+  bool fit = true, bare_solve = false;
   for (int i = 2; i < argc; ++i) {
     if (std::strncmp(argv[i], "--fit_max_frames=", 17) == 0) max_frames = std::atoi(argv[i] + 17);
     else if (std::strcmp(argv[i], "--no_fit") == 0) fit = false;
+    else if (std::strcmp(argv[i], "--bare_solve") == 0) bare_solve = true;
     else data = argv[i];
   }
   ms::Subject templ;
@@ -247,7 +254,10 @@ int main(int argc, char** argv) {
         ms::SkeletonFitResult result;
         const auto fit_start = std::chrono::steady_clock::now();
         ms::MarkerSolveOptions solve;
-        status = ms::FitSubjectToTake(inputs, settings, solve, &result);
+        if (!bare_solve) {
+          status = ms::MarkerSolveOptionsFromSettings(ms::SolverSettings(), templ.skeleton.unit(), &solve);
+        }
+        if (status.ok()) status = ms::FitSubjectToTake(inputs, settings, solve, &result);
         fit_seconds = Seconds(fit_start);
         if (status.ok()) {
           rms = result.checks.rms_mm, torso = result.checks.torso_error_mean_deg, passed = result.checks.ok();

@@ -52,13 +52,19 @@ Status MakeAssociatedMarkerSet(const Skeleton& templ, const MarkerAssociation& a
       break;
     }
   }
+  // The pelvis' markers anchor round 0 (the root: without them it is placed by the limbs and
+  // the chest alone, and can start tilted): they take half the bar. A walking pelvis moves
+  // nearly rigidly with the chest, which lowers its cluster's separation (the confidence),
+  // not its role: 02_01's four pelvis markers at 0.48-0.58 were all left out of round 0,
+  // whose fit then kept the torso 19.7 degrees off.
+  constexpr double kPelvisShare = 0.5;
   for (const AssociatedMarker& m : association.markers) {
     // The torso check's groups: every head and pelvis marker (the attach rounds attach the
     // ones round 0 leaves out).
     if (m.role == "head") out->head_labels.push_back(m.label);
     if (m.role == "pelvis") out->pelvis_labels.push_back(m.label);
     const int joint = m.role.empty() ? -1 : RoleJoint(roles, m.role);
-    if (joint < 0 || m.confidence < min_confidence) {
+    if (joint < 0 || m.confidence < (m.role == "pelvis" ? kPelvisShare : 1.0) * min_confidence) {
       out->left_out.push_back(m.label);
       continue;
     }

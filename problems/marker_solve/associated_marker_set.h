@@ -3,7 +3,9 @@
 // roles of the template standing in its rest pose, problems/retarget/humanoid_roles.h),
 // at the middle of that joint's longest bone segment (subject_checks.h, BoneSegments) as
 // the offset the fit starts from; and the file axes that put the take's detected up on the
-// template's (the first axis rotation, in AllAxisRotations' order, that does).
+// template's (the first axis rotation, in AllAxisRotations' order, that does). The markers
+// below `min_confidence` are left out, but for the pelvis' (the root's, which anchor the
+// fit), left out below half of it.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_ASSOCIATED_MARKER_SET_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_ASSOCIATED_MARKER_SET_H_
 
@@ -18,7 +20,7 @@
 namespace mocapsolve {
 
 struct AssociatedMarkerSet {
-  std::vector<MarkerSpec> specs;          // The markers at or above the confidence, on their joints.
+  std::vector<MarkerSpec> specs;          // The markers at or above the bar (the pelvis': half), on their joints.
   std::vector<std::string> joints;        // Per spec, its joint's name (for the report).
   std::vector<std::string> left_out;      // Labels below the confidence or without a template joint.
   std::vector<std::string> head_labels, pelvis_labels;  // For the torso check.

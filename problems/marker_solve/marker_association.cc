@@ -19,6 +19,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // distance to the per-frame median point, about 0.45 m on an adult):
 constexpr double kOriginOfBody = 0.2;      // A point this near the file's origin (about 9 cm).
 constexpr double kLoneSpreadOfBody = 0.13;  // A point whose every pair spread is over this (about 6 cm).
+// A point whose 10-90 % range of motion is under this does not move at all (about 0.5 um;
+// a still foot's markers sway over a millimetre).
+constexpr double kConstantOfBody = 1e-6;
 
 double Median(std::vector<double> v) {
   v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
@@ -125,23 +128,43 @@ void ExcludeStrayPoints(Scene* scene, const RigidClusterOptions& options, Marker
       scene->still.push_back(travel[candidates[i]] < 0.1 * moves);
     }
   }
-  // Still while the body moves and apart from every point that moves (a squat's feet are
-  // still, but beside the ankles): over 0.75 times the median point's distance to the body.
+  // Still while the body moves and apart from the body: a still point joins the body when
+  // it keeps within 0.75 times the median point's distance to the body (B) of a point that
+  // moves, or of a still point that joined it (a squat's planted foot beside its still shin,
+  // beside the moving knee: a chain). A point that does not move at all (the same numbers
+  // in every frame: no tracked marker, which sways and carries the cameras' noise) joins
+  // only beside a moving point.
+  std::vector<bool> reached(scene->kept.size(), false);
+  std::vector<size_t> frontier;
+  for (size_t i = 0; i < scene->kept.size(); ++i) {
+    if (!scene->still[i]) reached[i] = true, frontier.push_back(i);
+  }
+  const auto median_distance = [&](size_t i, size_t j) {
+    std::vector<double> d;
+    for (int f : scene->frames) {
+      if (take.valid(f, scene->kept[i]) && take.valid(f, scene->kept[j])) {
+        d.push_back((take.position(f, scene->kept[i]) - take.position(f, scene->kept[j])).norm());
+      }
+    }
+    return Median(d);
+  };
+  while (!frontier.empty()) {
+    std::vector<size_t> next;
+    for (size_t i = 0; i < scene->kept.size(); ++i) {
+      if (reached[i]) continue;
+      const bool constant = !(travel[scene->kept[i]] > kConstantOfBody * body);
+      for (size_t j : frontier) {
+        if ((constant && scene->still[j]) || !(median_distance(i, j) <= 0.75 * body)) continue;
+        reached[i] = true, next.push_back(i);
+        break;
+      }
+    }
+    frontier = next;
+  }
   std::vector<int> kept;
   std::vector<bool> still;
   for (size_t i = 0; i < scene->kept.size(); ++i) {
-    double nearest = kInf;
-    for (size_t j = 0; j < scene->kept.size() && scene->still[i]; ++j) {
-      if (scene->still[j]) continue;
-      std::vector<double> d;
-      for (int f : scene->frames) {
-        if (take.valid(f, scene->kept[i]) && take.valid(f, scene->kept[j])) {
-          d.push_back((take.position(f, scene->kept[i]) - take.position(f, scene->kept[j])).norm());
-        }
-      }
-      nearest = std::min(nearest, Median(d));
-    }
-    if (scene->still[i] && !(nearest <= 0.75 * body)) {
+    if (!reached[i]) {
       out->excluded.push_back({take.label(scene->kept[i]), "still while the body moves, apart from it (not a marker)"});
     } else {
       kept.push_back(scene->kept[i]);

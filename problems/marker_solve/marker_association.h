@@ -11,9 +11,13 @@
 //     point: joint angles in degrees, forces in N/kg, powers in W/kg sit at the origin,
 //     wherever the body walks); one whose smallest pair spread (rigid_marker_clusters.h,
 //     in units of B) exceeds 0.13 B (nothing moves rigidly with it: a moment in N mm/kg);
-//     one still (it moves less than a tenth of the median point) while it keeps over 0.75 B
-//     from every moving point that is left. After step 4, also a point that keeps its
-//     distance to no other (smallest pair spread > `max_lone_spread`, metres). Virtual
+//     one still (it moves less than a tenth of the median point) that keeps over 0.75 B from
+//     every point of the body: a point that moves, or a still one within 0.75 B of the body
+//     (a chain: a squat's planted foot beside its still shin, beside the moving knee); a
+//     point that does not move at all (the same numbers in every frame, which no tracked
+//     marker gives) is of the body only within 0.75 B of a moving point. After step 4, also
+//     a point that keeps its distance to no other (smallest pair spread > `max_lone_spread`,
+//     metres). Virtual
 //     points that move with the body (a centre of mass, a joint centre) are kept; a fit
 //     attaches them like markers. (The C3D reader already sets apart the model outputs
 //     its POINT groups or Plug-in Gait names mark.)
