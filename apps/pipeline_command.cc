@@ -19,6 +19,7 @@
 #include "io/motion_file.h"
 #include "pipeline/quality_gate.h"
 #include "pipeline/take_pipeline.h"
+#include "pipeline/take_windows.h"
 #include "settings/delivery_settings.h"
 #include "settings/pyramid_settings.h"
 #include "settings/repair_settings.h"
@@ -71,17 +72,34 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   status = CharacterFilesFromSettings(delivery, run.animation_only, &character_files);
   if (status.ok()) status = CheckCharacterFiles(Files().out_dir, inputs, character_files);
   if (!status.ok()) return status;
+  // A take over --window_frames runs window by window, its files written as they finish
+  // (pipeline/take_windows.h); it has no page yet.
+  const bool windowed = TakeRunsInWindows(inputs, options, &status);
+  if (!status.ok()) return status;
+  if (windowed && !view_path.empty()) {
+    ViewPageSetting view;
+    ReadOptionFlags(TakeViewPageOption(), &view);
+    if (view.view != "auto") return Status::Error("--view=" + view.view + ": no page for a take over --window_frames");
+    std::fprintf(stderr, "warning: pipeline: no view.html (--view=auto): the take runs in windows (--window_frames)\n");
+    view_path.clear();
+  }
   TakeResult result;
   std::unique_ptr<Progress> progress;
   std::string shown;
-  status = RunTakePipeline(inputs, options, &result, [&](const std::string& stage, int done, int total) {
+  const PipelineProgress show = [&](const std::string& stage, int done, int total) {
     if (stage != shown) {
       SetStage(stage);
       progress = std::make_unique<Progress>("pipeline: " + stage, total, Console().quiet);
       shown = stage;
     }
     progress->Update(done);
-  });
+  };
+  if (windowed) {
+    status = MakeFolders(Files().out_dir);
+    if (status.ok()) status = RunTakeInWindows(Files().out_dir, inputs, options, character_files, &result, show);
+  } else {
+    status = RunTakePipeline(inputs, options, &result, show);
+  }
   if (!status.ok()) return status;
   JsonObject report = TakeReport(inputs, result);
   AddPipelineSubject(fitted.get(), &report);
@@ -137,6 +155,11 @@ extern const Command kPipelineCommand = {
     "browser page: --view=auto (default) DIR/view.html when the viewer's runtime is installed\n"
     "(scripts/viewer_tools.sh), else a warning and no page; --view=PAGE.html requires it (a\n"
     "missing runtime is an error); --view=off writes none.\n"
+    "A take of more than --window_frames frames (18,000: 2.5 min at 120 Hz) runs window by window,\n"
+    "each window with --window_context_frames (600) more on each side solved and dropped, in\n"
+    "bounded memory, --num_threads windows at a time; its files are written as the windows\n"
+    "finish, report.json combines their figures (\"windows\": the seams' differences). Such a take\n"
+    "is not labelled first, is delivered whole, as glb only, and has no page.\n"
     "Exit code: 0 done, 1 bad input or a failed stage (nothing written), 3 the take failed\n"
     "the quality gate (outputs written, the report says why).",
     __FILE__, RunPipeline,

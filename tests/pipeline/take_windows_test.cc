@@ -1,0 +1,38 @@
+// The windows a long take runs in (pipeline/take_windows.h): cores that cover every frame
+// once, in order, as equal as can be; context clamped to the take; one window when the
+// take fits.
+#include "pipeline/take_windows.h"
+
+#include <gtest/gtest.h>
+
+namespace mocapsolve {
+namespace {
+
+TEST(TakeWindows, CoresCoverEveryFrameOnceWithContextEachSide) {
+  for (int frames : {1, 199, 200, 201, 600, 1854, 431982}) {
+    const std::vector<FrameWindow> windows = TakeWindows(frames, 200, 50);
+    ASSERT_EQ(static_cast<int>(windows.size()), (frames + 199) / 200) << frames;
+    int next = 0;
+    int smallest = frames, largest = 0;
+    for (const FrameWindow& w : windows) {
+      EXPECT_EQ(w.core_first, next) << frames;
+      EXPECT_GE(w.core_last, w.core_first);
+      EXPECT_EQ(w.first, std::max(0, w.core_first - 50));
+      EXPECT_EQ(w.last, std::min(frames - 1, w.core_last + 50));
+      smallest = std::min(smallest, w.core_last - w.core_first + 1);
+      largest = std::max(largest, w.core_last - w.core_first + 1);
+      next = w.core_last + 1;
+    }
+    EXPECT_EQ(next, frames);
+    EXPECT_LE(largest, 200);
+    EXPECT_LE(largest - smallest, 1) << frames;
+  }
+  const std::vector<FrameWindow> whole = TakeWindows(600, 600, 50);
+  ASSERT_EQ(whole.size(), 1u);
+  EXPECT_EQ(whole[0].first, 0);
+  EXPECT_EQ(whole[0].last, 599);
+  EXPECT_TRUE(TakeWindows(0, 200, 50).empty());
+}
+
+}  // namespace
+}  // namespace mocapsolve
