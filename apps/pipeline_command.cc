@@ -157,8 +157,8 @@ extern const Command kPipelineCommand = {
     "missing runtime is an error); --view=off writes none.\n"
     "A take of more than --window_frames frames (18,000: 2.5 min at 120 Hz) runs window by window,\n"
     "each window with --window_context_frames (600) more on each side solved and dropped, in\n"
-    "bounded memory, --num_threads windows at a time; its files are written as the windows\n"
-    "finish, report.json combines their figures (\"windows\": the seams' differences). Such a take\n"
+    "bounded memory, in order (each starts from the last one's solve); its files are written as\n"
+    "the windows finish, report.json combines their figures (\"windows\": the seams' differences). Such a take\n"
     "is not labelled first, is delivered whole, as glb only, and has no page.\n"
     "Exit code: 0 done, 1 bad input or a failed stage (nothing written), 3 the take failed\n"
     "the quality gate (outputs written, the report says why).",

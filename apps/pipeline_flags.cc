@@ -1,6 +1,5 @@
 #include "apps/pipeline_flags.h"
 
-#include <algorithm>
 #include <cstdio>
 
 #include "apps/common_flags.h"
@@ -15,7 +14,6 @@
 #include "settings/delivery_settings.h"
 #include "settings/foot_joint_settings.h"
 #include "settings/skeleton_fit_settings.h"
-#include "settings/solver_settings.h"
 #include "settings/label_settings.h"
 #include "settings/memory_settings.h"
 #include "settings/retarget_run_settings.h"
@@ -46,9 +44,6 @@ Status TakePipelineOptionsFromFlags(const Skeleton& skeleton, TakePipelineOption
   options->label = take.label;
   options->window_frames = take.window_frames;
   options->window_context_frames = take.window_context_frames;
-  SolverSettings solver;
-  ReadOptionFlags(RepairSolverOptions(), &solver);
-  options->window_threads = std::max(solver.num_threads, 1);
   ReadOptionFlags(LabelSettingOptions(), &options->labelling);
   ReadOptionFlags(RepairSolverOptions(), &options->label_solver);
   if (status.ok()) status = PyramidOptionsFromFlags(take.filter_levels, &options->filter);

@@ -42,10 +42,9 @@ MemoryEstimate PipelineMemory(int frames, int markers) {
           kPipelineSharedKb + kPipelinePerMarkerKb * markers};
 }
 
-MemoryEstimate WindowedPipelineMemory(int frames, int window, int markers, int at_once) {
+MemoryEstimate WindowedPipelineMemory(int frames, int window, int markers) {
   const MemoryEstimate one = PipelineMemory(window, markers);
-  return {"the pipeline's windows", frames, markers, one.base_mb + at_once * (one.mb() - one.base_mb),
-          kWindowedSharedKb + kWindowedPerMarkerKb * markers};
+  return {"the pipeline's windows", frames, markers, one.mb(), kWindowedSharedKb + kWindowedPerMarkerKb * markers};
 }
 
 void AddPerWindow(const MemoryEstimate& other, int frames, MemoryEstimate* estimate) {

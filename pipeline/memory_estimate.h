@@ -36,10 +36,10 @@ struct MemoryEstimate {
 // the writers, every stage holding the whole take.
 MemoryEstimate PipelineMemory(int frames, int markers);
 // `pipeline` on a take longer than its window_frames (pipeline/take_windows.h): the
-// stages of `at_once` windows (PipelineMemory's per-frame cost over `window` frames, core
-// and context, each) as the base, and per frame of the take what is kept for the outputs
-// (the file's samples, the character's compact take, the writers' buffers).
-MemoryEstimate WindowedPipelineMemory(int frames, int window, int markers, int at_once = 1);
+// stages of one window (PipelineMemory's per-frame cost over `window` frames, core and
+// context) as the base, and per frame of the take what is kept for the outputs (the file's
+// samples, the character's compact take, the writers' buffers).
+MemoryEstimate WindowedPipelineMemory(int frames, int window, int markers);
 // Adds `other`'s per-frame cost over `frames` frames to estimate's base (a method that runs
 // on one window at a time).
 void AddPerWindow(const MemoryEstimate& other, int frames, MemoryEstimate* estimate);

@@ -130,16 +130,13 @@ Status CheckTakeMemory(const TakeInputs& inputs, const TakePipelineOptions& opti
 MemoryEstimate TakeMemory(int frames, int markers, const TakePipelineOptions& options) {
   const bool windowed = frames > options.window_frames;
   const int window = windowed ? std::min(frames, options.window_frames + 2 * options.window_context_frames) : frames;
-  const int at_once = std::max(1, std::min(options.window_threads, (frames + options.window_frames - 1) /
-                                                                      std::max(options.window_frames, 1)));
-  MemoryEstimate estimate =
-      windowed ? WindowedPipelineMemory(frames, window, markers, at_once) : PipelineMemory(frames, markers);
+  MemoryEstimate estimate = windowed ? WindowedPipelineMemory(frames, window, markers) : PipelineMemory(frames, markers);
   std::vector<MemoryEstimate> more;
   if (options.repair.reference_kind == ReferenceKind::kClip) more.push_back(ClipSolveMemory(window, markers));
   if (options.filter_levels > 0) more.push_back(PipelineFilterMemory(window));
   for (const MemoryEstimate& m : more) {
     if (windowed) {
-      AddPerWindow(m, window * at_once, &estimate);
+      AddPerWindow(m, window, &estimate);
     } else {
       estimate.Add(m);
     }

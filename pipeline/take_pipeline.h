@@ -80,9 +80,6 @@ struct TakePipelineOptions {
   // with window_context_frames more on each side (settings/take_settings.h says why).
   int window_frames = 18000;
   int window_context_frames = 600;
-  // Windows run side by side (SolverSettings::num_threads, --num_threads); each holds its
-  // own window's stages, so memory grows with it. Outputs do not depend on it.
-  int window_threads = 1;
 
   bool IsValid(std::string* error) const;
 };

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
@@ -231,7 +230,7 @@ void FinishFigures(const TakePipelineOptions& options, const WindowSums& sums, T
   }
 }
 
-// The largest distance in mm between the joints of two solves of the same frames: frames
+// The largest distance in mm between the joints and end sites of two solves of the same frames: frames
 // [from, to] of the take, `a` holding frame f at f - a_first and `b` at f - b_first; at
 // frame `at` into *at_mm.
 double SeamDifference(const Skeleton& skeleton, const CompactMotion& a, int a_first, const CompactMotion& b,
@@ -250,6 +249,8 @@ double SeamDifference(const Skeleton& skeleton, const CompactMotion& a, int a_fi
     for (int j = 0; j < skeleton.num_joints(); ++j) {
       frame = std::max(frame, (fa.world_positions[j] - fb.world_positions[j]).norm() * mm);
     }
+    const Vector3dVector ea = EndSitePositions(skeleton, fa), eb = EndSitePositions(skeleton, fb);
+    for (size_t e = 0; e < ea.size(); ++e) frame = std::max(frame, (ea[e] - eb[e]).norm() * mm);
     largest = std::max(largest, frame);
     if (f == at) *at_mm = frame;
   }
@@ -319,7 +320,7 @@ Status KeepWindow(const TakeResult& window, const FrameWindow& w, int frames, bo
   std::string lines;
   Status status = Status::Ok();
   if (first_window) {
-    status = writers->bvh_frames.Start(window.take.skeleton, solve);
+    status = writers->bvh_frames.Start(total->take.skeleton, solve);  // Kept: the writer holds it.
     if (status.ok()) lines = writers->bvh_frames.Header(frames, window.solved.frame_rate());
   }
   if (status.ok()) status = writers->bvh_frames.AppendFrames(solve, w.core_first - w.first, core, &lines);
@@ -346,8 +347,8 @@ Status KeepWindow(const TakeResult& window, const FrameWindow& w, int frames, bo
 
 // One window read from the file and run through the stages into *window.
 Status RunWindow(const TakeInputs& inputs, const TakePipelineOptions& options, const MarkerTrajectories& file,
-                 const FrameWindow& w, const std::vector<CharacterOutput>& characters, const std::string& label,
-                 const PipelineProgress& progress, TakeResult* window) {
+                 const FrameWindow& w, const Pose& start, const std::vector<CharacterOutput>& characters,
+                 const std::string& label, const PipelineProgress& progress, TakeResult* window) {
   for (const CharacterOutput& c : characters) {
     CharacterOutput output;
     output.name = c.name;
@@ -358,6 +359,7 @@ Status RunWindow(const TakeInputs& inputs, const TakePipelineOptions& options, c
   double label_seconds = 0.0;
   TakePipelineOptions window_options = options;
   window_options.label = "never";  // CheckWindowedTake refused the others.
+  window_options.repair.start_pose = start;
   Status status = MapTakeMarkers(inputs, window_options, TrajectoryFrames(file, w.first, w.last - w.first + 1),
                                  window, nullptr, &label_seconds);
   if (!status.ok()) return status;
@@ -417,34 +419,21 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   WindowWriters writers;
   status = writers.bvh.Open(SolvedMotionPath(out_dir));
   WindowSums sums;
-  // options.window_threads windows at a time, each on its own thread (independent: the
-  // outputs are one thread's), kept in order.
-  const size_t threads = std::min<size_t>(std::max(options.window_threads, 1), windows.size());
-  for (size_t k = 0; k < windows.size() && status.ok(); k += threads) {
-    const size_t batch = std::min(threads, windows.size() - k);
-    std::vector<TakeResult> done(batch);
-    std::vector<Status> statuses(batch, Status::Ok());
-    auto run = [&](size_t b) {
-      const std::string label = "window " + std::to_string(k + b + 1) + "/" + std::to_string(windows.size()) + ": ";
-      statuses[b] = RunWindow(inputs, options, file, windows[k + b], result->characters, label,
-                              b == 0 ? progress : nullptr, &done[b]);
-    };
-    std::vector<std::thread> workers;
-    for (size_t b = 1; b < batch; ++b) workers.emplace_back(run, b);
-    run(0);
-    for (std::thread& worker : workers) worker.join();
-    for (size_t b = 0; b < batch && status.ok(); ++b) {
-      status = statuses[b];
-      const TakeResult& window = done[b];
-      if (k + b == 0 && status.ok()) {
-        result->take.skeleton = window.take.skeleton;
-        result->take.markers = window.take.markers;
-        result->take.trajectories = window.take.trajectories;  // Metadata only (RunTakeStages).
-        result->samples = frames * window.take.markers.num_markers();
-      }
-      if (status.ok()) status = KeepWindow(window, windows[k + b], frames, k + b == 0, &writers, &file, &sums, result);
-      done[b] = TakeResult();
+  // In order, one at a time: each window starts from the previous one's solve of the frame
+  // before it (RepairOptions::start_pose).
+  for (size_t k = 0; k < windows.size() && status.ok(); ++k) {
+    Pose start;
+    if (k > 0) writers.previous_solve.Frame(windows[k].first - 1 - writers.previous.first, &start);
+    const std::string label = "window " + std::to_string(k + 1) + "/" + std::to_string(windows.size()) + ": ";
+    TakeResult window;
+    status = RunWindow(inputs, options, file, windows[k], start, result->characters, label, progress, &window);
+    if (k == 0 && status.ok()) {
+      result->take.skeleton = window.take.skeleton;
+      result->take.markers = window.take.markers;
+      result->take.trajectories = window.take.trajectories;  // Metadata only (RunTakeStages).
+      result->samples = frames * window.take.markers.num_markers();
     }
+    if (status.ok()) status = KeepWindow(window, windows[k], frames, k == 0, &writers, &file, &sums, result);
   }
   if (status.ok()) status = writers.bvh.Close();
   if (!status.ok()) return status;

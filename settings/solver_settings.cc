@@ -36,8 +36,7 @@ const OptionGroup<SolverSettings>& SolverOptions() {
            "Stop when the relative step is below this.", 0)
       .Add(&S::num_threads, "num_threads", "threads",
            "Threads: Ceres threads of the clip solve (per-frame solves use 1); "
-             "repair runs its solves on two threads when >= 2; pipeline runs a long take's windows (--window_frames) this many "
-             "at a time. Speed only: a per-frame solve's result does not depend on it.", 1)
+             "repair runs its solves on two threads when >= 2. Speed only: a per-frame solve's result does not depend on it.", 1)
       .Add(&S::loss, "loss",
            "Robust loss on marker residuals: none | huber | cauchy.",
            {"none", "huber", "cauchy"})
