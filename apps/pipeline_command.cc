@@ -19,7 +19,6 @@
 #include "io/motion_file.h"
 #include "pipeline/quality_gate.h"
 #include "pipeline/take_pipeline.h"
-#include "pipeline/take_windows.h"
 #include "settings/delivery_settings.h"
 #include "settings/pyramid_settings.h"
 #include "settings/repair_settings.h"
@@ -72,34 +71,8 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   status = CharacterFilesFromSettings(delivery, run.animation_only, &character_files);
   if (status.ok()) status = CheckCharacterFiles(Files().out_dir, inputs, character_files);
   if (!status.ok()) return status;
-  // A take over --window_frames runs window by window, its files written as they finish
-  // (pipeline/take_windows.h); it has no page yet.
-  const bool windowed = TakeRunsInWindows(inputs, options, &status);
-  if (!status.ok()) return status;
-  if (windowed && !view_path.empty()) {
-    ViewPageSetting view;
-    ReadOptionFlags(TakeViewPageOption(), &view);
-    if (view.view != "auto") return Status::Error("--view=" + view.view + ": no page for a take over --window_frames");
-    std::fprintf(stderr, "warning: pipeline: no view.html (--view=auto): the take runs in windows (--window_frames)\n");
-    view_path.clear();
-  }
   TakeResult result;
-  std::unique_ptr<Progress> progress;
-  std::string shown;
-  const PipelineProgress show = [&](const std::string& stage, int done, int total) {
-    if (stage != shown) {
-      SetStage(stage);
-      progress = std::make_unique<Progress>("pipeline: " + stage, total, Console().quiet);
-      shown = stage;
-    }
-    progress->Update(done);
-  };
-  if (windowed) {
-    status = MakeFolders(Files().out_dir);
-    if (status.ok()) status = RunTakeInWindows(Files().out_dir, inputs, options, character_files, &result, show);
-  } else {
-    status = RunTakePipeline(inputs, options, &result, show);
-  }
+  status = RunPipelineTake(inputs, options, character_files, &view_path, &result);
   if (!status.ok()) return status;
   JsonObject report = TakeReport(inputs, result);
   AddPipelineSubject(fitted.get(), &report);

@@ -417,7 +417,8 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   result->windows.context_frames = options.window_context_frames;
   for (CharacterOutput& c : result->characters) c.take.Reserve(frames);
   WindowWriters writers;
-  status = writers.bvh.Open(SolvedMotionPath(out_dir));
+  status = MakeFolders(out_dir);  // After every check: a refused take leaves nothing.
+  if (status.ok()) status = writers.bvh.Open(SolvedMotionPath(out_dir));
   WindowSums sums;
   // In order, one at a time: each window starts from the previous one's solve of the frame
   // before it (RepairOptions::start_pose).

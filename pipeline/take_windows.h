@@ -55,8 +55,8 @@ std::vector<FrameWindow> TakeWindows(int frames, int window_frames, int context_
 // parameters read, not its samples); an error reading it goes to *status.
 bool TakeRunsInWindows(const TakeInputs& inputs, const TakePipelineOptions& options, Status* status);
 
-// Runs the take window by window and writes its files but report.json into out_dir (which
-// must exist); *result holds the combined figures (TakeReport, TakeSummary) and
+// Runs the take window by window and writes its files but report.json into out_dir (made
+// when missing); *result holds the combined figures (TakeReport, TakeSummary) and
 // result->windows. WriteTakeOutputs then writes report.json.
 Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, const TakePipelineOptions& options,
                         const CharacterFileOptions& files, TakeResult* result,
