@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "pipeline/memory_estimate.h"
+
 namespace mocapsolve {
 namespace {
 
@@ -32,6 +34,23 @@ TEST(TakeWindows, CoresCoverEveryFrameOnceWithContextEachSide) {
   EXPECT_EQ(whole[0].first, 0);
   EXPECT_EQ(whole[0].last, 599);
   EXPECT_TRUE(TakeWindows(0, 200, 50).empty());
+}
+
+// --memory_mb's estimate of a windowed take: one window's stages as the base and the
+// outputs' few KB per frame of the take, not the whole take's stages.
+TEST(TakeWindows, MemoryEstimateIsAWindowPlusTheOutputs) {
+  TakePipelineOptions options;  // 18,000-frame windows with 600 of context.
+  options.repair.reference_kind = ReferenceKind::kTracker;  // The command's default.
+  const MemoryEstimate short_take = TakeMemory(1854, 41, options);
+  EXPECT_DOUBLE_EQ(short_take.mb(), PipelineMemory(1854, 41).mb());  // Whole, as before.
+  const MemoryEstimate hour = TakeMemory(431982, 41, options);
+  EXPECT_EQ(hour.method, "the pipeline's windows");
+  EXPECT_DOUBLE_EQ(hour.base_mb, PipelineMemory(19200, 41).mb());
+  EXPECT_LE(hour.kb_per_frame, 3.0);
+  EXPECT_LT(hour.mb(), 1500.0);
+  EXPECT_LT(hour.mb(), PipelineMemory(431982, 41).mb() / 3);
+  options.filter_levels = 2;
+  EXPECT_DOUBLE_EQ(TakeMemory(431982, 41, options).kb_per_frame, hour.kb_per_frame);  // The filter runs per window.
 }
 
 }  // namespace
