@@ -18,7 +18,7 @@ const OptionGroup<TakeSettings>& TakeSettingOptions() {
       .Add(&S::window_frames, "window_frames", "frames",
            "A take of more frames than this runs window by window (each window's frames solved, repaired and "
            "retargeted on their own, its files written as the windows finish), so its memory is bounded by the "
-           "window, not the take (about 28 MB + 11 KB per window frame, against 3 KB per take frame for the "
+           "window, not the take (about 28 MB + 11 KB per window frame, and 2.4 KB per frame of the take for the "
            "outputs); a take of at most this many frames runs whole, as before. 18,000 = 2.5 min at 120 Hz.",
            10, 2147483647)
       .Add(&S::window_context_frames, "window_context_frames", "frames",
