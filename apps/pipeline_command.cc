@@ -72,16 +72,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   if (status.ok()) status = CheckCharacterFiles(Files().out_dir, inputs, character_files);
   if (!status.ok()) return status;
   TakeResult result;
-  std::unique_ptr<Progress> progress;
-  std::string shown;
-  status = RunTakePipeline(inputs, options, &result, [&](const std::string& stage, int done, int total) {
-    if (stage != shown) {
-      SetStage(stage);
-      progress = std::make_unique<Progress>("pipeline: " + stage, total, Console().quiet);
-      shown = stage;
-    }
-    progress->Update(done);
-  });
+  status = RunPipelineTake(inputs, options, character_files, &view_path, &result);
   if (!status.ok()) return status;
   JsonObject report = TakeReport(inputs, result);
   AddPipelineSubject(fitted.get(), &report);
@@ -137,6 +128,11 @@ extern const Command kPipelineCommand = {
     "browser page: --view=auto (default) DIR/view.html when the viewer's runtime is installed\n"
     "(scripts/viewer_tools.sh), else a warning and no page; --view=PAGE.html requires it (a\n"
     "missing runtime is an error); --view=off writes none.\n"
+    "A take of more than --window_frames frames (18,000: 2.5 min at 120 Hz) runs window by window,\n"
+    "each window with --window_context_frames (600) more on each side solved and dropped, in\n"
+    "bounded memory, in order (each starts from the last one's solve); its files are written as\n"
+    "the windows finish, report.json combines their figures (\"windows\": the seams' differences). Such a take\n"
+    "is not labelled first, is delivered whole, as glb only, and has no page.\n"
     "Exit code: 0 done, 1 bad input or a failed stage (nothing written), 3 the take failed\n"
     "the quality gate (outputs written, the report says why).",
     __FILE__, RunPipeline,

@@ -5,12 +5,14 @@
 #include "apps/common_flags.h"
 #include "apps/delivery_flags.h"
 #include "apps/option_flags.h"
+#include "apps/progress.h"
 #include "apps/pyramid_flags.h"
 #include "apps/repair_flags.h"
 #include "apps/retarget_flags.h"
 #include "apps/view_flags.h"
 #include "io/comma_list.h"
 #include "pipeline/quality_gate.h"
+#include "pipeline/take_windows.h"
 #include "settings/delivery_settings.h"
 #include "settings/foot_joint_settings.h"
 #include "settings/skeleton_fit_settings.h"
@@ -42,6 +44,8 @@ Status TakePipelineOptionsFromFlags(const Skeleton& skeleton, TakePipelineOption
   ReadOptionFlags(TakeSettingOptions(), &take);
   options->filter_levels = take.filter_levels;
   options->label = take.label;
+  options->window_frames = take.window_frames;
+  options->window_context_frames = take.window_context_frames;
   ReadOptionFlags(LabelSettingOptions(), &options->labelling);
   ReadOptionFlags(RepairSolverOptions(), &options->label_solver);
   if (status.ok()) status = PyramidOptionsFromFlags(take.filter_levels, &options->filter);
@@ -73,6 +77,32 @@ Status ViewPageOfTake(std::string* path) {
   // A warning, not progress: printed with --quiet too.
   if (!warning.empty()) std::fprintf(stderr, "warning: pipeline: %s\n", warning.c_str());
   return status;
+}
+
+Status RunPipelineTake(const TakeInputs& inputs, const TakePipelineOptions& options,
+                       const CharacterFileOptions& files, std::string* view_path, TakeResult* result) {
+  Status status = Status::Ok();
+  const bool windowed = TakeRunsInWindows(inputs, options, &status);
+  if (!status.ok()) return status;
+  if (windowed && !view_path->empty()) {
+    ViewPageSetting view;
+    ReadOptionFlags(TakeViewPageOption(), &view);
+    if (view.view != "auto") return Status::Error("--view=" + view.view + ": no page for a take over --window_frames");
+    std::fprintf(stderr, "warning: pipeline: no view.html (--view=auto): the take runs in windows (--window_frames)\n");
+    view_path->clear();
+  }
+  std::unique_ptr<Progress> progress;
+  std::string shown;
+  const PipelineProgress show = [&](const std::string& stage, int done, int total) {
+    if (stage != shown) {
+      SetStage(stage);
+      progress = std::make_unique<Progress>("pipeline: " + stage, total, Console().quiet);
+      shown = stage;
+    }
+    progress->Update(done);
+  };
+  if (windowed) return RunTakeInWindows(Files().out_dir, inputs, options, files, result, show);
+  return RunTakePipeline(inputs, options, result, show);
 }
 
 Status PipelineSubjectFromFlags(Subject* subject, std::unique_ptr<AutoSubjectResult>* fitted) {

@@ -25,6 +25,13 @@ const std::string& PipelineOptionFlags();
 // missing viewer runtime is a warning for auto, an error for a page asked for): "" for none.
 Status ViewPageOfTake(std::string* path);
 
+// Runs the take with a progress display: RunTakePipeline, or, over --window_frames frames,
+// RunTakeInWindows (pipeline/take_windows.h), which writes its files but report.json into
+// --out_dir already; such a take has no page: *view_path is cleared with a warning for
+// --view=auto, an error for a page asked for.
+Status RunPipelineTake(const TakeInputs& inputs, const TakePipelineOptions& options,
+                       const CharacterFileOptions& files, std::string* view_path, TakeResult* result);
+
 // The take's subject: --subject's file, or with --subject=auto (or no --subject) the one
 // fitted from the take (tasks/auto_subject_task.h; *fitted holds the fit, else it stays
 // null), its rounds shown on stderr unless --quiet.

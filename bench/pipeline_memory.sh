@@ -5,7 +5,8 @@
 # demo does; default outputs (repaired.c3d, solved.bvh, Xbot.glb, report.json, view.html).
 #
 #   bench/pipeline_memory.sh [REPEATS="1 4 16"] [WORK_DIR=/tmp/mocapsolve-memory-bench]
-# Environment: MOCAPSOLVE (binary, default build/bin/mocapsolve), LOOP_MARKERS
+# Environment: MOCAPSOLVE (binary, default build/bin/mocapsolve), PIPELINE_FLAGS (more flags,
+# e.g. --window_frames=N --num_threads=1), LOOP_MARKERS
 # (build/bin/loop_markers), MOCAPSOLVE_DATA (../shared/data).
 # Prints per run: frames, peak RSS (/usr/bin/time -v, "Maximum resident set size"), KB per
 # frame above the smallest run, frames/s (the report's, reading included, writing not),
@@ -28,7 +29,7 @@ for n in $repeats; do
   "$loop" "$data/c3d/cmu_02_05.c3d" "$n" "$work/take_x$n.c3d"
   rm -rf "$work/out_x$n"
   /usr/bin/time -v "$ms" pipeline --quiet --subject="$work/S02.json" --markers="$work/take_x$n.c3d" \
-    --character="$data/gltf/Xbot.glb" --out_dir="$work/out_x$n" >/dev/null 2>"$work/time_x$n.txt"
+    --character="$data/gltf/Xbot.glb" --out_dir="$work/out_x$n" ${PIPELINE_FLAGS:-} >/dev/null 2>"$work/time_x$n.txt"
   kb=$(awk -F': ' '/Maximum resident set size/ {print $2}' "$work/time_x$n.txt")
   user=$(awk -F': ' '/User time/ {print $2}' "$work/time_x$n.txt")
   wall=$(awk -F': ' '/Elapsed \(wall clock\)/ {print $2}' "$work/time_x$n.txt")

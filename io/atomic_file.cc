@@ -142,6 +142,44 @@ Status StagedFile::Publish() {
   return Status::Ok();
 }
 
+Status StagedFile::Append(const void* data, size_t size) {
+  const char* bytes = static_cast<const char*>(data);
+  if (stream_) {
+    stream_bytes_.append(bytes, size);
+    return Status::Ok();
+  }
+  if (fd_ < 0) return Status::Error(path_ + ": nothing staged");
+  size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::write(fd_, bytes + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return Status::Error(path_ + ": write failed (" + Reason() + ")");
+    done += static_cast<size_t>(n);
+  }
+  return Status::Ok();
+}
+
+Status AtomicFileWriter::Open(const std::string& path) {
+  open_ = false;
+  Status status = StagedFile::Create(path, "", &staged_);
+  if (status.ok()) open_ = true;
+  return status;
+}
+
+Status AtomicFileWriter::Append(const std::string& bytes) { return Append(bytes.data(), bytes.size()); }
+
+Status AtomicFileWriter::Append(const void* data, size_t size) {
+  if (!open_) return Status::Error("AtomicFileWriter: not open");
+  return staged_.Append(data, size);
+}
+
+Status AtomicFileWriter::Close() {
+  if (!open_) return Status::Error("AtomicFileWriter: not open");
+  open_ = false;
+  if (FileTransaction* transaction = FileTransaction::Current()) return transaction->Adopt(std::move(staged_));
+  return staged_.Publish();
+}
+
 void StagedFile::Discard() {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;

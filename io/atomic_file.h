@@ -89,6 +89,8 @@ class StagedFile {
   StagedFile& operator=(const StagedFile&) = delete;
 
   Status Publish();
+  // Appends bytes to the staged file (a long output written in pieces; AtomicFileWriter).
+  Status Append(const void* data, size_t size);
   const std::string& path() const { return path_; }
   bool is_stream() const { return stream_; }
 
@@ -100,6 +102,24 @@ class StagedFile {
   std::string named_temp_;     // Non-empty when the temporary file has a name.
   bool stream_ = false;        // The target is a character device or FIFO.
   std::string stream_bytes_;   // What a stream target receives.
+};
+
+// An output written in pieces (a long take's files, pipeline/take_windows.h), atomic as
+// WriteFileAtomically: Open stages an empty temporary file beside `path` (the errors of
+// StagedFile::Create), Append adds bytes to it, Close publishes it: at once, or, inside a
+// FileTransaction, at its Commit (checked then as a staged output). Dropped unclosed, it
+// leaves nothing behind.
+class AtomicFileWriter {
+ public:
+  Status Open(const std::string& path);
+  Status Append(const std::string& bytes);
+  Status Append(const void* data, size_t size);
+  Status Close();
+  bool is_open() const { return open_; }
+
+ private:
+  StagedFile staged_;
+  bool open_ = false;
 };
 
 }  // namespace mocapsolve

@@ -298,65 +298,92 @@ Status CheckBvhWritable(const Skeleton& skeleton, const Motion& motion,
   return Status::Ok();
 }
 
-std::string FormatBvh(const Skeleton& skeleton, const Motion& motion,
-                      const BvhWriteOptions& options) {
-  if (!CheckBvhWritable(skeleton, motion, options).ok()) return "";
+Status BvhPieceWriter::Start(const Skeleton& skeleton, const Motion& first_piece, const BvhWriteOptions& options) {
+  Status status = CheckBvhWritable(skeleton, first_piece, options);
+  if (!status.ok()) return status;
+  skeleton_ = &skeleton;
+  options_ = options;
   const int num_joints = skeleton.num_joints();
-  std::vector<std::vector<Channel>> channels(num_joints);
-  std::vector<EulerOrder> orders(num_joints);
+  channels_.assign(num_joints, {});
+  orders_.assign(num_joints, EulerOrder());
   for (int j = 0; j < num_joints; ++j) {
-    channels[j] = OutputChannels(skeleton, motion, j, options.euler_order);
-    orders[j] = RotationOrder(channels[j]);
+    channels_[j] = OutputChannels(skeleton, first_piece, j, options.euler_order);
+    orders_[j] = RotationOrder(channels_[j]);
   }
+  std::string none;
+  HierarchyWriter hierarchy(skeleton, channels_, options_, &none);
+  joint_order_ = DepthFirstOrder(skeleton, hierarchy.children());
+  previous_angles_.assign(num_joints, Eigen::Vector3d::Zero());
+  frames_written_ = 0;
+  return Status::Ok();
+}
 
+std::string BvhPieceWriter::Header(int frames, double frame_rate) const {
   std::string out;
-  HierarchyWriter hierarchy(skeleton, channels, options, &out);
+  HierarchyWriter hierarchy(*skeleton_, channels_, options_, &out);
   hierarchy.Write();
-  const std::vector<int> joint_order = DepthFirstOrder(skeleton, hierarchy.children());
-
   out += "MOTION\nFrames: ";
-  out += std::to_string(motion.num_frames());
+  out += std::to_string(frames);
   out += "\nFrame Time: ";
-  {
-    char buffer[64];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, 1.0 / motion.frame_rate);
-    out.append(buffer, result.ptr);
-  }
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, 1.0 / frame_rate);
+  out.append(buffer, result.ptr);
   out += '\n';
+  return out;
+}
 
+Status BvhPieceWriter::AppendFrames(const Motion& piece, int first, int count, std::string* out) {
+  if (frames_written_ > 0) {  // The first piece was checked by Start.
+    Status status = CheckBvhWritable(*skeleton_, piece, options_);
+    if (!status.ok()) return status;
+    for (int j = 0; j < skeleton_->num_joints(); ++j) {
+      if (OutputChannels(*skeleton_, piece, j, options_.euler_order) != channels_[j]) {
+        return Status::Error("cannot write BVH: joint " + skeleton_->name(j) +
+                             " moves on an axis with no channel in the first piece's frames");
+      }
+    }
+  }
   size_t num_columns = 0;
-  for (const auto& list : channels) num_columns += list.size();
-  out.reserve(out.size() + motion.frames.size() * num_columns * (options.precision + 3));
-
-  std::vector<Eigen::Vector3d> previous_angles(num_joints);
-  for (int f = 0; f < motion.num_frames(); ++f) {
-    const Pose& pose = motion.frames[f];
+  for (const auto& list : channels_) num_columns += list.size();
+  out->reserve(out->size() + static_cast<size_t>(count) * num_columns * (options_.precision + 3));
+  for (int f = first; f < first + count; ++f) {
+    const Pose& pose = piece.frames[f];
     bool first_value = true;
-    for (int j : joint_order) {
+    for (int j : joint_order_) {
       // Fold the rest rotation in: BVH has none (see the header).
-      const Eigen::Quaterniond rotation = skeleton.has_rest_rotation(j)
-                                              ? skeleton.rest_rotation(j) * pose.rotations[j]
+      const Eigen::Quaterniond rotation = skeleton_->has_rest_rotation(j)
+                                              ? skeleton_->rest_rotation(j) * pose.rotations[j]
                                               : pose.rotations[j];
-      Eigen::Vector3d angles = EulerFromQuaternion(rotation, orders[j]);
-      if (f > 0) angles = NearestEquivalentEuler(angles, previous_angles[j]);
-      previous_angles[j] = angles;
+      Eigen::Vector3d angles = EulerFromQuaternion(rotation, orders_[j]);
+      if (frames_written_ > 0) angles = NearestEquivalentEuler(angles, previous_angles_[j]);
+      previous_angles_[j] = angles;
       int slot = 0;
-      for (Channel c : channels[j]) {
+      for (Channel c : channels_[j]) {
         double value;
         if (IsPosition(c)) {
-          value = pose.translations[j][ChannelAxis(c)] * options.scale;
+          value = pose.translations[j][ChannelAxis(c)] * options_.scale;
         } else {
           value = RadToDeg(angles[slot++]);
           // Rounding noise of the Euler extraction (1e-14 degrees), not motion.
           if (std::abs(value) < kNoiseDegrees) value = 0.0;
         }
-        if (!first_value) out += ' ';
+        if (!first_value) *out += ' ';
         first_value = false;
-        AppendNumber(value, options.precision, &out);
+        AppendNumber(value, options_.precision, out);
       }
     }
-    out += '\n';
+    *out += '\n';
+    ++frames_written_;
   }
+  return Status::Ok();
+}
+
+std::string FormatBvh(const Skeleton& skeleton, const Motion& motion,
+                      const BvhWriteOptions& options) {
+  BvhPieceWriter writer;
+  if (!writer.Start(skeleton, motion, options).ok()) return "";
+  std::string out = writer.Header(motion.num_frames(), motion.frame_rate);
+  if (!writer.AppendFrames(motion, 0, motion.num_frames(), &out).ok()) return "";
   return out;
 }
 

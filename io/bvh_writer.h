@@ -41,6 +41,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "kinematics/motion.h"
 #include "kinematics/rotation.h"
@@ -63,6 +64,29 @@ Status CheckBvhWritable(const Skeleton& skeleton, const Motion& motion,
 // The BVH text; "" if CheckBvhWritable fails (call it, or WriteBvh, to get the reason).
 std::string FormatBvh(const Skeleton& skeleton, const Motion& motion,
                       const BvhWriteOptions& options = BvhWriteOptions());
+
+// A long motion's BVH in pieces (a take written window by window, pipeline/take_windows.h):
+// Start fixes the channels from the first piece (as FormatBvh from the whole motion),
+// Header is the text through "Frame Time" for `frames` frames, and AppendFrames appends the
+// MOTION lines of frames [first, first + count) of a piece, each frame's Euler angles
+// continued from the last frame appended. FormatBvh is Start, Header and one AppendFrames
+// of the whole motion. A later piece that moves a translation axis the first piece's
+// channels lack is an error naming the joint.
+class BvhPieceWriter {
+ public:
+  Status Start(const Skeleton& skeleton, const Motion& first_piece, const BvhWriteOptions& options = {});
+  std::string Header(int frames, double frame_rate) const;
+  Status AppendFrames(const Motion& piece, int first, int count, std::string* out);
+
+ private:
+  const Skeleton* skeleton_ = nullptr;
+  BvhWriteOptions options_;
+  std::vector<std::vector<Channel>> channels_;
+  std::vector<EulerOrder> orders_;
+  std::vector<int> joint_order_;
+  std::vector<Eigen::Vector3d> previous_angles_;
+  long long frames_written_ = 0;
+};
 
 // Formats and writes through WriteFileAtomically (io/atomic_file.h).
 Status WriteBvh(const std::string& path, const Skeleton& skeleton, const Motion& motion,

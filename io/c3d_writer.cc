@@ -188,8 +188,10 @@ MarkerTrajectories WithModelOutputs(const MarkerTrajectories& markers, OutputLis
   return all;
 }
 
+// With a sink, the bytes go to it in pieces of about 4 MB as they are made (a long take's
+// file is not held whole); *bytes is then left empty.
 Status EncodePoints(const MarkerTrajectories& trajectories, const OutputLists& output_lists,
-                    const std::string& file_name, std::string* bytes) {
+                    const std::string& file_name, std::string* bytes, AtomicFileWriter* sink = nullptr) {
   const auto error = [&](const std::string& what) { return Status::Error(file_name + ": " + what); };
   const int num_markers = trajectories.num_markers();
   const int num_frames = trajectories.num_frames();
@@ -298,8 +300,15 @@ Status EncodePoints(const MarkerTrajectories& trajectories, const OutputLists& o
   PutU16(&out, 298, 12345);  // Word 150: supports 4-character event labels; 0 events.
   out += section;
 
-  out.reserve(out.size() + static_cast<size_t>(num_frames) * num_markers * 16 + kBlockBytes);
+  constexpr size_t kPiece = size_t{1} << 22;
+  if (sink == nullptr) out.reserve(out.size() + static_cast<size_t>(num_frames) * num_markers * 16 + kBlockBytes);
+  size_t sent = 0;  // Bytes given to the sink.
   for (int f = 0; f < num_frames; ++f) {
+    if (sink != nullptr && out.size() >= kPiece) {
+      if (Status status = sink->Append(out); !status.ok()) return status;
+      sent += out.size();
+      out.clear();
+    }
     for (int m = 0; m < num_markers; ++m) {
       if (!trajectories.valid(f, m)) {
         for (int k = 0; k < 3; ++k) AppendFloat(&out, 0.0f);
@@ -314,30 +323,44 @@ Status EncodePoints(const MarkerTrajectories& trajectories, const OutputLists& o
       AppendFloat(&out, static_cast<float>(word));
     }
   }
-  out.resize((out.size() + kBlockBytes - 1) / kBlockBytes * kBlockBytes, '\0');
+  const size_t total = sent + out.size();
+  out.resize(out.size() + (total + kBlockBytes - 1) / kBlockBytes * kBlockBytes - total, '\0');
+  if (sink != nullptr) {
+    bytes->clear();
+    return sink->Append(out);
+  }
   *bytes = std::move(out);
   return Status::Ok();
+}
+
+// EncodeC3d, into the sink when given (see EncodePoints).
+Status Encode(const MarkerTrajectories& trajectories, const std::string& file_name, std::string* bytes,
+              AtomicFileWriter* sink) {
+  const ModelOutputPoints* outputs = trajectories.model_outputs.get();
+  if (outputs == nullptr || outputs->points.num_markers() == 0 ||
+      outputs->points.num_frames() != trajectories.num_frames()) {
+    return EncodePoints(trajectories, {}, file_name, bytes, sink);
+  }
+  OutputLists lists;
+  const MarkerTrajectories all = WithModelOutputs(trajectories, &lists);
+  return EncodePoints(all, lists, file_name, bytes, sink);
 }
 
 }  // namespace
 
 Status EncodeC3d(const MarkerTrajectories& trajectories, const std::string& file_name,
                  std::string* bytes) {
-  const ModelOutputPoints* outputs = trajectories.model_outputs.get();
-  if (outputs == nullptr || outputs->points.num_markers() == 0 ||
-      outputs->points.num_frames() != trajectories.num_frames()) {
-    return EncodePoints(trajectories, {}, file_name, bytes);
-  }
-  OutputLists lists;
-  const MarkerTrajectories all = WithModelOutputs(trajectories, &lists);
-  return EncodePoints(all, lists, file_name, bytes);
+  return Encode(trajectories, file_name, bytes, nullptr);
 }
 
 Status WriteC3d(const std::string& path, const MarkerTrajectories& trajectories) {
-  std::string bytes;
-  Status status = EncodeC3d(trajectories, path, &bytes);
-  if (!status.ok()) return status;
-  return WriteFileAtomically(path, bytes);
+  // Written in pieces as it is encoded (AtomicFileWriter): the same bytes, not held whole.
+  AtomicFileWriter writer;
+  Status status = writer.Open(path);
+  std::string none;
+  if (status.ok()) status = Encode(trajectories, path, &none, &writer);
+  if (status.ok()) status = writer.Close();
+  return status;
 }
 
 }  // namespace mocapsolve

@@ -143,6 +143,19 @@ Status FileTransaction::Stage(const std::string& path, const std::string& conten
   return Status::Ok();
 }
 
+Status FileTransaction::Adopt(StagedFile staged) {
+  const FileIdentity output = Identify(staged.path());
+  std::lock_guard<std::mutex> lock(state_->mutex);
+  Status status = state_->CheckNotAnInput(output);
+  if (!status.ok()) return status;
+  for (const FileIdentity& other : state_->outputs) {
+    if (Same(output, other)) return Status::Error(staged.path() + ": named twice as an output");
+  }
+  state_->outputs.push_back(output);
+  state_->staged.push_back(std::move(staged));
+  return Status::Ok();
+}
+
 int FileTransaction::num_staged() const {
   std::lock_guard<std::mutex> lock(state_->mutex);
   return static_cast<int>(state_->staged.size());

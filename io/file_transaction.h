@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "io/atomic_file.h"
 #include "kinematics/status.h"
 
 namespace mocapsolve {
@@ -58,6 +59,8 @@ class FileTransaction {
   };
   std::vector<InputFile> InputFiles() const;
   Status Stage(const std::string& path, const std::string& contents);
+  // A file staged and written already (AtomicFileWriter): checked as Stage checks its path.
+  Status Adopt(StagedFile staged);
 
   int num_staged() const;
   // True if `path` names a file recorded as an input (by name or device/inode).

@@ -441,10 +441,12 @@ class CompactSamples {
   const CompactMotion& motion_;
 };
 
+// The source's model with the new animation (see the header), to be written by WriteModel
+// or WriteGlbFile.
 template <class Samples>
-Status SerializeWithAnimation(const GltfDocument& source, const GltfCharacter& character, const Samples& motion,
-                              const std::string& animation_name, bool binary, std::string* bytes,
-                              const GltfWriteOptions& options) {
+Status ModelWithAnimation(const GltfDocument& source, const GltfCharacter& character, const Samples& motion,
+                          const std::string& animation_name, bool binary, const GltfWriteOptions& options,
+                          tinygltf::Model* out) {
   const bool compact = options.compact;
   if (!source.loaded()) return Status::Error("glTF writer: source document not loaded");
   const std::string& file = source.name();
@@ -581,7 +583,74 @@ Status SerializeWithAnimation(const GltfDocument& source, const GltfCharacter& c
     if (!status.ok()) return status;
     model = std::move(slim);
   }
-  return WriteModel(file, &model, binary, bytes);
+  *out = std::move(model);
+  return Status::Ok();
+}
+
+template <class Samples>
+Status SerializeWithAnimation(const GltfDocument& source, const GltfCharacter& character, const Samples& motion,
+                              const std::string& animation_name, bool binary, std::string* bytes,
+                              const GltfWriteOptions& options) {
+  tinygltf::Model model;
+  Status status = ModelWithAnimation(source, character, motion, animation_name, binary, options, &model);
+  if (!status.ok()) return status;
+  return WriteModel(source.name(), &model, binary, bytes);
+}
+
+void AppendWord(std::uint32_t word, std::string* out) {  // Little-endian, as the GLB's.
+  for (int k = 0; k < 4; ++k) out->push_back(static_cast<char>((word >> (8 * k)) & 0xff));
+}
+
+// The .glb of `model` written straight into `path` (AtomicFileWriter): the bytes WriteModel
+// makes, but buffer 0 (the BIN chunk: a long take's keys) goes from the model to the file
+// as it is, not through tinygltf's copy of it and the file's bytes in memory (two more
+// copies of the keys: 2.1 KB per frame of Xbot's take). The JSON chunk is tinygltf's for
+// the model with buffer 0 emptied, its byteLength then set to the real one.
+MotionSamples AnimationSamples(const Motion& motion) { return MotionSamples(motion); }
+CompactSamples AnimationSamples(const CompactMotion& motion) { return CompactSamples(motion); }
+
+Status WriteGlbFile(const std::string& file, tinygltf::Model* model, const std::string& path) {
+  if (model->buffers.empty() || !model->buffers[0].uri.empty()) {
+    return Status::Error(file + ": glTF writer: no embedded buffer 0 for the BIN chunk");
+  }
+  std::vector<unsigned char> bin = std::move(model->buffers[0].data);
+  model->buffers[0].data = std::vector<unsigned char>();
+  std::string glb;
+  Status status = WriteModel(file, model, /*binary=*/true, &glb);
+  if (!status.ok()) return status;
+  std::uint32_t json_length = 0;
+  if (glb.size() >= 20) std::memcpy(&json_length, glb.data() + 12, 4);  // The writer's (little-endian) host order.
+  if (glb.size() < 20 + static_cast<size_t>(json_length)) return Status::Error(file + ": glTF writer: short GLB");
+  std::string json = glb.substr(20, json_length);
+  glb = std::string();
+  while (!json.empty() && json.back() == ' ') json.pop_back();  // The chunk's padding.
+  const std::string key = "\"buffers\":[{\"byteLength\":0";
+  const size_t at = json.find(key);
+  if (at == std::string::npos || json.find(key, at + 1) != std::string::npos ||
+      (json[at + key.size()] != ',' && json[at + key.size()] != '}')) {
+    return Status::Error(file + ": glTF writer: buffer 0 not found in the JSON chunk");
+  }
+  json.replace(at, key.size(), "\"buffers\":[{\"byteLength\":" + std::to_string(bin.size()));
+  while (json.size() % 4 != 0) json.push_back(' ');
+  const size_t bin_padded = (bin.size() + 3) / 4 * 4;
+  std::string head = "glTF";
+  AppendWord(2, &head);
+  AppendWord(static_cast<std::uint32_t>(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin_padded)), &head);
+  AppendWord(static_cast<std::uint32_t>(json.size()), &head);
+  AppendWord(0x4E4F534A, &head);  // "JSON"
+  head += json;
+  json = std::string();
+  if (!bin.empty()) {
+    AppendWord(static_cast<std::uint32_t>(bin_padded), &head);
+    AppendWord(0x004E4942, &head);  // "BIN"
+  }
+  AtomicFileWriter writer;
+  status = writer.Open(path);
+  if (status.ok()) status = writer.Append(head.data(), head.size());
+  if (status.ok() && !bin.empty()) status = writer.Append(bin.data(), bin.size());
+  if (status.ok() && bin_padded > bin.size()) status = writer.Append(std::string(bin_padded - bin.size(), '\0'));
+  if (status.ok()) status = writer.Close();
+  return status;
 }
 
 }  // namespace
@@ -678,6 +747,13 @@ Status WriteWithAnimation(const GltfDocument& source, const GltfCharacter& chara
   }
   if (SameFile(path, source.name())) {
     return Status::Error(path + ": refusing to overwrite the input");
+  }
+  if (ext == ".glb") {  // Its keys written from the model, not copied (WriteGlbFile).
+    tinygltf::Model model;
+    Status status = ModelWithAnimation(source, character, AnimationSamples(motion), animation_name, true, options,
+                                       &model);
+    if (!status.ok()) return status;
+    return WriteGlbFile(source.name(), &model, path);
   }
   std::string bytes;
   Status status = SerializeGltfWithAnimation(source, character, motion, animation_name,

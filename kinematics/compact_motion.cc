@@ -76,6 +76,76 @@ Motion CompactMotion::ToMotion() const {
   return motion;
 }
 
+int CompactMotion::num_moving() const {
+  int moving = 0;
+  for (int column : moving_column_) moving += column >= 0 ? 1 : 0;
+  return moving;
+}
+
+void CompactMotion::Reserve(int frames) {
+  reserved_frames_ = frames;
+  if (num_joints_ > 0) rotations_.reserve(static_cast<size_t>(frames) * num_joints_ * 4);
+}
+
+void CompactMotion::Append(const Motion& motion, int first, int count) {
+  if (count <= 0) return;
+  if (num_frames_ == 0) {
+    const int reserved = reserved_frames_;
+    Motion part;
+    part.frame_rate = motion.frame_rate;
+    part.frames.assign(motion.frames.begin() + first, motion.frames.begin() + first + count);
+    *this = CompactMotion(part);
+    if (reserved > 0) {
+      rotations_.reserve(static_cast<size_t>(reserved) * num_joints_ * 4);
+      translations_.reserve(static_cast<size_t>(reserved) * num_moving() * 3);
+      reserved_frames_ = reserved;
+    }
+    return;
+  }
+  // Joints fixed so far that move in the new frames: a column each, the earlier frames at
+  // their fixed value.
+  const int old_moving = num_moving();
+  int moving = old_moving;
+  std::vector<int> columns = moving_column_;
+  for (int j = 0; j < num_joints_; ++j) {
+    if (columns[j] >= 0) continue;
+    for (int f = first; f < first + count; ++f) {
+      if (motion.frames[f].translations[j] != fixed_translations_[j]) {
+        columns[j] = moving++;
+        break;
+      }
+    }
+  }
+  if (moving != old_moving) {
+    std::vector<float> wider(static_cast<size_t>(num_frames_) * moving * 3);
+    for (int f = 0; f < num_frames_; ++f) {
+      for (int j = 0; j < num_joints_; ++j) {
+        if (columns[j] < 0) continue;
+        const Eigen::Vector3d t = Translation(f, j);
+        for (int k = 0; k < 3; ++k) wider[(static_cast<size_t>(f) * moving + columns[j]) * 3 + k] = static_cast<float>(t[k]);
+      }
+    }
+    if (reserved_frames_ > 0) wider.reserve(static_cast<size_t>(reserved_frames_) * moving * 3);
+    translations_ = std::move(wider);
+    moving_column_ = columns;
+  }
+  for (int f = first; f < first + count; ++f) {
+    const Pose& pose = motion.frames[f];
+    for (int j = 0; j < num_joints_; ++j) {
+      const Eigen::Quaterniond& q = pose.rotations[j];
+      rotations_.insert(rotations_.end(), {static_cast<float>(q.w()), static_cast<float>(q.x()),
+                                           static_cast<float>(q.y()), static_cast<float>(q.z())});
+    }
+    const size_t row = translations_.size();
+    translations_.resize(row + static_cast<size_t>(moving) * 3);
+    for (int j = 0; j < num_joints_; ++j) {
+      if (moving_column_[j] < 0) continue;
+      for (int k = 0; k < 3; ++k) translations_[row + moving_column_[j] * 3 + k] = static_cast<float>(pose.translations[j][k]);
+    }
+  }
+  num_frames_ += count;
+}
+
 size_t CompactMotion::bytes() const {
   return rotations_.capacity() * sizeof(float) + translations_.capacity() * sizeof(float) +
          fixed_translations_.capacity() * sizeof(Eigen::Vector3d) + moving_column_.capacity() * sizeof(int);

@@ -40,14 +40,23 @@ class CompactMotion {
   // One joint of frame f.
   Eigen::Quaterniond Rotation(int f, int joint) const;
   Eigen::Vector3d Translation(int f, int joint) const;
+  // Frames [first, first + count) of `motion` appended (a take assembled window by
+  // window, pipeline/take_windows.h); the first append sets the frame rate and joint count.
+  // A joint whose translation was fixed and moves in the new frames gets a column (the
+  // frames before keep their fixed value), so the result is as if built whole.
+  void Append(const Motion& motion, int first, int count);
+  // Room for `frames` frames in all, so that appends do not grow the arrays by doubling.
+  void Reserve(int frames);
   // Every frame expanded.
   Motion ToMotion() const;
   // Heap bytes held (for the figures in BENCHMARKS.md and tests).
   size_t bytes() const;
 
  private:
+  int num_moving() const;
   double frame_rate_ = 0.0;
   int num_frames_ = 0, num_joints_ = 0;
+  int reserved_frames_ = 0;  // Reserve's, for the arrays made at the first append.
   // Per joint: -1 when its translation is fixed (fixed_translations_[j]), else its column
   // in the per-frame float translations.
   std::vector<int> moving_column_;

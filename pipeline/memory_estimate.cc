@@ -9,6 +9,8 @@ namespace {
 constexpr double kPipelineBaseMb = 28.0;          // x1 (1,854 frames): 49,684 KB (fourth pass).
 constexpr double kPipelineSharedKb = 5.3;         // 11.3 KB per frame from x1 to x16,
 constexpr double kPipelinePerMarkerKb = 6.0 / 41;  // of which ~6.0 KB marker samples (heaptrack).
+constexpr double kWindowedSharedKb = 1.2;         // Windowed (take_windows.h), x233: 1,241 MB = 240 MB (a
+constexpr double kWindowedPerMarkerKb = 1.2 / 41;  // window) + 2.4 KB per frame: the compact take, the samples.
 constexpr double kClipBaseMb = 23.0;              // solve --mode=clip, 300 and 1,854 frames:
 constexpr double kClipPerMarkerKb = 184.0 / 41;   // 184 KB per frame, its residual blocks per marker.
 constexpr double kFilterBaseMb = 15.0;            // filter --levels=2 of solved.bvh, x1 and x4:
@@ -38,6 +40,16 @@ MemoryEstimate& MemoryEstimate::Add(const MemoryEstimate& other) {
 MemoryEstimate PipelineMemory(int frames, int markers) {
   return {"the pipeline's per-frame stages", frames, markers, kPipelineBaseMb,
           kPipelineSharedKb + kPipelinePerMarkerKb * markers};
+}
+
+MemoryEstimate WindowedPipelineMemory(int frames, int window, int markers) {
+  const MemoryEstimate one = PipelineMemory(window, markers);
+  return {"the pipeline's windows", frames, markers, one.mb(), kWindowedSharedKb + kWindowedPerMarkerKb * markers};
+}
+
+void AddPerWindow(const MemoryEstimate& other, int frames, MemoryEstimate* estimate) {
+  estimate->method += ", " + other.method;
+  estimate->base_mb += frames * other.kb_per_frame / 1024.0;
 }
 
 MemoryEstimate ClipSolveMemory(int frames, int markers) {

@@ -35,6 +35,14 @@ struct MemoryEstimate {
 // `pipeline` (pipeline/take_pipeline.h): repair, solve, retarget onto one character and
 // the writers, every stage holding the whole take.
 MemoryEstimate PipelineMemory(int frames, int markers);
+// `pipeline` on a take longer than its window_frames (pipeline/take_windows.h): the
+// stages of one window (PipelineMemory's per-frame cost over `window` frames, core and
+// context) as the base, and per frame of the take what is kept for the outputs (the file's
+// samples, the character's compact take, the writers' buffers).
+MemoryEstimate WindowedPipelineMemory(int frames, int window, int markers);
+// Adds `other`'s per-frame cost over `frames` frames to estimate's base (a method that runs
+// on one window at a time).
+void AddPerWindow(const MemoryEstimate& other, int frames, MemoryEstimate* estimate);
 // The clip solve (solvers/, solve --mode=clip, pipeline --reference=clip): one sparse
 // problem over every frame's pose and marker residuals.
 MemoryEstimate ClipSolveMemory(int frames, int markers);

@@ -1,5 +1,6 @@
 #include "pipeline/take_pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -49,6 +50,10 @@ bool TakePipelineOptions::IsValid(std::string* error) const {
   }
   if (label != "auto" && label != "never" && label != "always") {
     *error = "label: unknown '" + label + "' (auto, never, always)";
+    return false;
+  }
+  if (window_frames < 1 || window_context_frames < 0) {
+    *error = "window_frames: must be >= 1, window_context_frames >= 0";
     return false;
   }
   if (!(memory_mb >= 0.0) || !std::isfinite(memory_mb)) {
@@ -103,20 +108,55 @@ namespace {
 // labelling's time (0 when not labelled).
 Status ReadTakeMarkers(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
                        const PipelineProgress& progress, double* label_seconds) {
+  MarkerTrajectories file;
+  Status status = ReadMarkerFileForSubject(*inputs.subject, inputs.markers_path, &file);
+  if (!status.ok()) return Status::Error("read: " + status.message());
+  return MapTakeMarkers(inputs, options, std::move(file), result, progress, label_seconds);
+}
+
+// Error when options.memory_mb is set and the take's estimate (its file's frame and marker
+// counts, the samples not read) is over it: the per-frame stages (of one window for a
+// windowed take), plus the clip reference's problem and the filter when asked.
+Status CheckTakeMemory(const TakeInputs& inputs, const TakePipelineOptions& options) {
+  if (!(options.memory_mb > 0.0)) return Status::Ok();
+  MarkerFileShape shape;
+  const Status status = ReadMarkerFileShape(inputs.markers_path, &shape);
+  if (!status.ok()) return Status::Error("read: " + status.message());
+  return CheckMemoryLimit(TakeMemory(shape.frames, shape.markers, options), options.memory_mb, inputs.markers_path);
+}
+
+}  // namespace
+
+MemoryEstimate TakeMemory(int frames, int markers, const TakePipelineOptions& options) {
+  const bool windowed = frames > options.window_frames;
+  const int window = windowed ? std::min(frames, options.window_frames + 2 * options.window_context_frames) : frames;
+  MemoryEstimate estimate = windowed ? WindowedPipelineMemory(frames, window, markers) : PipelineMemory(frames, markers);
+  std::vector<MemoryEstimate> more;
+  if (options.repair.reference_kind == ReferenceKind::kClip) more.push_back(ClipSolveMemory(window, markers));
+  if (options.filter_levels > 0) more.push_back(PipelineFilterMemory(window));
+  for (const MemoryEstimate& m : more) {
+    if (windowed) {
+      AddPerWindow(m, window, &estimate);
+    } else {
+      estimate.Add(m);
+    }
+  }
+  return estimate;
+}
+
+Status MapTakeMarkers(const TakeInputs& inputs, const TakePipelineOptions& options, MarkerTrajectories file,
+                      TakeResult* result, const PipelineProgress& progress, double* label_seconds) {
   *label_seconds = 0.0;
   const Subject& subject = *inputs.subject;
-  MarkerTrajectories file;
-  Status status = ReadMarkerFileForSubject(subject, inputs.markers_path, &file);
-  if (!status.ok()) return Status::Error("read: " + status.message());
   const std::vector<std::string> missing = SubjectLabelsMissing(subject, file);
   if (options.label == "always" || (options.label == "auto" && !missing.empty())) {
     const Clock::time_point start = Clock::now();
     TakeLabelling labelling;
-    status = LabelTakeForSubject(subject, file, inputs.markers_path, options.labelling, options.label_solver,
-                                 [&](int done, int total) {
-                                   if (progress) progress("label", done, total);
-                                 },
-                                 &labelling);
+    Status status = LabelTakeForSubject(subject, file, inputs.markers_path, options.labelling, options.label_solver,
+                                        [&](int done, int total) {
+                                          if (progress) progress("label", done, total);
+                                        },
+                                        &labelling);
     if (!status.ok()) return Status::Error("label: " + status.message());
     std::string reason = "always";
     if (options.label == "auto") {
@@ -129,60 +169,19 @@ Status ReadTakeMarkers(const TakeInputs& inputs, const TakePipelineOptions& opti
     file = std::move(labelling.markers);
     *label_seconds = SecondsSince(start);
   }
-  status = TakeForSubject(subject, std::move(file), inputs.markers_path, &result->take);
+  Status status = TakeForSubject(subject, std::move(file), inputs.markers_path, &result->take);
   if (status.ok()) status = RequireTakeData(inputs.markers_path, result->take);
   if (status.ok()) return status;
   const bool raw = options.label == "never" && !missing.empty();
   return Status::Error("read: " + status.message() + (raw ? " (a raw capture? --label=auto labels its points first)" : ""));
 }
 
-// Error when options.memory_mb is set and the take's estimate (its file's frame and marker
-// counts, the samples not read) is over it: the per-frame stages, plus the clip
-// reference's problem and the filter when asked.
-Status CheckTakeMemory(const TakeInputs& inputs, const TakePipelineOptions& options) {
-  if (!(options.memory_mb > 0.0)) return Status::Ok();
-  MarkerFileShape shape;
-  const Status status = ReadMarkerFileShape(inputs.markers_path, &shape);
-  if (!status.ok()) return Status::Error("read: " + status.message());
-  MemoryEstimate estimate = PipelineMemory(shape.frames, shape.markers);
-  if (options.repair.reference_kind == ReferenceKind::kClip) {
-    estimate.Add(ClipSolveMemory(shape.frames, shape.markers));
-  }
-  if (options.filter_levels > 0) estimate.Add(PipelineFilterMemory(shape.frames));
-  return CheckMemoryLimit(estimate, options.memory_mb, inputs.markers_path);
-}
-
-}  // namespace
-
-Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
-                       const PipelineProgress& progress) {
-  if (inputs.subject == nullptr) return Status::Error("pipeline: no subject");
-  std::string error;
-  if (!options.IsValid(&error)) return Status::Error("pipeline options: " + error);
-  const Clock::time_point start = Clock::now();
-  auto lap = [&](const std::string& stage, Clock::time_point since) {
-    result->timings.push_back({stage, SecondsSince(since)});
-  };
-
-  Status status = CheckTakeMemory(inputs, options);
-  if (!status.ok()) return status;
-
-  // Read: the markers through the subject's mapping; the characters.
-  Clock::time_point stage_start = Clock::now();
-  double label_seconds = 0.0;
-  status = ReadTakeMarkers(inputs, options, result, progress, &label_seconds);
-  if (!status.ok()) return status;
-  const MarkerTake& take = result->take;
-  const int frames = result->frames = static_cast<int>(take.observed.size());
-  if (frames == 0) return Status::Error("read: " + inputs.markers_path + ": the take has no frames");
-  int first = 0, last = 0;  // The delivered range, checked before any work.
-  status = ResolveClipRange(options.delivery.range, frames, take.trajectories.frame_rate, &first, &last);
-  if (!status.ok()) return Status::Error("deliver: " + inputs.markers_path + ": " + status.message());
+Status ReadTakeCharacters(const TakeInputs& inputs, std::vector<CharacterOutput>* characters) {
   for (const std::string& path : inputs.character_paths) {
     CharacterOutput output;
     output.path = path;
     output.name = FileStem(path);
-    status = GltfDocument::Read(path, &output.document);
+    Status status = GltfDocument::Read(path, &output.document);
     if (status.ok()) status = ReadGltfCharacter(output.document, GltfReadOptions(), &output.character);
     if (!status.ok()) return Status::Error("read: " + status.message());
     for (const std::string& existing : output.character.animation_names) {
@@ -191,18 +190,57 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
                              "' (the take's name)");
       }
     }
-    for (const CharacterOutput& other : result->characters) {
+    for (const CharacterOutput& other : *characters) {
       if (other.name == output.name) {
         return Status::Error("read: " + path + ": two characters named '" + output.name + "'");
       }
     }
-    result->characters.push_back(std::move(output));
+    characters->push_back(std::move(output));
   }
+  return Status::Ok();
+}
+
+Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
+                       const PipelineProgress& progress) {
+  if (inputs.subject == nullptr) return Status::Error("pipeline: no subject");
+  std::string error;
+  if (!options.IsValid(&error)) return Status::Error("pipeline options: " + error);
+  const Clock::time_point start = Clock::now();
+  Status status = CheckTakeMemory(inputs, options);
+  if (!status.ok()) return status;
+
+  // Read: the markers through the subject's mapping; the characters.
+  Clock::time_point stage_start = Clock::now();
+  double label_seconds = 0.0;
+  status = ReadTakeMarkers(inputs, options, result, progress, &label_seconds);
+  if (!status.ok()) return status;
+  const int frames = static_cast<int>(result->take.observed.size());
+  if (frames == 0) return Status::Error("read: " + inputs.markers_path + ": the take has no frames");
+  int first = 0, last = 0;  // The delivered range, checked before any work.
+  status = ResolveClipRange(options.delivery.range, frames, result->take.trajectories.frame_rate, &first, &last);
+  if (!status.ok()) return Status::Error("deliver: " + inputs.markers_path + ": " + status.message());
+  status = ReadTakeCharacters(inputs, &result->characters);
+  if (!status.ok()) return status;
   result->timings.push_back({"read", SecondsSince(stage_start) - label_seconds});
   if (label_seconds > 0.0) result->timings.push_back({"label", label_seconds});
+  status = RunTakeStages(inputs, options, result, progress);
+  result->seconds = SecondsSince(start);
+  return status;
+}
+
+Status RunTakeStages(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
+                     const PipelineProgress& progress) {
+  auto lap = [&](const std::string& stage, Clock::time_point since) {
+    result->timings.push_back({stage, SecondsSince(since)});
+  };
+  const MarkerTake& take = result->take;
+  const int frames = result->frames = static_cast<int>(take.observed.size());
+  int first = 0, last = 0;  // The delivered range (checked by the caller).
+  Status status = ResolveClipRange(options.delivery.range, frames, take.trajectories.frame_rate, &first, &last);
+  if (!status.ok()) return Status::Error("deliver: " + inputs.markers_path + ": " + status.message());
 
   // 1. Repair, whose re-solve is the take's solve.
-  stage_start = Clock::now();
+  Clock::time_point stage_start = Clock::now();
   if (progress) progress("repair", 0, frames);
   std::vector<std::vector<Eigen::Vector3d>> repaired;
   RepairOptions repair_options = options.repair;
@@ -261,13 +299,14 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
     CharacterOutput& output = result->characters[k];
     stage_start = Clock::now();
     const std::string stage = "retarget onto " + output.name;
+    const GltfCharacter& character = output.rig();
     RetargetCharacter source;  // Skeleton only: the character's mesh is bound to it.
     source.skeleton = &take.skeleton;
     RetargetCharacter target;
-    target.skeleton = &output.character.skeleton;
-    target.mesh = &output.character.mesh;
-    target.bind_pose = output.character.bind_pose;
-    target.rest_pose = output.character.rest_pose;
+    target.skeleton = &character.skeleton;
+    target.mesh = &character.mesh;
+    target.bind_pose = character.bind_pose;
+    target.rest_pose = character.rest_pose;
     Motion source_motion = k + 1 == result->characters.size() ? std::move(solved) : solved;
     status = RetargetMotionOntoCharacter(source, std::move(source_motion), target, options.retarget, &output.result,
                                          [&](int done, int total) {
@@ -288,7 +327,6 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
   for (const CharacterOutput& output : result->characters) {
     CheckRetargetQuality(options.gate, output.result.quality, output.name, &result->verdict);
   }
-  result->seconds = SecondsSince(start);
   return Status::Ok();
 }
 
@@ -397,6 +435,22 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
   report.Add("quality_gate", gate)
       .Add("repair", repair)
       .Add("characters", characters);
+  if (result.windows.count > 0) {
+    const TakeWindowsSummary& w = result.windows;
+    std::vector<JsonValue> seam_max, seam_first;
+    for (double d : w.seam_max_mm) seam_max.push_back(d);
+    for (double d : w.seam_first_frame_mm) seam_first.push_back(d);
+    JsonObject windows;
+    windows.Add("count", w.count)
+        .Add("frames", w.frames)
+        .Add("context_frames", w.context_frames)
+        .Add("seam_max_mm", seam_max.empty() ? 0.0 : *std::max_element(w.seam_max_mm.begin(), w.seam_max_mm.end()))
+        .Add("seam_first_frame_max_mm",
+             seam_first.empty() ? 0.0 : *std::max_element(w.seam_first_frame_mm.begin(), w.seam_first_frame_mm.end()))
+        .Add("seams_mm", seam_max)
+        .Add("seams_first_frame_mm", seam_first);
+    report.Add("windows", windows);
+  }
   return report;
 }
 
@@ -450,6 +504,11 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
                         const CharacterFileOptions& character_files) {
   Status status = CheckCharacterFiles(out_dir, inputs, character_files);
   if (!status.ok()) return Status::Error("write: " + status.message());
+  if (result.windows.count > 0) {  // Its other files are written (pipeline/take_windows.h).
+    if (!view_path.empty()) return Status::Error("write: " + view_path + ": no page for a windowed take");
+    status = WriteFileAtomically(InFolder(out_dir, "report.json"), report.ToString() + "\n");
+    return status.ok() ? status : Status::Error("write: " + status.message());
+  }
   status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
   if (status.ok()) {  // The solve expanded for its file only (the BVH text is made whole).
     status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved.ToMotion(), BvhWriteOptions());

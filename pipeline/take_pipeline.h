@@ -44,6 +44,7 @@
 #include "kinematics/motion.h"
 #include "kinematics/status.h"
 #include "pipeline/gate_blame.h"
+#include "pipeline/memory_estimate.h"
 #include "pipeline/quality_gate.h"
 #include "pipeline/subject.h"
 #include "settings/delivery_settings.h"
@@ -75,6 +76,10 @@ struct TakePipelineOptions {
   // (pipeline/memory_estimate.h, from the file's frame and marker counts) is over it is
   // refused before any stage runs.
   double memory_mb = 0.0;
+  // A take of more frames runs window by window (pipeline/take_windows.h), each window
+  // with window_context_frames more on each side (settings/take_settings.h says why).
+  int window_frames = 18000;
+  int window_context_frames = 600;
 
   bool IsValid(std::string* error) const;
 };
@@ -96,6 +101,10 @@ struct CharacterOutput {
   std::string path;             // The character file read.
   GltfDocument document;
   GltfCharacter character;
+  // A window's retarget (pipeline/take_windows.h): the character read once for every
+  // window, `document` and `character` above left empty.
+  const GltfCharacter* shared = nullptr;
+  const GltfCharacter& rig() const { return shared != nullptr ? *shared : character; }
   // result.clip.motion is emptied into `take` once the retarget and its figures are done.
   CharacterRetargetResult result;
   // The retargeted take at the take's frames and rate, compact (float rotations and moving
@@ -111,6 +120,17 @@ struct CharacterOutput {
   Motion delivered_motion() const { return delivered_is_clip ? take.ToMotion() : delivered; }
   int delivered_frames() const { return delivered_is_clip ? take.num_frames() : delivered.num_frames(); }
   double delivered_frame_rate() const { return delivered_is_clip ? take.frame_rate() : delivered.frame_rate; }
+};
+
+// How a windowed take ran (pipeline/take_windows.h); count 0: whole.
+struct TakeWindowsSummary {
+  int count = 0;
+  int frames = 0;          // The frames each window keeps (its core; the last may keep fewer).
+  int context_frames = 0;  // Solved on each side of a core and dropped.
+  // The seams: the largest difference, in mm of joint position of the solve, between the two
+  // windows that solved the same context frames (each seam's largest), and at the seam's
+  // first frame (the later window's first kept frame, which the earlier one solved too).
+  std::vector<double> seam_max_mm, seam_first_frame_mm;
 };
 
 struct TakeResult {
@@ -141,6 +161,10 @@ struct TakeResult {
   std::string gate_advice;
   std::vector<StageTime> timings;
   double seconds = 0.0;               // The whole take (reading included, writing not).
+  // A windowed take: its files were written as its windows finished (all but report.json,
+  // which WriteTakeOutputs writes), and the whole-take arrays above (repaired_file,
+  // repaired, solved, each character's take) are empty; the figures are the windows'.
+  TakeWindowsSummary windows;
 };
 
 // (stage, done, total) while a stage runs, for progress display.
@@ -148,6 +172,20 @@ using PipelineProgress = std::function<void(const std::string& stage, int done, 
 
 Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
                        const PipelineProgress& progress = nullptr);
+
+// The stages of RunTakePipeline, for a take read in pieces (pipeline/take_windows.h):
+// the file's samples onto the subject, labelled first as options.label says, into
+// result->take (*label_seconds the labelling's; errors name inputs.markers_path) ...
+Status MapTakeMarkers(const TakeInputs& inputs, const TakePipelineOptions& options, MarkerTrajectories file,
+                      TakeResult* result, const PipelineProgress& progress, double* label_seconds);
+// ... the characters read (inputs.character_paths) ...
+Status ReadTakeCharacters(const TakeInputs& inputs, std::vector<CharacterOutput>* characters);
+// ... and stages 1-4 on result->take, onto result->characters (read).
+Status RunTakeStages(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
+                     const PipelineProgress& progress = nullptr);
+// The memory the take needs (pipeline/memory_estimate.h): whole, or windowed when it has
+// more than options.window_frames frames; with the clip reference and the filter as asked.
+MemoryEstimate TakeMemory(int frames, int markers, const TakePipelineOptions& options);
 
 // Output file names in `out_dir` ("" for the working directory).
 std::string RepairedMarkersPath(const std::string& out_dir, const std::string& markers_path);

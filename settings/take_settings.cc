@@ -14,7 +14,19 @@ const OptionGroup<TakeSettings>& TakeSettingOptions() {
            "Label the take's points first, as `mocapsolve label` does (raw or unlabelled captures; the label "
            "options set how): auto when the file lacks some of the subject's labels, always (the file's labels "
            "ignored), never (a label the file lacks is an error).",
-           {"auto", "never", "always"});
+           {"auto", "never", "always"})
+      .Add(&S::window_frames, "window_frames", "frames",
+           "A take of more frames than this runs window by window (each window's frames solved, repaired and "
+           "retargeted on their own, its files written as the windows finish), so its memory is bounded by the "
+           "window, not the take (about 28 MB + 11 KB per window frame, and 2.4 KB per frame of the take for the "
+           "outputs); a take of at most this many frames runs whole, as before. 18,000 = 2.5 min at 120 Hz.",
+           10, 2147483647)
+      .Add(&S::window_context_frames, "window_context_frames", "frames",
+           "A windowed take's context: each window also solves this many frames on each side of its own, "
+           "and keeps only its own. The repair's reference and Hermite blends and its gap fills read the samples "
+           "on both sides of a gap (fill_samples, 20, a side), and the window's first solves start cold and "
+           "settle within a few frames: 600 (5 s at 120 Hz) holds a 4 s gap's fill inside the context.",
+           0, 1000000);
   return *group;
 }
 

@@ -1,5 +1,5 @@
 // TakeSettings: a pipeline take's name, whether its points are labelled first, and the
-// filter of its solved motion. Declared once:
+// filter of its solved motion, and the frame windows a long take runs in. Declared once:
 // pipeline (and a batch manifest's per-take options).
 #ifndef MOCAPSOLVE_SETTINGS_TAKE_SETTINGS_H_
 #define MOCAPSOLVE_SETTINGS_TAKE_SETTINGS_H_
@@ -16,6 +16,11 @@ struct TakeSettings {
   // Labelling the take's points first (pipeline/take_labelling.h): "auto" when the file
   // lacks some of the subject's labels, "always", or "never" (the file's labels as they are).
   std::string label = "auto";
+  // A take longer than window_frames runs window by window (pipeline/take_windows.h), each
+  // window's stages on its frames plus window_context_frames each side, so its memory is
+  // bounded by the window, not the take.
+  int window_frames = 18000;
+  int window_context_frames = 600;
 };
 
 const OptionGroup<TakeSettings>& TakeSettingOptions();

@@ -374,6 +374,12 @@ Status CheckRepairInputs(const MarkerSet& markers, const Observations& observed,
   return Status::Ok();
 }
 
+// The first frame's warm start of the sequence solves (RepairOptions::start_pose).
+Pose StartPose(const RepairContext& ctx) {
+  const Pose& start = ctx.options.start_pose;
+  return start.rotations.empty() ? RestPose(ctx.skeleton) : start;
+}
+
 // Steps 1 and 2 with the robust tracker: it needs no naive solve, so with `parallel` the
 // two run side by side on two threads.
 Status SolveNaiveBesideTracker(const RepairContext& ctx, const std::function<void(int)>& naive_progress,
@@ -383,11 +389,11 @@ Status SolveNaiveBesideTracker(const RepairContext& ctx, const std::function<voi
   SequenceSolveReport tracker_report;
   auto track = [&] {
     reference_status = SolveSequence(ctx.skeleton, ctx.markers, ctx.observed, options.tracker,
-                                     RestPose(ctx.skeleton), reference, &tracker_report);
+                                     StartPose(ctx), reference, &tracker_report);
   };
   std::thread tracker;
   if (options.parallel) tracker = std::thread(track);
-  const Status status = SolveSequence(ctx.skeleton, ctx.markers, ctx.observed, options.naive, RestPose(ctx.skeleton),
+  const Status status = SolveSequence(ctx.skeleton, ctx.markers, ctx.observed, options.naive, StartPose(ctx),
                                       naive, sequence, naive_progress);
   if (options.parallel) {
     tracker.join();
@@ -404,7 +410,7 @@ Status SolveNaiveBesideTracker(const RepairContext& ctx, const std::function<voi
 // Steps 1 and 2 with the whole-clip reference: the robust clip solve starts from Y.
 Status SolveNaiveThenClip(const RepairContext& ctx, const std::function<void(int)>& naive_progress,
                           StageClock* clock, Motion* naive, Motion* reference, SequenceSolveReport* sequence) {
-  Status status = SolveSequence(ctx.skeleton, ctx.markers, ctx.observed, ctx.options.naive, RestPose(ctx.skeleton),
+  Status status = SolveSequence(ctx.skeleton, ctx.markers, ctx.observed, ctx.options.naive, StartPose(ctx),
                                 naive, sequence, naive_progress);
   if (!status.ok()) return status;
   clock->Lap("IK (naive solve)");
@@ -436,7 +442,7 @@ Status UndoSwapsStep(const RepairContext& ctx, const MarkerResidualModel& model,
   Status status = Status::Ok();
   if (report->swaps.front().first == 0) {
     SequenceSolveReport tracker_report;
-    status = SolveSequence(ctx.skeleton, ctx.markers, *relabelled, options.tracker, RestPose(ctx.skeleton), &redone,
+    status = SolveSequence(ctx.skeleton, ctx.markers, *relabelled, options.tracker, StartPose(ctx), &redone,
                            &tracker_report);
   } else {
     int resolved = 0;

@@ -122,6 +122,11 @@ struct RepairOptions {
                                         // signal/rough_run_extension.h).
   bool carry_joints = true;        // Step 6: joints no kept marker observes carried across
                                    // their runs in joint space (signal/joint_gap_carry.h).
+  // The warm start of every frame-by-frame solve's first frame; empty: the rest pose. A
+  // window of a long take (pipeline/take_windows.h) starts from the previous window's solve
+  // of the frame before it: a joint whose twist the markers leave free is held near its
+  // warm start, so a cold start can hold it elsewhere for the whole window.
+  Pose start_pose;
 
   // Every number finite, the thresholds positive, the frame counts >= 0, and the solve
   // options valid; otherwise false with a one-line reason in *error.

@@ -251,6 +251,33 @@ TEST(BvhWriter, AnglesAreContinuousOverTime) {
   }
 }
 
+// A long motion written in pieces (a take's windows, pipeline/take_windows.h) is the text
+// FormatBvh makes of it whole: the angles continue across pieces (the turn past 180
+// degrees of AnglesAreContinuousOverTime, cut in the middle of it); a later piece that moves
+// a joint's translation the first piece's channels lack is an error naming the joint.
+TEST(BvhWriter, PiecesMakeTheWholeText) {
+  const Skeleton skeleton = TwoJoints();
+  Motion motion = RandomMotion(skeleton, 12, 5);
+  for (int f = 0; f < 12; ++f) {
+    motion.frames[f].rotations[1] = Eigen::AngleAxisd(DegToRad(150.0 + 10.0 * f), Eigen::Vector3d::UnitZ());
+  }
+  Motion first, second;
+  first.frame_rate = second.frame_rate = motion.frame_rate;
+  first.frames.assign(motion.frames.begin(), motion.frames.begin() + 7);
+  second.frames.assign(motion.frames.begin() + 4, motion.frames.end());  // Frames 4-11: 7-11 kept.
+  BvhPieceWriter writer;
+  ASSERT_TRUE(writer.Start(skeleton, first).ok());
+  std::string text = writer.Header(12, motion.frame_rate);
+  ASSERT_TRUE(writer.AppendFrames(first, 0, 7, &text).ok());
+  ASSERT_TRUE(writer.AppendFrames(second, 3, 5, &text).ok());
+  EXPECT_EQ(text, FormatBvh(skeleton, motion));
+  second.frames[2].translations[1].x() += 1.0;  // Chest has no position channel.
+  std::string more;
+  const Status moved = writer.AppendFrames(second, 0, 1, &more);
+  EXPECT_FALSE(moved.ok());
+  EXPECT_NE(moved.message().find("Chest"), std::string::npos) << moved.message();
+}
+
 TEST(BvhWriter, ScaleMultipliesLengthsOnly) {
   const Skeleton skeleton = TwoJoints();
   const Motion motion = RandomMotion(skeleton, 5, 3);

@@ -57,6 +57,36 @@ TEST(FileTransaction, OutputsAppearOnlyAtCommit) {
   EXPECT_EQ(Listing(Folder(a)), (std::set<std::string>{"a.txt", "b.txt"}));  // No temporaries.
 }
 
+// A file written in pieces (AtomicFileWriter: a long take's outputs) is staged like the
+// others: nothing under its name until Commit, then the pieces in order; an input as its
+// path is refused at Close; dropped unclosed, nothing is left.
+TEST(FileTransaction, FileWrittenInPiecesAppearsAtCommit) {
+  const std::string a = testing::TempPath("pieces.txt"), input = testing::TempPath("input.txt");
+  WriteNow(input, "in");
+  {
+    FileTransaction files;
+    AtomicFileWriter writer;
+    ASSERT_TRUE(writer.Open(a).ok());
+    ASSERT_TRUE(writer.Append("alpha ").ok());
+    ASSERT_TRUE(writer.Append("beta", 4).ok());
+    ASSERT_TRUE(writer.Close().ok());
+    EXPECT_FALSE(testing::FileExists(a));
+    EXPECT_EQ(files.num_staged(), 1);
+    std::string text;
+    ASSERT_TRUE(ReadFileToString(input, &text).ok());
+    AtomicFileWriter over_input;
+    ASSERT_TRUE(over_input.Open(input).ok());
+    EXPECT_THAT(over_input.Close().message(), HasSubstr("would overwrite the input"));
+    AtomicFileWriter dropped;
+    ASSERT_TRUE(dropped.Open(testing::TempPath("dropped.txt")).ok());
+    ASSERT_TRUE(dropped.Append("never").ok());
+    ASSERT_TRUE(files.Commit().ok());
+  }
+  EXPECT_EQ(testing::ReadTextFile(a), "alpha beta");
+  EXPECT_EQ(testing::ReadTextFile(input), "in");
+  EXPECT_EQ(Listing(Folder(a)), (std::set<std::string>{"pieces.txt", "input.txt"}));
+}
+
 TEST(FileTransaction, FailedCommandPublishesNothingAndLeavesNothing) {
   const std::string a = testing::TempPath("a.txt");
   WriteNow(a, "old");

@@ -474,6 +474,39 @@ TEST(GltfWriter, LongClipsKeepTheirRateAndFrames) {
   }
 }
 
+// A .glb file is written with its keys straight from the model (WriteGltfWithAnimation:
+// not through tinygltf's copy and the bytes in memory) and holds the bytes
+// SerializeGltfWithAnimation makes, whole or animation only, from a Motion or compact.
+TEST(GltfWriter, GlbFileHoldsTheSerializedBytes) {
+  const std::string path = testing::TempPath("bytes_character.gltf");
+  testing::WriteTestCharacter(path, 30.0);
+  GltfDocument doc;
+  ASSERT_TRUE(GltfDocument::Read(path, &doc).ok());
+  GltfCharacter c;
+  ASSERT_TRUE(ReadGltfCharacter(doc, {}, &c).ok());
+  Motion motion;
+  motion.frame_rate = 120.0;
+  for (int f = 0; f < 301; ++f) {
+    Pose pose = c.rest_pose;
+    pose.rotations[1] = pose.rotations[1] * ExpMap(Eigen::Vector3d(0.3 * std::sin(0.01 * f), 0.0, 0.0));
+    pose.translations[0] += Eigen::Vector3d(0.001 * f, 0.0, 0.0);
+    motion.frames.push_back(pose);
+  }
+  for (bool animation_only : {false, true}) {
+    GltfWriteOptions options;
+    options.animation_only = animation_only;
+    std::string bytes;
+    ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, motion, "take", true, &bytes, options).ok());
+    const std::string glb = testing::TempPath("bytes.glb");
+    ASSERT_TRUE(WriteGltfWithAnimation(doc, c, motion, "take", glb, options).ok());
+    EXPECT_EQ(testing::ReadTextFile(glb), bytes) << animation_only;
+    const CompactMotion compact(motion);
+    ASSERT_TRUE(SerializeGltfWithAnimation(doc, c, compact, "take", true, &bytes, options).ok());
+    ASSERT_TRUE(WriteGltfWithAnimation(doc, c, compact, "take", glb, options).ok());
+    EXPECT_EQ(testing::ReadTextFile(glb), bytes) << animation_only;
+  }
+}
+
 // A .gltf whose buffers and texture are separate files, or data: URIs, becomes one .glb
 // with everything inside it (the viewer's pages embed characters so): one buffer without
 // a URI, the image in a buffer view with its bytes and MIME type, the same character.

@@ -70,4 +70,28 @@ TEST(CompactMotion, Empty) {
 }
 
 }  // namespace
+// A take assembled window by window (pipeline/take_windows.h) holds what the whole motion
+// built at once holds, also when a joint fixed in the first part moves in a later one.
+TEST(CompactMotion, AppendedPartsEqualTheWholeMotion) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  Motion motion = RandomMotion(skeleton, 30);
+  for (int f = 20; f < 30; ++f) motion.frames[f].translations[3] += Eigen::Vector3d(0.5, 0.0, 0.25 * f);
+  const CompactMotion whole(motion);
+  CompactMotion parts;
+  parts.Reserve(30);
+  parts.Append(motion, 0, 12);
+  parts.Append(motion, 12, 0);
+  parts.Append(motion, 12, 8);
+  parts.Append(motion, 20, 10);
+  ASSERT_EQ(parts.num_frames(), 30);
+  ASSERT_EQ(parts.num_joints(), skeleton.num_joints());
+  EXPECT_EQ(parts.frame_rate(), 120.0);
+  for (int f = 0; f < 30; ++f) {
+    for (int j = 0; j < skeleton.num_joints(); ++j) {
+      EXPECT_EQ(parts.Rotation(f, j).coeffs(), whole.Rotation(f, j).coeffs()) << f << " " << j;
+      EXPECT_EQ(parts.Translation(f, j), whole.Translation(f, j)) << f << " " << j;
+    }
+  }
+}
+
 }  // namespace mocapsolve
