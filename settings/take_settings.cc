@@ -24,8 +24,9 @@ const OptionGroup<TakeSettings>& TakeSettingOptions() {
       .Add(&S::window_context_frames, "window_context_frames", "frames",
            "A windowed take's context: each window also solves this many frames on each side of its own, "
            "and keeps only its own. The repair's reference and Hermite blends and its gap fills read the samples "
-           "on both sides of a gap (fill_samples, 20, a side), and the window's first solves start cold and "
-           "settle within a few frames: 600 (5 s at 120 Hz) holds a 4 s gap's fill inside the context.",
+           "on both sides of a gap (--fill_samples a side), and the window's first solves, started from the "
+           "previous window's solve, settle within it: 600 (5 s at 120 Hz) holds a 4 s gap's fill inside the "
+           "context.",
            0, 1000000);
   return *group;
 }

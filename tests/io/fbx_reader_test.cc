@@ -44,7 +44,7 @@ TEST_P(CmuFbx, LoadsWithPlausibleSkeletonAndFinitePoses) {
   const double metres_per_unit = 0.0254 / 0.45 / 100.0;
   FkData fk(skeleton);
   double min_height = 1e300, max_height = 0.0, hips_travel = 0.0;
-  Eigen::Vector3d first_hips;
+  Eigen::Vector3d first_hips = Eigen::Vector3d::Zero();
   for (int f = 0; f < motion.num_frames(); ++f) {
     ForwardKinematics(skeleton, motion.frames[f], &fk);
     double lo = 1e300, hi = -1e300;
