@@ -1,6 +1,5 @@
 #include "tasks/calibrate_task.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -8,54 +7,9 @@
 #include "io/motion_file.h"
 #include "kinematics/quote_token.h"
 #include "problems/marker_solve/mean_pose.h"
-#include "settings/solver_settings.h"
 #include "tasks/console_text.h"
 
 namespace mocapsolve {
-namespace {
-
-// Auto attach's near ties between a joint and its parent or child decided by prediction
-// (attachment_by_prediction.h): each candidate's offset on its alternative joint from this
-// motion (CalibrateMarkers with the alternatives as fixed attachments), the default
-// per-frame solve of a subject calibrated on it; trajectories in the model's frame.
-Status ChooseByPrediction(const Skeleton& skeleton, const Motion& motion, const MarkerTrajectories& trajectories,
-                          const CalibrationOptions& calibration_options, double tolerance,
-                          SubjectCalibration* calibration) {
-  CalibrationResult& result = calibration->result;
-  const std::vector<int> joint = PredictionCandidates(skeleton, result, tolerance);
-  if (std::all_of(joint.begin(), joint.end(), [](int a) { return a < 0; })) return Status::Ok();
-  std::vector<MarkerSpec> specs;
-  for (int m = 0; m < result.marker_set.num_markers(); ++m) {
-    specs.push_back(result.marker_set.marker(m));
-    if (joint[m] >= 0) specs.back().attachments = {{joint[m], 1.0, Eigen::Vector3d::Zero()}};
-  }
-  MarkerSet moved;
-  Status status = MarkerSet::Create(skeleton, std::move(specs), &moved);
-  CalibrationResult refit;
-  if (status.ok()) status = CalibrateMarkers(skeleton, motion, trajectories, calibration_options, &moved, &refit);
-  if (!status.ok()) return status;
-  std::vector<MarkerAttachment> alternative(joint.size());
-  for (size_t m = 0; m < joint.size(); ++m) {
-    if (joint[m] >= 0) alternative[m] = refit.marker_set.marker(static_cast<int>(m)).attachments[0];
-  }
-  MarkerSolveOptions solve;
-  status = MarkerSolveOptionsFromSettings(SolverSettings(), skeleton, MeanPose(skeleton, motion), &solve);
-  if (!status.ok()) return status;
-  std::vector<std::vector<Eigen::Vector3d>> observed(trajectories.num_frames());
-  for (int f = 0; f < trajectories.num_frames(); ++f) {
-    for (const CalibratedMarker& c : result.markers) {
-      const bool valid = trajectories.valid(f, c.trajectory_index);
-      observed[f].push_back(valid ? Eigen::Vector3d(trajectories.position(f, c.trajectory_index))
-                                  : Eigen::Vector3d::Constant(std::nan("")));
-    }
-  }
-  AttachmentByPredictionOptions options;
-  options.tolerance = tolerance;
-  return ChooseAttachmentsByPrediction(skeleton, observed, alternative, solve, options, &result.marker_set,
-                                       &calibration->prediction_moves);
-}
-
-}  // namespace
 
 Status CalibrateSubject(const Skeleton& skeleton, const Motion& motion,
                         const MarkerTrajectories& file_trajectories,
@@ -95,10 +49,6 @@ Status CalibrateSubject(const Skeleton& skeleton, const Motion& motion,
   Status status = CalibrateMarkers(skeleton, motion, trajectories, calibration, options.attachments,
                                    &result.result);
   if (!status.ok()) return Status::Error(options.markers_name + ": " + status.message());
-  if (options.attachments == nullptr) {
-    status = ChooseByPrediction(skeleton, motion, trajectories, calibration, options.prediction_tolerance, &result);
-    if (!status.ok()) return Status::Error(options.markers_name + ": " + status.message());
-  }
   Subject& subject = result.subject;
   subject.skeleton = skeleton;
   subject.skeleton_path = options.skeleton_path;
@@ -150,12 +100,6 @@ std::string CalibrationTable(const Skeleton& skeleton, const SubjectCalibration&
     if (m.runner_up >= 0) runner = skeleton.name(m.runner_up) + " (" + length(m.runner_up_rms, false) + ")";
     AppendF(&text, "%-12s %-14s %7d %s %s  %s\n", TerminalText(m.label).c_str(), TerminalText(joints).c_str(),
             m.frames, length(m.rms, true).c_str(), length(m.max_error, true).c_str(), TerminalText(runner).c_str());
-  }
-  for (const AttachmentMove& move : calibration.prediction_moves) {
-    AppendF(&text, "%s: on %s its joints' markers are predicted to %s (median), on %s to %s: %s\n",
-            TerminalText(result.marker_set.label(move.marker)).c_str(), skeleton.name(move.from).c_str(),
-            length(move.from_score, false).c_str(), skeleton.name(move.to).c_str(),
-            length(move.to_score, false).c_str(), move.moved ? "moved" : "kept");
   }
   for (const std::string& skipped : result.skipped) AppendF(&text, "skipped %s\n", TerminalText(skipped).c_str());
   AppendF(&text, "calibrated %d markers over %d samples: RMS %s", result.marker_set.num_markers(), result.samples,

@@ -16,7 +16,6 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "pipeline/subject.h"
-#include "problems/marker_solve/attachment_by_prediction.h"
 #include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/marker_observations.h"
 #include "settings/calibrate_settings.h"
@@ -33,10 +32,6 @@ struct SubjectCalibrationOptions {
   std::string skeleton_path;    // Recorded in the subject (the skeleton's file).
   double amc_fps = 120.0;       // Recorded in the subject.
   std::string markers_name;     // Names the marker file in errors.
-  // Auto attach: a marker whose parent or child joint holds it within this fraction of its
-  // own rms goes to whichever the others' solve predicts it from better
-  // (attachment_by_prediction.h; 0: off).
-  double prediction_tolerance = AttachmentByPredictionOptions().tolerance;
 };
 
 struct SubjectCalibration {
@@ -44,7 +39,6 @@ struct SubjectCalibration {
   CalibrationResult result;
   MarkerFileToModel transform;   // The file -> skeleton mapping used.
   std::vector<double> axis_rms;  // With axes "auto": RMS per AllAxisRotations() candidate.
-  std::vector<AttachmentMove> prediction_moves;  // The candidates prediction_tolerance decided.
 };
 
 // `trajectories` as read from the file (they are copied and mapped).
