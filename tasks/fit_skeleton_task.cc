@@ -12,6 +12,7 @@
 #include "kinematics/quote_token.h"
 #include "pipeline/shipped_templates.h"
 #include "problems/marker_solve/associated_marker_set.h"
+#include "problems/marker_solve/attachment_by_prediction.h"
 #include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/held_out_round.h"
 #include "problems/marker_solve/lone_joint_gauge.h"
@@ -416,8 +417,8 @@ Status AttachError(const std::string& markers_path, int round, const Status& sta
 // fitted_markers) for those an earlier round attached.
 Status AttachAllMarkers(const FitTake& fit, const RoundState& state, const CalibrationOptions& calibration, int round,
                         const std::string& markers_path, std::vector<MarkerSpec>* specs,
-                        std::vector<std::pair<int, int>>* reattached, int* new_markers) {
-  CalibrationResult attached;
+                        std::vector<std::pair<int, int>>* reattached, int* new_markers, CalibrationResult* out) {
+  CalibrationResult& attached = *out;
   Status status = CalibrateMarkers(state.fitted, state.motion, fit.model_frame, calibration, nullptr, &attached);
   if (!status.ok()) return AttachError(markers_path, round, status);
   *new_markers = 0;
@@ -479,16 +480,67 @@ Status KeepBetterAttachments(const FitTake& fit, const RoundState& state, const 
   return Status::Ok();
 }
 
+// Near ties of the round's attach between a marker's joint and its parent or child decided
+// by prediction on the fit's own frames (attachment_by_prediction.h), the template's
+// markers included: the take, unlike the calibration take, may move the joint.
+Status ChooseByPrediction(const FitTake& fit, const RoundState& state, const CalibrationOptions& calibration,
+                          const CalibrationResult& attached, MarkerSolveOptions solve, const Observations& observed,
+                          MarkerSet* round_markers) {
+  const std::vector<int> runner_up =
+      PredictionCandidates(state.fitted, attached, AttachmentByPredictionOptions().tolerance);
+  std::vector<MarkerAttachment> alternative(round_markers->num_markers());
+  std::vector<MarkerSpec> specs;
+  bool any = false;
+  for (int s = 0; s < round_markers->num_markers(); ++s) {
+    specs.push_back(round_markers->marker(s));
+    const int k = attached.marker_set.FindMarker(specs.back().label);
+    if (k < 0 || runner_up[k] < 0 || specs.back().attachments.size() != 1) continue;
+    const int a = attached.marker_set.marker(k).attachments[0].joint, b = runner_up[k];
+    const int j = specs.back().attachments[0].joint;
+    const int other = j == a ? b : (j == b ? a : -1);
+    if (other < 0) continue;
+    specs.back().attachments = {{other, 1.0, Eigen::Vector3d::Zero()}};
+    alternative[s].joint = other;
+    any = true;
+  }
+  if (!any) return Status::Ok();
+  MarkerSet moved;
+  Status status = MarkerSet::Create(state.fitted, std::move(specs), &moved);
+  CalibrationResult refit;
+  if (status.ok()) status = CalibrateMarkers(state.fitted, state.motion, fit.model_frame, calibration, &moved, &refit);
+  if (!status.ok()) return status;
+  for (int s = 0; s < round_markers->num_markers(); ++s) {
+    if (alternative[s].joint < 0) continue;
+    const int k = refit.marker_set.FindMarker(round_markers->label(s));
+    if (k < 0) {
+      alternative[s].joint = -1;
+      continue;
+    }
+    alternative[s] = refit.marker_set.marker(k).attachments[0];
+    if (calibration.max_bone_distance > 0.0) {
+      alternative[s].offset =
+          ClampToBone(state.fitted, alternative[s].joint, alternative[s].offset, calibration.max_bone_distance);
+    }
+  }
+  if (solve.rest_prior_needs_reference || !solve.rest_rotations.empty()) {
+    solve.rest_rotations = MeanPose(state.fitted, state.motion);
+  }
+  return ChooseAttachmentsByPrediction(state.fitted, observed, alternative, solve, {}, round_markers, nullptr);
+}
+
 // An attach round's markers (every marker of the take attached) and their observations,
 // round 0's outliers left out; round 1 tells whether round 0 was already complete.
-Status AttachRound(const FitTake& fit, double max_bone_distance, int round, const std::string& markers_path,
-                   RoundState* state, MarkerSet* round_markers, Observations* observed) {
+Status AttachRound(const FitTake& fit, double max_bone_distance, const MarkerSolveOptions& solve_options, int round,
+                   const std::string& markers_path, RoundState* state, MarkerSet* round_markers,
+                   Observations* observed) {
   CalibrationOptions calibration;
   calibration.max_bone_distance = max_bone_distance;
   std::vector<MarkerSpec> specs;
   std::vector<std::pair<int, int>> reattached;
   int new_markers = 0;
-  Status status = AttachAllMarkers(fit, *state, calibration, round, markers_path, &specs, &reattached, &new_markers);
+  CalibrationResult attached;
+  Status status =
+      AttachAllMarkers(fit, *state, calibration, round, markers_path, &specs, &reattached, &new_markers, &attached);
   if (!status.ok()) return status;
   if (!reattached.empty()) {
     status = KeepBetterAttachments(fit, *state, calibration, round, markers_path, reattached, &specs);
@@ -504,6 +556,8 @@ Status AttachRound(const FitTake& fit, double max_bone_distance, int round, cons
     const int m = round_markers->FindMarker(label);
     if (m >= 0) (*observed)[f][m].setConstant(std::numeric_limits<double>::quiet_NaN());
   }
+  status = ChooseByPrediction(fit, *state, calibration, attached, solve_options, *observed, round_markers);
+  if (!status.ok()) return AttachError(markers_path, round, status);
   return Status::Ok();
 }
 
@@ -713,8 +767,8 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
     MarkerSet round_markers = state.fitted_markers;
     if (round >= 2 && (state.best.round >= 1 || state.round0_complete)) StartFromBest(&state);
     if (round > 0) {
-      status = AttachRound(fit, base_options.max_bone_distance, round, markers_path, &state, &round_markers,
-                           &observed);
+      status = AttachRound(fit, base_options.max_bone_distance, solve_options, round, markers_path, &state,
+                           &round_markers, &observed);
       if (!status.ok()) return status;
     }
     const SkeletonFitOptions options =

@@ -226,9 +226,11 @@ TEST(FitSubjectToTake, CompleteTemplateRoundsStartWhereTheLastEnded) {
   double best = round0.back();
   for (size_t r = 1; r < result.rounds.size(); ++r) {
     const std::vector<double>& rms = result.rounds[r].rms;
-    // The same skeleton, markers and frames as the best round before it: the same solve
-    // (a relative 1e-9: the per-frame solves are deterministic).
-    EXPECT_NEAR(rms.front(), best, 1e-9 * best) << "round " << r;
+    // The same skeleton and frames as the best round before it, and its markers, but for
+    // those a near tie moved to the joint that predicts them better (attachment_by_prediction.h,
+    // which here lowers the start): never a worse start (a relative 1e-9: the per-frame solves
+    // are deterministic).
+    EXPECT_LE(rms.front(), best * (1.0 + 1e-9)) << "round " << r;
     best = std::min(best, rms.back());
   }
   // The kept round is the latest within 5 % of the lowest held-out score (held_out_round.h),

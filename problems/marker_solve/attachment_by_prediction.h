@@ -1,0 +1,70 @@
+// Between two joints that hold a marker nearly equally rigidly, the one with which the
+// solve predicts that joint's markers better (issues 31 item 4, 36).
+//
+// Auto attach (calibration.h) puts marker m on j* = argmin_j rms_mj, the joint in whose
+// frame it moves least. When a joint's parent or child holds it almost as well (the
+// runner-up's rms within `tolerance` of the best, relative), rigidity does not decide:
+// CMU's 02_01 walk puts the fifth metatarsal markers on the toes by 1.5 / 7 % over the
+// foot, and a later take's solve then turns the toe joint by that one marker of a foot that
+// does not bend there, leaving the foot's pose to its other markers alone. What a subject
+// is for is placing a marker where the others put it, so for such a marker m, its joint a
+// and the runner-up b, with its offset fitted on each (the caller's calibration):
+//   G = {m} and every other marker on a or b;
+//   for each n in G, the take (every k-th frame, k = ceil(frames / max_frames)) is solved
+//   frame by frame without n (SolveSequence, `solve`, as leave_one_out.h does), and n
+//   predicted through its attachment: e_n(f) = |x^_n(f) - y_n(f)|;
+//   score(set) = median of e_n(f) over n in G and n's samples,
+// once with m on a and once on b; m moves to b when b's score is lower (ties keep a). No
+// sample of n reaches its own prediction. A joint that m alone turns, left without it, is
+// held by the solve's priors; on the joint whose other markers turn it, m also helps
+// place them. Every decision is made against the set as given (one marker's move does
+// not feed another's).
+#ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_ATTACHMENT_BY_PREDICTION_H_
+#define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_ATTACHMENT_BY_PREDICTION_H_
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kinematics/marker_set.h"
+#include "kinematics/skeleton.h"
+#include "kinematics/status.h"
+#include "problems/marker_solve/calibration.h"
+#include "problems/marker_solve/marker_frame_solver.h"
+
+namespace mocapsolve {
+
+struct AttachmentByPredictionOptions {
+  // The runner-up's rms within this fraction of the marker's own (0: off). 15 %, a round
+  // number set before measuring, above the 1.5-7 % of the metatarsals on 02_01: it only
+  // admits candidates; the prediction decides.
+  double tolerance = 0.15;
+  int max_frames = 240;  // Frames solved per left-out marker (every k-th of the take).
+};
+
+struct AttachmentMove {
+  int marker = -1;           // Index in the set.
+  int from = -1, to = -1;    // Joints.
+  double from_score = 0.0;   // score(set) with m on `from` and on `to`, skeleton units.
+  double to_score = 0.0;
+  bool moved = false;
+};
+
+// The candidates of a calibration: for each marker of result.marker_set, its runner-up
+// joint when that is the parent or a child of its (single) joint and its rms there within
+// (1 + tolerance) of its own; else -1.
+std::vector<int> PredictionCandidates(const Skeleton& skeleton, const CalibrationResult& result,
+                                      double tolerance);
+
+// Decides every marker m with alternative[m].joint >= 0 (its joint b and offset there) as
+// the header says and moves those whose alternative scores lower. observed[f][m] in
+// skeleton units (NaN: missing), parallel to *markers. `moves` (may be null) gets one entry
+// per candidate decided.
+Status ChooseAttachmentsByPrediction(const Skeleton& skeleton, const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                                     const std::vector<MarkerAttachment>& alternative, const MarkerSolveOptions& solve,
+                                     const AttachmentByPredictionOptions& options, MarkerSet* markers,
+                                     std::vector<AttachmentMove>* moves);
+
+}  // namespace mocapsolve
+
+#endif  // MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_ATTACHMENT_BY_PREDICTION_H_
