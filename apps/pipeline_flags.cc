@@ -84,11 +84,11 @@ Status RunPipelineTake(const TakeInputs& inputs, const TakePipelineOptions& opti
   Status status = Status::Ok();
   const bool windowed = TakeRunsInWindows(inputs, options, &status);
   if (!status.ok()) return status;
-  if (windowed && !view_path->empty()) {
+  const bool dropped_page = windowed && !view_path->empty();
+  if (dropped_page) {
     ViewPageSetting view;
     ReadOptionFlags(TakeViewPageOption(), &view);
     if (view.view != "auto") return Status::Error("--view=" + view.view + ": no page for a take over --window_frames");
-    std::fprintf(stderr, "warning: pipeline: no view.html (--view=auto): the take runs in windows (--window_frames)\n");
     view_path->clear();
   }
   std::unique_ptr<Progress> progress;
@@ -101,8 +101,13 @@ Status RunPipelineTake(const TakeInputs& inputs, const TakePipelineOptions& opti
     }
     progress->Update(done);
   };
-  if (windowed) return RunTakeInWindows(Files().out_dir, inputs, options, files, result, show);
-  return RunTakePipeline(inputs, options, result, show);
+  if (!windowed) return RunTakePipeline(inputs, options, result, show);
+  status = RunTakeInWindows(Files().out_dir, inputs, options, files, result, show);
+  // Only once the take ran: a take refused says so in one line.
+  if (status.ok() && dropped_page) {
+    std::fprintf(stderr, "warning: pipeline: no view.html (--view=auto): the take runs in windows (--window_frames)\n");
+  }
+  return status;
 }
 
 Status PipelineSubjectFromFlags(Subject* subject, std::unique_ptr<AutoSubjectResult>* fitted) {

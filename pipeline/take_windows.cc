@@ -389,7 +389,9 @@ bool TakeRunsInWindows(const TakeInputs& inputs, const TakePipelineOptions& opti
   MarkerFileShape shape;
   *status = ReadMarkerFileShape(inputs.markers_path, &shape);
   if (!status->ok()) *status = Status::Error("read: " + status->message());
-  return status->ok() && shape.frames > options.window_frames;
+  // A file without points runs whole, which refuses it in one line (its header's frame
+  // count can be anything).
+  return status->ok() && shape.markers > 0 && shape.frames > options.window_frames;
 }
 
 Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, const TakePipelineOptions& options,
