@@ -601,14 +601,15 @@ void AppendWord(std::uint32_t word, std::string* out) {  // Little-endian, as th
   for (int k = 0; k < 4; ++k) out->push_back(static_cast<char>((word >> (8 * k)) & 0xff));
 }
 
+// The samples ModelWithAnimation reads, for either kind of motion.
+MotionSamples AnimationSamples(const Motion& motion) { return MotionSamples(motion); }
+CompactSamples AnimationSamples(const CompactMotion& motion) { return CompactSamples(motion); }
+
 // The .glb of `model` written straight into `path` (AtomicFileWriter): the bytes WriteModel
 // makes, but buffer 0 (the BIN chunk: a long take's keys) goes from the model to the file
 // as it is, not through tinygltf's copy of it and the file's bytes in memory (two more
 // copies of the keys: 2.1 KB per frame of Xbot's take). The JSON chunk is tinygltf's for
 // the model with buffer 0 emptied, its byteLength then set to the real one.
-MotionSamples AnimationSamples(const Motion& motion) { return MotionSamples(motion); }
-CompactSamples AnimationSamples(const CompactMotion& motion) { return CompactSamples(motion); }
-
 Status WriteGlbFile(const std::string& file, tinygltf::Model* model, const std::string& path) {
   if (model->buffers.empty() || !model->buffers[0].uri.empty()) {
     return Status::Error(file + ": glTF writer: no embedded buffer 0 for the BIN chunk");
