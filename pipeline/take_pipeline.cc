@@ -200,6 +200,14 @@ Status ReadTakeCharacters(const TakeInputs& inputs, std::vector<CharacterOutput>
   return Status::Ok();
 }
 
+void SetRepairGateFigures(double mm, TakeResult* result) {
+  QualityFigures& figures = result->figures;
+  figures.naive_rms_mm = result->repair.naive_rms * mm;
+  figures.repaired_rms_mm = result->repair.repaired_rms * mm;
+  figures.repaired_share = result->samples > 0 ? double(result->repaired_samples) / result->samples : 0.0;
+  figures.iteration_limit_share = double(result->repair.naive_unconverged_frames) / result->frames;
+}
+
 Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
                        const PipelineProgress& progress) {
   if (inputs.subject == nullptr) return Status::Error("pipeline: no subject");
@@ -276,10 +284,7 @@ Status RunTakeStages(const TakeInputs& inputs, const TakePipelineOptions& option
   // solve in double before the retarget takes it over.
   const double mm = take.skeleton.unit().metres_per_unit * 1000.0;
   QualityFigures& figures = result->figures;
-  figures.naive_rms_mm = result->repair.naive_rms * mm;
-  figures.repaired_rms_mm = result->repair.repaired_rms * mm;
-  figures.repaired_share = result->samples > 0 ? double(result->repaired_samples) / result->samples : 0.0;
-  figures.iteration_limit_share = double(result->repair.naive_unconverged_frames) / frames;
+  SetRepairGateFigures(mm, result);
   // The checks of a fitted subject, on this take: skin distance and torso direction.
   const SubjectChecks checks = CheckSubjectFit(take.skeleton, take.markers, take.observed, solved);
   figures.max_marker_offset_cm = checks.max_bone_distance_cm;

@@ -183,6 +183,10 @@ Status ReadTakeCharacters(const TakeInputs& inputs, std::vector<CharacterOutput>
 // ... and stages 1-4 on result->take, onto result->characters (read).
 Status RunTakeStages(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
                      const PipelineProgress& progress = nullptr);
+// The gate's figures from the repair's report (result->repair, samples, repaired_samples,
+// frames): naive and repaired RMS in mm (`mm` per skeleton unit), repaired and
+// iteration-limit shares.
+void SetRepairGateFigures(double mm, TakeResult* result);
 // The memory the take needs (pipeline/memory_estimate.h): whole, or windowed when it has
 // more than options.window_frames frames; with the clip reference and the filter as asked.
 MemoryEstimate TakeMemory(int frames, int markers, const TakePipelineOptions& options);

@@ -195,11 +195,8 @@ void FinishFigures(const TakePipelineOptions& options, const WindowSums& sums, T
   t.naive_held_frames = Rounded(sums.held);
   t.naive_twist_held_frames = Rounded(sums.twist_held);
   const double mm = total->take.skeleton.unit().metres_per_unit * 1000.0;
+  SetRepairGateFigures(mm, total);
   QualityFigures& figures = total->figures;
-  figures.naive_rms_mm = t.naive_rms * mm;
-  figures.repaired_rms_mm = t.repaired_rms * mm;
-  figures.repaired_share = total->samples > 0 ? double(total->repaired_samples) / total->samples : 0.0;
-  figures.iteration_limit_share = double(t.naive_unconverged_frames) / total->frames;
   figures.torso_error_deg = sums.torso.value();
   total->verdict = CheckQuality(options.gate, figures);
   for (size_t c = 0; c < total->characters.size() && c < sums.characters.size(); ++c) {
