@@ -4,29 +4,21 @@
 #include <cmath>
 #include <limits>
 
-#include "kinematics/forward_kinematics.h"
-#include "kinematics/motion.h"
-#include "problems/marker_solve/sequence_solver.h"
+#include "problems/marker_solve/leave_one_out.h"
 
 namespace mocapsolve {
 namespace {
 
-// Appends n's prediction errors on `scored` from the solve of the others with `set`.
+// Appends n's prediction errors on `scored` from the solve of the others with `set`
+// (leave_one_out.h's, per frame only).
 Status AppendErrors(const Skeleton& skeleton, const MarkerSet& set, const std::vector<std::vector<Eigen::Vector3d>>& scored,
                     const MarkerSolveOptions& solve, int n, std::vector<double>* errors) {
-  std::vector<std::vector<Eigen::Vector3d>> without = scored;
-  for (std::vector<Eigen::Vector3d>& frame : without) frame[n] = Eigen::Vector3d::Constant(std::nan(""));
-  Motion motion;
-  SequenceSolveReport report;
-  const Status status = SolveSequence(skeleton, set, without, solve, RestPose(skeleton), &motion, &report);
-  if (!status.ok()) return status;
-  FkData fk(skeleton);
-  for (size_t f = 0; f < scored.size(); ++f) {
-    if (!scored[f][n].allFinite()) continue;
-    ForwardKinematics(skeleton, motion.frames[f], &fk);
-    errors->push_back((set.Position(n, fk) - scored[f][n]).norm());
-  }
-  return Status::Ok();
+  LeaveOneOutOptions options;
+  options.frame = solve;
+  std::vector<double> own;
+  const Status status = LeftOutPredictionErrors(skeleton, set, scored, n, options, &own);
+  errors->insert(errors->end(), own.begin(), own.end());
+  return status;
 }
 
 // score(set) of the header over the markers `group`.

@@ -34,12 +34,14 @@ Status SolveWithout(const Skeleton& skeleton, const MarkerSet& set,
   return SolveClip(skeleton, set, without, options.clip_options, motion, &clip);
 }
 
+}  // namespace
+
 // Solves the take without marker m (refining the others' offsets between solves when
 // asked) and returns its prediction errors and, when `predicted` is not null, predictions.
-Status PredictionErrors(const Skeleton& skeleton, const MarkerSet& markers,
-                        const std::vector<std::vector<Eigen::Vector3d>>& observed, int m,
-                        const LeaveOneOutOptions& options, std::vector<double>* errors,
-                        std::vector<Eigen::Vector3d>* predicted) {
+Status LeftOutPredictionErrors(const Skeleton& skeleton, const MarkerSet& markers,
+                               const std::vector<std::vector<Eigen::Vector3d>>& observed, int m,
+                               const LeaveOneOutOptions& options, std::vector<double>* errors,
+                               std::vector<Eigen::Vector3d>* predicted) {
   const Eigen::Vector3d missing = Eigen::Vector3d::Constant(std::nan(""));
   std::vector<std::vector<Eigen::Vector3d>> without = observed;
   for (std::vector<Eigen::Vector3d>& frame : without) frame[m] = missing;
@@ -74,7 +76,6 @@ Status PredictionErrors(const Skeleton& skeleton, const MarkerSet& markers,
   return Status::Ok();
 }
 
-}  // namespace
 
 PredictionErrorSummary SummarizeErrors(std::vector<double>* errors) {
   PredictionErrorSummary summary;
@@ -114,7 +115,7 @@ Status LeaveOneMarkerOut(const Skeleton& skeleton, const MarkerSet& markers,
   const int threads = std::max(1, std::min(options.num_threads, num_markers));
   if (threads == 1) {
     for (int m = 0; m < num_markers; ++m) {
-      statuses[m] = PredictionErrors(skeleton, markers, observed, m, options, &errors[m], predicted(m));
+      statuses[m] = LeftOutPredictionErrors(skeleton, markers, observed, m, options, &errors[m], predicted(m));
       if (progress) progress(m + 1);
     }
   } else {
@@ -126,7 +127,7 @@ Status LeaveOneMarkerOut(const Skeleton& skeleton, const MarkerSet& markers,
     int done = 0;
     auto work = [&] {
       for (int m = next++; m < num_markers; m = next++) {
-        statuses[m] = PredictionErrors(skeleton, markers, observed, m, options, &errors[m], predicted(m));
+        statuses[m] = LeftOutPredictionErrors(skeleton, markers, observed, m, options, &errors[m], predicted(m));
         std::lock_guard<std::mutex> lock(mutex);
         ++done;
         finished_one.notify_one();

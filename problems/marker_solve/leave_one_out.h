@@ -71,6 +71,14 @@ struct LeaveOneOutReport {
 // The summary of a set of errors (empty: all zero). Sorts `errors`.
 PredictionErrorSummary SummarizeErrors(std::vector<double>* errors);
 
+// One marker's part of LeaveOneMarkerOut: the take solved without marker m (as `options`
+// say; num_threads and keep_predictions unused) and *errors = |x^_m(f) - y_m(f)| over the
+// frames where m was observed, in order; with `predicted` also x^_m(f) (NaN elsewhere).
+Status LeftOutPredictionErrors(const Skeleton& skeleton, const MarkerSet& markers,
+                               const std::vector<std::vector<Eigen::Vector3d>>& observed, int m,
+                               const LeaveOneOutOptions& options, std::vector<double>* errors,
+                               std::vector<Eigen::Vector3d>* predicted = nullptr);
+
 // observed[f][m] in skeleton units (NaN = missing). progress(markers_done) after each
 // marker's solves, from the calling thread.
 Status LeaveOneMarkerOut(const Skeleton& skeleton, const MarkerSet& markers,
