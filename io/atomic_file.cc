@@ -320,7 +320,9 @@ Status MakeFolders(const std::string& path) {
       if (!S_ISDIR(st.st_mode)) return Status::Error(path + ": " + prefix + " is not a folder");
       continue;
     }
-    if (::mkdir(prefix.c_str(), 0777) != 0 && errno != EEXIST) {
+    if (::mkdir(prefix.c_str(), 0777) == 0) {
+      if (FileTransaction* transaction = FileTransaction::Current()) transaction->RecordCreatedFolder(prefix);
+    } else if (errno != EEXIST) {
       return Status::Error(path + ": cannot create the folder");
     }
   }

@@ -60,7 +60,8 @@ void SetReadChunkObserverForTesting(void (*observer)(const std::string& path, si
 void NoteInputFile(const std::string& path);
 
 // mkdir -p: creates the folder and its missing parents; an error names a part that is
-// not a folder or cannot be created.
+// not a folder or cannot be created. Inside a FileTransaction the folders it made are
+// removed again, if still empty, when the command fails (file_transaction.h).
 Status MakeFolders(const std::string& path);
 
 // True if both paths name the same existing file (used to refuse overwriting an input).

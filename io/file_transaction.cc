@@ -3,6 +3,7 @@
 #include <limits.h>
 #include <stdlib.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <mutex>
 #include <vector>
@@ -64,6 +65,7 @@ struct FileTransaction::State {
   std::vector<InputFile> input_files;
   std::vector<FileIdentity> outputs;  // Parallel to staged.
   std::vector<StagedFile> staged;
+  std::vector<std::string> created_folders;  // In the order made.
 
   // Refuses `output` if it names an input. Called with the mutex held.
   Status CheckNotAnInput(const FileIdentity& output) const {
@@ -86,7 +88,17 @@ FileTransaction::FileTransaction() : state_(new State) {
 
 FileTransaction::~FileTransaction() {
   if (current_transaction == this) current_transaction = nullptr;
-  // Unpublished staged files are dropped by their destructors.
+  // Unpublished staged files are dropped by their destructors; then the folders made for
+  // them, innermost first (rmdir refuses a folder that is not empty).
+  state_->staged.clear();
+  for (auto folder = state_->created_folders.rbegin(); folder != state_->created_folders.rend(); ++folder) {
+    ::rmdir(folder->c_str());
+  }
+}
+
+void FileTransaction::RecordCreatedFolder(const std::string& path) {
+  std::lock_guard<std::mutex> lock(state_->mutex);
+  state_->created_folders.push_back(path);
 }
 
 FileTransaction* FileTransaction::Current() { return current_transaction; }
@@ -194,6 +206,7 @@ Status FileTransaction::Commit() {
   }
   state_->staged.clear();
   state_->outputs.clear();
+  state_->created_folders.clear();  // Published: they stay.
   return Status::Ok();
 }
 

@@ -15,7 +15,9 @@
 //     or FIFO such as /dev/null: written into, never replaced by a regular file), then
 //     gives each staged file its name (link to a temporary name, rename over the target).
 //     Only that last loop of renames can be cut short by a SIGKILL.
-//   - Without Commit (the command failed), the destructor drops every staged file.
+//   - Without Commit (the command failed), the destructor drops every staged file and
+//     removes the folders MakeFolders created for it that are still empty, newest first:
+//     a command that fails leaves no empty output folder behind.
 // With no transaction open (library use, tests), WriteFileAtomically writes and renames
 // at once, as before.
 #ifndef MOCAPSOLVE_IO_FILE_TRANSACTION_H_
@@ -61,6 +63,9 @@ class FileTransaction {
   Status Stage(const std::string& path, const std::string& contents);
   // A file staged and written already (AtomicFileWriter): checked as Stage checks its path.
   Status Adopt(StagedFile staged);
+  // A folder MakeFolders created (it did not exist): removed again if the transaction is
+  // dropped and the folder is still empty.
+  void RecordCreatedFolder(const std::string& path);
 
   int num_staged() const;
   // True if `path` names a file recorded as an input (by name or device/inode).

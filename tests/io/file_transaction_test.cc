@@ -99,6 +99,32 @@ TEST(FileTransaction, FailedCommandPublishesNothingAndLeavesNothing) {
   EXPECT_EQ(Listing(Folder(a)), (std::set<std::string>{"a.txt"}));
 }
 
+// The folders a failed command made for its outputs go with them (a long take that fails
+// in its third window left an empty take folder); a folder that was there before, one
+// that holds a file, and those of a committed command stay.
+TEST(FileTransaction, FailedCommandLeavesNoFolderItMade) {
+  const std::string root = Folder(testing::TempPath("x")) + "/made_folders";
+  ASSERT_TRUE(MakeFolders(root).ok());  // There before: stays.
+  {
+    FileTransaction files;
+    ASSERT_TRUE(MakeFolders(root + "/take/deep").ok());
+    ASSERT_TRUE(MakeFolders(root + "/kept").ok());
+    ASSERT_TRUE(WriteFileAtomically(root + "/take/deep/out.txt", "never").ok());
+    std::FILE* other = std::fopen((root + "/kept/someone_elses.txt").c_str(), "w");  // Not staged.
+    ASSERT_NE(other, nullptr);
+    std::fclose(other);
+  }
+  EXPECT_EQ(Listing(root), (std::set<std::string>{"kept"}));
+  EXPECT_EQ(Listing(root + "/kept"), (std::set<std::string>{"someone_elses.txt"}));
+  {
+    FileTransaction files;
+    ASSERT_TRUE(MakeFolders(root + "/done/empty").ok());
+    ASSERT_TRUE(files.Commit().ok());
+  }
+  EXPECT_EQ(Listing(root), (std::set<std::string>{"done", "kept"}));
+  EXPECT_EQ(Listing(root + "/done"), (std::set<std::string>{"empty"}));
+}
+
 TEST(FileTransaction, RefusesToOverwriteAnInput) {
   const std::string input = testing::TempPath("set.json");
   WriteNow(input, "{\"markers\": []}");
