@@ -114,6 +114,17 @@ Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
   return Status::Ok();
 }
 
+// One more frame for each of `joints` in *frames (per joint; made on first use, so a
+// take where nothing is held reports an empty list).
+namespace {
+void CountFrames(const std::vector<int>& joints, int num_joints, std::vector<int>* frames) {
+  for (int j : joints) {
+    if (frames->empty()) frames->assign(num_joints, 0);
+    ++(*frames)[j];
+  }
+}
+}  // namespace
+
 Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
                      const std::vector<std::vector<Eigen::Vector3d>>& observed,
                      const MarkerSolveOptions& options, const Pose& initial, Motion* motion,
@@ -155,14 +166,8 @@ Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
       pose = attempt;
       report->total_iterations += frame.iterations;
       report->total_final_cost += frame.final_cost;
-      for (int j : frame.held_joints) {
-        if (report->held_frames.empty()) report->held_frames.assign(skeleton.num_joints(), 0);
-        ++report->held_frames[j];
-      }
-      for (int j : frame.twist_held_joints) {
-        if (report->twist_held_frames.empty()) report->twist_held_frames.assign(skeleton.num_joints(), 0);
-        ++report->twist_held_frames[j];
-      }
+      CountFrames(frame.held_joints, skeleton.num_joints(), &report->held_frames);
+      CountFrames(frame.twist_held_joints, skeleton.num_joints(), &report->twist_held_frames);
       if (frame.iterations >= max_iterations) ++report->unconverged_frames;
       report->frame_rms[f] = frame.rms_marker_error;
       report->frame_cost[f] = frame.final_cost;
