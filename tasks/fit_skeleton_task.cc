@@ -18,6 +18,7 @@
 #include "problems/marker_solve/lone_joint_gauge.h"
 #include "problems/marker_solve/marker_observations.h"
 #include "problems/marker_solve/mean_pose.h"
+#include "problems/marker_solve/rigid_marker_clusters.h"
 #include "tasks/console_text.h"
 
 namespace mocapsolve {
@@ -480,24 +481,52 @@ Status KeepBetterAttachments(const FitTake& fit, const RoundState& state, const 
   return Status::Ok();
 }
 
+// The rigid clusters (rigid_marker_clusters.h) of the round's markers over the fit take,
+// as indices into `markers`.
+std::vector<std::vector<int>> RoundClusters(const FitTake& fit, const MarkerSet& markers) {
+  std::vector<int> columns, index;  // The take's column of each marker found, and its index in `markers`.
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    const int column = fit.model_frame.FindMarker(markers.label(m));
+    if (column < 0) continue;
+    columns.push_back(column);
+    index.push_back(m);
+  }
+  const Skeleton& skeleton = fit.mapping.skeleton;
+  const double metres_per_unit = skeleton.unit().known() ? skeleton.unit().metres_per_unit : 0.01;
+  const RigidClusterOptions options;
+  std::vector<std::vector<int>> clusters =
+      ClusterRigidMarkers(ComputePairwiseSpread(fit.model_frame, columns, metres_per_unit, options), options);
+  for (std::vector<int>& cluster : clusters) {
+    for (int& c : cluster) c = index[c];
+  }
+  return clusters;
+}
+
 // Near ties of the round's attach between a marker's joint and its parent or child decided
 // by prediction on the fit's own frames (attachment_by_prediction.h), the template's
-// markers included: the take, unlike the calibration take, may move the joint.
+// markers included: the take, unlike the calibration take, may move the joint. A marker
+// without a near tie whose rigid cluster over the fit take mostly rides another joint has
+// that joint as its alternative (RigidClusterCandidates), decided the same way.
 Status ChooseByPrediction(const FitTake& fit, const RoundState& state, const CalibrationOptions& calibration,
                           const CalibrationResult& attached, MarkerSolveOptions solve, const Observations& observed,
                           MarkerSet* round_markers) {
   const std::vector<int> runner_up =
       PredictionCandidates(state.fitted, attached, AttachmentByPredictionOptions().tolerance);
+  const std::vector<int> cluster_joint = RigidClusterCandidates(*round_markers, RoundClusters(fit, *round_markers));
   std::vector<MarkerAttachment> alternative(round_markers->num_markers());
   std::vector<MarkerSpec> specs;
   bool any = false;
   for (int s = 0; s < round_markers->num_markers(); ++s) {
     specs.push_back(round_markers->marker(s));
+    if (specs.back().attachments.size() != 1) continue;
     const int k = attached.marker_set.FindMarker(specs.back().label);
-    if (k < 0 || runner_up[k] < 0 || specs.back().attachments.size() != 1) continue;
-    const int a = attached.marker_set.marker(k).attachments[0].joint, b = runner_up[k];
     const int j = specs.back().attachments[0].joint;
-    const int other = j == a ? b : (j == b ? a : -1);
+    int other = -1;
+    if (k >= 0 && runner_up[k] >= 0) {
+      const int a = attached.marker_set.marker(k).attachments[0].joint, b = runner_up[k];
+      other = j == a ? b : (j == b ? a : -1);
+    }
+    if (other < 0) other = cluster_joint[s];
     if (other < 0) continue;
     specs.back().attachments = {{other, 1.0, Eigen::Vector3d::Zero()}};
     alternative[s].joint = other;

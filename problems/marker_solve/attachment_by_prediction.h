@@ -56,6 +56,17 @@ struct AttachmentMove {
 std::vector<int> PredictionCandidates(const Skeleton& skeleton, const CalibrationResult& result,
                                       double tolerance);
 
+// The candidates of co-rigidity: markers that keep their mutual distances over a take
+// (a rigid cluster, rigid_marker_clusters.h, found from the data alone) ride one body, so
+// in a cluster of at least three markers of which more than half ride one joint b (single
+// attachments), every other marker of it has b as its candidate. Unlike
+// PredictionCandidates this needs no near tie of rigidity under the model: JA1Gait35's
+// fifth metatarsal markers move rigidly with the rest of each foot (distance SD 2 mm), but
+// the fitted toe joint, turned by them, holds them best; the prediction decides (a wrong
+// candidate predicts its group worse and is not moved). clusters: lists of indices into
+// `markers`. For each marker, b or -1.
+std::vector<int> RigidClusterCandidates(const MarkerSet& markers, const std::vector<std::vector<int>>& clusters);
+
 // Decides every marker m with alternative[m].joint >= 0 (its joint b and offset there) as
 // the header says and moves those whose alternative scores lower. observed[f][m] in
 // skeleton units (NaN: missing), parallel to *markers. `moves` (may be null) gets one entry

@@ -1,15 +1,22 @@
 // Attachment by prediction: a marker rigid on a foot that its toe joint holds nearly as
-// well goes to the foot; one that the toe clearly turns stays on the toe.
+// well goes to the foot; one that the toe clearly turns stays on the toe; a marker that
+// moves rigidly with the foot's markers but was put on a toe that holds it far worse is a
+// candidate by co-rigidity and goes to the foot.
 #include "problems/marker_solve/attachment_by_prediction.h"
 
 #include <cmath>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "kinematics/demo_character.h"
 #include "kinematics/forward_kinematics.h"
+#include "kinematics/marker_trajectories.h"
 #include "kinematics/rotation.h"
+#include "problems/marker_solve/rigid_marker_clusters.h"
 #include "problems/marker_solve/synthetic_marker_set.h"
 
 namespace mocapsolve {
@@ -33,10 +40,12 @@ struct Fixture {
   MarkerSet truth;        // Three synthetic markers per bone (none on the toe) and "MT5".
   std::vector<std::vector<Eigen::Vector3d>> observed;  // With 0.3 cm of skin noise.
   std::vector<MarkerAttachment> toe_and_foot;          // MT5's least-squares fit on each.
+  std::vector<double> toe_and_foot_rms;                // MT5's rms about that fit on each.
 };
 
 // MT5 rides `joint` at `offset`; the fixture's observations of `motion`.
-Fixture MakeFixture(const Skeleton& skeleton, const Motion& motion, int joint, const Eigen::Vector3d& offset) {
+Fixture MakeFixture(const Skeleton& skeleton, const Motion& motion, int joint, const Eigen::Vector3d& offset,
+                    double noise_cm = 0.3) {
   const int toe = skeleton.FindJoint("LeftToe");
   const MarkerSet synthetic = MakeSyntheticMarkerSet(skeleton, 3, 7);
   std::vector<MarkerSpec> specs;
@@ -47,7 +56,7 @@ Fixture MakeFixture(const Skeleton& skeleton, const Motion& motion, int joint, c
   Fixture fixture;
   EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &fixture.truth).ok());
   std::mt19937 rng(3);
-  std::normal_distribution<double> noise(0.0, 0.3);
+  std::normal_distribution<double> noise(0.0, noise_cm);
   FkData fk(skeleton);
   const int mt5 = fixture.truth.num_markers() - 1;
   std::vector<std::vector<Eigen::Vector3d>> local(2);
@@ -67,6 +76,9 @@ Fixture MakeFixture(const Skeleton& skeleton, const Motion& motion, int joint, c
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (const Eigen::Vector3d& l : local[k]) mean += l;
     fixture.toe_and_foot.push_back({k == 0 ? toe : skeleton.parent(toe), 1.0, mean / local[k].size()});
+    double sum = 0.0;
+    for (const Eigen::Vector3d& l : local[k]) sum += (l - fixture.toe_and_foot.back().offset).squaredNorm();
+    fixture.toe_and_foot_rms.push_back(std::sqrt(sum / local[k].size()));
   }
   return fixture;
 }
@@ -126,6 +138,68 @@ TEST(AttachmentByPrediction, NoCandidateNoChange) {
   EXPECT_FALSE(ChooseAttachmentsByPrediction(skeleton, fixture.observed, wrong_size, MarkerSolveOptions(), {}, &set,
                                              nullptr)
                    .ok());
+}
+
+// The rigid clusters of the fixture's markers (their observations as a take, cm).
+std::vector<std::vector<int>> Clusters(const Fixture& fixture) {
+  std::vector<std::string> labels;
+  for (int m = 0; m < fixture.truth.num_markers(); ++m) labels.push_back(fixture.truth.label(m));
+  MarkerTrajectories take(labels, static_cast<int>(fixture.observed.size()));
+  for (int f = 0; f < take.num_frames(); ++f) {
+    for (int m = 0; m < take.num_markers(); ++m) take.SetSample(f, m, fixture.observed[f][m]);
+  }
+  std::vector<int> all(take.num_markers());
+  for (int m = 0; m < take.num_markers(); ++m) all[m] = m;
+  const RigidClusterOptions options;
+  return ClusterRigidMarkers(ComputePairwiseSpread(take, all, 0.01, options), options);
+}
+
+TEST(AttachmentByPrediction, RigidClusterCandidateIsTheJointOfMostOfTheOthers) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  std::vector<MarkerSpec> specs;
+  const int foot = skeleton.FindJoint("LeftFoot"), toe = skeleton.FindJoint("LeftToe");
+  for (const auto& [label, joint] : std::vector<std::pair<std::string, int>>{
+           {"A", toe}, {"B", foot}, {"C", foot}, {"D", toe}, {"E", toe}, {"F", foot}, {"G", foot}}) {
+    specs.push_back({label, {{joint, 1.0, Eigen::Vector3d::Zero()}}});
+  }
+  MarkerSet set;
+  ASSERT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
+  // {A, B, C}: two of three on the foot, A's candidate. {D, E}: too few to tell.
+  // {F, G}: nothing to move.
+  const std::vector<int> candidates = RigidClusterCandidates(set, {{0, 1, 2}, {3, 4}, {5, 6}});
+  EXPECT_EQ(candidates, (std::vector<int>{foot, -1, -1, -1, -1, -1, -1}));
+  // {D, E, F, G}: two and two, no joint holds more than half.
+  EXPECT_EQ(RigidClusterCandidates(set, {{3, 4, 5, 6}}), std::vector<int>(7, -1));
+  // {B, D, E, F, G}: three of five on the foot, D and E its candidates.
+  EXPECT_EQ(RigidClusterCandidates(set, {{1, 3, 4, 5, 6}}), (std::vector<int>{-1, -1, -1, foot, foot, -1, -1}));
+}
+
+TEST(AttachmentByPrediction, AMarkerRigidWithTheFootButPutOnTheToeGoesToTheFoot) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int toe = skeleton.FindJoint("LeftToe");
+  const int foot = skeleton.parent(toe);
+  // On the foot beside the toe joint, the toe turning 0.4 rad; 1 mm of skin noise.
+  const Eigen::Vector3d beside_toe = skeleton.offset(toe) + Eigen::Vector3d(3.0, 0.0, 0.0);
+  const Fixture fixture = MakeFixture(skeleton, Walk(skeleton, toe, 0.4), foot, beside_toe, 0.1);
+  // The toe holds it far worse than the foot: no near tie for PredictionCandidates' 15 %.
+  EXPECT_GT(fixture.toe_and_foot_rms[0], 1.15 * fixture.toe_and_foot_rms[1]);
+  std::vector<MarkerSpec> specs;
+  for (int m = 0; m < fixture.truth.num_markers(); ++m) specs.push_back(fixture.truth.marker(m));
+  specs.back().attachments = {fixture.toe_and_foot[0]};
+  MarkerSet set;
+  ASSERT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
+  const std::vector<int> candidates = RigidClusterCandidates(set, Clusters(fixture));
+  const int mt5 = set.num_markers() - 1;
+  ASSERT_EQ(candidates[mt5], foot);
+  std::vector<MarkerAttachment> alternative(set.num_markers(), MarkerAttachment());
+  alternative[mt5] = fixture.toe_and_foot[1];
+  std::vector<AttachmentMove> moves;
+  ASSERT_TRUE(ChooseAttachmentsByPrediction(skeleton, fixture.observed, alternative, MarkerSolveOptions(), {}, &set,
+                                            &moves)
+                  .ok());
+  EXPECT_EQ(set.marker(mt5).attachments[0].joint, foot);
+  ASSERT_EQ(moves.size(), 1u);
+  EXPECT_LT(moves[0].to_score, moves[0].from_score);
 }
 
 }  // namespace
