@@ -55,14 +55,14 @@ std::vector<int> PredictionCandidates(const Skeleton& skeleton, const Calibratio
 std::vector<int> RigidClusterCandidates(const MarkerSet& markers, const std::vector<std::vector<int>>& clusters) {
   std::vector<int> alternative(markers.num_markers(), -1);
   for (const std::vector<int>& cluster : clusters) {
+    if (cluster.size() < 3) continue;
+    std::vector<int> joints;  // Of the cluster's markers.
+    for (int n : cluster) {
+      if (markers.marker(n).attachments.size() == 1) joints.push_back(markers.marker(n).attachments[0].joint);
+    }
     for (int m : cluster) {
       if (markers.marker(m).attachments.size() != 1) continue;
       const int own = markers.marker(m).attachments[0].joint;
-      std::vector<int> joints;  // Of the cluster's markers.
-      for (int n : cluster) {
-        if (markers.marker(n).attachments.size() == 1) joints.push_back(markers.marker(n).attachments[0].joint);
-      }
-      if (cluster.size() < 3) continue;
       for (int b : joints) {
         if (b != own && 2 * std::count(joints.begin(), joints.end(), b) > static_cast<long>(cluster.size())) {
           alternative[m] = b;
