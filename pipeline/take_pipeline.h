@@ -131,6 +131,9 @@ struct TakeWindowsSummary {
   int count = 0;
   int frames = 0;          // The frames each window keeps (its core; the last may keep fewer).
   int context_frames = 0;  // Solved on each side of a core and dropped.
+  // 2 when the windows' character stages ran on a second thread beside the repairs
+  // (TakePipelineOptions::num_threads), else 1.
+  int threads = 1;
   // The seams: the largest difference, in mm of joint position of the solve, between the two
   // windows that solved the same context frames (each seam's largest), and at the seam's
   // first frame (the later window's first kept frame, which the earlier one solved too).

@@ -438,6 +438,7 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   result->windows.count = static_cast<int>(windows.size());
   result->windows.frames = windows.front().core_last - windows.front().core_first + 1;
   result->windows.context_frames = options.window_context_frames;
+  result->windows.threads = options.num_threads >= 2 ? 2 : 1;
   for (CharacterOutput& c : result->characters) c.take.Reserve(frames);
   WindowWriters writers;
   status = MakeFolders(out_dir);  // After every check: a refused take leaves nothing.
