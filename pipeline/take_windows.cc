@@ -484,16 +484,23 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
         });
     if (!submitted) break;  // A window's character stage failed: Finish says which.
   }
+  // solved.bvh and repaired.c3d are whole once the last window's repair is kept: finished
+  // here while the last character stages may still run.
+  if (status.ok()) status = writers.bvh.Close();
+  Clock::time_point write_start = Clock::now();
+  if (status.ok()) {
+    status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), file);
+    if (!status.ok()) status = Status::Error("write: " + status.message());
+  }
+  file = MarkerTrajectories();
+  double write_seconds = SecondsSince(write_start);
   // A character stage's error first: it is an earlier window's than this thread's.
   const Status character_status = characters.Finish();
   if (!character_status.ok()) status = character_status;
   for (const StageTime& time : character_timings) AddTime(time.stage, time.seconds, &result->timings);
-  if (status.ok()) status = writers.bvh.Close();
   if (!status.ok()) return status;
   FinishFigures(options, sums, result);
-  const Clock::time_point write_start = Clock::now();
-  if (status.ok()) status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), file);
-  file = MarkerTrajectories();
+  write_start = Clock::now();
   GltfWriteOptions gltf;
   gltf.animation_only = files.animation_only;
   for (CharacterOutput& c : result->characters) {
@@ -502,7 +509,7 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
                                     CharacterFormatPath(out_dir, c.path, "glb"), gltf);
     c.delivered_is_clip = true;  // The report's delivered frames: the compact take's.
   }
-  result->timings.push_back({"write", SecondsSince(write_start)});
+  result->timings.push_back({"write", write_seconds + SecondsSince(write_start)});
   result->seconds = SecondsSince(start);
   return status.ok() ? status : Status::Error("write: " + status.message());
 }
