@@ -48,6 +48,7 @@ Status TakePipelineOptionsFromFlags(const Skeleton& skeleton, TakePipelineOption
   options->window_context_frames = take.window_context_frames;
   ReadOptionFlags(LabelSettingOptions(), &options->labelling);
   ReadOptionFlags(RepairSolverOptions(), &options->label_solver);
+  options->num_threads = options->label_solver.num_threads;  // The same --num_threads as repair's.
   if (status.ok()) status = PyramidOptionsFromFlags(take.filter_levels, &options->filter);
   if (!status.ok()) return status;
   ReadOptionFlags(QualityGateOptions(), &options->gate);

@@ -6,7 +6,7 @@
 #
 #   bench/pipeline_memory.sh [REPEATS="1 4 16"] [WORK_DIR=/tmp/mocapsolve-memory-bench]
 # Environment: MOCAPSOLVE (binary, default build/bin/mocapsolve), PIPELINE_FLAGS (more flags,
-# e.g. --window_frames=N --num_threads=1), LOOP_MARKERS
+# e.g. --window_frames=N --num_threads=1; the JSON lines record --num_threads), LOOP_MARKERS
 # (build/bin/loop_markers), MOCAPSOLVE_DATA (../shared/data).
 # Prints per run: frames, peak RSS (/usr/bin/time -v, "Maximum resident set size"), KB per
 # frame above the smallest run, frames/s (the report's, reading included, writing not),
@@ -24,6 +24,10 @@ mkdir -p "$work"
   --markers="$data/c3d/02_01.c3d" --axes=y,z,x --out="$work/markerset.json" \
   --out_subject="$work/S02.json" >/dev/null
 base_frames=""; base_kb=""
+# --num_threads as PIPELINE_FLAGS give it (2, the default, retargets a windowed take's windows on
+# a second thread and runs repair's solves side by side).
+threads=2
+if [[ "${PIPELINE_FLAGS:-}" =~ --num_threads=([0-9]+) ]]; then threads=${BASH_REMATCH[1]}; fi
 printf '%8s %12s %14s %10s %8s %8s  %s\n' frames "peak RSS MB" "KB/frame above" frames/s "user s" "wall s" load
 for n in $repeats; do
   "$loop" "$data/c3d/cmu_02_05.c3d" "$n" "$work/take_x$n.c3d"
@@ -38,6 +42,6 @@ for n in $repeats; do
   per=$(/usr/bin/python3 -c "import sys; f,b,k,bk=map(float,sys.argv[1:]); print('%.1f' % ((k-bk)/(f-b)) if f>b else '-')" "$frames" "$base_frames" "$kb" "$base_kb")
   load=$(cut -d' ' -f1-3 /proc/loadavg)
   printf '%8d %12.0f %14s %10d %8s %8s  %s\n' "$frames" "$(echo "$kb/1024" | bc -l)" "$per" "$fps" "$user" "$wall" "$load"
-  echo "{\"frames\": $frames, \"peak_rss_kb\": $kb, \"kb_per_frame_above_first\": \"$per\", \"frames_per_second\": $fps, \"user_s\": $user, \"wall\": \"$wall\", \"threads\": 1, \"load\": \"$load\"}" >> "$work/pipeline_memory.jsonl"
+  echo "{\"frames\": $frames, \"peak_rss_kb\": $kb, \"kb_per_frame_above_first\": \"$per\", \"frames_per_second\": $fps, \"user_s\": $user, \"wall\": \"$wall\", \"num_threads\": $threads, \"load\": \"$load\"}" >> "$work/pipeline_memory.jsonl"
   rm -f "$work/take_x$n.c3d"
 done

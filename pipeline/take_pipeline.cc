@@ -56,6 +56,10 @@ bool TakePipelineOptions::IsValid(std::string* error) const {
     *error = "window_frames: must be >= 1, window_context_frames >= 0";
     return false;
   }
+  if (num_threads < 1) {
+    *error = "num_threads: must be >= 1";
+    return false;
+  }
   if (!(memory_mb >= 0.0) || !std::isfinite(memory_mb)) {
     *error = "memory_mb: must be >= 0 (0 = no limit)";
     return false;
@@ -238,6 +242,14 @@ Status RunTakePipeline(const TakeInputs& inputs, const TakePipelineOptions& opti
 
 Status RunTakeStages(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
                      const PipelineProgress& progress) {
+  Motion solved;
+  Status status = RunTakeRepairStage(inputs, options, result, &solved, progress);
+  if (status.ok()) status = RunTakeCharacterStage(inputs, options, std::move(solved), result, progress);
+  return status;
+}
+
+Status RunTakeRepairStage(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
+                          Motion* solved_out, const PipelineProgress& progress) {
   auto lap = [&](const std::string& stage, Clock::time_point since) {
     result->timings.push_back({stage, SecondsSince(since)});
   };
@@ -253,7 +265,8 @@ Status RunTakeStages(const TakeInputs& inputs, const TakePipelineOptions& option
   std::vector<std::vector<Eigen::Vector3d>> repaired;
   RepairOptions repair_options = options.repair;
   SetRepairRestRotations(take.mean_pose, &repair_options);
-  Motion solved;  // Until the retarget takes it over; result->solved keeps it compact.
+  Motion& solved = *solved_out;  // Until the retarget takes it over; result->solved keeps it compact.
+  solved = Motion();
   status = RepairMarkers(take.skeleton, take.markers, take.observed, take.unlabelled, repair_options, &repaired,
                          &solved, &result->repair);
   if (!status.ok()) return Status::Error("repair: " + inputs.markers_path + ": " + status.message());
@@ -297,12 +310,22 @@ Status RunTakeStages(const TakeInputs& inputs, const TakePipelineOptions& option
   }
   // Nothing reads the samples as observed from here (the page shows the repaired ones).
   result->take.observed = std::vector<std::vector<Eigen::Vector3d>>();
+  return Status::Ok();
+}
+
+Status RunTakeCharacterStage(const TakeInputs& inputs, const TakePipelineOptions& options, Motion solved,
+                             TakeResult* result, const PipelineProgress& progress) {
+  const MarkerTake& take = result->take;
+  const int frames = result->frames;
+  int first = 0, last = 0;  // The delivered range (checked before the repair stage).
+  Status status = ResolveClipRange(options.delivery.range, frames, take.trajectories.frame_rate, &first, &last);
+  if (!status.ok()) return Status::Error("deliver: " + inputs.markers_path + ": " + status.message());
 
   // 3. Retarget onto each character; the last one takes the solve over (its working copy
   // is made in place: one whole-take copy of the solve less while it runs).
   for (size_t k = 0; k < result->characters.size(); ++k) {
     CharacterOutput& output = result->characters[k];
-    stage_start = Clock::now();
+    const Clock::time_point stage_start = Clock::now();
     const std::string stage = "retarget onto " + output.name;
     const GltfCharacter& character = output.rig();
     RetargetCharacter source;  // Skeleton only: the character's mesh is bound to it.
@@ -325,7 +348,7 @@ Status RunTakeStages(const TakeInputs& inputs, const TakePipelineOptions& option
     }
     output.take = CompactMotion(output.result.clip.motion);
     output.result.clip.motion = Motion();
-    lap(stage, stage_start);
+    result->timings.push_back({stage, SecondsSince(stage_start)});
   }
 
   // 4. The quality gate's retarget checks.
@@ -449,6 +472,7 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
     windows.Add("count", w.count)
         .Add("frames", w.frames)
         .Add("context_frames", w.context_frames)
+        .Add("threads", w.threads)
         .Add("seam_max_mm", seam_max.empty() ? 0.0 : *std::max_element(w.seam_max_mm.begin(), w.seam_max_mm.end()))
         .Add("seam_first_frame_max_mm",
              seam_first.empty() ? 0.0 : *std::max_element(w.seam_first_frame_mm.begin(), w.seam_first_frame_mm.end()))

@@ -80,6 +80,10 @@ struct TakePipelineOptions {
   // with window_context_frames more on each side (settings/take_settings.h says why).
   int window_frames = 18000;
   int window_context_frames = 600;
+  // SolverSettings::num_threads: with 2 or more, a windowed take's character stages
+  // (RunTakeCharacterStage) run on a second thread beside the next windows' repairs; the
+  // outputs are the same bytes as with 1.
+  int num_threads = 1;
 
   bool IsValid(std::string* error) const;
 };
@@ -127,6 +131,9 @@ struct TakeWindowsSummary {
   int count = 0;
   int frames = 0;          // The frames each window keeps (its core; the last may keep fewer).
   int context_frames = 0;  // Solved on each side of a core and dropped.
+  // 2 when the windows' character stages ran on a second thread beside the repairs
+  // (TakePipelineOptions::num_threads), else 1.
+  int threads = 1;
   // The seams: the largest difference, in mm of joint position of the solve, between the two
   // windows that solved the same context frames (each seam's largest), and at the seam's
   // first frame (the later window's first kept frame, which the earlier one solved too).
@@ -180,9 +187,23 @@ Status MapTakeMarkers(const TakeInputs& inputs, const TakePipelineOptions& optio
                       TakeResult* result, const PipelineProgress& progress, double* label_seconds);
 // ... the characters read (inputs.character_paths) ...
 Status ReadTakeCharacters(const TakeInputs& inputs, std::vector<CharacterOutput>* characters);
-// ... and stages 1-4 on result->take, onto result->characters (read).
+// ... and stages 1-4 on result->take, onto result->characters (read): RunTakeRepairStage,
+// then RunTakeCharacterStage.
 Status RunTakeStages(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
                      const PipelineProgress& progress = nullptr);
+// Stages 1-2 and the gate's marker checks: the repair of result->take (repaired, repaired_file,
+// the report, the figures and the verdict so far), its re-solve filtered as asked into
+// result->solved (compact) and *solved (double: the character stage's input); frees
+// result->take's observed samples.
+Status RunTakeRepairStage(const TakeInputs& inputs, const TakePipelineOptions& options, TakeResult* result,
+                          Motion* solved, const PipelineProgress& progress = nullptr);
+// Stages 3-4: `solved` (from RunTakeRepairStage) retargeted onto each of result->characters,
+// their timings and the gate's retarget checks added to result->timings and verdict. Reads
+// nothing else of *result but take.skeleton, take.trajectories' frame rate and frames, so a
+// windowed take runs it apart from the repair stage, on another thread
+// (pipeline/take_windows.h).
+Status RunTakeCharacterStage(const TakeInputs& inputs, const TakePipelineOptions& options, Motion solved,
+                             TakeResult* result, const PipelineProgress& progress = nullptr);
 // The gate's figures from the repair's report (result->repair, samples, repaired_samples,
 // frames): naive and repaired RMS in mm (`mm` per skeleton unit), repaired and
 // iteration-limit shares.

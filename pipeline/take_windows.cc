@@ -10,6 +10,7 @@
 #include "io/gltf_writer.h"
 #include "io/marker_file.h"
 #include "kinematics/forward_kinematics.h"
+#include "pipeline/in_order_worker.h"
 #include "pipeline/take_labelling.h"
 
 namespace mocapsolve {
@@ -46,7 +47,8 @@ struct CharacterSums {
   double contact_samples = 0.0, plant_pairs = 0.0, contact_pairs = 0.0;
 };
 
-// Everything combined over the windows (see the header).
+// Everything combined over the windows (see the header). `characters` is the character
+// stages' (their thread's), the rest the repair stages'.
 struct WindowSums {
   double naive_sq = 0.0, reference_sq = 0.0, repaired_sq = 0.0, frames = 0.0;
   double resolved = 0.0, unconverged = 0.0, trimmed = 0.0, removed = 0.0, polynomial = 0.0, rough = 0.0;
@@ -86,7 +88,8 @@ std::vector<int> Rounded(const std::vector<double>& values) {
   return out;
 }
 
-// The repair's report and the gate's marker figures of window `w` into *total and *sums.
+// The repair's report, the gate's marker figures and the repair stage's timings of window
+// `w` into *total and *sums.
 void MergeRepair(const TakeResult& window, const FrameWindow& w, WindowSums* sums, TakeResult* total) {
   const RepairReport& r = window.repair;
   RepairReport& t = total->repair;
@@ -308,9 +311,10 @@ struct WindowWriters {
   FrameWindow previous;
 };
 
-// Window `w`'s core into the outputs, the figures and the seam check.
-Status KeepWindow(const TakeResult& window, const FrameWindow& w, int frames, bool first_window,
-                  WindowWriters* writers, MarkerTrajectories* file, WindowSums* sums, TakeResult* total) {
+// Window `w`'s repaired core into the outputs (the file's samples, solved.bvh), the repair's
+// figures and the seam check; the window's repair stage done.
+Status KeepRepairedWindow(const TakeResult& window, const FrameWindow& w, int frames, bool first_window,
+                          WindowWriters* writers, MarkerTrajectories* file, WindowSums* sums, TakeResult* total) {
   const int core = w.core_last - w.core_first + 1;
   KeepRepairedCore(window, w, file, total);
   const Motion solve = window.solved.ToMotion();  // One window's.
@@ -323,10 +327,6 @@ Status KeepWindow(const TakeResult& window, const FrameWindow& w, int frames, bo
   if (status.ok()) status = writers->bvh_frames.AppendFrames(solve, w.core_first - w.first, core, &lines);
   if (status.ok()) status = writers->bvh.Append(lines);
   if (!status.ok()) return status;
-  for (size_t c = 0; c < window.characters.size(); ++c) {
-    const Motion take = window.characters[c].take.ToMotion();
-    total->characters[c].take.Append(take, w.core_first - w.first, core);
-  }
   if (!first_window) {
     double at = 0.0;
     const int to = std::min(writers->previous.last, w.last);
@@ -338,21 +338,28 @@ Status KeepWindow(const TakeResult& window, const FrameWindow& w, int frames, bo
   writers->previous_solve = window.solved;
   writers->previous = w;
   MergeRepair(window, w, sums, total);
-  MergeCharacters(window, w, sums, total);
   return Status::Ok();
 }
 
-// One window read from the file and run through the stages into *window.
-Status RunWindow(const TakeInputs& inputs, const TakePipelineOptions& options, const MarkerTrajectories& file,
-                 const FrameWindow& w, const Pose& start, const std::vector<CharacterOutput>& characters,
-                 const std::string& label, const PipelineProgress& progress, TakeResult* window) {
-  for (const CharacterOutput& c : characters) {
-    CharacterOutput output;
-    output.name = c.name;
-    output.path = c.path;
-    output.shared = &c.character;
-    window->characters.push_back(std::move(output));
+// Window `w`'s character stage done (`part`): its cores appended to the characters' takes,
+// its figures into sums->characters and total's characters, its timings into *timings.
+// Touches nothing the repair stages do, so it runs on the character stages' thread.
+void KeepCharacters(const TakeResult& part, const FrameWindow& w, WindowSums* sums, std::vector<StageTime>* timings,
+                    TakeResult* total) {
+  const int core = w.core_last - w.core_first + 1;
+  for (size_t c = 0; c < part.characters.size(); ++c) {
+    const Motion take = part.characters[c].take.ToMotion();
+    total->characters[c].take.Append(take, w.core_first - w.first, core);
   }
+  MergeCharacters(part, w, sums, total);
+  for (const StageTime& time : part.timings) AddTime(time.stage, time.seconds, timings);
+}
+
+// One window read from the file and run through the repair stage into *window and *solved
+// (the character stage's input).
+Status RunWindowRepair(const TakeInputs& inputs, const TakePipelineOptions& options, const MarkerTrajectories& file,
+                       const FrameWindow& w, const Pose& start, const std::string& label,
+                       const PipelineProgress& progress, TakeResult* window, Motion* solved) {
   double label_seconds = 0.0;
   TakePipelineOptions window_options = options;
   window_options.label = "never";  // CheckWindowedTake refused the others.
@@ -360,9 +367,26 @@ Status RunWindow(const TakeInputs& inputs, const TakePipelineOptions& options, c
   Status status = MapTakeMarkers(inputs, window_options, TrajectoryFrames(file, w.first, w.last - w.first + 1),
                                  window, nullptr, &label_seconds);
   if (!status.ok()) return status;
-  return RunTakeStages(inputs, window_options, window, [&](const std::string& stage, int done, int total) {
+  return RunTakeRepairStage(inputs, window_options, window, solved, [&](const std::string& stage, int done, int total) {
     if (progress) progress(label + stage, done, total);
   });
+}
+
+// What a window's character stage reads (RunTakeCharacterStage): the repaired window's
+// skeleton, frame rate and frames, and the characters read once for every window.
+TakeResult CharacterPart(const TakeResult& window, const std::vector<CharacterOutput>& characters) {
+  TakeResult part;
+  part.take.skeleton = window.take.skeleton;
+  part.take.trajectories = window.take.trajectories;  // Metadata only (RunTakeRepairStage).
+  part.frames = window.frames;
+  for (const CharacterOutput& c : characters) {
+    CharacterOutput output;
+    output.name = c.name;
+    output.path = c.path;
+    output.shared = &c.character;
+    part.characters.push_back(std::move(output));
+  }
+  return part;
 }
 
 }  // namespace
@@ -414,33 +438,69 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   result->windows.count = static_cast<int>(windows.size());
   result->windows.frames = windows.front().core_last - windows.front().core_first + 1;
   result->windows.context_frames = options.window_context_frames;
+  result->windows.threads = options.num_threads >= 2 ? 2 : 1;
   for (CharacterOutput& c : result->characters) c.take.Reserve(frames);
   WindowWriters writers;
   status = MakeFolders(out_dir);  // After every check: a refused take leaves nothing.
   if (status.ok()) status = writers.bvh.Open(SolvedMotionPath(out_dir));
   WindowSums sums;
-  // In order, one at a time: each window starts from the previous one's solve of the frame
-  // before it (RepairOptions::start_pose).
+  std::vector<StageTime> character_timings;
+  // The repairs in order on this thread, each window starting from the previous one's solve
+  // of the frame before it (RepairOptions::start_pose) and reading the file's samples with
+  // the previous cores repaired; the character stages, which start from their own bind
+  // pose, in order on a second thread with --num_threads >= 2 (pipeline/in_order_worker.h),
+  // at most one window waiting.
+  InOrderWorker characters(options.num_threads >= 2);
   for (size_t k = 0; k < windows.size() && status.ok(); ++k) {
     Pose start;
     if (k > 0) writers.previous_solve.Frame(windows[k].first - 1 - writers.previous.first, &start);
     const std::string label = "window " + std::to_string(k + 1) + "/" + std::to_string(windows.size()) + ": ";
     TakeResult window;
-    status = RunWindow(inputs, options, file, windows[k], start, result->characters, label, progress, &window);
+    Motion solved;
+    status = RunWindowRepair(inputs, options, file, windows[k], start, label, progress, &window, &solved);
     if (k == 0 && status.ok()) {
       result->take.skeleton = window.take.skeleton;
       result->take.markers = window.take.markers;
-      result->take.trajectories = window.take.trajectories;  // Metadata only (RunTakeStages).
+      result->take.trajectories = window.take.trajectories;  // Metadata only (RunTakeRepairStage).
       result->samples = frames * window.take.markers.num_markers();
     }
-    if (status.ok()) status = KeepWindow(window, windows[k], frames, k == 0, &writers, &file, &sums, result);
+    if (status.ok()) status = KeepRepairedWindow(window, windows[k], frames, k == 0, &writers, &file, &sums, result);
+    if (!status.ok()) break;
+    TakeResult part = CharacterPart(window, result->characters);
+    window = TakeResult();  // Freed before waiting for the worker.
+    // The progress display is the repairs' when the character stages run beside them.
+    PipelineProgress part_progress = nullptr;
+    if (options.num_threads < 2 && progress) {
+      part_progress = [&progress, label](const std::string& stage, int done, int total) {
+        progress(label + stage, done, total);
+      };
+    }
+    const FrameWindow w = windows[k];
+    const bool submitted = characters.Submit(
+        [&, w, part = std::move(part), solved = std::move(solved), part_progress]() mutable {
+          Status stage = RunTakeCharacterStage(inputs, options, std::move(solved), &part, part_progress);
+          if (stage.ok()) KeepCharacters(part, w, &sums, &character_timings, result);
+          return stage;
+        });
+    if (!submitted) break;  // A window's character stage failed: Finish says which.
   }
+  // solved.bvh and repaired.c3d are whole once the last window's repair is kept: finished
+  // here while the last character stages may still run.
   if (status.ok()) status = writers.bvh.Close();
+  Clock::time_point write_start = Clock::now();
+  if (status.ok()) {
+    status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), file);
+    if (!status.ok()) status = Status::Error("write: " + status.message());
+  }
+  file = MarkerTrajectories();
+  double write_seconds = SecondsSince(write_start);
+  // A character stage's error first: it is an earlier window's than this thread's.
+  const Status character_status = characters.Finish();
+  if (!character_status.ok()) status = character_status;
+  for (const StageTime& time : character_timings) AddTime(time.stage, time.seconds, &result->timings);
   if (!status.ok()) return status;
   FinishFigures(options, sums, result);
-  const Clock::time_point write_start = Clock::now();
-  if (status.ok()) status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), file);
-  file = MarkerTrajectories();
+  write_start = Clock::now();
   GltfWriteOptions gltf;
   gltf.animation_only = files.animation_only;
   for (CharacterOutput& c : result->characters) {
@@ -449,7 +509,7 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
                                     CharacterFormatPath(out_dir, c.path, "glb"), gltf);
     c.delivered_is_clip = true;  // The report's delivered frames: the compact take's.
   }
-  result->timings.push_back({"write", SecondsSince(write_start)});
+  result->timings.push_back({"write", write_seconds + SecondsSince(write_start)});
   result->seconds = SecondsSince(start);
   return status.ok() ? status : Status::Error("write: " + status.message());
 }

@@ -4,12 +4,18 @@
 // every frame once, in order; each window reads its core plus C context frames on each
 // side (C = window_context_frames, clamped to the take) and runs the stages of
 // RunTakePipeline on them alone (repair with its reference, gap detection and fills, the
-// filter, the retarget onto each character, the gate's figures). The windows run in order,
-// each one's frame-by-frame solves starting from the previous window's solve of the frame
-// before it (RepairOptions::start_pose): a joint the markers leave free (CMU's thumbs and
-// fingers, leaves with no marker) is held near its warm start, so a cold start holds it
-// elsewhere for the whole window (10 cm at the thumb's tip on cmu_02_05). Each keeps its core
-// frames only:
+// filter, the retarget onto each character, the gate's figures). The windows' repairs run in
+// order, each one's frame-by-frame solves starting from the previous window's solve of the
+// frame before it (RepairOptions::start_pose), and reading the file's samples with the
+// earlier windows' cores repaired: a joint the markers leave free (CMU's thumbs and fingers,
+// leaves with no marker) is held near its warm start, so a cold start holds it elsewhere for
+// the whole window (10 cm at the thumb's tip on cmu_02_05). A window's character stage
+// (RunTakeCharacterStage: the retargets from the character's own bind pose, their figures)
+// depends on its own repair only: with TakePipelineOptions::num_threads >= 2 the character
+// stages run on a second thread (pipeline/in_order_worker.h) while this one repairs the
+// next windows, in window order, at most one window waiting (one more window's solve and
+// retarget in memory: measured in BENCHMARKS.md); every file is the same bytes as with one
+// thread. Each window keeps its core frames only:
 //   repaired.c3d/.trc  the file's samples of the core, as the window repaired them, put
 //                      back into the file (read whole once: 1.2 KB per frame at 41
 //                      markers), written when the last window is done;
@@ -27,7 +33,8 @@
 //                      its first frame), maxima as maxima (a 95th percentile as the
 //                      windows' largest), the other means weighted by core frames; the gate
 //                      on the combined figures (no blame list: the marker blame reads the
-//                      whole take); "windows": count, frames, context and the seam check.
+//                      whole take); "windows": count, frames, context, threads (1 or 2)
+//                      and the seam check.
 // Every file is atomic (io/atomic_file.h: AtomicFileWriter, inside the command's
 // FileTransaction). Refused for a windowed take, with one line: labelling its points first
 // (label the file with `mocapsolve label`), a cut or resampled delivery, FBX and character

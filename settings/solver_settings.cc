@@ -36,7 +36,9 @@ const OptionGroup<SolverSettings>& SolverOptions() {
            "Stop when the relative step is below this.", 0)
       .Add(&S::num_threads, "num_threads", "threads",
            "Threads: Ceres threads of the clip solve (per-frame solves use 1); "
-             "repair runs its solves on two threads when >= 2. Speed only: a per-frame solve's result does not depend on it.", 1)
+             "repair runs its solves on two threads when >= 2, and pipeline, on a take over --window_frames, retargets "
+             "each window on a second thread while it repairs the next (the same files as with 1). Speed only: a "
+             "per-frame solve's result does not depend on it.", 1)
       .Add(&S::loss, "loss",
            "Robust loss on marker residuals: none | huber | cauchy.",
            {"none", "huber", "cauchy"})

@@ -42,7 +42,8 @@ struct SolverSettings {
   double function_tolerance = 1e-6;
   double gradient_tolerance = 1e-10;
   double parameter_tolerance = 1e-8;
-  int num_threads = 2;                     // Clip solve's Ceres threads; repair's two threads when >= 2.
+  int num_threads = 2;                     // Clip solve's Ceres threads; repair's two threads when >= 2,
+                                           // and a windowed take's retargets on a second thread.
   std::string loss = "none";               // none | huber | cauchy.
   double loss_scale = 1.0;                 // Skeleton units.
   double marker_weight = 1.0;

@@ -2,11 +2,13 @@
 // the demo walk (600 frames at 120 Hz, markers synthesized from it, a subject calibrated on
 // it) onto a test character, in windows of 200 frames with 50 of context, against the same
 // take run whole: every output valid and complete (every frame once, in order) and close
-// to the whole run's; what a windowed take refuses, one line and nothing written.
+// to the whole run's; with two threads the same bytes as with one; what a windowed take
+// refuses, one line and nothing written.
 #include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <regex>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -139,6 +141,41 @@ TEST_F(PipelineWindowsCli, WindowedTakeIsCompleteAndCloseToTheWholeRun) {
   std::printf("windowed against whole: solve %.3f cm, markers %.4f mm, character %.1f mm\n", solve_cm,
               marker_difference, 1000.0 * character_m);
   EXPECT_THAT(output, HasSubstr("quality gate: pass"));
+}
+
+// report.json without what may differ between two runs of one take: timings (and the
+// repair's stage names, "in parallel" with two threads) and the threads asked for.
+std::string WithoutTimings(std::string report) {
+  report = std::regex_replace(report, std::regex(R"re("timings": \[[^\]]*\])re"), "");
+  return std::regex_replace(report, std::regex(R"re("(\w*seconds|frames_per_second|num_threads|threads)": [^,}\n]*)re"),
+                            "");
+}
+
+// With --num_threads=2 the windows' character stages run on a second thread beside the
+// next windows' repairs: every file is the bytes of the one-thread run (the characters'
+// frames appended in window order, the figures summed in window order).
+TEST_F(PipelineWindowsCli, TwoThreadsWriteTheBytesOfOne) {
+  const std::string one = testing::TempPath("one_thread"), two = testing::TempPath("two_threads");
+  std::string output;
+  const std::string windows = "--window_frames=150 --window_context_frames=50 ";
+  ASSERT_EQ(Pipeline(one, windows + "--num_threads=1", &output), 0) << output;
+  ASSERT_EQ(Pipeline(two, windows + "--num_threads=2", &output), 0) << output;
+  for (const std::string file : {"repaired.c3d", "solved.bvh", "Dummy.glb"}) {
+    const std::string bytes = testing::ReadTextFile(one + "/" + file);
+    EXPECT_FALSE(bytes.empty()) << file;
+    EXPECT_TRUE(bytes == testing::ReadTextFile(two + "/" + file)) << file << " differs";
+  }
+  const std::string report_one = testing::ReadTextFile(one + "/report.json");
+  const std::string report_two = testing::ReadTextFile(two + "/report.json");
+  EXPECT_EQ(WithoutTimings(report_one), WithoutTimings(report_two));
+  JsonNode report;
+  ASSERT_TRUE(ParseJson(report_two, "report.json", &report).ok());
+  ASSERT_NE(report.Find("windows"), nullptr);
+  ASSERT_NE(report.Find("windows")->Find("threads"), nullptr);
+  EXPECT_EQ(report.Find("windows")->Find("count")->number, 4);
+  EXPECT_EQ(report.Find("windows")->Find("threads")->number, 2);
+  ASSERT_TRUE(ParseJson(report_one, "report.json", &report).ok());
+  EXPECT_EQ(report.Find("windows")->Find("threads")->number, 1);
 }
 
 TEST_F(PipelineWindowsCli, RefusesWhatAWindowedTakeCannotWrite) {

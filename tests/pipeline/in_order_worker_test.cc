@@ -1,0 +1,101 @@
+// InOrderWorker (pipeline/in_order_worker.h): jobs run in the order given, whichever takes
+// longer; at most one job waits; the first failed job (a Status error or an exception)
+// stops the ones after it and is what Finish returns, with and without a thread.
+#include "pipeline/in_order_worker.h"
+
+#include <atomic>
+#include <chrono>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace mocapsolve {
+namespace {
+
+class InOrderWorkerTest : public ::testing::TestWithParam<bool> {};
+
+// The earlier jobs take longer: run side by side, they would finish last.
+TEST_P(InOrderWorkerTest, RunsJobsInTheOrderGiven) {
+  std::vector<int> done;  // Only the jobs touch it, one at a time.
+  InOrderWorker worker(GetParam());
+  for (int k = 0; k < 12; ++k) {
+    ASSERT_TRUE(worker.Submit([&done, k] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(12 - k));
+      done.push_back(k);
+      return Status::Ok();
+    }));
+  }
+  EXPECT_TRUE(worker.Finish().ok());
+  ASSERT_EQ(done.size(), 12u);
+  for (int k = 0; k < 12; ++k) EXPECT_EQ(done[k], k);
+  EXPECT_FALSE(worker.Submit([] { return Status::Ok(); })) << "no job after Finish";
+}
+
+TEST_P(InOrderWorkerTest, FirstErrorStopsTheJobsAfterIt) {
+  std::vector<int> done;
+  InOrderWorker worker(GetParam());
+  int given = 0;
+  for (int k = 0; k < 8; ++k) {
+    const bool submitted = worker.Submit([&done, k] {
+      if (k == 3) return Status::Error("window 4: failed");
+      if (k == 5) return Status::Error("window 6: failed too");
+      done.push_back(k);
+      return Status::Ok();
+    });
+    if (!submitted) break;
+    ++given;
+  }
+  const Status status = worker.Finish();
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.message(), "window 4: failed");
+  EXPECT_EQ(done, (std::vector<int>{0, 1, 2}));
+  // Inline, the failed job's Submit says it failed (3 given); with the thread it was given,
+  // and at most one more waited behind it.
+  EXPECT_GE(given, 3);
+  EXPECT_LE(given, GetParam() ? 5 : 3);
+}
+
+TEST_P(InOrderWorkerTest, AnExceptionIsAnErrorOfOneLine) {
+  InOrderWorker worker(GetParam());
+  bool after = false;
+  worker.Submit([]() -> Status { throw std::runtime_error("retarget: out of memory"); });
+  worker.Submit([&after] {
+    after = true;
+    return Status::Ok();
+  });
+  const Status status = worker.Finish();
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.message(), "retarget: out of memory");
+  EXPECT_FALSE(after);
+}
+
+INSTANTIATE_TEST_SUITE_P(ThreadedOrInline, InOrderWorkerTest, ::testing::Bool());
+
+// One job running, one waiting: a third Submit waits until the running one is done.
+TEST(InOrderWorker, AtMostOneJobWaits) {
+  InOrderWorker worker(true);
+  std::atomic<bool> release{false}, started{false}, third_given{false};
+  ASSERT_TRUE(worker.Submit([&] {
+    started = true;
+    while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return Status::Ok();
+  }));
+  while (!started) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_TRUE(worker.Submit([] { return Status::Ok(); }));  // Waits.
+  std::thread third([&] {
+    EXPECT_TRUE(worker.Submit([] { return Status::Ok(); }));
+    third_given = true;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_FALSE(third_given) << "given while a job runs and another waits";
+  release = true;
+  third.join();
+  EXPECT_TRUE(third_given);
+  EXPECT_TRUE(worker.Finish().ok());
+}
+
+}  // namespace
+}  // namespace mocapsolve
