@@ -198,9 +198,9 @@ TEST(FitSubjectToTake, AutoTemplateLabelsPickTheTakesProtocol) {
 // an attach round must start where round 0 ended (it used to clamp them again: 26.68 mm),
 // and round 0, a complete fit here, is kept when no round beats it. On the take's first 120
 // frames, as measured (--fit_max_frames=120 now spreads them over the whole take, 1 in 16,
-// where round 1 starts 2.6 % above round 0's end and, with no attach iterations, is not
-// round 0's model again: not looked into; the near ties decided by prediction are the one
-// step between the rounds that may move a template marker).
+// where the near ties decided by prediction move a marker that starts round 1 2.6 % above
+// round 0's end, and with no attach iterations round 1 is then not round 0's model again;
+// with that step skipped both hold on the spread frames too).
 TEST(FitSubjectToTake, CompleteTemplateRoundsStartWhereTheLastEnded) {
   MOCAPSOLVE_DATA_FILE(asf, "amc/02.asf");
   MOCAPSOLVE_DATA_FILE(amc, "amc/02_01.amc");
