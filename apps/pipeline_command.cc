@@ -65,6 +65,7 @@ Status RunPipeline(const std::vector<std::string>& arguments) {
   inputs.subject = &subject;
   inputs.markers_path = Files().markers;
   inputs.character_paths = SplitCommaList(Files().character);
+  inputs.subject_from_take = fitted != nullptr;
   DeliverySettings delivery;
   ReadOptionFlags(DeliverySettingOptions(), &delivery);
   CharacterFileOptions character_files;

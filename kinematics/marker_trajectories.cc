@@ -145,23 +145,25 @@ void MarkerTrajectories::ScaleLengths(double factor) {
 
 namespace {
 
-// Frames [first, first + count) of the markers `columns`, then `more` markers with every
-// sample missing; metadata as the source's (first_frame following), no model outputs.
+// Frames first, first + step, ... (count of them) of the markers `columns`, then `more`
+// markers with every sample missing; metadata as the source's (first_frame following, the
+// frame rate divided by step), no model outputs.
 MarkerTrajectories Subset(const MarkerTrajectories& trajectories, int first, int count, const std::vector<int>& columns,
-                          const std::vector<std::string>& more = {}) {
+                          const std::vector<std::string>& more = {}, int step = 1) {
   std::vector<std::string> labels;
   for (const int m : columns) labels.push_back(trajectories.label(m));
   labels.insert(labels.end(), more.begin(), more.end());
   MarkerTrajectories out(std::move(labels), count);
-  out.frame_rate = trajectories.frame_rate;
+  out.frame_rate = trajectories.frame_rate / step;
   out.unit = trajectories.unit;
   out.first_frame = trajectories.first_frame + first;
   out.subject_prefixes = trajectories.subject_prefixes;
   for (int f = 0; f < count; ++f) {
+    const int source = first + f * step;
     for (size_t i = 0; i < columns.size(); ++i) {
-      if (!trajectories.valid(first + f, columns[i])) continue;
-      out.SetSample(f, static_cast<int>(i), trajectories.position(first + f, columns[i]),
-                    trajectories.residual(first + f, columns[i]), trajectories.camera_mask(first + f, columns[i]));
+      if (!trajectories.valid(source, columns[i])) continue;
+      out.SetSample(f, static_cast<int>(i), trajectories.position(source, columns[i]),
+                    trajectories.residual(source, columns[i]), trajectories.camera_mask(source, columns[i]));
     }
   }
   return out;
@@ -179,6 +181,12 @@ MarkerTrajectories TrajectoryFrames(const MarkerTrajectories& trajectories, int 
   first = std::max(0, std::min(first, trajectories.num_frames()));
   count = std::max(0, std::min(count, trajectories.num_frames() - first));
   return Subset(trajectories, first, count, AllColumns(trajectories));
+}
+
+MarkerTrajectories EveryNthFrame(const MarkerTrajectories& trajectories, int step) {
+  step = std::max(1, step);
+  const int count = (trajectories.num_frames() + step - 1) / step;
+  return Subset(trajectories, 0, count, AllColumns(trajectories), {}, step);
 }
 
 MarkerTrajectories TrajectoryColumns(const MarkerTrajectories& trajectories, const std::vector<int>& columns) {

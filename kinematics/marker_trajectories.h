@@ -161,6 +161,11 @@ struct ModelOutputPoints {
 // was (residuals, camera masks); first_frame follows, model outputs are dropped.
 MarkerTrajectories TrajectoryFrames(const MarkerTrajectories& trajectories, int first, int count);
 
+// Frames 0, step, 2 step, ... of `trajectories` (step >= 1), every sample as it was; the
+// frame rate divided by step (so times stay right), first_frame follows (frame index i is
+// file frame first_frame + i * step), model outputs are dropped.
+MarkerTrajectories EveryNthFrame(const MarkerTrajectories& trajectories, int step);
+
 // The markers `columns` of `trajectories` (indices, in that order), every sample as it was;
 // the metadata follows, model outputs are dropped.
 MarkerTrajectories TrajectoryColumns(const MarkerTrajectories& trajectories, const std::vector<int>& columns);

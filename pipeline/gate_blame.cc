@@ -57,7 +57,7 @@ std::vector<MarkerBlame> BlameMarkers(const Skeleton& skeleton, const MarkerSet&
   return blame;
 }
 
-std::string GateAdvice(const std::vector<MarkerBlame>& blame, const std::string& markers) {
+std::string GateAdvice(const std::vector<MarkerBlame>& blame, const std::string& markers, bool subject_from_take) {
   if (blame.empty()) return "no captured sample of the subject's markers to blame";
   std::string text = "to blame:";
   double held = 0.0;
@@ -77,8 +77,14 @@ std::string GateAdvice(const std::vector<MarkerBlame>& blame, const std::string&
     std::string labels;
     for (int k = 0; k < listed; ++k) labels += (k > 0 ? "," : "") + blame[k].label;
     text += "; try: look at these markers in the take (a wrong label, a marker that came off or slid) and read them "
-            "as missing with --ignore_markers=" + labels + " (the repair fills them from the motion); if they are "
-            "placed differently on this actor, fit the subject on this take (" + fit + ")";
+            "as missing with --ignore_markers=" + labels + " (the repair fills them from the motion)";
+    // A subject fitted on the take already has this actor's placement.
+    if (!subject_from_take) {
+      text += "; if they are placed differently on this actor, fit the subject on this take (" + fit + ")";
+    }
+  } else if (subject_from_take) {
+    text += "; the error is spread over the markers: the subject fitted on this take does not fit all of it; try "
+            "fitting it on every frame (--fit_max_frames=0) or a subject calibrated on this actor (--subject=FILE)";
   } else {
     text += "; the error is spread over the markers: the subject does not fit this actor; try a subject fitted on "
             "this take (" + fit + ")";

@@ -38,8 +38,11 @@ std::vector<MarkerBlame> BlameMarkers(const Skeleton& skeleton, const MarkerSet&
 
 // One line for a person: the markers carrying half of the error (at most five) with their
 // RMS, share and worst frames, and what to try (`markers`: the take's path as given, for
-// the command line it suggests).
-std::string GateAdvice(const std::vector<MarkerBlame>& blame, const std::string& markers);
+// the command line it suggests). With `subject_from_take` (the subject was fitted on this
+// take, --subject=auto) it does not suggest fitting one on the take; an error spread over
+// the markers suggests fitting on every frame (--fit_max_frames=0) instead.
+std::string GateAdvice(const std::vector<MarkerBlame>& blame, const std::string& markers,
+                       bool subject_from_take = false);
 
 }  // namespace mocapsolve
 

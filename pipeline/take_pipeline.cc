@@ -306,7 +306,7 @@ Status RunTakeRepairStage(const TakeInputs& inputs, const TakePipelineOptions& o
   result->verdict = CheckQuality(options.gate, figures);
   if (!result->verdict.pass) {  // Only the marker checks so far: which markers and frames carry them.
     result->blame = BlameMarkers(take.skeleton, take.markers, take.observed, solved, mm);
-    result->gate_advice = GateAdvice(result->blame, inputs.markers_path);
+    result->gate_advice = GateAdvice(result->blame, inputs.markers_path, inputs.subject_from_take);
   }
   // Nothing reads the samples as observed from here (the page shows the repaired ones).
   result->take.observed = std::vector<std::vector<Eigen::Vector3d>>();

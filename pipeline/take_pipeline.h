@@ -93,6 +93,9 @@ struct TakeInputs {
   const Subject* subject = nullptr;
   std::string markers_path;     // .c3d or .trc.
   std::vector<std::string> character_paths;  // .glb / .gltf; empty: stop after the solve.
+  // The subject was fitted on this take (--subject=auto): a failed gate's advice does not
+  // suggest fitting one on it (GateAdvice).
+  bool subject_from_take = false;
 };
 
 struct StageTime {

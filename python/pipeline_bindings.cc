@@ -157,6 +157,7 @@ void BindPipeline(py::module_& m) {
         inputs.subject = subject;
         inputs.markers_path = markers;
         inputs.character_paths = characters;
+        inputs.subject_from_take = fitted != nullptr;
         if (!out_dir.empty()) ThrowIfError(CheckCharacterFiles(out_dir, inputs, character_files));
         auto result = std::make_shared<TakeResult>();
         JsonObject report;

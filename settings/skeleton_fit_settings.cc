@@ -14,7 +14,8 @@ const OptionGroup<SkeletonFitSettings>& SkeletonFitSettingOptions() {
            "improves the marker RMS by less than 1 %); -1: 12 with --template_subject, else 0.", -1, 20)
       .Add(&S::attach_iterations, "attach_iterations", "", "Fit iterations in each attach round.", 0, 100)
       .Add(&S::fit_frame_step, "fit_frame_step", "frames", "Use every N-th frame in the length/offset fit.", 1)
-      .Add(&S::fit_max_frames, "fit_max_frames", "frames", "Fit on the first N frames only (0 = all).", 0)
+      .Add(&S::fit_max_frames, "fit_max_frames", "frames", "Fit on at most N frames, spread over the whole take: every k-th frame, k = ceil(frames / N) (a take "
+           "that starts still still shows its later poses); 0 = all.", 0)
       .Add(&S::max_skin_cm, "max_skin_cm", "cm",
            "Markers stay within this distance of their bone (fit and attach); 0: off.", 0.0)
       .Add(&S::min_bone_scale, "min_bone_scale", "",
@@ -64,8 +65,8 @@ const OptionGroup<SkeletonFitSettings>& AutoSubjectFitOptions() {
   static const OptionGroup<SkeletonFitSettings>* const group = new OptionGroup<SkeletonFitSettings>(
       SkeletonFitSettingOptions().WithDefault(
           "fit_max_frames", "600",
-          "--subject=auto: fit the subject on the first N frames only (0 = all; the pipeline then solves every "
-          "frame with it)."));
+          "--subject=auto: fit the subject on at most N frames, every k-th frame of the take, k = ceil(frames / N) "
+          "(0 = all; the pipeline then solves every frame with it)."));
   return *group;
 }
 

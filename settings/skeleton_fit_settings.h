@@ -17,7 +17,7 @@ struct SkeletonFitSettings {
   int attach_rounds = -1;        // -1: 12 with a template subject, else 0.
   int attach_iterations = 6;
   int fit_frame_step = 4;        // Frames.
-  int fit_max_frames = 0;        // 0 = all frames.
+  int fit_max_frames = 0;        // At most N, every k-th of the take (FitFrameStride); 0 = all frames.
   double max_skin_cm = 12.0;     // 0 = off.
   double min_bone_scale = 0.8;
   double max_bone_scale = 1.25;
@@ -39,8 +39,9 @@ struct SkeletonFitSettings {
 const OptionGroup<SkeletonFitSettings>& SkeletonFitSettingOptions();
 
 // The same options for the subject `pipeline --subject=auto` fits on the fly (batch's takes,
-// Python's pipeline(subject='auto')): the fit on the first 600 frames by default (a fit's
-// time grows with the frames; 600 fit the shared captures, BENCHMARKS.md).
+// Python's pipeline(subject='auto')): the fit on at most 600 frames by default, spread over
+// the whole take (a fit's time grows with the frames; 600 fit the shared captures,
+// BENCHMARKS.md).
 const OptionGroup<SkeletonFitSettings>& AutoSubjectFitOptions();
 
 }  // namespace mocapsolve

@@ -41,8 +41,9 @@ JsonObject AutoSubjectReport(const AutoSubjectResult& result) {
 std::string AutoSubjectLine(const AutoSubjectResult& result) {
   const SkeletonFitResult& fit = result.fit;
   char line[512];
-  std::snprintf(line, sizeof line, "subject: fitted on %d frames of the take (%s, template %s): marker RMS %.1f mm, "
-                "torso %.1f deg, checks %s, %.1f s\n", fit.frames, result.method.c_str(),
+  const std::string stride = fit.frame_stride > 1 ? "1 in " + std::to_string(fit.frame_stride) + "; " : "";
+  std::snprintf(line, sizeof line, "subject: fitted on %d frames of the take (%s%s, template %s): marker RMS %.1f mm, "
+                "torso %.1f deg, checks %s, %.1f s\n", fit.frames, stride.c_str(), result.method.c_str(),
                 result.inputs.template_name.c_str(), fit.checks.rms_mm, fit.checks.torso_error_mean_deg,
                 fit.checks.ok() ? "passed" : ("failed: " + fit.checks.failures[0]).c_str(), fit.seconds);
   return line;

@@ -43,8 +43,8 @@ Status FitAutoSubject(const std::string& markers_path, const SkeletonFitSettings
 // frames, rounds, RMS, bone scales, checks, the association) with "method".
 JsonObject AutoSubjectReport(const AutoSubjectResult& result);
 
-// The console line: "subject: fitted from the take (association, template ...): marker RMS
-// 5.4 mm, checks passed, 63.2 s".
+// The console line: "subject: fitted on 508 frames of the take (1 in 5; association,
+// template ...): marker RMS 5.4 mm, checks passed, 63.2 s".
 std::string AutoSubjectLine(const AutoSubjectResult& result);
 
 // DIR/subject.json: where the fitted subject is written beside the take's outputs.

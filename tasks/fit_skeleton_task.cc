@@ -9,6 +9,7 @@
 #include "io/marker_file.h"
 #include "io/marker_set_file.h"
 #include "io/motion_file.h"
+#include "kinematics/marker_trajectories.h"
 #include "kinematics/quote_token.h"
 #include "pipeline/shipped_templates.h"
 #include "problems/marker_solve/associated_marker_set.h"
@@ -281,7 +282,7 @@ struct FitTake {
 };
 
 // Reads the take and sets it against the template: labels mapped, the template markers it
-// lacks left out, samples in the skeleton's frame and units, frames cut to --fit_max_frames.
+// lacks left out, samples in the skeleton's frame and units, frames thinned to --fit_max_frames.
 Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings, double units_per_cm,
                    const FitEvents& events, SkeletonFitResult* result, FitTake* fit) {
   const std::string& markers_path = inputs.markers_path;
@@ -327,13 +328,18 @@ Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& s
   fit->check_options.pelvis_labels = associated.pelvis_labels;
   status = MarkerSet::Create(skeleton, std::move(present), &fit->mapping.markers);
   if (!status.ok()) return status;
+  // --fit_max_frames N: every k-th frame of the whole take, not its first N (a take often
+  // starts still: squat.c3d's elbows bend only after its first 600 frames, and a subject
+  // fitted on those missed its right arm there by 100-240 mm). Evenly spaced, not chosen for pose variety: the pose
+  // solve warm-starts each frame from the one before (sequence_solver.h), which a fixed
+  // small stride keeps near, and a pose-variety pick would favour the stray samples (a
+  // marker come off) that stand out most. At most N frames: the fit's cost is unchanged.
+  result->frame_stride = FitFrameStride(settings.fit_max_frames, file.num_frames());
+  if (result->frame_stride > 1) file = EveryNthFrame(file, result->frame_stride);
   status = TakeForSubject(fit->mapping, std::move(file), markers_path, &fit->take);
   if (!status.ok()) return status;
-  const int frames = settings.fit_max_frames > 0 ? std::min<int>(settings.fit_max_frames, fit->take.observed.size())
-                                                 : static_cast<int>(fit->take.observed.size());
-  fit->take.observed.resize(frames);
-  fit->frames = frames;
-  result->frames = frames;
+  fit->frames = static_cast<int>(fit->take.observed.size());
+  result->frames = fit->frames;
   fit->model_frame = fit->take.trajectories;  // For auto attach.
   TransformMarkers(fit->take.transform, skeleton.unit(), &fit->model_frame);
   return Status::Ok();
@@ -879,12 +885,17 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
   json.Add("markers", inputs.markers_path).Add("template", inputs.template_name)
       .Add("template_labels", label_json).Add("template_labels_map", result.template_labels_map)
       .Add("not_markers", not_marker_json)
-      .Add("frames", result.frames).Add("attach_rounds", result.attach_rounds).Add("kept_round", result.kept_round)
+      .Add("frames", result.frames).Add("frame_stride", result.frame_stride)
+      .Add("attach_rounds", result.attach_rounds).Add("kept_round", result.kept_round)
       .Add("seconds", result.seconds)
       .Add(result.unit_known ? "rms_mm" : "rms", result.report.rms.back() * mm)
       .Add("outlier_samples", result.outlier_samples)
       .Add("rounds", round_json).Add("bone_scales", scale_json).Add("checks", ChecksJson(result.checks));
   return json;
+}
+
+int FitFrameStride(int max_frames, int frames) {
+  return max_frames > 0 && frames > max_frames ? (frames + max_frames - 1) / max_frames : 1;
 }
 
 Status CheckSkeletonFitInputsGiven(bool template_subject, bool skeleton, bool markerset, bool skeleton_units,

@@ -125,6 +125,7 @@ struct SkeletonFitResult {
   MarkerAssociation association;
   std::vector<std::string> association_joints;
   int frames = 0;           // Frames fitted.
+  int frame_stride = 1;     // They are every frame_stride-th frame of the take (FitFrameStride).
   int attach_rounds = 0;    // Rounds asked for (after the -1 default).
   int kept_round = -1;
   int outlier_samples = 0;  // Samples of the template's markers left out (--fit_outlier_mm).
@@ -133,6 +134,11 @@ struct SkeletonFitResult {
   bool unit_known = false;
   LearnedMarkerWeights weights;  // With --learn_weights (else empty).
 };
+
+// The stride of the frames a fit uses: every frame (1) with max_frames 0 or a take of at
+// most max_frames frames, else ceil(frames / max_frames), the smallest that keeps within
+// max_frames: frames spread over the whole take (--fit_max_frames).
+int FitFrameStride(int max_frames, int frames);
 
 // Which inputs were given: a template subject, or a skeleton and a marker set (not both), or
 // none of them (the shipped template), and the take's markers; else the one-line error every

@@ -14,7 +14,12 @@
 
 namespace mocapsolve::testing {
 
-MarkerTrajectories TemplateWalkTake(int frames, bool renamed) {
+namespace {
+
+// The walk of TemplateWalkTake; from frame `bend_from` on (when >= 0) the right elbow bends
+// and straightens again (70 degrees at most) where it held the mean pose before, and the
+// right wrist holds it throughout.
+MarkerTrajectories WalkTake(int frames, bool renamed, int bend_from) {
   Subject templ;
   EXPECT_TRUE(DefaultTemplateSubject(&templ).ok());
   const Skeleton& skeleton = templ.skeleton;
@@ -26,11 +31,28 @@ MarkerTrajectories TemplateWalkTake(int frames, bool renamed) {
   for (int m = 0; m < markers.num_markers(); ++m) {
     labels.push_back(renamed ? "M" + std::to_string(order[m]) : markers.label(m));
   }
+  if (bend_from >= 0) labels.push_back(renamed ? "M" + std::to_string(markers.num_markers()) : "ROLC");
   MarkerTrajectories take(labels, frames);
   take.frame_rate = 60.0;
   take.unit = Millimetres();
   const double mm = skeleton.unit().metres_per_unit * 1000.0;
+  const int elbow = skeleton.FindJoint("rradius"), wrist = skeleton.FindJoint("rwrist");
+  const int shoulder = skeleton.FindJoint("rhumerus");
+  EXPECT_TRUE(bend_from < 0 || (elbow >= 0 && wrist >= 0 && shoulder >= 0));
   FkData fk(skeleton);
+  // ROLC: a marker on the forearm just behind the elbow (an olecranon), in the mean pose 35
+  // mm up the upper arm from the elbow and 15 mm off its axis: nearer the upper arm's bone
+  // than the forearm's, so only frames that bend the elbow tell which it rides on.
+  Eigen::Vector3d olecranon = Eigen::Vector3d::Zero();  // In rradius' frame.
+  if (bend_from >= 0) {
+    Pose mean = RestPose(skeleton);
+    for (int j = 1; j < skeleton.num_joints(); ++j) mean.rotations[j] = templ.mean_pose[j];
+    ForwardKinematics(skeleton, mean, &fk);
+    const Eigen::Vector3d at = fk.world_positions[elbow];
+    const Eigen::Vector3d up = (fk.world_positions[shoulder] - at).normalized();
+    const Eigen::Vector3d off = up.cross(fk.world_positions[wrist] - at).normalized();
+    olecranon = fk.world_rotations[elbow].inverse() * ((35.0 * up + 15.0 * off) / mm);
+  }
   for (int f = 0; f < frames; ++f) {
     const double phase = 2.0 * M_PI * (f / take.frame_rate) / 1.1;  // A 1.1 s stride.
     Pose pose = RestPose(skeleton);
@@ -40,7 +62,11 @@ MarkerTrajectories TemplateWalkTake(int frames, bool renamed) {
       if (skeleton.num_rotation_dofs(j) == 0) continue;
       // About the joint's last dof axis, so the pose stays within its dofs (mean * R_last).
       const double degrees = skeleton.num_rotation_dofs(j) == 3 && j >= 11 && j <= 16 ? 5.0 : 18.0;
-      const double angle = degrees * M_PI / 180.0 * std::sin(phase + 0.9 * j);
+      double angle = degrees * M_PI / 180.0 * std::sin(phase + 0.9 * j);
+      if (bend_from >= 0 && (j == elbow || j == wrist)) {
+        const double t = f < bend_from || j == wrist ? 0.0 : (f - bend_from) / std::max(1.0, frames - 1.0 - bend_from);
+        angle = 70.0 * M_PI / 180.0 * std::sin(M_PI * t);
+      }
       const Eigen::Vector3d axis = Eigen::Vector3d::Unit(skeleton.rotation_axes(j).back());
       pose.rotations[j] = templ.mean_pose[j] * Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis));
     }
@@ -49,8 +75,20 @@ MarkerTrajectories TemplateWalkTake(int frames, bool renamed) {
       const Eigen::Vector3d x = markers.Position(m, fk) * mm;
       take.SetSample(f, m, Eigen::Vector3d(x.x(), -x.z(), x.y()));
     }
+    if (bend_from >= 0) {
+      const Eigen::Vector3d x = (fk.world_positions[elbow] + fk.world_rotations[elbow] * olecranon) * mm;
+      take.SetSample(f, markers.num_markers(), Eigen::Vector3d(x.x(), -x.z(), x.y()));
+    }
   }
   return take;
+}
+
+}  // namespace
+
+MarkerTrajectories TemplateWalkTake(int frames, bool renamed) { return WalkTake(frames, renamed, -1); }
+
+MarkerTrajectories TemplateWalkTakeBendingLate(int frames, int bend_from, bool renamed) {
+  return WalkTake(frames, renamed, bend_from);
 }
 
 MarkerTrajectories RandomPointsTake(int frames, int points) {

@@ -17,6 +17,13 @@ namespace mocapsolve::testing {
 // nobody mapped); else the template's own (CMU's LBWT, ...).
 MarkerTrajectories TemplateWalkTake(int frames, bool renamed);
 
+// TemplateWalkTake, but the right elbow (CMU's rradius) and wrist hold the mean pose until
+// frame `bend_from`, and from there the elbow bends up to 70 degrees and straightens again:
+// a take whose first part never bends a joint, so its forearm's markers move rigidly with
+// the upper arm's there. One marker more, last: ROLC (renamed: M41) on the forearm just
+// behind the elbow, nearer the upper arm's bone than the forearm's.
+MarkerTrajectories TemplateWalkTakeBendingLate(int frames, int bend_from, bool renamed);
+
 // `points` points at random positions in a 2 m box, each moving at random, `frames` frames, mm.
 MarkerTrajectories RandomPointsTake(int frames, int points);
 

@@ -135,6 +135,33 @@ TEST(MarkerTrajectories, FindMarkerWithAndWithoutSubjectPrefix) {
   EXPECT_EQ(two.FindMarker("B:LBWT"), 1);
 }
 
+// Every n-th frame (a fit's frames spread over a take): samples as they were, missing ones
+// missing, the frame rate divided so times stay right.
+TEST(EveryNthFrame, KeepsFramesZeroNTwoNAndTheirTimes) {
+  MarkerTrajectories t({"A", "B"}, 7);
+  t.unit = Millimetres();
+  t.frame_rate = 120.0;
+  t.first_frame = 50;
+  for (int f = 0; f < 7; ++f) t.SetSample(f, 0, Eigen::Vector3d(f, 0, 0), 0.5f, 2);
+  t.SetSample(3, 1, Eigen::Vector3d(1, 2, 3));
+  const MarkerTrajectories every3 = EveryNthFrame(t, 3);
+  ASSERT_EQ(every3.num_frames(), 3);  // Frames 0, 3, 6.
+  EXPECT_EQ(every3.num_markers(), 2);
+  EXPECT_EQ(every3.frame_rate, 40.0);
+  EXPECT_EQ(every3.first_frame, 50);
+  EXPECT_EQ(every3.unit.name, "mm");
+  for (int f = 0; f < 3; ++f) {
+    EXPECT_EQ(every3.position(f, 0), Eigen::Vector3d(3 * f, 0, 0));
+    EXPECT_EQ(every3.residual(f, 0), 0.5f);
+    EXPECT_EQ(every3.camera_mask(f, 0), 2);
+  }
+  EXPECT_FALSE(every3.valid(0, 1));
+  EXPECT_EQ(every3.position(1, 1), Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(EveryNthFrame(t, 4).num_frames(), 2);  // 0, 4.
+  EXPECT_EQ(EveryNthFrame(t, 1).num_frames(), 7);
+  EXPECT_EQ(EveryNthFrame(t, 1).frame_rate, 120.0);
+}
+
 TEST(SplitSubjectPrefix, KnownPrefixesThenColon) {
   SubjectLabel s = SplitSubjectPrefix("TakeoMonday:LBWT", {"TakeoMonday:"});
   EXPECT_EQ(s.prefix, "TakeoMonday:");

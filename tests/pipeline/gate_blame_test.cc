@@ -65,6 +65,10 @@ TEST(GateBlame, AMarkerThatCameOffIsNamedWithItsFrames) {
   EXPECT_NE(advice.find("--ignore_markers=" + take.markers.label(off) + " "), std::string::npos) << advice;
   EXPECT_NE(advice.find("worst frames 200-259"), std::string::npos) << advice;
   EXPECT_NE(advice.find("--markers=take.c3d"), std::string::npos) << advice;
+  // A subject fitted on this take (--subject=auto): the markers, not another fit.
+  const std::string fitted = GateAdvice(blame, "take.c3d", true);
+  EXPECT_NE(fitted.find("--ignore_markers=" + take.markers.label(off) + " "), std::string::npos) << fitted;
+  EXPECT_EQ(fitted.find("fit_skeleton"), std::string::npos) << fitted;
 }
 
 TEST(GateBlame, ErrorOnEveryMarkerIsASubjectThatDoesNotFit) {
@@ -81,6 +85,9 @@ TEST(GateBlame, ErrorOnEveryMarkerIsASubjectThatDoesNotFit) {
   const std::string advice = GateAdvice(blame, "take.c3d");
   EXPECT_NE(advice.find("spread over the markers"), std::string::npos) << advice;
   EXPECT_EQ(advice.find("--ignore_markers"), std::string::npos) << advice;
+  const std::string fitted = GateAdvice(blame, "take.c3d", true);
+  EXPECT_NE(fitted.find("--fit_max_frames=0"), std::string::npos) << fitted;
+  EXPECT_EQ(fitted.find("fit_skeleton"), std::string::npos) << fitted;
 }
 
 }  // namespace

@@ -49,10 +49,15 @@ AutoSubjectResult FitWritten(const MarkerTrajectories& take, const std::string& 
   return result;
 }
 
-TEST(AutoSubject, PipelineDefaultFitsTheFirst600Frames) {
+TEST(AutoSubject, PipelineDefaultFitsAtMost600Frames) {
   EXPECT_EQ(AutoSubjectFitOptions().Defaults().fit_max_frames, 600);
   EXPECT_EQ(SkeletonFitSettingOptions().Defaults().fit_max_frames, 0);  // fit_skeleton's own: all.
   EXPECT_EQ(AutoSubjectPath("out"), "out/subject.json");
+  // Spread over the take: every k-th frame, k the smallest that keeps within the budget.
+  EXPECT_EQ(FitFrameStride(600, 600), 1);
+  EXPECT_EQ(FitFrameStride(600, 601), 2);
+  EXPECT_EQ(FitFrameStride(600, 2539), 5);
+  EXPECT_EQ(FitFrameStride(0, 2539), 1);
 }
 
 TEST(AutoSubject, TakeWithTheTemplatesLabelsFitsByLabelsAndFindsUp) {
@@ -82,6 +87,31 @@ TEST(AutoSubject, RenamedLabelsFitByAssociation) {
   EXPECT_LE(result.fit.checks.rms_mm, 25.0);
   EXPECT_EQ(SkeletonUpFromFile(result.fit.subject.axes), "z") << result.fit.subject.axes;
   EXPECT_THAT(AutoSubjectReport(result).ToString(), HasSubstr("\"association\""));
+}
+
+// The fit's frames spread over the take (--fit_max_frames, FitFrameStride). The walk's right
+// elbow bends only in the take's last tenth (as squat.c3d's arms: still in its first 600
+// frames), and the take has one marker the template lacks, ROLC, on the forearm just behind
+// the elbow: the attach rounds put it on the joint it moves least with, and while the elbow
+// holds still the upper arm and the forearm tie, which the nearer bone (the upper arm's)
+// decides. Fitted on the take's first 143 frames (as before) it rode on rhumerus; on 143
+// frames spread over the take, 14 of them bending the elbow, on rradius.
+TEST(AutoSubject, AMarkerNearAJointThatBendsOnlyLateIsAttachedToTheRightSegment) {
+  const std::string path = testing::TempPath("bending_late.c3d");
+  ASSERT_TRUE(WriteMarkerFile(path, testing::TemplateWalkTakeBendingLate(1000, 900, false)).ok());
+  SkeletonFitSettings settings = ShortFit();
+  settings.fit_max_frames = 150;
+  AutoSubjectResult result;
+  const Status status = FitAutoSubject(path, settings, Dls(), &result);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(result.fit.frame_stride, 7);
+  EXPECT_EQ(result.fit.frames, 143);
+  EXPECT_THAT(AutoSubjectLine(result), HasSubstr("fitted on 143 frames of the take (1 in 7; labels"));
+  EXPECT_THAT(AutoSubjectReport(result).ToString(), HasSubstr("\"frame_stride\": 7"));
+  const MarkerSet& fitted = result.fit.subject.markers;
+  const int k = fitted.FindMarker("ROLC");
+  ASSERT_GE(k, 0);
+  EXPECT_EQ(result.fit.subject.skeleton.name(fitted.marker(k).attachments[0].joint), "rradius");
 }
 
 TEST(AutoSubject, RandomPointsFailWithOneLine) {
