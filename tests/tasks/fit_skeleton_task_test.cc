@@ -242,32 +242,34 @@ TEST(FitSubjectToTake, CompleteTemplateRoundsStartWhereTheLastEnded) {
   }
   // The kept round is the latest within 5 % of the lowest held-out score (held_out_round.h),
   // not the lowest marker RMS.
-  std::vector<double> held_out;
-  std::vector<int> candidate_rounds;
-  for (const SkeletonFitRound& round : result.rounds) {
-    if (round.held_out < 0.0) continue;
-    held_out.push_back(round.held_out);
-    candidate_rounds.push_back(round.round);
-  }
-  ASSERT_FALSE(held_out.empty());
-  EXPECT_EQ(result.kept_round, candidate_rounds[KeptRound(held_out, HeldOutRoundOptions().tolerance)]);
-  EXPECT_NEAR(result.report.rms.back(), result.rounds[result.kept_round].rms.back(), 1e-12);
+  const auto expect_held_out_choice = [](const SkeletonFitResult& fit) {
+    std::vector<double> held_out;
+    std::vector<int> candidate_rounds;
+    for (const SkeletonFitRound& round : fit.rounds) {
+      if (round.held_out < 0.0) continue;
+      held_out.push_back(round.held_out);
+      candidate_rounds.push_back(round.round);
+    }
+    ASSERT_FALSE(held_out.empty());
+    EXPECT_EQ(fit.kept_round, candidate_rounds[KeptRound(held_out, HeldOutRoundOptions().tolerance)]);
+    EXPECT_NEAR(fit.report.rms.back(), fit.rounds[fit.kept_round].rms.back(),
+                1e-9 * fit.rounds[fit.kept_round].rms.back());
+  };
+  expect_held_out_choice(result);
   // The template's own skin distances (up to 20.7 cm) do not fail the skin check.
   EXPECT_GT(result.checks.max_bone_distance_cm, 15.0);
   EXPECT_TRUE(result.checks.ok()) << result.checks.failures.front();
 
-  // No attach iterations: round 1 cannot beat round 0, which is complete, so the rounds
-  // stop; round 1 is round 0's model with the markers its attach re-decided by prediction
-  // (near ties and rigid clusters, attachment_by_prediction.h: on these frames some move,
-  // so its held-out score differs), and the held-out choice between the two is kept.
+  // No attach iterations: each round after round 0 is the model before it with the markers
+  // its attach re-decided by prediction (near ties and rigid clusters,
+  // attachment_by_prediction.h: on these frames some move, so a round can start lower and
+  // another follow: 2 rounds on the first 120 frames as the fit read them from the file, 3
+  // on the same frames passed in memory), and the held-out choice among them is kept.
   settings.attach_iterations = 0;
   status = FitSubjectToTake(inputs, settings, solve, &result);
   ASSERT_TRUE(status.ok()) << status.message();
-  ASSERT_EQ(result.rounds.size(), 2u);
-  const std::vector<double> two = {result.rounds[0].held_out, result.rounds[1].held_out};
-  EXPECT_EQ(result.kept_round, KeptRound(two, HeldOutRoundOptions().tolerance));
-  EXPECT_NEAR(result.report.rms.back(), result.rounds[result.kept_round].rms.back(),
-              1e-9 * result.rounds[result.kept_round].rms.back());
+  ASSERT_GE(result.rounds.size(), 2u);
+  expect_held_out_choice(result);
 }
 
 // A take recorded with another protocol: the demo character's synthetic markers, on a
