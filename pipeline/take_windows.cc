@@ -438,7 +438,8 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   result->windows.count = static_cast<int>(windows.size());
   result->windows.frames = windows.front().core_last - windows.front().core_first + 1;
   result->windows.context_frames = options.window_context_frames;
-  result->windows.threads = options.num_threads >= 2 ? 2 : 1;
+  const bool second_thread = options.num_threads >= 2;  // For the windows' character stages.
+  result->windows.threads = second_thread ? 2 : 1;
   for (CharacterOutput& c : result->characters) c.take.Reserve(frames);
   WindowWriters writers;
   status = MakeFolders(out_dir);  // After every check: a refused take leaves nothing.
@@ -450,7 +451,7 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   // the previous cores repaired; the character stages, which start from their own bind
   // pose, in order on a second thread with --num_threads >= 2 (pipeline/in_order_worker.h),
   // at most one window waiting.
-  InOrderWorker characters(options.num_threads >= 2);
+  InOrderWorker characters(second_thread);
   for (size_t k = 0; k < windows.size() && status.ok(); ++k) {
     Pose start;
     if (k > 0) writers.previous_solve.Frame(windows[k].first - 1 - writers.previous.first, &start);
@@ -470,7 +471,7 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
     window = TakeResult();  // Freed before waiting for the worker.
     // The progress display is the repairs' when the character stages run beside them.
     PipelineProgress part_progress = nullptr;
-    if (options.num_threads < 2 && progress) {
+    if (!second_thread && progress) {
       part_progress = [&progress, label](const std::string& stage, int done, int total) {
         progress(label + stage, done, total);
       };
