@@ -10,6 +10,7 @@
 #include "io/curve_key_reduction.h"
 #include "io/fbx_binary.h"
 #include "io/input_limits.h"
+#include "io/motion_samples.h"
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/frame_rate.h"
 #include "kinematics/quote_token.h"
@@ -97,9 +98,11 @@ Eigen::Vector3d ByAxisDegrees(const Eigen::Vector3d& angles_in_order, EulerOrder
   return out;
 }
 
+// Samples: MotionSamples or CompactSamples (io/motion_samples.h).
+template <class Samples>
 class SceneBuilder {
  public:
-  SceneBuilder(const Skeleton& skeleton, const Motion& motion, const FbxWriteOptions& options,
+  SceneBuilder(const Skeleton& skeleton, const Samples& motion, const FbxWriteOptions& options,
                const FbxSkinnedMesh* mesh)
       : skeleton_(skeleton), motion_(motion), options_(options), mesh_(mesh) {}
 
@@ -122,7 +125,7 @@ class SceneBuilder {
   EulerOrder JointOrder(int j) const;
   double UnitScaleFactor() const;
   // The take's rate, an integer when within 1e-5 of one (NominalFrameRate): FBX names whole rates.
-  double FrameRate() const { return NominalFrameRate(motion_.frame_rate); }
+  double FrameRate() const { return NominalFrameRate(motion_.frame_rate()); }
   int64_t KeyTime(int frame) const {
     return static_cast<int64_t>(std::llround(frame * static_cast<double>(kTicksPerSecond) / FrameRate()));
   }
@@ -147,7 +150,7 @@ class SceneBuilder {
   void AddRotationCurves(int j, int64_t joint_model, int64_t layer, double tolerance, std::vector<float> values[3]);
 
   const Skeleton& skeleton_;
-  const Motion& motion_;
+  const Samples& motion_;
   const FbxWriteOptions& options_;
   const FbxSkinnedMesh* mesh_;
   int64_t next_id_ = 1000000;
@@ -163,7 +166,8 @@ class SceneBuilder {
   int stacks_ = 0, layers_ = 0, curve_nodes_ = 0, curves_ = 0;
 };
 
-EulerOrder SceneBuilder::JointOrder(int j) const {
+template <class Samples>
+EulerOrder SceneBuilder<Samples>::JointOrder(int j) const {
   // FBX evaluates PreRotation in XYZ order (the SDK, assimp, current Blender); Blender
   // 3.4 uses the joint's RotationOrder instead, so a joint with both is written in XYZ.
   if (skeleton_.has_rest_rotation(j)) return EulerOrder::kZYX;
@@ -177,13 +181,15 @@ EulerOrder SceneBuilder::JointOrder(int j) const {
   return EulerOrder::kZYX;  // FBX's default, eEulerXYZ.
 }
 
-double SceneBuilder::UnitScaleFactor() const {
+template <class Samples>
+double SceneBuilder<Samples>::UnitScaleFactor() const {
   if (options_.unit_scale_factor > 0.0) return options_.unit_scale_factor;
   if (skeleton_.unit().known()) return skeleton_.unit().metres_per_unit * 100.0;
   return 1.0;  // Unknown (BVH): centimetres, FBX's own unit.
 }
 
-void SceneBuilder::AddHeader(std::vector<Node>* top) {
+template <class Samples>
+void SceneBuilder<Samples>::AddHeader(std::vector<Node>* top) {
   Node& header = top->emplace_back("FBXHeaderExtension");
   header.AddChild("FBXHeaderVersion").Int32(1003);
   header.AddChild("FBXVersion").Int32(fbx::kFbxVersion);
@@ -214,7 +220,8 @@ void SceneBuilder::AddHeader(std::vector<Node>* top) {
   top->emplace_back("Creator").String("mocapsolve");
 }
 
-void SceneBuilder::AddGlobalSettings(std::vector<Node>* top) {
+template <class Samples>
+void SceneBuilder<Samples>::AddGlobalSettings(std::vector<Node>* top) {
   Node& settings = top->emplace_back("GlobalSettings");
   settings.AddChild("Version").Int32(1000);
   Node& props = settings.AddChild("Properties70");
@@ -243,7 +250,8 @@ void SceneBuilder::AddGlobalSettings(std::vector<Node>* top) {
   PDouble(&props, "CustomFrameRate", FrameRate());
 }
 
-int64_t SceneBuilder::AddLimbNode(const std::string& name, const Eigen::Vector3d& translation,
+template <class Samples>
+int64_t SceneBuilder<Samples>::AddLimbNode(const std::string& name, const Eigen::Vector3d& translation,
                                   const Eigen::Quaterniond& rotation, const Eigen::Quaterniond& pre_rotation,
                                   EulerOrder order, bool t_animated, bool r_animated) {
   const int64_t attribute = NewId();
@@ -272,7 +280,8 @@ int64_t SceneBuilder::AddLimbNode(const std::string& name, const Eigen::Vector3d
   return model;
 }
 
-void SceneBuilder::AddCurve(int64_t curve_node, const char* channel, const std::vector<float>& values,
+template <class Samples>
+void SceneBuilder<Samples>::AddCurve(int64_t curve_node, const char* channel, const std::vector<float>& values,
                             double default_value, double tolerance) {
   // A constant curve keeps its first and last key: the clip's length stays in every curve,
   // and assimp drops a curve of one key per axis that is within 3.5e-4 of the model's
@@ -295,7 +304,8 @@ void SceneBuilder::AddCurve(int64_t curve_node, const char* channel, const std::
   ConnectProperty(id, curve_node, channel);
 }
 
-SceneBuilder::KeyTolerances SceneBuilder::KeyTolerancesOfJoints() const {
+template <class Samples>
+typename SceneBuilder<Samples>::KeyTolerances SceneBuilder<Samples>::KeyTolerancesOfJoints() const {
   // A point p (joint or end site) is moved by the translation curves of itself and of each
   // joint above it, and by the rotation curves of each joint strictly above it: m(p) curve
   // sets. Joint j's rotation keys, each of three Euler angles off by at most tau_j, turn it
@@ -310,7 +320,7 @@ SceneBuilder::KeyTolerances SceneBuilder::KeyTolerancesOfJoints() const {
   for (int j = 0; j < nj; ++j) {
     length[j] = rest_translations_[j].norm();
     for (int f = 0; translation_animated_[j] && f < nf; ++f) {
-      length[j] = std::max(length[j], motion_.frames[f].translations[j].norm());
+      length[j] = std::max(length[j], motion_.translation(f, j).norm());
     }
   }
   std::vector<int> sets(nj, 0);  // m(j).
@@ -352,7 +362,8 @@ SceneBuilder::KeyTolerances SceneBuilder::KeyTolerancesOfJoints() const {
   return tolerances;
 }
 
-void SceneBuilder::AddRotationCurves(int j, int64_t joint_model, int64_t layer, double tolerance,
+template <class Samples>
+void SceneBuilder<Samples>::AddRotationCurves(int j, int64_t joint_model, int64_t layer, double tolerance,
                                      std::vector<float> values[3]) {
   const EulerOrder order = JointOrder(j);
   const int nf = motion_.num_frames();
@@ -360,7 +371,7 @@ void SceneBuilder::AddRotationCurves(int j, int64_t joint_model, int64_t layer, 
   Eigen::Vector3d previous = Eigen::Vector3d::Zero();
   Eigen::Vector3d first = Eigen::Vector3d::Zero();
   for (int f = 0; f < nf; ++f) {
-    Eigen::Vector3d angles = EulerFromQuaternion(motion_.frames[f].rotations[j], order);
+    Eigen::Vector3d angles = EulerFromQuaternion(motion_.rotation(f, j), order);
     if (f > 0) angles = NearestEquivalentEuler(angles, previous);
     previous = angles;
     const Eigen::Vector3d by_axis = ByAxisDegrees(angles, order);
@@ -378,7 +389,8 @@ void SceneBuilder::AddRotationCurves(int j, int64_t joint_model, int64_t layer, 
   for (int a = 0; a < 3; ++a) AddCurve(rotation_node, axes[a], values[a], first[a], tolerance);
 }
 
-void SceneBuilder::AddAnimation(const std::vector<int64_t>& joint_models) {
+template <class Samples>
+void SceneBuilder<Samples>::AddAnimation(const std::vector<int64_t>& joint_models) {
   const int64_t stack = NewId();
   Node& stack_node = objects_.AddChild("AnimationStack").Int64(stack)
                          .String(NameClass(options_.take_name, "AnimStack")).String("");
@@ -401,13 +413,14 @@ void SceneBuilder::AddAnimation(const std::vector<int64_t>& joint_models) {
     if (rotation_animated_[j]) AddRotationCurves(j, joint_models[j], layer, tolerances.rotation_degrees[j], values);
     if (!translation_animated_[j]) continue;
     for (int f = 0; f < nf; ++f) {
-      for (int a = 0; a < 3; ++a) values[a][f] = static_cast<float>(motion_.frames[f].translations[j][a]);
+      const Eigen::Vector3d t = motion_.translation(f, j);
+      for (int a = 0; a < 3; ++a) values[a][f] = static_cast<float>(t[a]);
     }
     const int64_t translation_node = NewId();
     Node& tnode = objects_.AddChild("AnimationCurveNode").Int64(translation_node)
                       .String(NameClass("T", "AnimCurveNode")).String("");
     Node& tprops = tnode.AddChild("Properties70");
-    const Eigen::Vector3d& t0 = motion_.frames[0].translations[j];
+    const Eigen::Vector3d t0 = motion_.translation(0, j);
     for (int a = 0; a < 3; ++a) P(&tprops, axes[a], "Number", "", "A").Double(t0[a]);
     ++curve_nodes_;
     Connect(translation_node, layer);
@@ -416,7 +429,8 @@ void SceneBuilder::AddAnimation(const std::vector<int64_t>& joint_models) {
   }
 }
 
-void SceneBuilder::AddMesh(const std::vector<int64_t>& joint_models) {
+template <class Samples>
+void SceneBuilder<Samples>::AddMesh(const std::vector<int64_t>& joint_models) {
   const SkinnedMesh& mesh = *mesh_->mesh;
   const Eigen::Matrix3Xi& triangles = *mesh_->triangles;
   const int64_t geometry = NewId();
@@ -545,7 +559,8 @@ void SceneBuilder::AddMesh(const std::vector<int64_t>& joint_models) {
   }
 }
 
-Status SceneBuilder::Build(std::string* bytes) {
+template <class Samples>
+Status SceneBuilder<Samples>::Build(std::string* bytes) {
   const int nj = skeleton_.num_joints();
   const int nf = motion_.num_frames();
   time_stop_ = KeyTime(nf - 1);
@@ -560,7 +575,7 @@ Status SceneBuilder::Build(std::string* bytes) {
   for (int j = 1; j < nj; ++j) {
     const double tolerance = 1e-9 * (rest_translations_[j].norm() + 1.0);
     for (int f = 0; f < nf && !translation_animated_[j]; ++f) {
-      translation_animated_[j] = (motion_.frames[f].translations[j] - rest_translations_[j]).norm() > tolerance;
+      translation_animated_[j] = (motion_.translation(f, j) - rest_translations_[j]).norm() > tolerance;
     }
   }
   // A joint that never turns from its default rotation gets no rotation curves (importers
@@ -569,7 +584,7 @@ Status SceneBuilder::Build(std::string* bytes) {
   rotation_animated_[0] = true;  // The root's curves carry the take's length.
   for (int j = 1; j < nj; ++j) {
     for (int f = 0; f < nf && !rotation_animated_[j]; ++f) {
-      rotation_animated_[j] = motion_.frames[f].rotations[j].angularDistance(rest_rotations_[j]) > 1e-9;
+      rotation_animated_[j] = motion_.rotation(f, j).angularDistance(rest_rotations_[j]) > 1e-9;
     }
   }
   std::vector<int64_t> joint_models(nj);
@@ -634,7 +649,8 @@ Status CheckDepth(int depth, const std::string& what, const std::string& name) {
                        " FBX importers read (Blender's recurses once per level)");
 }
 
-Status CheckWritable(const Skeleton& skeleton, const Motion& motion, const FbxWriteOptions& options,
+template <class Samples>
+Status CheckWritable(const Skeleton& skeleton, const Samples& motion, const FbxWriteOptions& options,
                      const FbxSkinnedMesh* mesh) {
   if (skeleton.num_joints() == 0) return Status::Error("the skeleton has no joints");
   std::vector<int> depth(skeleton.num_joints(), 0);  // Joints are in preorder: parents first.
@@ -655,14 +671,13 @@ Status CheckWritable(const Skeleton& skeleton, const Motion& motion, const FbxWr
     return Status::Error("unit scale factor must be positive (or 0: from the skeleton's unit)");
   }
   if (motion.num_frames() == 0) return Status::Error("the motion has no frames");
-  if (!(motion.frame_rate > 0.0) || !std::isfinite(motion.frame_rate)) {
-    return Status::Error("frame rate must be positive, got " + ShortNumber(motion.frame_rate));
+  if (!(motion.frame_rate() > 0.0) || !std::isfinite(motion.frame_rate())) {
+    return Status::Error("frame rate must be positive, got " + ShortNumber(motion.frame_rate()));
   }
-  if (!(motion.num_frames() / motion.frame_rate * static_cast<double>(kTicksPerSecond) < 9e18)) {
+  if (!(motion.num_frames() / motion.frame_rate() * static_cast<double>(kTicksPerSecond) < 9e18)) {
     return Status::Error("the clip is too long for FBX key times");
   }
-  if (Status s = ValidateMotion(skeleton, motion); !s.ok()) return s;
-  if (Status s = CheckMotionBounds(skeleton, motion); !s.ok()) return s;
+  if (Status s = motion.Validate(skeleton); !s.ok()) return s;
   if (options.rest_pose) {
     if (Status s = ValidatePose(skeleton, *options.rest_pose, "rest pose"); !s.ok()) return s;
   }
@@ -687,28 +702,29 @@ Status CheckWritable(const Skeleton& skeleton, const Motion& motion, const FbxWr
   return Status::Ok();
 }
 
-}  // namespace
-
-Status SerializeFbx(const Skeleton& skeleton, const Motion& motion, const FbxWriteOptions& options,
-                    const FbxSkinnedMesh* mesh, std::string* bytes) {
+template <class Samples>
+Status SerializeSamples(const Skeleton& skeleton, const Samples& motion, const FbxWriteOptions& options,
+                        const FbxSkinnedMesh* mesh, std::string* bytes) {
   if (Status s = CheckWritable(skeleton, motion, options, mesh); !s.ok()) {
     return Status::Error("cannot write FBX: " + s.message());
   }
-  SceneBuilder builder(skeleton, motion, options, mesh);
+  SceneBuilder<Samples> builder(skeleton, motion, options, mesh);
   return builder.Build(bytes);
 }
 
-Status WriteFbx(const std::string& path, const Skeleton& skeleton, const Motion& motion,
-                const FbxWriteOptions& options, const FbxSkinnedMesh* mesh) {
+template <class Samples>
+Status WriteSamples(const std::string& path, const Skeleton& skeleton, const Samples& motion,
+                    const FbxWriteOptions& options, const FbxSkinnedMesh* mesh) {
   std::string bytes;
-  if (Status s = SerializeFbx(skeleton, motion, options, mesh, &bytes); !s.ok()) {
+  if (Status s = SerializeSamples(skeleton, motion, options, mesh, &bytes); !s.ok()) {
     return Status::Error(path + ": " + s.message());
   }
   return WriteFileAtomically(path, bytes);
 }
 
-Status WriteFbxCharacter(const std::string& path, const GltfCharacter& character, const Motion& motion,
-                         const std::string& take_name, bool animation_only, double key_tolerance_mm) {
+template <class Samples>
+Status WriteCharacterSamples(const std::string& path, const GltfCharacter& character, const Samples& motion,
+                             const std::string& take_name, bool animation_only, double key_tolerance_mm) {
   FbxWriteOptions options;
   options.take_name = take_name;
   options.rest_pose = character.rest_pose;
@@ -717,7 +733,29 @@ Status WriteFbxCharacter(const std::string& path, const GltfCharacter& character
   mesh.mesh = &character.mesh;
   mesh.triangles = &character.triangles;
   const bool with_mesh = !animation_only && character.mesh.num_vertices() > 0 && character.triangles.cols() > 0;
-  return WriteFbx(path, character.skeleton, motion, options, with_mesh ? &mesh : nullptr);
+  return WriteSamples(path, character.skeleton, motion, options, with_mesh ? &mesh : nullptr);
+}
+
+}  // namespace
+
+Status SerializeFbx(const Skeleton& skeleton, const Motion& motion, const FbxWriteOptions& options,
+                    const FbxSkinnedMesh* mesh, std::string* bytes) {
+  return SerializeSamples(skeleton, MotionSamples(motion), options, mesh, bytes);
+}
+
+Status WriteFbx(const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                const FbxWriteOptions& options, const FbxSkinnedMesh* mesh) {
+  return WriteSamples(path, skeleton, MotionSamples(motion), options, mesh);
+}
+
+Status WriteFbxCharacter(const std::string& path, const GltfCharacter& character, const Motion& motion,
+                         const std::string& take_name, bool animation_only, double key_tolerance_mm) {
+  return WriteCharacterSamples(path, character, MotionSamples(motion), take_name, animation_only, key_tolerance_mm);
+}
+
+Status WriteFbxCharacter(const std::string& path, const GltfCharacter& character, const CompactMotion& motion,
+                         const std::string& take_name, bool animation_only, double key_tolerance_mm) {
+  return WriteCharacterSamples(path, character, CompactSamples(motion), take_name, animation_only, key_tolerance_mm);
 }
 
 }  // namespace mocapsolve

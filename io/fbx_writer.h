@@ -73,6 +73,7 @@
 #include <Eigen/Core>
 
 #include "io/gltf_reader.h"
+#include "kinematics/compact_motion.h"
 #include "kinematics/motion.h"
 #include "kinematics/rotation.h"
 #include "kinematics/skeleton.h"
@@ -111,6 +112,10 @@ Status WriteFbx(const std::string& path, const Skeleton& skeleton, const Motion&
 // (the nodes' default TRS), its skinned mesh ("mesh", all primitives of the skin merged)
 // unless `animation_only`, and the clip as the take `take_name`.
 Status WriteFbxCharacter(const std::string& path, const GltfCharacter& character, const Motion& motion,
+                         const std::string& take_name, bool animation_only, double key_tolerance_mm = 0.0);
+// The same from a CompactMotion, read one joint of one frame at a time (io/motion_samples.h):
+// a long take is not expanded whole to be written; the same bytes as its ToMotion().
+Status WriteFbxCharacter(const std::string& path, const GltfCharacter& character, const CompactMotion& motion,
                          const std::string& take_name, bool animation_only, double key_tolerance_mm = 0.0);
 
 }  // namespace mocapsolve

@@ -14,6 +14,7 @@
 #include "io/input_limits.h"
 #include "io/gltf_scene.h"
 #include "io/motion_file.h"
+#include "io/motion_samples.h"
 #include "kinematics/compact_motion.h"
 #include "kinematics/frame_rate.h"
 #include "kinematics/quote_token.h"
@@ -384,62 +385,6 @@ Status AnimationOnlyModel(const tinygltf::Model& full, const std::vector<int>& p
   *out = std::move(model);
   return Status::Ok();
 }
-
-// The joint samples the writer reads, one (frame, joint) at a time, from a Motion or a
-// CompactMotion (kinematics/compact_motion.h: a long take is not expanded whole).
-class MotionSamples {
- public:
-  explicit MotionSamples(const Motion& motion) : motion_(motion) {}
-  double frame_rate() const { return motion_.frame_rate; }
-  int num_frames() const { return motion_.num_frames(); }
-  const Eigen::Quaterniond& rotation(int f, int j) const { return motion_.frames[f].rotations[j]; }
-  const Eigen::Vector3d& translation(int f, int j) const { return motion_.frames[f].translations[j]; }
-  Status Validate(const Skeleton& skeleton) const {
-    // What the readers accept (io/input_limits.h): a frame time of 1e308 wrote a time
-    // accessor whose "max" was inf, JSON null.
-    if (Status s = CheckMotionBounds(skeleton, motion_); !s.ok()) return s;
-    return ValidateMotion(skeleton, motion_);
-  }
-
- private:
-  const Motion& motion_;
-};
-
-class CompactSamples {
- public:
-  explicit CompactSamples(const CompactMotion& motion) : motion_(motion) {}
-  double frame_rate() const { return motion_.frame_rate(); }
-  int num_frames() const { return motion_.num_frames(); }
-  Eigen::Quaterniond rotation(int f, int j) const { return motion_.Rotation(f, j); }
-  Eigen::Vector3d translation(int f, int j) const { return motion_.Translation(f, j); }
-  // The checks of MotionSamples, frame by frame.
-  Status Validate(const Skeleton& skeleton) const {
-    Motion none;
-    none.frame_rate = motion_.frame_rate();
-    if (Status s = CheckMotionBounds(skeleton, none); !s.ok()) return s;
-    if (motion_.num_joints() != skeleton.num_joints()) {
-      return Status::Error("pose has the wrong joint count (" + std::to_string(motion_.num_joints()) + ", skeleton " +
-                           std::to_string(skeleton.num_joints()) + ")");
-    }
-    Pose pose;
-    for (int f = 0; f < motion_.num_frames(); ++f) {
-      motion_.Frame(f, &pose);
-      const std::string frame = "frame " + std::to_string(f);
-      for (int j = 0; j < skeleton.num_joints(); ++j) {
-        if (Status s = CheckCoordinates(pose.translations[j], frame + ", joint " + QuoteToken(skeleton.name(j)) +
-                                                                  " translation");
-            !s.ok()) {
-          return s;
-        }
-      }
-      if (Status s = ValidatePose(skeleton, pose, frame); !s.ok()) return s;
-    }
-    return Status::Ok();
-  }
-
- private:
-  const CompactMotion& motion_;
-};
 
 // The source's model with the new animation (see the header), to be written by WriteModel
 // or WriteGlbFile.

@@ -15,8 +15,10 @@
 #include "io/gltf_reader.h"
 #include "io/gltf_writer.h"
 #include "io/motion_file.h"
+#include "kinematics/compact_motion.h"
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/rotation.h"
+#include "tests/gltf_test_files.h"
 #include "tests/test_support.h"
 
 namespace mocapsolve {
@@ -555,6 +557,37 @@ TEST(FbxWriter, XbotCharacterRoundTrip) {
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(info.meshes, 0);
   CompareWorldPositions(character.skeleton, motion, back, back_motion, 1e-5);
+}
+
+// A character's take written from its CompactMotion (a windowed pipeline's long take, read
+// one joint of one frame at a time) is the file written from the same take expanded.
+TEST(FbxWriter, CharacterFromACompactTakeIsTheBytesOfItsExpandedTake) {
+  const std::string gltf = testing::TempPath("compact_character.gltf");
+  testing::WriteTestCharacter(gltf, 45.0);
+  GltfDocument document;
+  ASSERT_TRUE(GltfDocument::Read(gltf, &document).ok());
+  GltfCharacter character;
+  ASSERT_TRUE(ReadGltfCharacter(document, {}, &character).ok());
+  Motion motion;
+  motion.frame_rate = 120.0;
+  for (int f = 0; f < 50; ++f) {
+    Pose pose = character.rest_pose;
+    pose.translations[0] += Eigen::Vector3d(0.01 * f, 0.0, 0.002 * f);
+    for (int j = 0; j < character.skeleton.num_joints(); ++j) {
+      pose.rotations[j] = pose.rotations[j] * Eigen::Quaterniond(Eigen::AngleAxisd(0.03 * f * (j % 3 + 1),
+                                                                                    Eigen::Vector3d(0.3, 1.0, 0.2).normalized()));
+    }
+    motion.frames.push_back(pose);
+  }
+  const CompactMotion compact(motion);
+  for (bool animation_only : {false, true}) {
+    const std::string from_compact = testing::TempPath("from_compact.fbx"), expanded = testing::TempPath("expanded.fbx");
+    ASSERT_TRUE(WriteFbxCharacter(from_compact, character, compact, "clip", animation_only).ok());
+    ASSERT_TRUE(WriteFbxCharacter(expanded, character, compact.ToMotion(), "clip", animation_only).ok());
+    const std::string bytes = testing::ReadTextFile(from_compact);
+    EXPECT_GT(bytes.size(), 1000u);
+    EXPECT_TRUE(bytes == testing::ReadTextFile(expanded)) << "animation_only " << animation_only;
+  }
 }
 
 }  // namespace
