@@ -552,10 +552,13 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
         status = c.delivered_is_clip
                      ? WriteGltfWithAnimation(c.document, c.character, c.take, inputs.name, path, gltf)
                      : WriteGltfWithAnimation(c.document, c.character, c.delivered, inputs.name, path, gltf);
-      } else if (format == "fbx") {  // These two expand it, one file at a time.
-        status = WriteFbxCharacter(path, c.character, c.delivered_motion(), inputs.name,
-                                   character_files.animation_only, character_files.fbx_key_tolerance_mm);
-      } else if (format == "bvh") {
+      } else if (format == "fbx") {  // The same, read one joint of one frame at a time.
+        status = c.delivered_is_clip
+                     ? WriteFbxCharacter(path, c.character, c.take, inputs.name, character_files.animation_only,
+                                         character_files.fbx_key_tolerance_mm)
+                     : WriteFbxCharacter(path, c.character, c.delivered, inputs.name, character_files.animation_only,
+                                         character_files.fbx_key_tolerance_mm);
+      } else if (format == "bvh") {  // Expands it (the BVH text is made whole).
         status = WriteBvh(path, c.character.skeleton, c.delivered_motion(), BvhWriteOptions());
       } else {
         status = Status::Error("--formats: unknown '" + format + "' (glb, fbx, bvh)");

@@ -7,6 +7,7 @@
 
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
+#include "io/fbx_writer.h"
 #include "io/gltf_writer.h"
 #include "io/marker_file.h"
 #include "kinematics/forward_kinematics.h"
@@ -293,7 +294,7 @@ Status CheckWindowedTake(const TakeInputs& inputs, const TakePipelineOptions& op
     return Status::Error(take + ": a windowed take is delivered whole (no --frames, --seconds or --out_fps)");
   }
   for (const std::string& format : files.formats) {
-    if (format != "glb") return Status::Error(take + ": --formats=" + format + " is not written for a windowed take (glb only)");
+    if (format == "bvh") return Status::Error(take + ": --formats=bvh is not written for a windowed take (glb, fbx)");
   }
   const std::vector<std::string> missing = SubjectLabelsMissing(*inputs.subject, file);
   if (options.label == "always" || (options.label == "auto" && !missing.empty())) {
@@ -453,8 +454,8 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   // at most one window waiting.
   InOrderWorker characters(second_thread);
   for (size_t k = 0; k < windows.size() && status.ok(); ++k) {
-    Pose start;
-    if (k > 0) writers.previous_solve.Frame(windows[k].first - 1 - writers.previous.first, &start);
+    Pose start;  // None for a window whose context reaches frame 0: it starts as the first.
+    if (windows[k].first > 0) writers.previous_solve.Frame(windows[k].first - 1 - writers.previous.first, &start);
     const std::string label = "window " + std::to_string(k + 1) + "/" + std::to_string(windows.size()) + ": ";
     TakeResult window;
     Motion solved;
@@ -505,10 +506,14 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   GltfWriteOptions gltf;
   gltf.animation_only = files.animation_only;
   for (CharacterOutput& c : result->characters) {
-    if (!status.ok()) break;
-    status = WriteGltfWithAnimation(c.document, c.character, c.take, inputs.name,
-                                    CharacterFormatPath(out_dir, c.path, "glb"), gltf);
     c.delivered_is_clip = true;  // The report's delivered frames: the compact take's.
+    for (const std::string& format : files.formats) {  // From the compact take (CheckWindowedTake).
+      if (!status.ok()) break;
+      const std::string path = CharacterFormatPath(out_dir, c.path, format);
+      status = format == "glb" ? WriteGltfWithAnimation(c.document, c.character, c.take, inputs.name, path, gltf)
+                               : WriteFbxCharacter(path, c.character, c.take, inputs.name, files.animation_only,
+                                                   files.fbx_key_tolerance_mm);
+    }
   }
   result->timings.push_back({"write", write_seconds + SecondsSince(write_start)});
   result->seconds = SecondsSince(start);

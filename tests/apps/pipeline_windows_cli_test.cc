@@ -2,8 +2,8 @@
 // the demo walk (600 frames at 120 Hz, markers synthesized from it, a subject calibrated on
 // it) onto a test character, in windows of 200 frames with 50 of context, against the same
 // take run whole: every output valid and complete (every frame once, in order) and close
-// to the whole run's; with two threads the same bytes as with one; what a windowed take
-// refuses, one line and nothing written.
+// to the whole run's; with two threads the same bytes as with one; the character's FBX
+// beside its GLB; what a windowed take refuses, one line and nothing written.
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "io/bvh_reader.h"
+#include "io/fbx_reader.h"
 #include "io/gltf_reader.h"
 #include "io/gltf_writer.h"
 #include "io/json_reader.h"
@@ -157,10 +158,10 @@ std::string WithoutTimings(std::string report) {
 TEST_F(PipelineWindowsCli, TwoThreadsWriteTheBytesOfOne) {
   const std::string one = testing::TempPath("one_thread"), two = testing::TempPath("two_threads");
   std::string output;
-  const std::string windows = "--window_frames=150 --window_context_frames=50 ";
+  const std::string windows = "--window_frames=150 --window_context_frames=50 --formats=glb,fbx ";
   ASSERT_EQ(Pipeline(one, windows + "--num_threads=1", &output), 0) << output;
   ASSERT_EQ(Pipeline(two, windows + "--num_threads=2", &output), 0) << output;
-  for (const std::string file : {"repaired.c3d", "solved.bvh", "Dummy.glb"}) {
+  for (const std::string file : {"repaired.c3d", "solved.bvh", "Dummy.glb", "Dummy.fbx"}) {
     const std::string bytes = testing::ReadTextFile(one + "/" + file);
     EXPECT_FALSE(bytes.empty()) << file;
     EXPECT_TRUE(bytes == testing::ReadTextFile(two + "/" + file)) << file << " differs";
@@ -178,18 +179,55 @@ TEST_F(PipelineWindowsCli, TwoThreadsWriteTheBytesOfOne) {
   EXPECT_EQ(report.Find("windows")->Find("threads")->number, 1);
 }
 
+// The character's FBX of a windowed take is written from its compact take, as its GLB: the
+// same frames (every frame once, in order), the same joints' motion (FBX keys are floats).
+TEST_F(PipelineWindowsCli, WindowedTakeWritesTheCharactersFbxAsItsGlb) {
+  const std::string dir = testing::TempPath("windowed_fbx");
+  std::string output;
+  ASSERT_EQ(Pipeline(dir, "--window_frames=200 --window_context_frames=50 --formats=fbx,glb", &output), 0) << output;
+  Skeleton skeleton;
+  const Motion glb = CharacterTake(dir + "/Dummy.glb", &skeleton);
+  Skeleton fbx_skeleton;
+  Motion fbx;
+  ASSERT_TRUE(ReadFbx(dir + "/Dummy.fbx", FbxReadOptions(), &fbx_skeleton, &fbx).ok());
+  ASSERT_EQ(fbx.num_frames(), 600);
+  ASSERT_EQ(glb.num_frames(), 600);
+  EXPECT_DOUBLE_EQ(fbx.frame_rate, glb.frame_rate);
+  ASSERT_EQ(fbx_skeleton.name(0), skeleton.name(0));
+  // The root's path, frame by frame (the reader gives the file's centimetres back in the
+  // character's metres).
+  double worst_m = 0.0;
+  for (int f = 0; f < 600; ++f) {
+    worst_m = std::max(worst_m, (fbx.frames[f].translations[0] - glb.frames[f].translations[0]).norm());
+  }
+  EXPECT_LT(worst_m, 1e-5);
+}
+
+// A window whose context reaches back to frame 0 has no frame before it: it starts as the
+// first window does (it read a pose before the previous window's first frame, out of
+// bounds, and its results changed from run to run). With a context as long as the take
+// every window solves the whole take, so every window's core is the whole run's.
+TEST_F(PipelineWindowsCli, AWindowWhoseContextReachesFrameZeroStartsAsTheFirst) {
+  const std::string whole = testing::TempPath("whole_for_context"), windowed = testing::TempPath("wide_context");
+  std::string output;
+  ASSERT_EQ(Pipeline(whole, "--num_threads=1", &output), 0) << output;
+  ASSERT_EQ(Pipeline(windowed, "--num_threads=1 --window_frames=150 --window_context_frames=600", &output), 0)
+      << output;
+  EXPECT_TRUE(testing::ReadTextFile(whole + "/solved.bvh") == testing::ReadTextFile(windowed + "/solved.bvh"));
+}
+
 TEST_F(PipelineWindowsCli, RefusesWhatAWindowedTakeCannotWrite) {
   const std::string dir = testing::TempPath("refused");
   std::string output;
-  EXPECT_EQ(Pipeline(dir, "--window_frames=200 --formats=glb,fbx", &output), 1);
-  EXPECT_THAT(output, HasSubstr("--formats=fbx is not written for a windowed take"));
+  EXPECT_EQ(Pipeline(dir, "--window_frames=200 --formats=glb,bvh", &output), 1);
+  EXPECT_THAT(output, HasSubstr("--formats=bvh is not written for a windowed take"));
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
   EXPECT_EQ(Pipeline(dir, "--window_frames=200 --out_fps=30", &output), 1);
   EXPECT_THAT(output, HasSubstr("delivered whole"));
   struct stat st;
   EXPECT_NE(::stat(dir.c_str(), &st), 0) << "nothing written";
   // The same take within its window runs whole, as before.
-  ASSERT_EQ(Pipeline(dir, "--window_frames=600 --formats=glb,fbx", &output), 0) << output;
+  ASSERT_EQ(Pipeline(dir, "--window_frames=600 --formats=glb,bvh", &output), 0) << output;
   EXPECT_THAT(testing::ReadTextFile(dir + "/report.json"), ::testing::Not(HasSubstr("\"windows\"")));
 }
 
