@@ -7,6 +7,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_limits.h"
+#include "io/motion_samples.h"
 
 namespace mocapsolve {
 namespace {
@@ -38,16 +39,19 @@ void AppendNumber(double value, int precision, std::string* out) {
 // True if the translation of `joint` differs from its offset on `axis` in some frame.
 // Exact comparison: the reader copies the offset bit for bit into unanimated axes, and
 // anything else is real motion that must not be dropped.
-bool AxisAnimated(const Skeleton& skeleton, const Motion& motion, int joint, int axis) {
+// Samples: MotionSamples or CompactSamples (io/motion_samples.h).
+template <class Samples>
+bool AxisAnimated(const Skeleton& skeleton, const Samples& motion, int joint, int axis) {
   const double rest = skeleton.offset(joint)[axis];
-  for (const Pose& pose : motion.frames) {
-    if (pose.translations[joint][axis] != rest) return true;
+  for (int f = 0; f < motion.num_frames(); ++f) {
+    if (motion.translation(f, joint)[axis] != rest) return true;
   }
   return false;
 }
 
 // The channel list written for `joint` (see the header for the rules).
-std::vector<Channel> OutputChannels(const Skeleton& skeleton, const Motion& motion, int joint,
+template <class Samples>
+std::vector<Channel> OutputChannels(const Skeleton& skeleton, const Samples& motion, int joint,
                                     const std::optional<EulerOrder>& euler_order) {
   std::vector<Channel> channels = skeleton.joint(joint).channels;
   if (channels.empty()) {
@@ -301,13 +305,32 @@ Status CheckBvhWritable(const Skeleton& skeleton, const Motion& motion,
 Status BvhPieceWriter::Start(const Skeleton& skeleton, const Motion& first_piece, const BvhWriteOptions& options) {
   Status status = CheckBvhWritable(skeleton, first_piece, options);
   if (!status.ok()) return status;
+  StartChannels(skeleton, MotionSamples(first_piece), options);
+  first_piece_checked_ = true;
+  return Status::Ok();
+}
+
+Status BvhPieceWriter::Start(const Skeleton& skeleton, const CompactMotion& whole, const BvhWriteOptions& options) {
+  if (whole.empty()) return Status::Error("cannot write BVH: the motion has no frames");
+  Motion first;  // The checks of the skeleton and options; every piece's own in AppendFrames.
+  first.frame_rate = whole.frame_rate();
+  first.frames.push_back(whole.Frame(0));
+  Status status = CheckBvhWritable(skeleton, first, options);
+  if (!status.ok()) return status;
+  StartChannels(skeleton, CompactSamples(whole), options);
+  first_piece_checked_ = false;
+  return Status::Ok();
+}
+
+template <class Samples>
+void BvhPieceWriter::StartChannels(const Skeleton& skeleton, const Samples& motion, const BvhWriteOptions& options) {
   skeleton_ = &skeleton;
   options_ = options;
   const int num_joints = skeleton.num_joints();
   channels_.assign(num_joints, {});
   orders_.assign(num_joints, EulerOrder());
   for (int j = 0; j < num_joints; ++j) {
-    channels_[j] = OutputChannels(skeleton, first_piece, j, options.euler_order);
+    channels_[j] = OutputChannels(skeleton, motion, j, options.euler_order);
     orders_[j] = RotationOrder(channels_[j]);
   }
   std::string none;
@@ -315,7 +338,6 @@ Status BvhPieceWriter::Start(const Skeleton& skeleton, const Motion& first_piece
   joint_order_ = DepthFirstOrder(skeleton, hierarchy.children());
   previous_angles_.assign(num_joints, Eigen::Vector3d::Zero());
   frames_written_ = 0;
-  return Status::Ok();
 }
 
 std::string BvhPieceWriter::Header(int frames, double frame_rate) const {
@@ -333,13 +355,15 @@ std::string BvhPieceWriter::Header(int frames, double frame_rate) const {
 }
 
 Status BvhPieceWriter::AppendFrames(const Motion& piece, int first, int count, std::string* out) {
-  if (frames_written_ > 0) {  // The first piece was checked by Start.
+  if (frames_written_ > 0 || !first_piece_checked_) {
     Status status = CheckBvhWritable(*skeleton_, piece, options_);
     if (!status.ok()) return status;
-    for (int j = 0; j < skeleton_->num_joints(); ++j) {
-      if (OutputChannels(*skeleton_, piece, j, options_.euler_order) != channels_[j]) {
-        return Status::Error("cannot write BVH: joint " + skeleton_->name(j) +
-                             " moves on an axis with no channel in the first piece's frames");
+    for (int j = 0; j < skeleton_->num_joints(); ++j) {  // Its channels among Start's.
+      for (Channel c : OutputChannels(*skeleton_, MotionSamples(piece), j, options_.euler_order)) {
+        if (std::find(channels_[j].begin(), channels_[j].end(), c) == channels_[j].end()) {
+          return Status::Error("cannot write BVH: joint " + skeleton_->name(j) +
+                               " moves on an axis with no channel in the first piece's frames");
+        }
       }
     }
   }
@@ -393,6 +417,27 @@ Status WriteBvh(const std::string& path, const Skeleton& skeleton, const Motion&
     return Status::Error(path + ": " + s.message());
   }
   return WriteFileAtomically(path, FormatBvh(skeleton, motion, options));
+}
+
+Status WriteBvh(const std::string& path, const Skeleton& skeleton, const CompactMotion& motion,
+                const BvhWriteOptions& options) {
+  constexpr int kPieceFrames = 1024;  // ~4 MB of Xbot's Motion and ~1 MB of its text at a time.
+  BvhPieceWriter writer;
+  Status status = writer.Start(skeleton, motion, options);
+  AtomicFileWriter file;
+  if (status.ok()) status = file.Open(path);
+  std::string text = status.ok() ? writer.Header(motion.num_frames(), motion.frame_rate()) : "";
+  Motion piece;
+  piece.frame_rate = motion.frame_rate();
+  for (int first = 0; status.ok() && first < motion.num_frames(); first += kPieceFrames) {
+    piece.frames.resize(std::min(kPieceFrames, motion.num_frames() - first));
+    for (size_t f = 0; f < piece.frames.size(); ++f) motion.Frame(first + static_cast<int>(f), &piece.frames[f]);
+    status = writer.AppendFrames(piece, 0, piece.num_frames(), &text);
+    if (status.ok()) status = file.Append(text);
+    text.clear();
+  }
+  if (status.ok()) status = file.Close();
+  return status.ok() ? status : Status::Error(path + ": " + status.message());
 }
 
 }  // namespace mocapsolve

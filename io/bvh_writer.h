@@ -43,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "kinematics/compact_motion.h"
 #include "kinematics/motion.h"
 #include "kinematics/rotation.h"
 #include "kinematics/skeleton.h"
@@ -75,6 +76,9 @@ std::string FormatBvh(const Skeleton& skeleton, const Motion& motion,
 class BvhPieceWriter {
  public:
   Status Start(const Skeleton& skeleton, const Motion& first_piece, const BvhWriteOptions& options = {});
+  // The channels from the whole motion, compact (as FormatBvh from its ToMotion()); then
+  // every piece appended is checked, the first too.
+  Status Start(const Skeleton& skeleton, const CompactMotion& whole, const BvhWriteOptions& options = {});
   std::string Header(int frames, double frame_rate) const;
   Status AppendFrames(const Motion& piece, int first, int count, std::string* out);
 
@@ -86,10 +90,18 @@ class BvhPieceWriter {
   std::vector<int> joint_order_;
   std::vector<Eigen::Vector3d> previous_angles_;
   long long frames_written_ = 0;
+  bool first_piece_checked_ = false;  // By Start(Motion).
+
+  template <class Samples>
+  void StartChannels(const Skeleton& skeleton, const Samples& motion, const BvhWriteOptions& options);
 };
 
 // Formats and writes through WriteFileAtomically (io/atomic_file.h).
 Status WriteBvh(const std::string& path, const Skeleton& skeleton, const Motion& motion,
+                const BvhWriteOptions& options = BvhWriteOptions());
+// The same bytes from a CompactMotion (kinematics/compact_motion.h), expanded and formatted
+// a piece at a time into an AtomicFileWriter: a long take's text is never whole in memory.
+Status WriteBvh(const std::string& path, const Skeleton& skeleton, const CompactMotion& motion,
                 const BvhWriteOptions& options = BvhWriteOptions());
 
 }  // namespace mocapsolve

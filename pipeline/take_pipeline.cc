@@ -539,8 +539,8 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
     return status.ok() ? status : Status::Error("write: " + status.message());
   }
   status = WriteMarkerFile(RepairedMarkersPath(out_dir, inputs.markers_path), result.repaired_file);
-  if (status.ok()) {  // The solve expanded for its file only (the BVH text is made whole).
-    status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved.ToMotion(), BvhWriteOptions());
+  if (status.ok()) {  // From the compact solve, a piece at a time.
+    status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved, BvhWriteOptions());
   }
   GltfWriteOptions gltf;
   gltf.animation_only = character_files.animation_only;
@@ -558,8 +558,9 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
                                          character_files.fbx_key_tolerance_mm)
                      : WriteFbxCharacter(path, c.character, c.delivered, inputs.name, character_files.animation_only,
                                          character_files.fbx_key_tolerance_mm);
-      } else if (format == "bvh") {  // Expands it (the BVH text is made whole).
-        status = WriteBvh(path, c.character.skeleton, c.delivered_motion(), BvhWriteOptions());
+      } else if (format == "bvh") {
+        status = c.delivered_is_clip ? WriteBvh(path, c.character.skeleton, c.take, BvhWriteOptions())
+                                     : WriteBvh(path, c.character.skeleton, c.delivered, BvhWriteOptions());
       } else {
         status = Status::Error("--formats: unknown '" + format + "' (glb, fbx, bvh)");
       }

@@ -287,14 +287,11 @@ void KeepRepairedCore(const TakeResult& window, const FrameWindow& w, MarkerTraj
 
 // What a windowed take cannot do yet; one line each.
 Status CheckWindowedTake(const TakeInputs& inputs, const TakePipelineOptions& options,
-                         const CharacterFileOptions& files, const MarkerTrajectories& file) {
+                         const MarkerTrajectories& file) {
   const std::string take = inputs.markers_path + " (" + std::to_string(file.num_frames()) + " frames, over --window_frames=" +
                            std::to_string(options.window_frames) + ")";
   if (!options.delivery.keeps_clip()) {
     return Status::Error(take + ": a windowed take is delivered whole (no --frames, --seconds or --out_fps)");
-  }
-  for (const std::string& format : files.formats) {
-    if (format == "bvh") return Status::Error(take + ": --formats=bvh is not written for a windowed take (glb, fbx)");
   }
   const std::vector<std::string> missing = SubjectLabelsMissing(*inputs.subject, file);
   if (options.label == "always" || (options.label == "auto" && !missing.empty())) {
@@ -430,7 +427,7 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   MarkerTrajectories file;  // Read whole once; each window's repaired core goes back into it.
   status = ReadMarkerFileForSubject(*inputs.subject, inputs.markers_path, &file);
   if (!status.ok()) return Status::Error("read: " + status.message());
-  status = CheckWindowedTake(inputs, options, files, file);
+  status = CheckWindowedTake(inputs, options, file);
   if (status.ok()) status = ReadTakeCharacters(inputs, &result->characters);
   if (!status.ok()) return status;
   const int frames = result->frames = file.num_frames();
@@ -507,12 +504,17 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   gltf.animation_only = files.animation_only;
   for (CharacterOutput& c : result->characters) {
     c.delivered_is_clip = true;  // The report's delivered frames: the compact take's.
-    for (const std::string& format : files.formats) {  // From the compact take (CheckWindowedTake).
+    for (const std::string& format : files.formats) {  // From the compact take, as the whole run's.
       if (!status.ok()) break;
       const std::string path = CharacterFormatPath(out_dir, c.path, format);
-      status = format == "glb" ? WriteGltfWithAnimation(c.document, c.character, c.take, inputs.name, path, gltf)
-                               : WriteFbxCharacter(path, c.character, c.take, inputs.name, files.animation_only,
-                                                   files.fbx_key_tolerance_mm);
+      if (format == "glb") {
+        status = WriteGltfWithAnimation(c.document, c.character, c.take, inputs.name, path, gltf);
+      } else if (format == "fbx") {
+        status = WriteFbxCharacter(path, c.character, c.take, inputs.name, files.animation_only,
+                                   files.fbx_key_tolerance_mm);
+      } else {
+        status = WriteBvh(path, c.character.skeleton, c.take, BvhWriteOptions());
+      }
     }
   }
   result->timings.push_back({"write", write_seconds + SecondsSince(write_start)});

@@ -23,7 +23,7 @@
 //                      the channels), then each core's MOTION lines as it is done (the
 //                      Euler angles continued across windows, io/bvh_writer.h);
 //   <character>.glb    each core's retargeted frames appended to the character's compact
-//   (and .fbx)         take (kinematics/compact_motion.h: Xbot 1.05 KB per frame), the files
+//   (.fbx, .bvh)       take (kinematics/compact_motion.h: Xbot 1.05 KB per frame), the files
 //                      written from it after the last window, one joint of one frame at a
 //                      time (io/motion_samples.h);
 //   report.json        (WriteTakeOutputs) the windows' figures combined: RMS from the
@@ -38,8 +38,8 @@
 //                      and the seam check.
 // Every file is atomic (io/atomic_file.h: AtomicFileWriter, inside the command's
 // FileTransaction). Refused for a windowed take, with one line: labelling its points first
-// (label the file with `mocapsolve label`), a cut or resampled delivery, the character's
-// BVH file (--formats=bvh: its text is made whole), and the take's page (view.html).
+// (label the file with `mocapsolve label`), a cut or resampled delivery, and the take's
+// page (view.html).
 #ifndef MOCAPSOLVE_PIPELINE_TAKE_WINDOWS_H_
 #define MOCAPSOLVE_PIPELINE_TAKE_WINDOWS_H_
 

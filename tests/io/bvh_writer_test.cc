@@ -14,6 +14,7 @@
 
 #include "io/atomic_file.h"
 #include "io/bvh_reader.h"
+#include "kinematics/compact_motion.h"
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/rotation.h"
 #include "tests/test_support.h"
@@ -276,6 +277,26 @@ TEST(BvhWriter, PiecesMakeTheWholeText) {
   const Status moved = writer.AppendFrames(second, 0, 1, &more);
   EXPECT_FALSE(moved.ok());
   EXPECT_NE(moved.message().find("Chest"), std::string::npos) << moved.message();
+}
+
+// A compact motion is written a piece of 1,024 frames at a time, its channels from the
+// whole motion: the bytes of FormatBvh of it expanded, even when a joint's translation moves
+// only in a later piece (Chest has no position channel and gets three).
+TEST(BvhWriter, CompactMotionInPiecesIsTheWholeText) {
+  const Skeleton skeleton = TwoJoints();
+  Motion motion = RandomMotion(skeleton, 2500, 7);
+  for (int f = 2100; f < 2200; ++f) motion.frames[f].translations[1].x() += 0.01 * (f - 2100);
+  const CompactMotion compact(motion);
+  const std::string path = testing::TempPath("compact.bvh");
+  ASSERT_TRUE(WriteBvh(path, skeleton, compact).ok());
+  const std::string text = testing::ReadTextFile(path);
+  EXPECT_EQ(text, FormatBvh(skeleton, compact.ToMotion()));
+  EXPECT_NE(text.find("CHANNELS 6 Xposition Yposition Zposition"), text.rfind("CHANNELS 6 Xposition"))
+      << "Chest gets position channels";
+  const std::string empty = testing::TempPath("empty.bvh");
+  EXPECT_FALSE(WriteBvh(empty, skeleton, CompactMotion()).ok());
+  struct stat st;
+  EXPECT_NE(::stat(empty.c_str(), &st), 0) << "nothing written";
 }
 
 TEST(BvhWriter, ScaleMultipliesLengthsOnly) {
