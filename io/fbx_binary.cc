@@ -31,37 +31,90 @@ void Append(std::string* out, T value) {
   out->append(bytes, sizeof(T));
 }
 
-void PutUint32(std::string* out, size_t at, uint32_t value) { std::memcpy(&(*out)[at], &value, 4); }
-
 bool AlwaysClosed(const std::string& name) {  // Records the SDK closes with a null record.
   return name == "AnimationStack" || name == "AnimationLayer";
 }
 
-// Appends `node` (its end offset computed from out->size(), the absolute file offset).
-Status EncodeNode(const Node& node, bool is_last, std::string* out) {
+// Whether a null record closes `node` (see the header).
+bool Closed(const Node& node, bool is_last) {
+  return !node.children().empty() || (node.num_properties() == 0 && !is_last) || AlwaysClosed(node.name());
+}
+
+Status CheckNames(const Node& node) {
   if (node.name().size() > 255) return Status::Error("FBX record name over 255 bytes: " + node.name().substr(0, 40));
-  const size_t start = out->size();
-  Append<uint32_t>(out, 0);  // End offset, patched below.
-  Append<uint32_t>(out, static_cast<uint32_t>(node.num_properties()));
-  if (node.properties().size() > std::numeric_limits<uint32_t>::max()) {
-    return Status::Error("FBX record '" + node.name() + "': properties over 4 GiB");
+  for (const auto& child : node.children()) {
+    if (Status s = CheckNames(*child); !s.ok()) return s;
   }
-  Append<uint32_t>(out, static_cast<uint32_t>(node.properties().size()));
-  Append<uint8_t>(out, static_cast<uint8_t>(node.name().size()));
-  out->append(node.name());
-  out->append(node.properties());
-  const auto& children = node.children();
-  for (size_t c = 0; c < children.size(); ++c) {
-    if (Status s = EncodeNode(*children[c], c + 1 == children.size(), out); !s.ok()) return s;
-  }
-  if (!children.empty() || (node.num_properties() == 0 && !is_last) || AlwaysClosed(node.name())) {
-    out->append(kNullRecordSize, '\0');
-  }
-  if (out->size() > std::numeric_limits<uint32_t>::max()) {
-    return Status::Error("FBX file over 4 GiB (FBX 7.4 records hold 32-bit offsets)");
-  }
-  PutUint32(out, start, static_cast<uint32_t>(out->size()));
   return Status::Ok();
+}
+
+// The bytes `node` takes in the file, its children and closing null record included.
+uint64_t EncodedSize(const Node& node, bool is_last) {
+  uint64_t size = 13 + node.name().size() + node.properties().size();
+  const auto& children = node.children();
+  for (size_t c = 0; c < children.size(); ++c) size += EncodedSize(*children[c], c + 1 == children.size());
+  return size + (Closed(node, is_last) ? kNullRecordSize : 0);
+}
+
+// The file's bytes handed to a sink in pieces of about a megabyte (a longer record's
+// properties alone); `offset` is the
+// absolute file offset of the next byte, from which each record's end offset follows.
+class Encoder {
+ public:
+  static constexpr size_t kPiece = 1 << 20;
+  explicit Encoder(const ByteSink& sink) : sink_(sink) {}
+  void Add(std::string_view bytes) {
+    offset_ += bytes.size();
+    if (bytes.size() >= kPiece) {  // A long array's record properties: handed on, not copied.
+      Flush();
+      if (status_.ok()) status_ = sink_(bytes);
+      return;
+    }
+    pending_.append(bytes);
+    if (pending_.size() >= kPiece) Flush();
+  }
+  template <typename T>
+  void AddValue(T value) {
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));
+    Add(std::string_view(bytes, sizeof(T)));
+  }
+  // `node` and its children; the sizes were checked against 4 GiB before the first byte.
+  void AddNode(const Node& node, bool is_last) {
+    AddValue<uint32_t>(static_cast<uint32_t>(offset_ + EncodedSize(node, is_last)));
+    AddValue<uint32_t>(static_cast<uint32_t>(node.num_properties()));
+    AddValue<uint32_t>(static_cast<uint32_t>(node.properties().size()));
+    AddValue<uint8_t>(static_cast<uint8_t>(node.name().size()));
+    Add(node.name());
+    Add(node.properties());
+    const auto& children = node.children();
+    for (size_t c = 0; c < children.size(); ++c) AddNode(*children[c], c + 1 == children.size());
+    if (Closed(node, is_last)) Add(std::string(kNullRecordSize, '\0'));
+  }
+  uint64_t offset() const { return offset_; }
+  void Flush() {
+    if (status_.ok() && !pending_.empty()) status_ = sink_(pending_);
+    pending_.clear();
+  }
+  const Status& status() const { return status_; }
+
+ private:
+  const ByteSink& sink_;
+  std::string pending_;
+  uint64_t offset_ = 0;
+  Status status_ = Status::Ok();
+};
+
+// The footer after `end` bytes of header and records: its padding makes the bytes before
+// the version a multiple of 16 (1..16 bytes: a full 16 when already aligned).
+std::string Footer(uint64_t end) {
+  std::string footer(reinterpret_cast<const char*>(kFooterId), sizeof kFooterId);
+  footer.append(4, '\0');
+  footer.append(16 - (end + footer.size()) % 16, '\0');
+  Append<uint32_t>(&footer, kFbxVersion);
+  footer.append(120, '\0');
+  footer.append(reinterpret_cast<const char*>(kFooterMagic), sizeof kFooterMagic);
+  return footer;
 }
 
 }  // namespace
@@ -171,27 +224,35 @@ Node& Node::DoubleArray(const std::vector<double>& values) {
 std::string_view FileIdBytes() { return {reinterpret_cast<const char*>(kFileId), sizeof kFileId}; }
 std::string_view CreationTimeString() { return kCreationTime; }
 
-Status EncodeFbxBinary(const std::vector<const Node*>& top_level, std::string* bytes) {
-  std::string out(kMagic, kMagicSize);
-  Append<uint32_t>(&out, kFbxVersion);
+Status EncodeFbxBinary(const std::vector<const Node*>& top_level, const ByteSink& sink) {
+  // The top level is the children of an unnamed root record, which is never written: its
+  // children are closed by a null record like any other record's.
+  uint64_t end = kMagicSize + 4 + kNullRecordSize;
   for (size_t i = 0; i < top_level.size(); ++i) {
-    // The top level is the children of an unnamed root record, which is never written:
-    // its children are closed by a null record like any other record's.
-    if (Status s = EncodeNode(*top_level[i], i + 1 == top_level.size(), &out); !s.ok()) return s;
+    if (Status s = CheckNames(*top_level[i]); !s.ok()) return s;
+    end += EncodedSize(*top_level[i], i + 1 == top_level.size());
   }
-  out.append(kNullRecordSize, '\0');
-  out.append(reinterpret_cast<const char*>(kFooterId), sizeof kFooterId);
-  out.append(4, '\0');
-  const size_t pad = 16 - out.size() % 16;  // 1..16: a full 16 when already aligned.
-  out.append(pad, '\0');
-  Append<uint32_t>(&out, kFbxVersion);
-  out.append(120, '\0');
-  out.append(reinterpret_cast<const char*>(kFooterMagic), sizeof kFooterMagic);
-  if (out.size() > std::numeric_limits<uint32_t>::max()) {
+  if (end + Footer(end).size() > std::numeric_limits<uint32_t>::max()) {
     return Status::Error("FBX file over 4 GiB (FBX 7.4 records hold 32-bit offsets)");
   }
-  *bytes = std::move(out);
-  return Status::Ok();
+  Encoder encoder(sink);
+  encoder.Add(std::string_view(kMagic, kMagicSize));
+  encoder.AddValue<uint32_t>(kFbxVersion);
+  for (size_t i = 0; i < top_level.size(); ++i) encoder.AddNode(*top_level[i], i + 1 == top_level.size());
+  encoder.Add(std::string(kNullRecordSize, '\0'));
+  encoder.Add(Footer(encoder.offset()));
+  encoder.Flush();
+  return encoder.status();
+}
+
+Status EncodeFbxBinary(const std::vector<const Node*>& top_level, std::string* bytes) {
+  std::string out;
+  Status status = EncodeFbxBinary(top_level, [&out](std::string_view piece) {
+    out.append(piece);
+    return Status::Ok();
+  });
+  if (status.ok()) *bytes = std::move(out);
+  return status;
 }
 
 }  // namespace mocapsolve::fbx

@@ -25,6 +25,7 @@
 #define MOCAPSOLVE_IO_FBX_BINARY_H_
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -77,6 +78,12 @@ constexpr int kFbxVersion = 7400;
 // The file: the header, `top_level` records in order, the footer. Errors: a record name
 // over 255 bytes, or a file over 4 GiB (32-bit offsets).
 Status EncodeFbxBinary(const std::vector<const Node*>& top_level, std::string* bytes);
+// The same bytes handed to `sink` in order, in pieces of about a megabyte (a record's
+// properties over that in a piece of their own): a long take's file is never whole in
+// memory. Every size is checked before the first piece; the sink's first error ends the
+// encoding and is returned.
+using ByteSink = std::function<Status(std::string_view)>;
+Status EncodeFbxBinary(const std::vector<const Node*>& top_level, const ByteSink& sink);
 
 // The FileId, CreationTime and footer id that belong together (see above).
 std::string_view FileIdBytes();

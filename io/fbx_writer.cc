@@ -106,7 +106,8 @@ class SceneBuilder {
                const FbxSkinnedMesh* mesh)
       : skeleton_(skeleton), motion_(motion), options_(options), mesh_(mesh) {}
 
-  Status Build(std::string* bytes);
+  // The file's bytes to `sink` (fbx::EncodeFbxBinary).
+  Status Build(const fbx::ByteSink& sink);
 
  private:
   int64_t NewId() { return next_id_++; }
@@ -560,7 +561,7 @@ void SceneBuilder<Samples>::AddMesh(const std::vector<int64_t>& joint_models) {
 }
 
 template <class Samples>
-Status SceneBuilder<Samples>::Build(std::string* bytes) {
+Status SceneBuilder<Samples>::Build(const fbx::ByteSink& sink) {
   const int nj = skeleton_.num_joints();
   const int nf = motion_.num_frames();
   time_stop_ = KeyTime(nf - 1);
@@ -639,7 +640,7 @@ Status SceneBuilder<Samples>::Build(std::string* bytes) {
   take.AddChild("ReferenceTime").Int64(0).Int64(time_stop_);
   std::vector<const Node*> pointers;
   for (const Node& node : top) pointers.push_back(&node);
-  return fbx::EncodeFbxBinary(pointers, bytes);
+  return fbx::EncodeFbxBinary(pointers, sink);
 }
 
 Status CheckDepth(int depth, const std::string& what, const std::string& name) {
@@ -709,17 +710,30 @@ Status SerializeSamples(const Skeleton& skeleton, const Samples& motion, const F
     return Status::Error("cannot write FBX: " + s.message());
   }
   SceneBuilder<Samples> builder(skeleton, motion, options, mesh);
-  return builder.Build(bytes);
+  std::string out;
+  Status status = builder.Build([&out](std::string_view piece) {
+    out.append(piece);
+    return Status::Ok();
+  });
+  if (status.ok()) *bytes = std::move(out);
+  return status;
 }
 
+// Straight into the file (AtomicFileWriter), a megabyte at a time: a long take's bytes are
+// never whole in memory beside its scene's records.
 template <class Samples>
 Status WriteSamples(const std::string& path, const Skeleton& skeleton, const Samples& motion,
                     const FbxWriteOptions& options, const FbxSkinnedMesh* mesh) {
-  std::string bytes;
-  if (Status s = SerializeSamples(skeleton, motion, options, mesh, &bytes); !s.ok()) {
-    return Status::Error(path + ": " + s.message());
+  Status status = CheckWritable(skeleton, motion, options, mesh);
+  if (!status.ok()) return Status::Error(path + ": cannot write FBX: " + status.message());
+  AtomicFileWriter file;
+  status = file.Open(path);
+  if (status.ok()) {
+    SceneBuilder<Samples> builder(skeleton, motion, options, mesh);
+    status = builder.Build([&file](std::string_view piece) { return file.Append(piece.data(), piece.size()); });
   }
-  return WriteFileAtomically(path, bytes);
+  if (status.ok()) status = file.Close();
+  return status.ok() || status.message().rfind(path, 0) == 0 ? status : Status::Error(path + ": " + status.message());
 }
 
 template <class Samples>

@@ -11,6 +11,7 @@
 #include <zlib.h>
 
 #include "io/atomic_file.h"
+#include "io/fbx_binary.h"
 #include "io/fbx_reader.h"
 #include "io/gltf_reader.h"
 #include "io/gltf_writer.h"
@@ -557,6 +558,40 @@ TEST(FbxWriter, XbotCharacterRoundTrip) {
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(info.meshes, 0);
   CompareWorldPositions(character.skeleton, motion, back, back_motion, 1e-5);
+}
+
+// The encoder hands a sink the bytes it would return whole, in order, in pieces of about a
+// megabyte (a long take's file written straight to disk), and the sink's first error ends it.
+TEST(FbxBinary, SinkGetsTheWholeBytesInPieces) {
+  fbx::Node objects("Objects");
+  std::vector<float> noise(3'000'000);  // Incompressible enough to stay megabytes.
+  uint32_t state = 1;
+  for (float& v : noise) v = static_cast<float>((state = state * 1664525u + 1013904223u) >> 8);
+  objects.AddChild("AnimationCurve").Int64(7).FloatArray(noise);
+  objects.AddChild("AnimationStack").Int64(8);
+  fbx::Node takes("Takes");
+  takes.AddChild("Current").String("clip");
+  const std::vector<const fbx::Node*> top = {&objects, &takes};
+  std::string whole;
+  ASSERT_TRUE(fbx::EncodeFbxBinary(top, &whole).ok());
+  std::string joined;
+  int pieces = 0;
+  ASSERT_TRUE(fbx::EncodeFbxBinary(top, [&](std::string_view piece) {
+                ++pieces;
+                EXPECT_LE(piece.size(), 13u << 20);
+                joined.append(piece);
+                return Status::Ok();
+              }).ok());
+  EXPECT_EQ(joined, whole);
+  EXPECT_GT(pieces, 2);
+  int calls = 0;
+  const Status failed = fbx::EncodeFbxBinary(top, [&](std::string_view) {
+    ++calls;
+    return Status::Error("disk full");
+  });
+  EXPECT_FALSE(failed.ok());
+  EXPECT_EQ(failed.message(), "disk full");
+  EXPECT_EQ(calls, 1);
 }
 
 // A character's take written from its CompactMotion (a windowed pipeline's long take, read
