@@ -52,7 +52,10 @@
 //     side's lowest leg point is within 0.06 of the floor: a sprint's feet are in the air
 //     most of the take); the upper arm is the side's cluster above the
 //     pelvis most rigidly joined to the chest (or head), the forearm and hand follow it the
-//     same way. A cluster left over takes the role of the cluster it moves most rigidly with.
+//     same way; a side whose only such points sit at shoulder height (median h > 0.72: a
+//     Helen Hayes / Davis acromion beside C7, no elbow or wrist marker) has no arm, and its
+//     points join the trunk (chest). A cluster left over takes the role of the cluster it
+//     moves most rigidly with.
 //  6. Confidence per marker, in [0, 1]: its cluster's separation (own mean spread against
 //     the nearest other cluster's), times 0.6 for a one-marker cluster, 0.5 for a leftover
 //     role, 0.7 when the side is unclear (|side| < 3 cm, and no joint links it to a sided
