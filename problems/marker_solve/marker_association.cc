@@ -259,7 +259,12 @@ void DetectUp(Scene* scene) {
 // Step 3: a body 0.9-2.3 m tall (the file's unit when it gives 0.8-2.5 m).
 Status DetectUnit(const std::string& path, Scene* scene, MarkerAssociation* out) {
   const LengthUnit file = scene->take->unit;
-  if (file.known() && scene->extent * file.metres_per_unit >= 0.8 && scene->extent * file.metres_per_unit <= 2.5) {
+  // The file's unit, when it makes the points 0.3-2.5 m tall: a whole body, or part of one
+  // (a lower-body set spans pelvis to heels, 0.7-1.0 m for an adult, less for a child or in
+  // a sprint's flight; before, such a set was read in inches or refused). A unit wrong by
+  // 10x makes 0.17 or 17 m of a body, and is searched for.
+  const double in_file = scene->extent * file.metres_per_unit;
+  if (file.known() && in_file >= 0.3 && in_file <= 2.5) {
     out->unit = file;
   } else {
     double best = kInf;

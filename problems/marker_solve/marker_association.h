@@ -28,8 +28,9 @@
 //     (median over frames), and where that is not clear (within 20 %) the floor: the lowest
 //     point's height varies less over the take than the highest's.
 //  3. Units. The median vertical extent E (file units) is a body 0.9-2.3 m tall: the file's
-//     unit when E in it falls in [0.8, 2.5] m, else the first of mm, cm, m, inch that does
-//     (nearest 1.6 m); none: an error that names the extent.
+//     unit when E in it falls in [0.3, 2.5] m (part of a body too: a lower-body set, a
+//     child), else the first of mm, cm, m, inch that does (nearest 1.6 m); none: an error
+//     that names the extent.
 //  4. Rigid clusters (rigid_marker_clusters.h).
 //  5. Layout. Heights h (above the floor: the 2nd percentile of the lowest point, divided by
 //     the stature: E, or, when the top is no head, the top's height over 0.86: a gait set

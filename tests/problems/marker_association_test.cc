@@ -301,6 +301,29 @@ TEST(MarkerAssociationTest, ShouldersWithoutArmsAreTheChest) {
   EXPECT_EQ(trunk, 9);
 }
 
+// A lower-body set (no marker above the pelvis) of a child (the demo walk at 0.6 of its
+// size), in a file that says cm: its points span 0.5-0.6 m, a whole body in no unit, so the
+// file's unit was refused ("a body in no unit"); it is read in the file's unit now.
+TEST(MarkerAssociationTest, AChildsLowerBodySetKeepsTheFilesUnit) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  Take take = MakeTakeOf(skeleton, MakeDemoWalk(skeleton, 240, 60.0), false, true,
+                         {"Spine", "Chest", "Neck", "Head", "LeftShoulder", "LeftArm", "LeftForeArm", "LeftHand",
+                          "RightShoulder", "RightArm", "RightForeArm", "RightHand"});
+  MarkerTrajectories& points = take.trajectories;
+  for (int f = 0; f < points.num_frames(); ++f) {
+    for (int m = 0; m < points.num_markers(); ++m) {
+      if (points.valid(f, m)) points.SetSample(f, m, 0.6 * points.position(f, m));
+    }
+  }
+  MarkerAssociation association;
+  const Status status = AssociateMarkers(points, "child.c3d", MarkerAssociationOptions(), &association);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(association.unit.name, "cm");
+  EXPECT_FALSE(association.unit_from_data);
+  EXPECT_LT(association.height_m, 0.8);
+  EXPECT_EQ(association.up_axis, 1);
+}
+
 // A lab's model outputs written as points (Nexus joint angles in degrees, a force in N/kg, a
 // power in W/kg, a moment in N mm/kg: numbers, not positions) beside the walk in mm, walked
 // on a treadmill at the file's origin: the angle-like points sit among the feet.
