@@ -30,8 +30,10 @@ struct RetargetSettings {
   std::string stride = "height";     // height | legs (problems/retarget/stride_scale.h).
   std::string foot_joints;      // Comma-separated source joints; "" = names with foot/toe/ankle.
   int subsample = 128;
-  int iterations = 10;
-  double lambda = 5.0;
+  // 5 iterations at damping 2.5 reach the final cost of 10 at 5 (bench/retarget_quality_table.sh: the
+  // same figures on 18 pairs; BENCHMARKS.md, issue 35) in half the time.
+  int iterations = 5;
+  double lambda = 2.5;
   std::string blend_mask = "auto";  // auto | JSON {"position_joints": [...]}.
   double mapping_normal_weight = 0.0;
   bool transfer_normals = true;

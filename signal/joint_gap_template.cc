@@ -50,6 +50,41 @@ double MatchCost(const Skeleton& skeleton, const Motion& motion, const std::vect
   return sum / counted;
 }
 
+// A lower bound of SquaredAngle without its atan2: with c = |p . q| / (|p| |q|) the cosine
+// of half the angle, angle^2 >= 4 sin^2(angle / 2) = 4 (1 - c^2) (sin x <= x on [0, pi/2]);
+// shrunk by far more than its rounding so it stays below SquaredAngle as computed.
+double SquaredAngleLowerBound(const Eigen::Quaterniond& p, const Eigen::Quaterniond& q) {
+  const double c = p.coeffs().dot(q.coeffs());
+  const double sin2 = 1.0 - c * c / (p.coeffs().squaredNorm() * q.coeffs().squaredNorm());
+  return 4.0 * sin2 * (1.0 - 1e-9) - 1e-10;
+}
+
+// False when MatchCost is sure to be +inf: the shift's source frames do not qualify, or the
+// window's sum of lower bounds already passes the cut MatchCost stops at. Cheap (no atan2),
+// so the exact cost is computed only for the few shifts this does not rule out; the result
+// is MatchCost's either way.
+bool MayMatch(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
+              const CarriedJointRun& run, int lo, int hi, int tau, double best, double max_counted) {
+  const int frames = motion.num_frames(), j = run.joint;
+  const int a = run.first - 1, b = run.last + 1;
+  if (a + tau < 0 || b + tau >= frames) return false;
+  for (int f = a; f <= b; ++f) {
+    if (carried[j][f + tau]) return false;
+  }
+  const double cut = best * max_counted * (1.0 + 1e-9);
+  double sum = 0.0;
+  for (int f = std::max(lo, -tau); f <= std::min(hi, frames - 1 - tau); ++f) {
+    const int g = f + tau;
+    for (int k = 1; k < skeleton.num_joints(); ++k) {
+      if (skeleton.num_rotation_dofs(k) == 0 || (k == j && f > a && f < b)) continue;
+      if (carried[k][f] || carried[k][g]) continue;
+      sum += std::max(0.0, SquaredAngleLowerBound(motion.frames[f].rotations[k], motion.frames[g].rotations[k]));
+    }
+    if (sum > cut) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int FindTemplateShift(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
@@ -70,6 +105,7 @@ int FindTemplateShift(const Skeleton& skeleton, const Motion& motion, const std:
   const double max_counted = static_cast<double>(rotating) * (hi - lo + 1);
   for (int tau = min_tau; tau <= max_tau; ++tau) {
     if (tau == 0) continue;
+    if (!MayMatch(skeleton, motion, carried, run, lo, hi, tau, best, max_counted)) continue;
     const double cost = MatchCost(skeleton, motion, carried, run, lo, hi, tau, best, max_counted);
     if (cost < best) {
       best = cost;

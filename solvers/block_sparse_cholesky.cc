@@ -6,6 +6,8 @@
 
 #include <glog/logging.h>
 
+#include "solvers/block_update_3x3.h"
+
 namespace mocapsolve {
 namespace {
 
@@ -13,6 +15,11 @@ namespace {
 template <int A, int B, int K>
 void Update(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, Eigen::Matrix3d* target) {
   target->topLeftCorner<A, B>().noalias() -= a.topLeftCorner<A, K>() * b.topLeftCorner<B, K>().transpose();
+}
+// The full block, the common one: written out (block_update_3x3.h), the same bits.
+template <>
+void Update<3, 3, 3>(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, Eigen::Matrix3d* target) {
+  SubtractProductTransposed3(a, b, target);
 }
 using UpdateKernel = void (*)(const Eigen::Matrix3d&, const Eigen::Matrix3d&, Eigen::Matrix3d*);
 #define MOCAPSOLVE_UPDATES(A, B) {Update<A, B, 1>, Update<A, B, 2>, Update<A, B, 3>}

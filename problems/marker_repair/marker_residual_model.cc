@@ -6,6 +6,7 @@
 
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/rotation.h"
+#include "signal/window_medians.h"
 
 namespace mocapsolve {
 namespace {
@@ -98,16 +99,11 @@ std::vector<Eigen::Vector3d> RunningMedian(int nf, int half, int stride, const V
   for (int f = 0; f < nf; f += stride) knots.push_back(f);
   if (knots.back() != nf - 1) knots.push_back(nf - 1);
   std::vector<Eigen::Vector3d> knot_values(knots.size());
-  std::vector<double> values;
-  for (size_t i = 0; i < knots.size(); ++i) {
-    const int f = knots[i], a = std::max(0, f - half), b = std::min(nf - 1, f + half);
-    for (int k = 0; k < 3; ++k) {
-      values.clear();
-      for (int g = a; g <= b; ++g) {
-        if (ok[g]) values.push_back(samples[g][k]);
-      }
-      knot_values[i][k] = values.empty() ? fallback[k] : Median(&values);
-    }
+  std::vector<double> component(nf, 0.0);
+  for (int k = 0; k < 3; ++k) {
+    for (int f = 0; f < nf; ++f) component[f] = ok[f] ? samples[f][k] : 0.0;
+    const std::vector<double> medians = WindowMedians(component, ok, knots, half, fallback[k]);
+    for (size_t i = 0; i < knots.size(); ++i) knot_values[i][k] = medians[i];
   }
   std::vector<Eigen::Vector3d> smooth(nf);
   for (size_t i = 0; i + 1 < knots.size(); ++i) {

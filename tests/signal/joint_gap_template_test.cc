@@ -2,7 +2,9 @@
 // the markers still see, and bent to meet both solved edges.
 #include "signal/joint_gap_template.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <gtest/gtest.h>
 
@@ -96,6 +98,86 @@ TEST(JointGapTemplate, NoneWhereTheMotionDoesNotRepeat) {
   EXPECT_EQ(FindTemplateShift(skeleton, motion, carried, run, JointTemplateOptions()), 0);
   // A run at the take's end has one solved side: no template either.
   EXPECT_EQ(FindTemplateShift(skeleton, Periodic(skeleton, 300), carried, {foot, 250, 299}, JointTemplateOptions()), 0);
+}
+
+// The search with every shift's cost computed in full (no early stop, no bound): the
+// shift FindTemplateShift must return, whatever it skips to get there.
+int BruteForceShift(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
+                    const CarriedJointRun& run, const JointTemplateOptions& options) {
+  const int frames = motion.num_frames(), j = run.joint, a = run.first - 1, b = run.last + 1;
+  const int lo = std::max(0, a - options.margin), hi = std::min(frames - 1, b + options.margin);
+  double best = options.max_rms_angle * options.max_rms_angle;
+  int best_tau = 0;
+  for (int tau = -a; tau <= frames - 1 - b; ++tau) {
+    if (tau == 0 || std::abs(tau) > options.max_shift_frames) continue;
+    bool source_observed = true;
+    for (int f = a; f <= b; ++f) source_observed = source_observed && !carried[j][f + tau];
+    if (!source_observed) continue;
+    double sum = 0.0;
+    int counted = 0, possible = 0;
+    for (int f = lo; f <= hi; ++f) {
+      const int g = f + tau;
+      if (g < 0 || g >= frames) {
+        possible += skeleton.num_joints();
+        continue;
+      }
+      for (int k = 1; k < skeleton.num_joints(); ++k) {
+        if (skeleton.num_rotation_dofs(k) == 0 || (k == j && f > a && f < b)) continue;
+        ++possible;
+        if (carried[k][f] || carried[k][g]) continue;
+        const double angle = motion.frames[f].rotations[k].angularDistance(motion.frames[g].rotations[k]);
+        sum += angle * angle;
+        ++counted;
+      }
+    }
+    if (counted == 0 || 2 * counted < possible) continue;
+    if (sum / counted < best) {
+      best = sum / counted;
+      best_tau = tau;
+    }
+  }
+  return best_tau;
+}
+
+// Many shifts qualify (a loose bound, noise on every joint, other joints carried too), so
+// the search's shortcuts (the early stop, the bound without atan2) decide most of them:
+// the shift found is the one every cost computed in full gives.
+TEST(JointGapTemplate, TheShortcutsFindTheShiftOfTheFullSearch) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int foot = skeleton.FindJoint("LeftFoot"), shin = skeleton.FindJoint("LeftLeg");
+  const int frames = 400;
+  Motion motion = Periodic(skeleton, frames);
+  uint64_t state = 12345;
+  const auto noise = [&state]() {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5;
+  };
+  for (int f = 0; f < frames; ++f) {
+    for (int k = 1; k < skeleton.num_joints(); ++k) {
+      const double size = 0.02 + 0.2 * (f % 37) / 37.0;
+      motion.frames[f].rotations[k] =
+          motion.frames[f].rotations[k] * ExpMap(size * Eigen::Vector3d(noise(), noise(), noise()));
+    }
+  }
+  std::vector<std::vector<char>> carried(skeleton.num_joints(), std::vector<char>(frames, 0));
+  for (int f = 60; f <= 90; ++f) carried[shin][f] = 1;
+  int found = 0;
+  for (const double max_rms : {0.05, 0.15, 0.4, 1.0, 3.0}) {
+    for (const CarriedJointRun& run : {CarriedJointRun{foot, 150, 209}, CarriedJointRun{foot, 30, 45},
+                                       CarriedJointRun{shin, 200, 260}, CarriedJointRun{foot, 330, 390}}) {
+      for (int f = run.first; f <= run.last; ++f) carried[run.joint][f] = 1;
+      JointTemplateOptions options;
+      options.max_rms_angle = max_rms;
+      options.max_shift_frames = 250;
+      const int expected = BruteForceShift(skeleton, motion, carried, run, options);
+      EXPECT_EQ(FindTemplateShift(skeleton, motion, carried, run, options), expected)
+          << "max_rms " << max_rms << " run " << run.joint << " " << run.first;
+      found += expected != 0 ? 1 : 0;
+      for (int f = run.first; f <= run.last; ++f) carried[run.joint][f] = 0;
+      for (int f = 60; f <= 90; ++f) carried[shin][f] = 1;
+    }
+  }
+  EXPECT_GE(found, 8);  // The case is not trivial: shifts are found.
 }
 
 }  // namespace
