@@ -437,7 +437,8 @@ Status WriteBvh(const std::string& path, const Skeleton& skeleton, const Compact
     text.clear();
   }
   if (status.ok()) status = file.Close();
-  return status.ok() ? status : Status::Error(path + ": " + status.message());
+  // The file's errors name it already; the writer's do not.
+  return status.ok() || status.message().rfind(path, 0) == 0 ? status : Status::Error(path + ": " + status.message());
 }
 
 }  // namespace mocapsolve

@@ -57,8 +57,8 @@ uint64_t EncodedSize(const Node& node, bool is_last) {
 }
 
 // The file's bytes handed to a sink in pieces of about a megabyte (a longer record's
-// properties alone); `offset` is the
-// absolute file offset of the next byte, from which each record's end offset follows.
+// properties alone); offset() is the absolute file offset of the next byte, from which each
+// record's end offset follows.
 class Encoder {
  public:
   static constexpr size_t kPiece = 1 << 20;
