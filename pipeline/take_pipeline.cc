@@ -528,6 +528,33 @@ Status MakeTakeResultView(const TakeInputs& inputs, const TakeResult& result, Vi
   return MakeTakeViewScene(view, scene);
 }
 
+Status WriteCharacterFiles(const std::string& out_dir, const std::string& take_name, const CharacterOutput& c,
+                           const CharacterFileOptions& files) {
+  GltfWriteOptions gltf;
+  gltf.animation_only = files.animation_only;
+  Status status = Status::Ok();
+  for (const std::string& format : files.formats) {
+    if (!status.ok()) break;
+    const std::string path = CharacterFormatPath(out_dir, c.path, format);
+    const bool compact = c.delivered_is_clip;
+    if (format == "glb") {
+      status = compact ? WriteGltfWithAnimation(c.document, c.character, c.take, take_name, path, gltf)
+                       : WriteGltfWithAnimation(c.document, c.character, c.delivered, take_name, path, gltf);
+    } else if (format == "fbx") {
+      status = compact ? WriteFbxCharacter(path, c.character, c.take, take_name, files.animation_only,
+                                           files.fbx_key_tolerance_mm)
+                       : WriteFbxCharacter(path, c.character, c.delivered, take_name, files.animation_only,
+                                           files.fbx_key_tolerance_mm);
+    } else if (format == "bvh") {
+      status = compact ? WriteBvh(path, c.character.skeleton, c.take, BvhWriteOptions())
+                       : WriteBvh(path, c.character.skeleton, c.delivered, BvhWriteOptions());
+    } else {
+      status = Status::Error("--formats: unknown '" + format + "' (glb, fbx, bvh)");
+    }
+  }
+  return status;
+}
+
 Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, const TakeResult& result,
                         const JsonObject& report, const std::string& view_path,
                         const CharacterFileOptions& character_files) {
@@ -542,29 +569,8 @@ Status WriteTakeOutputs(const std::string& out_dir, const TakeInputs& inputs, co
   if (status.ok()) {  // From the compact solve, a piece at a time.
     status = WriteBvh(SolvedMotionPath(out_dir), result.take.skeleton, result.solved, BvhWriteOptions());
   }
-  GltfWriteOptions gltf;
-  gltf.animation_only = character_files.animation_only;
   for (const CharacterOutput& c : result.characters) {
-    for (const std::string& format : character_files.formats) {
-      if (!status.ok()) break;
-      const std::string path = CharacterFormatPath(out_dir, c.path, format);
-      if (format == "glb") {  // From the compact take, frame by frame, when it is the delivered clip.
-        status = c.delivered_is_clip
-                     ? WriteGltfWithAnimation(c.document, c.character, c.take, inputs.name, path, gltf)
-                     : WriteGltfWithAnimation(c.document, c.character, c.delivered, inputs.name, path, gltf);
-      } else if (format == "fbx") {  // The same, read one joint of one frame at a time.
-        status = c.delivered_is_clip
-                     ? WriteFbxCharacter(path, c.character, c.take, inputs.name, character_files.animation_only,
-                                         character_files.fbx_key_tolerance_mm)
-                     : WriteFbxCharacter(path, c.character, c.delivered, inputs.name, character_files.animation_only,
-                                         character_files.fbx_key_tolerance_mm);
-      } else if (format == "bvh") {
-        status = c.delivered_is_clip ? WriteBvh(path, c.character.skeleton, c.take, BvhWriteOptions())
-                                     : WriteBvh(path, c.character.skeleton, c.delivered, BvhWriteOptions());
-      } else {
-        status = Status::Error("--formats: unknown '" + format + "' (glb, fbx, bvh)");
-      }
-    }
+    if (status.ok()) status = WriteCharacterFiles(out_dir, inputs.name, c, character_files);
   }
   if (status.ok()) status = WriteFileAtomically(InFolder(out_dir, "report.json"), report.ToString() + "\n");
   if (status.ok() && !view_path.empty()) {

@@ -240,6 +240,12 @@ Status CharacterFilesFromSettings(const DeliverySettings& delivery, bool animati
 std::string CharacterFormatPath(const std::string& out_dir, const std::string& character_path,
                                 const std::string& format);
 
+// Character `c`'s files, each of files.formats, into `out_dir` (CharacterFormatPath): from
+// its compact take when that is what is delivered (c.delivered_is_clip; read one joint of
+// one frame at a time, io/motion_samples.h), else from its delivered clip.
+Status WriteCharacterFiles(const std::string& out_dir, const std::string& take_name, const CharacterOutput& c,
+                           const CharacterFileOptions& files);
+
 // An error naming the character when one of its files would be another output (a
 // character named "solved" with bvh: DIR/solved.bvh); before any work, and again by
 // WriteTakeOutputs.

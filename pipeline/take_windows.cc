@@ -7,8 +7,6 @@
 
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
-#include "io/fbx_writer.h"
-#include "io/gltf_writer.h"
 #include "io/marker_file.h"
 #include "kinematics/forward_kinematics.h"
 #include "pipeline/in_order_worker.h"
@@ -500,22 +498,9 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   if (!status.ok()) return status;
   FinishFigures(options, sums, result);
   write_start = Clock::now();
-  GltfWriteOptions gltf;
-  gltf.animation_only = files.animation_only;
   for (CharacterOutput& c : result->characters) {
-    c.delivered_is_clip = true;  // The report's delivered frames: the compact take's.
-    for (const std::string& format : files.formats) {  // From the compact take, as the whole run's.
-      if (!status.ok()) break;
-      const std::string path = CharacterFormatPath(out_dir, c.path, format);
-      if (format == "glb") {
-        status = WriteGltfWithAnimation(c.document, c.character, c.take, inputs.name, path, gltf);
-      } else if (format == "fbx") {
-        status = WriteFbxCharacter(path, c.character, c.take, inputs.name, files.animation_only,
-                                   files.fbx_key_tolerance_mm);
-      } else {
-        status = WriteBvh(path, c.character.skeleton, c.take, BvhWriteOptions());
-      }
-    }
+    c.delivered_is_clip = true;  // The report's delivered frames and the files: the compact take.
+    if (status.ok()) status = WriteCharacterFiles(out_dir, inputs.name, c, files);
   }
   result->timings.push_back({"write", write_seconds + SecondsSince(write_start)});
   result->seconds = SecondsSince(start);
