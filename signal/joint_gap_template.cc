@@ -15,18 +15,25 @@ double SquaredAngle(const Eigen::Quaterniond& p, const Eigen::Quaterniond& q) {
   return angle * angle;
 }
 
-// Mean squared angle of the window at shift tau, or +inf if the shift does not qualify.
-// Also +inf as soon as the sum so far shows the mean cannot be below `best` (the sum only
+// Whether shift tau qualifies: the run's frames and the two around it, shifted by tau, lie
+// in the take and have the joint observed (not carried).
+bool SourceQualifies(int frames, const std::vector<std::vector<char>>& carried, const CarriedJointRun& run, int tau) {
+  const int a = run.first - 1, b = run.last + 1;
+  if (a + tau < 0 || b + tau >= frames) return false;
+  for (int f = a; f <= b; ++f) {
+    if (carried[run.joint][f + tau]) return false;
+  }
+  return true;
+}
+
+// Mean squared angle of the window at a qualifying shift tau (MayMatch checks it first).
+// +inf as soon as the sum so far shows the mean cannot be below `best` (the sum only
 // grows, and at most max_counted pairs count): such a shift would not be chosen anyway,
 // and most shifts are far off, so most windows stop after a few frames.
 double MatchCost(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
                  const CarriedJointRun& run, int lo, int hi, int tau, double best, double max_counted) {
   const int frames = motion.num_frames(), j = run.joint;
   const int a = run.first - 1, b = run.last + 1;
-  if (a + tau < 0 || b + tau >= frames) return std::numeric_limits<double>::infinity();
-  for (int f = a; f <= b; ++f) {
-    if (carried[j][f + tau]) return std::numeric_limits<double>::infinity();
-  }
   double sum = 0.0;
   int counted = 0, possible = 0;
   for (int f = lo; f <= hi; ++f) {
@@ -59,7 +66,7 @@ double SquaredAngleLowerBound(const Eigen::Quaterniond& p, const Eigen::Quaterni
   return 4.0 * sin2 * (1.0 - 1e-9) - 1e-10;
 }
 
-// False when MatchCost is sure to be +inf: the shift's source frames do not qualify, or the
+// False when the shift does not qualify (SourceQualifies) or MatchCost is sure to be +inf: the
 // window's sum of lower bounds already passes the cut MatchCost stops at. Cheap (no atan2),
 // so the exact cost is computed only for the few shifts this does not rule out; the result
 // is MatchCost's either way.
@@ -67,10 +74,7 @@ bool MayMatch(const Skeleton& skeleton, const Motion& motion, const std::vector<
               const CarriedJointRun& run, int lo, int hi, int tau, double best, double max_counted) {
   const int frames = motion.num_frames(), j = run.joint;
   const int a = run.first - 1, b = run.last + 1;
-  if (a + tau < 0 || b + tau >= frames) return false;
-  for (int f = a; f <= b; ++f) {
-    if (carried[j][f + tau]) return false;
-  }
+  if (!SourceQualifies(frames, carried, run, tau)) return false;
   const double cut = best * max_counted * (1.0 + 1e-9);
   double sum = 0.0;
   for (int f = std::max(lo, -tau); f <= std::min(hi, frames - 1 - tau); ++f) {
