@@ -514,21 +514,33 @@ std::vector<double> StanceHeights(const Layout& layout, const std::vector<std::v
   return leg_height;
 }
 
-// A side whose "arm" points all sit at shoulder height (median h above 0.72; a walk's
-// elbows sit near 0.62, its wrists near 0.48) is no arm: a Helen Hayes / Davis set puts
+// A side whose "arm" points all sit at a shoulder (median h above 0.72, a walk's elbows sit
+// near 0.62, its wrists near 0.48; and within kShoulderReach of the trunk's axis across
+// the floor, an acromion 0.15-0.22 m off it) is no arm: a Helen Hayes / Davis set puts
 // only an acromion there, beside C7 (BTS DAVIS: "l should", "c7"). Its clusters join the
 // trunk (the chest), or the arm roles would call one of two shoulder-height points a hand.
+// A whole arm held up (a squat's arms stretched forward, a free-form take's raised arm)
+// sits as high, but its forearm and hand reach beyond a shoulder, and it carries more points
+// than a shoulder (squat: 8-10 a side, 0.4-0.6 m out; nick_freeform_001: 10, 0.16-0.35 m):
+// it stays an arm.
 void ShoulderOnlyArmsToTrunk(const std::vector<std::vector<int>>& clusters, const Layout& layout,
                              std::vector<int>* group) {
   constexpr double kShoulderHeight = 0.72;
+  constexpr double kShoulderReach = 0.35;  // Metres.
+  constexpr size_t kShoulderPoints = 3;    // A shoulder's markers; an arm's upper arm, forearm and hand hold more.
   for (const int k : {0, 1}) {
-    bool any = false, low = false;
+    bool any = false, arm = false;
+    size_t points = 0;
     for (size_t c = 0; c < clusters.size(); ++c) {
       if ((*group)[c] != 2 || (ClusterMedian(clusters[c], layout.side) > 0.0 ? 0 : 1) != k) continue;
       any = true;
-      for (int i : clusters[c]) low = low || !(layout.height[i] > kShoulderHeight);
+      points += clusters[c].size();
+      for (int i : clusters[c]) {
+        const double reach = std::hypot(layout.side[i], layout.forward[i]);
+        arm = arm || !(layout.height[i] > kShoulderHeight) || !(reach < kShoulderReach);
+      }
     }
-    if (!any || low) continue;
+    if (!any || arm || points > kShoulderPoints) continue;
     for (size_t c = 0; c < clusters.size(); ++c) {
       if ((*group)[c] == 2 && (ClusterMedian(clusters[c], layout.side) > 0.0 ? 0 : 1) == k) (*group)[c] = 0;
     }

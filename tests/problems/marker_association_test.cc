@@ -301,6 +301,35 @@ TEST(MarkerAssociationTest, ShouldersWithoutArmsAreTheChest) {
   EXPECT_EQ(trunk, 9);
 }
 
+// The whole arms held up in front at shoulder height through the take (a squat's arms
+// stretched forward), swinging across and bending at the elbow: every arm point sits above
+// the shoulder-height bar, as an acromion-only side's do, but an arm's forearm and hand
+// reach beyond a shoulder and it carries more points. They were the chest (every arm
+// marker "chest"; the attach rounds then kept the fitted subject's arm empty).
+TEST(MarkerAssociationTest, ArmsHeldUpAtShoulderHeightStayArms) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  Motion walk = MakeDemoWalk(skeleton, 240, 60.0);
+  for (size_t f = 0; f < walk.frames.size(); ++f) {
+    const double phase = 2.0 * kPi * f / walk.frame_rate / 1.3;
+    SetJoint(skeleton, &walk.frames[f], "LeftArm", 0, -70 + 20 * std::sin(phase), 0);
+    SetJoint(skeleton, &walk.frames[f], "RightArm", 0, 70 + 20 * std::sin(phase), 0);
+    SetJoint(skeleton, &walk.frames[f], "LeftForeArm", 0, -30 - 30 * std::cos(phase), 0);
+    SetJoint(skeleton, &walk.frames[f], "RightForeArm", 0, 30 + 30 * std::cos(phase), 0);
+  }
+  const Take take = MakeTakeOf(skeleton, walk, false, true);
+  MarkerAssociation association;
+  ASSERT_TRUE(AssociateMarkers(take.trajectories, "arms_up.c3d", MarkerAssociationOptions(), &association).ok());
+  int arm = 0, chest = 0;
+  for (const AssociatedMarker& a : association.markers) {
+    const std::string joint = take.joint.count(a.label) ? take.joint.at(a.label) : "";
+    if (joint != "LeftForeArm" && joint != "LeftHand" && joint != "RightForeArm" && joint != "RightHand") continue;
+    ++arm;
+    chest += a.role == "chest" || a.role == "head";
+  }
+  EXPECT_GT(arm, 0);
+  EXPECT_EQ(chest, 0) << "of " << arm << " forearm and hand markers";
+}
+
 // A lower-body set (no marker above the pelvis) of a child (the demo walk at 0.6 of its
 // size), in a file that says cm: its points span 0.5-0.6 m, a whole body in no unit, so the
 // file's unit was refused ("a body in no unit"); it is read in the file's unit now.
