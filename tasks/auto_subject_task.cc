@@ -23,8 +23,18 @@ Status FitAutoSubject(const std::string& markers_path, const SkeletonFitSettings
   result->method = fit.associated                      ? "association"
                    : fit.template_labels_map.empty() ? "labels"
                                                      : "labels (map " + fit.template_labels_map + ")";
+  if (!fit.checks.ok() && settings.check == "fail") {
+    const size_t more = fit.checks.failures.size() - 1;
+    return Status::Error(markers_path + ": --subject=auto: the subject fitted from the shipped template (" +
+                         result->method + ") fails its check: " + fit.checks.failures[0] +
+                         (more > 0 ? " (and " + std::to_string(more) + " more)" : "") +
+                         "; nothing written (give a subject, or --check=warn to use it anyway)");
+  }
   // A segment the character needs that no marker observes (a set too sparse for it): a
-  // character would deliver it at the template's rest, whatever the take did.
+  // character would deliver it at the template's rest, whatever the take did. Asked
+  // after the checks: a failed fit leaves markers anywhere (squat renamed, its arm
+  // taken for the chest: 67.8 mm, and no marker on the left foot it has), so its failed
+  // check is the error, not the segment.
   const std::vector<std::string> missing =
       MissingSegments(fit.subject.skeleton, fit.subject.markers, inputs.templ.markers);
   if (!missing.empty()) {
@@ -32,13 +42,6 @@ Status FitAutoSubject(const std::string& markers_path, const SkeletonFitSettings
     for (const std::string& segment : missing) names += (names.empty() ? "" : ", ") + segment;
     return Status::Error(markers_path + ": --subject=auto: no marker of the take observes " + names +
                          "; a character needs the pelvis and both legs; nothing written");
-  }
-  if (!fit.checks.ok() && settings.check == "fail") {
-    const size_t more = fit.checks.failures.size() - 1;
-    return Status::Error(markers_path + ": --subject=auto: the subject fitted from the shipped template (" +
-                         result->method + ") fails its check: " + fit.checks.failures[0] +
-                         (more > 0 ? " (and " + std::to_string(more) + " more)" : "") +
-                         "; nothing written (give a subject, or --check=warn to use it anyway)");
   }
   return Status::Ok();
 }

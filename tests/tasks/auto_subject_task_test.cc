@@ -21,6 +21,7 @@ namespace mocapsolve {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // A short fit: the walk's 90 frames, few iterations (the take is the template's own body).
 SkeletonFitSettings ShortFit() {
@@ -191,6 +192,29 @@ TEST(AutoSubject, ATakeWithoutFootMarkersIsRefusedNamingTheSegments) {
   EXPECT_THAT(status.message(), HasSubstr("right_foot (rfoot"));
   EXPECT_THAT(status.message(), HasSubstr("LHEE"));
   EXPECT_EQ(status.message().find('\n'), std::string::npos) << status.message();
+}
+
+// A fit that fails its checks is refused for them, before its segments are asked about: it
+// may have left a segment's markers elsewhere, and then "no marker observes left_foot" on a
+// take that has its foot markers misleads (squat renamed, fitted at 67.8 mm with its arm
+// taken for the chest). Here the take also lacks its feet, and every sample jitters 60 mm
+// (no pose explains it): the error is the failed check.
+TEST(AutoSubject, AFitFailingItsChecksIsRefusedForThemNotForASegment) {
+  const std::vector<std::string> no_feet = {"LBWT", "RBWT", "LFWT", "RFWT", "LTHI", "RTHI", "LKNE", "RKNE",
+                                            "LSHN", "RSHN", "LANK", "RANK", "C7", "CLAV", "LSHO", "RSHO"};
+  MarkerTrajectories take = testing::KeepTakeMarkers(testing::TemplateWalkTake(90, false), no_feet);
+  for (int f = 0; f < take.num_frames(); ++f) {
+    for (int m = 0; m < take.num_markers(); ++m) {
+      const double s = (f + m) % 2 == 0 ? 60.0 : -60.0;
+      if (take.valid(f, m)) take.SetSample(f, m, take.position(f, m) + Eigen::Vector3d(s, -s, s));
+    }
+  }
+  Status status = Status::Ok();
+  FitWritten(take, "shaken.c3d", &status);
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("shaken.c3d: --subject=auto: the subject fitted from the shipped template"));
+  EXPECT_THAT(status.message(), HasSubstr("fails its check: marker RMS"));
+  EXPECT_THAT(status.message(), Not(HasSubstr("no marker of the take observes")));
 }
 
 TEST(AutoSubject, RandomPointsFailWithOneLine) {
