@@ -34,7 +34,12 @@ std::vector<int> AttachableJoints(const Skeleton& skeleton, const MarkerSet& mar
   bool any = false;
   for (int j = 0; j < skeleton.num_joints(); ++j) {
     const int parent = skeleton.parent(j);
-    if (observed[j] || (parent >= 0 && !observed[parent]) || skeleton.subtree_end(j) - j < 2) continue;
+    if (observed[j] || (parent >= 0 && !observed[parent])) continue;
+    // An end segment (every joint below it a leaf: a hand and its fingers, a foot and its
+    // toes) moves nothing but itself after its markers.
+    bool end_segment = true;
+    for (int k = j + 1; k < skeleton.subtree_end(j); ++k) end_segment = end_segment && skeleton.subtree_end(k) == k + 1;
+    if (end_segment) continue;
     for (int k = j; k < skeleton.subtree_end(j); ++k) excluded[k] = true;
     any = true;
   }

@@ -31,12 +31,16 @@ struct HeldSegments {
 HeldSegments FindHeldSegments(const Skeleton& skeleton, const MarkerSet& markers);
 
 // The joints an attach round may put a marker on (calibration.h, candidate_joints): all but
-// those of a held subtree of more than one joint. In the motion an attach round compares a
-// marker with, such a subtree does not move against its parent, so every marker ties with
-// it and the nearer bone wins: a Davis set's C7 went on a clavicle, an acromion on the
-// neck, and the clavicle then swung the whole (unobserved) arm to follow that one marker.
-// A held leaf (a finger, the toes) stays allowed: a marker there moves nothing else. Empty
-// when nothing is excluded (every joint allowed).
+// those of a held subtree that is more than an end segment (a joint below its top has
+// joints below it). In the motion an attach round compares a marker with, such a subtree
+// does not move against its parent, so every marker ties with it and the nearer bone wins:
+// a Davis set's C7 went on a clavicle, an acromion on the neck, and the clavicle then swung
+// the whole (unobserved) arm to follow that one marker. A held end segment stays allowed
+// (a leaf: a finger, the toes; a hand with its fingers, a foot with its toes): a marker
+// there moves that end and nothing else, and a full-body take whose association left a
+// hand's or foot's markers on the forearm or shin needs the attach rounds to move them
+// there (nick_freeform_001 renamed: its hands excluded, 12.95 mm). Empty when nothing is
+// excluded (every joint allowed).
 std::vector<int> AttachableJoints(const Skeleton& skeleton, const MarkerSet& markers);
 
 // The needed segments `markers` leaves unobserved, one entry each: "left_foot (lfoot; the

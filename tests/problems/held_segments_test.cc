@@ -55,6 +55,22 @@ TEST(HeldSegments, AHeldLeafStaysAttachable) {
   EXPECT_TRUE(AttachableJoints(skeleton, no_toes).empty());
 }
 
+// A held end segment (a foot with its toe, a hand with its fingers) stays attachable: an
+// association that left a foot's markers on the shin needs the attach rounds to move them
+// onto the foot. A held arm (upper arm, forearm, hand) does not: one marker there would
+// swing the whole arm.
+TEST(HeldSegments, AHeldEndSegmentStaysAttachableAHeldLimbDoesNot) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const MarkerSet all = MakeSyntheticMarkerSet(skeleton, 3, 7);
+  const MarkerSet no_foot = Without(skeleton, all, {"LeftFoot", "LeftToe"});
+  EXPECT_EQ(FindHeldSegments(skeleton, no_foot).tops, std::vector<std::string>{"LeftFoot"});
+  EXPECT_TRUE(AttachableJoints(skeleton, no_foot).empty());
+  const std::set<std::string> arm = {"LeftArm", "LeftForeArm", "LeftHand"};
+  const std::vector<int> attachable = AttachableJoints(skeleton, Without(skeleton, all, arm));
+  EXPECT_EQ(attachable.size(), static_cast<size_t>(skeleton.num_joints()) - arm.size());
+  for (int j : attachable) EXPECT_FALSE(arm.count(skeleton.name(j))) << skeleton.name(j);
+}
+
 // The pelvis needs a marker on its own joint or a child of it that leads to no leg (the
 // demo's Spine, as CMU's lowerback carries LFWT): both left out here.
 TEST(HeldSegments, MissingFeetAndPelvisAreNamedWithTheTemplatesMarkers) {
