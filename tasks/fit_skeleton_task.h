@@ -40,6 +40,7 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "pipeline/subject.h"
+#include "problems/marker_solve/held_segments.h"
 #include "problems/marker_solve/marker_association.h"
 #include "problems/marker_solve/template_label_maps.h"
 #include "problems/marker_solve/template_labels.h"
@@ -133,6 +134,9 @@ struct SkeletonFitResult {
   double mm_per_unit = 1.0; // 1 when the skeleton's unit is unknown.
   bool unit_known = false;
   LearnedMarkerWeights weights;  // With --learn_weights (else empty).
+  // The joints no marker of the fitted subject observes (a sparse protocol's upper body):
+  // held at the template's rest by the fit, at the subject's mean pose by its solves.
+  HeldSegments held;
 };
 
 // The stride of the frames a fit uses: every frame (1) with max_frames 0 or a take of at
@@ -171,7 +175,8 @@ std::string SkeletonFitEventLine(const SkeletonFitEvent& event, const Skeleton& 
 // The console summary after the fit: the checks, the bone scales that changed, the RMS.
 std::string SkeletonFitSummary(const SkeletonFitResult& result);
 
-// The report (`--report`): frames, rounds, kept round, RMS, bone scales, checks, the label map.
+// The report (`--report`): frames, rounds, kept round, RMS, bone scales, checks, the label map,
+// the held segments.
 JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const SkeletonFitResult& result);
 
 }  // namespace mocapsolve
