@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <glog/logging.h>
+
 #include "kinematics/rotation.h"
 #include "signal/joint_gap_carry.h"
 
@@ -57,32 +59,36 @@ double MatchCost(const Skeleton& skeleton, const Motion& motion, const std::vect
   return sum / counted;
 }
 
-// A lower bound of SquaredAngle without its atan2: with c = |p . q| / (|p| |q|) the cosine
-// of half the angle, angle^2 >= 4 sin^2(angle / 2) = 4 (1 - c^2) (sin x <= x on [0, pi/2]);
-// shrunk by far more than its rounding so it stays below SquaredAngle as computed.
-double SquaredAngleLowerBound(const Eigen::Quaterniond& p, const Eigen::Quaterniond& q) {
-  const double c = p.coeffs().dot(q.coeffs());
-  const double sin2 = 1.0 - c * c / (p.coeffs().squaredNorm() * q.coeffs().squaredNorm());
-  return 4.0 * sin2 * (1.0 - 1e-9) - 1e-10;
+// A lower bound of SquaredAngle without its atan2, from the two rotations made unit (u, v):
+// with c = |u . v| the cosine of half the angle, angle^2 >= 4 sin^2(angle / 2) = 4 (1 - c^2)
+// (sin x <= x on [0, pi/2]); shrunk by far more than its rounding (and the unit rotations'
+// own) so it stays below SquaredAngle as computed.
+double SquaredAngleLowerBound(const double* u, const double* v) {
+  const double c = u[0] * v[0] + u[1] * v[1] + u[2] * v[2] + u[3] * v[3];
+  return 4.0 * (1.0 - c * c) * (1.0 - 1e-9) - 1e-10;
 }
 
 // False when the shift does not qualify (SourceQualifies) or MatchCost is sure to be +inf: the
-// window's sum of lower bounds already passes the cut MatchCost stops at. Cheap (no atan2),
-// so the exact cost is computed only for the few shifts this does not rule out; the result
-// is MatchCost's either way.
-bool MayMatch(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
+// window's sum of lower bounds already passes the cut MatchCost stops at. Cheap (no atan2,
+// the table's rows read in order), so the exact cost is computed only for the few shifts this
+// does not rule out; the result is MatchCost's either way.
+bool MayMatch(const JointTemplateTable& table, const std::vector<std::vector<char>>& carried, int frames,
               const CarriedJointRun& run, int lo, int hi, int tau, double best, double max_counted) {
-  const int frames = motion.num_frames(), j = run.joint;
+  const int j = run.joint;
   const int a = run.first - 1, b = run.last + 1;
   if (!SourceQualifies(frames, carried, run, tau)) return false;
   const double cut = best * max_counted * (1.0 + 1e-9);
+  const std::vector<int>& joints = table.joints();
+  const int n = static_cast<int>(joints.size());
   double sum = 0.0;
   for (int f = std::max(lo, -tau); f <= std::min(hi, frames - 1 - tau); ++f) {
     const int g = f + tau;
-    for (int k = 1; k < skeleton.num_joints(); ++k) {
-      if (skeleton.num_rotation_dofs(k) == 0 || (k == j && f > a && f < b)) continue;
-      if (carried[k][f] || carried[k][g]) continue;
-      sum += std::max(0.0, SquaredAngleLowerBound(motion.frames[f].rotations[k], motion.frames[g].rotations[k]));
+    const double *uf = table.unit(f), *ug = table.unit(g);
+    const char *cf = table.carried(f), *cg = table.carried(g);
+    const bool in_run = f > a && f < b;
+    for (int i = 0; i < n; ++i) {
+      if (cf[i] || cg[i] || (in_run && joints[i] == j)) continue;
+      sum += std::max(0.0, SquaredAngleLowerBound(uf + 4 * i, ug + 4 * i));
     }
     if (sum > cut) return false;
   }
@@ -91,8 +97,44 @@ bool MayMatch(const Skeleton& skeleton, const Motion& motion, const std::vector<
 
 }  // namespace
 
+JointTemplateTable::JointTemplateTable(const Skeleton& skeleton, const Motion& motion,
+                                       const std::vector<std::vector<char>>& carried, int first, int last)
+    : first_(first) {
+  for (int k = 1; k < skeleton.num_joints(); ++k) {
+    if (skeleton.num_rotation_dofs(k) > 0) joints_.push_back(k);
+  }
+  const size_t n = joints_.size(), frames = last >= first ? last - first + 1 : 0;
+  unit_.resize(4 * n * frames);
+  carried_.resize(n * frames);
+  for (size_t f = 0; f < frames; ++f) {
+    const Pose& pose = motion.frames[first + f];
+    for (size_t i = 0; i < n; ++i) {
+      const int k = joints_[i];
+      const Eigen::Vector4d& q = pose.rotations[k].coeffs();
+      Eigen::Map<Eigen::Vector4d> unit(&unit_[4 * (n * f + i)]);
+      unit = q / q.norm();
+      carried_[n * f + i] = carried[k][first + f];
+    }
+  }
+}
+
 int FindTemplateShift(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
                       const CarriedJointRun& run, const JointTemplateOptions& options) {
+  const int frames = motion.num_frames();
+  const int a = run.first - 1, b = run.last + 1;
+  if (a < 0 || b >= frames) return 0;
+  // The frames the shifts reach.
+  int first = 0, last = frames - 1;
+  if (options.max_shift_frames > 0) {
+    first = std::max(0, a - options.margin - options.max_shift_frames);
+    last = std::min(frames - 1, b + options.margin + options.max_shift_frames);
+  }
+  const JointTemplateTable table(skeleton, motion, carried, first, last);
+  return FindTemplateShift(skeleton, motion, carried, table, run, options);
+}
+
+int FindTemplateShift(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
+                      const JointTemplateTable& table, const CarriedJointRun& run, const JointTemplateOptions& options) {
   const int frames = motion.num_frames();
   const int a = run.first - 1, b = run.last + 1;
   if (a < 0 || b >= frames) return 0;
@@ -104,12 +146,14 @@ int FindTemplateShift(const Skeleton& skeleton, const Motion& motion, const std:
     min_tau = std::max(min_tau, -options.max_shift_frames);
     max_tau = std::min(max_tau, options.max_shift_frames);
   }
-  int rotating = 0;  // Joints but the root with rotation dofs: at most this many pairs per frame count.
-  for (int k = 1; k < skeleton.num_joints(); ++k) rotating += skeleton.num_rotation_dofs(k) > 0 ? 1 : 0;
+  CHECK(table.first() <= std::max(0, lo + min_tau) && table.last() >= std::min(frames - 1, hi + max_tau))
+      << "the template table does not hold the frames the shifts reach";
+  // Joints but the root with rotation dofs: at most this many pairs per frame count.
+  const int rotating = static_cast<int>(table.joints().size());
   const double max_counted = static_cast<double>(rotating) * (hi - lo + 1);
   for (int tau = min_tau; tau <= max_tau; ++tau) {
     if (tau == 0) continue;
-    if (!MayMatch(skeleton, motion, carried, run, lo, hi, tau, best, max_counted)) continue;
+    if (!MayMatch(table, carried, frames, run, lo, hi, tau, best, max_counted)) continue;
     const double cost = MatchCost(skeleton, motion, carried, run, lo, hi, tau, best, max_counted);
     if (cost < best) {
       best = cost;
