@@ -28,7 +28,7 @@ bool SourceQualifies(int frames, const std::vector<std::vector<char>>& carried, 
   return true;
 }
 
-// Mean squared angle of the window at a qualifying shift tau (MayMatch checks it first).
+// Mean squared angle of the window at a qualifying shift tau (the bounds leave it a chance).
 // +inf as soon as the sum so far shows the mean cannot be below `best` (the sum only
 // grows, and at most max_counted pairs count): such a shift would not be chosen anyway,
 // and most shifts are far off, so most windows stop after a few frames.
@@ -59,39 +59,57 @@ double MatchCost(const Skeleton& skeleton, const Motion& motion, const std::vect
   return sum / counted;
 }
 
-// A lower bound of SquaredAngle without its atan2, from the two rotations made unit (u, v):
-// with c = |u . v| the cosine of half the angle, angle^2 >= 4 sin^2(angle / 2) = 4 (1 - c^2)
-// (sin x <= x on [0, pi/2]); shrunk by far more than its rounding (and the unit rotations'
-// own) so it stays below SquaredAngle as computed.
-double SquaredAngleLowerBound(const double* u, const double* v) {
+// Bounds of SquaredAngle without its atan2, from the two rotations made unit (u, v): with
+// c = |u . v| the cosine and s = sqrt(1 - c^2) the sine of half the angle,
+//   4 s^2 <= angle^2 <= 4 s^2 / c^2
+// (sin x <= x <= tan x on [0, pi/2]); each moved by far more than its rounding (and the
+// unit rotations' own) so it stays on its side of SquaredAngle as computed.
+struct AngleBounds {
+  double lower, upper;
+};
+AngleBounds SquaredAngleBounds(const double* u, const double* v) {
   const double c = u[0] * v[0] + u[1] * v[1] + u[2] * v[2] + u[3] * v[3];
-  return 4.0 * (1.0 - c * c) * (1.0 - 1e-9) - 1e-10;
+  const double c2 = c * c, s2 = std::max(0.0, 1.0 - c2);
+  return {std::max(0.0, 4.0 * s2 * (1.0 - 1e-9) - 1e-10), 4.0 * s2 / c2 * (1.0 + 1e-9) + 1e-10};
 }
 
-// False when the shift does not qualify (SourceQualifies) or MatchCost is sure to be +inf: the
-// window's sum of lower bounds already passes the cut MatchCost stops at. Cheap (no atan2,
-// the table's rows read in order), so the exact cost is computed only for the few shifts this
-// does not rule out; the result is MatchCost's either way.
-bool MayMatch(const JointTemplateTable& table, const std::vector<std::vector<char>>& carried, int frames,
-              const CarriedJointRun& run, int lo, int hi, int tau, double best, double max_counted) {
+// A shift's window by the bounds: the sums of both over the pairs MatchCost counts, and its
+// counts of pairs counted and possible (as MatchCost's). False when the shift does not qualify
+// (SourceQualifies) or the lower sum passes `cut` (then the cost passes the best the cut was
+// made from). Cheap (no atan2, the table's rows read in order).
+struct WindowBounds {
+  double lower = 0.0, upper = 0.0;
+  int counted = 0, possible = 0;
+};
+bool BoundWindow(const Skeleton& skeleton, const JointTemplateTable& table, const std::vector<std::vector<char>>& carried,
+                 int frames, const CarriedJointRun& run, int lo, int hi, int tau, double cut, WindowBounds* out) {
   const int j = run.joint;
   const int a = run.first - 1, b = run.last + 1;
   if (!SourceQualifies(frames, carried, run, tau)) return false;
-  const double cut = best * max_counted * (1.0 + 1e-9);
   const std::vector<int>& joints = table.joints();
   const int n = static_cast<int>(joints.size());
-  double sum = 0.0;
-  for (int f = std::max(lo, -tau); f <= std::min(hi, frames - 1 - tau); ++f) {
+  WindowBounds w;
+  for (int f = lo; f <= hi; ++f) {
     const int g = f + tau;
+    if (g < 0 || g >= frames) {
+      w.possible += skeleton.num_joints();
+      continue;
+    }
     const double *uf = table.unit(f), *ug = table.unit(g);
     const char *cf = table.carried(f), *cg = table.carried(g);
     const bool in_run = f > a && f < b;
     for (int i = 0; i < n; ++i) {
-      if (cf[i] || cg[i] || (in_run && joints[i] == j)) continue;
-      sum += std::max(0.0, SquaredAngleLowerBound(uf + 4 * i, ug + 4 * i));
+      if (in_run && joints[i] == j) continue;
+      ++w.possible;
+      if (cf[i] || cg[i]) continue;
+      ++w.counted;
+      const AngleBounds bounds = SquaredAngleBounds(uf + 4 * i, ug + 4 * i);
+      w.lower += bounds.lower;
+      w.upper += bounds.upper;
     }
-    if (sum > cut) return false;
+    if (w.lower > cut) return false;
   }
+  *out = w;
   return true;
 }
 
@@ -151,13 +169,35 @@ int FindTemplateShift(const Skeleton& skeleton, const Motion& motion, const std:
   // Joints but the root with rotation dofs: at most this many pairs per frame count.
   const int rotating = static_cast<int>(table.joints().size());
   const double max_counted = static_cast<double>(rotating) * (hi - lo + 1);
+  // The shifts whose bounds leave them a chance, by a scan that keeps the least upper bound of
+  // a qualifying shift's cost met so far (the exact costs would fall one shift at a time along
+  // the scan, each computed in full); then their exact costs, in the scan's order, from the
+  // same start, skipping those whose lower bound passes the least upper bound: their costs
+  // pass the least cost, so the shift chosen, ties to the first, is the scan's with every cost.
+  struct Candidate {
+    int tau;
+    double lower;  // Lower bound of the cost.
+  };
+  std::vector<Candidate> candidates;
+  double least_upper = best;
   for (int tau = min_tau; tau <= max_tau; ++tau) {
     if (tau == 0) continue;
-    if (!MayMatch(table, carried, frames, run, lo, hi, tau, best, max_counted)) continue;
-    const double cost = MatchCost(skeleton, motion, carried, run, lo, hi, tau, best, max_counted);
+    WindowBounds w;
+    if (!BoundWindow(skeleton, table, carried, frames, run, lo, hi, tau, least_upper * max_counted * (1.0 + 1e-9), &w)) {
+      continue;
+    }
+    if (w.counted == 0 || 2 * w.counted < w.possible) continue;  // MatchCost's +inf.
+    const double lower = w.lower / w.counted;
+    if (lower > least_upper * (1.0 + 1e-9)) continue;
+    candidates.push_back({tau, lower});
+    least_upper = std::min(least_upper, w.upper / w.counted * (1.0 + 1e-9));
+  }
+  for (const Candidate& c : candidates) {
+    if (c.lower > least_upper * (1.0 + 1e-9)) continue;
+    const double cost = MatchCost(skeleton, motion, carried, run, lo, hi, c.tau, best, max_counted);
     if (cost < best) {
       best = cost;
-      best_tau = tau;
+      best_tau = c.tau;
     }
   }
   return best_tau;
