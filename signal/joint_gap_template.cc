@@ -117,11 +117,11 @@ bool BoundWindow(const Skeleton& skeleton, const JointTemplateTable& table, cons
 
 JointTemplateTable::JointTemplateTable(const Skeleton& skeleton, const Motion& motion,
                                        const std::vector<std::vector<char>>& carried, int first, int last)
-    : first_(first) {
+    : first_(first), frames_(std::max(0, last - first + 1)) {
   for (int k = 1; k < skeleton.num_joints(); ++k) {
     if (skeleton.num_rotation_dofs(k) > 0) joints_.push_back(k);
   }
-  const size_t n = joints_.size(), frames = last >= first ? last - first + 1 : 0;
+  const size_t n = joints_.size(), frames = frames_;
   unit_.resize(4 * n * frames);
   carried_.resize(n * frames);
   for (size_t f = 0; f < frames; ++f) {

@@ -22,7 +22,6 @@
 #ifndef MOCAPSOLVE_SIGNAL_JOINT_GAP_TEMPLATE_H_
 #define MOCAPSOLVE_SIGNAL_JOINT_GAP_TEMPLATE_H_
 
-#include <algorithm>
 #include <vector>
 
 #include "kinematics/motion.h"
@@ -49,13 +48,13 @@ class JointTemplateTable {
   JointTemplateTable(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
                      int first, int last);
   int first() const { return first_; }
-  int last() const { return first_ + static_cast<int>(carried_.size() / std::max<size_t>(1, joints_.size())) - 1; }
+  int last() const { return first_ + frames_ - 1; }
   const std::vector<int>& joints() const { return joints_; }  // The joints, ascending.
   const double* unit(int frame) const { return &unit_[4 * joints_.size() * (frame - first_)]; }
   const char* carried(int frame) const { return &carried_[joints_.size() * (frame - first_)]; }
 
  private:
-  int first_;
+  int first_, frames_;
   std::vector<int> joints_;
   std::vector<double> unit_;   // 4 per joint per frame (x y z w).
   std::vector<char> carried_;  // 1 per joint per frame.
