@@ -50,8 +50,8 @@ class JointTemplateTable {
   int first() const { return first_; }
   int last() const { return first_ + frames_ - 1; }
   const std::vector<int>& joints() const { return joints_; }  // The joints, ascending.
-  const double* unit(int frame) const { return &unit_[4 * joints_.size() * (frame - first_)]; }
-  const char* carried(int frame) const { return &carried_[joints_.size() * (frame - first_)]; }
+  const double* unit(int frame) const { return unit_.data() + 4 * joints_.size() * (frame - first_); }
+  const char* carried(int frame) const { return carried_.data() + joints_.size() * (frame - first_); }
 
  private:
   int first_, frames_;
