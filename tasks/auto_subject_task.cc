@@ -65,7 +65,7 @@ std::string AutoSubjectLine(const AutoSubjectResult& result) {
     std::string tops;
     for (const std::string& top : fit.held.tops) tops += (tops.empty() ? "" : ", ") + top;
     text += "subject: no marker observes " + tops + " (" + std::to_string(fit.held.joints) +
-            " joints): held at the template's rest\n";
+            " joints): held at the template's mean pose\n";
   }
   return text;
 }

@@ -736,6 +736,21 @@ Status LearnWeights(const SkeletonFitSettings& settings, MarkerSolveOptions solv
   return status;
 }
 
+// A held joint (no marker on it or below it: held_segments.h) never moved in the fit, so its
+// mean over the fitted motion is the skeleton's zero rotation: for an ASF template a T-pose,
+// which later solves would hold a sparse set's unobserved arms in (one pointing up from a
+// leaning chest). It keeps the template's mean pose instead, the pose the template's actor
+// held that joint in, matched by joint name.
+void KeepTemplatePoseOfHeldJoints(const Subject& templ, Subject* subject) {
+  const Skeleton& skeleton = subject->skeleton;
+  if (templ.mean_pose.size() != static_cast<size_t>(templ.skeleton.num_joints())) return;
+  const std::vector<bool> observed = ObservedJoints(skeleton, subject->markers);
+  for (int j = 0; j < skeleton.num_joints(); ++j) {
+    const int t = templ.skeleton.FindJoint(skeleton.name(j));
+    if (!observed[j] && t >= 0) subject->mean_pose[j] = templ.mean_pose[t];
+  }
+}
+
 Status KeepSubject(const SkeletonFitInputs& inputs, const FitTake& fit, const SkeletonFitSettings& settings,
                    const MarkerSolveOptions& solve_options, RoundState* state, SkeletonFitResult* result) {
   RoundFit& best = state->best;
@@ -762,6 +777,7 @@ Status KeepSubject(const SkeletonFitInputs& inputs, const FitTake& fit, const Sk
   // The rest prior's reference in later solves of this subject (directions no marker fixes
   // settle at the pose the subject typically holds, not at zero rotations).
   subject.mean_pose = MeanPose(subject.skeleton, result->motion);
+  KeepTemplatePoseOfHeldJoints(inputs.templ, &subject);
   return LearnWeights(settings, solve_options, best.observed, result);
 }
 
@@ -1023,7 +1039,7 @@ std::string SkeletonFitSummary(const SkeletonFitResult& result) {
   if (!result.held.tops.empty()) {
     std::string tops;
     for (const std::string& top : result.held.tops) tops += (tops.empty() ? "" : ", ") + TerminalText(top);
-    AppendF(&text, "\nheld at the template's rest, no marker on them or below them: %s (%d joints)", tops.c_str(),
+    AppendF(&text, "\nheld at the template's mean pose, no marker on them or below them: %s (%d joints)", tops.c_str(),
             result.held.joints);
   }
   const int outliers = result.outlier_samples;

@@ -135,7 +135,8 @@ struct SkeletonFitResult {
   bool unit_known = false;
   LearnedMarkerWeights weights;  // With --learn_weights (else empty).
   // The joints no marker of the fitted subject observes (a sparse protocol's upper body):
-  // held at the template's rest by the fit, at the subject's mean pose by its solves.
+  // at the template's rest in the fit; the subject keeps the template's mean pose for them,
+  // where its solves start and hold them.
   HeldSegments held;
 };
 

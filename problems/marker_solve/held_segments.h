@@ -1,8 +1,9 @@
 // Segments no marker observes (a sparse protocol: Plug-in Gait lower body, Helen Hayes /
 // Davis). Joint j is observed when a marker rides on j or on a joint below it (its rotation,
-// and its bone's scale, move that marker); otherwise nothing in a marker fit or solve pulls
-// it, so it stays where the priors hold it: the template's rest in a subject fit, the
-// subject's mean pose in a solve (pose_prior_residual.h). HeldSegments names those joints by
+// and its bone's scale, move that marker); otherwise no marker pulls it, so it stays where
+// it starts: the template's rest in a subject fit, whose subject then keeps the template's
+// mean pose for it (fit_skeleton_task.h), and that mean pose in a solve (InitialPose,
+// sequence_solver.h, starts such joints there). HeldSegments names those joints by
 // the tops of their held subtrees (a held joint whose parent is observed: "upperback" for a
 // lower-body set's whole upper body). MissingSegments checks the segments a delivered
 // character needs its take to observe (the pelvis and, per side, thigh, shin and foot,

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "io/marker_file.h"
+#include "kinematics/rotation.h"
 #include "pipeline/shipped_templates.h"
 #include "tests/auto_subject_takes.h"
 #include "tests/test_support.h"
@@ -119,7 +120,7 @@ TEST(AutoSubject, AMarkerNearAJointThatBendsOnlyLateIsAttachedToTheRightSegment)
 
 // A Plug-in Gait lower-body take (CMU's pelvis and leg markers only, by their labels): the
 // legs are fitted on their own segments and the upper body, which no marker observes, is
-// held at the template's rest and named in the report and on the console.
+// held at the template's mean pose and named in the report and on the console.
 TEST(AutoSubject, ALowerBodyTakeFitsItsLegsAndHoldsTheUpperBody) {
   const std::vector<std::string> legs = {"LBWT", "RBWT", "LFWT", "RFWT", "LTHI", "RTHI", "LKNE", "RKNE", "LSHN",
                                          "RSHN", "LANK", "RANK", "LHEE", "RHEE", "LTOE", "RTOE", "LMT5", "RMT5"};
@@ -147,6 +148,15 @@ TEST(AutoSubject, ALowerBodyTakeFitsItsLegsAndHoldsTheUpperBody) {
   for (const Pose& pose : result.fit.motion.frames) {
     EXPECT_TRUE(pose.rotations[arm].isApprox(result.fit.motion.frames[0].rotations[arm], 1e-9));
   }
+  // The subject keeps the template's mean pose for every held joint (its arm hangs as the
+  // template's actor held it; the fit's own motion left it at zero rotations, a T-pose).
+  ASSERT_EQ(fitted.mean_pose.size(), static_cast<size_t>(fitted.skeleton.num_joints()));
+  const int held_top = fitted.skeleton.FindJoint("upperback");
+  for (int j = held_top; j < fitted.skeleton.subtree_end(held_top); ++j) {
+    const Eigen::Quaterniond& expected = templ.mean_pose[templ.skeleton.FindJoint(fitted.skeleton.name(j))];
+    EXPECT_TRUE(fitted.mean_pose[j].isApprox(expected, 1e-12)) << fitted.skeleton.name(j);
+  }
+  EXPECT_GT(AngularDistance(fitted.mean_pose[arm], Eigen::Quaterniond::Identity()), 0.5);
   EXPECT_THAT(AutoSubjectLine(result), HasSubstr("no marker observes upperback (19 joints): held"));
   EXPECT_THAT(AutoSubjectReport(result).ToString(), HasSubstr("\"held_segments\""));
 }
