@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "io/atomic_file.h"
 #include "io/bvh_writer.h"
@@ -368,6 +369,13 @@ Status RunWindowRepair(const TakeInputs& inputs, const TakePipelineOptions& opti
   });
 }
 
+// A window's character stage: what it reads (CharacterPart) and its repaired solve, then
+// what it made, kept in window order (KeepCharacters).
+struct CharacterJob {
+  TakeResult part;
+  Motion solved;
+};
+
 // What a window's character stage reads (RunTakeCharacterStage): the repaired window's
 // skeleton, frame rate and frames, and the characters read once for every window.
 TakeResult CharacterPart(const TakeResult& window, const std::vector<CharacterOutput>& characters) {
@@ -445,8 +453,8 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   // The repairs in order on this thread, each window starting from the previous one's solve
   // of the frame before it (RepairOptions::start_pose) and reading the file's samples with
   // the previous cores repaired; the character stages, which start from their own bind
-  // pose, in order on a second thread with --num_threads >= 2 (pipeline/in_order_worker.h),
-  // at most one window waiting.
+  // pose, on a second thread with --num_threads >= 2 (pipeline/in_order_worker.h), at most
+  // one window waiting, kept in window order; Finish runs the waiting one on this thread.
   InOrderWorker characters(second_thread);
   for (size_t k = 0; k < windows.size() && status.ok(); ++k) {
     Pose start;  // None for a window whose context reaches frame 0: it starts as the first.
@@ -473,12 +481,12 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
       };
     }
     const FrameWindow w = windows[k];
+    auto job = std::make_shared<CharacterJob>(CharacterJob{std::move(part), std::move(solved)});
     const bool submitted = characters.Submit(
-        [&, w, part = std::move(part), solved = std::move(solved), part_progress]() mutable {
-          Status stage = RunTakeCharacterStage(inputs, options, std::move(solved), &part, part_progress);
-          if (stage.ok()) KeepCharacters(part, w, &sums, &character_timings, result);
-          return stage;
-        });
+        [&inputs, &options, job, part_progress] {
+          return RunTakeCharacterStage(inputs, options, std::move(job->solved), &job->part, part_progress);
+        },
+        [&, job, w] { KeepCharacters(job->part, w, &sums, &character_timings, result); });
     if (!submitted) break;  // A window's character stage failed: Finish says which.
   }
   // solved.bvh and repaired.c3d are whole once the last window's repair is kept: finished

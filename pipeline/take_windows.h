@@ -14,8 +14,9 @@
 // depends on its own repair only: with TakePipelineOptions::num_threads >= 2 the character
 // stages run on a second thread (pipeline/in_order_worker.h) while this one repairs the
 // next windows, in window order, at most one window waiting (one more window's solve and
-// retarget in memory: measured in BENCHMARKS.md); every file is the same bytes as with one
-// thread. Each window keeps its core frames only:
+// retarget in memory: measured in BENCHMARKS.md); once the repairs are done, this thread
+// runs the waiting window's character stage beside the second thread's, their results kept
+// in window order; every file is the same bytes as with one thread. Each window keeps its core frames only:
 //   repaired.c3d/.trc  the file's samples of the core, as the window repaired them, put
 //                      back into the file (read whole once: 1.2 KB per frame at 41
 //                      markers), written when the last window is done;

@@ -1,6 +1,7 @@
-// InOrderWorker (pipeline/in_order_worker.h): jobs run in the order given, whichever takes
-// longer; at most one job waits; the first failed job (a Status error or an exception)
-// stops the ones after it and is what Finish returns, with and without a thread.
+// InOrderWorker (pipeline/in_order_worker.h): jobs kept in the order given, whichever takes
+// longer; at most one job waits; Finish runs the waiting job beside the worker's; the first
+// failed job (a Status error or an exception) stops the ones after it and is what Finish
+// returns, with and without a thread.
 #include "pipeline/in_order_worker.h"
 
 #include <atomic>
@@ -18,15 +19,16 @@ namespace {
 class InOrderWorkerTest : public ::testing::TestWithParam<bool> {};
 
 // The earlier jobs take longer: run side by side, they would finish last.
-TEST_P(InOrderWorkerTest, RunsJobsInTheOrderGiven) {
-  std::vector<int> done;  // Only the jobs touch it, one at a time.
+TEST_P(InOrderWorkerTest, KeepsJobsInTheOrderGiven) {
+  std::vector<int> done;  // Only the keeps touch it, one at a time.
   InOrderWorker worker(GetParam());
   for (int k = 0; k < 12; ++k) {
-    ASSERT_TRUE(worker.Submit([&done, k] {
-      std::this_thread::sleep_for(std::chrono::milliseconds(12 - k));
-      done.push_back(k);
-      return Status::Ok();
-    }));
+    ASSERT_TRUE(worker.Submit(
+        [k] {
+          std::this_thread::sleep_for(std::chrono::milliseconds(3 * (12 - k)));
+          return Status::Ok();
+        },
+        [&done, k] { done.push_back(k); }));
   }
   EXPECT_TRUE(worker.Finish().ok());
   ASSERT_EQ(done.size(), 12u);
@@ -39,12 +41,13 @@ TEST_P(InOrderWorkerTest, FirstErrorStopsTheJobsAfterIt) {
   InOrderWorker worker(GetParam());
   int given = 0;
   for (int k = 0; k < 8; ++k) {
-    const bool submitted = worker.Submit([&done, k] {
-      if (k == 3) return Status::Error("window 4: failed");
-      if (k == 5) return Status::Error("window 6: failed too");
-      done.push_back(k);
-      return Status::Ok();
-    });
+    const bool submitted = worker.Submit(
+        [k] {
+          if (k == 3) return Status::Error("window 4: failed");
+          if (k == 5) return Status::Error("window 6: failed too");
+          return Status::Ok();
+        },
+        [&done, k] { done.push_back(k); });
     if (!submitted) break;
     ++given;
   }
@@ -62,10 +65,7 @@ TEST_P(InOrderWorkerTest, AnExceptionIsAnErrorOfOneLine) {
   InOrderWorker worker(GetParam());
   bool after = false;
   worker.Submit([]() -> Status { throw std::runtime_error("retarget: out of memory"); });
-  worker.Submit([&after] {
-    after = true;
-    return Status::Ok();
-  });
+  worker.Submit([] { return Status::Ok(); }, [&after] { after = true; });
   const Status status = worker.Finish();
   ASSERT_FALSE(status.ok());
   EXPECT_EQ(status.message(), "retarget: out of memory");
@@ -95,6 +95,68 @@ TEST(InOrderWorker, AtMostOneJobWaits) {
   third.join();
   EXPECT_TRUE(third_given);
   EXPECT_TRUE(worker.Finish().ok());
+}
+
+// Once no more jobs come, the waiting job runs on the caller's thread while the worker's
+// runs: the first job waits (up to 5 s) to see the second start. The keeps stay in order.
+TEST(InOrderWorker, FinishRunsTheWaitingJobBesideTheRunningOne) {
+  InOrderWorker worker(true);
+  std::atomic<bool> first_started{false}, second_started{false}, first_saw_second{false};
+  std::vector<int> kept;
+  ASSERT_TRUE(worker.Submit(
+      [&] {
+        first_started = true;
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+        while (!second_started && std::chrono::steady_clock::now() < deadline) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+        first_saw_second = second_started.load();
+        return Status::Ok();
+      },
+      [&kept] { kept.push_back(0); }));
+  while (!first_started) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  const std::thread::id caller = std::this_thread::get_id();
+  std::thread::id second_thread;
+  ASSERT_TRUE(worker.Submit(
+      [&] {
+        second_thread = std::this_thread::get_id();
+        second_started = true;
+        return Status::Ok();
+      },
+      [&kept] { kept.push_back(1); }));
+  EXPECT_TRUE(worker.Finish().ok());
+  EXPECT_TRUE(first_saw_second) << "the waiting job ran only after the running one";
+  EXPECT_EQ(second_thread, caller);
+  EXPECT_EQ(kept, (std::vector<int>{0, 1}));
+}
+
+// A job whose run fails after a later one (run beside it) succeeded: the error is the
+// earlier job's, and the later job is not kept.
+TEST(InOrderWorker, AnEarlierJobsErrorWinsOverALaterJobRunBesideIt) {
+  InOrderWorker worker(true);
+  std::atomic<bool> first_started{false}, second_done{false};
+  std::vector<int> kept;
+  ASSERT_TRUE(worker.Submit(
+      [&] {
+        first_started = true;
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+        while (!second_done && std::chrono::steady_clock::now() < deadline) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+        return Status::Error("window 1: failed");
+      },
+      [&kept] { kept.push_back(0); }));
+  while (!first_started) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_TRUE(worker.Submit(
+      [&] {
+        second_done = true;
+        return Status::Ok();
+      },
+      [&kept] { kept.push_back(1); }));
+  const Status status = worker.Finish();
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.message(), "window 1: failed");
+  EXPECT_TRUE(kept.empty());
 }
 
 }  // namespace
