@@ -1,5 +1,6 @@
 #include "pipeline/in_order_worker.h"
 
+#include <algorithm>
 #include <exception>
 #include <type_traits>
 #include <utility>
@@ -34,19 +35,21 @@ InOrderWorker::~InOrderWorker() { static_cast<void>(Finish()); }
 
 bool InOrderWorker::Submit(Run run, Keep keep) {
   std::unique_lock<std::mutex> lock(mutex_);
-  if (!threaded_) {
-    if (failed_ || closed_) return false;
-    const long index = given_++;
-    lock.unlock();
-    Complete(Job{index, std::move(run), std::move(keep)});
-    lock.lock();
-    return !failed_;
-  }
-  changed_.wait(lock, [&] { return !waiting_.run || failed_ || closed_; });
   if (failed_ || closed_) return false;
-  waiting_ = Job{given_++, std::move(run), std::move(keep)};
-  changed_.notify_all();
-  return true;
+  Job job{given_++, std::move(run), std::move(keep)};
+  if (threaded_) {
+    Job older;  // The worker is busy: this thread runs the job that waits.
+    TakeWaiting(&older);
+    waiting_ = std::move(job);
+    job = std::move(older);
+    changed_.notify_all();
+  }
+  if (job.run) {
+    lock.unlock();
+    Complete(std::move(job));
+    lock.lock();
+  }
+  return !failed_;
 }
 
 Status InOrderWorker::Finish() {
@@ -56,7 +59,7 @@ Status InOrderWorker::Finish() {
       closed_ = true;
     }
     changed_.notify_all();
-    for (;;) {  // The caller's thread runs what waits, beside the worker's job.
+    for (;;) {  // This thread runs what waits, beside the worker's job.
       Job job;
       {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -80,25 +83,35 @@ bool InOrderWorker::TakeWaiting(Job* job) {
 }
 
 void InOrderWorker::Complete(Job job) {
-  Status status = RunPart(job.run);
+  Done done{job.index, RunPart(job.run), std::move(job.keep)};
+  job = Job();  // What only the run held, freed.
   std::unique_lock<std::mutex> lock(mutex_);
-  changed_.wait(lock, [&] { return turn_ == job.index; });
-  if (!failed_) {
-    if (status.ok() && job.keep) {
-      lock.unlock();  // Its turn: no other job keeps until turn_ moves on.
-      status = RunPart(job.keep);
-      lock.lock();
+  done_.push_back(std::move(done));
+  if (keeping_) return;  // That thread keeps this job in its turn.
+  keeping_ = true;
+  for (;;) {
+    const auto next = std::find_if(done_.begin(), done_.end(), [&](const Done& d) { return d.index == turn_; });
+    if (next == done_.end()) break;
+    Done turn = std::move(*next);
+    done_.erase(next);
+    if (!failed_) {
+      if (turn.status.ok() && turn.keep) {
+        lock.unlock();  // Its turn: no other thread keeps while keeping_ is set.
+        turn.status = RunPart(turn.keep);
+        lock.lock();
+      }
+      if (!turn.status.ok()) {
+        failed_ = true;
+        error_ = turn.status;
+        waiting_ = Job();  // Given after the failed one: not run.
+      }
     }
-    if (!status.ok()) {
-      failed_ = true;
-      error_ = status;
-      waiting_ = Job();  // Given after the failed one: not run.
-    }
+    ++turn_;
+    turn = Done();  // Its data freed before the next turn.
   }
-  ++turn_;
+  keeping_ = false;
   lock.unlock();
   changed_.notify_all();
-  job = Job();  // Its data freed before the next job is taken.
 }
 
 void InOrderWorker::Loop() {
@@ -109,7 +122,7 @@ void InOrderWorker::Loop() {
       changed_.wait(lock, [&] { return static_cast<bool>(waiting_.run) || closed_ || failed_; });
       if (!TakeWaiting(&job)) return;  // Closed or failed, and nothing to run.
     }
-    changed_.notify_all();  // A place to wait is free.
+    changed_.notify_all();
     Complete(std::move(job));
   }
 }
