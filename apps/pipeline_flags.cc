@@ -46,6 +46,7 @@ Status TakePipelineOptionsFromFlags(const Skeleton& skeleton, TakePipelineOption
   options->label = take.label;
   options->window_frames = take.window_frames;
   options->window_context_frames = take.window_context_frames;
+  options->window_seam_blend_frames = take.window_seam_blend_frames;
   ReadOptionFlags(LabelSettingOptions(), &options->labelling);
   ReadOptionFlags(RepairSolverOptions(), &options->label_solver);
   options->num_threads = options->label_solver.num_threads;  // The same --num_threads as repair's.

@@ -33,7 +33,7 @@ namespace mocapsolve {
 class InOrderWorker {
  public:
   using Run = std::function<Status()>;
-  using Keep = std::function<void()>;
+  using Keep = std::function<Status()>;
 
   explicit InOrderWorker(bool threaded);
   ~InOrderWorker();  // Finish(), its error dropped (call Finish to see it).

@@ -52,8 +52,8 @@ bool TakePipelineOptions::IsValid(std::string* error) const {
     *error = "label: unknown '" + label + "' (auto, never, always)";
     return false;
   }
-  if (window_frames < 1 || window_context_frames < 0) {
-    *error = "window_frames: must be >= 1, window_context_frames >= 0";
+  if (window_frames < 1 || window_context_frames < 0 || window_seam_blend_frames < 0) {
+    *error = "window_frames: must be >= 1, window_context_frames and window_seam_blend_frames >= 0";
     return false;
   }
   if (num_threads < 1) {

@@ -80,6 +80,7 @@ struct TakePipelineOptions {
   // with window_context_frames more on each side (settings/take_settings.h says why).
   int window_frames = 18000;
   int window_context_frames = 600;
+  int window_seam_blend_frames = 60;  // Cross-fade at each seam (window_seam_blend.h).
   // SolverSettings::num_threads: with 2 or more, a windowed take's character stages
   // (RunTakeCharacterStage) run on a second thread beside the next windows' repairs; the
   // outputs are the same bytes as with 1.

@@ -12,6 +12,7 @@
 #include "kinematics/forward_kinematics.h"
 #include "pipeline/in_order_worker.h"
 #include "pipeline/take_labelling.h"
+#include "pipeline/window_seam_blend.h"
 
 namespace mocapsolve {
 namespace {
@@ -306,13 +307,14 @@ struct WindowWriters {
   BvhPieceWriter bvh_frames;
   CompactMotion previous_solve;  // The last window's, for the seam check.
   FrameWindow previous;
+  WindowSeamBlend solve_seams{0};  // solved.bvh's frames, cross-faded at the seams.
 };
 
 // Window `w`'s repaired core into the outputs (the file's samples, solved.bvh), the repair's
 // figures and the seam check; the window's repair stage done.
 Status KeepRepairedWindow(const TakeResult& window, const FrameWindow& w, int frames, bool first_window,
-                          WindowWriters* writers, MarkerTrajectories* file, WindowSums* sums, TakeResult* total) {
-  const int core = w.core_last - w.core_first + 1;
+                          bool last_window, WindowWriters* writers, MarkerTrajectories* file, WindowSums* sums,
+                          TakeResult* total) {
   KeepRepairedCore(window, w, file, total);
   const Motion solve = window.solved.ToMotion();  // One window's.
   std::string lines;
@@ -321,7 +323,11 @@ Status KeepRepairedWindow(const TakeResult& window, const FrameWindow& w, int fr
     status = writers->bvh_frames.Start(total->take.skeleton, solve);  // Kept: the writer holds it.
     if (status.ok()) lines = writers->bvh_frames.Header(frames, window.solved.frame_rate());
   }
-  if (status.ok()) status = writers->bvh_frames.AppendFrames(solve, w.core_first - w.first, core, &lines);
+  if (status.ok()) {
+    status = writers->solve_seams.Add(solve, w, last_window, [&](const Motion& motion, int first, int count) {
+      return writers->bvh_frames.AppendFrames(motion, first, count, &lines);
+    });
+  }
   if (status.ok()) status = writers->bvh.Append(lines);
   if (!status.ok()) return status;
   if (!first_window) {
@@ -338,18 +344,25 @@ Status KeepRepairedWindow(const TakeResult& window, const FrameWindow& w, int fr
   return Status::Ok();
 }
 
-// Window `w`'s character stage done (`part`): its cores appended to the characters' takes,
+// Window `w`'s character stage done (`part`): its cores appended to the characters' takes
+// (cross-faded at the seams: window_seam_blend.h),
 // its figures into sums->characters and total's characters, its timings into *timings.
 // Touches nothing the repair stages do, so it runs on the character stages' thread.
-void KeepCharacters(const TakeResult& part, const FrameWindow& w, WindowSums* sums, std::vector<StageTime>* timings,
-                    TakeResult* total) {
-  const int core = w.core_last - w.core_first + 1;
+Status KeepCharacters(const TakeResult& part, const FrameWindow& w, bool last_window,
+                      std::vector<WindowSeamBlend>* seams, WindowSums* sums, std::vector<StageTime>* timings,
+                      TakeResult* total) {
   for (size_t c = 0; c < part.characters.size(); ++c) {
     const Motion take = part.characters[c].take.ToMotion();
-    total->characters[c].take.Append(take, w.core_first - w.first, core);
+    CompactMotion& kept = total->characters[c].take;
+    const Status status = (*seams)[c].Add(take, w, last_window, [&kept](const Motion& motion, int first, int count) {
+      kept.Append(motion, first, count);
+      return Status::Ok();
+    });
+    if (!status.ok()) return status;
   }
   MergeCharacters(part, w, sums, total);
   for (const StageTime& time : part.timings) AddTime(time.stage, time.seconds, timings);
+  return Status::Ok();
 }
 
 // One window read from the file and run through the repair stage into *window and *solved
@@ -446,6 +459,9 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   result->windows.threads = second_thread ? 2 : 1;
   for (CharacterOutput& c : result->characters) c.take.Reserve(frames);
   WindowWriters writers;
+  writers.solve_seams = WindowSeamBlend(options.window_seam_blend_frames);
+  std::vector<WindowSeamBlend> character_seams(result->characters.size(),
+                                               WindowSeamBlend(options.window_seam_blend_frames));
   status = MakeFolders(out_dir);  // After every check: a refused take leaves nothing.
   if (status.ok()) status = writers.bvh.Open(SolvedMotionPath(out_dir));
   WindowSums sums;
@@ -469,7 +485,10 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
       result->take.trajectories = window.take.trajectories;  // Metadata only (RunTakeRepairStage).
       result->samples = frames * window.take.markers.num_markers();
     }
-    if (status.ok()) status = KeepRepairedWindow(window, windows[k], frames, k == 0, &writers, &file, &sums, result);
+    const bool last_window = k + 1 == windows.size();
+    if (status.ok()) {
+      status = KeepRepairedWindow(window, windows[k], frames, k == 0, last_window, &writers, &file, &sums, result);
+    }
     if (!status.ok()) break;
     TakeResult part = CharacterPart(window, result->characters);
     window = TakeResult();  // Freed before waiting for the worker.
@@ -486,7 +505,9 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
         [&inputs, &options, job, part_progress] {
           return RunTakeCharacterStage(inputs, options, std::move(job->solved), &job->part, part_progress);
         },
-        [&, job, w] { KeepCharacters(job->part, w, &sums, &character_timings, result); });
+        [&, job, w, last_window] {
+          return KeepCharacters(job->part, w, last_window, &character_seams, &sums, &character_timings, result);
+        });
     if (!submitted) break;  // A window's character stage failed: Finish says which.
   }
   // solved.bvh and repaired.c3d are whole once the last window's repair is kept: finished

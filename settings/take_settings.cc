@@ -27,6 +27,12 @@ const OptionGroup<TakeSettings>& TakeSettingOptions() {
            "on both sides of a gap (--fill_samples a side), and the window's first solves, started from the "
            "previous window's solve, settle within it: 600 (5 s at 120 Hz) holds a 4 s gap's fill inside the "
            "context.",
+           0, 1000000)
+      .Add(&S::window_seam_blend_frames, "window_seam_blend_frames", "frames",
+           "A windowed take's solve and characters cross-fade from one window's motion to the next over this "
+           "many frames on each side of the seam (both windows solve those frames; a joint no marker moves, and "
+           "a retarget's feet, can differ between them by centimetres, which joined edge to edge would pop in "
+           "one frame); 0 joins them edge to edge. At most the context each side.",
            0, 1000000);
   return *group;
 }

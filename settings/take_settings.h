@@ -21,6 +21,9 @@ struct TakeSettings {
   // bounded by the window, not the take.
   int window_frames = 18000;
   int window_context_frames = 600;
+  // Frames on each side of a seam between two windows over which their motions (the solve,
+  // each character's) cross-fade (pipeline/window_seam_blend.h); 0 = joined edge to edge.
+  int window_seam_blend_frames = 60;
 };
 
 const OptionGroup<TakeSettings>& TakeSettingOptions();

@@ -28,7 +28,10 @@ TEST_P(InOrderWorkerTest, KeepsJobsInTheOrderGiven) {
           std::this_thread::sleep_for(std::chrono::milliseconds(3 * (12 - k)));
           return Status::Ok();
         },
-        [&done, k] { done.push_back(k); }));
+        [&done, k] {
+          done.push_back(k);
+          return Status::Ok();
+        }));
   }
   EXPECT_TRUE(worker.Finish().ok());
   ASSERT_EQ(done.size(), 12u);
@@ -47,7 +50,10 @@ TEST_P(InOrderWorkerTest, FirstErrorStopsTheJobsAfterIt) {
           if (k == 5) return Status::Error("window 6: failed too");
           return Status::Ok();
         },
-        [&done, k] { done.push_back(k); });
+        [&done, k] {
+          done.push_back(k);
+          return Status::Ok();
+        });
     if (!submitted) break;
     ++given;
   }
@@ -67,7 +73,10 @@ TEST_P(InOrderWorkerTest, AnExceptionIsAnErrorOfOneLine) {
   InOrderWorker worker(GetParam());
   bool after = false;
   worker.Submit([]() -> Status { throw std::runtime_error("retarget: out of memory"); });
-  worker.Submit([] { return Status::Ok(); }, [&after] { after = true; });
+  worker.Submit([] { return Status::Ok(); }, [&after] {
+    after = true;
+    return Status::Ok();
+  });
   const Status status = worker.Finish();
   ASSERT_FALSE(status.ok());
   EXPECT_EQ(status.message(), "retarget: out of memory");
@@ -94,7 +103,10 @@ TEST(InOrderWorker, ASubmitThatFindsAJobWaitingRunsItOnTheCallersThread) {
         std::this_thread::sleep_for(std::chrono::milliseconds(20));  // Done after the second.
         return Status::Ok();
       },
-      [&kept] { kept.push_back(0); }));
+      [&kept] {
+        kept.push_back(0);
+        return Status::Ok();
+      }));
   while (!first_started) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   std::thread::id second_thread;
   ASSERT_TRUE(worker.Submit(
@@ -103,8 +115,14 @@ TEST(InOrderWorker, ASubmitThatFindsAJobWaitingRunsItOnTheCallersThread) {
         second_started = true;
         return Status::Ok();
       },
-      [&kept] { kept.push_back(1); }));
-  ASSERT_TRUE(worker.Submit([] { return Status::Ok(); }, [&kept] { kept.push_back(2); }));
+      [&kept] {
+        kept.push_back(1);
+        return Status::Ok();
+      }));
+  ASSERT_TRUE(worker.Submit([] { return Status::Ok(); }, [&kept] {
+        kept.push_back(2);
+        return Status::Ok();
+      }));
   EXPECT_EQ(second_thread, std::this_thread::get_id());
   EXPECT_TRUE(worker.Finish().ok());
   EXPECT_TRUE(first_saw_second) << "the waiting job was not run beside the running one";
@@ -127,7 +145,10 @@ TEST(InOrderWorker, FinishRunsTheWaitingJobBesideTheRunningOne) {
         first_saw_second = second_started.load();
         return Status::Ok();
       },
-      [&kept] { kept.push_back(0); }));
+      [&kept] {
+        kept.push_back(0);
+        return Status::Ok();
+      }));
   while (!first_started) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   const std::thread::id caller = std::this_thread::get_id();
   std::thread::id second_thread;
@@ -137,7 +158,10 @@ TEST(InOrderWorker, FinishRunsTheWaitingJobBesideTheRunningOne) {
         second_started = true;
         return Status::Ok();
       },
-      [&kept] { kept.push_back(1); }));
+      [&kept] {
+        kept.push_back(1);
+        return Status::Ok();
+      }));
   EXPECT_TRUE(worker.Finish().ok());
   EXPECT_TRUE(first_saw_second) << "the waiting job ran only after the running one";
   EXPECT_EQ(second_thread, caller);
@@ -159,14 +183,20 @@ TEST(InOrderWorker, AnEarlierJobsErrorWinsOverALaterJobRunBesideIt) {
         }
         return Status::Error("window 1: failed");
       },
-      [&kept] { kept.push_back(0); }));
+      [&kept] {
+        kept.push_back(0);
+        return Status::Ok();
+      }));
   while (!first_started) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   ASSERT_TRUE(worker.Submit(
       [&] {
         second_done = true;
         return Status::Ok();
       },
-      [&kept] { kept.push_back(1); }));
+      [&kept] {
+        kept.push_back(1);
+        return Status::Ok();
+      }));
   const Status status = worker.Finish();
   ASSERT_FALSE(status.ok());
   EXPECT_EQ(status.message(), "window 1: failed");
