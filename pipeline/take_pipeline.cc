@@ -472,6 +472,7 @@ JsonObject TakeReport(const TakeInputs& inputs, const TakeResult& result) {
     windows.Add("count", w.count)
         .Add("frames", w.frames)
         .Add("context_frames", w.context_frames)
+        .Add("seam_blend_frames", w.seam_blend_frames)
         .Add("threads", w.threads)
         .Add("seam_max_mm", seam_max.empty() ? 0.0 : *std::max_element(w.seam_max_mm.begin(), w.seam_max_mm.end()))
         .Add("seam_first_frame_max_mm",

@@ -135,6 +135,7 @@ struct TakeWindowsSummary {
   int count = 0;
   int frames = 0;          // The frames each window keeps (its core; the last may keep fewer).
   int context_frames = 0;  // Solved on each side of a core and dropped.
+  int seam_blend_frames = 0;  // The solve and characters cross-fade over these each side of a seam.
   // 2 when the windows' character stages ran on a second thread beside the repairs
   // (TakePipelineOptions::num_threads), else 1.
   int threads = 1;

@@ -455,6 +455,7 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   result->windows.count = static_cast<int>(windows.size());
   result->windows.frames = windows.front().core_last - windows.front().core_first + 1;
   result->windows.context_frames = options.window_context_frames;
+  result->windows.seam_blend_frames = std::min(options.window_seam_blend_frames, options.window_context_frames);
   const bool second_thread = options.num_threads >= 2;  // For the windows' character stages.
   result->windows.threads = second_thread ? 2 : 1;
   for (CharacterOutput& c : result->characters) c.take.Reserve(frames);

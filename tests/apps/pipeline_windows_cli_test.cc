@@ -98,6 +98,7 @@ TEST_F(PipelineWindowsCli, WindowedTakeIsCompleteAndCloseToTheWholeRun) {
   EXPECT_EQ(windows->Find("count")->number, 3);
   EXPECT_EQ(windows->Find("frames")->number, 200);
   EXPECT_EQ(windows->Find("seams_mm")->items.size(), 2u);
+  EXPECT_EQ(windows->Find("seam_blend_frames")->number, 50);  // The default 60, at most the context.
   EXPECT_EQ(report.Find("frames")->number, 600);
   EXPECT_TRUE(report.Find("quality_gate")->Find("pass")->boolean);
   EXPECT_THAT(testing::ReadTextFile(whole + "/report.json"), ::testing::Not(HasSubstr("\"windows\"")));
