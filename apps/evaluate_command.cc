@@ -20,6 +20,7 @@
 #include "pipeline/quality_gate.h"
 #include "settings/frame_limit_settings.h"
 #include "settings/retarget_settings.h"
+#include "settings/skeleton_fit_settings.h"
 
 
 namespace mocapsolve {
@@ -66,6 +67,7 @@ Status EvaluateMain(const std::vector<std::string>& arguments) {
   config.repair = RepairSettingsFromFlags();
   config.solver = SolverSettingsFromFlags();
   config.damage = CorruptionSettingsFromFlags();
+  ReadOptionFlags(SkeletonFitSettingOptions(), &config.fit);
   if (!Files().table_csv.empty()) {
     for (const std::string& in : inputs) {
       Status status = CheckNotAnInput(Files().table_csv, in);
@@ -140,6 +142,6 @@ extern const Command kEvaluateCommand = {
      SolverOptions().Only("mode").options(),  // leave_one_out's frame or clip solve.
      RepairSettingOptions().options(), CorruptionSettingOptions().options(), EvaluateSettingOptions().options(),
      EvaluateMethodOption().options(), QualityGateOptions().Only(RetargetGateNames()).options(),
-     RetargetSettingOptions().options()}};
+     RetargetSettingOptions().options(), SkeletonFitSettingOptions().options()}};
 
 }  // namespace mocapsolve

@@ -13,10 +13,10 @@ PYBIND11_MODULE(_core, m) {
   BindKinematics(m);
   BindIo(m);
   BindSolve(m);
+  BindSkeletonFitting(m);  // Before repair: evaluate's docs read SkeletonFitSettings.
   BindRepair(m);
   BindRetarget(m);
   BindPropagate(m);
   BindPyramid(m);
   BindPipeline(m);
-  BindSkeletonFitting(m);
 }

@@ -132,9 +132,10 @@ unlabelled, first_frame, last_frame, frames, mean_distance_mm}; 'detected' and '
                       {py::cast(&config.evaluate, py::return_value_policy::reference),
                        py::cast(&config.repair, py::return_value_policy::reference),
                        py::cast(&config.solver, py::return_value_policy::reference),
-                       py::cast(&config.damage, py::return_value_policy::reference)},
+                       py::cast(&config.damage, py::return_value_policy::reference),
+                       py::cast(&config.fit, py::return_value_policy::reference)},
                       EvaluateSettingOptions().Names() + "," + RepairOptionNames() + "," +
-                          CorruptionSettingOptions().Names());
+                          CorruptionSettingOptions().Names() + "," + SkeletonFitSettingOptions().Names());
         const MarkerTakePtr take = SolvableTakeArgument(*subject, markers);
         EvaluateResult result;
         Status status = Status::Ok();
@@ -159,10 +160,13 @@ writes. method:
     white_noise_mm of noise.
 subject: a Subject; markers: a .c3d/.trc path, Markers or a Take. Keywords: the evaluate
 options (trials: how many damaged copies, default 1, up to 1000; white_noise_mm), the
-repair, solver and corruption options. Releases the GIL.)doc") +
+repair, solver and corruption options, and fit_skeleton's (the fit of time_split's first half).
+Releases the GIL.)doc") +
        KeywordDefaults("Evaluate keywords and defaults (EvaluateSettings)", py::cast(EvaluateSettings()),
                        EvaluateSettingOptions().Names()) +
-       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(EvaluateSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), CorruptionSettingOptions().Names())).c_str());
+       KeywordDefaults("Repair keywords and defaults (RepairSettings)", py::cast(RepairSettings()), RepairSettingOptions().Names()) + KeywordDefaults("Solver keywords and defaults (SolverSettings)", py::cast(EvaluateSolverOptions().Defaults()), SolverOptions().Names()) + KeywordDefaults("Damage keywords and defaults (CorruptionSettings)", py::cast(CorruptionSettings()), CorruptionSettingOptions().Names()) +
+       KeywordDefaults("Fit keywords and defaults (SkeletonFitSettings)", py::cast(SkeletonFitSettings()),
+                       SkeletonFitSettingOptions().Names())).c_str());
   py::class_<LabelSettings> label_settings(m, "LabelSettings",
                                            "How label() finds the body and tracks the points (the CLI's label flags).");
   label_settings.def(py::init<>(), "Every option at the CLI's default.");

@@ -17,7 +17,8 @@ Status LeaveOneOut(const MarkerTake& evaluated, const EvaluateConfig& config,
   // The protocol decides the subject and the scored frames (leave_one_out_protocol.h).
   MarkerTake take;
   JsonObject protocol;
-  Status status = LeaveOneOutProtocolTake(evaluated, config.evaluate.protocol, config.solver, &take, &protocol);
+  Status status = LeaveOneOutProtocolTake(evaluated, config.evaluate.protocol, config.solver, config.fit, &take,
+                                          &protocol);
   if (!status.ok()) return status;
   const Skeleton& skeleton = take.skeleton;
   const MarkerSet& markers = take.markers;

@@ -28,6 +28,7 @@
 #include "settings/corruption_settings.h"
 #include "settings/evaluate_settings.h"
 #include "settings/repair_settings.h"
+#include "settings/skeleton_fit_settings.h"
 #include "settings/solver_settings.h"
 
 namespace mocapsolve {
@@ -38,6 +39,7 @@ struct EvaluateConfig {
   RepairSettings repair;
   SolverSettings solver = EvaluateSolverOptions().Defaults();  // mode: leave_one_out's solve.
   CorruptionSettings damage;
+  SkeletonFitSettings fit;  // leave_one_out --protocol=time_split: the first half's fit.
   bool keep_predictions = false;  // leave_one_out: fill EvaluateResult::leave_one_out.predicted.
 };
 

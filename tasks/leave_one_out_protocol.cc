@@ -26,7 +26,8 @@ Subject TakeSubject(const MarkerTake& take) {
   return subject;
 }
 
-Status TimeSplit(const MarkerTake& take, const SolverSettings& solver, MarkerTake* scored, JsonObject* report) {
+Status TimeSplit(const MarkerTake& take, const SolverSettings& solver, const SkeletonFitSettings& fit_settings,
+                 MarkerTake* scored, JsonObject* report) {
   const int frames = take.trajectories.num_frames();
   if (frames < 2 * kMinSplitFrames) {
     return Status::Error(take.name + ": --protocol=time_split needs at least " + std::to_string(2 * kMinSplitFrames) +
@@ -46,7 +47,7 @@ Status TimeSplit(const MarkerTake& take, const SolverSettings& solver, MarkerTak
   Status status = MarkerSolveOptionsFromSettings(solver, take.skeleton.unit(), &solve_options);
   if (!status.ok()) return status;
   SkeletonFitResult fit;
-  status = FitSubjectToTake(inputs, SkeletonFitSettings(), solve_options, &fit);
+  status = FitSubjectToTake(inputs, fit_settings, solve_options, &fit);
   if (!status.ok()) return status;
   status = TakeForSubject(fit.subject, TrajectoryFrames(take.trajectories, half, frames - half),
                           take.name + " (frames " + std::to_string(half) + "-" + std::to_string(frames - 1) + ")",
@@ -62,8 +63,8 @@ Status TimeSplit(const MarkerTake& take, const SolverSettings& solver, MarkerTak
 }  // namespace
 
 Status LeaveOneOutProtocolTake(const MarkerTake& take, const std::string& protocol, const SolverSettings& solver,
-                               MarkerTake* scored, JsonObject* report) {
-  if (protocol == "time_split") return TimeSplit(take, solver, scored, report);
+                               const SkeletonFitSettings& fit, MarkerTake* scored, JsonObject* report) {
+  if (protocol == "time_split") return TimeSplit(take, solver, fit, scored, report);
   if (protocol != "cross_take") return Status::Error("--protocol: expected cross_take or time_split, got '" + protocol + "'");
   *scored = take;
   report->Add("protocol", "cross_take").Add("scored_first_frame", 0)

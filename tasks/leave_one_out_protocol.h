@@ -7,8 +7,9 @@
 //               marker's offset and mean pose from these very samples, and its figures are
 //               optimistic by construction.
 //   time_split  the take cut at half its frames; a subject fitted on the first half
-//               (FitSubjectToTake, the given subject as the template, fit_skeleton's
-//               defaults; its checks reported, not enforced) and the second half scored.
+//               (FitSubjectToTake, the given subject as the template, with the fit's
+//               settings as `evaluate` reads them: fit_skeleton's options; its checks
+//               reported, not enforced) and the second half scored.
 // The leave-one-out itself (problems/marker_solve/leave_one_out.h) then solves the scored
 // frames without the marker, so its own samples there reach neither the solve nor the
 // per-take offset refinement.
@@ -20,6 +21,7 @@
 #include "io/json_writer.h"
 #include "kinematics/status.h"
 #include "pipeline/subject.h"
+#include "settings/skeleton_fit_settings.h"
 #include "settings/solver_settings.h"
 
 namespace mocapsolve {
@@ -29,7 +31,7 @@ namespace mocapsolve {
 // RMS in mm, checks). Errors: an unknown protocol, a take too short to split (fewer than 20
 // frames), a fit that fails (naming take.name).
 Status LeaveOneOutProtocolTake(const MarkerTake& take, const std::string& protocol, const SolverSettings& solver,
-                               MarkerTake* scored, JsonObject* report);
+                               const SkeletonFitSettings& fit, MarkerTake* scored, JsonObject* report);
 
 // The take of a time split read against a template subject it need not match (a template
 // from another marker set, as fit_skeleton's --template_subject): `templ`'s axes and scale

@@ -44,8 +44,10 @@ MarkerTake DemoMarkerTake(const testing::DemoTake& demo, int moved, int first, i
 
 // Predictions of marker `label` over the scored frames.
 std::vector<Eigen::Vector3d> Predictions(const MarkerTake& take, const std::string& protocol,
-                                         const std::string& label) {
+                                         const std::string& label,
+                                         const SkeletonFitSettings& fit = SkeletonFitSettings()) {
   EvaluateConfig config;
+  config.fit = fit;
   config.method = "leave_one_out";
   config.evaluate.protocol = protocol;
   config.solver.num_threads = 2;
@@ -87,15 +89,27 @@ TEST(LeaveOneOutProtocol, ScoredSamplesOfTheLeftOutMarkerCannotReachItsPredictio
   EXPECT_FALSE(SameBits(split, Predictions(DemoMarkerTake(demo, m, 0, kFrames / 2, shift), "time_split", label)));
 }
 
+// time_split fits its first half with the fit settings given (fit_skeleton's options, as
+// `evaluate` reads them), not always fit_skeleton's defaults: a fit on every 5th frame of
+// the half predicts otherwise.
+TEST(LeaveOneOutProtocol, TheTimeSplitFitsWithTheSettingsGiven) {
+  const testing::DemoTake demo = testing::MakeDemoTake(kFrames, 30.0, 7);
+  const MarkerTake take = DemoMarkerTake(demo, 0, 0, 0, Eigen::Vector3d::Zero());
+  const std::string label = demo.markers.label(4);
+  SkeletonFitSettings sparse;
+  sparse.fit_frame_step = 5;
+  EXPECT_FALSE(SameBits(Predictions(take, "time_split", label), Predictions(take, "time_split", label, sparse)));
+}
+
 TEST(LeaveOneOutProtocol, TooShortATakeAndAnUnknownProtocolAreErrors) {
   const testing::DemoTake demo = testing::MakeDemoTake(kFrames, 30.0, 7);
   MarkerTake take = DemoMarkerTake(demo, 0, 0, 0, Eigen::Vector3d::Zero());
   MarkerTake scored;
   JsonObject report;
-  EXPECT_EQ(LeaveOneOutProtocolTake(take, "same_take", SolverSettings(), &scored, &report).message(),
+  EXPECT_EQ(LeaveOneOutProtocolTake(take, "same_take", SolverSettings(), SkeletonFitSettings(), &scored, &report).message(),
             "--protocol: expected cross_take or time_split, got 'same_take'");
   take.trajectories = TrajectoryFrames(take.trajectories, 0, 30);
-  EXPECT_EQ(LeaveOneOutProtocolTake(take, "time_split", SolverSettings(), &scored, &report).message(),
+  EXPECT_EQ(LeaveOneOutProtocolTake(take, "time_split", SolverSettings(), SkeletonFitSettings(), &scored, &report).message(),
             "demo.trc: --protocol=time_split needs at least 40 frames (has 30)");
 }
 
