@@ -233,7 +233,8 @@ TEST(SubjectChecks, BoneSegmentsTakeInHeldChildrenOneBoneDeep) {
   // In the clavicle's turned frame: +x of the thorax.
   joints[3].name = "lhumerus", joints[3].parent = 2, joints[3].offset = {0, -18, 0};
   Skeleton skeleton;
-  ASSERT_TRUE(Skeleton::Create(joints, {{"lhumerus_End", 3, Eigen::Vector3d(0, -30, 0)}}, Centimetres(), &skeleton).ok());
+  const std::vector<EndSite> elbow_site = {{"lhumerus_End", 3, Eigen::Vector3d(0, -30, 0)}};
+  ASSERT_TRUE(Skeleton::Create(joints, elbow_site, Centimetres(), &skeleton).ok());
   const Eigen::Vector3d acromion(18, 32, 0), elbow(48, 30, 0);
   EXPECT_NEAR(DistanceToBone(skeleton, 0, acromion), std::hypot(18.0, 2.0), 1e-9);
   std::vector<bool> held = {false, false, true, true};
