@@ -205,10 +205,11 @@ MarkerTrajectories KeepMarkers(const MarkerTrajectories& file, const std::vector
 
 // Round 0's markers from the association: every associated marker on its segment's joint;
 // the take cut to the markers (non-markers left out), its axes and scale as detected; and the
-// joints the attach rounds may use (AttachableJoints of every associated marker).
+// joints the attach rounds may use (AttachableJoints of every associated marker) and those
+// they leave out (HeldLimbJoints).
 Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings, MarkerTrajectories* file,
                      SkeletonFitResult* result, Subject* mapping, AssociatedMarkerSet* set,
-                     std::vector<int>* attach_joints) {
+                     std::vector<int>* attach_joints, std::vector<bool>* held_limbs) {
   const Skeleton& skeleton = inputs.templ.skeleton;
   Status status = AssociateMarkers(*file, inputs.markers_path, MarkerAssociationOptions(), &result->association);
   if (!status.ok()) return status;
@@ -229,6 +230,7 @@ Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings&
   if (status.ok()) status = MarkerSet::Create(skeleton, every.specs, &segments);
   if (!status.ok()) return Status::Error(inputs.markers_path + ": " + status.message());
   *attach_joints = AttachableJoints(skeleton, segments);
+  *held_limbs = HeldLimbJoints(skeleton, segments);
   mapping->axes = set->axes;
   if (result->association.unit_from_data) {
     file->unit = result->association.unit;
@@ -290,6 +292,9 @@ struct FitTake {
   // With the association: the joints the attach rounds may use (AttachableJoints of every
   // associated marker on its segment's joint, whatever its confidence; empty: all).
   std::vector<int> attach_joints;
+  // The joints it leaves out, rigid with their parents in every round (HeldLimbJoints; empty:
+  // none): their bones are their parents' skin for --max_skin_cm.
+  std::vector<bool> held_limbs;
 };
 
 // Reads the take and sets it against the template: labels mapped, the template markers it
@@ -315,7 +320,8 @@ Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& s
   std::vector<MarkerSpec> present;
   AssociatedMarkerSet associated;
   if (UseAssociation(settings, template_markers, file)) {
-    status = AssociateTake(inputs, settings, &file, result, &fit->mapping, &associated, &fit->attach_joints);
+    status = AssociateTake(inputs, settings, &file, result, &fit->mapping, &associated, &fit->attach_joints,
+                           &fit->held_limbs);
     present = associated.specs;
     fit->associated = true;
   } else {
@@ -456,7 +462,7 @@ Status AttachAllMarkers(const FitTake& fit, const RoundState& state, const Calib
       }
       for (MarkerAttachment& a : spec.attachments) {
         if (calibration.max_bone_distance > 0.0) {
-          a.offset = ClampToBone(state.fitted, a.joint, a.offset, calibration.max_bone_distance);
+          a.offset = ClampToBone(state.fitted, a.joint, a.offset, calibration.max_bone_distance, fit.held_limbs);
         }
       }
     }
@@ -564,8 +570,8 @@ Status ChooseByPrediction(const FitTake& fit, const RoundState& state, const Cal
     }
     alternative[s] = refit.marker_set.marker(k).attachments[0];
     if (calibration.max_bone_distance > 0.0) {
-      alternative[s].offset =
-          ClampToBone(state.fitted, alternative[s].joint, alternative[s].offset, calibration.max_bone_distance);
+      alternative[s].offset = ClampToBone(state.fitted, alternative[s].joint, alternative[s].offset,
+                                          calibration.max_bone_distance, fit.held_limbs);
     }
   }
   if (solve.rest_prior_needs_reference || !solve.rest_rotations.empty()) {
@@ -820,7 +826,8 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   status = LoadFitTake(inputs, settings, units_per_cm, events, result, &fit);
   if (!status.ok()) return status;
 
-  const SkeletonFitOptions base_options = BaseFitOptions(settings, units_per_cm);
+  SkeletonFitOptions base_options = BaseFitOptions(settings, units_per_cm);
+  base_options.held_limbs = fit.held_limbs;
   const double outlier_distance = settings.fit_outlier_mm * 0.1 * units_per_cm;
   RoundState state;
   state.fitted = skeleton;

@@ -28,10 +28,9 @@ HeldSegments FindHeldSegments(const Skeleton& skeleton, const MarkerSet& markers
   return held;
 }
 
-std::vector<int> AttachableJoints(const Skeleton& skeleton, const MarkerSet& markers) {
+std::vector<bool> HeldLimbJoints(const Skeleton& skeleton, const MarkerSet& markers) {
   const std::vector<bool> observed = ObservedJoints(skeleton, markers);
   std::vector<bool> excluded(skeleton.num_joints(), false);
-  bool any = false;
   for (int j = 0; j < skeleton.num_joints(); ++j) {
     const int parent = skeleton.parent(j);
     if (observed[j] || (parent >= 0 && !observed[parent])) continue;
@@ -41,10 +40,15 @@ std::vector<int> AttachableJoints(const Skeleton& skeleton, const MarkerSet& mar
     for (int k = j + 1; k < skeleton.subtree_end(j); ++k) end_segment = end_segment && skeleton.subtree_end(k) == k + 1;
     if (end_segment) continue;
     for (int k = j; k < skeleton.subtree_end(j); ++k) excluded[k] = true;
-    any = true;
   }
+  return excluded;
+}
+
+std::vector<int> AttachableJoints(const Skeleton& skeleton, const MarkerSet& markers) {
+  const std::vector<bool> excluded = HeldLimbJoints(skeleton, markers);
+  if (std::find(excluded.begin(), excluded.end(), true) == excluded.end()) return {};
   std::vector<int> joints;
-  for (int j = 0; any && j < skeleton.num_joints(); ++j) {
+  for (int j = 0; j < skeleton.num_joints(); ++j) {
     if (!excluded[j]) joints.push_back(j);
   }
   return joints;

@@ -43,6 +43,11 @@ HeldSegments FindHeldSegments(const Skeleton& skeleton, const MarkerSet& markers
 // there (nick_freeform_001 renamed: its hands excluded, 12.95 mm). Empty when nothing is
 // excluded (every joint allowed).
 std::vector<int> AttachableJoints(const Skeleton& skeleton, const MarkerSet& markers);
+// Per joint: in a held subtree AttachableJoints leaves out (a held limb or chain). No round
+// of a fit puts a marker there, so such a joint stays rigid with its parent throughout, and
+// the subject holds it so: its bone counts as its parent's skin (subject_checks.h,
+// BoneSegments). A held end segment is not counted: a later round may attach a marker to it.
+std::vector<bool> HeldLimbJoints(const Skeleton& skeleton, const MarkerSet& markers);
 
 // The needed segments `markers` leaves unobserved, one entry each: "left_foot (lfoot; the
 // template puts LHEE, LTOE there)", naming `template_markers`' labels on that joint and

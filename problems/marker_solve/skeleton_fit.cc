@@ -217,11 +217,12 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
   // Each attachment's skin radius: max_bone_distance, or its distance at the start when
   // that is farther (a marker the given set holds outside the tube stays where it is
   // trusted to be, so the first step cannot be worse for a clamp alone).
+  const std::vector<bool>& held = options.held_limbs;
   std::vector<std::vector<double>> radius(markers.num_markers());
   for (int m = 0; m < markers.num_markers(); ++m) {
     for (const MarkerAttachment& a : markers.marker(m).attachments) {
       radius[m].push_back(options.max_bone_distance > 0.0
-                              ? std::max(options.max_bone_distance, DistanceToBone(skeleton, a.joint, a.offset))
+                              ? std::max(options.max_bone_distance, DistanceToBone(skeleton, a.joint, a.offset, held))
                               : 0.0);
     }
   }
@@ -266,7 +267,7 @@ Status FitSkeletonToMarkers(const Skeleton& skeleton, const MarkerSet& markers, 
       for (size_t m = 0; m < specs.size(); ++m) {
         for (size_t k = 0; k < specs[m].attachments.size(); ++k) {
           MarkerAttachment& a = specs[m].attachments[k];
-          a.offset = ClampToBone(next, a.joint, a.offset, radius[m][k]);
+          a.offset = ClampToBone(next, a.joint, a.offset, radius[m][k], held);
         }
       }
     }

@@ -66,6 +66,10 @@ struct SkeletonFitOptions {
   // radius around its joint's bone (subject_checks.h, ClampToBone), or of its starting
   // distance when that is larger; skeleton units, 0: off.
   double max_bone_distance = 0.0;
+  // Per joint (empty: none): held rigid with its parent through the fit (a held limb no
+  // marker may attach to, held_segments.h, HeldLimbJoints); its bone counts as its
+  // parent's for max_bone_distance (subject_checks.h, BoneSegments).
+  std::vector<bool> held_limbs;
   // The first frame's root pose from the markers' geometry (sequence_solver.h), not the
   // 24 axis orientations.
   bool root_from_markers = false;

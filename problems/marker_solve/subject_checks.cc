@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "kinematics/forward_kinematics.h"
+#include "problems/marker_solve/held_segments.h"
 
 namespace mocapsolve {
 namespace {
@@ -27,10 +28,11 @@ Eigen::Vector3d NearestOnSegment(const Eigen::Vector3d& a, const Eigen::Vector3d
   return a + t * d;
 }
 
-Eigen::Vector3d NearestOnBone(const Skeleton& skeleton, int j, const Eigen::Vector3d& point) {
+Eigen::Vector3d NearestOnBone(const Skeleton& skeleton, int j, const Eigen::Vector3d& point,
+                              const std::vector<bool>& held) {
   Eigen::Vector3d best = Eigen::Vector3d::Zero();
   double best_distance = (point - best).norm();
-  for (const auto& [a, b] : BoneSegments(skeleton, j)) {
+  for (const auto& [a, b] : BoneSegments(skeleton, j, held)) {
     const Eigen::Vector3d q = NearestOnSegment(a, b, point);
     const double d = (point - q).norm();
     if (d < best_distance) best_distance = d, best = q;
@@ -87,30 +89,39 @@ int MirrorJoint(const Skeleton& skeleton, int j) {
   return -1;
 }
 
-std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> BoneSegments(const Skeleton& skeleton, int j) {
+std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> BoneSegments(const Skeleton& skeleton, int j,
+                                                                      const std::vector<bool>& held) {
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
-  // Depth-first over the rigid body of j: (joint, j_from_joint).
-  std::vector<std::pair<int, Eigen::Isometry3d>> stack = {{j, Eigen::Isometry3d::Identity()}};
+  // Depth-first over the rigid body of j: (joint, j_from_joint, reached through a held
+  // child: its own held children are not added, one held bone deep).
+  struct Part {
+    int joint;
+    Eigen::Isometry3d frame;
+    bool through_held;
+  };
+  std::vector<Part> stack = {{j, Eigen::Isometry3d::Identity(), false}};
   while (!stack.empty()) {
-    const auto [k, frame] = stack.back();
+    const Part part = stack.back();
     stack.pop_back();
-    const Eigen::Vector3d origin = frame.translation();
+    const int k = part.joint;
+    const Eigen::Vector3d origin = part.frame.translation();
     bool any = false;
     for (int c = k + 1; c < skeleton.subtree_end(k); ++c) {
       if (skeleton.parent(c) != k) continue;
-      const Eigen::Vector3d end = frame * skeleton.offset(c);
-      segments.emplace_back(origin, end);
+      segments.emplace_back(origin, part.frame * skeleton.offset(c));
       any = true;
-      if (skeleton.num_rotation_dofs(c) == 0 && !skeleton.has_translation_channels(c)) {
-        Eigen::Isometry3d child = frame;
+      const bool rigid = skeleton.num_rotation_dofs(c) == 0 && !skeleton.has_translation_channels(c);
+      const bool held_child = !rigid && !part.through_held && c < static_cast<int>(held.size()) && held[c];
+      if (rigid || held_child) {
+        Eigen::Isometry3d child = part.frame;
         child.translate(skeleton.offset(c));
         child.rotate(skeleton.rest_rotation(c));
-        stack.emplace_back(c, child);
+        stack.push_back({c, child, part.through_held || held_child});
       }
     }
     for (const EndSite& site : skeleton.end_sites()) {
       if (site.parent != k) continue;
-      segments.emplace_back(origin, frame * site.offset);
+      segments.emplace_back(origin, part.frame * site.offset);
       any = true;
     }
     if (!any) segments.emplace_back(origin, origin);
@@ -118,12 +129,13 @@ std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> BoneSegments(const Skel
   return segments;
 }
 
-double DistanceToBone(const Skeleton& skeleton, int j, const Eigen::Vector3d& point) {
-  return (point - NearestOnBone(skeleton, j, point)).norm();
+double DistanceToBone(const Skeleton& skeleton, int j, const Eigen::Vector3d& point, const std::vector<bool>& held) {
+  return (point - NearestOnBone(skeleton, j, point, held)).norm();
 }
 
-Eigen::Vector3d ClampToBone(const Skeleton& skeleton, int j, const Eigen::Vector3d& point, double max_distance) {
-  const Eigen::Vector3d nearest = NearestOnBone(skeleton, j, point);
+Eigen::Vector3d ClampToBone(const Skeleton& skeleton, int j, const Eigen::Vector3d& point, double max_distance,
+                            const std::vector<bool>& held) {
+  const Eigen::Vector3d nearest = NearestOnBone(skeleton, j, point, held);
   const Eigen::Vector3d away = point - nearest;
   const double distance = away.norm();
   if (distance <= max_distance) return point;
@@ -136,12 +148,13 @@ SubjectChecks CheckSubjectFit(const Skeleton& skeleton, const MarkerSet& markers
   SubjectChecks checks;
   const double cm = skeleton.unit().known() ? skeleton.unit().metres_per_unit * 100.0 : 1.0;
   char line[256];
-  // 1. Skin distance.
+  // 1. Skin distance, to the bone with its held limbs' (as the fit clamps it).
+  const std::vector<bool> held = HeldLimbJoints(skeleton, markers);
   for (int m = 0; m < markers.num_markers(); ++m) {
     MarkerDistance d;
     d.label = markers.label(m);
     for (const MarkerAttachment& a : markers.marker(m).attachments) {
-      const double to_bone = DistanceToBone(skeleton, a.joint, a.offset) * cm;
+      const double to_bone = DistanceToBone(skeleton, a.joint, a.offset, held) * cm;
       if (to_bone >= d.to_bone_cm) d.to_bone_cm = to_bone, d.joint = skeleton.name(a.joint);
       d.to_joint_cm = std::max(d.to_joint_cm, a.offset.norm() * cm);
     }

@@ -10,7 +10,13 @@
 //     and end sites, all in j's frame:
 //       child origin in j's frame = F_k * t_c,  F_c = F_k * T(t_c) * R_rest_c (rigid c).
 //     A leaf without end sites is a point (its origin). Distances are to the nearest point
-//     of the nearest segment.
+//     of the nearest segment. With `held` (per joint: in a held limb, held_segments.h,
+//     HeldLimbJoints), a held child c of that body is rigid with it in a fit (no marker
+//     turns it; it stays at its zero rotation, F_c as above), so c's own segments (to its
+//     children's origins and end sites, not their held subtrees) count as j's bone too: a
+//     Davis set's acromion rides the thorax 17-20 cm from the spine, on the held clavicle's
+//     bone, within the skin of the thorax's rigid body. The check uses the fitted markers'
+//     held limbs.
 //  2. Torso direction. Per frame, the solved pelvis-to-head direction (the head joint's
 //     origin minus the root's) against the markers' own: the centroid of the observed
 //     head markers minus that of the pelvis markers, chosen by label (LFHD RFHD LBHD
@@ -48,12 +54,16 @@ std::string SideFreeName(const std::string& name);
 // The left/right twin of joint j (-1 if none).
 int MirrorJoint(const Skeleton& skeleton, int j);
 
-// The bone of joint j as segments (start, end) in j's frame (see the header comment).
-std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> BoneSegments(const Skeleton& skeleton, int j);
+// The bone of joint j as segments (start, end) in j's frame (see the header comment);
+// `held` empty: no joint held.
+std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> BoneSegments(const Skeleton& skeleton, int j,
+                                                                      const std::vector<bool>& held = {});
 // Distance from a point in j's frame to j's bone; and the point moved onto the bone's
 // tube of radius max_distance when it lies outside (unchanged otherwise).
-double DistanceToBone(const Skeleton& skeleton, int j, const Eigen::Vector3d& point);
-Eigen::Vector3d ClampToBone(const Skeleton& skeleton, int j, const Eigen::Vector3d& point, double max_distance);
+double DistanceToBone(const Skeleton& skeleton, int j, const Eigen::Vector3d& point,
+                      const std::vector<bool>& held = {});
+Eigen::Vector3d ClampToBone(const Skeleton& skeleton, int j, const Eigen::Vector3d& point, double max_distance,
+                            const std::vector<bool>& held = {});
 
 struct SubjectCheckOptions {
   double max_marker_bone_distance_cm = 15.0;

@@ -69,6 +69,10 @@ TEST(HeldSegments, AHeldEndSegmentStaysAttachableAHeldLimbDoesNot) {
   const std::vector<int> attachable = AttachableJoints(skeleton, Without(skeleton, all, arm));
   EXPECT_EQ(attachable.size(), static_cast<size_t>(skeleton.num_joints()) - arm.size());
   for (int j : attachable) EXPECT_FALSE(arm.count(skeleton.name(j))) << skeleton.name(j);
+  // The held limb's joints, exactly (their bones are their parent's skin); not the foot.
+  const std::vector<bool> limb = HeldLimbJoints(skeleton, Without(skeleton, all, arm));
+  for (int j = 0; j < skeleton.num_joints(); ++j) EXPECT_EQ(limb[j], arm.count(skeleton.name(j)) > 0) << j;
+  for (bool held : HeldLimbJoints(skeleton, no_foot)) EXPECT_FALSE(held);
 }
 
 // The pelvis needs a marker on its own joint or a child of it that leads to no leg (the

@@ -221,5 +221,29 @@ TEST(SubjectChecks, BoneSegmentsFollowRigidChildren) {
   EXPECT_EQ(MirrorJoint(skeleton, 2), -1);
 }
 
+// A held child (a Davis set's clavicle: no marker on it or below it) is rigid with its
+// parent in a fit, so its bone is the parent's skin too; one bone deep: its own held child
+// (the upper arm) is not. An acromion at the clavicle's end, 18 cm from the chest's bone.
+TEST(SubjectChecks, BoneSegmentsTakeInHeldChildrenOneBoneDeep) {
+  std::vector<JointSpec> joints(4);
+  joints[0].name = "thorax";
+  joints[1].name = "neck", joints[1].parent = 0, joints[1].offset = {0, 30, 0};
+  joints[2].name = "lclavicle", joints[2].parent = 0, joints[2].offset = {0, 30, 0};
+  joints[2].rest_rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitZ()));
+  // In the clavicle's turned frame: +x of the thorax.
+  joints[3].name = "lhumerus", joints[3].parent = 2, joints[3].offset = {0, -18, 0};
+  Skeleton skeleton;
+  const std::vector<EndSite> elbow_site = {{"lhumerus_End", 3, Eigen::Vector3d(0, -30, 0)}};
+  ASSERT_TRUE(Skeleton::Create(joints, elbow_site, Centimetres(), &skeleton).ok());
+  const Eigen::Vector3d acromion(18, 32, 0), elbow(48, 30, 0);
+  EXPECT_NEAR(DistanceToBone(skeleton, 0, acromion), std::hypot(18.0, 2.0), 1e-9);
+  std::vector<bool> held = {false, false, true, true};
+  EXPECT_NEAR(DistanceToBone(skeleton, 0, acromion, held), 2.0, 1e-9);
+  EXPECT_NEAR(DistanceToBone(skeleton, 0, elbow, held), 30.0, 1e-9);  // Not on the humerus' bone.
+  EXPECT_EQ(BoneSegments(skeleton, 0, held).size(), 3u);               // Spine, neck, clavicle.
+  EXPECT_TRUE(ClampToBone(skeleton, 0, acromion, 12.0, held).isApprox(acromion));
+  EXPECT_NEAR(DistanceToBone(skeleton, 0, ClampToBone(skeleton, 0, acromion, 12.0)), 12.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace mocapsolve
