@@ -508,6 +508,40 @@ std::vector<std::vector<int>> RoundClusters(const FitTake& fit, const MarkerSet&
   return clusters;
 }
 
+// The offsets of `choices` (one attachment list per marker of `markers`, empty: none)
+// fitted on the round's motion (CalibrateMarkers with fixed attachments; a blend's by
+// least squares over all its offsets) and clamped to the skin; a marker the fit skips
+// loses its choice.
+Status FitChoices(const FitTake& fit, const Skeleton& skeleton, const Motion& motion,
+                  const CalibrationOptions& calibration, const MarkerSet& markers,
+                  std::vector<AttachmentChoice>* choices) {
+  std::vector<MarkerSpec> specs;
+  for (int s = 0; s < markers.num_markers(); ++s) {
+    if ((*choices)[s].empty()) continue;
+    specs.push_back(markers.marker(s));
+    specs.back().attachments = (*choices)[s];
+  }
+  if (specs.empty()) return Status::Ok();
+  MarkerSet to_fit;
+  Status status = MarkerSet::Create(skeleton, std::move(specs), &to_fit);
+  CalibrationResult refit;
+  if (status.ok()) status = CalibrateMarkers(skeleton, motion, fit.model_frame, calibration, &to_fit, &refit);
+  if (!status.ok()) return status;
+  for (int s = 0; s < markers.num_markers(); ++s) {
+    if ((*choices)[s].empty()) continue;
+    const int k = refit.marker_set.FindMarker(markers.label(s));
+    (*choices)[s].clear();
+    if (k < 0) continue;
+    (*choices)[s] = refit.marker_set.marker(k).attachments;
+    for (MarkerAttachment& a : (*choices)[s]) {
+      if (calibration.max_bone_distance > 0.0) {
+        a.offset = ClampToBone(skeleton, a.joint, a.offset, calibration.max_bone_distance);
+      }
+    }
+  }
+  return Status::Ok();
+}
+
 // Near ties of the round's attach between a marker's joint and its parent or child decided
 // by prediction on the fit's own frames (attachment_by_prediction.h), the template's
 // markers included: the take, unlike the calibration take, may move the joint. A marker
@@ -519,14 +553,14 @@ Status ChooseByPrediction(const FitTake& fit, const RoundState& state, const Cal
   const std::vector<int> runner_up =
       PredictionCandidates(state.fitted, attached, AttachmentByPredictionOptions().tolerance);
   const std::vector<int> cluster_joint = RigidClusterCandidates(*round_markers, RoundClusters(fit, *round_markers));
-  std::vector<MarkerAttachment> alternative(round_markers->num_markers());
-  std::vector<MarkerSpec> specs;
+  const int markers = round_markers->num_markers();
+  std::vector<AttachmentChoice> single(markers);
   bool any = false;
-  for (int s = 0; s < round_markers->num_markers(); ++s) {
-    specs.push_back(round_markers->marker(s));
-    if (specs.back().attachments.size() != 1) continue;
-    const int k = attached.marker_set.FindMarker(specs.back().label);
-    const int j = specs.back().attachments[0].joint;
+  for (int s = 0; s < markers; ++s) {
+    const MarkerSpec& spec = round_markers->marker(s);
+    if (spec.attachments.size() != 1) continue;
+    const int k = attached.marker_set.FindMarker(spec.label);
+    const int j = spec.attachments[0].joint;
     int other = -1;
     if (k >= 0 && runner_up[k] >= 0) {
       const int a = attached.marker_set.marker(k).attachments[0].joint, b = runner_up[k];
@@ -534,33 +568,20 @@ Status ChooseByPrediction(const FitTake& fit, const RoundState& state, const Cal
     }
     if (other < 0) other = cluster_joint[s];
     if (other < 0) continue;
-    specs.back().attachments = {{other, 1.0, Eigen::Vector3d::Zero()}};
-    alternative[s].joint = other;
+    single[s] = {{other, 1.0, Eigen::Vector3d::Zero()}};
     any = true;
   }
   if (!any) return Status::Ok();
-  MarkerSet moved;
-  Status status = MarkerSet::Create(state.fitted, std::move(specs), &moved);
-  CalibrationResult refit;
-  if (status.ok()) status = CalibrateMarkers(state.fitted, state.motion, fit.model_frame, calibration, &moved, &refit);
+  const Status status = FitChoices(fit, state.fitted, state.motion, calibration, *round_markers, &single);
   if (!status.ok()) return status;
-  for (int s = 0; s < round_markers->num_markers(); ++s) {
-    if (alternative[s].joint < 0) continue;
-    const int k = refit.marker_set.FindMarker(round_markers->label(s));
-    if (k < 0) {
-      alternative[s].joint = -1;
-      continue;
-    }
-    alternative[s] = refit.marker_set.marker(k).attachments[0];
-    if (calibration.max_bone_distance > 0.0) {
-      alternative[s].offset =
-          ClampToBone(state.fitted, alternative[s].joint, alternative[s].offset, calibration.max_bone_distance);
-    }
+  std::vector<std::vector<AttachmentChoice>> alternatives(markers);
+  for (int s = 0; s < markers; ++s) {
+    if (!single[s].empty()) alternatives[s].push_back(single[s]);
   }
   if (solve.rest_prior_needs_reference || !solve.rest_rotations.empty()) {
     solve.rest_rotations = MeanPose(state.fitted, state.motion);
   }
-  return ChooseAttachmentsByPrediction(state.fitted, observed, alternative, solve, {}, round_markers, nullptr);
+  return ChooseAmongAttachments(state.fitted, observed, alternatives, solve, {}, round_markers, nullptr);
 }
 
 // An attach round's markers (every marker of the take attached) and their observations,
@@ -699,6 +720,37 @@ Status AddCandidate(const RoundFit& fit, const MarkerSolveOptions& solve_options
   return Status::Ok();
 }
 
+// The kept round's markers over a hinge (within the skin radius of the joint between two
+// bones: a patella, an epicondyle, a marker over the wrist) offered the 50/50 blend on
+// the hinge's two bones (HingeBlendCandidates, offsets fitted on the kept motion) and
+// decided by prediction on the kept round's frames; nothing else of the round changes.
+// After the rounds, not in them: offered in every attach round, the blends changed the
+// rounds' path and moved markers they did not touch by 10-40 mm either way (BENCHMARKS.md,
+// issue 36, h36i).
+Status BlendOverHinges(const FitTake& fit, double max_bone_distance, MarkerSolveOptions solve, RoundFit* best) {
+  const std::vector<std::pair<int, int>> hinge = HingeBlendCandidates(best->skeleton, best->markers, max_bone_distance);
+  std::vector<AttachmentChoice> blend(best->markers.num_markers());
+  bool any = false;
+  for (int s = 0; s < best->markers.num_markers(); ++s) {
+    if (hinge[s].first < 0) continue;
+    blend[s] = {{hinge[s].first, 0.5, Eigen::Vector3d::Zero()}, {hinge[s].second, 0.5, Eigen::Vector3d::Zero()}};
+    any = true;
+  }
+  if (!any) return Status::Ok();
+  CalibrationOptions calibration;
+  calibration.max_bone_distance = max_bone_distance;
+  const Status status = FitChoices(fit, best->skeleton, best->motion, calibration, best->markers, &blend);
+  if (!status.ok()) return status;
+  std::vector<std::vector<AttachmentChoice>> alternatives(blend.size());
+  for (size_t s = 0; s < blend.size(); ++s) {
+    if (!blend[s].empty()) alternatives[s].push_back(blend[s]);
+  }
+  if (solve.rest_prior_needs_reference || !solve.rest_rotations.empty()) {
+    solve.rest_rotations = MeanPose(best->skeleton, best->motion);
+  }
+  return ChooseAmongAttachments(best->skeleton, best->observed, alternatives, solve, {}, &best->markers, nullptr);
+}
+
 // The kept round: the latest candidate whose held-out score is within the tolerance of
 // the lowest (KeptRound); the best by marker RMS when no round was a candidate.
 void KeepHeldOutRound(RoundState* state) {
@@ -828,6 +880,10 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
     if (!KeepBestRound(round, rounds, observed, started, events, &state)) break;
   }
   KeepHeldOutRound(&state);
+  if (rounds > 0) {
+    status = BlendOverHinges(fit, base_options.max_bone_distance, solve_options, &state.best);
+    if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
+  }
   if (rounds > 0 && state.best.round != rounds) {
     SkeletonFitEvent kept;
     kept.kind = SkeletonFitEvent::kKept;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Geometry>
+
 #include "problems/marker_solve/leave_one_out.h"
 
 namespace mocapsolve {
@@ -74,12 +76,46 @@ std::vector<int> RigidClusterCandidates(const MarkerSet& markers, const std::vec
   return alternative;
 }
 
-Status ChooseAttachmentsByPrediction(const Skeleton& skeleton, const std::vector<std::vector<Eigen::Vector3d>>& observed,
-                                     const std::vector<MarkerAttachment>& alternative, const MarkerSolveOptions& solve,
-                                     const AttachmentByPredictionOptions& options, MarkerSet* markers,
-                                     std::vector<AttachmentMove>* moves) {
-  if (static_cast<int>(alternative.size()) != markers->num_markers()) {
-    return Status::Error("attachment by prediction: one alternative per marker expected");
+std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, const MarkerSet& markers,
+                                                      double max_distance) {
+  std::vector<std::pair<int, int>> pairs(markers.num_markers(), {-1, -1});
+  for (int m = 0; m < markers.num_markers(); ++m) {
+    if (markers.marker(m).attachments.size() != 1) continue;
+    const int a = markers.marker(m).attachments[0].joint;
+    const Eigen::Vector3d& z = markers.marker(m).attachments[0].offset;
+    double best = max_distance;
+    if (skeleton.parent(a) >= 0 && skeleton.num_rotation_dofs(a) > 0 && z.norm() <= best) {
+      best = z.norm();
+      pairs[m] = {skeleton.parent(a), a};
+    }
+    // Depth-first over a's rigid body, as BoneSegments: (joint, a_from_joint).
+    std::vector<std::pair<int, Eigen::Isometry3d>> stack = {{a, Eigen::Isometry3d::Identity()}};
+    while (!stack.empty()) {
+      const auto [k, frame] = stack.back();
+      stack.pop_back();
+      for (int c = k + 1; c < skeleton.subtree_end(k); ++c) {
+        if (skeleton.parent(c) != k || skeleton.has_translation_channels(c)) continue;
+        if (skeleton.num_rotation_dofs(c) == 0) {
+          Eigen::Isometry3d child = frame;
+          child.translate(skeleton.offset(c));
+          child.rotate(skeleton.rest_rotation(c));
+          stack.emplace_back(c, child);
+        } else if ((frame * skeleton.offset(c) - z).norm() <= best) {
+          best = (frame * skeleton.offset(c) - z).norm();
+          pairs[m] = {a, c};
+        }
+      }
+    }
+  }
+  return pairs;
+}
+
+Status ChooseAmongAttachments(const Skeleton& skeleton, const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                              const std::vector<std::vector<AttachmentChoice>>& alternatives,
+                              const MarkerSolveOptions& solve, const AttachmentByPredictionOptions& options,
+                              MarkerSet* markers, std::vector<AttachmentMove>* moves) {
+  if (static_cast<int>(alternatives.size()) != markers->num_markers()) {
+    return Status::Error("attachment by prediction: one list of alternatives per marker expected");
   }
   const int frames = static_cast<int>(observed.size());
   const int step = std::max(1, (frames + std::max(options.max_frames, 1) - 1) / std::max(options.max_frames, 1));
@@ -90,36 +126,63 @@ Status ChooseAttachmentsByPrediction(const Skeleton& skeleton, const std::vector
   chosen = specs;
   std::vector<AttachmentMove> decided;
   for (int m = 0; m < markers->num_markers(); ++m) {
-    if (alternative[m].joint < 0 || specs[m].attachments.size() != 1) continue;
+    if (alternatives[m].empty() || specs[m].attachments.size() != 1) continue;
     AttachmentMove move;
     move.marker = m;
     move.from = specs[m].attachments[0].joint;
-    move.to = alternative[m].joint;
+    std::vector<int> joints = {move.from};  // Of m's attachment and its alternatives.
+    for (const AttachmentChoice& choice : alternatives[m]) {
+      for (const MarkerAttachment& a : choice) joints.push_back(a.joint);
+    }
     std::vector<int> group = {m};
     for (int n = 0; n < markers->num_markers(); ++n) {
       if (n == m) continue;
       for (const MarkerAttachment& a : specs[n].attachments) {
-        if (a.joint == move.from || a.joint == move.to) {
+        if (std::find(joints.begin(), joints.end(), a.joint) != joints.end()) {
           group.push_back(n);
           break;
         }
       }
     }
-    std::vector<MarkerSpec> moved_specs = specs;
-    moved_specs[m].attachments = {{move.to, 1.0, alternative[m].offset}};
-    MarkerSet moved_set;
-    Status status = MarkerSet::Create(skeleton, moved_specs, &moved_set);
-    if (status.ok()) status = GroupScore(skeleton, *markers, scored, solve, group, &move.from_score);
-    if (status.ok()) status = GroupScore(skeleton, moved_set, scored, solve, group, &move.to_score);
+    Status status = GroupScore(skeleton, *markers, scored, solve, group, &move.from_score);
     if (!status.ok()) return status;
+    move.to_score = std::numeric_limits<double>::infinity();
+    for (const AttachmentChoice& choice : alternatives[m]) {
+      std::vector<MarkerSpec> moved_specs = specs;
+      moved_specs[m].attachments = choice;
+      MarkerSet moved_set;
+      double score = 0.0;
+      status = MarkerSet::Create(skeleton, moved_specs, &moved_set);
+      if (status.ok()) status = GroupScore(skeleton, moved_set, scored, solve, group, &score);
+      if (!status.ok()) return status;
+      if (score < move.to_score) {
+        move.to_score = score;
+        move.to_attachments = moved_set.marker(m).attachments;
+        move.to = choice.front().joint;
+      }
+    }
     move.moved = move.to_score < move.from_score;
-    if (move.moved) chosen[m] = moved_specs[m];
+    if (move.moved) chosen[m].attachments = move.to_attachments;
     decided.push_back(move);
   }
   Status status = MarkerSet::Create(skeleton, std::move(chosen), markers);
   if (!status.ok()) return status;
   if (moves != nullptr) *moves = std::move(decided);
   return Status::Ok();
+}
+
+Status ChooseAttachmentsByPrediction(const Skeleton& skeleton, const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                                     const std::vector<MarkerAttachment>& alternative, const MarkerSolveOptions& solve,
+                                     const AttachmentByPredictionOptions& options, MarkerSet* markers,
+                                     std::vector<AttachmentMove>* moves) {
+  if (static_cast<int>(alternative.size()) != markers->num_markers()) {
+    return Status::Error("attachment by prediction: one alternative per marker expected");
+  }
+  std::vector<std::vector<AttachmentChoice>> alternatives(alternative.size());
+  for (size_t m = 0; m < alternative.size(); ++m) {
+    if (alternative[m].joint >= 0) alternatives[m] = {{{alternative[m].joint, 1.0, alternative[m].offset}}};
+  }
+  return ChooseAmongAttachments(skeleton, observed, alternatives, solve, options, markers, moves);
 }
 
 }  // namespace mocapsolve

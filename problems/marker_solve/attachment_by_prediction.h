@@ -19,9 +19,23 @@
 // held by the solve's priors; on the joint whose other markers turn it, m also helps
 // place them. Every decision is made against the set as given (one marker's move does
 // not feed another's).
+//
+// Blends over a hinge. A marker over the joint between two bones (a patella over the
+// knee, an epicondyle over the elbow) rides neither bone alone: the skin over a hinge
+// is pulled partly by each. Its blend candidate is the 50/50 attachment on both,
+//   x = 0.5 (p_a + R_a z_a) + 0.5 (p_h + R_h z_h),  a = parent(h),
+// offsets fitted by least squares (calibration.h, fixed attachments). With p_h = p_a +
+// R_a t_h this is x = p_a + R_a alpha + R_h beta for free alpha, beta: it holds both
+// single attachments as special cases (beta = 0: on a; alpha = t_h: on h), and any split
+// of the weights spans the same positions, so 50/50 is the only blend worth offering
+// (25/75 differs only in how the offsets are scaled). The same test then chooses among
+// m's joint, its single alternative and the blend, by the group's held-out median: a
+// marker that truly rides one bone predicts its group no better blended (the extra
+// freedom is fitted to noise) and keeps its bone.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_ATTACHMENT_BY_PREDICTION_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_ATTACHMENT_BY_PREDICTION_H_
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -42,11 +56,15 @@ struct AttachmentByPredictionOptions {
   int max_frames = 240;  // Frames solved per left-out marker (every k-th of the take).
 };
 
+// One way to attach a marker: a single joint (weight 1) or a blend of several.
+using AttachmentChoice = std::vector<MarkerAttachment>;
+
 struct AttachmentMove {
   int marker = -1;           // Index in the set.
-  int from = -1, to = -1;    // Joints.
-  double from_score = 0.0;   // score(set) with m on `from` and on `to`, skeleton units.
-  double to_score = 0.0;
+  int from = -1, to = -1;    // Joints (`to`: the best alternative's first joint).
+  double from_score = 0.0;   // score(set) with m on `from` and on the best alternative,
+  double to_score = 0.0;     // skeleton units.
+  AttachmentChoice to_attachments;  // The best alternative.
   bool moved = false;
 };
 
@@ -67,10 +85,28 @@ std::vector<int> PredictionCandidates(const Skeleton& skeleton, const Calibratio
 // `markers`. For each marker, b or -1.
 std::vector<int> RigidClusterCandidates(const MarkerSet& markers, const std::vector<std::vector<int>>& clusters);
 
-// Decides every marker m with alternative[m].joint >= 0 (its joint b and offset there) as
-// the header says and moves those whose alternative scores lower. observed[f][m] in
-// skeleton units (NaN: missing), parallel to *markers. `moves` (may be null) gets one entry
-// per candidate decided.
+// The hinge blend candidates (header): for each marker of `markers` on a single joint a,
+// the hinges next to its bone are the joint a itself (when it rotates and has a parent)
+// and the rotating joints that begin where a's rigid body ends (its children, reached
+// through joints without rotation dofs, as BoneSegments walks); the nearest one h to
+// the marker's offset, if within max_distance (skeleton units; the skin radius: the
+// marker lies over the joint), gives the pair {parent side, h}: {parent(a), a} or {a, h}.
+// Else {-1, -1}.
+std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, const MarkerSet& markers,
+                                                      double max_distance);
+
+// Decides every marker m with alternatives (each a single joint or a blend, its offsets
+// fitted) as the header says: its group is m and every other marker on a joint of its
+// attachment or of an alternative; m takes the alternative of lowest score when that is
+// lower than its own (ties keep it, and the earlier alternative). observed[f][m] in
+// skeleton units (NaN: missing), parallel to *markers; alternatives empty or one list per
+// marker. `moves` (may be null) gets one entry per candidate decided.
+Status ChooseAmongAttachments(const Skeleton& skeleton, const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                              const std::vector<std::vector<AttachmentChoice>>& alternatives,
+                              const MarkerSolveOptions& solve, const AttachmentByPredictionOptions& options,
+                              MarkerSet* markers, std::vector<AttachmentMove>* moves);
+
+// The same with one single-joint alternative per marker (alternative[m].joint < 0: none).
 Status ChooseAttachmentsByPrediction(const Skeleton& skeleton, const std::vector<std::vector<Eigen::Vector3d>>& observed,
                                      const std::vector<MarkerAttachment>& alternative, const MarkerSolveOptions& solve,
                                      const AttachmentByPredictionOptions& options, MarkerSet* markers,

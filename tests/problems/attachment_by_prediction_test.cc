@@ -1,7 +1,9 @@
 // Attachment by prediction: a marker rigid on a foot that its toe joint holds nearly as
 // well goes to the foot; one that the toe clearly turns stays on the toe; a marker that
 // moves rigidly with the foot's markers but was put on a toe that holds it far worse is a
-// candidate by co-rigidity and goes to the foot.
+// candidate by co-rigidity and goes to the foot. A marker over the knee that both bones
+// pull (a 50/50 blend) is offered the blend and takes it; one that rides the thigh alone,
+// offered the same blend, keeps the thigh.
 #include "problems/marker_solve/attachment_by_prediction.h"
 
 #include <cmath>
@@ -16,6 +18,7 @@
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/marker_trajectories.h"
 #include "kinematics/rotation.h"
+#include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/rigid_marker_clusters.h"
 #include "problems/marker_solve/synthetic_marker_set.h"
 
@@ -200,6 +203,121 @@ TEST(AttachmentByPrediction, AMarkerRigidWithTheFootButPutOnTheToeGoesToTheFoot)
   EXPECT_EQ(set.marker(mt5).attachments[0].joint, foot);
   ASSERT_EQ(moves.size(), 1u);
   EXPECT_LT(moves[0].to_score, moves[0].from_score);
+}
+
+// The fixture's observations as a take (skeleton units).
+MarkerTrajectories AsTake(const MarkerSet& truth, const std::vector<std::vector<Eigen::Vector3d>>& observed) {
+  std::vector<std::string> labels;
+  for (int m = 0; m < truth.num_markers(); ++m) labels.push_back(truth.label(m));
+  MarkerTrajectories take(labels, static_cast<int>(observed.size()));
+  for (int f = 0; f < take.num_frames(); ++f) {
+    for (int m = 0; m < take.num_markers(); ++m) take.SetSample(f, m, observed[f][m]);
+  }
+  return take;
+}
+
+// The offsets of `attachments` for the fixture's marker "PAT" by least squares
+// (calibration.h, fixed attachments) on the true motion.
+AttachmentChoice FitPat(const Skeleton& skeleton, const Motion& motion, const MarkerTrajectories& take,
+                        const AttachmentChoice& attachments) {
+  MarkerSet one;
+  EXPECT_TRUE(MarkerSet::Create(skeleton, {{"PAT", attachments}}, &one).ok());
+  CalibrationResult fit;
+  EXPECT_TRUE(CalibrateMarkers(skeleton, motion, take, CalibrationOptions(), &one, &fit).ok());
+  EXPECT_EQ(fit.marker_set.num_markers(), 1);
+  return fit.marker_set.marker(0).attachments;
+}
+
+// "PAT", 6 cm in front of the left knee, rides `truth` (the thigh, or both bones 50/50);
+// given on the thigh with its blend over the knee as the alternative: the attachments
+// the prediction keeps.
+AttachmentChoice DecidedPatella(const AttachmentChoice& truth, std::vector<AttachmentMove>* moves) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int thigh = skeleton.FindJoint("LeftUpLeg"), knee = skeleton.FindJoint("LeftLeg");
+  const Motion motion = Walk(skeleton, knee, 0.1);
+  const MarkerSet synthetic = MakeSyntheticMarkerSet(skeleton, 3, 7);
+  std::vector<MarkerSpec> specs;
+  for (int m = 0; m < synthetic.num_markers(); ++m) specs.push_back(synthetic.marker(m));
+  specs.push_back({"PAT", truth});
+  MarkerSet set;
+  EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.2);
+  FkData fk(skeleton);
+  std::vector<std::vector<Eigen::Vector3d>> observed;
+  for (const Pose& pose : motion.frames) {
+    ForwardKinematics(skeleton, pose, &fk);
+    std::vector<Eigen::Vector3d> frame;
+    for (int m = 0; m < set.num_markers(); ++m) {
+      frame.push_back(set.Position(m, fk) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+    }
+    observed.push_back(frame);
+  }
+  const MarkerTrajectories take = AsTake(set, observed);
+  specs.back().attachments = FitPat(skeleton, motion, take, {{thigh, 1.0, Eigen::Vector3d::Zero()}});
+  EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
+  const int pat = set.num_markers() - 1;
+  // The blend candidate is the knee's, found from the marker's offset alone.
+  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 10.0);
+  EXPECT_EQ(hinges[pat], std::make_pair(thigh, knee));
+  std::vector<std::vector<AttachmentChoice>> alternatives(set.num_markers());
+  alternatives[pat] = {FitPat(skeleton, motion, take,
+                              {{thigh, 0.5, Eigen::Vector3d::Zero()}, {knee, 0.5, Eigen::Vector3d::Zero()}})};
+  EXPECT_TRUE(ChooseAmongAttachments(skeleton, observed, alternatives, MarkerSolveOptions(), {}, &set, moves).ok());
+  return set.marker(pat).attachments;
+}
+
+TEST(AttachmentByPrediction, AMarkerBothBonesPullTakesTheBlendOverTheKnee) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int thigh = skeleton.FindJoint("LeftUpLeg"), knee = skeleton.FindJoint("LeftLeg");
+  const Eigen::Vector3d front(0.0, 0.0, 6.0);
+  std::vector<AttachmentMove> moves;
+  const AttachmentChoice kept =
+      DecidedPatella({{thigh, 0.5, skeleton.offset(knee) + front}, {knee, 0.5, front}}, &moves);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].joint, thigh);
+  EXPECT_EQ(kept[1].joint, knee);
+  ASSERT_EQ(moves.size(), 1u);
+  EXPECT_TRUE(moves[0].moved);
+  EXPECT_LT(moves[0].to_score, 0.9 * moves[0].from_score);
+}
+
+TEST(AttachmentByPrediction, AMarkerOnTheThighKeepsTheThighOverTheBlend) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int thigh = skeleton.FindJoint("LeftUpLeg"), knee = skeleton.FindJoint("LeftLeg");
+  std::vector<AttachmentMove> moves;
+  const AttachmentChoice kept =
+      DecidedPatella({{thigh, 1.0, skeleton.offset(knee) + Eigen::Vector3d(0.0, 4.0, 6.0)}}, &moves);
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].joint, thigh);
+  ASSERT_EQ(moves.size(), 1u);
+  EXPECT_FALSE(moves[0].moved);
+}
+
+TEST(AttachmentByPrediction, HingeBlendCandidatesAreTheNearestJointWithinTheRadius) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int hips = skeleton.FindJoint("Hips"), thigh = skeleton.FindJoint("LeftUpLeg");
+  const int knee = skeleton.FindJoint("LeftLeg"), foot = skeleton.FindJoint("LeftFoot");
+  MarkerSet set;
+  ASSERT_TRUE(MarkerSet::Create(skeleton,
+                                {{"ABOVE_KNEE", {{thigh, 1.0, skeleton.offset(knee) + Eigen::Vector3d(0, 3, 5)}}},
+                                 {"BELOW_KNEE", {{knee, 1.0, Eigen::Vector3d(0, -3, 5)}}},
+                                 {"MID_THIGH", {{thigh, 1.0, Eigen::Vector3d(0, -21, 6)}}},
+                                 {"ANKLE", {{knee, 1.0, skeleton.offset(foot) + Eigen::Vector3d(4, 0, 0)}}},
+                                 {"ROOT", {{hips, 1.0, Eigen::Vector3d(0, 0, 5)}}},
+                                 {"BLENDED", {{thigh, 0.5, Eigen::Vector3d::Zero()}, {knee, 0.5, Eigen::Vector3d::Zero()}}}},
+                                &set)
+                  .ok());
+  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 10.0);
+  const std::pair<int, int> none(-1, -1);
+  EXPECT_EQ(hinges[0], std::make_pair(thigh, knee));
+  EXPECT_EQ(hinges[1], std::make_pair(thigh, knee));
+  EXPECT_EQ(hinges[2], none);  // 21 cm from either end of the thigh.
+  EXPECT_EQ(hinges[3], std::make_pair(knee, foot));
+  EXPECT_EQ(hinges[4], none);  // The root has no parent; its children's joints are > 10 cm away.
+  EXPECT_EQ(hinges[5], none);  // Already a blend.
+  const std::vector<std::pair<int, int>> all_none(6, none);
+  EXPECT_EQ(HingeBlendCandidates(skeleton, set, 0.0), all_none);
 }
 
 }  // namespace
