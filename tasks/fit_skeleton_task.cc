@@ -722,33 +722,76 @@ Status AddCandidate(const RoundFit& fit, const MarkerSolveOptions& solve_options
 
 // The kept round's markers over a hinge (within the skin radius of the joint between two
 // bones: a patella, an epicondyle, a marker over the wrist) offered the 50/50 blend on
-// the hinge's two bones (HingeBlendCandidates, offsets fitted on the kept motion) and
-// decided by prediction on the kept round's frames; nothing else of the round changes.
+// the hinge's two bones (HingeBlendCandidates) and decided by prediction on the last
+// third of the kept round's frames, the blend's and the marker's own offsets fitted on the
+// first two thirds (a time split inside the fit: a blend has six offset parameters to the
+// single bone's three, and scored on the frames that fitted them it won where it later
+// failed, BENCHMARKS.md, issue 36, h36j); a blend kept gets its offsets fitted on every
+// frame. Nothing else of the round changes.
 // After the rounds, not in them: offered in every attach round, the blends changed the
 // rounds' path and moved markers they did not touch by 10-40 mm either way (BENCHMARKS.md,
 // issue 36, h36i).
-Status BlendOverHinges(const FitTake& fit, double max_bone_distance, MarkerSolveOptions solve, RoundFit* best) {
-  const std::vector<std::pair<int, int>> hinge = HingeBlendCandidates(best->skeleton, best->markers, max_bone_distance);
-  std::vector<AttachmentChoice> blend(best->markers.num_markers());
+Status BlendOverHinges(const FitTake& fit, double max_bone_distance, MarkerSolveOptions solve, RoundFit* best,
+                       std::vector<SkeletonFitBlend>* blended) {
+  const int markers = best->markers.num_markers();
+  const std::vector<std::pair<int, int>> hinge = HingeBlendCandidates(best->skeleton, best->markers, max_bone_distance,
+                                                                      AttachmentByPredictionOptions().hinge_fraction);
+  std::vector<AttachmentChoice> blend(markers), own(markers);
   bool any = false;
-  for (int s = 0; s < best->markers.num_markers(); ++s) {
+  for (int s = 0; s < markers; ++s) {
     if (hinge[s].first < 0) continue;
     blend[s] = {{hinge[s].first, 0.5, Eigen::Vector3d::Zero()}, {hinge[s].second, 0.5, Eigen::Vector3d::Zero()}};
+    own[s] = best->markers.marker(s).attachments;
     any = true;
   }
   if (!any) return Status::Ok();
   CalibrationOptions calibration;
   calibration.max_bone_distance = max_bone_distance;
-  const Status status = FitChoices(fit, best->skeleton, best->motion, calibration, best->markers, &blend);
+  // Decided on the last third of the frames with every candidate's offsets, the blend's and
+  // the marker's own, fitted on the first two thirds: a blend's six offset parameters fitted
+  // on the frames that score them won on its own fit frames and failed later (h36j).
+  const int split = best->motion.num_frames() * 2 / 3;
+  const bool held_out = split >= 1 && split < best->motion.num_frames();
+  std::vector<AttachmentChoice> early_blend = blend;
+  MarkerSet given = best->markers;
+  Observations scored = best->observed;
+  if (held_out) {
+    Motion early = best->motion;
+    early.frames.resize(split);
+    Status status = FitChoices(fit, best->skeleton, early, calibration, best->markers, &early_blend);
+    if (status.ok()) status = FitChoices(fit, best->skeleton, early, calibration, best->markers, &own);
+    if (!status.ok()) return status;
+    std::vector<MarkerSpec> specs;
+    for (int s = 0; s < markers; ++s) {
+      specs.push_back(best->markers.marker(s));
+      if (!own[s].empty()) specs.back().attachments = own[s];
+      if (own[s].empty()) early_blend[s].clear();
+    }
+    status = MarkerSet::Create(best->skeleton, std::move(specs), &given);
+    if (!status.ok()) return status;
+    scored.erase(scored.begin(), scored.begin() + std::min<size_t>(split, scored.size()));
+  }
+  Status status = FitChoices(fit, best->skeleton, best->motion, calibration, best->markers, &blend);
   if (!status.ok()) return status;
-  std::vector<std::vector<AttachmentChoice>> alternatives(blend.size());
-  for (size_t s = 0; s < blend.size(); ++s) {
-    if (!blend[s].empty()) alternatives[s].push_back(blend[s]);
+  std::vector<std::vector<AttachmentChoice>> alternatives(markers);
+  for (int s = 0; s < markers; ++s) {
+    if (!blend[s].empty() && !early_blend[s].empty()) alternatives[s].push_back(early_blend[s]);
   }
   if (solve.rest_prior_needs_reference || !solve.rest_rotations.empty()) {
     solve.rest_rotations = MeanPose(best->skeleton, best->motion);
   }
-  return ChooseAmongAttachments(best->skeleton, best->observed, alternatives, solve, {}, &best->markers, nullptr);
+  std::vector<AttachmentMove> moves;
+  status = ChooseAmongAttachments(best->skeleton, scored, alternatives, solve, {}, &given, &moves);
+  if (!status.ok()) return status;
+  std::vector<MarkerSpec> specs;
+  for (int s = 0; s < markers; ++s) specs.push_back(best->markers.marker(s));
+  for (const AttachmentMove& move : moves) {
+    if (!move.moved) continue;
+    specs[move.marker].attachments = blend[move.marker];  // Its offsets fitted on every frame.
+    blended->push_back({best->markers.label(move.marker), best->skeleton.name(blend[move.marker][0].joint),
+                        best->skeleton.name(blend[move.marker][1].joint)});
+  }
+  return MarkerSet::Create(best->skeleton, std::move(specs), &best->markers);
 }
 
 // The kept round: the latest candidate whose held-out score is within the tolerance of
@@ -881,8 +924,15 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   }
   KeepHeldOutRound(&state);
   if (rounds > 0) {
-    status = BlendOverHinges(fit, base_options.max_bone_distance, solve_options, &state.best);
+    status = BlendOverHinges(fit, base_options.max_bone_distance, solve_options, &state.best, &result->hinge_blends);
     if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
+    SkeletonFitEvent blended;
+    blended.kind = SkeletonFitEvent::kBlended;
+    blended.markers = static_cast<int>(result->hinge_blends.size());
+    for (const SkeletonFitBlend& b : result->hinge_blends) {
+      blended.text += (blended.text.empty() ? "" : ", ") + b.marker + " on " + b.parent_joint + " + " + b.joint;
+    }
+    events.Emit(blended);
   }
   if (rounds > 0 && state.best.round != rounds) {
     SkeletonFitEvent kept;
@@ -936,6 +986,12 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
     o.Add("label", label).Add("reason", reason);
     not_marker_json.push_back(o);
   }
+  std::vector<JsonObject> blend_json;
+  for (const SkeletonFitBlend& b : result.hinge_blends) {
+    JsonObject o;
+    o.Add("marker", b.marker).Add("parent_joint", b.parent_joint).Add("joint", b.joint);
+    blend_json.push_back(o);
+  }
   JsonObject json;
   if (result.associated) json.Add("association", AssociationJson(result));
   json.Add("markers", inputs.markers_path).Add("template", inputs.template_name)
@@ -946,7 +1002,8 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
       .Add("seconds", result.seconds)
       .Add(result.unit_known ? "rms_mm" : "rms", result.report.rms.back() * mm)
       .Add("outlier_samples", result.outlier_samples)
-      .Add("rounds", round_json).Add("bone_scales", scale_json).Add("checks", ChecksJson(result.checks));
+      .Add("rounds", round_json).Add("hinge_blends", blend_json).Add("bone_scales", scale_json)
+      .Add("checks", ChecksJson(result.checks));
   return json;
 }
 
@@ -1029,6 +1086,10 @@ std::string SkeletonFitEventLine(const SkeletonFitEvent& e, const Skeleton& temp
     case SkeletonFitEvent::kKept:
       AppendF(&line, "fit_skeleton: keeping round %d (marker RMS %.2f %s; the latest round within 5 %% of the lowest held-out leave-one-out median)\n",
               e.round, e.rms * mm, unit);
+      break;
+    case SkeletonFitEvent::kBlended:
+      AppendF(&line, "fit_skeleton: markers blended 50/50 over a hinge: %d%s%s\n", e.markers, e.text.empty() ? "" : ": ",
+              e.text.c_str());
       break;
   }
   return line;

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "problems/marker_solve/leave_one_out.h"
+#include "problems/marker_solve/subject_checks.h"
 
 namespace mocapsolve {
 namespace {
@@ -77,14 +78,28 @@ std::vector<int> RigidClusterCandidates(const MarkerSet& markers, const std::vec
 }
 
 std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, const MarkerSet& markers,
-                                                      double max_distance) {
+                                                      double max_distance, double max_fraction) {
   std::vector<std::pair<int, int>> pairs(markers.num_markers(), {-1, -1});
+  // Whether z's projection on the bone from a's origin to `end` lies within max_fraction
+  // of the bone's length of its `distal` (else proximal) end; a bone of no length: yes.
+  const auto near_end = [max_fraction](const Eigen::Vector3d& z, const Eigen::Vector3d& end, bool distal) {
+    const double length = end.norm();
+    if (length <= 0.0) return true;
+    const double along = z.dot(end) / length;
+    return (distal ? length - along : along) <= max_fraction * length;
+  };
   for (int m = 0; m < markers.num_markers(); ++m) {
     if (markers.marker(m).attachments.size() != 1) continue;
     const int a = markers.marker(m).attachments[0].joint;
     const Eigen::Vector3d& z = markers.marker(m).attachments[0].offset;
     double best = max_distance;
-    if (skeleton.parent(a) >= 0 && skeleton.num_rotation_dofs(a) > 0 && z.norm() <= best) {
+    // a's own axis: its longest segment from its origin (BoneSegments).
+    Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+    for (const auto& [from, to] : BoneSegments(skeleton, a)) {
+      if (from.isZero() && to.norm() > axis.norm()) axis = to;
+    }
+    if (skeleton.parent(a) >= 0 && skeleton.num_rotation_dofs(a) > 0 && z.norm() <= best &&
+        near_end(z, axis, false)) {
       best = z.norm();
       pairs[m] = {skeleton.parent(a), a};
     }
@@ -100,7 +115,7 @@ std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, 
           child.translate(skeleton.offset(c));
           child.rotate(skeleton.rest_rotation(c));
           stack.emplace_back(c, child);
-        } else if ((frame * skeleton.offset(c) - z).norm() <= best) {
+        } else if ((frame * skeleton.offset(c) - z).norm() <= best && near_end(z, frame * skeleton.offset(c), true)) {
           best = (frame * skeleton.offset(c) - z).norm();
           pairs[m] = {a, c};
         }

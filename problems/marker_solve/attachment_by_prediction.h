@@ -54,6 +54,9 @@ struct AttachmentByPredictionOptions {
   // admits candidates; the prediction decides.
   double tolerance = 0.15;
   int max_frames = 240;  // Frames solved per left-out marker (every k-th of the take).
+  // A hinge blend is offered to a marker within this fraction of its bone's length of
+  // the hinge (HingeBlendCandidates): a quarter, set before measuring (20-25 % asked).
+  double hinge_fraction = 0.25;
 };
 
 // One way to attach a marker: a single joint (weight 1) or a blend of several.
@@ -91,9 +94,13 @@ std::vector<int> RigidClusterCandidates(const MarkerSet& markers, const std::vec
 // through joints without rotation dofs, as BoneSegments walks); the nearest one h to
 // the marker's offset, if within max_distance (skeleton units; the skin radius: the
 // marker lies over the joint), gives the pair {parent side, h}: {parent(a), a} or {a, h}.
-// Else {-1, -1}.
+// Else {-1, -1}. Only skin over the joint slides with both bones: a marker whose
+// projection on its bone's axis (from a's origin to h for {a, h}; a's longest segment
+// from its origin for {parent(a), a}) lies farther than max_fraction of that bone's
+// length from the hinge rides its bone (a mid-bone wand), where a blend only adds three
+// offset parameters to overfit (BENCHMARKS.md, issue 36, h36j): none.
 std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, const MarkerSet& markers,
-                                                      double max_distance);
+                                                      double max_distance, double max_fraction);
 
 // Decides every marker m with alternatives (each a single joint or a blend, its offsets
 // fitted) as the header says: its group is m and every other marker on a joint of its

@@ -258,7 +258,7 @@ AttachmentChoice DecidedPatella(const AttachmentChoice& truth, std::vector<Attac
   EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
   const int pat = set.num_markers() - 1;
   // The blend candidate is the knee's, found from the marker's offset alone.
-  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 10.0);
+  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 10.0, 0.25);
   EXPECT_EQ(hinges[pat], std::make_pair(thigh, knee));
   std::vector<std::vector<AttachmentChoice>> alternatives(set.num_markers());
   alternatives[pat] = {FitPat(skeleton, motion, take,
@@ -308,7 +308,7 @@ TEST(AttachmentByPrediction, HingeBlendCandidatesAreTheNearestJointWithinTheRadi
                                  {"BLENDED", {{thigh, 0.5, Eigen::Vector3d::Zero()}, {knee, 0.5, Eigen::Vector3d::Zero()}}}},
                                 &set)
                   .ok());
-  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 10.0);
+  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 10.0, 0.25);
   const std::pair<int, int> none(-1, -1);
   EXPECT_EQ(hinges[0], std::make_pair(thigh, knee));
   EXPECT_EQ(hinges[1], std::make_pair(thigh, knee));
@@ -317,7 +317,31 @@ TEST(AttachmentByPrediction, HingeBlendCandidatesAreTheNearestJointWithinTheRadi
   EXPECT_EQ(hinges[4], none);  // The root has no parent; its children's joints are > 10 cm away.
   EXPECT_EQ(hinges[5], none);  // Already a blend.
   const std::vector<std::pair<int, int>> all_none(6, none);
-  EXPECT_EQ(HingeBlendCandidates(skeleton, set, 0.0), all_none);
+  EXPECT_EQ(HingeBlendCandidates(skeleton, set, 0.0, 0.25), all_none);
+}
+
+TEST(AttachmentByPrediction, AMidBoneWandIsNotOfferedTheBlend) {
+  // Within a 15 cm skin radius of the knee but 12 cm along the thigh (42 cm) or the shin
+  // (41 cm) from it, beyond a quarter of either: wands riding their bone, no blend. The
+  // patella over the knee keeps its candidate.
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int thigh = skeleton.FindJoint("LeftUpLeg"), knee = skeleton.FindJoint("LeftLeg");
+  MarkerSet set;
+  ASSERT_TRUE(MarkerSet::Create(skeleton,
+                                {{"THIGH_WAND", {{thigh, 1.0, skeleton.offset(knee) + Eigen::Vector3d(0, 12, 6)}}},
+                                 {"SHIN_WAND", {{knee, 1.0, Eigen::Vector3d(0, -12, 6)}}},
+                                 {"PATELLA", {{thigh, 1.0, skeleton.offset(knee) + Eigen::Vector3d(0, 3, 5)}}}},
+                                &set)
+                  .ok());
+  const std::pair<int, int> none(-1, -1);
+  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 15.0, 0.25);
+  EXPECT_EQ(hinges[0], none);
+  EXPECT_EQ(hinges[1], none);
+  EXPECT_EQ(hinges[2], std::make_pair(thigh, knee));
+  // With no limit along the bone (h36i), both wands were offered the knee's blend.
+  const std::vector<std::pair<int, int>> unlimited = HingeBlendCandidates(skeleton, set, 15.0, 1.0);
+  EXPECT_EQ(unlimited[0], std::make_pair(thigh, knee));
+  EXPECT_EQ(unlimited[1], std::make_pair(thigh, knee));
 }
 
 }  // namespace
