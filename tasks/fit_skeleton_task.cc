@@ -734,8 +734,9 @@ Status AddCandidate(const RoundFit& fit, const MarkerSolveOptions& solve_options
 Status BlendOverHinges(const FitTake& fit, double max_bone_distance, MarkerSolveOptions solve, RoundFit* best,
                        std::vector<SkeletonFitBlend>* blended) {
   const int markers = best->markers.num_markers();
-  const std::vector<std::pair<int, int>> hinge = HingeBlendCandidates(best->skeleton, best->markers, max_bone_distance,
-                                                                      AttachmentByPredictionOptions().hinge_fraction);
+  const AttachmentByPredictionOptions defaults;
+  const std::vector<std::pair<int, int>> hinge = HingeBlendCandidates(
+      best->skeleton, best->markers, max_bone_distance, defaults.hinge_fraction, defaults.hinge_dofs);
   std::vector<AttachmentChoice> blend(markers), own(markers);
   bool any = false;
   for (int s = 0; s < markers; ++s) {

@@ -78,7 +78,7 @@ std::vector<int> RigidClusterCandidates(const MarkerSet& markers, const std::vec
 }
 
 std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, const MarkerSet& markers,
-                                                      double max_distance, double max_fraction) {
+                                                      double max_distance, double max_fraction, int max_dofs) {
   std::vector<std::pair<int, int>> pairs(markers.num_markers(), {-1, -1});
   // Whether z's projection on the bone from a's origin to `end` lies within max_fraction
   // of the bone's length of its `distal` (else proximal) end; a bone of no length: yes.
@@ -98,7 +98,8 @@ std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, 
     for (const auto& [from, to] : BoneSegments(skeleton, a)) {
       if (from.isZero() && to.norm() > axis.norm()) axis = to;
     }
-    if (skeleton.parent(a) >= 0 && skeleton.num_rotation_dofs(a) > 0 && z.norm() <= best &&
+    if (skeleton.parent(a) >= 0 && skeleton.num_rotation_dofs(a) > 0 && skeleton.num_rotation_dofs(a) <= max_dofs &&
+        z.norm() <= best &&
         near_end(z, axis, false)) {
       best = z.norm();
       pairs[m] = {skeleton.parent(a), a};
@@ -115,7 +116,8 @@ std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, 
           child.translate(skeleton.offset(c));
           child.rotate(skeleton.rest_rotation(c));
           stack.emplace_back(c, child);
-        } else if ((frame * skeleton.offset(c) - z).norm() <= best && near_end(z, frame * skeleton.offset(c), true)) {
+        } else if (skeleton.num_rotation_dofs(c) <= max_dofs && (frame * skeleton.offset(c) - z).norm() <= best &&
+                   near_end(z, frame * skeleton.offset(c), true)) {
           best = (frame * skeleton.offset(c) - z).norm();
           pairs[m] = {a, c};
         }

@@ -57,6 +57,10 @@ struct AttachmentByPredictionOptions {
   // A hinge blend is offered to a marker within this fraction of its bone's length of
   // the hinge (HingeBlendCandidates): a quarter, set before measuring (20-25 % asked).
   double hinge_fraction = 0.25;
+  // A hinge rotates about at most this many axes: the knee, the elbow, a forearm twist, the
+  // toes (CMU's skeleton); blends over ball joints (a shoulder, the spine) changed the solve
+  // of markers far from them (JA1Gait35's RFOREARM with LSH blended: BENCHMARKS.md, h36j).
+  int hinge_dofs = 1;
 };
 
 // One way to attach a marker: a single joint (weight 1) or a blend of several.
@@ -98,9 +102,10 @@ std::vector<int> RigidClusterCandidates(const MarkerSet& markers, const std::vec
 // projection on its bone's axis (from a's origin to h for {a, h}; a's longest segment
 // from its origin for {parent(a), a}) lies farther than max_fraction of that bone's
 // length from the hinge rides its bone (a mid-bone wand), where a blend only adds three
-// offset parameters to overfit (BENCHMARKS.md, issue 36, h36j): none.
+// offset parameters to overfit (BENCHMARKS.md, issue 36, h36j): none. Only joints h of
+// at most max_dofs rotation dofs count as hinges.
 std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, const MarkerSet& markers,
-                                                      double max_distance, double max_fraction);
+                                                      double max_distance, double max_fraction, int max_dofs);
 
 // Decides every marker m with alternatives (each a single joint or a blend, its offsets
 // fitted) as the header says: its group is m and every other marker on a joint of its

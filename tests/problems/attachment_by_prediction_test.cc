@@ -258,7 +258,7 @@ AttachmentChoice DecidedPatella(const AttachmentChoice& truth, std::vector<Attac
   EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
   const int pat = set.num_markers() - 1;
   // The blend candidate is the knee's, found from the marker's offset alone.
-  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 10.0, 0.25);
+  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 10.0, 0.25, 3);
   EXPECT_EQ(hinges[pat], std::make_pair(thigh, knee));
   std::vector<std::vector<AttachmentChoice>> alternatives(set.num_markers());
   alternatives[pat] = {FitPat(skeleton, motion, take,
@@ -308,7 +308,7 @@ TEST(AttachmentByPrediction, HingeBlendCandidatesAreTheNearestJointWithinTheRadi
                                  {"BLENDED", {{thigh, 0.5, Eigen::Vector3d::Zero()}, {knee, 0.5, Eigen::Vector3d::Zero()}}}},
                                 &set)
                   .ok());
-  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 10.0, 0.25);
+  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 10.0, 0.25, 3);
   const std::pair<int, int> none(-1, -1);
   EXPECT_EQ(hinges[0], std::make_pair(thigh, knee));
   EXPECT_EQ(hinges[1], std::make_pair(thigh, knee));
@@ -317,7 +317,7 @@ TEST(AttachmentByPrediction, HingeBlendCandidatesAreTheNearestJointWithinTheRadi
   EXPECT_EQ(hinges[4], none);  // The root has no parent; its children's joints are > 10 cm away.
   EXPECT_EQ(hinges[5], none);  // Already a blend.
   const std::vector<std::pair<int, int>> all_none(6, none);
-  EXPECT_EQ(HingeBlendCandidates(skeleton, set, 0.0, 0.25), all_none);
+  EXPECT_EQ(HingeBlendCandidates(skeleton, set, 0.0, 0.25, 3), all_none);
 }
 
 TEST(AttachmentByPrediction, AMidBoneWandIsNotOfferedTheBlend) {
@@ -334,14 +334,37 @@ TEST(AttachmentByPrediction, AMidBoneWandIsNotOfferedTheBlend) {
                                 &set)
                   .ok());
   const std::pair<int, int> none(-1, -1);
-  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 15.0, 0.25);
+  const std::vector<std::pair<int, int>> hinges = HingeBlendCandidates(skeleton, set, 15.0, 0.25, 3);
   EXPECT_EQ(hinges[0], none);
   EXPECT_EQ(hinges[1], none);
   EXPECT_EQ(hinges[2], std::make_pair(thigh, knee));
   // With no limit along the bone (h36i), both wands were offered the knee's blend.
-  const std::vector<std::pair<int, int>> unlimited = HingeBlendCandidates(skeleton, set, 15.0, 1.0);
+  const std::vector<std::pair<int, int>> unlimited = HingeBlendCandidates(skeleton, set, 15.0, 1.0, 3);
   EXPECT_EQ(unlimited[0], std::make_pair(thigh, knee));
   EXPECT_EQ(unlimited[1], std::make_pair(thigh, knee));
+}
+
+TEST(AttachmentByPrediction, OnlyAHingeOfAtMostMaxDofsIsOffered) {
+  // The demo's knee rotates about 3 axes; made a one-axis hinge it is offered with max_dofs 1,
+  // the ball joint is not.
+  const Skeleton ball = MakeDemoSkeleton();
+  const int thigh = ball.FindJoint("LeftUpLeg"), knee = ball.FindJoint("LeftLeg");
+  std::vector<JointSpec> joints;
+  for (int j = 0; j < ball.num_joints(); ++j) joints.push_back(ball.joint(j));
+  joints[knee].rotation_axes = std::vector<int>{0};
+  joints[knee].rotation_limits.clear();
+  Skeleton hinge;
+  ASSERT_TRUE(Skeleton::Create(joints, ball.end_sites(), ball.unit(), &hinge).ok());
+  ASSERT_EQ(hinge.num_rotation_dofs(knee), 1);
+  ASSERT_GT(ball.num_rotation_dofs(knee), 1);
+  const std::vector<MarkerSpec> patella = {
+      {"PATELLA", {{thigh, 1.0, ball.offset(knee) + Eigen::Vector3d(0, 3, 5)}}}};
+  MarkerSet on_ball, on_hinge;
+  ASSERT_TRUE(MarkerSet::Create(ball, patella, &on_ball).ok());
+  ASSERT_TRUE(MarkerSet::Create(hinge, patella, &on_hinge).ok());
+  EXPECT_EQ(HingeBlendCandidates(hinge, on_hinge, 10.0, 0.25, 1)[0], std::make_pair(thigh, knee));
+  EXPECT_EQ(HingeBlendCandidates(ball, on_ball, 10.0, 0.25, 1)[0], std::make_pair(-1, -1));
+  EXPECT_EQ(HingeBlendCandidates(ball, on_ball, 10.0, 0.25, 3)[0], std::make_pair(thigh, knee));
 }
 
 }  // namespace
