@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <memory>
 
 #include <Eigen/SVD>
 
@@ -191,6 +192,12 @@ void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& r
       std::fill(carried[run.joint].begin() + run.first, carried[run.joint].begin() + run.last + 1, 1);
     }
   }
+  // One table for every run's search: a run's carry writes only carried samples, which no
+  // search reads (joint_gap_template.h).
+  std::unique_ptr<JointTemplateTable> table;
+  if (templates != nullptr && !runs.empty() && frames > 0) {
+    table = std::make_unique<JointTemplateTable>(skeleton, *motion, carried, 0, frames - 1);
+  }
   for (size_t i = 0; i < runs.size(); ++i) {
     const CarriedJointRun& run = runs[i];
     assert(run.joint >= 0 && run.joint < skeleton.num_joints() && run.first >= 0 && run.last < frames &&
@@ -199,7 +206,7 @@ void CarryJoints(const Skeleton& skeleton, const std::vector<CarriedJointRun>& r
     if (i > 0 && runs[i - 1].joint == run.joint) span.lo = runs[i - 1].last + 1;
     if (i + 1 < runs.size() && runs[i + 1].joint == run.joint) span.hi = runs[i + 1].first - 1;
     const int tau = templates != nullptr && !skeleton.has_translation_channels(run.joint)
-                        ? FindTemplateShift(skeleton, *motion, carried, run, *templates)
+                        ? FindTemplateShift(skeleton, *motion, carried, *table, run, *templates)
                         : 0;
     if (tau != 0) {
       CarryFromTemplate(run, tau, motion);

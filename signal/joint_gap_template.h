@@ -37,9 +37,36 @@ struct JointTemplateOptions {
   int max_shift_frames = 3600;  // The farthest template searched, either side (30 s at 120 Hz); <= 0: any.
 };
 
+// What the search's cheap bound reads, laid out for it: per frame of [first, last], the
+// unit local rotation of every joint but the root with rotation dofs, and whether it is
+// carried, frame-major (the motion's poses and `carried` are joint-major, a pointer apiece).
+// Made once for every run of a take (CarryJoints): the search reads only samples that are
+// not carried, and carrying a run writes only carried samples, so the table stays the
+// motion's wherever it is read, as long as `carried` is the one it was made from.
+class JointTemplateTable {
+ public:
+  JointTemplateTable(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
+                     int first, int last);
+  int first() const { return first_; }
+  int last() const { return first_ + frames_ - 1; }
+  const std::vector<int>& joints() const { return joints_; }  // The joints, ascending.
+  const double* unit(int frame) const { return unit_.data() + 4 * joints_.size() * (frame - first_); }
+  const char* carried(int frame) const { return carried_.data() + joints_.size() * (frame - first_); }
+
+ private:
+  int first_, frames_;
+  std::vector<int> joints_;
+  std::vector<double> unit_;   // 4 per joint per frame (x y z w).
+  std::vector<char> carried_;  // 1 per joint per frame.
+};
+
 // carried[j][f]: joint j is in one of its runs at frame f (joints x frames).
 int FindTemplateShift(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
                       const CarriedJointRun& run, const JointTemplateOptions& options);
+// The same with a table made from this motion and `carried` (see above) over at least the
+// frames the run's shifts reach; the same shift.
+int FindTemplateShift(const Skeleton& skeleton, const Motion& motion, const std::vector<std::vector<char>>& carried,
+                      const JointTemplateTable& table, const CarriedJointRun& run, const JointTemplateOptions& options);
 
 // Writes the run's rotations of *motion from the template at shift tau (see above). The
 // run has solved poses on both sides and its source frames lie inside the take.

@@ -7,6 +7,8 @@
 
 #include <Eigen/Cholesky>
 
+#include "signal/select_non_negative.h"
+
 namespace mocapsolve {
 namespace {
 
@@ -62,7 +64,7 @@ Status EstimateOffsetProcesses(const MarkerTrajectories& observed, const MarkerT
                          " x " + std::to_string(observed.num_markers()));
   }
   processes->assign(observed.num_markers(), OffsetProcess());
-  std::vector<double> values, squares;
+  std::vector<double> values, squares, scratch;  // scratch: SelectNonNegative's.
   std::vector<char> usable(frames);
   std::vector<Eigen::Vector3d> d(frames);
   for (int m = 0; m < observed.num_markers(); ++m) {
@@ -83,8 +85,8 @@ Status EstimateOffsetProcesses(const MarkerTrajectories& observed, const MarkerT
       p.mean[axis] = values[values.size() / 2];
       // The sill: the robust variance of d about its median, (1.4826 MAD)^2.
       for (double& v : values) v = std::abs(v - p.mean[axis]);
-      std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-      const double sill = std::pow(1.4826 * values[values.size() / 2], 2);
+      const double mad = SelectNonNegative(&values, values.size() / 2, &scratch);
+      const double sill = std::pow(1.4826 * mad, 2);
       std::vector<double> lags, gamma;
       for (const int lag : kLags) {
         squares.clear();
@@ -95,8 +97,7 @@ Status EstimateOffsetProcesses(const MarkerTrajectories& observed, const MarkerT
           }
         }
         if (static_cast<int>(squares.size()) < kMinPairs) continue;
-        std::nth_element(squares.begin(), squares.begin() + squares.size() / 2, squares.end());
-        const double g = squares[squares.size() / 2] / (2.0 * kChiSquare1Median);
+        const double g = SelectNonNegative(&squares, squares.size() / 2, &scratch) / (2.0 * kChiSquare1Median);
         if (g > 0.0 && std::isfinite(g)) lags.push_back(lag), gamma.push_back(g);
       }
       // No variation at any lag (a constant offset): d = mu.

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "problems/marker_solve/held_segments.h"
 #include "problems/marker_solve/marker_frame_solver.h"
 
 namespace mocapsolve {
@@ -29,6 +30,19 @@ Status FitAutoSubject(const std::string& markers_path, const SkeletonFitSettings
                          (more > 0 ? " (and " + std::to_string(more) + " more)" : "") +
                          "; nothing written (give a subject, or --check=warn to use it anyway)");
   }
+  // A segment the character needs that no marker observes (a set too sparse for it): a
+  // character would deliver it at the template's rest, whatever the take did. Asked
+  // after the checks: a failed fit leaves markers anywhere (squat renamed, its arm
+  // taken for the chest: 67.8 mm, and no marker on the left foot it has), so its failed
+  // check is the error, not the segment.
+  const std::vector<std::string> missing =
+      MissingSegments(fit.subject.skeleton, fit.subject.markers, inputs.templ.markers);
+  if (!missing.empty()) {
+    std::string names;
+    for (const std::string& segment : missing) names += (names.empty() ? "" : ", ") + segment;
+    return Status::Error(markers_path + ": --subject=auto: no marker of the take observes " + names +
+                         "; a character needs the pelvis and both legs; nothing written");
+  }
   return Status::Ok();
 }
 
@@ -46,7 +60,14 @@ std::string AutoSubjectLine(const AutoSubjectResult& result) {
                 "torso %.1f deg, checks %s, %.1f s\n", fit.frames, stride.c_str(), result.method.c_str(),
                 result.inputs.template_name.c_str(), fit.checks.rms_mm, fit.checks.torso_error_mean_deg,
                 fit.checks.ok() ? "passed" : ("failed: " + fit.checks.failures[0]).c_str(), fit.seconds);
-  return line;
+  std::string text = line;
+  if (!fit.held.tops.empty()) {
+    std::string tops;
+    for (const std::string& top : fit.held.tops) tops += (tops.empty() ? "" : ", ") + top;
+    text += "subject: no marker observes " + tops + " (" + std::to_string(fit.held.joints) +
+            " joints): held at the template's mean pose\n";
+  }
+  return text;
 }
 
 std::string AutoSubjectPath(const std::string& out_dir) {

@@ -32,9 +32,11 @@ struct AutoSubjectResult {
 
 // Fits the subject of the take at `markers_path` (AutoSubjectFitOptions' settings, `solver`
 // for its pose solves). Errors (one line, naming the file and "--subject=auto"): the take
-// does not read or holds no data, the fit fails (no body found in the points), or, with
-// settings.check "fail", the fitted subject fails a check (the first failed check and its
-// figure).
+// does not read or holds no data, the fit fails (no body found in the points), with
+// settings.check "fail" the fitted subject fails a check (the first failed check and its
+// figure), or a segment a character needs (the pelvis, a thigh, shin or foot) has no marker
+// on it (held_segments.h: the segments and the template's markers for them). The checks
+// come first: a fit that failed them may have left a segment's markers elsewhere.
 Status FitAutoSubject(const std::string& markers_path, const SkeletonFitSettings& settings,
                       const SolverSettings& solver, AutoSubjectResult* result,
                       const SkeletonFitCallback& callback = nullptr);

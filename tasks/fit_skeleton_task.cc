@@ -204,9 +204,11 @@ MarkerTrajectories KeepMarkers(const MarkerTrajectories& file, const std::vector
 }
 
 // Round 0's markers from the association: every associated marker on its segment's joint;
-// the take cut to the markers (non-markers left out), its axes and scale as detected.
+// the take cut to the markers (non-markers left out), its axes and scale as detected; and the
+// joints the attach rounds may use (AttachableJoints of every associated marker).
 Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings, MarkerTrajectories* file,
-                     SkeletonFitResult* result, Subject* mapping, AssociatedMarkerSet* set) {
+                     SkeletonFitResult* result, Subject* mapping, AssociatedMarkerSet* set,
+                     std::vector<int>* attach_joints) {
   const Skeleton& skeleton = inputs.templ.skeleton;
   Status status = AssociateMarkers(*file, inputs.markers_path, MarkerAssociationOptions(), &result->association);
   if (!status.ok()) return status;
@@ -221,6 +223,12 @@ Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings&
     result->association_joints.push_back(it == set->specs.end() ? "" : set->joints[it - set->specs.begin()]);
   }
   *file = KeepMarkers(*file, labels);
+  AssociatedMarkerSet every;
+  MarkerSet segments;
+  status = MakeAssociatedMarkerSet(skeleton, result->association, 0.0, &every);
+  if (status.ok()) status = MarkerSet::Create(skeleton, every.specs, &segments);
+  if (!status.ok()) return Status::Error(inputs.markers_path + ": " + status.message());
+  *attach_joints = AttachableJoints(skeleton, segments);
   mapping->axes = set->axes;
   if (result->association.unit_from_data) {
     file->unit = result->association.unit;
@@ -279,6 +287,9 @@ struct FitTake {
   // Round 0's markers came from the association: the attach rounds re-attach them too (an
   // association is a start, not a template's trusted attachment).
   bool associated = false;
+  // With the association: the joints the attach rounds may use (AttachableJoints of every
+  // associated marker on its segment's joint, whatever its confidence; empty: all).
+  std::vector<int> attach_joints;
 };
 
 // Reads the take and sets it against the template: labels mapped, the template markers it
@@ -304,7 +315,7 @@ Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& s
   std::vector<MarkerSpec> present;
   AssociatedMarkerSet associated;
   if (UseAssociation(settings, template_markers, file)) {
-    status = AssociateTake(inputs, settings, &file, result, &fit->mapping, &associated);
+    status = AssociateTake(inputs, settings, &file, result, &fit->mapping, &associated, &fit->attach_joints);
     present = associated.specs;
     fit->associated = true;
   } else {
@@ -591,6 +602,7 @@ Status AttachRound(const FitTake& fit, double max_bone_distance, const MarkerSol
                    Observations* observed) {
   CalibrationOptions calibration;
   calibration.max_bone_distance = max_bone_distance;
+  calibration.candidate_joints = fit.attach_joints;
   std::vector<MarkerSpec> specs;
   std::vector<std::pair<int, int>> reattached;
   int new_markers = 0;
@@ -820,6 +832,21 @@ Status LearnWeights(const SkeletonFitSettings& settings, MarkerSolveOptions solv
   return status;
 }
 
+// A held joint (no marker on it or below it: held_segments.h) never moved in the fit, so its
+// mean over the fitted motion is the skeleton's zero rotation: for an ASF template a T-pose,
+// which later solves would hold a sparse set's unobserved arms in (one pointing up from a
+// leaning chest). It keeps the template's mean pose instead, the pose the template's actor
+// held that joint in, matched by joint name.
+void KeepTemplatePoseOfHeldJoints(const Subject& templ, Subject* subject) {
+  const Skeleton& skeleton = subject->skeleton;
+  if (templ.mean_pose.size() != static_cast<size_t>(templ.skeleton.num_joints())) return;
+  const std::vector<bool> observed = ObservedJoints(skeleton, subject->markers);
+  for (int j = 0; j < skeleton.num_joints(); ++j) {
+    const int t = templ.skeleton.FindJoint(skeleton.name(j));
+    if (!observed[j] && t >= 0) subject->mean_pose[j] = templ.mean_pose[t];
+  }
+}
+
 Status KeepSubject(const SkeletonFitInputs& inputs, const FitTake& fit, const SkeletonFitSettings& settings,
                    const MarkerSolveOptions& solve_options, RoundState* state, SkeletonFitResult* result) {
   RoundFit& best = state->best;
@@ -839,12 +866,14 @@ Status KeepSubject(const SkeletonFitInputs& inputs, const FitTake& fit, const Sk
   subject.name = inputs.templ.name.empty() ? "fitted" : "fitted from " + inputs.templ.name;
   subject.skeleton = std::move(best.skeleton);  // Inline: the fitted skeleton exists nowhere else.
   subject.markers = std::move(best.markers);
+  result->held = FindHeldSegments(subject.skeleton, subject.markers);
   subject.axes = fit.mapping.axes;  // The detected ones when the markers were associated.
   subject.marker_scale = fit.mapping.marker_scale;
   subject.amc_fps = inputs.amc_fps;
   // The rest prior's reference in later solves of this subject (directions no marker fixes
   // settle at the pose the subject typically holds, not at zero rotations).
   subject.mean_pose = MeanPose(subject.skeleton, result->motion);
+  KeepTemplatePoseOfHeldJoints(inputs.templ, &subject);
   return LearnWeights(settings, solve_options, best.observed, result);
 }
 
@@ -1005,6 +1034,11 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
       .Add("outlier_samples", result.outlier_samples)
       .Add("rounds", round_json).Add("hinge_blends", blend_json).Add("bone_scales", scale_json)
       .Add("checks", ChecksJson(result.checks));
+  std::vector<JsonValue> held;
+  for (const std::string& top : result.held.tops) held.push_back(JsonValue(top));
+  JsonObject held_json;
+  held_json.Add("tops", held).Add("joints", result.held.joints);
+  json.Add("held_segments", held_json);
   return json;
 }
 
@@ -1119,6 +1153,12 @@ std::string SkeletonFitSummary(const SkeletonFitResult& result) {
     if (std::abs(result.report.bone_scales[j] - 1.0) > 1e-9) {
       AppendF(&text, " %s %.3f", TerminalText(fitted.name(j)).c_str(), result.report.bone_scales[j]);
     }
+  }
+  if (!result.held.tops.empty()) {
+    std::string tops;
+    for (const std::string& top : result.held.tops) tops += (tops.empty() ? "" : ", ") + TerminalText(top);
+    AppendF(&text, "\nheld at the template's mean pose, no marker on them or below them: %s (%d joints)", tops.c_str(),
+            result.held.joints);
   }
   const int outliers = result.outlier_samples;
   const std::string left_out = outliers > 0 ? " (" + std::to_string(outliers) + " outlier samples left out)" : "";

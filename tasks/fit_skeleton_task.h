@@ -40,6 +40,7 @@
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "pipeline/subject.h"
+#include "problems/marker_solve/held_segments.h"
 #include "problems/marker_solve/marker_association.h"
 #include "problems/marker_solve/template_label_maps.h"
 #include "problems/marker_solve/template_labels.h"
@@ -140,6 +141,10 @@ struct SkeletonFitResult {
   bool unit_known = false;
   LearnedMarkerWeights weights;  // With --learn_weights (else empty).
   std::vector<SkeletonFitBlend> hinge_blends;  // The kept round's markers blended over a hinge.
+  // The joints no marker of the fitted subject observes (a sparse protocol's upper body):
+  // at the template's rest in the fit; the subject keeps the template's mean pose for them,
+  // where its solves start and hold them.
+  HeldSegments held;
 };
 
 // The stride of the frames a fit uses: every frame (1) with max_frames 0 or a take of at
@@ -178,7 +183,8 @@ std::string SkeletonFitEventLine(const SkeletonFitEvent& event, const Skeleton& 
 // The console summary after the fit: the checks, the bone scales that changed, the RMS.
 std::string SkeletonFitSummary(const SkeletonFitResult& result);
 
-// The report (`--report`): frames, rounds, kept round, RMS, bone scales, checks, the label map.
+// The report (`--report`): frames, rounds, kept round, RMS, bone scales, checks, the label map,
+// the held segments.
 JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const SkeletonFitResult& result);
 
 }  // namespace mocapsolve

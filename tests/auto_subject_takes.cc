@@ -91,6 +91,21 @@ MarkerTrajectories TemplateWalkTakeBendingLate(int frames, int bend_from, bool r
   return WalkTake(frames, renamed, bend_from);
 }
 
+MarkerTrajectories KeepTakeMarkers(const MarkerTrajectories& take, const std::vector<std::string>& labels,
+                                   const std::vector<std::string>& renamed) {
+  MarkerTrajectories kept(renamed.empty() ? labels : renamed, take.num_frames());
+  kept.frame_rate = take.frame_rate;
+  kept.unit = take.unit;
+  for (size_t k = 0; k < labels.size(); ++k) {
+    const int m = take.FindMarker(labels[k]);
+    EXPECT_GE(m, 0) << labels[k];
+    for (int f = 0; m >= 0 && f < take.num_frames(); ++f) {
+      if (take.valid(f, m)) kept.SetSample(f, static_cast<int>(k), take.position(f, m));
+    }
+  }
+  return kept;
+}
+
 MarkerTrajectories RandomPointsTake(int frames, int points) {
   std::vector<std::string> labels;
   for (int m = 0; m < points; ++m) labels.push_back("P" + std::to_string(m));

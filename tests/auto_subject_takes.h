@@ -6,6 +6,7 @@
 #define MOCAPSOLVE_TESTS_AUTO_SUBJECT_TAKES_H_
 
 #include <string>
+#include <vector>
 
 #include "kinematics/marker_trajectories.h"
 
@@ -23,6 +24,11 @@ MarkerTrajectories TemplateWalkTake(int frames, bool renamed);
 // the upper arm's there. One marker more, last: ROLC (renamed: M41) on the forearm just
 // behind the elbow, nearer the upper arm's bone than the forearm's.
 MarkerTrajectories TemplateWalkTakeBendingLate(int frames, int bend_from, bool renamed);
+
+// `take` with only the markers named in `labels` (in that order), renamed to `renamed`
+// when given (the same length): a sparse protocol's subset of a full-body take.
+MarkerTrajectories KeepTakeMarkers(const MarkerTrajectories& take, const std::vector<std::string>& labels,
+                                   const std::vector<std::string>& renamed = {});
 
 // `points` points at random positions in a 2 m box, each moving at random, `frames` frames, mm.
 MarkerTrajectories RandomPointsTake(int frames, int points);

@@ -259,7 +259,12 @@ void DetectUp(Scene* scene) {
 // Step 3: a body 0.9-2.3 m tall (the file's unit when it gives 0.8-2.5 m).
 Status DetectUnit(const std::string& path, Scene* scene, MarkerAssociation* out) {
   const LengthUnit file = scene->take->unit;
-  if (file.known() && scene->extent * file.metres_per_unit >= 0.8 && scene->extent * file.metres_per_unit <= 2.5) {
+  // The file's unit, when it makes the points 0.3-2.5 m tall: a whole body, or part of one
+  // (a lower-body set spans pelvis to heels, 0.7-1.0 m for an adult, less for a child or in
+  // a sprint's flight; before, such a set was read in inches or refused). A unit wrong by
+  // 10x makes 0.17 or 17 m of a body, and is searched for.
+  const double in_file = scene->extent * file.metres_per_unit;
+  if (file.known() && in_file >= 0.3 && in_file <= 2.5) {
     out->unit = file;
   } else {
     double best = kInf;
@@ -509,6 +514,39 @@ std::vector<double> StanceHeights(const Layout& layout, const std::vector<std::v
   return leg_height;
 }
 
+// A side whose "arm" points all sit at a shoulder (median h above 0.72, a walk's elbows sit
+// near 0.62, its wrists near 0.48; and within kShoulderReach of the trunk's axis across
+// the floor, an acromion 0.15-0.22 m off it) is no arm: a Helen Hayes / Davis set puts
+// only an acromion there, beside C7 (BTS DAVIS: "l should", "c7"). Its clusters join the
+// trunk (the chest), or the arm roles would call one of two shoulder-height points a hand.
+// A whole arm held up (a squat's arms stretched forward, a free-form take's raised arm)
+// sits as high, but its forearm and hand reach beyond a shoulder, and it carries more points
+// than a shoulder (squat: 8-10 a side, 0.4-0.6 m out; nick_freeform_001: 10, 0.16-0.35 m):
+// it stays an arm.
+void ShoulderOnlyArmsToTrunk(const std::vector<std::vector<int>>& clusters, const Layout& layout,
+                             std::vector<int>* group) {
+  constexpr double kShoulderHeight = 0.72;
+  constexpr double kShoulderReach = 0.35;  // Metres.
+  constexpr size_t kShoulderPoints = 3;    // A shoulder's markers; an arm's upper arm, forearm and hand hold more.
+  for (const int k : {0, 1}) {
+    bool any = false, arm = false;
+    size_t points = 0;
+    for (size_t c = 0; c < clusters.size(); ++c) {
+      if ((*group)[c] != 2 || (ClusterMedian(clusters[c], layout.side) > 0.0 ? 0 : 1) != k) continue;
+      any = true;
+      points += clusters[c].size();
+      for (int i : clusters[c]) {
+        const double reach = std::hypot(layout.side[i], layout.forward[i]);
+        arm = arm || !(layout.height[i] > kShoulderHeight) || !(reach < kShoulderReach);
+      }
+    }
+    if (!any || arm || points > kShoulderPoints) continue;
+    for (size_t c = 0; c < clusters.size(); ++c) {
+      if ((*group)[c] == 2 && (ClusterMedian(clusters[c], layout.side) > 0.0 ? 0 : 1) == k) (*group)[c] = 0;
+    }
+  }
+}
+
 // Step 5's roles per marker, sides as "a_" (side0 > 0) and "b_" until forward is known.
 // Each cluster is a group: central (trunk), leg (a point below h 0.34, none above 0.6),
 // arm, or, below 0.6 and off centre, the group of the cluster it moves most rigidly with
@@ -559,6 +597,7 @@ void RoleFinder::Run() {
     }
     group[c] = best_group;
   }
+  ShoulderOnlyArmsToTrunk(clusters, layout, &group);
   // A limb cluster's side is its median's; a shin or foot (below h 0.3) takes the side of
   // the leg cluster above it that it moves most rigidly with (a walk's feet pass under the
   // body's midline, the thighs do not), unless it is one side of a split cluster (planted

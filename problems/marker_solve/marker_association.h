@@ -28,8 +28,9 @@
 //     (median over frames), and where that is not clear (within 20 %) the floor: the lowest
 //     point's height varies less over the take than the highest's.
 //  3. Units. The median vertical extent E (file units) is a body 0.9-2.3 m tall: the file's
-//     unit when E in it falls in [0.8, 2.5] m, else the first of mm, cm, m, inch that does
-//     (nearest 1.6 m); none: an error that names the extent.
+//     unit when E in it falls in [0.3, 2.5] m (part of a body too: a lower-body set, a
+//     child), else the first of mm, cm, m, inch that does (nearest 1.6 m); none: an error
+//     that names the extent.
 //  4. Rigid clusters (rigid_marker_clusters.h).
 //  5. Layout. Heights h (above the floor: the 2nd percentile of the lowest point, divided by
 //     the stature: E, or, when the top is no head, the top's height over 0.86: a gait set
@@ -52,7 +53,10 @@
 //     side's lowest leg point is within 0.06 of the floor: a sprint's feet are in the air
 //     most of the take); the upper arm is the side's cluster above the
 //     pelvis most rigidly joined to the chest (or head), the forearm and hand follow it the
-//     same way. A cluster left over takes the role of the cluster it moves most rigidly with.
+//     same way; a side whose only such points sit at shoulder height (median h > 0.72: a
+//     Helen Hayes / Davis acromion beside C7, no elbow or wrist marker) has no arm, and its
+//     points join the trunk (chest). A cluster left over takes the role of the cluster it
+//     moves most rigidly with.
 //  6. Confidence per marker, in [0, 1]: its cluster's separation (own mean spread against
 //     the nearest other cluster's), times 0.6 for a one-marker cluster, 0.5 for a leftover
 //     role, 0.7 when the side is unclear (|side| < 3 cm, and no joint links it to a sided

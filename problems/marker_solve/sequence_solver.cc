@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "kinematics/forward_kinematics.h"
+#include "problems/marker_solve/held_segments.h"
 #include "problems/marker_solve/marker_observations.h"
 
 namespace mocapsolve {
@@ -39,9 +40,32 @@ Status RootPoseFromMarkers(const Skeleton& skeleton, const MarkerSet& markers,
   return Status::Ok();
 }
 
+namespace {
+
+// With the rest prior on, every joint of *pose that no marker moves (no marker on it or
+// below it: a finger without a marker, a sparse set's unobserved arm; held_segments.h) put
+// at the prior's reference (the subject's mean pose). Only that prior pulls such a joint,
+// far too weakly against the damping to move it from where it starts: from zero rotations
+// an ASF subject's unobserved arm stayed in a T-pose. No marker's residual depends on it.
+void StartUnmovedJointsAtRest(const Skeleton& skeleton, const MarkerSet& markers, const MarkerSolveOptions& options,
+                              Pose* pose) {
+  if (!(options.rest_rotation_weight > 0.0) ||
+      options.rest_rotations.size() != static_cast<size_t>(skeleton.num_joints()) ||
+      pose->rotations.size() != options.rest_rotations.size()) {
+    return;
+  }
+  const std::vector<bool> moved = ObservedJoints(skeleton, markers);
+  for (int j = 0; j < skeleton.num_joints(); ++j) {
+    if (!moved[j]) pose->rotations[j] = options.rest_rotations[j].normalized();
+  }
+}
+
+}  // namespace
+
 Status InitialPose(const Skeleton& skeleton, const MarkerSet& markers,
                    const std::vector<Eigen::Vector3d>& observed, const MarkerSolveOptions& options,
                    Pose* pose, bool root_from_markers) {
+  StartUnmovedJointsAtRest(skeleton, markers, options, pose);
   if (root_from_markers && skeleton.num_rotation_dofs(0) == 3) {
     Pose start = *pose;
     Status status = RootPoseFromMarkers(skeleton, markers, observed, &start);

@@ -34,8 +34,9 @@ struct SequenceSolveReport {
   std::vector<int> twist_held_frames;
 };
 
-// observed[f][m] in model units (MarkerObservations); `initial` supplies the joints no
-// marker moves and the starting pose. motion receives one pose per frame.
+// observed[f][m] in model units (MarkerObservations); `initial` is the starting pose (but
+// for the joints InitialPose puts at the rest prior's reference). motion receives one pose
+// per frame.
 Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
                      const std::vector<std::vector<Eigen::Vector3d>>& observed,
                      const MarkerSolveOptions& options, const Pose& initial, Motion* motion,
@@ -43,7 +44,11 @@ Status SolveSequence(const Skeleton& skeleton, const MarkerSet& markers,
                      const std::function<void(int frames_done)>& progress = nullptr,
                      bool root_from_markers = false);
 
-// The first frame's start: best of 24 root orientations, root at the marker centroid;
+// The first frame's start: with the rest prior on (options.rest_rotation_weight > 0 and
+// rest_rotations given, the subject's mean pose), every joint no marker moves (none on it or
+// below it) at its reference, where that prior alone holds it (from zero rotations it
+// stayed there: an ASF subject's unobserved arm in a T-pose); the best of 24 root
+// orientations, root at the marker centroid;
 // with root_from_markers, only the root pose from the markers' own geometry
 // (RootPoseFromMarkers), which cannot lock onto a wrong axis orientation that a free
 // fit of offsets happens to match better.

@@ -274,6 +274,85 @@ TEST(MarkerAssociationTest, PlantedFeetAreTwoFeet) {
   EXPECT_NE(*sides["Left"].begin(), *sides["Right"].begin()) << "both feet on the " << *sides["Left"].begin();
 }
 
+// A Helen Hayes / Davis trunk: no arm markers, only the shoulders' (acromions) and the
+// neck's (C7) above the pelvis, on the demo walk. They are the chest: before, a side's
+// shoulder-height points were an "arm" whose farthest point was called a hand or forearm.
+TEST(MarkerAssociationTest, ShouldersWithoutArmsAreTheChest) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  Motion walk = MakeDemoWalk(skeleton, 240, 60.0);
+  // The shoulders shrug and swing with the arms (a walk's acromions move against C7).
+  for (size_t f = 0; f < walk.frames.size(); ++f) {
+    const double phase = 2.0 * kPi * f / walk.frame_rate / 1.1;
+    SetJoint(skeleton, &walk.frames[f], "LeftShoulder", 0, 12 * std::sin(phase), 10 * std::cos(phase));
+    SetJoint(skeleton, &walk.frames[f], "RightShoulder", 0, 12 * std::sin(phase), -10 * std::cos(phase));
+  }
+  const Take take = MakeTakeOf(skeleton, walk, false, true,
+                               {"Head", "Chest", "LeftArm", "LeftForeArm", "LeftHand", "RightArm", "RightForeArm",
+                                "RightHand"});
+  MarkerAssociation association;
+  ASSERT_TRUE(AssociateMarkers(take.trajectories, "davis.c3d", MarkerAssociationOptions(), &association).ok());
+  int trunk = 0;
+  for (const AssociatedMarker& a : association.markers) {
+    const std::string joint = take.joint.count(a.label) ? take.joint.at(a.label) : "";
+    if (joint != "Neck" && joint != "LeftShoulder" && joint != "RightShoulder") continue;
+    ++trunk;
+    EXPECT_EQ(a.role, "chest") << joint;
+  }
+  EXPECT_EQ(trunk, 9);
+}
+
+// The whole arms held up in front at shoulder height through the take (a squat's arms
+// stretched forward), swinging across and bending at the elbow: every arm point sits above
+// the shoulder-height bar, as an acromion-only side's do, but an arm's forearm and hand
+// reach beyond a shoulder and it carries more points. They were the chest (every arm
+// marker "chest"; the attach rounds then kept the fitted subject's arm empty).
+TEST(MarkerAssociationTest, ArmsHeldUpAtShoulderHeightStayArms) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  Motion walk = MakeDemoWalk(skeleton, 240, 60.0);
+  for (size_t f = 0; f < walk.frames.size(); ++f) {
+    const double phase = 2.0 * kPi * f / walk.frame_rate / 1.3;
+    SetJoint(skeleton, &walk.frames[f], "LeftArm", 0, -70 + 20 * std::sin(phase), 0);
+    SetJoint(skeleton, &walk.frames[f], "RightArm", 0, 70 + 20 * std::sin(phase), 0);
+    SetJoint(skeleton, &walk.frames[f], "LeftForeArm", 0, -30 - 30 * std::cos(phase), 0);
+    SetJoint(skeleton, &walk.frames[f], "RightForeArm", 0, 30 + 30 * std::cos(phase), 0);
+  }
+  const Take take = MakeTakeOf(skeleton, walk, false, true);
+  MarkerAssociation association;
+  ASSERT_TRUE(AssociateMarkers(take.trajectories, "arms_up.c3d", MarkerAssociationOptions(), &association).ok());
+  int arm = 0, chest = 0;
+  for (const AssociatedMarker& a : association.markers) {
+    const std::string joint = take.joint.count(a.label) ? take.joint.at(a.label) : "";
+    if (joint != "LeftForeArm" && joint != "LeftHand" && joint != "RightForeArm" && joint != "RightHand") continue;
+    ++arm;
+    chest += a.role == "chest" || a.role == "head";
+  }
+  EXPECT_GT(arm, 0);
+  EXPECT_EQ(chest, 0) << "of " << arm << " forearm and hand markers";
+}
+
+// A lower-body set (no marker above the pelvis) of a child (the demo walk at 0.6 of its
+// size), in a file that says cm: its points span 0.5-0.6 m, a whole body in no unit, so the
+// file's unit was refused ("a body in no unit"); it is read in the file's unit now.
+TEST(MarkerAssociationTest, AChildsLowerBodySetKeepsTheFilesUnit) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  Take take = MakeTakeOf(skeleton, MakeDemoWalk(skeleton, 240, 60.0), false, true,
+                         {"Spine", "Chest", "Neck", "Head", "LeftShoulder", "LeftArm", "LeftForeArm", "LeftHand",
+                          "RightShoulder", "RightArm", "RightForeArm", "RightHand"});
+  MarkerTrajectories& points = take.trajectories;
+  for (int f = 0; f < points.num_frames(); ++f) {
+    for (int m = 0; m < points.num_markers(); ++m) {
+      if (points.valid(f, m)) points.SetSample(f, m, 0.6 * points.position(f, m));
+    }
+  }
+  MarkerAssociation association;
+  const Status status = AssociateMarkers(points, "child.c3d", MarkerAssociationOptions(), &association);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(association.unit.name, "cm");
+  EXPECT_FALSE(association.unit_from_data);
+  EXPECT_LT(association.height_m, 0.8);
+  EXPECT_EQ(association.up_axis, 1);
+}
+
 // A lab's model outputs written as points (Nexus joint angles in degrees, a force in N/kg, a
 // power in W/kg, a moment in N mm/kg: numbers, not positions) beside the walk in mm, walked
 // on a treadmill at the file's origin: the angle-like points sit among the feet.

@@ -291,6 +291,43 @@ TEST_P(MarkerFrameSolverTest, OneSeenMarkerHoldsOnlyTheTwistAboutIt) {
   }
 }
 
+// A marker set without the left arm's markers (a sparse protocol's unobserved arm): no
+// marker moves the arm, so a sequence solve starts it, and keeps it, at the rest prior's
+// reference (the subject's mean pose) when one is given, at the initial pose's otherwise.
+// (Started at zero rotations, it stayed there: a T-pose arm for an ASF subject.)
+TEST_P(MarkerFrameSolverTest, AJointNoMarkerMovesStartsAndStaysAtTheReference) {
+  const ShoulderFixture arm;
+  std::vector<MarkerSpec> specs;
+  for (int m = 0; m < arm.markers.num_markers(); ++m) {
+    const int j = arm.markers.marker(m).attachments[0].joint;
+    if (j < arm.shoulder || j >= arm.skeleton.subtree_end(arm.shoulder)) specs.push_back(arm.markers.marker(m));
+  }
+  MarkerSet armless;
+  ASSERT_TRUE(MarkerSet::Create(arm.skeleton, specs, &armless).ok());
+  std::vector<std::vector<Eigen::Vector3d>> frames;
+  for (const Pose& pose : arm.walk.frames) frames.push_back(Observe(arm.skeleton, armless, pose));
+  // The mean pose's arm 2 rad away from zero rotations, so starting at zero cannot pass.
+  QuaternionVector mean_pose = arm.mean_pose;
+  for (int j = arm.shoulder; j < arm.skeleton.subtree_end(arm.shoulder); ++j) {
+    mean_pose[j] = Eigen::Quaterniond(Eigen::AngleAxisd(2.0, Eigen::Vector3d(1, -1, 2).normalized()));
+  }
+  for (const bool given : {true, false}) {
+    MarkerSolveOptions options = arm.Options(GetParam(), 0.0, 0.0);
+    options.rest_rotations = given ? mean_pose : QuaternionVector();
+    Motion motion;
+    SequenceSolveReport sequence;
+    ASSERT_TRUE(SolveSequence(arm.skeleton, armless, frames, options, RestPose(arm.skeleton), &motion, &sequence).ok());
+    for (const Pose& pose : motion.frames) {
+      for (int j = arm.shoulder; j < arm.skeleton.subtree_end(arm.shoulder); ++j) {
+        const Eigen::Quaterniond expected = given ? mean_pose[j] : Eigen::Quaterniond::Identity();
+        EXPECT_LT(AngularDistance(pose.rotations[j], expected), 1e-6) << given << " " << arm.skeleton.name(j);
+      }
+    }
+    // The observed joints are solved as before: noise-free markers fitted to round-off.
+    EXPECT_LT(sequence.rms_marker_error, 1e-4) << given;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(AllSolvers, MarkerFrameSolverTest,
                          ::testing::Values(SolverKind::kCeres, SolverKind::kDls, SolverKind::kDlsGeneric),
                          [](const auto& info) { return std::string(SolverKindName(info.param)); });

@@ -180,5 +180,37 @@ TEST(JointGapTemplate, TheShortcutsFindTheShiftOfTheFullSearch) {
   EXPECT_GE(found, 8);  // The case is not trivial: shifts are found.
 }
 
+// CarryJoints makes one table for every run: the table holds the samples as they were before
+// any run was carried, and the carried ones wrong (as the repair's solve has them there, and
+// as each carry then rewrites them). The search must find, run after run, the shift the full
+// search finds on the motion as it is then; it fails if the bound reads a carried sample.
+TEST(JointGapTemplate, OneTableServesEveryRunWhileTheRunsAreCarried) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int foot = skeleton.FindJoint("LeftFoot"), shin = skeleton.FindJoint("LeftLeg");
+  const int thigh = skeleton.FindJoint("LeftUpLeg");
+  const int frames = 400;
+  Motion motion = Periodic(skeleton, frames);
+  const std::vector<CarriedJointRun> runs = {{foot, 150, 209}, {foot, 300, 330}, {shin, 120, 160},
+                                             {thigh, 215, 225}, {shin, 240, 250}};
+  std::vector<std::vector<char>> carried(skeleton.num_joints(), std::vector<char>(frames, 0));
+  for (const CarriedJointRun& run : runs) {
+    for (int f = run.first; f <= run.last; ++f) {
+      carried[run.joint][f] = 1;
+      motion.frames[f].rotations[run.joint] = ExpMap(Eigen::Vector3d(2.5, -1.0, 0.5));  // Far off.
+    }
+  }
+  JointTemplateOptions options;
+  options.max_shift_frames = 250;
+  const JointTemplateTable table(skeleton, motion, carried, 0, frames - 1);
+  int found = 0;
+  for (const CarriedJointRun& run : runs) {
+    const int expected = BruteForceShift(skeleton, motion, carried, run, options);
+    EXPECT_EQ(FindTemplateShift(skeleton, motion, carried, table, run, options), expected) << run.joint;
+    found += expected != 0 ? 1 : 0;
+    if (expected != 0) CarryFromTemplate(run, expected, &motion);
+  }
+  EXPECT_GE(found, 3);
+}
+
 }  // namespace
 }  // namespace mocapsolve

@@ -7,11 +7,14 @@
 #include "tasks/auto_subject_task.h"
 
 #include <string>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "io/marker_file.h"
+#include "kinematics/rotation.h"
+#include "pipeline/shipped_templates.h"
 #include "tests/auto_subject_takes.h"
 #include "tests/test_support.h"
 
@@ -19,6 +22,7 @@ namespace mocapsolve {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // A short fit: the walk's 90 frames, few iterations (the take is the template's own body).
 SkeletonFitSettings ShortFit() {
@@ -112,6 +116,115 @@ TEST(AutoSubject, AMarkerNearAJointThatBendsOnlyLateIsAttachedToTheRightSegment)
   const int k = fitted.FindMarker("ROLC");
   ASSERT_GE(k, 0);
   EXPECT_EQ(result.fit.subject.skeleton.name(fitted.marker(k).attachments[0].joint), "rradius");
+}
+
+// A Plug-in Gait lower-body take (CMU's pelvis and leg markers only, by their labels): the
+// legs are fitted on their own segments and the upper body, which no marker observes, is
+// held at the template's mean pose and named in the report and on the console.
+TEST(AutoSubject, ALowerBodyTakeFitsItsLegsAndHoldsTheUpperBody) {
+  const std::vector<std::string> legs = {"LBWT", "RBWT", "LFWT", "RFWT", "LTHI", "RTHI", "LKNE", "RKNE", "LSHN",
+                                         "RSHN", "LANK", "RANK", "LHEE", "RHEE", "LTOE", "RTOE", "LMT5", "RMT5"};
+  Status status = Status::Ok();
+  const AutoSubjectResult result =
+      FitWritten(testing::KeepTakeMarkers(testing::TemplateWalkTake(90, false), legs), "lower_body.c3d", &status);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(result.method, "labels");
+  EXPECT_TRUE(result.fit.checks.ok());
+  EXPECT_LT(result.fit.checks.rms_mm, 5.0);
+  Subject templ;
+  ASSERT_TRUE(DefaultTemplateSubject(&templ).ok());
+  const Subject& fitted = result.fit.subject;
+  ASSERT_EQ(fitted.markers.num_markers(), 18);
+  for (int m = 0; m < fitted.markers.num_markers(); ++m) {
+    const int t = templ.markers.FindMarker(fitted.markers.label(m));
+    ASSERT_GE(t, 0);
+    EXPECT_EQ(fitted.skeleton.name(fitted.markers.marker(m).attachments[0].joint),
+              templ.skeleton.name(templ.markers.marker(t).attachments[0].joint)) << fitted.markers.label(m);
+  }
+  // Held: everything above CMU's lowerback (which LFWT and RFWT ride on).
+  EXPECT_EQ(result.fit.held.tops, std::vector<std::string>{"upperback"});
+  EXPECT_EQ(result.fit.held.joints, 19);
+  const int arm = fitted.skeleton.FindJoint("lhumerus");
+  for (const Pose& pose : result.fit.motion.frames) {
+    EXPECT_TRUE(pose.rotations[arm].isApprox(result.fit.motion.frames[0].rotations[arm], 1e-9));
+  }
+  // The subject keeps the template's mean pose for every held joint (its arm hangs as the
+  // template's actor held it; the fit's own motion left it at zero rotations, a T-pose).
+  ASSERT_EQ(fitted.mean_pose.size(), static_cast<size_t>(fitted.skeleton.num_joints()));
+  const int held_top = fitted.skeleton.FindJoint("upperback");
+  for (int j = held_top; j < fitted.skeleton.subtree_end(held_top); ++j) {
+    const Eigen::Quaterniond& expected = templ.mean_pose[templ.skeleton.FindJoint(fitted.skeleton.name(j))];
+    EXPECT_TRUE(fitted.mean_pose[j].isApprox(expected, 1e-12)) << fitted.skeleton.name(j);
+  }
+  EXPECT_GT(AngularDistance(fitted.mean_pose[arm], Eigen::Quaterniond::Identity()), 0.5);
+  EXPECT_THAT(AutoSubjectLine(result), HasSubstr("no marker observes upperback (19 joints): held"));
+  EXPECT_THAT(AutoSubjectReport(result).ToString(), HasSubstr("\"held_segments\""));
+}
+
+// A Helen Hayes / Davis trunk (BTS DAVIS labels): C7 and the two acromions are the only
+// upper-body markers. They are the chest, not an arm: before, one of two shoulder-height
+// points on a side was called its hand.
+TEST(AutoSubject, ADavisTrunkIsTheChestNotAnArm) {
+  const std::vector<std::string> labels = {"C7", "LSHO", "RSHO", "LBWT", "RBWT", "LFWT", "RFWT", "LTHI", "RTHI",
+                                           "LKNE", "RKNE", "LSHN", "RSHN", "LANK", "RANK", "LHEE", "RHEE", "LMT5",
+                                           "RMT5"};
+  const std::vector<std::string> bts = {"c7", "l should", "r should", "l psis", "r psis", "l asis", "r asis",
+                                        "l bway", "r bway", "l knee 1", "r knee 1", "l tibia wand", "r tibia wand",
+                                        "l mall", "r mall", "l heel", "r heel", "l met", "r met"};
+  Status status = Status::Ok();
+  const AutoSubjectResult result = FitWritten(
+      testing::KeepTakeMarkers(testing::TemplateWalkTake(90, false), labels, bts), "davis.c3d", &status);
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(result.method, "association");
+  for (const char* label : {"c7", "l should", "r should"}) {
+    const AssociatedMarker* marker = result.fit.association.Find(label);
+    ASSERT_NE(marker, nullptr) << label;
+    EXPECT_EQ(marker->role, "chest") << label;
+    // And the attach rounds keep them on the trunk: a clavicle or the neck, which no other
+    // marker observes, would follow the one marker (AttachableJoints).
+    const MarkerSet& fitted = result.fit.subject.markers;
+    const std::string joint = result.fit.subject.skeleton.name(fitted.marker(fitted.FindMarker(label)).attachments[0].joint);
+    EXPECT_THAT(joint, ::testing::AnyOf("lowerback", "upperback", "thorax")) << label;
+  }
+  EXPECT_THAT(result.fit.held.tops, ::testing::IsSupersetOf({"lclavicle", "rclavicle", "lowerneck"}));
+}
+
+// A take with no marker on the feet: the pipeline needs them, so it is refused in one
+// line naming the segments and the template's markers for them.
+TEST(AutoSubject, ATakeWithoutFootMarkersIsRefusedNamingTheSegments) {
+  const std::vector<std::string> no_feet = {"LBWT", "RBWT", "LFWT", "RFWT", "LTHI", "RTHI", "LKNE", "RKNE",
+                                            "LSHN", "RSHN", "LANK", "RANK", "C7", "CLAV", "LSHO", "RSHO"};
+  Status status = Status::Ok();
+  FitWritten(testing::KeepTakeMarkers(testing::TemplateWalkTake(90, false), no_feet), "no_feet.c3d", &status);
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("no_feet.c3d: --subject=auto: no marker of the take observes left_foot "
+                                          "(lfoot; the template puts "));
+  EXPECT_THAT(status.message(), HasSubstr("right_foot (rfoot"));
+  EXPECT_THAT(status.message(), HasSubstr("LHEE"));
+  EXPECT_EQ(status.message().find('\n'), std::string::npos) << status.message();
+}
+
+// A fit that fails its checks is refused for them, before its segments are asked about: it
+// may have left a segment's markers elsewhere, and then "no marker observes left_foot" on a
+// take that has its foot markers misleads (squat renamed, fitted at 67.8 mm with its arm
+// taken for the chest). Here the take also lacks its feet, and every sample jitters 60 mm
+// (no pose explains it): the error is the failed check.
+TEST(AutoSubject, AFitFailingItsChecksIsRefusedForThemNotForASegment) {
+  const std::vector<std::string> no_feet = {"LBWT", "RBWT", "LFWT", "RFWT", "LTHI", "RTHI", "LKNE", "RKNE",
+                                            "LSHN", "RSHN", "LANK", "RANK", "C7", "CLAV", "LSHO", "RSHO"};
+  MarkerTrajectories take = testing::KeepTakeMarkers(testing::TemplateWalkTake(90, false), no_feet);
+  for (int f = 0; f < take.num_frames(); ++f) {
+    for (int m = 0; m < take.num_markers(); ++m) {
+      const double s = (f + m) % 2 == 0 ? 60.0 : -60.0;
+      if (take.valid(f, m)) take.SetSample(f, m, take.position(f, m) + Eigen::Vector3d(s, -s, s));
+    }
+  }
+  Status status = Status::Ok();
+  FitWritten(take, "shaken.c3d", &status);
+  ASSERT_FALSE(status.ok());
+  EXPECT_THAT(status.message(), HasSubstr("shaken.c3d: --subject=auto: the subject fitted from the shipped template"));
+  EXPECT_THAT(status.message(), HasSubstr("fails its check: marker RMS"));
+  EXPECT_THAT(status.message(), Not(HasSubstr("no marker of the take observes")));
 }
 
 TEST(AutoSubject, RandomPointsFailWithOneLine) {
