@@ -739,7 +739,10 @@ Status AddCandidate(const RoundFit& fit, const MarkerSolveOptions& solve_options
 // first two thirds (a time split inside the fit: a blend has six offset parameters to the
 // single bone's three, and scored on the frames that fitted them it won where it later
 // failed, BENCHMARKS.md, issue 36, h36j); a blend kept gets its offsets fitted on every
-// frame. Nothing else of the round changes.
+// frame. Nothing else of the round changes. Only a hinge that bends by hinge_min_bend in
+// the first two thirds is offered: one that holds still there leaves the blend's offsets
+// unidentified, and an elbow bending only in the take's last tenth had a forearm marker
+// blended over it (BENCHMARKS.md, issue 36, h36k).
 // After the rounds, not in them: offered in every attach round, the blends changed the
 // rounds' path and moved markers they did not touch by 10-40 mm either way (BENCHMARKS.md,
 // issue 36, h36i).
@@ -749,10 +752,21 @@ Status BlendOverHinges(const FitTake& fit, double max_bone_distance, MarkerSolve
   const AttachmentByPredictionOptions defaults;
   const std::vector<std::pair<int, int>> hinge = HingeBlendCandidates(
       best->skeleton, best->markers, max_bone_distance, defaults.hinge_fraction, defaults.hinge_dofs);
+  // Decided on the last third of the frames with every candidate's offsets, the blend's and
+  // the marker's own, fitted on the first two thirds: a blend's six offset parameters fitted
+  // on the frames that score them won on its own fit frames and failed later (h36j).
+  const int split = best->motion.num_frames() * 2 / 3;
+  const bool held_out = split >= 1 && split < best->motion.num_frames();
+  Motion early = best->motion;
+  if (held_out) early.frames.resize(split);
   std::vector<AttachmentChoice> blend(markers), own(markers);
   bool any = false;
   for (int s = 0; s < markers; ++s) {
-    if (hinge[s].first < 0) continue;
+    // Only over a hinge that bends where the offsets are fitted (else they are not identified).
+    if (hinge[s].first < 0 ||
+        JointBendRange(early, hinge[s].second, defaults.max_frames) < defaults.hinge_min_bend) {
+      continue;
+    }
     blend[s] = {{hinge[s].first, 0.5, Eigen::Vector3d::Zero()}, {hinge[s].second, 0.5, Eigen::Vector3d::Zero()}};
     own[s] = best->markers.marker(s).attachments;
     any = true;
@@ -760,17 +774,10 @@ Status BlendOverHinges(const FitTake& fit, double max_bone_distance, MarkerSolve
   if (!any) return Status::Ok();
   CalibrationOptions calibration;
   calibration.max_bone_distance = max_bone_distance;
-  // Decided on the last third of the frames with every candidate's offsets, the blend's and
-  // the marker's own, fitted on the first two thirds: a blend's six offset parameters fitted
-  // on the frames that score them won on its own fit frames and failed later (h36j).
-  const int split = best->motion.num_frames() * 2 / 3;
-  const bool held_out = split >= 1 && split < best->motion.num_frames();
   std::vector<AttachmentChoice> early_blend = blend;
   MarkerSet given = best->markers;
   Observations scored = best->observed;
   if (held_out) {
-    Motion early = best->motion;
-    early.frames.resize(split);
     Status status = FitChoices(fit, best->skeleton, early, calibration, best->markers, &early_blend);
     if (status.ok()) status = FitChoices(fit, best->skeleton, early, calibration, best->markers, &own);
     if (!status.ok()) return status;

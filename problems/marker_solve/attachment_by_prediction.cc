@@ -127,6 +127,18 @@ std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, 
   return pairs;
 }
 
+double JointBendRange(const Motion& motion, int joint, int max_frames) {
+  const int frames = motion.num_frames();
+  const int step = std::max(1, (frames + std::max(max_frames, 1) - 1) / std::max(max_frames, 1));
+  std::vector<Eigen::Quaterniond> rotations;
+  for (int f = 0; f < frames; f += step) rotations.push_back(motion.frames[f].rotations[joint]);
+  double range = 0.0;
+  for (size_t i = 0; i < rotations.size(); ++i) {
+    for (size_t k = i + 1; k < rotations.size(); ++k) range = std::max(range, rotations[i].angularDistance(rotations[k]));
+  }
+  return range;
+}
+
 Status ChooseAmongAttachments(const Skeleton& skeleton, const std::vector<std::vector<Eigen::Vector3d>>& observed,
                               const std::vector<std::vector<AttachmentChoice>>& alternatives,
                               const MarkerSolveOptions& solve, const AttachmentByPredictionOptions& options,

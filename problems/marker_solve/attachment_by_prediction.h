@@ -41,6 +41,7 @@
 #include <Eigen/Core>
 
 #include "kinematics/marker_set.h"
+#include "kinematics/motion.h"
 #include "kinematics/skeleton.h"
 #include "kinematics/status.h"
 #include "problems/marker_solve/calibration.h"
@@ -61,6 +62,14 @@ struct AttachmentByPredictionOptions {
   // toes (CMU's skeleton); blends over ball joints (a shoulder, the spine) changed the solve
   // of markers far from them (JA1Gait35's RFOREARM with LSH blended: BENCHMARKS.md, h36j).
   int hinge_dofs = 1;
+  // A hinge bends by at least this much (radians) in the frames the blend's offsets are
+  // fitted on (JointBendRange), or it is not offered: x = p_a + R_a alpha + R_h beta tells
+  // beta from alpha only through R_a^T R_h's change, which moves beta's end by about
+  // |beta| dtheta. 15 degrees, set before measuring: at a patella's or an epicondyle's
+  // 4-6 cm from the joint's centre the hinge side's half moves by 5-8 mm over the range,
+  // above the 2-5 mm of marker noise and skin slide; a hinge that holds still there (an
+  // elbow that bends only late in the take) leaves the blend's six offsets fitted to noise.
+  double hinge_min_bend = 15.0 * 3.14159265358979323846 / 180.0;
 };
 
 // One way to attach a marker: a single joint (weight 1) or a blend of several.
@@ -106,6 +115,11 @@ std::vector<int> RigidClusterCandidates(const MarkerSet& markers, const std::vec
 // at most max_dofs rotation dofs count as hinges.
 std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, const MarkerSet& markers,
                                                       double max_distance, double max_fraction, int max_dofs);
+
+// How far joint j bends over `motion`: the largest angle (radians) between two of its local
+// rotations, over at most max_frames frames evenly spaced (pairwise, O(max_frames^2)). A
+// one-dof hinge's angle range; 0 for a motion of fewer than two frames.
+double JointBendRange(const Motion& motion, int joint, int max_frames);
 
 // Decides every marker m with alternatives (each a single joint or a blend, its offsets
 // fitted) as the header says: its group is m and every other marker on a joint of its
