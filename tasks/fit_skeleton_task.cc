@@ -750,7 +750,7 @@ Status BlendOverHinges(const FitTake& fit, double max_bone_distance, MarkerSolve
                        std::vector<SkeletonFitBlend>* blended) {
   const int markers = best->markers.num_markers();
   const AttachmentByPredictionOptions defaults;
-  const std::vector<std::pair<int, int>> hinge = HingeBlendCandidates(
+  std::vector<std::pair<int, int>> hinge = HingeBlendCandidates(
       best->skeleton, best->markers, max_bone_distance, defaults.hinge_fraction, defaults.hinge_dofs);
   // Decided on the last third of the frames with every candidate's offsets, the blend's and
   // the marker's own, fitted on the first two thirds: a blend's six offset parameters fitted
@@ -759,14 +759,12 @@ Status BlendOverHinges(const FitTake& fit, double max_bone_distance, MarkerSolve
   const bool held_out = split >= 1 && split < best->motion.num_frames();
   Motion early = best->motion;
   if (held_out) early.frames.resize(split);
+  // Only over a hinge that bends where the offsets are fitted (else they are not identified).
+  DropHingesThatHoldStill(early, defaults.hinge_min_bend, defaults.max_frames, &hinge);
   std::vector<AttachmentChoice> blend(markers), own(markers);
   bool any = false;
   for (int s = 0; s < markers; ++s) {
-    // Only over a hinge that bends where the offsets are fitted (else they are not identified).
-    if (hinge[s].first < 0 ||
-        JointBendRange(early, hinge[s].second, defaults.max_frames) < defaults.hinge_min_bend) {
-      continue;
-    }
+    if (hinge[s].first < 0) continue;
     blend[s] = {{hinge[s].first, 0.5, Eigen::Vector3d::Zero()}, {hinge[s].second, 0.5, Eigen::Vector3d::Zero()}};
     own[s] = best->markers.marker(s).attachments;
     any = true;

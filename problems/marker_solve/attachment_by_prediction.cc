@@ -139,6 +139,17 @@ double JointBendRange(const Motion& motion, int joint, int max_frames) {
   return range;
 }
 
+void DropHingesThatHoldStill(const Motion& motion, double min_bend, int max_frames,
+                             std::vector<std::pair<int, int>>* pairs) {
+  std::vector<double> bend;  // Per hinge joint, computed once (-1: not yet).
+  for (std::pair<int, int>& pair : *pairs) {
+    if (pair.second < 0) continue;
+    if (static_cast<int>(bend.size()) <= pair.second) bend.resize(pair.second + 1, -1.0);
+    if (bend[pair.second] < 0.0) bend[pair.second] = JointBendRange(motion, pair.second, max_frames);
+    if (bend[pair.second] < min_bend) pair = {-1, -1};
+  }
+}
+
 Status ChooseAmongAttachments(const Skeleton& skeleton, const std::vector<std::vector<Eigen::Vector3d>>& observed,
                               const std::vector<std::vector<AttachmentChoice>>& alternatives,
                               const MarkerSolveOptions& solve, const AttachmentByPredictionOptions& options,

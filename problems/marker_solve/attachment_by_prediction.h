@@ -121,6 +121,12 @@ std::vector<std::pair<int, int>> HingeBlendCandidates(const Skeleton& skeleton, 
 // one-dof hinge's angle range; 0 for a motion of fewer than two frames.
 double JointBendRange(const Motion& motion, int joint, int max_frames);
 
+// Drops from `pairs` (HingeBlendCandidates') every pair whose hinge bends by less than
+// min_bend over `motion` (JointBendRange, max_frames): the frames the blend's offsets are
+// fitted on, where a hinge that holds still leaves them unidentified.
+void DropHingesThatHoldStill(const Motion& motion, double min_bend, int max_frames,
+                             std::vector<std::pair<int, int>>* pairs);
+
 // Decides every marker m with alternatives (each a single joint or a blend, its offsets
 // fitted) as the header says: its group is m and every other marker on a joint of its
 // attachment or of an alternative; m takes the alternative of lowest score when that is

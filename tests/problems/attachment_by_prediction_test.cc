@@ -367,5 +367,37 @@ TEST(AttachmentByPrediction, OnlyAHingeOfAtMostMaxDofsIsOffered) {
   EXPECT_EQ(HingeBlendCandidates(ball, on_ball, 10.0, 0.25, 3)[0], std::make_pair(thigh, knee));
 }
 
+TEST(AttachmentByPrediction, AHingeThatHoldsStillInTheFitFramesIsNotOffered) {
+  // The patella's knee candidate survives a walk in which the knee bends; held at one
+  // rotation (the rest of the body walking), or bent by less than min_bend, it is dropped:
+  // the blend's offsets are fitted on those frames and a still knee cannot tell them apart.
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int thigh = skeleton.FindJoint("LeftUpLeg"), knee = skeleton.FindJoint("LeftLeg");
+  MarkerSet set;
+  ASSERT_TRUE(MarkerSet::Create(skeleton, {{"PATELLA", {{thigh, 1.0, skeleton.offset(knee) + Eigen::Vector3d(0, 3, 5)}}}},
+                                &set)
+                  .ok());
+  const std::vector<std::pair<int, int>> offered = HingeBlendCandidates(skeleton, set, 10.0, 0.25, 3);
+  ASSERT_EQ(offered[0], std::make_pair(thigh, knee));
+  const double min_bend = AttachmentByPredictionOptions().hinge_min_bend;
+  const Motion walk = MakeDemoWalk(skeleton, 120, 60.0);
+  ASSERT_GT(JointBendRange(walk, knee, 240), min_bend);
+  std::vector<std::pair<int, int>> hinges = offered;
+  DropHingesThatHoldStill(walk, min_bend, 240, &hinges);
+  EXPECT_EQ(hinges[0], std::make_pair(thigh, knee));
+  // The knee bent linearly from 0 to 0.2 rad (11.5 degrees) about one axis: that range, below 15.
+  Motion still = walk;
+  for (int f = 0; f < still.num_frames(); ++f) {
+    still.frames[f].rotations[knee] = ExpMap(Eigen::Vector3d(0.2 * f / (still.num_frames() - 1), 0.0, 0.0));
+  }
+  EXPECT_NEAR(JointBendRange(still, knee, 240), 0.2, 1e-9);
+  EXPECT_NEAR(JointBendRange(still, knee, 7), 0.2 * 108 / 119, 1e-9);  // Frames 0, 18, ..., 108.
+  hinges = offered;
+  DropHingesThatHoldStill(still, min_bend, 240, &hinges);
+  EXPECT_EQ(hinges[0], std::make_pair(-1, -1));
+  for (Pose& pose : still.frames) pose.rotations[knee] = walk.frames[0].rotations[knee];
+  EXPECT_NEAR(JointBendRange(still, knee, 240), 0.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace mocapsolve
