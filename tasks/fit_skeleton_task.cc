@@ -791,15 +791,15 @@ Status BlendOverHinges(const FitTake& fit, double max_bone_distance, MarkerSolve
   }
   Status status = FitChoices(fit, best->skeleton, best->motion, calibration, best->markers, &blend);
   if (!status.ok()) return status;
-  std::vector<std::vector<AttachmentChoice>> alternatives(markers);
   for (int s = 0; s < markers; ++s) {
-    if (!blend[s].empty() && !early_blend[s].empty()) alternatives[s].push_back(early_blend[s]);
+    if (blend[s].empty()) early_blend[s].clear();
   }
   if (solve.rest_prior_needs_reference || !solve.rest_rotations.empty()) {
     solve.rest_rotations = MeanPose(best->skeleton, best->motion);
   }
+  // A limb's blends together: one at a time, scored on every marker of the limb (h36k).
   std::vector<AttachmentMove> moves;
-  status = ChooseAmongAttachments(best->skeleton, scored, alternatives, solve, {}, &given, &moves);
+  status = ChooseLimbBlends(best->skeleton, scored, early_blend, solve, defaults, &given, &moves);
   if (!status.ok()) return status;
   std::vector<MarkerSpec> specs;
   for (int s = 0; s < markers; ++s) specs.push_back(best->markers.marker(s));

@@ -24,19 +24,66 @@ Status AppendErrors(const Skeleton& skeleton, const MarkerSet& set, const std::v
   return status;
 }
 
-// score(set) of the header over the markers `group`.
+// The median of `values` (infinity when empty); reorders them.
+double MedianOf(std::vector<double>* values) {
+  if (values->empty()) return std::numeric_limits<double>::infinity();
+  std::nth_element(values->begin(), values->begin() + values->size() / 2, values->end());
+  return (*values)[values->size() / 2];
+}
+
+// score(set) of the header over the markers `group`; `medians` (may be null) gets each
+// marker's own median, parallel to group.
 Status GroupScore(const Skeleton& skeleton, const MarkerSet& set, const std::vector<std::vector<Eigen::Vector3d>>& scored,
-                  const MarkerSolveOptions& solve, const std::vector<int>& group, double* score) {
+                  const MarkerSolveOptions& solve, const std::vector<int>& group, double* score,
+                  std::vector<double>* medians = nullptr) {
   std::vector<double> errors;
+  if (medians != nullptr) medians->clear();
   for (int n : group) {
+    const size_t first = errors.size();
     const Status status = AppendErrors(skeleton, set, scored, solve, n, &errors);
     if (!status.ok()) return status;
+    std::vector<double> own(errors.begin() + first, errors.end());
+    if (medians != nullptr) medians->push_back(MedianOf(&own));
   }
-  *score = std::numeric_limits<double>::infinity();
-  if (errors.empty()) return Status::Ok();
-  std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
-  *score = errors[errors.size() / 2];
+  *score = MedianOf(&errors);
   return Status::Ok();
+}
+
+// Every k-th frame of `observed`, k = ceil(frames / max_frames).
+std::vector<std::vector<Eigen::Vector3d>> ScoredFrames(const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                                                       int max_frames) {
+  const int frames = static_cast<int>(observed.size());
+  const int step = std::max(1, (frames + std::max(max_frames, 1) - 1) / std::max(max_frames, 1));
+  std::vector<std::vector<Eigen::Vector3d>> scored;
+  for (int f = 0; f < frames; f += step) scored.push_back(observed[f]);
+  return scored;
+}
+
+// The limb of joint a (ChooseLimbBlends): up from a while a joint is its parent's only child.
+int LimbTop(const Skeleton& skeleton, int a) {
+  int top = a;
+  while (skeleton.parent(top) >= 0) {
+    const int p = skeleton.parent(top);
+    int children = 0;
+    for (int c = p + 1; c < skeleton.subtree_end(p); ++c) children += skeleton.parent(c) == p;
+    if (children != 1) break;
+    top = p;
+  }
+  return top;
+}
+
+// The limb's group: every marker with an attachment on a joint of top's subtree.
+std::vector<int> LimbGroup(const Skeleton& skeleton, const std::vector<MarkerSpec>& specs, int top) {
+  std::vector<int> group;
+  for (int n = 0; n < static_cast<int>(specs.size()); ++n) {
+    for (const MarkerAttachment& a : specs[n].attachments) {
+      if (skeleton.IsAncestorOrSelf(top, a.joint)) {
+        group.push_back(n);
+        break;
+      }
+    }
+  }
+  return group;
 }
 
 }  // namespace
@@ -157,10 +204,7 @@ Status ChooseAmongAttachments(const Skeleton& skeleton, const std::vector<std::v
   if (static_cast<int>(alternatives.size()) != markers->num_markers()) {
     return Status::Error("attachment by prediction: one list of alternatives per marker expected");
   }
-  const int frames = static_cast<int>(observed.size());
-  const int step = std::max(1, (frames + std::max(options.max_frames, 1) - 1) / std::max(options.max_frames, 1));
-  std::vector<std::vector<Eigen::Vector3d>> scored;
-  for (int f = 0; f < frames; f += step) scored.push_back(observed[f]);
+  const std::vector<std::vector<Eigen::Vector3d>> scored = ScoredFrames(observed, options.max_frames);
   std::vector<MarkerSpec> specs, chosen;
   for (int m = 0; m < markers->num_markers(); ++m) specs.push_back(markers->marker(m));
   chosen = specs;
@@ -204,6 +248,81 @@ Status ChooseAmongAttachments(const Skeleton& skeleton, const std::vector<std::v
     move.moved = move.to_score < move.from_score;
     if (move.moved) chosen[m].attachments = move.to_attachments;
     decided.push_back(move);
+  }
+  Status status = MarkerSet::Create(skeleton, std::move(chosen), markers);
+  if (!status.ok()) return status;
+  if (moves != nullptr) *moves = std::move(decided);
+  return Status::Ok();
+}
+
+Status ChooseLimbBlends(const Skeleton& skeleton, const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                        const std::vector<AttachmentChoice>& blends, const MarkerSolveOptions& solve,
+                        const AttachmentByPredictionOptions& options, MarkerSet* markers,
+                        std::vector<AttachmentMove>* moves) {
+  const int count = markers->num_markers();
+  if (static_cast<int>(blends.size()) != count) return Status::Error("limb blends: one entry per marker expected");
+  const std::vector<std::vector<Eigen::Vector3d>> scored = ScoredFrames(observed, options.max_frames);
+  std::vector<MarkerSpec> specs;
+  for (int m = 0; m < count; ++m) specs.push_back(markers->marker(m));
+  std::vector<MarkerSpec> chosen = specs;
+  std::vector<std::pair<int, std::vector<int>>> limbs;  // (top, its candidates).
+  for (int m = 0; m < count; ++m) {
+    if (blends[m].empty() || specs[m].attachments.size() != 1) continue;
+    const int top = LimbTop(skeleton, blends[m].front().joint);
+    auto limb = std::find_if(limbs.begin(), limbs.end(), [top](const auto& l) { return l.first == top; });
+    if (limb == limbs.end()) limb = limbs.insert(limbs.end(), {top, {}});
+    limb->second.push_back(m);
+  }
+  std::vector<AttachmentMove> decided;
+  for (const auto& [top, candidates] : limbs) {
+    const std::vector<int> group = LimbGroup(skeleton, specs, top);
+    std::vector<MarkerSpec> current = specs;
+    MarkerSet set;
+    Status status = MarkerSet::Create(skeleton, current, &set);
+    double base = 0.0;
+    std::vector<double> base_medians;
+    if (status.ok()) status = GroupScore(skeleton, set, scored, solve, group, &base, &base_medians);
+    if (!status.ok()) return status;
+    std::vector<double> tried(candidates.size(), std::numeric_limits<double>::infinity());
+    std::vector<bool> accepted(candidates.size(), false);
+    for (double score = base;;) {
+      int best = -1;
+      double best_score = score;
+      for (size_t i = 0; i < candidates.size(); ++i) {
+        if (accepted[i]) continue;
+        std::vector<MarkerSpec> trial = current;
+        trial[candidates[i]].attachments = blends[candidates[i]];
+        double trial_score = 0.0;
+        std::vector<double> medians;
+        status = MarkerSet::Create(skeleton, trial, &set);
+        if (status.ok()) status = GroupScore(skeleton, set, scored, solve, group, &trial_score, &medians);
+        if (!status.ok()) return status;
+        tried[i] = std::min(tried[i], trial_score);
+        bool harmless = true;
+        for (size_t k = 0; k < group.size(); ++k) harmless &= medians[k] - base_medians[k] <= options.limb_rise * base;
+        if (harmless && trial_score < best_score) {
+          best = static_cast<int>(i);
+          best_score = trial_score;
+        }
+      }
+      if (best < 0) break;
+      accepted[best] = true;
+      current[candidates[best]].attachments = blends[candidates[best]];
+      score = best_score;
+    }
+    for (size_t i = 0; i < candidates.size(); ++i) {
+      const int m = candidates[i];
+      AttachmentMove move;
+      move.marker = m;
+      move.from = specs[m].attachments[0].joint;
+      move.to = blends[m].front().joint;
+      move.from_score = base;
+      move.to_score = tried[i];
+      move.to_attachments = blends[m];
+      move.moved = accepted[i];
+      if (move.moved) chosen[m].attachments = blends[m];
+      decided.push_back(move);
+    }
   }
   Status status = MarkerSet::Create(skeleton, std::move(chosen), markers);
   if (!status.ok()) return status;

@@ -70,6 +70,11 @@ struct AttachmentByPredictionOptions {
   // above the 2-5 mm of marker noise and skin slide; a hinge that holds still there (an
   // elbow that bends only late in the take) leaves the blend's six offsets fitted to noise.
   double hinge_min_bend = 15.0 * 3.14159265358979323846 / 180.0;
+  // ChooseLimbBlends: a set of blends is refused when it raises any marker's median of the
+  // limb by more than this fraction of the limb's median without them. Half, set before
+  // measuring: one marker of a limb going wrong moves the limb's median little (cmu_02_05's
+  // LWRB, 2.7 -> 68 mm, h36i), its own median by many times the limb's.
+  double limb_rise = 0.5;
 };
 
 // One way to attach a marker: a single joint (weight 1) or a blend of several.
@@ -126,6 +131,23 @@ double JointBendRange(const Motion& motion, int joint, int max_frames);
 // fitted on, where a hinge that holds still leaves them unidentified.
 void DropHingesThatHoldStill(const Motion& motion, double min_bend, int max_frames,
                              std::vector<std::pair<int, int>>* pairs);
+
+// The blends of a limb decided together (issue 36: two blends on one arm flipped a marker
+// that neither decision's group held). A limb is the chain of joints from one that is the
+// only child of its parent up from a blend's parent-side joint a, to the first joint whose
+// parent has other children (CMU's lclavicle for an elbow or a forearm twist, lhipjoint for
+// a knee or the toes), with every joint below it; its group L is every marker on a joint of
+// it. With the blends B accepted so far (none at first) and per marker n of L its median
+// left-out prediction error e_n(B) (the header's score, per marker), blends[m] (empty: no
+// candidate; its offsets fitted) are added one at a time, each time the candidate c of the
+// lowest score(L, B + c), accepted while that is below score(L, B) and no marker of L rises
+// by more than limb_rise * score(L, {}): e_n(B + c) - e_n({}) <= limb_rise * score(L, {}).
+// Limbs are decided against the set as given. `moves` (may be null): one per candidate,
+// from_score = score(L, {}), to_score = the lowest score(L, B + m) tried, moved = accepted.
+Status ChooseLimbBlends(const Skeleton& skeleton, const std::vector<std::vector<Eigen::Vector3d>>& observed,
+                        const std::vector<AttachmentChoice>& blends, const MarkerSolveOptions& solve,
+                        const AttachmentByPredictionOptions& options, MarkerSet* markers,
+                        std::vector<AttachmentMove>* moves);
 
 // Decides every marker m with alternatives (each a single joint or a blend, its offsets
 // fitted) as the header says: its group is m and every other marker on a joint of its

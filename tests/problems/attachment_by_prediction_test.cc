@@ -399,5 +399,70 @@ TEST(AttachmentByPrediction, AHingeThatHoldsStillInTheFitFramesIsNotOffered) {
   EXPECT_NEAR(JointBendRange(still, knee, 240), 0.0, 1e-9);
 }
 
+// ChooseLimbBlends on the left leg: "PAT" rides the knee 50/50 and "LAT", 6 cm to the side
+// of it, the thigh alone; both are given on the thigh with the knee's blend as candidate
+// (offsets by least squares on the true motion). limb_rise: the options'.
+std::vector<AttachmentChoice> DecidedLimb(double limb_rise, std::vector<AttachmentMove>* moves) {
+  const Skeleton skeleton = MakeDemoSkeleton();
+  const int thigh = skeleton.FindJoint("LeftUpLeg"), knee = skeleton.FindJoint("LeftLeg");
+  const Motion motion = Walk(skeleton, knee, 0.1);
+  const MarkerSet synthetic = MakeSyntheticMarkerSet(skeleton, 3, 7);
+  std::vector<MarkerSpec> specs;
+  for (int m = 0; m < synthetic.num_markers(); ++m) specs.push_back(synthetic.marker(m));
+  const Eigen::Vector3d front(0.0, 0.0, 6.0), side(6.0, 3.0, 0.0);
+  specs.push_back({"PAT", {{thigh, 0.5, skeleton.offset(knee) + front}, {knee, 0.5, front}}});
+  specs.push_back({"LAT", {{thigh, 1.0, skeleton.offset(knee) + side}}});
+  MarkerSet set;
+  EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.2);
+  FkData fk(skeleton);
+  std::vector<std::vector<Eigen::Vector3d>> observed;
+  for (const Pose& pose : motion.frames) {
+    ForwardKinematics(skeleton, pose, &fk);
+    std::vector<Eigen::Vector3d> frame;
+    for (int m = 0; m < set.num_markers(); ++m) {
+      frame.push_back(set.Position(m, fk) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+    }
+    observed.push_back(frame);
+  }
+  const MarkerTrajectories take = AsTake(set, observed);
+  const AttachmentChoice on_thigh = {{thigh, 1.0, Eigen::Vector3d::Zero()}};
+  const AttachmentChoice blend = {{thigh, 0.5, Eigen::Vector3d::Zero()}, {knee, 0.5, Eigen::Vector3d::Zero()}};
+  const int pat = set.num_markers() - 2, lat = set.num_markers() - 1;
+  std::vector<AttachmentChoice> blends(set.num_markers());
+  for (int m : {pat, lat}) {
+    MarkerTrajectories own({"PAT"}, take.num_frames());  // FitPat's label.
+    for (int f = 0; f < take.num_frames(); ++f) own.SetSample(f, 0, observed[f][m]);
+    specs[m].attachments = FitPat(skeleton, motion, own, on_thigh);
+    blends[m] = FitPat(skeleton, motion, own, blend);
+  }
+  EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
+  AttachmentByPredictionOptions options;
+  options.limb_rise = limb_rise;
+  EXPECT_TRUE(ChooseLimbBlends(skeleton, observed, blends, MarkerSolveOptions(), options, &set, moves).ok());
+  return {set.marker(pat).attachments, set.marker(lat).attachments};
+}
+
+TEST(AttachmentByPrediction, ALimbsBlendsAreDecidedTogether) {
+  // One limb (the left leg, from the hip down), two candidates: the patella that both bones
+  // pull takes the blend, the marker on the thigh keeps the thigh, scored on every marker
+  // of the leg.
+  std::vector<AttachmentMove> moves;
+  const std::vector<AttachmentChoice> kept = DecidedLimb(0.5, &moves);
+  EXPECT_EQ(kept[0].size(), 2u);
+  EXPECT_EQ(kept[1].size(), 1u);
+  ASSERT_EQ(moves.size(), 2u);
+  EXPECT_TRUE(moves[0].moved);
+  EXPECT_FALSE(moves[1].moved);
+  EXPECT_EQ(moves[0].from_score, moves[1].from_score);  // One limb, one score without blends.
+  EXPECT_LT(moves[0].to_score, moves[0].from_score);
+  // A blend that raises any marker of the leg at all (limb_rise 0: the thigh's and the
+  // shin's synthetic markers move by noise) is refused, however it helps the limb's median.
+  const std::vector<AttachmentChoice> strict = DecidedLimb(0.0, &moves);
+  EXPECT_EQ(strict[0].size(), 1u);
+  EXPECT_EQ(strict[1].size(), 1u);
+}
+
 }  // namespace
 }  // namespace mocapsolve
