@@ -742,7 +742,9 @@ Status AddCandidate(const RoundFit& fit, const MarkerSolveOptions& solve_options
 // frame. Nothing else of the round changes. Only a hinge that bends by hinge_min_bend in
 // the first two thirds is offered: one that holds still there leaves the blend's offsets
 // unidentified, and an elbow bending only in the take's last tenth had a forearm marker
-// blended over it (BENCHMARKS.md, issue 36, h36k).
+// blended over it (BENCHMARKS.md, issue 36, h36k). A limb's blends are decided together,
+// scored on every marker of the limb (ChooseLimbBlends): two blends on one arm, each
+// decided on its own bones' markers, had flipped a wrist marker neither group held (h36i).
 // After the rounds, not in them: offered in every attach round, the blends changed the
 // rounds' path and moved markers they did not touch by 10-40 mm either way (BENCHMARKS.md,
 // issue 36, h36i).
