@@ -299,7 +299,10 @@ Status ChooseLimbBlends(const Skeleton& skeleton, const std::vector<std::vector<
         if (!status.ok()) return status;
         tried[i] = std::min(tried[i], trial_score);
         bool harmless = true;
-        for (size_t k = 0; k < group.size(); ++k) harmless &= medians[k] - base_medians[k] <= options.limb_rise * base;
+        for (size_t k = 0; k < group.size(); ++k) {
+          harmless &= medians[k] - base_medians[k] <= options.limb_rise * base;
+          if (group[k] == candidates[i]) harmless &= medians[k] <= (1.0 - options.blend_own_gain) * base_medians[k];
+        }
         if (harmless && trial_score < best_score) {
           best = static_cast<int>(i);
           best_score = trial_score;

@@ -75,6 +75,12 @@ struct AttachmentByPredictionOptions {
   // measuring: one marker of a limb going wrong moves the limb's median little (cmu_02_05's
   // LWRB, 2.7 -> 68 mm, h36i), its own median by many times the limb's.
   double limb_rise = 0.5;
+  // ChooseLimbBlends: a blend is a claim about its own marker's skin, so it must predict that
+  // marker at least this fraction better than the marker's bone alone (its left-out median);
+  // a blend that only steadies other markers (on noise-free synthetic legs, a knee marker
+  // blended held the thigh's twist for its left-out LTHI while predicting itself no better)
+  // is not one. A tenth, set before measuring.
+  double blend_own_gain = 0.1;
 };
 
 // One way to attach a marker: a single joint (weight 1) or a blend of several.
@@ -140,8 +146,9 @@ void DropHingesThatHoldStill(const Motion& motion, double min_bend, int max_fram
 // it. With the blends B accepted so far (none at first) and per marker n of L its median
 // left-out prediction error e_n(B) (the header's score, per marker), blends[m] (empty: no
 // candidate; its offsets fitted) are added one at a time, each time the candidate c of the
-// lowest score(L, B + c), accepted while that is below score(L, B) and no marker of L rises
-// by more than limb_rise * score(L, {}): e_n(B + c) - e_n({}) <= limb_rise * score(L, {}).
+// lowest score(L, B + c), accepted while that is below score(L, B), no marker of L rises
+// by more than limb_rise * score(L, {}): e_n(B + c) - e_n({}) <= limb_rise * score(L, {}),
+// and c itself is predicted better: e_c(B + c) <= (1 - blend_own_gain) e_c({}).
 // Limbs are decided against the set as given. `moves` (may be null): one per candidate,
 // from_score = score(L, {}), to_score = the lowest score(L, B + m) tried, moved = accepted.
 Status ChooseLimbBlends(const Skeleton& skeleton, const std::vector<std::vector<Eigen::Vector3d>>& observed,
