@@ -525,6 +525,40 @@ std::vector<std::vector<int>> RoundClusters(const FitTake& fit, const MarkerSet&
   return clusters;
 }
 
+// The offsets of `choices` (one attachment list per marker of `markers`, empty: none)
+// fitted on the round's motion (CalibrateMarkers with fixed attachments; a blend's by
+// least squares over all its offsets) and clamped to the skin; a marker the fit skips
+// loses its choice.
+Status FitChoices(const FitTake& fit, const Skeleton& skeleton, const Motion& motion,
+                  const CalibrationOptions& calibration, const MarkerSet& markers,
+                  std::vector<AttachmentChoice>* choices) {
+  std::vector<MarkerSpec> specs;
+  for (int s = 0; s < markers.num_markers(); ++s) {
+    if ((*choices)[s].empty()) continue;
+    specs.push_back(markers.marker(s));
+    specs.back().attachments = (*choices)[s];
+  }
+  if (specs.empty()) return Status::Ok();
+  MarkerSet to_fit;
+  Status status = MarkerSet::Create(skeleton, std::move(specs), &to_fit);
+  CalibrationResult refit;
+  if (status.ok()) status = CalibrateMarkers(skeleton, motion, fit.model_frame, calibration, &to_fit, &refit);
+  if (!status.ok()) return status;
+  for (int s = 0; s < markers.num_markers(); ++s) {
+    if ((*choices)[s].empty()) continue;
+    const int k = refit.marker_set.FindMarker(markers.label(s));
+    (*choices)[s].clear();
+    if (k < 0) continue;
+    (*choices)[s] = refit.marker_set.marker(k).attachments;
+    for (MarkerAttachment& a : (*choices)[s]) {
+      if (calibration.max_bone_distance > 0.0) {
+        a.offset = ClampToBone(skeleton, a.joint, a.offset, calibration.max_bone_distance, fit.held_limbs);
+      }
+    }
+  }
+  return Status::Ok();
+}
+
 // Near ties of the round's attach between a marker's joint and its parent or child decided
 // by prediction on the fit's own frames (attachment_by_prediction.h), the template's
 // markers included: the take, unlike the calibration take, may move the joint. A marker
@@ -536,14 +570,14 @@ Status ChooseByPrediction(const FitTake& fit, const RoundState& state, const Cal
   const std::vector<int> runner_up =
       PredictionCandidates(state.fitted, attached, AttachmentByPredictionOptions().tolerance);
   const std::vector<int> cluster_joint = RigidClusterCandidates(*round_markers, RoundClusters(fit, *round_markers));
-  std::vector<MarkerAttachment> alternative(round_markers->num_markers());
-  std::vector<MarkerSpec> specs;
+  const int markers = round_markers->num_markers();
+  std::vector<AttachmentChoice> single(markers);
   bool any = false;
-  for (int s = 0; s < round_markers->num_markers(); ++s) {
-    specs.push_back(round_markers->marker(s));
-    if (specs.back().attachments.size() != 1) continue;
-    const int k = attached.marker_set.FindMarker(specs.back().label);
-    const int j = specs.back().attachments[0].joint;
+  for (int s = 0; s < markers; ++s) {
+    const MarkerSpec& spec = round_markers->marker(s);
+    if (spec.attachments.size() != 1) continue;
+    const int k = attached.marker_set.FindMarker(spec.label);
+    const int j = spec.attachments[0].joint;
     int other = -1;
     if (k >= 0 && runner_up[k] >= 0) {
       const int a = attached.marker_set.marker(k).attachments[0].joint, b = runner_up[k];
@@ -551,33 +585,20 @@ Status ChooseByPrediction(const FitTake& fit, const RoundState& state, const Cal
     }
     if (other < 0) other = cluster_joint[s];
     if (other < 0) continue;
-    specs.back().attachments = {{other, 1.0, Eigen::Vector3d::Zero()}};
-    alternative[s].joint = other;
+    single[s] = {{other, 1.0, Eigen::Vector3d::Zero()}};
     any = true;
   }
   if (!any) return Status::Ok();
-  MarkerSet moved;
-  Status status = MarkerSet::Create(state.fitted, std::move(specs), &moved);
-  CalibrationResult refit;
-  if (status.ok()) status = CalibrateMarkers(state.fitted, state.motion, fit.model_frame, calibration, &moved, &refit);
+  const Status status = FitChoices(fit, state.fitted, state.motion, calibration, *round_markers, &single);
   if (!status.ok()) return status;
-  for (int s = 0; s < round_markers->num_markers(); ++s) {
-    if (alternative[s].joint < 0) continue;
-    const int k = refit.marker_set.FindMarker(round_markers->label(s));
-    if (k < 0) {
-      alternative[s].joint = -1;
-      continue;
-    }
-    alternative[s] = refit.marker_set.marker(k).attachments[0];
-    if (calibration.max_bone_distance > 0.0) {
-      alternative[s].offset = ClampToBone(state.fitted, alternative[s].joint, alternative[s].offset,
-                                          calibration.max_bone_distance, fit.held_limbs);
-    }
+  std::vector<std::vector<AttachmentChoice>> alternatives(markers);
+  for (int s = 0; s < markers; ++s) {
+    if (!single[s].empty()) alternatives[s].push_back(single[s]);
   }
   if (solve.rest_prior_needs_reference || !solve.rest_rotations.empty()) {
     solve.rest_rotations = MeanPose(state.fitted, state.motion);
   }
-  return ChooseAttachmentsByPrediction(state.fitted, observed, alternative, solve, {}, round_markers, nullptr);
+  return ChooseAmongAttachments(state.fitted, observed, alternatives, solve, {}, round_markers, nullptr);
 }
 
 // An attach round's markers (every marker of the take attached) and their observations,
@@ -715,6 +736,88 @@ Status AddCandidate(const RoundFit& fit, const MarkerSolveOptions& solve_options
   state->held_out.push_back(score);
   if (round_index >= 0) result->rounds[round_index].held_out = score;
   return Status::Ok();
+}
+
+// The kept round's markers over a hinge (within the skin radius of the joint between two
+// bones: a patella, an epicondyle, a marker over the wrist) offered the 50/50 blend on
+// the hinge's two bones (HingeBlendCandidates) and decided by prediction on the last
+// third of the kept round's frames, the blend's and the marker's own offsets fitted on the
+// first two thirds (a time split inside the fit: a blend has six offset parameters to the
+// single bone's three, and scored on the frames that fitted them it won where it later
+// failed, BENCHMARKS.md, issue 36, h36j); a blend kept gets its offsets fitted on every
+// frame. Nothing else of the round changes. Only a hinge that bends by hinge_min_bend in
+// the first two thirds is offered: one that holds still there leaves the blend's offsets
+// unidentified, and an elbow bending only in the take's last tenth had a forearm marker
+// blended over it (BENCHMARKS.md, issue 36, h36k). A limb's blends are decided together,
+// scored on every marker of the limb (ChooseLimbBlends): two blends on one arm, each
+// decided on its own bones' markers, had flipped a wrist marker neither group held (h36i).
+// After the rounds, not in them: offered in every attach round, the blends changed the
+// rounds' path and moved markers they did not touch by 10-40 mm either way (BENCHMARKS.md,
+// issue 36, h36i).
+Status BlendOverHinges(const FitTake& fit, double max_bone_distance, MarkerSolveOptions solve, RoundFit* best,
+                       std::vector<SkeletonFitBlend>* blended) {
+  const int markers = best->markers.num_markers();
+  const AttachmentByPredictionOptions defaults;
+  std::vector<std::pair<int, int>> hinge = HingeBlendCandidates(
+      best->skeleton, best->markers, max_bone_distance, defaults.hinge_fraction, defaults.hinge_dofs);
+  // Decided on the last third of the frames with every candidate's offsets, the blend's and
+  // the marker's own, fitted on the first two thirds: a blend's six offset parameters fitted
+  // on the frames that score them won on its own fit frames and failed later (h36j).
+  const int split = best->motion.num_frames() * 2 / 3;
+  const bool held_out = split >= 1 && split < best->motion.num_frames();
+  Motion early = best->motion;
+  if (held_out) early.frames.resize(split);
+  // Only over a hinge that bends where the offsets are fitted (else they are not identified).
+  DropHingesThatHoldStill(early, defaults.hinge_min_bend, defaults.max_frames, &hinge);
+  std::vector<AttachmentChoice> blend(markers), own(markers);
+  bool any = false;
+  for (int s = 0; s < markers; ++s) {
+    if (hinge[s].first < 0) continue;
+    blend[s] = {{hinge[s].first, 0.5, Eigen::Vector3d::Zero()}, {hinge[s].second, 0.5, Eigen::Vector3d::Zero()}};
+    own[s] = best->markers.marker(s).attachments;
+    any = true;
+  }
+  if (!any) return Status::Ok();
+  CalibrationOptions calibration;
+  calibration.max_bone_distance = max_bone_distance;
+  std::vector<AttachmentChoice> early_blend = blend;
+  MarkerSet given = best->markers;
+  Observations scored = best->observed;
+  if (held_out) {
+    Status status = FitChoices(fit, best->skeleton, early, calibration, best->markers, &early_blend);
+    if (status.ok()) status = FitChoices(fit, best->skeleton, early, calibration, best->markers, &own);
+    if (!status.ok()) return status;
+    std::vector<MarkerSpec> specs;
+    for (int s = 0; s < markers; ++s) {
+      specs.push_back(best->markers.marker(s));
+      if (!own[s].empty()) specs.back().attachments = own[s];
+      if (own[s].empty()) early_blend[s].clear();
+    }
+    status = MarkerSet::Create(best->skeleton, std::move(specs), &given);
+    if (!status.ok()) return status;
+    scored.erase(scored.begin(), scored.begin() + std::min<size_t>(split, scored.size()));
+  }
+  Status status = FitChoices(fit, best->skeleton, best->motion, calibration, best->markers, &blend);
+  if (!status.ok()) return status;
+  for (int s = 0; s < markers; ++s) {
+    if (blend[s].empty()) early_blend[s].clear();
+  }
+  if (solve.rest_prior_needs_reference || !solve.rest_rotations.empty()) {
+    solve.rest_rotations = MeanPose(best->skeleton, best->motion);
+  }
+  // A limb's blends together: one at a time, scored on every marker of the limb (h36k).
+  std::vector<AttachmentMove> moves;
+  status = ChooseLimbBlends(best->skeleton, scored, early_blend, solve, defaults, &given, &moves);
+  if (!status.ok()) return status;
+  std::vector<MarkerSpec> specs;
+  for (int s = 0; s < markers; ++s) specs.push_back(best->markers.marker(s));
+  for (const AttachmentMove& move : moves) {
+    if (!move.moved) continue;
+    specs[move.marker].attachments = blend[move.marker];  // Its offsets fitted on every frame.
+    blended->push_back({best->markers.label(move.marker), best->skeleton.name(blend[move.marker][0].joint),
+                        best->skeleton.name(blend[move.marker][1].joint)});
+  }
+  return MarkerSet::Create(best->skeleton, std::move(specs), &best->markers);
 }
 
 // The kept round: the latest candidate whose held-out score is within the tolerance of
@@ -864,6 +967,17 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
     if (!KeepBestRound(round, rounds, observed, started, events, &state)) break;
   }
   KeepHeldOutRound(&state);
+  if (rounds > 0) {
+    status = BlendOverHinges(fit, base_options.max_bone_distance, solve_options, &state.best, &result->hinge_blends);
+    if (!status.ok()) return Status::Error(markers_path + ": " + status.message());
+    SkeletonFitEvent blended;
+    blended.kind = SkeletonFitEvent::kBlended;
+    blended.markers = static_cast<int>(result->hinge_blends.size());
+    for (const SkeletonFitBlend& b : result->hinge_blends) {
+      blended.text += (blended.text.empty() ? "" : ", ") + b.marker + " on " + b.parent_joint + " + " + b.joint;
+    }
+    events.Emit(blended);
+  }
   if (rounds > 0 && state.best.round != rounds) {
     SkeletonFitEvent kept;
     kept.kind = SkeletonFitEvent::kKept;
@@ -916,6 +1030,12 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
     o.Add("label", label).Add("reason", reason);
     not_marker_json.push_back(o);
   }
+  std::vector<JsonObject> blend_json;
+  for (const SkeletonFitBlend& b : result.hinge_blends) {
+    JsonObject o;
+    o.Add("marker", b.marker).Add("parent_joint", b.parent_joint).Add("joint", b.joint);
+    blend_json.push_back(o);
+  }
   JsonObject json;
   if (result.associated) json.Add("association", AssociationJson(result));
   json.Add("markers", inputs.markers_path).Add("template", inputs.template_name)
@@ -926,7 +1046,8 @@ JsonObject SkeletonFitReportJson(const SkeletonFitInputs& inputs, const Skeleton
       .Add("seconds", result.seconds)
       .Add(result.unit_known ? "rms_mm" : "rms", result.report.rms.back() * mm)
       .Add("outlier_samples", result.outlier_samples)
-      .Add("rounds", round_json).Add("bone_scales", scale_json).Add("checks", ChecksJson(result.checks));
+      .Add("rounds", round_json).Add("hinge_blends", blend_json).Add("bone_scales", scale_json)
+      .Add("checks", ChecksJson(result.checks));
   std::vector<JsonValue> held;
   for (const std::string& top : result.held.tops) held.push_back(JsonValue(top));
   JsonObject held_json;
@@ -1014,6 +1135,10 @@ std::string SkeletonFitEventLine(const SkeletonFitEvent& e, const Skeleton& temp
     case SkeletonFitEvent::kKept:
       AppendF(&line, "fit_skeleton: keeping round %d (marker RMS %.2f %s; the latest round within 5 %% of the lowest held-out leave-one-out median)\n",
               e.round, e.rms * mm, unit);
+      break;
+    case SkeletonFitEvent::kBlended:
+      AppendF(&line, "fit_skeleton: markers blended 50/50 over a hinge: %d%s%s\n", e.markers, e.text.empty() ? "" : ": ",
+              e.text.c_str());
       break;
   }
   return line;

@@ -70,6 +70,7 @@ struct SkeletonFitEvent {
     kRoundDone,      // round, markers, rms_first, rms (skeleton units).
     kStopped,        // round: it did not improve (rms = 0) or by less than 1 % (rms: the kept one); the rounds stop.
     kKept,           // round (the kept one), rms: the last round was not the best.
+    kBlended,        // markers: how many the kept round blended over a hinge; text: which, on which joints.
   };
   Kind kind = kRoundStart;
   int round = 0, rounds = 0, markers = 0, frames = 0, iterations = 0, iteration = 0, frames_done = 0;
@@ -108,6 +109,11 @@ struct SkeletonFitRound {
   double held_out = -1.0;
 };
 
+// A marker the fit attached 50/50 on the two bones of a hinge (attachment_by_prediction.h).
+struct SkeletonFitBlend {
+  std::string marker, parent_joint, joint;  // joint: the hinge; parent_joint: the bone above it.
+};
+
 struct SkeletonFitResult {
   Subject subject;          // The fitted subject (skeleton inline, marker set, axes, scale).
   Motion motion;            // The kept round's solved motion (frames fitted).
@@ -134,6 +140,7 @@ struct SkeletonFitResult {
   double mm_per_unit = 1.0; // 1 when the skeleton's unit is unknown.
   bool unit_known = false;
   LearnedMarkerWeights weights;  // With --learn_weights (else empty).
+  std::vector<SkeletonFitBlend> hinge_blends;  // The kept round's markers blended over a hinge.
   // The joints no marker of the fitted subject observes (a sparse protocol's upper body):
   // at the template's rest in the fit; the subject keeps the template's mean pose for them,
   // where its solves start and hold them.

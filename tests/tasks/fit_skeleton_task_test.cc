@@ -122,7 +122,10 @@ TEST(FitSubjectToTake, ShortSquatFitReportsRoundsInOrder) {
   EXPECT_EQ(done, 2);
   EXPECT_EQ(iterations, 2 + 1);
   EXPECT_EQ(frame_events, 60 * (2 + 1 + 1 + 1));
-  EXPECT_EQ(events.back().kind, SkeletonFitEvent::kRoundDone);
+  // After the rounds, the markers the kept round blended over a hinge (its report line).
+  EXPECT_EQ(events[events.size() - 2].kind, SkeletonFitEvent::kRoundDone);
+  EXPECT_EQ(events.back().kind, SkeletonFitEvent::kBlended);
+  EXPECT_EQ(events.back().markers, static_cast<int>(result.hinge_blends.size()));
 
   EXPECT_EQ(result.frames, 60);
   EXPECT_EQ(result.attach_rounds, 1);
@@ -134,6 +137,7 @@ TEST(FitSubjectToTake, ShortSquatFitReportsRoundsInOrder) {
   EXPECT_GT(result.checks.rms_mm, 0.0);
   const std::string report = SkeletonFitReportJson(inputs, result).ToString();
   EXPECT_NE(report.find("\"kept_round\""), std::string::npos);
+  EXPECT_NE(report.find("\"hinge_blends\""), std::string::npos);
   EXPECT_NE(report.find("\"checks\""), std::string::npos);
   // check=fail turns failed checks into the CLI's error; warn and off never do.
   if (!result.checks.ok()) {
