@@ -471,7 +471,8 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
   // of the frame before it (RepairOptions::start_pose) and reading the file's samples with
   // the previous cores repaired; the character stages, which start from their own bind
   // pose, on a second thread with --num_threads >= 2 (pipeline/in_order_worker.h), at most
-  // one window waiting, kept in window order; Finish runs the waiting one on this thread.
+  // one window waiting, kept in window order; when the second thread is still busy as the
+  // next window is given, and after the last, this thread runs the waiting one itself.
   InOrderWorker characters(second_thread);
   for (size_t k = 0; k < windows.size() && status.ok(); ++k) {
     Pose start;  // None for a window whose context reaches frame 0: it starts as the first.
@@ -492,7 +493,7 @@ Status RunTakeInWindows(const std::string& out_dir, const TakeInputs& inputs, co
     }
     if (!status.ok()) break;
     TakeResult part = CharacterPart(window, result->characters);
-    window = TakeResult();  // Freed before waiting for the worker.
+    window = TakeResult();  // Freed before a waiting window's character stage may run here.
     // The progress display is the repairs' when the character stages run beside them.
     PipelineProgress part_progress = nullptr;
     if (!second_thread && progress) {

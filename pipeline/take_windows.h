@@ -14,9 +14,12 @@
 // depends on its own repair only: with TakePipelineOptions::num_threads >= 2 the character
 // stages run on a second thread (pipeline/in_order_worker.h) while this one repairs the
 // next windows, in window order, at most one window waiting (one more window's solve and
-// retarget in memory: measured in BENCHMARKS.md); once the repairs are done, this thread
-// runs the waiting window's character stage beside the second thread's, their results kept
-// in window order; every file is the same bytes as with one thread. Each window keeps its core frames only:
+// retarget in memory: measured in BENCHMARKS.md); when the second thread is still busy as
+// the next window is given, and once the repairs are done, this thread runs the waiting
+// window's character stage beside the second thread's, their results kept in window order;
+// every file is the same bytes as with one thread. Each window keeps its core frames only
+// (the solve's and the characters' cross-faded over window_seam_blend_frames on each side of
+// a seam, pipeline/window_seam_blend.h):
 //   repaired.c3d/.trc  the file's samples of the core, as the window repaired them, put
 //                      back into the file (read whole once: 1.2 KB per frame at 41
 //                      markers), written when the last window is done;
