@@ -16,6 +16,23 @@
 namespace mocapsolve {
 namespace {
 
+// Waits until `flag` is set, at most 5 s (a test that would hang fails instead); its value.
+bool WaitFor(const std::atomic<bool>& flag) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!flag && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return flag;
+}
+
+// A keep that records job k's turn.
+InOrderWorker::Keep KeepIndex(std::vector<int>* kept, int k) {
+  return [kept, k] {
+    kept->push_back(k);
+    return Status::Ok();
+  };
+}
+
 class InOrderWorkerTest : public ::testing::TestWithParam<bool> {};
 
 // The earlier jobs take longer: run side by side, they would finish last.
@@ -95,19 +112,12 @@ TEST(InOrderWorker, ASubmitThatFindsAJobWaitingRunsItOnTheCallersThread) {
   ASSERT_TRUE(worker.Submit(
       [&] {
         first_started = true;
-        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-        while (!second_started && std::chrono::steady_clock::now() < deadline) {
-          std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
-        first_saw_second = second_started.load();
+        first_saw_second = WaitFor(second_started);
         std::this_thread::sleep_for(std::chrono::milliseconds(20));  // Done after the second.
         return Status::Ok();
       },
-      [&kept] {
-        kept.push_back(0);
-        return Status::Ok();
-      }));
-  while (!first_started) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      KeepIndex(&kept, 0)));
+  ASSERT_TRUE(WaitFor(first_started));
   std::thread::id second_thread;
   ASSERT_TRUE(worker.Submit(
       [&] {
@@ -115,14 +125,8 @@ TEST(InOrderWorker, ASubmitThatFindsAJobWaitingRunsItOnTheCallersThread) {
         second_started = true;
         return Status::Ok();
       },
-      [&kept] {
-        kept.push_back(1);
-        return Status::Ok();
-      }));
-  ASSERT_TRUE(worker.Submit([] { return Status::Ok(); }, [&kept] {
-        kept.push_back(2);
-        return Status::Ok();
-      }));
+      KeepIndex(&kept, 1)));
+  ASSERT_TRUE(worker.Submit([] { return Status::Ok(); }, KeepIndex(&kept, 2)));
   EXPECT_EQ(second_thread, std::this_thread::get_id());
   EXPECT_TRUE(worker.Finish().ok());
   EXPECT_TRUE(first_saw_second) << "the waiting job was not run beside the running one";
@@ -138,18 +142,11 @@ TEST(InOrderWorker, FinishRunsTheWaitingJobBesideTheRunningOne) {
   ASSERT_TRUE(worker.Submit(
       [&] {
         first_started = true;
-        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-        while (!second_started && std::chrono::steady_clock::now() < deadline) {
-          std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
-        first_saw_second = second_started.load();
+        first_saw_second = WaitFor(second_started);
         return Status::Ok();
       },
-      [&kept] {
-        kept.push_back(0);
-        return Status::Ok();
-      }));
-  while (!first_started) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      KeepIndex(&kept, 0)));
+  ASSERT_TRUE(WaitFor(first_started));
   const std::thread::id caller = std::this_thread::get_id();
   std::thread::id second_thread;
   ASSERT_TRUE(worker.Submit(
@@ -158,10 +155,7 @@ TEST(InOrderWorker, FinishRunsTheWaitingJobBesideTheRunningOne) {
         second_started = true;
         return Status::Ok();
       },
-      [&kept] {
-        kept.push_back(1);
-        return Status::Ok();
-      }));
+      KeepIndex(&kept, 1)));
   EXPECT_TRUE(worker.Finish().ok());
   EXPECT_TRUE(first_saw_second) << "the waiting job ran only after the running one";
   EXPECT_EQ(second_thread, caller);
@@ -177,26 +171,17 @@ TEST(InOrderWorker, AnEarlierJobsErrorWinsOverALaterJobRunBesideIt) {
   ASSERT_TRUE(worker.Submit(
       [&] {
         first_started = true;
-        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-        while (!second_done && std::chrono::steady_clock::now() < deadline) {
-          std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
+        WaitFor(second_done);
         return Status::Error("window 1: failed");
       },
-      [&kept] {
-        kept.push_back(0);
-        return Status::Ok();
-      }));
-  while (!first_started) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      KeepIndex(&kept, 0)));
+  ASSERT_TRUE(WaitFor(first_started));
   ASSERT_TRUE(worker.Submit(
       [&] {
         second_done = true;
         return Status::Ok();
       },
-      [&kept] {
-        kept.push_back(1);
-        return Status::Ok();
-      }));
+      KeepIndex(&kept, 1)));
   const Status status = worker.Finish();
   ASSERT_FALSE(status.ok());
   EXPECT_EQ(status.message(), "window 1: failed");
