@@ -164,19 +164,24 @@ TEST(AutoSubject, ALowerBodyTakeFitsItsLegsAndHoldsTheUpperBody) {
   EXPECT_THAT(AutoSubjectReport(result).ToString(), HasSubstr("\"held_segments\""));
 }
 
-// A Helen Hayes / Davis trunk (BTS DAVIS labels): C7 and the two acromions are the only
-// upper-body markers. They are the chest, not an arm: before, one of two shoulder-height
-// points on a side was called its hand.
-TEST(AutoSubject, ADavisTrunkIsTheChestNotAnArm) {
+// The template walk cut to a Helen Hayes / Davis set (BTS DAVIS labels) and fitted, written
+// as `file`.
+AutoSubjectResult FitDavisWalk(const std::string& file, Status* status) {
   const std::vector<std::string> labels = {"C7", "LSHO", "RSHO", "LBWT", "RBWT", "LFWT", "RFWT", "LTHI", "RTHI",
                                            "LKNE", "RKNE", "LSHN", "RSHN", "LANK", "RANK", "LHEE", "RHEE", "LMT5",
                                            "RMT5"};
   const std::vector<std::string> bts = {"c7", "l should", "r should", "l psis", "r psis", "l asis", "r asis",
                                         "l bway", "r bway", "l knee 1", "r knee 1", "l tibia wand", "r tibia wand",
                                         "l mall", "r mall", "l heel", "r heel", "l met", "r met"};
+  return FitWritten(testing::KeepTakeMarkers(testing::TemplateWalkTake(90, false), labels, bts), file, status);
+}
+
+// A Helen Hayes / Davis trunk (BTS DAVIS labels): C7 and the two acromions are the only
+// upper-body markers. They are the chest, not an arm: before, one of two shoulder-height
+// points on a side was called its hand.
+TEST(AutoSubject, ADavisTrunkIsTheChestNotAnArm) {
   Status status = Status::Ok();
-  const AutoSubjectResult result = FitWritten(
-      testing::KeepTakeMarkers(testing::TemplateWalkTake(90, false), labels, bts), "davis.c3d", &status);
+  const AutoSubjectResult result = FitDavisWalk("davis.c3d", &status);
   ASSERT_TRUE(status.ok()) << status.message();
   EXPECT_EQ(result.method, "association");
   for (const char* label : {"c7", "l should", "r should"}) {
@@ -202,15 +207,8 @@ TEST(AutoSubject, ADavisTrunkIsTheChestNotAnArm) {
 // (within the fit's RMS of the take's): 3.6 degrees; without the change 35.9 (the clamp pulled
 // the acromions to within 12 cm of the spine).
 TEST(AutoSubject, ADavisChestDoesNotRollToItsAcromions) {
-  const std::vector<std::string> labels = {"C7", "LSHO", "RSHO", "LBWT", "RBWT", "LFWT", "RFWT", "LTHI", "RTHI",
-                                           "LKNE", "RKNE", "LSHN", "RSHN", "LANK", "RANK", "LHEE", "RHEE", "LMT5",
-                                           "RMT5"};
-  const std::vector<std::string> bts = {"c7", "l should", "r should", "l psis", "r psis", "l asis", "r asis",
-                                        "l bway", "r bway", "l knee 1", "r knee 1", "l tibia wand", "r tibia wand",
-                                        "l mall", "r mall", "l heel", "r heel", "l met", "r met"};
   Status status = Status::Ok();
-  const AutoSubjectResult result = FitWritten(
-      testing::KeepTakeMarkers(testing::TemplateWalkTake(90, false), labels, bts), "davis_chest.c3d", &status);
+  const AutoSubjectResult result = FitDavisWalk("davis_chest.c3d", &status);
   ASSERT_TRUE(status.ok()) << status.message();
   const Skeleton& skeleton = result.fit.subject.skeleton;
   const MarkerSet& markers = result.fit.subject.markers;
