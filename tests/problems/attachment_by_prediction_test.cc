@@ -177,6 +177,25 @@ TEST(AttachmentByPrediction, RigidClusterCandidateIsTheJointOfMostOfTheOthers) {
   EXPECT_EQ(RigidClusterCandidates(set, {{1, 3, 4, 5, 6}}), (std::vector<int>{-1, -1, -1, foot, foot, -1, -1}));
 }
 
+// Every marker of `set` placed on `motion` with 0.2 (skeleton units) of Gaussian noise per
+// coordinate, seed 3.
+std::vector<std::vector<Eigen::Vector3d>> NoisyObservations(const Skeleton& skeleton, const MarkerSet& set,
+                                                            const Motion& motion) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.2);
+  FkData fk(skeleton);
+  std::vector<std::vector<Eigen::Vector3d>> observed;
+  for (const Pose& pose : motion.frames) {
+    ForwardKinematics(skeleton, pose, &fk);
+    std::vector<Eigen::Vector3d> frame;
+    for (int m = 0; m < set.num_markers(); ++m) {
+      frame.push_back(set.Position(m, fk) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+    }
+    observed.push_back(frame);
+  }
+  return observed;
+}
+
 TEST(AttachmentByPrediction, AMarkerRigidWithTheFootButPutOnTheToeGoesToTheFoot) {
   const Skeleton skeleton = MakeDemoSkeleton();
   const int toe = skeleton.FindJoint("LeftToe");
@@ -241,18 +260,7 @@ AttachmentChoice DecidedPatella(const AttachmentChoice& truth, std::vector<Attac
   specs.push_back({"PAT", truth});
   MarkerSet set;
   EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
-  std::mt19937 rng(3);
-  std::normal_distribution<double> noise(0.0, 0.2);
-  FkData fk(skeleton);
-  std::vector<std::vector<Eigen::Vector3d>> observed;
-  for (const Pose& pose : motion.frames) {
-    ForwardKinematics(skeleton, pose, &fk);
-    std::vector<Eigen::Vector3d> frame;
-    for (int m = 0; m < set.num_markers(); ++m) {
-      frame.push_back(set.Position(m, fk) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
-    }
-    observed.push_back(frame);
-  }
+  const std::vector<std::vector<Eigen::Vector3d>> observed = NoisyObservations(skeleton, set, motion);
   const MarkerTrajectories take = AsTake(set, observed);
   specs.back().attachments = FitPat(skeleton, motion, take, {{thigh, 1.0, Eigen::Vector3d::Zero()}});
   EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
@@ -414,18 +422,7 @@ std::vector<AttachmentChoice> DecidedLimb(double limb_rise, std::vector<Attachme
   specs.push_back({"LAT", {{thigh, 1.0, skeleton.offset(knee) + side}}});
   MarkerSet set;
   EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
-  std::mt19937 rng(3);
-  std::normal_distribution<double> noise(0.0, 0.2);
-  FkData fk(skeleton);
-  std::vector<std::vector<Eigen::Vector3d>> observed;
-  for (const Pose& pose : motion.frames) {
-    ForwardKinematics(skeleton, pose, &fk);
-    std::vector<Eigen::Vector3d> frame;
-    for (int m = 0; m < set.num_markers(); ++m) {
-      frame.push_back(set.Position(m, fk) + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
-    }
-    observed.push_back(frame);
-  }
+  const std::vector<std::vector<Eigen::Vector3d>> observed = NoisyObservations(skeleton, set, motion);
   const MarkerTrajectories take = AsTake(set, observed);
   const AttachmentChoice on_thigh = {{thigh, 1.0, Eigen::Vector3d::Zero()}};
   const AttachmentChoice blend = {{thigh, 0.5, Eigen::Vector3d::Zero()}, {knee, 0.5, Eigen::Vector3d::Zero()}};
