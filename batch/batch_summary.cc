@@ -143,9 +143,11 @@ std::string FormatSummaryHtml(const BatchResult& result) {
 
 Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version,
                          const std::string& base) {
-  Status status = WriteFileAtomicallyNow(out_dir + "/" + base + ".json", FormatSummaryJson(result, version));
-  if (status.ok()) status = WriteFileAtomicallyNow(out_dir + "/" + base + ".csv", FormatSummaryCsv(result));
-  return status.ok() ? WriteFileAtomicallyNow(out_dir + "/" + base + ".html", FormatSummaryHtml(result)) : status;
+  // The JSON last: a batch killed at any instant that left a summary.json has left its .csv and
+  // .html too, of this round or the one before.
+  Status status = WriteFileAtomicallyNow(out_dir + "/" + base + ".csv", FormatSummaryCsv(result));
+  if (status.ok()) status = WriteFileAtomicallyNow(out_dir + "/" + base + ".html", FormatSummaryHtml(result));
+  return status.ok() ? WriteFileAtomicallyNow(out_dir + "/" + base + ".json", FormatSummaryJson(result, version)) : status;
 }
 
 Status CollectRecords(const std::string& out_dir, const BatchManifest* manifest, BatchResult* result) {

@@ -26,7 +26,7 @@ std::string FormatSummaryJson(const BatchResult& result, const std::string& vers
 std::string FormatSummaryCsv(const BatchResult& result);
 std::string FormatSummaryHtml(const BatchResult& result);
 
-// The three files, each atomically and at once (not at the command's end):
+// The three files, each atomically and at once (not at the command's end), the JSON last:
 // DIR/<base>.json, DIR/<base>.csv and DIR/<base>.html.
 Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result, const std::string& version,
                          const std::string& base = "summary");

@@ -1,7 +1,10 @@
 // Batch summaries (batch/batch_summary.h): hostile take names give inert links in
 // summary.html, gate_failed is its own status, and a summary written while the batch runs
-// lists the ended takes and counts the others as pending.
+// lists the ended takes and counts the others as pending. The JSON is written last, so a
+// batch killed between the three writes never leaves a summary.json without its pages.
 #include "batch/batch_summary.h"
+
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <string>
@@ -9,6 +12,8 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "tests/test_support.h"
 
 namespace mocapsolve {
 namespace {
@@ -72,6 +77,23 @@ TEST(BatchSummary, GateFailedAndPendingTakes) {
   const std::string html = FormatSummaryHtml(result);
   EXPECT_THAT(html, HasSubstr("<tr class=\"gate_failed\">"));
   EXPECT_THAT(html, HasSubstr("1 pending of 4 takes"));
+}
+
+TEST(BatchSummary, TheJsonIsWrittenAfterTheCsvAndHtml) {
+  const std::string dir = testing::TempPath("summaries");
+  ASSERT_EQ(::mkdir(dir.c_str(), 0755), 0);
+  BatchResult result;
+  result.takes = {Ended("ok", "done")};
+  result.done = 1;
+  // A folder where the page goes: its write fails, and the JSON must not have come first.
+  ASSERT_EQ(::mkdir((dir + "/summary.html").c_str(), 0755), 0);
+  EXPECT_FALSE(WriteBatchSummary(dir, result, "1.0", "summary").ok());
+  EXPECT_TRUE(testing::FileExists(dir + "/summary.csv"));
+  EXPECT_FALSE(testing::FileExists(dir + "/summary.json"));
+  ASSERT_EQ(::rmdir((dir + "/summary.html").c_str()), 0);
+  EXPECT_TRUE(WriteBatchSummary(dir, result, "1.0", "summary").ok());
+  EXPECT_TRUE(testing::FileExists(dir + "/summary.json"));
+  EXPECT_TRUE(testing::FileExists(dir + "/summary.html"));
 }
 
 }  // namespace
