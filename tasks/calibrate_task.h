@@ -64,7 +64,8 @@ Status CheckCalibrateSettings(const CalibrateSettings& settings);
 // `options`' mapping and paths (their frame_offset, min_valid_frames and attachments come
 // from `settings`), the report and the table. With settings.refit, the subject is then
 // refitted on the same markers as `fit_skeleton --template_subject` refits it (the calibrated
-// subject as the template, fit_skeleton's and the per-frame solve's defaults): calibration
+// subject as the template, fit_skeleton's and the per-frame solve's defaults, but on every
+// frame of the take, at most 400 spread over it): calibration
 // places each marker on the given motion's poses, which are not this project's solve of the
 // markers (CMU's AMC: 11.7 mm RMS against the markers on 02_01), so the subject's offsets and
 // lengths absorb that motion's errors; the refit alternates our per-frame solve with a
