@@ -186,15 +186,18 @@ Status Refit(const MarkerTrajectories& trajectories, const SubjectCalibrationOpt
   refit.Add("kept", result->refit_kept).Add("frames", fit.frames).Add("kept_round", fit.kept_round)
       .Add("rms", rms).Add("checks_passed", fit.checks.ok());
   if (fit.unit_known) refit.Add("rms_mm", rms * fit.mm_per_unit);
-  if (!fit.checks.ok()) refit.Add("checks_failed", std::vector<JsonValue>(fit.checks.failures.begin(), fit.checks.failures.end()));
-  result->report.Add("refit", refit);
-  AppendF(&result->table, "\nrefit on our own solve (fit_skeleton --template_subject): marker RMS ");
-  if (fit.unit_known) {
-    AppendF(&result->table, "%.3f mm", rms * fit.mm_per_unit);
-  } else {
-    AppendF(&result->table, "%.4g units", rms);
+  if (!fit.checks.ok()) {
+    refit.Add("checks_failed", std::vector<JsonValue>(fit.checks.failures.begin(), fit.checks.failures.end()));
   }
-  AppendF(&result->table, ", round %d kept%s", fit.kept_round,
+  result->report.Add("refit", refit);
+  std::string& line = result->refit_line;
+  line = "refit on our own solve (fit_skeleton --template_subject): marker RMS ";
+  if (fit.unit_known) {
+    AppendF(&line, "%.3f mm", rms * fit.mm_per_unit);
+  } else {
+    AppendF(&line, "%.4g units", rms);
+  }
+  AppendF(&line, ", round %d kept%s", fit.kept_round,
           result->refit_kept ? "" : "; its checks failed, the calibrated subject kept");
   return Status::Ok();
 }

@@ -55,6 +55,7 @@ struct CalibrateTaskResult {
   bool refit_kept = false;
   JsonObject report;  // `--report` after the caller's file names: attach, axes, ..., per_marker.
   std::string table;  // The console table: axes, one line per marker, skipped ones, the RMS (no final newline).
+  std::string refit_line;  // settings.refit: the refit's RMS and kept round (no final newline); else "".
 };
 
 // Settings checked as the CLI checks them (their options, then --attach: auto or a .json).

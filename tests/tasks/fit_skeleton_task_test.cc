@@ -483,7 +483,8 @@ TEST(RunCalibrate, RefitFitsTheLengthsTheGivenMotionGotWrong) {
   EXPECT_EQ(legs, 4);
   EXPECT_EQ(refitted.calibration.subject.markers.num_markers(), markers.num_markers());
   EXPECT_NE(refitted.report.ToString().find("\"refit\""), std::string::npos);
-  EXPECT_NE(refitted.table.find("refit on our own solve"), std::string::npos);
+  EXPECT_EQ(refitted.refit_line.rfind("refit on our own solve", 0), 0u);
+  EXPECT_TRUE(calibrated.refit_line.empty());
 }
 
 }  // namespace
