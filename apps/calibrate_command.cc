@@ -75,6 +75,7 @@ Status CalibrateMain(const std::vector<std::string>& arguments) {
   }
   std::fputs(result.table.c_str(), stdout);
   std::printf(Files().out.empty() ? "\n" : "; wrote %s\n", Files().out.c_str());
+  if (!result.refit_line.empty()) std::printf("%s\n", result.refit_line.c_str());
   JsonObject report;
   report.Add("motion", Files().motion).Add("markers", Files().markers).Add("out", Files().out)
       .Add("out_subject", Files().out_subject).Merge(result.report);

@@ -16,6 +16,11 @@ struct CalibrateSettings {
   std::string attach = "auto";  // auto, or a marker set .json whose joints are kept.
   int frame_offset = 0;         // Marker frame = motion frame + frame_offset.
   int min_valid_frames = 2;     // Markers valid in fewer matched frames are left out.
+  // Finish with fit_skeleton's refit (the calibrated subject as its template, on the same
+  // markers, its defaults): lengths and offsets self-consistent with our own per-frame solve
+  // instead of the given motion's poses. The subject only; --out's marker set stays the
+  // calibration's, on the given skeleton.
+  bool refit = false;
 };
 
 const OptionGroup<CalibrateSettings>& CalibrateSettingOptions();

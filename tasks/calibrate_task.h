@@ -19,6 +19,7 @@
 #include "problems/marker_solve/calibration.h"
 #include "problems/marker_solve/marker_observations.h"
 #include "settings/calibrate_settings.h"
+#include "tasks/fit_skeleton_task.h"
 
 namespace mocapsolve {
 
@@ -47,9 +48,14 @@ Status CalibrateSubject(const Skeleton& skeleton, const Motion& motion,
                         const SubjectCalibrationOptions& options, SubjectCalibration* out);
 
 struct CalibrateTaskResult {
-  SubjectCalibration calibration;
+  SubjectCalibration calibration;  // With settings.refit, its subject is the refit's.
+  // settings.refit: the fit (FitSubjectToTake); refit_kept is false when its checks failed
+  // and the calibrated subject was kept.
+  SkeletonFitResult refit;
+  bool refit_kept = false;
   JsonObject report;  // `--report` after the caller's file names: attach, axes, ..., per_marker.
   std::string table;  // The console table: axes, one line per marker, skipped ones, the RMS (no final newline).
+  std::string refit_line;  // settings.refit: the refit's RMS and kept round (no final newline); else "".
 };
 
 // Settings checked as the CLI checks them (their options, then --attach: auto or a .json).
@@ -57,7 +63,15 @@ Status CheckCalibrateSettings(const CalibrateSettings& settings);
 
 // `mocapsolve calibrate`: the attachments read (settings.attach), CalibrateSubject with
 // `options`' mapping and paths (their frame_offset, min_valid_frames and attachments come
-// from `settings`), the report and the table. Lengths in mm where the skeleton's unit is
+// from `settings`), the report and the table. With settings.refit, the subject is then
+// refitted on the same markers as `fit_skeleton --template_subject` refits it (the calibrated
+// subject as the template, fit_skeleton's and the per-frame solve's defaults, but on every
+// frame of the take, at most 400 spread over it): calibration
+// places each marker on the given motion's poses, which are not this project's solve of the
+// markers (CMU's AMC: 11.7 mm RMS against the markers on 02_01), so the subject's offsets and
+// lengths absorb that motion's errors; the refit alternates our per-frame solve with a
+// length/offset fit until they agree (3.2 mm there). Its checks failing keeps the calibrated
+// subject (the report says so). Lengths in mm where the skeleton's unit is
 // known ("rms_mm"), else skeleton units.
 Status RunCalibrate(const Skeleton& skeleton, const Motion& motion, const MarkerTrajectories& trajectories,
                     const CalibrateSettings& settings, SubjectCalibrationOptions options,
