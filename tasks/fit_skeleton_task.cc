@@ -4,8 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
-#include <string>
 #include <utility>
 
 #include "io/marker_file.h"
@@ -208,12 +206,10 @@ MarkerTrajectories KeepMarkers(const MarkerTrajectories& file, const std::vector
 // Round 0's markers from the association: every associated marker on its segment's joint;
 // the take cut to the markers (non-markers left out), its axes and scale as detected; and the
 // joints the attach rounds may use (AttachableJoints of every associated marker) and those
-// they leave out (HeldLimbJoints); and per associated marker, whatever its confidence, the
-// joints it may ride on (its segment's neighbourhood, associated_marker_set.h).
+// they leave out (HeldLimbJoints).
 Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& settings, MarkerTrajectories* file,
                      SkeletonFitResult* result, Subject* mapping, AssociatedMarkerSet* set,
-                     std::vector<int>* attach_joints, std::vector<bool>* held_limbs,
-                     std::map<std::string, MarkerPlace>* marker_places) {
+                     std::vector<int>* attach_joints, std::vector<bool>* held_limbs) {
   const Skeleton& skeleton = inputs.templ.skeleton;
   Status status = AssociateMarkers(*file, inputs.markers_path, MarkerAssociationOptions(), &result->association);
   if (!status.ok()) return status;
@@ -235,10 +231,6 @@ Status AssociateTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings&
   if (!status.ok()) return Status::Error(inputs.markers_path + ": " + status.message());
   *attach_joints = AttachableJoints(skeleton, segments);
   *held_limbs = HeldLimbJoints(skeleton, segments);
-  for (size_t s = 0; s < every.specs.size(); ++s) {
-    (*marker_places)[SplitSubjectPrefix(every.specs[s].label, file->subject_prefixes).name].joints =
-        every.neighbourhoods[s];
-  }
   mapping->axes = set->axes;
   if (result->association.unit_from_data) {
     file->unit = result->association.unit;
@@ -303,11 +295,6 @@ struct FitTake {
   // The joints it leaves out, rigid with their parents in every round (HeldLimbJoints; empty:
   // none): their bones are their parents' skin for --max_skin_cm.
   std::vector<bool> held_limbs;
-  // With the association: per marker, the joints the attach rounds may put it on
-  // (CalibrationOptions::marker_places): a round re-attaches a marker within its segment's neighbourhood, not anywhere (squat's Davis cut, associated
-  // right, had "r met" on the femur and "r mall" on the other side's toes, each passing the
-  // fit checks).
-  std::map<std::string, MarkerPlace> marker_places;
 };
 
 // Reads the take and sets it against the template: labels mapped, the template markers it
@@ -334,7 +321,7 @@ Status LoadFitTake(const SkeletonFitInputs& inputs, const SkeletonFitSettings& s
   AssociatedMarkerSet associated;
   if (UseAssociation(settings, template_markers, file)) {
     status = AssociateTake(inputs, settings, &file, result, &fit->mapping, &associated, &fit->attach_joints,
-                           &fit->held_limbs, &fit->marker_places);
+                           &fit->held_limbs);
     present = associated.specs;
     fit->associated = true;
   } else {
@@ -597,7 +584,7 @@ Status ChooseByPrediction(const FitTake& fit, const RoundState& state, const Cal
       other = j == a ? b : (j == b ? a : -1);
     }
     if (other < 0) other = cluster_joint[s];
-    if (other < 0 || !MarkerMayRide(calibration, spec.label, other)) continue;
+    if (other < 0) continue;
     single[s] = {{other, 1.0, Eigen::Vector3d::Zero()}};
     any = true;
   }
@@ -622,7 +609,6 @@ Status AttachRound(const FitTake& fit, double max_bone_distance, const MarkerSol
   CalibrationOptions calibration;
   calibration.max_bone_distance = max_bone_distance;
   calibration.candidate_joints = fit.attach_joints;
-  calibration.marker_places = fit.marker_places;
   std::vector<MarkerSpec> specs;
   std::vector<std::pair<int, int>> reattached;
   int new_markers = 0;

@@ -29,24 +29,6 @@ int RoleJoint(const HumanoidRoles& roles, const std::string& role) {
   return joint;
 }
 
-// The joints of joint j's body part and of the parts next to it (the header), ascending.
-std::vector<int> Neighbourhood(const Skeleton& templ, const HumanoidRoles& roles, const std::vector<int>& part, int j) {
-  const int own = part[j];
-  const int root_joint = own >= 0 ? roles.roles[own].second : j;
-  const int parent_part = templ.parent(root_joint) >= 0 ? part[templ.parent(root_joint)] : -1;
-  std::vector<int> joints;
-  for (int k = 0; k < templ.num_joints(); ++k) {
-    const int p = part[k];
-    bool near = p == own || (p >= 0 && p == parent_part);
-    if (!near && p >= 0) {
-      const int up = templ.parent(roles.roles[p].second);
-      near = up >= 0 && part[up] == own;  // A child part.
-    }
-    if (near) joints.push_back(k);
-  }
-  return joints;
-}
-
 }  // namespace
 
 Status MakeAssociatedMarkerSet(const Skeleton& templ, const MarkerAssociation& association, double min_confidence,
@@ -56,7 +38,6 @@ Status MakeAssociatedMarkerSet(const Skeleton& templ, const MarkerAssociation& a
   ForwardKinematics(templ, RestPose(templ), &fk);
   const HumanoidRoles roles = FindHumanoidRoles(templ, fk.world_positions);
   if (!roles.humanoid) return Status::Error("the template skeleton is no humanoid: " + roles.why_not);
-  const std::vector<int> part = BodyParts(templ, roles);
   const int pelvis = roles.Find("pelvis"), head = roles.Find("head");
   if (pelvis < 0 || head < 0) return Status::Error("the template skeleton has no pelvis or head joint");
   const Eigen::Vector3d up = fk.world_positions[head] - fk.world_positions[pelvis];
@@ -92,7 +73,6 @@ Status MakeAssociatedMarkerSet(const Skeleton& templ, const MarkerAssociation& a
     spec.attachments.push_back({joint, 1.0, BoneMiddle(templ, joint)});
     out->specs.push_back(spec);
     out->joints.push_back(templ.name(joint));
-    out->neighbourhoods.push_back(Neighbourhood(templ, roles, part, joint));
   }
   if (out->specs.size() < 3) return Status::Error("fewer than 3 markers associated with the template's segments");
   return Status::Ok();

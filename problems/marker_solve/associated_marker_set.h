@@ -6,11 +6,6 @@
 // template's (the first axis rotation, in AllAxisRotations' order, that does). The markers
 // below `min_confidence` are left out, but for the pelvis' (the root's, which anchor the
 // fit), left out below half of it.
-// Per marker, its neighbourhood: the joints of its role's body part (humanoid_roles.h,
-// BodyParts: the role's joint and what hangs below it until the next role) and of the parts
-// next to it (the part its joint's parent belongs to, and the parts whose role joint's parent
-// is in it). The attach rounds keep an associated marker there: a right-foot marker may ride
-// the shin, foot or toes, never the femur or the left toes.
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_ASSOCIATED_MARKER_SET_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_ASSOCIATED_MARKER_SET_H_
 
@@ -27,7 +22,6 @@ namespace mocapsolve {
 struct AssociatedMarkerSet {
   std::vector<MarkerSpec> specs;          // The markers at or above the bar (the pelvis': half), on their joints.
   std::vector<std::string> joints;        // Per spec, its joint's name (for the report).
-  std::vector<std::vector<int>> neighbourhoods;  // Per spec, its neighbourhood's joints (ascending).
   std::vector<std::string> left_out;      // Labels below the confidence or without a template joint.
   std::vector<std::string> head_labels, pelvis_labels;  // For the torso check.
   std::string axes;                       // File -> template axes ("y,z,x").

@@ -158,12 +158,6 @@ void TransformMarkers(const MarkerFileToModel& transform, const LengthUnit& new_
   trajectories->unit = new_unit;
 }
 
-bool MarkerMayRide(const CalibrationOptions& options, const std::string& label, int j) {
-  const auto it = options.marker_places.find(label);
-  if (it == options.marker_places.end() || it->second.joints.empty()) return true;
-  return std::find(it->second.joints.begin(), it->second.joints.end(), j) != it->second.joints.end();
-}
-
 Status CalibrateMarkers(const Skeleton& skeleton, const Motion& motion,
                         const MarkerTrajectories& trajectories, const CalibrationOptions& options,
                         const MarkerSet* attachments, CalibrationResult* result) {
@@ -216,27 +210,13 @@ Status CalibrateMarkers(const Skeleton& skeleton, const Motion& motion,
       for (size_t c = 0; c < candidates.size(); ++c) {
         LocalMeanAndSpread(matched, trajectories, m, frames, candidates[c], &means[c], &spread[c]);
       }
-      // The joints of the marker's place (marker_places): the others are no choice, not even
-      // the nearest bone's fallback below.
-      std::vector<bool> own(candidates.size(), true);
-      bool any_own = false;
-      for (size_t c = 0; c < candidates.size(); ++c) {
-        own[c] = MarkerMayRide(options, name, candidates[c]);
-        any_own = any_own || own[c];
-      }
-      if (!any_own) own.assign(candidates.size(), true);
-      for (size_t c = 0; c < candidates.size(); ++c) {
-        if (!own[c]) spread[c] = std::numeric_limits<double>::infinity();
-      }
       // With max_bone_distance, plausible joints only: the marker's mean local position
       // within the skin distance of the joint's bone (a toe marker does not ride on a
       // hip); when none qualifies, the joint with the nearest bone. Joints tied on the
       // spread (moving together in this motion, e.g. a forearm no marker has moved yet
       // and its upper arm) are told apart by the nearest bone, not the lowest index.
       std::vector<double> distance(candidates.size(), 0.0);
-      for (size_t c = 0; c < candidates.size(); ++c) {
-        distance[c] = own[c] ? DistanceToBone(skeleton, candidates[c], means[c]) : std::numeric_limits<double>::infinity();
-      }
+      for (size_t c = 0; c < candidates.size(); ++c) distance[c] = DistanceToBone(skeleton, candidates[c], means[c]);
       if (options.max_bone_distance > 0.0) {
         bool any = false;
         for (size_t c = 0; c < candidates.size(); ++c) any |= distance[c] <= options.max_bone_distance;

@@ -14,8 +14,7 @@
 //   z_mj = mean_f l_mj(f),   rms_mj = sqrt(mean_f |l_mj(f) - z_mj|^2).
 // Auto attach: each marker rides on the joint in whose frame it moves least,
 //   j*(m) = argmin_j rms_mj,
-// over all joints (or options.candidate_joints), and per marker over the joints of its
-// place (options.marker_places) when it has one. Joints whose frames move together
+// over all joints (or options.candidate_joints). Joints whose frames move together
 // (a joint without rotation channels, e.g. the ASF hip joints, moves rigidly with its
 // parent) give the same rms up to round-off; among joints within
 // tie_tolerance of the best (relative, plus an absolute 1e-9 of the marker's mean distance
@@ -39,7 +38,6 @@
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_CALIBRATION_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_CALIBRATION_H_
 
-#include <map>
 #include <string>
 #include <vector>
 
@@ -66,20 +64,10 @@ void TransformMarkers(const MarkerFileToModel& transform, const LengthUnit& new_
 
 // --- Calibration --------------------------------------------------------------------
 
-// Where a marker belongs: the only joints it may ride on (among candidate_joints: a marker
-// association's segment, its body part and the parts next to it). When none of `joints` is
-// a candidate, any candidate.
-struct MarkerPlace {
-  std::vector<int> joints;  // Allowed joints (empty: all).
-};
-
 struct CalibrationOptions {
   int frame_offset = 0;        // Marker frame index = motion frame index + frame_offset.
   int min_valid_frames = 2;    // Markers valid in fewer matched frames are skipped.
   std::vector<int> candidate_joints;  // Auto attach: joints allowed (empty: all).
-  // Auto attach, per marker (its label without subject prefix): its place, what a marker
-  // association established (MarkerPlace); a marker without one may ride any candidate.
-  std::map<std::string, MarkerPlace> marker_places;
   double tie_tolerance = 1e-6;        // Relative, on rms^2 (see the header comment).
   // Auto attach: only joints whose bone (subject_checks.h, BoneSegments) the marker's mean
   // local position lies within this distance of (skeleton units; 0: any joint). When no
@@ -115,10 +103,6 @@ struct CalibrationResult {
   int samples = 0;                       // Valid samples used over all markers.
   double rms = 0.0;                      // Over all samples used, skeleton units.
 };
-
-// Whether marker `label`'s place (no subject prefix; options.marker_places) lets it ride on
-// joint j (candidate_joints aside).
-bool MarkerMayRide(const CalibrationOptions& options, const std::string& label, int j);
 
 // Calibrates every marker of `trajectories` (already in the model's axes and skeleton
 // units, see TransformMarkers) against `motion`. attachments == nullptr: auto attach.

@@ -2,7 +2,6 @@
 // which associated markers round 0 fits, on which template joints.
 #include "problems/marker_solve/associated_marker_set.h"
 
-#include <map>
 #include <set>
 #include <string>
 
@@ -45,29 +44,6 @@ TEST(AssociatedMarkerSet, ThePelvisMarkersAnchorRoundZeroBelowTheBar) {
       EXPECT_EQ(set.joints[i], "Hips") << set.specs[i].label;
     }
   }
-}
-
-// The attach rounds keep an associated marker in its segment's neighbourhood: its body part
-// and the parts next to it (BodyParts). On the demo character a left-foot marker may ride the
-// shin, foot or toe; not the thigh two segments up, nor anything of the other side.
-TEST(AssociatedMarkerSet, ANeighbourhoodIsTheSegmentsPartAndThePartsNextToIt) {
-  const Skeleton demo = MakeDemoSkeleton();
-  MarkerAssociation association;
-  association.up_axis = 1;
-  association.up_sign = 1;
-  association.markers = {Marker("F", "left_foot", 0.9), Marker("P", "pelvis", 0.9), Marker("H", "head", 0.9),
-                         Marker("S", "right_shin", 0.1)};
-  AssociatedMarkerSet set;
-  ASSERT_TRUE(MakeAssociatedMarkerSet(demo, association, 0.0, &set).ok());
-  ASSERT_EQ(set.neighbourhoods.size(), set.specs.size());
-  std::map<std::string, std::set<std::string>> names;
-  for (size_t i = 0; i < set.specs.size(); ++i) {
-    for (int j : set.neighbourhoods[i]) names[set.specs[i].label].insert(demo.name(j));
-  }
-  EXPECT_EQ(names["F"], (std::set<std::string>{"LeftLeg", "LeftFoot", "LeftToe"}));
-  EXPECT_EQ(names["P"], (std::set<std::string>{"Hips", "Spine", "LeftUpLeg", "RightUpLeg"}));
-  EXPECT_EQ(names["H"], (std::set<std::string>{"Neck", "Head"}));
-  EXPECT_EQ(names["S"], (std::set<std::string>{"RightUpLeg", "RightLeg", "RightFoot"}));
 }
 
 }  // namespace

@@ -211,41 +211,6 @@ TEST(Calibration, TiedJointsGoToTheClearlyNearerBone) {
   EXPECT_EQ(result.marker_set.marker(0).attachments[0].joint, parent);
 }
 
-// A marker with a place (a marker association's segment neighbourhood) rides only a joint of
-// it, even where another joint holds it better; the nearest-bone fallback stays inside it too.
-// Markers without a place, or whose place holds no candidate, may ride any candidate.
-TEST(Calibration, AMarkerWithAPlaceRidesOnlyItsJoints) {
-  const Skeleton skeleton = MakeDemoSkeleton();
-  const Motion motion = JitteredWalk(skeleton, 60, 5);
-  const int foot = skeleton.FindJoint("LeftFoot"), leg = skeleton.FindJoint("LeftLeg");
-  const int toe = skeleton.FindJoint("LeftToe"), thigh = skeleton.FindJoint("LeftUpLeg");
-  const Eigen::Vector3d foot_bone = skeleton.joint(toe).offset;
-  std::vector<MarkerSpec> specs = {{"HEEL", {{foot, 1.0, 0.5 * foot_bone + foot_bone.unitOrthogonal()}}},
-                                   {"FREE", {{foot, 1.0, 0.3 * foot_bone}}},
-                                   {"ELSEWHERE", {{foot, 1.0, 0.6 * foot_bone}}}};
-  MarkerSet truth;
-  ASSERT_TRUE(MarkerSet::Create(skeleton, specs, &truth).ok());
-  const MarkerTrajectories trajectories = Synthesize(skeleton, motion, truth);
-  for (double max_bone_distance : {0.0, 3.0}) {
-    CalibrationOptions options;
-    options.max_bone_distance = max_bone_distance;
-    options.marker_places["HEEL"].joints = {leg, thigh};       // Not its joint: the shin or the thigh.
-    options.marker_places["ELSEWHERE"].joints = {skeleton.FindJoint("RightHand")};
-    options.candidate_joints = {0, leg, foot, toe, thigh};  // RightHand is none of them.
-    CalibrationResult result;
-    ASSERT_TRUE(CalibrateMarkers(skeleton, motion, trajectories, options, nullptr, &result).ok());
-    const int heel = result.marker_set.marker(0).attachments[0].joint;
-    EXPECT_TRUE(heel == leg || heel == thigh) << skeleton.name(heel) << " " << max_bone_distance;
-    EXPECT_GT(result.markers[0].rms, 0.1);  // The foot's own motion: it no longer fits exactly.
-    EXPECT_NE(result.markers[0].runner_up, foot);
-    EXPECT_EQ(result.marker_set.marker(1).attachments[0].joint, foot);
-    EXPECT_EQ(result.marker_set.marker(2).attachments[0].joint, foot);
-    EXPECT_TRUE(MarkerMayRide(options, "HEEL", leg));
-    EXPECT_FALSE(MarkerMayRide(options, "HEEL", foot));
-    EXPECT_TRUE(MarkerMayRide(options, "FREE", foot));
-  }
-}
-
 TEST(Calibration, FixedAttachmentsReestimateOffsetsIncludingBlends) {
   const Skeleton skeleton = MakeDemoSkeleton();
   const Motion motion = JitteredWalk(skeleton, 60, 3);
