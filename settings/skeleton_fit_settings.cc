@@ -34,6 +34,11 @@ const OptionGroup<SkeletonFitSettings>& SkeletonFitSettingOptions() {
            "times their marker's median residual, from their marker in the first fit (mislabels, ghosts); the fit "
            "RMS and the checks are then over the kept samples, and the report counts the others; 0: fit every "
            "sample.", 0.0)
+      .Add(&S::free_locked_axes, "free_locked_axes",
+           "With attach rounds: fit the take again with the template's joints that lock one rotation axis which no "
+           "joint below them makes up (an ASF foot's roll about its heel-toe axis), observed by at least 3 markers on "
+           "or below them, given that axis, and keep that fit when its held-out leave-one-out median on the fitted "
+           "frames is lower (the fit then takes about twice as long); false: the template's axes.")
       .Add(&S::check, "check",
            "The subject checks (marker within 15 cm of its bone, or within its template distance when larger, "
            "torso direction within 15 degrees of the markers', left/right within 5 %, marker RMS within 25 mm): "

@@ -26,6 +26,9 @@ struct SkeletonFitSettings {
   // the lowest weight a loose marker gets; 0 = off (every marker weight 1).
   double learn_weights = 0.0;
   double fit_outlier_mm = 200.0;  // 0 = off.
+  // Fit again with the template's locked rotation axes freed (problems/marker_solve/locked_axes.h),
+  // kept when it predicts better (tasks/fit_skeleton_task.cc); only with attach rounds.
+  bool free_locked_axes = true;
   std::string check = "fail";    // fail | warn | off.
   // TEMPLATE:TAKE pairs or their file (problems/marker_solve/template_labels.h); "auto": a
   // shipped map that fits the take (template_label_maps.h); "" or "none": none.

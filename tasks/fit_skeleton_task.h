@@ -71,6 +71,8 @@ struct SkeletonFitEvent {
     kStopped,        // round: it did not improve (rms = 0) or by less than 1 % (rms: the kept one); the rounds stop.
     kKept,           // round (the kept one), rms: the last round was not the best.
     kBlended,        // markers: how many the kept round blended over a hinge; text: which, on which joints.
+    kFreedAxes,      // text: the joints given their locked axis in a second fit; markers: 1 if that fit is kept;
+                     // rms: the first fit's held-out score, rms_first: the second's (skeleton units; -1: none).
   };
   Kind kind = kRoundStart;
   int round = 0, rounds = 0, markers = 0, frames = 0, iterations = 0, iteration = 0, frames_done = 0;
@@ -141,6 +143,10 @@ struct SkeletonFitResult {
   bool unit_known = false;
   LearnedMarkerWeights weights;  // With --learn_weights (else empty).
   std::vector<SkeletonFitBlend> hinge_blends;  // The kept round's markers blended over a hinge.
+  // The template joints whose locked rotation axis the kept fit frees (locked_axes.h; empty: the template's
+  // axes), and the held-out scores of the fits without and with them freed (skeleton units; empty: no second fit).
+  std::vector<std::string> freed_axes;
+  std::vector<double> locked_axes_held_out;
   // The joints no marker of the fitted subject observes (a sparse protocol's upper body):
   // at the template's rest in the fit; the subject keeps the template's mean pose for them,
   // where its solves start and hold them.
