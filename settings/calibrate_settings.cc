@@ -16,8 +16,8 @@ const OptionGroup<CalibrateSettings>& CalibrateSettingOptions() {
            "Finish the subject (--out_subject) with fit_skeleton --template_subject's refit on the same markers "
            "(its defaults, but every frame, at most 400 spread over the take): bone lengths and offsets fitted "
            "against this project's own per-frame solve, not the given motion's poses (CMU 02_01: marker RMS 11.7 -> "
-           "3.1 mm; cross-take leave-one-out on 02_05 11.3 -> 8.7 mm). Takes a fit's time (45-90 s on 02_01). "
-           "--out's marker set stays the calibration's.");
+           "2.7 mm; cross-take leave-one-out median on 02_05 11.3 -> 7.9 mm). Takes a fit's time (1-3 minutes on "
+           "02_01). --out's marker set stays the calibration's.");
   return *group;
 }
 

@@ -68,7 +68,7 @@ Status CalibrateSubject(const Skeleton& skeleton, const Motion& motion,
 namespace {
 
 // The refit's frames at most (every frame of a shorter take): 02_01's 343 frames fit in
-// 45-90 s on this machine.
+// 1-3 minutes on this machine (the fit, and its second fit with a foot's roll freed).
 constexpr int kRefitMaxFrames = 400;
 
 // "LeftArm" or, for a marker on several joints, "LeftArm+LeftForeArm".
