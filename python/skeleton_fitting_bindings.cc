@@ -40,7 +40,9 @@ void BindSkeletonFitting(py::module_& m) {
       "  at each round's end ('round_done') and per frame of each pose solve ('frames',\n"
       "  with 'frames_done' of 'frames'), and once before the rounds when a template label\n"
       "  map is applied ('template_labels', 'text' its file); keys 'round', 'rounds',\n"
-      "  'iteration', 'seconds'.\n"
+      "  'iteration', 'seconds'. When the fit runs again with the template's locked axes\n"
+      "  freed (free_locked_axes: a foot's roll), 'freeing_axes' ('text' the joints) comes\n"
+      "  first and that fit's rounds follow, numbered from 0 again.\n"
       "Keywords, the fit's options (SkeletonFitSettings):\n" +
       KeywordHelp(SkeletonFitSettingOptions().options(), py::cast(SkeletonFitSettings())) +
       "and the solver options of solve() (SolverSettings: solver='dls'|'dls_generic'|'ceres', max_iterations,\n"
@@ -100,6 +102,7 @@ void BindSkeletonFitting(py::module_& m) {
               case SkeletonFitEvent::kRoundDone: kind = "round_done"; break;
               case SkeletonFitEvent::kFrames: kind = "frames"; break;
               case SkeletonFitEvent::kTemplateLabels: kind = "template_labels"; break;
+              case SkeletonFitEvent::kFreeingAxes: kind = "freeing_axes"; break;
               default: return;
             }
             py::gil_scoped_acquire acquire;

@@ -1024,12 +1024,30 @@ Status FitSubjectToTake(const SkeletonFitInputs& inputs, const SkeletonFitSettin
   SkeletonFitInputs freed_inputs = inputs;
   status = FreeLockedAxes(inputs.templ.skeleton, locked, &freed_inputs.templ.skeleton);
   if (!status.ok()) return Status::Error(inputs.markers_path + ": " + status.message());
-  SkeletonFitResult freed;
-  double freed_held_out = -1.0;
-  status = FitSubjectOnce(freed_inputs, settings, solve_options, &freed, nullptr, &freed_held_out);
-  if (!status.ok()) return status;
   std::vector<std::string> names;
   for (int j : locked) names.push_back(inputs.templ.skeleton.name(j));
+  // The second fit takes as long as the first: its rounds are reported as they run, after a
+  // line that says why; what the take's labels are was said once already.
+  SkeletonFitCallback second;
+  if (callback) {
+    SkeletonFitEvent freeing;
+    freeing.kind = SkeletonFitEvent::kFreeingAxes;
+    for (const std::string& n : names) freeing.text += (freeing.text.empty() ? "" : ", ") + n;
+    freeing.seconds = Seconds(start);
+    callback(freeing);
+    second = [&callback, offset = freeing.seconds](const SkeletonFitEvent& e) {
+      const bool said = e.kind == SkeletonFitEvent::kTemplateLabels || e.kind == SkeletonFitEvent::kAbsentMarkers ||
+                        e.kind == SkeletonFitEvent::kNotMarkers;
+      if (said) return;
+      SkeletonFitEvent shifted = e;
+      shifted.seconds += offset;  // Since FitSubjectToTake started, as the first fit's.
+      callback(shifted);
+    };
+  }
+  SkeletonFitResult freed;
+  double freed_held_out = -1.0;
+  status = FitSubjectOnce(freed_inputs, settings, solve_options, &freed, second, &freed_held_out);
+  if (!status.ok()) return status;
   // Kept when lower by more than the score's spread between fits that are alike (about 1 %,
   // held_out_round.h): a freed axis the take does not need then keeps the template's.
   if (freed_held_out >= 0.0 && freed_held_out < (1.0 - kFreedAxesMinGain) * held_out) {
@@ -1200,6 +1218,10 @@ std::string SkeletonFitEventLine(const SkeletonFitEvent& e, const Skeleton& temp
     case SkeletonFitEvent::kBlended:
       AppendF(&line, "fit_skeleton: markers blended 50/50 over a hinge: %d%s%s\n", e.markers, e.text.empty() ? "" : ": ",
               e.text.c_str());
+      break;
+    case SkeletonFitEvent::kFreeingAxes:
+      AppendF(&line, "fit_skeleton: fitting again with the locked axis of %s freed (kept if it predicts the held-out "
+              "markers better)\n", e.text.c_str());
       break;
     case SkeletonFitEvent::kFreedAxes:
       AppendF(&line, "fit_skeleton: %s with the locked axis of %s (held-out median %.2f %s, %.2f %s without)\n",

@@ -71,6 +71,8 @@ struct SkeletonFitEvent {
     kStopped,        // round: it did not improve (rms = 0) or by less than 1 % (rms: the kept one); the rounds stop.
     kKept,           // round (the kept one), rms: the last round was not the best.
     kBlended,        // markers: how many the kept round blended over a hinge; text: which, on which joints.
+    kFreeingAxes,    // text: the joints given their locked axis; the second fit's rounds follow (its round,
+                     // frames and iteration events, not the take's labels again).
     kFreedAxes,      // text: the joints given their locked axis in a second fit; markers: 1 if that fit is kept;
                      // rms: the first fit's held-out score, rms_first: the second's (skeleton units; -1: none).
   };
