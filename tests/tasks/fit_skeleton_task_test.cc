@@ -322,16 +322,22 @@ std::vector<std::vector<Eigen::Vector3d>> WalkObservations(const Skeleton& skele
   return observed;
 }
 
-TEST(FitSubjectToTake, RenamedLabelsFitThroughTheTemplateLabelMap) {
-  const Skeleton templ = MakeDemoSkeleton();  // cm
+// The demo skeleton with its legs' and feet's bones 10 % longer: a subject whose proportions
+// the template does not have.
+void MakeLongerLegs(const Skeleton& templ, Skeleton* longer) {
   std::vector<JointSpec> joints;
   for (int j = 0; j < templ.num_joints(); ++j) {
     joints.push_back(templ.joint(j));
     const std::string& name = templ.name(j);
     if (name.find("Leg") != std::string::npos || name.find("Foot") != std::string::npos) joints.back().offset *= 1.1;
   }
+  ASSERT_TRUE(Skeleton::Create(joints, templ.end_sites(), templ.unit(), longer).ok());
+}
+
+TEST(FitSubjectToTake, RenamedLabelsFitThroughTheTemplateLabelMap) {
+  const Skeleton templ = MakeDemoSkeleton();  // cm
   Skeleton subject;
-  ASSERT_TRUE(Skeleton::Create(joints, templ.end_sites(), templ.unit(), &subject).ok());
+  ASSERT_NO_FATAL_FAILURE(MakeLongerLegs(templ, &subject));
   const MarkerSet subject_markers = MakeSyntheticMarkerSet(subject, 2, 7);
   MarkerTrajectories take = ObservationTrajectories(
       subject_markers, WalkObservations(subject, subject_markers, MakeDemoWalk(subject, 40, 30.0)));
@@ -541,14 +547,8 @@ TEST(FitSubjectToTake, MissingTakeNamesTheFile) {
 // and table stay, and the report says what the refit kept.
 TEST(RunCalibrate, RefitFitsTheLengthsTheGivenMotionGotWrong) {
   const Skeleton templ = MakeDemoSkeleton();  // cm
-  std::vector<JointSpec> joints;
-  for (int j = 0; j < templ.num_joints(); ++j) {
-    joints.push_back(templ.joint(j));
-    const std::string& name = templ.name(j);
-    if (name.find("Leg") != std::string::npos || name.find("Foot") != std::string::npos) joints.back().offset *= 1.1;
-  }
   Skeleton longer;
-  ASSERT_TRUE(Skeleton::Create(joints, templ.end_sites(), templ.unit(), &longer).ok());
+  ASSERT_NO_FATAL_FAILURE(MakeLongerLegs(templ, &longer));
   const MarkerSet markers = MakeSyntheticMarkerSet(longer, 2, 7);
   const Motion walk = MakeDemoWalk(longer, 40, 30.0);
   MarkerTrajectories take = ObservationTrajectories(markers, WalkObservations(longer, markers, walk));
