@@ -1,5 +1,7 @@
 #include "problems/marker_solve/associated_marker_set.h"
 
+#include <map>
+
 #include "kinematics/forward_kinematics.h"
 #include "kinematics/motion.h"
 #include "problems/marker_solve/marker_observations.h"
@@ -58,13 +60,29 @@ Status MakeAssociatedMarkerSet(const Skeleton& templ, const MarkerAssociation& a
   // not its role: 02_01's four pelvis markers at 0.48-0.58 were all left out of round 0,
   // whose fit then kept the torso 19.7 degrees off.
   constexpr double kPelvisShare = 0.5;
+  // A segment none of whose markers reaches the bar keeps its most confident one: a segment
+  // round 0 leaves unobserved is fitted at the template's rest, and the first attach round
+  // then places its markers against that pose, anywhere (squat's Davis cut: the feet at
+  // confidence 0-0.41, each foot's markers on the femur, the shin or the other foot's toes).
+  std::map<std::string, const AssociatedMarker*> segment_best;
+  for (const AssociatedMarker& m : association.markers) {
+    if (m.role.empty() || RoleJoint(roles, m.role) < 0) continue;
+    const AssociatedMarker*& best = segment_best[m.role];
+    if (best == nullptr || m.confidence > best->confidence) best = &m;
+  }
+  for (const AssociatedMarker& m : association.markers) {
+    if (!m.role.empty() && m.confidence >= (m.role == "pelvis" ? kPelvisShare : 1.0) * min_confidence) {
+      segment_best[m.role] = nullptr;  // The segment is observed by a marker at the bar.
+    }
+  }
   for (const AssociatedMarker& m : association.markers) {
     // The torso check's groups: every head and pelvis marker (the attach rounds attach the
     // ones round 0 leaves out).
     if (m.role == "head") out->head_labels.push_back(m.label);
     if (m.role == "pelvis") out->pelvis_labels.push_back(m.label);
     const int joint = m.role.empty() ? -1 : RoleJoint(roles, m.role);
-    if (joint < 0 || m.confidence < (m.role == "pelvis" ? kPelvisShare : 1.0) * min_confidence) {
+    const bool segments_best = !m.role.empty() && segment_best.count(m.role) != 0 && segment_best[m.role] == &m;
+    if (joint < 0 || (m.confidence < (m.role == "pelvis" ? kPelvisShare : 1.0) * min_confidence && !segments_best)) {
       out->left_out.push_back(m.label);
       continue;
     }

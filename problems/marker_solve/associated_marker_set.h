@@ -5,7 +5,9 @@
 // the offset the fit starts from; and the file axes that put the take's detected up on the
 // template's (the first axis rotation, in AllAxisRotations' order, that does). The markers
 // below `min_confidence` are left out, but for the pelvis' (the root's, which anchor the
-// fit), left out below half of it.
+// fit), left out below half of it, and a segment's most confident marker when none of its
+// markers reaches the bar (a segment round 0 leaves unobserved stays at the template's rest,
+// and the first attach round places its markers against that pose).
 #ifndef MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_ASSOCIATED_MARKER_SET_H_
 #define MOCAPSOLVE_PROBLEMS_MARKER_SOLVE_ASSOCIATED_MARKER_SET_H_
 
@@ -22,7 +24,7 @@ namespace mocapsolve {
 struct AssociatedMarkerSet {
   std::vector<MarkerSpec> specs;          // The markers at or above the bar (the pelvis': half), on their joints.
   std::vector<std::string> joints;        // Per spec, its joint's name (for the report).
-  std::vector<std::string> left_out;      // Labels below the confidence or without a template joint.
+  std::vector<std::string> left_out;      // Below the bar and not their segment's best, or without a template joint.
   std::vector<std::string> head_labels, pelvis_labels;  // For the torso check.
   std::string axes;                       // File -> template axes ("y,z,x").
 };
