@@ -25,6 +25,13 @@
 namespace mocapsolve {
 namespace {
 
+// Every marker of `set`, to change some and make a set again.
+std::vector<MarkerSpec> SpecsOf(const MarkerSet& set) {
+  std::vector<MarkerSpec> specs;
+  for (int m = 0; m < set.num_markers(); ++m) specs.push_back(set.marker(m));
+  return specs;
+}
+
 // The demo walk with every joint jittered (0.1 rad), the toe by `toe_turn` rad only.
 Motion Walk(const Skeleton& skeleton, int toe, double toe_turn) {
   Motion motion = MakeDemoWalk(skeleton, 120, 60.0);
@@ -88,8 +95,7 @@ Fixture MakeFixture(const Skeleton& skeleton, const Motion& motion, int joint, c
 
 // MT5 attached to the toe (as auto attach would by a hair), the foot its alternative.
 int DecidedJoint(const Skeleton& skeleton, const Fixture& fixture, std::vector<AttachmentMove>* moves) {
-  std::vector<MarkerSpec> specs;
-  for (int m = 0; m < fixture.truth.num_markers(); ++m) specs.push_back(fixture.truth.marker(m));
+  std::vector<MarkerSpec> specs = SpecsOf(fixture.truth);
   specs.back().attachments = {fixture.toe_and_foot[0]};
   MarkerSet set;
   EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
@@ -205,8 +211,7 @@ TEST(AttachmentByPrediction, AMarkerRigidWithTheFootButPutOnTheToeGoesToTheFoot)
   const Fixture fixture = MakeFixture(skeleton, Walk(skeleton, toe, 0.4), foot, beside_toe, 0.1);
   // The toe holds it far worse than the foot: no near tie for PredictionCandidates' 15 %.
   EXPECT_GT(fixture.toe_and_foot_rms[0], 1.15 * fixture.toe_and_foot_rms[1]);
-  std::vector<MarkerSpec> specs;
-  for (int m = 0; m < fixture.truth.num_markers(); ++m) specs.push_back(fixture.truth.marker(m));
+  std::vector<MarkerSpec> specs = SpecsOf(fixture.truth);
   specs.back().attachments = {fixture.toe_and_foot[0]};
   MarkerSet set;
   ASSERT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
@@ -254,9 +259,7 @@ AttachmentChoice DecidedPatella(const AttachmentChoice& truth, std::vector<Attac
   const Skeleton skeleton = MakeDemoSkeleton();
   const int thigh = skeleton.FindJoint("LeftUpLeg"), knee = skeleton.FindJoint("LeftLeg");
   const Motion motion = Walk(skeleton, knee, 0.1);
-  const MarkerSet synthetic = MakeSyntheticMarkerSet(skeleton, 3, 7);
-  std::vector<MarkerSpec> specs;
-  for (int m = 0; m < synthetic.num_markers(); ++m) specs.push_back(synthetic.marker(m));
+  std::vector<MarkerSpec> specs = SpecsOf(MakeSyntheticMarkerSet(skeleton, 3, 7));
   specs.push_back({"PAT", truth});
   MarkerSet set;
   EXPECT_TRUE(MarkerSet::Create(skeleton, specs, &set).ok());
@@ -414,9 +417,7 @@ std::vector<AttachmentChoice> DecidedLimb(double limb_rise, std::vector<Attachme
   const Skeleton skeleton = MakeDemoSkeleton();
   const int thigh = skeleton.FindJoint("LeftUpLeg"), knee = skeleton.FindJoint("LeftLeg");
   const Motion motion = Walk(skeleton, knee, 0.1);
-  const MarkerSet synthetic = MakeSyntheticMarkerSet(skeleton, 3, 7);
-  std::vector<MarkerSpec> specs;
-  for (int m = 0; m < synthetic.num_markers(); ++m) specs.push_back(synthetic.marker(m));
+  std::vector<MarkerSpec> specs = SpecsOf(MakeSyntheticMarkerSet(skeleton, 3, 7));
   const Eigen::Vector3d front(0.0, 0.0, 6.0), side(6.0, 3.0, 0.0);
   specs.push_back({"PAT", {{thigh, 0.5, skeleton.offset(knee) + front}, {knee, 0.5, front}}});
   specs.push_back({"LAT", {{thigh, 1.0, skeleton.offset(knee) + side}}});
